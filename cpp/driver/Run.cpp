@@ -1,0 +1,202 @@
+#include "Run.h"
+#include "../mesh/generate.h"
+#include "../model/Model.h"
+#include "../output/CurveWriter.h"
+#include "../output/FieldWriter.h"
+#include "../output/plot.h"
+#include "../solver/NewtonSolver.h"
+#include "PushOut.h"
+#include "SingleJoint.h"
+#include <chrono>
+#include <dolfinx/common/IndexMap.h>
+#include <dolfinx/la/petsc.h>
+#include <fstream>
+#include <iostream>
+
+namespace pushout::driver
+{
+namespace
+{
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0)
+{
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+std::unique_ptr<Scenario> make_scenario(const Scene& scene, const mesh::MeshData& m,
+                                        const model::Model& model)
+{
+  if (scene.string("model.type") == "single_joint")
+    return std::make_unique<SingleJoint>(scene, m, model.node_block);
+  return std::make_unique<PushOut>(scene, m, model.node_block);
+}
+} // namespace
+
+output::Summary run(const Scene& scene, const RunOptions& opt)
+{
+  const auto t_start = Clock::now();
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  const bool talk = rank == 0 && !opt.quiet;
+
+  output::Summary summary;
+  summary.model_type = scene.string("model.type");
+  summary.processes = size;
+  if (rank == 0)
+  {
+    std::ofstream(opt.out / "scene.toml") << scene.to_toml();
+  }
+
+  // Mesh.
+  auto t0 = Clock::now();
+  const mesh::MeshData data = mesh::generate(scene, opt.mesh_cache, summary.mesh_reused);
+  summary.mesh_s = seconds_since(t0);
+
+  // Model: spaces, bulk stiffness, interface.
+  t0 = Clock::now();
+  model::Model model(MPI_COMM_WORLD, data, scene);
+  const std::unique_ptr<Scenario> scenario = make_scenario(scene, data, model);
+  solver::NewtonSolver::set_default_options();
+  solver::Equilibrium equilibrium(model);
+  solver::NewtonSolver newton(equilibrium);
+  summary.dofs = model.num_dofs();
+  summary.cells = std::int64_t(data.num_cells());
+  summary.interface_pairs = std::int64_t(model.interface->num_pairs());
+  summary.setup_s = seconds_since(t0);
+  if (talk)
+    std::cout << "pushout: " << summary.model_type << ", " << summary.cells << " cells, "
+              << summary.dofs << " dofs, " << summary.interface_pairs << " joint elements"
+              << (summary.mesh_reused ? " (mesh from cache)" : "") << std::endl;
+
+  const auto& map = *model.V->dofmap()->index_map;
+  const int bs = model.V->dofmap()->index_map_bs();
+  Vec x = dolfinx::la::petsc::create_vector(map, bs);
+  Vec x_committed, reactions;
+  VecSet(x, 0.0);
+  VecDuplicate(x, &x_committed);
+  VecDuplicate(x, &reactions);
+  VecCopy(x, x_committed);
+
+  output::CurveWriter curve(opt.out / "curve.csv",
+                            [&]
+                            {
+                              auto c = scenario->columns();
+                              c.insert(c.end(), {"newton_iterations", "cuts"});
+                              return c;
+                            }());
+  std::unique_ptr<output::FieldWriter> fields;
+  if (scene.boolean("output.xdmf"))
+    fields = std::make_unique<output::FieldWriter>(model, opt.out);
+
+  // Records the committed state as a curve row.
+  int row_index = 0;
+  const auto record = [&](int iterations, int cuts, int step, int steps)
+  {
+    const auto t_out = Clock::now();
+    equilibrium.residual(x, reactions, false);
+    const double* r;
+    const double* xa;
+    VecGetArrayRead(reactions, &r);
+    VecGetArrayRead(x, &xa);
+    PetscInt n;
+    VecGetLocalSize(x, &n);
+    std::vector<double> values =
+        scenario->row(std::span<const double>(r, n), std::span<const double>(xa, n));
+    VecRestoreArrayRead(reactions, &r);
+    VecRestoreArrayRead(x, &xa);
+    const std::string line = scenario->progress(values);
+    values.insert(values.end(), {double(iterations), double(cuts)});
+    if (rank == 0)
+      curve.row(row_index, values);
+    if (fields)
+      fields->write(double(row_index));
+    ++row_index;
+    summary.output_s += seconds_since(t_out);
+    if (talk)
+      std::cout << "step " << step << "/" << steps << "  " << line << "  (newton " << iterations
+                << (cuts ? ", cuts " + std::to_string(cuts) : "") << ", " << std::fixed
+                << std::setprecision(2) << seconds_since(t_start) << " s)" << std::defaultfloat
+                << std::endl;
+  };
+
+  // Step 0: the thermal step or preload (if the scenario has one).
+  t0 = Clock::now();
+  scenario->apply_load(0.0, equilibrium);
+  int its0 = 0;
+  bool ok = true;
+  if (scenario->initial_solve())
+  {
+    equilibrium.apply_constraints(x);
+    const solver::SolveReport rep = newton.solve(x);
+    its0 = rep.iterations;
+    summary.newton_iterations += rep.iterations;
+    ok = rep.converged;
+    if (!ok)
+      summary.message = "step 0 (initial/thermal step) did not converge: " + rep.reason;
+  }
+  if (ok)
+  {
+    model.interface->state().commit();
+    VecCopy(x, x_committed);
+    record(its0, 0, 0, scenario->steps());
+  }
+
+  // Load steps, each cut in halves (from the committed state) until it
+  // converges or max_cuts is reached.
+  double s = 0.0;
+  for (int k = 1; ok && k <= scenario->steps(); ++k)
+  {
+    double ds = double(k) - s;
+    int cuts = 0;
+    while (s < double(k) - 1e-12)
+    {
+      const double s_try = std::min(s + ds, double(k));
+      scenario->apply_load(s_try, equilibrium);
+      equilibrium.apply_constraints(x);
+      const solver::SolveReport rep = newton.solve(x);
+      summary.newton_iterations += rep.iterations;
+      if (rep.converged)
+      {
+        model.interface->state().commit();
+        VecCopy(x, x_committed);
+        s = s_try;
+        ++summary.steps;
+        record(rep.iterations, cuts, k, scenario->steps());
+        continue;
+      }
+      model.interface->state().revert();
+      VecCopy(x_committed, x);
+      if (++cuts > opt.max_cuts)
+      {
+        summary.message = "load step " + std::to_string(k) + " did not converge after " +
+                          std::to_string(opt.max_cuts) + " cuts (" + rep.reason + ")";
+        ok = false;
+        break;
+      }
+      ++summary.cuts;
+      ds /= 2;
+      if (talk)
+        std::cout << "step " << k << ": " << rep.reason << ", cutting the step to " << ds
+                  << std::endl;
+    }
+  }
+  summary.solve_s = seconds_since(t0) - summary.output_s;
+  summary.converged = ok;
+  VecDestroy(&x);
+  VecDestroy(&x_committed);
+  VecDestroy(&reactions);
+  fields.reset();
+
+  if (rank == 0 && scene.boolean("output.plot"))
+  {
+    std::string why;
+    if (!output::plot_curve(opt.out / "curve.csv", opt.out / "curve.png", summary.model_type, why))
+      std::cerr << "pushout: warning: no curve.png: " << why << std::endl;
+  }
+  summary.wall_s = seconds_since(t_start);
+  if (rank == 0)
+    summary.write(opt.out / "summary.json");
+  return summary;
+}
+} // namespace pushout::driver

@@ -1,0 +1,22 @@
+// One simulation: scene -> mesh -> model -> step loop -> outputs.
+#pragma once
+
+#include "../output/Summary.h"
+#include "../scene/Scene.h"
+#include <filesystem>
+
+namespace pushout::driver
+{
+struct RunOptions
+{
+  std::filesystem::path out;        ///< output folder
+  std::filesystem::path mesh_cache; ///< gmsh mesh cache folder
+  bool quiet = false;               ///< no progress lines
+  int max_cuts = 8;                 ///< halvings of one load step
+};
+
+/// Runs the scene; writes curve.csv, summary.json, scene.toml (and
+/// curve.png, XDMF) into options.out. Returns the summary; a step that
+/// cannot converge ends the run with summary.converged = false.
+output::Summary run(const Scene& scene, const RunOptions& options);
+} // namespace pushout::driver

@@ -1,0 +1,39 @@
+// What a model type (push-out slice, single joint) adds to the common step
+// loop: its constraints and loads as a function of the load parameter, and
+// the quantities it measures for curve.csv.
+#pragma once
+
+#include "../mesh/MeshData.h"
+#include "../solver/Equilibrium.h"
+#include <string>
+#include <vector>
+
+namespace pushout::driver
+{
+class Scenario
+{
+public:
+  virtual ~Scenario() = default;
+
+  /// curve.csv columns measured by row() (after the leading `step`).
+  virtual std::vector<std::string> columns() const = 0;
+
+  /// Number of load steps; the load parameter s runs over [0, steps].
+  virtual int steps() const = 0;
+
+  /// Whether s = 0 needs a solve (preload, thermal step) or is the
+  /// unloaded state.
+  virtual bool initial_solve() const = 0;
+
+  /// Sets constraints and loads for load parameter s.
+  virtual void apply_load(double s, solver::Equilibrium& eq) const = 0;
+
+  /// Measured values, given the internal forces at all dofs (reactions at
+  /// the constrained ones), owned part, and the displacement x.
+  virtual std::vector<double> row(std::span<const double> reactions,
+                                  std::span<const double> x) const = 0;
+
+  /// One line for the progress output.
+  virtual std::string progress(const std::vector<double>& row) const = 0;
+};
+} // namespace pushout::driver

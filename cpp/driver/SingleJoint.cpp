@@ -1,0 +1,98 @@
+#include "SingleJoint.h"
+#include <algorithm>
+#include <cmath>
+#include <mpi.h>
+#include <sstream>
+
+namespace pushout::driver
+{
+SingleJoint::SingleJoint(const Scene& scene, const mesh::MeshData& m,
+                         const std::vector<std::int32_t>& node_block)
+    : _path(scene.numbers("loading.shear_path")),
+      _per_segment(int(scene.integer("loading.steps_per_segment"))),
+      _force_per_node(scene.number("loading.normal_force_per_node"))
+{
+  if (_path.size() == 1)
+    _path.push_back(_path[0]);
+  std::vector<std::uint8_t> in_steel(m.num_nodes(), 0), in_concrete(m.num_nodes(), 0);
+  for (std::size_t c = 0; c < m.num_cells(); ++c)
+    for (int i = 0; i < 8; ++i)
+      (m.material[c] == mesh::steel ? in_steel : in_concrete)[m.cells[8 * c + i]] = 1;
+  std::vector<std::uint8_t> on_joint(m.num_nodes(), 0);
+  for (const auto& p : m.pairs)
+    for (std::int64_t n : p.concrete)
+      on_joint[n] = 1;
+  for (std::size_t n = 0; n < m.num_nodes(); ++n)
+  {
+    const std::int32_t b = node_block[n];
+    if (in_steel[n])
+      for (int d = 0; d < 3; ++d)
+        _lower.push_back(3 * b + d);
+    if (in_concrete[n])
+    {
+      _upper_x.push_back(3 * b);
+      _upper_y.push_back(3 * b + 1);
+    }
+    if (on_joint[n])
+      _joint_z.push_back(3 * b + 2);
+  }
+}
+
+double SingleJoint::shear_at(double s) const
+{
+  const double t = s / _per_segment;
+  const std::size_t i = std::min(std::size_t(t), _path.size() - 2);
+  const double f = t - double(i);
+  return _path[i] + f * (_path[i + 1] - _path[i]);
+}
+
+void SingleJoint::apply_load(double s, solver::Equilibrium& eq) const
+{
+  solver::Constraints bc;
+  for (std::int32_t d : _lower)
+  {
+    bc.dofs.push_back(d);
+    bc.values.push_back(0.0);
+  }
+  for (std::int32_t d : _upper_x)
+  {
+    bc.dofs.push_back(d);
+    bc.values.push_back(shear_at(s));
+  }
+  for (std::int32_t d : _upper_y)
+  {
+    bc.dofs.push_back(d);
+    bc.values.push_back(0.0);
+  }
+  eq.set_constraints(std::move(bc));
+  std::vector<std::pair<std::int32_t, double>> forces;
+  for (std::int32_t d : _joint_z)
+    forces.emplace_back(d, _force_per_node);
+  eq.set_external_forces(forces);
+}
+
+std::vector<double> SingleJoint::row(std::span<const double> reactions,
+                                     std::span<const double> x) const
+{
+  double local[4] = {0, 0, 0, 0};
+  for (std::int32_t d : _upper_x)
+    local[1] += reactions[d];
+  for (std::int32_t d : _joint_z)
+  {
+    local[2] += x[d] / double(_joint_z.size());
+    local[3] += _force_per_node;
+  }
+  local[0] = _upper_x.empty() ? 0.0 : x[_upper_x[0]];
+  double global[4];
+  MPI_Allreduce(local, global, 4, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  return {global[0], global[1], global[2], global[3]};
+}
+
+std::string SingleJoint::progress(const std::vector<double>& r) const
+{
+  std::ostringstream s;
+  s.precision(5);
+  s << "u_s = " << r[0] << " mm  F_s = " << r[1] << " N  u_n = " << r[2] << " mm";
+  return s.str();
+}
+} // namespace pushout::driver

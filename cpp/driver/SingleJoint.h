@@ -1,0 +1,45 @@
+// One joint element between two cubes (paper §3 Fig. 6, §4.3 Fig. 9): the
+// lower (steel) cube is fixed, so the joint's lower face is fixed; every
+// node of the upper (concrete) cube follows the shear path in x and is held
+// in y, so the cube translates rigidly and its bulk carries no stress; the
+// joint's 4 upper nodes carry the normal force in z.
+// Measured: u_s (x) and u_n (z) of the upper face; F_s = total x reaction
+// on the upper cube (the force the joint resists with); F_n = total z force
+// on the 4 upper nodes.
+#pragma once
+
+#include "../scene/Scene.h"
+#include "Scenario.h"
+
+namespace pushout::driver
+{
+class SingleJoint : public Scenario
+{
+public:
+  SingleJoint(const Scene& scene, const mesh::MeshData& mesh,
+              const std::vector<std::int32_t>& node_block);
+
+  std::vector<std::string> columns() const override
+  {
+    return {"u_s_mm", "F_s_N", "u_n_mm", "F_n_N"};
+  }
+  int steps() const override { return int(_path.size() - 1) * _per_segment; }
+  bool initial_solve() const override { return true; }
+  void apply_load(double s, solver::Equilibrium& eq) const override;
+  std::vector<double> row(std::span<const double> reactions,
+                          std::span<const double> x) const override;
+  std::string progress(const std::vector<double>& row) const override;
+
+  /// Shear displacement u_s at load parameter s [mm].
+  double shear_at(double s) const;
+
+private:
+  std::vector<double> _path;
+  int _per_segment;
+  double _force_per_node;
+  std::vector<std::int32_t> _lower;   ///< all dofs of the steel cube
+  std::vector<std::int32_t> _upper_x; ///< x dofs of the concrete cube
+  std::vector<std::int32_t> _upper_y; ///< y dofs of the concrete cube
+  std::vector<std::int32_t> _joint_z; ///< z dofs of the joint's upper nodes
+};
+} // namespace pushout::driver

@@ -1,0 +1,193 @@
+#include "Interface.h"
+#include <cmath>
+#include <stdexcept>
+
+namespace pushout::interface
+{
+namespace
+{
+using Vec = std::array<double, 3>;
+
+Vec cross(const Vec& a, const Vec& b)
+{
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double dot(const Vec& a, const Vec& b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+Vec normalized(const Vec& a)
+{
+  const double n = std::sqrt(dot(a, a));
+  return {a[0] / n, a[1] / n, a[2] / n};
+}
+} // namespace
+
+Interface::Interface(std::vector<std::int32_t> pair_blocks, const std::vector<double>& x,
+                     Quadrature quadrature, std::vector<std::unique_ptr<laws::InterfaceLaw>> layers)
+    : _blocks(std::move(pair_blocks)), _q(std::move(quadrature)), _layers(std::move(layers))
+{
+  if (_blocks.size() % 8 != 0 || x.size() != num_pairs() * 12)
+    throw std::invalid_argument("Interface: inconsistent pair arrays");
+  const std::size_t nq = _q.weights.size();
+  for (const auto& pt : _q.points)
+    _N.push_back(shape(pt));
+  _dA.resize(num_points());
+  _frame.resize(9 * num_points());
+  for (std::size_t p = 0; p < num_pairs(); ++p)
+  {
+    const double* xp = x.data() + 12 * p;
+    for (std::size_t q = 0; q < nq; ++q)
+    {
+      // Derivatives of the bilinear map at (xi, eta).
+      const auto [xi, eta] = _q.points[q];
+      const std::array<double, 4> dNx = {-(1 - eta), 1 - eta, -eta, eta};
+      const std::array<double, 4> dNe = {-(1 - xi), -xi, 1 - xi, xi};
+      Vec gx{0, 0, 0}, ge{0, 0, 0};
+      for (int a = 0; a < 4; ++a)
+        for (int d = 0; d < 3; ++d)
+        {
+          gx[d] += dNx[a] * xp[3 * a + d];
+          ge[d] += dNe[a] * xp[3 * a + d];
+        }
+      const Vec nn = cross(gx, ge);
+      const double jac = std::sqrt(dot(nn, nn));
+      if (!(jac > 0))
+        throw std::runtime_error("degenerate interface element");
+      const Vec n = normalized(nn);
+      // s1: the in-plane direction closest to +z (axial), else along xi.
+      Vec s{-n[2] * n[0], -n[2] * n[1], 1 - n[2] * n[2]};
+      if (dot(s, s) < 1e-6)
+      {
+        const double c = dot(gx, n);
+        s = {gx[0] - c * n[0], gx[1] - c * n[1], gx[2] - c * n[2]};
+      }
+      const Vec s1 = normalized(s);
+      const Vec s2 = cross(n, s1);
+      const std::size_t i = p * nq + q;
+      _dA[i] = _q.weights[q] * jac;
+      for (int d = 0; d < 3; ++d)
+      {
+        _frame[9 * i + d] = n[d];
+        _frame[9 * i + 3 + d] = s1[d];
+        _frame[9 * i + 6 + d] = s2[d];
+      }
+    }
+  }
+  std::vector<int> sizes;
+  for (const auto& law : _layers)
+    sizes.push_back(law->state_size());
+  _state = InterfaceState(num_points(), sizes);
+}
+
+laws::Vec3 Interface::jump(std::span<const double> u, std::size_t p, std::size_t q) const
+{
+  const std::int32_t* b = _blocks.data() + 8 * p;
+  const double* R = _frame.data() + 9 * (p * _q.weights.size() + q);
+  Vec w{0, 0, 0};
+  for (int a = 0; a < 4; ++a)
+    for (int d = 0; d < 3; ++d)
+      w[d] += _N[q][a] * (u[3 * b[4 + a] + d] - u[3 * b[a] + d]);
+  return {R[0] * w[0] + R[1] * w[1] + R[2] * w[2], R[3] * w[0] + R[4] * w[1] + R[5] * w[2],
+          R[6] * w[0] + R[7] * w[1] + R[8] * w[2]};
+}
+
+bool Interface::assemble(std::span<const double> u, std::span<double> f, Mat A)
+{
+  const std::size_t nq = _q.weights.size();
+  bool ok = true;
+  std::array<double, 24 * 24> Ke;
+  for (std::size_t p = 0; p < num_pairs(); ++p)
+  {
+    const std::int32_t* b = _blocks.data() + 8 * p;
+    if (A)
+      Ke.fill(0.0);
+    for (std::size_t q = 0; q < nq; ++q)
+    {
+      const std::size_t i = p * nq + q;
+      const laws::Vec3 w = jump(u, p, q);
+      laws::Vec3 t{0, 0, 0};
+      laws::Mat3 D{};
+      for (std::size_t l = 0; l < _layers.size(); ++l)
+      {
+        const laws::LawResult r = _layers[l]->update(_state.committed(i, l), w, _state.trial(i, l));
+        ok = ok && r.status == laws::LawStatus::ok;
+        for (int c = 0; c < 3; ++c)
+          t[c] += r.t[c];
+        for (int c = 0; c < 9; ++c)
+          D[c] += r.D[c];
+      }
+      // To the global frame: t_g = R^T t, D_g = R^T D R.
+      const double* R = _frame.data() + 9 * i;
+      Vec tg{0, 0, 0};
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+          tg[c] += R[3 * r + c] * t[r];
+      const std::array<double, 4>& N = _N[q];
+      for (int a = 0; a < 4; ++a)
+        for (int d = 0; d < 3; ++d)
+        {
+          const double fa = N[a] * tg[d] * _dA[i];
+          f[3 * b[a] + d] -= fa;     // steel side
+          f[3 * b[4 + a] + d] += fa; // concrete side
+        }
+      if (!A)
+        continue;
+      std::array<double, 9> Dg{};
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+        {
+          double s = 0;
+          for (int k = 0; k < 3; ++k)
+            for (int m = 0; m < 3; ++m)
+              s += R[3 * k + r] * D[3 * k + m] * R[3 * m + c];
+          Dg[3 * r + c] = s;
+        }
+      // Node a of side sa (0 steel, 1 concrete) against node b of side sb:
+      // sign + on the same side, - across.
+      for (int sa = 0; sa < 2; ++sa)
+        for (int a = 0; a < 4; ++a)
+          for (int sb = 0; sb < 2; ++sb)
+            for (int bb = 0; bb < 4; ++bb)
+            {
+              const double c = (sa == sb ? 1.0 : -1.0) * N[a] * N[bb] * _dA[i];
+              const int row = 3 * (4 * sa + a), col = 3 * (4 * sb + bb);
+              for (int r = 0; r < 3; ++r)
+                for (int k = 0; k < 3; ++k)
+                  Ke[24 * (row + r) + col + k] += c * Dg[3 * r + k];
+            }
+    }
+    if (A)
+      MatSetValuesBlockedLocal(A, 8, b, 8, b, Ke.data(), ADD_VALUES);
+  }
+  return ok;
+}
+
+PointOutput Interface::point_output(std::span<const double> u, std::size_t p, std::size_t q) const
+{
+  const std::size_t i = p * _q.weights.size() + q;
+  PointOutput out;
+  out.w = jump(u, p, q);
+  out.t = {0, 0, 0};
+  std::array<double, 16> scratch;
+  for (std::size_t l = 0; l < _layers.size(); ++l)
+  {
+    // Re-evaluating from the committed state reproduces the trial traction.
+    std::span<double> s(scratch.data(), std::size_t(_layers[l]->state_size()));
+    const laws::LawResult r = _layers[l]->update(_state.committed(i, l), out.w, s);
+    for (int c = 0; c < 3; ++c)
+      out.t[c] += r.t[c];
+    out.slip.push_back(_layers[l]->slip(_state.trial(i, l)));
+    out.damage.push_back(_layers[l]->damage(_state.trial(i, l)));
+  }
+  return out;
+}
+
+double Interface::area() const
+{
+  double a = 0;
+  for (double d : _dA)
+    a += d;
+  return a;
+}
+} // namespace pushout::interface

@@ -1,0 +1,84 @@
+// The joint elements: kinematics, quadrature and assembly of the interface
+// forces  f = int_Gamma N^T t(w) dGamma  and their tangent, for all layers.
+//
+// Why C++ and not UFL: after the node duplication the steel facet and the
+// concrete facet of a pair belong to different cells that share no mesh
+// entity, so DOLFINx 0.5.2 sees two exterior facets, not one interior facet,
+// and a UFL dS integral cannot couple them. This kernel pairs them itself:
+//   w(xi) = sum_a N_a(xi) (u_concrete,a - u_steel,a)         (jump, mm)
+//   f_concrete,a = +int N_a t dA,   f_steel,a = -int N_a t dA  (N)
+// with t and D = dt/dw from the laws in the local frame [n, s1, s2] of each
+// quadrature point: n from steel to concrete, s1 the tangent closest to +z
+// (axial for the slice), s2 = n x s1. The frame is fixed at the reference
+// geometry (small displacements). Layers superpose (paper §4.3): tractions
+// and tangents add.
+#pragma once
+
+#include "../laws/InterfaceLaw.h"
+#include "../mesh/MeshData.h"
+#include "InterfaceState.h"
+#include "Quadrature.h"
+#include <memory>
+#include <petscmat.h>
+#include <span>
+#include <vector>
+
+namespace pushout::interface
+{
+/// Quantities at one quadrature point, for output.
+struct PointOutput
+{
+  laws::Vec3 t;                            ///< total traction, local frame [MPa]
+  laws::Vec3 w;                            ///< jump, local frame [mm]
+  std::vector<std::array<double, 2>> slip; ///< per layer, local (s1, s2) [mm]
+  std::vector<double> damage;              ///< per layer
+};
+
+class Interface
+{
+public:
+  /// `pair_blocks[8 * p + i]`: local dof block of node i of pair p (steel
+  /// nodes 0-3, then concrete 0-3). `x` are the node coordinates of the
+  /// pairs' steel side, [pair][4][3].
+  Interface(std::vector<std::int32_t> pair_blocks, const std::vector<double>& x,
+            Quadrature quadrature, std::vector<std::unique_ptr<laws::InterfaceLaw>> layers);
+
+  std::size_t num_pairs() const { return _blocks.size() / 8; }
+  std::size_t num_points() const { return num_pairs() * _q.weights.size(); }
+  std::size_t num_layers() const { return _layers.size(); }
+  std::span<const std::int32_t> pair_blocks() const { return _blocks; }
+  const InterfaceState& state() const { return _state; }
+  InterfaceState& state() { return _state; }
+
+  /// Evaluates the laws at the displacement `u` (local blocked array,
+  /// ghosts included), writes the trial state, adds the interface forces to
+  /// `f` (same layout) and, if `A` is given, the tangent to `A` (blocked
+  /// local indices, ADD_VALUES; the caller assembles A). Returns false if
+  /// any law failed.
+  bool assemble(std::span<const double> u, std::span<double> f, Mat A);
+
+  /// Output quantities of quadrature point q of pair p from the trial state
+  /// (equal to the committed one after a converged step).
+  PointOutput point_output(std::span<const double> u, std::size_t p, std::size_t q) const;
+
+  /// Area of the interface [mm^2] (for checks and averages).
+  double area() const;
+
+  /// The local frame [n, s1, s2] (row-major 3x3) at point (p, q).
+  std::span<const double> frame(std::size_t p, std::size_t q) const
+  {
+    return {_frame.data() + 9 * (p * _q.weights.size() + q), 9};
+  }
+
+private:
+  laws::Vec3 jump(std::span<const double> u, std::size_t p, std::size_t q) const;
+
+  std::vector<std::int32_t> _blocks;
+  Quadrature _q;
+  std::vector<std::array<double, 4>> _N; ///< shape values per quad point
+  std::vector<double> _dA;               ///< weight * area element [mm^2]
+  std::vector<double> _frame;            ///< rows n, s1, s2 per point
+  std::vector<std::unique_ptr<laws::InterfaceLaw>> _layers;
+  InterfaceState _state;
+};
+} // namespace pushout::interface

@@ -1,0 +1,92 @@
+// Coulomb friction with inelastic (plastic) slip, paper §3, eqs. (4)-(6).
+//
+//   t = k (w - w^p),   w^p a vector in the tangent plane (w^p . n = 0)
+//   p = max(-t_n, 0)                               (contact pressure)
+//   trial: t_s = k (w_s - w^p_old);   f = |t_s| - mu p          (eq. 6)
+//   f <= 0: stick.  f > 0: radial return
+//       t_s = mu p m,   m = t_s / |t_s|,   w^p = w^p_old + (f / k) m
+//
+// Consistent tangent while sliding (unsymmetric: shear couples to w_n via mu):
+//   dt_s/dw_s = (mu p / |t_s^trial|) k (I - m m^T),  dt_s/dw_n = -mu k m
+//   (the second only in contact, t_n < 0, where dp/dw_n = -k).
+//
+// Opening (w_n > 0): p = 0, so the joint carries no shear (t_s = 0, the whole
+// shear jump becomes slip) and keeps the penalty k in the normal direction, as
+// eq. (5) applies K = k 1 to the whole jump: the joint resists separation
+// elastically. State: [w^p_s1, w^p_s2] in mm.
+//
+// Parameters: k [N/mm^3], mu [-]. Reference: Sanz, Planas, Sancho §3.
+#pragma once
+
+#include "InterfaceLaw.h"
+#include "LawRegistry.h"
+#include <cmath>
+
+namespace pushout::laws
+{
+class Friction
+{
+public:
+  static constexpr const char* name = "friction";
+  static constexpr const char* doc = "Coulomb friction with vector plastic slip, paper §3 (k, mu)";
+  static constexpr int state_size = 2;
+
+  static std::vector<ParamDef> params()
+  {
+    return {{"k", 1000.0, "N/mm^3", "penalty stiffness (Table 1: Friction 2)", 0, true},
+            {"mu", 0.4, "-", "friction coefficient", 0, false}};
+  }
+
+  Friction(double k, double mu) : _k(k), _mu(mu) {}
+  Friction(const Params& p, const std::string&) : Friction(p.at("k"), p.at("mu")) {}
+
+  LawResult update(std::span<const double> state_old, const Vec3& w,
+                   std::span<double> state_new) const
+  {
+    LawResult r;
+    const double k = _k;
+    const double tn = k * w[0];
+    const double p = tn < 0 ? -tn : 0.0;
+    const double ts1 = k * (w[1] - state_old[0]);
+    const double ts2 = k * (w[2] - state_old[1]);
+    const double norm = std::hypot(ts1, ts2);
+    const double f = norm - _mu * p;
+
+    r.t[0] = tn;
+    r.D = {k, 0, 0, 0, k, 0, 0, 0, k};
+    state_new[0] = state_old[0];
+    state_new[1] = state_old[1];
+    if (f > 0)
+    {
+      const double m1 = ts1 / norm, m2 = ts2 / norm;
+      const double scale = _mu * p / norm;
+      r.t[1] = _mu * p * m1;
+      r.t[2] = _mu * p * m2;
+      state_new[0] += f / k * m1;
+      state_new[1] += f / k * m2;
+      r.D[4] = scale * k * (1 - m1 * m1);
+      r.D[5] = -scale * k * m1 * m2;
+      r.D[7] = -scale * k * m2 * m1;
+      r.D[8] = scale * k * (1 - m2 * m2);
+      const double dp_dwn = tn < 0 ? -k : 0.0;
+      r.D[3] = _mu * dp_dwn * m1;
+      r.D[6] = _mu * dp_dwn * m2;
+    }
+    else
+    {
+      r.t[1] = ts1;
+      r.t[2] = ts2;
+    }
+    if (!std::isfinite(r.t[0] + r.t[1] + r.t[2]))
+      r.status = LawStatus::failed;
+    return r;
+  }
+
+  std::array<double, 2> slip(std::span<const double> state) const { return {state[0], state[1]}; }
+  double damage(std::span<const double>) const { return 0; }
+
+private:
+  double _k;  // penalty stiffness [N/mm^3]
+  double _mu; // friction coefficient [-]
+};
+} // namespace pushout::laws

@@ -1,0 +1,79 @@
+// The contract every interface (joint) law fulfils.
+//
+// A law works in the local frame of a quadrature point, [n, s1, s2]: n the
+// unit normal from steel to concrete, s1, s2 an orthonormal tangent pair.
+// Its one update maps (committed state, jump) to (traction, consistent
+// tangent, trial state, status), purely: no side effects, no allocation, no
+// exceptions (STYLE.md 1, 3). Traction and tangent come from the same call.
+#pragma once
+
+#include <array>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace pushout::laws
+{
+/// Components in the local frame: [normal, shear 1, shear 2].
+using Vec3 = std::array<double, 3>;
+/// Row-major 3x3 in the local frame: D[3*i + j] = d t_i / d w_j.
+using Mat3 = std::array<double, 9>;
+
+enum class LawStatus
+{
+  ok,
+  failed ///< non-finite input or result: the driver cuts the step
+};
+
+/// Result of one law update at one quadrature point.
+struct LawResult
+{
+  Vec3 t{}; ///< traction [MPa]
+  Mat3 D{}; ///< consistent tangent d t / d w [N/mm^3]
+  LawStatus status = LawStatus::ok;
+};
+
+/// Type-erased law, so layers of different laws can sit in one list.
+/// Concrete laws are value types (see Friction.h) wrapped by LawAdapter.
+class InterfaceLaw
+{
+public:
+  virtual ~InterfaceLaw() = default;
+
+  /// Number of history variables per quadrature point.
+  virtual int state_size() const = 0;
+
+  /// The update: `state_old` is the committed state, `w` the jump [mm];
+  /// writes the trial state into `state_new` (same size).
+  virtual LawResult update(std::span<const double> state_old, const Vec3& w,
+                           std::span<double> state_new) const = 0;
+
+  /// Inelastic (plastic) slip in the tangent plane [mm], for output.
+  virtual std::array<double, 2> slip(std::span<const double> state) const = 0;
+
+  /// Scalar damage in [0, 1], for output (0 for laws without damage).
+  virtual double damage(std::span<const double> state) const = 0;
+};
+
+/// Wraps a law value type `L` (with `state_size`, `update`, `slip`,
+/// `damage`) as an InterfaceLaw.
+template <typename L> class LawAdapter final : public InterfaceLaw
+{
+public:
+  explicit LawAdapter(L law) : _law(std::move(law)) {}
+  int state_size() const override { return L::state_size; }
+  LawResult update(std::span<const double> state_old, const Vec3& w,
+                   std::span<double> state_new) const override
+  {
+    return _law.update(state_old, w, state_new);
+  }
+  std::array<double, 2> slip(std::span<const double> state) const override
+  {
+    return _law.slip(state);
+  }
+  double damage(std::span<const double> state) const override { return _law.damage(state); }
+
+private:
+  L _law;
+};
+} // namespace pushout::laws

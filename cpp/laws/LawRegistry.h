@@ -1,0 +1,57 @@
+// The registry of interface laws: name -> parameters + factory.
+// A new law is one file (the value type and its parameter list), one test
+// file and one line in LawRegistry.cpp.
+#pragma once
+
+#include "InterfaceLaw.h"
+#include <functional>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace pushout::laws
+{
+/// One declared law parameter.
+struct ParamDef
+{
+  std::string name;
+  std::optional<double> default_value; ///< none: required
+  std::string unit;
+  std::string doc;
+  double min = -std::numeric_limits<double>::infinity();
+  bool min_exclusive = false;
+  std::string default_from = {}; ///< defaults to this other parameter's value
+};
+
+/// Resolved parameters of one layer, by name. `at(name)` is always valid for
+/// declared names after the scene is read.
+using Params = std::map<std::string, double>;
+
+struct LawInfo
+{
+  std::string name;
+  std::string doc;
+  std::vector<ParamDef> params;
+  /// Builds the law; throws SceneError (naming `prefix` + key) on parameter
+  /// combinations the per-parameter ranges cannot express.
+  std::function<std::unique_ptr<InterfaceLaw>(const Params&, const std::string& prefix)> make;
+};
+
+/// All registered laws, in registration order.
+const std::vector<LawInfo>& registered_laws();
+
+/// The law called `name`, or nullptr.
+const LawInfo* find_law(const std::string& name);
+
+/// Registers value type `L`: it provides `name`, `doc`, `params()` and a
+/// constructor `L(const Params&, const std::string& prefix)`.
+template <typename L> LawInfo describe()
+{
+  return {L::name, L::doc, L::params(),
+          [](const Params& p, const std::string& prefix) -> std::unique_ptr<InterfaceLaw>
+          { return std::make_unique<LawAdapter<L>>(L(p, prefix)); }};
+}
+} // namespace pushout::laws

@@ -1,0 +1,161 @@
+// pushout: push-out tests of reinforced-concrete slices with cohesive-
+// frictional interface elements (Sanz, Planas, Sancho).
+//
+//   pushout run SCENE.toml --out DIR [--set key=value]... [PETSc options]
+//   pushout keys        # the scene keys, with defaults, units and docs
+//   pushout laws        # the interface laws and their parameters
+#include "driver/Run.h"
+#include "mesh/generate.h"
+#include "scene/SceneError.h"
+#include <CLI/CLI.hpp>
+#include <dolfinx/common/log.h>
+#include <filesystem>
+#include <iostream>
+#include <petscsys.h>
+
+namespace
+{
+void print_keys()
+{
+  using namespace pushout;
+  std::cout << "| key | type | default | unit | meaning |\n|---|---|---|---|---|\n";
+  for (const KeyDef& k : scene_keys())
+  {
+    std::string doc = k.doc;
+    if (!k.choices.empty())
+    {
+      doc += " (";
+      for (std::size_t i = 0; i < k.choices.size(); ++i)
+        doc += (i ? " | " : "") + k.choices[i];
+      doc += ")";
+    }
+    std::cout << "| `" << k.path << "` | " << type_name(k.type) << " | `"
+              << to_toml(k.default_value) << "` | " << k.unit << " | " << doc << " |\n";
+  }
+}
+
+void print_laws()
+{
+  for (const auto& law : pushout::laws::registered_laws())
+  {
+    std::cout << "law = \"" << law.name << "\": " << law.doc << "\n";
+    for (const auto& p : law.params)
+    {
+      std::cout << "    " << p.name << " [" << p.unit << "] " << p.doc;
+      if (p.default_value)
+        std::cout << " (default " << *p.default_value << ")";
+      else if (!p.default_from.empty())
+        std::cout << " (default: " << p.default_from << ")";
+      else
+        std::cout << " (required)";
+      std::cout << "\n";
+    }
+  }
+}
+
+/// Runs a scene; returns the process exit code.
+int run_scene(const std::string& scene_file, const std::string& out,
+              const std::vector<std::string>& sets, bool quiet)
+{
+  using namespace pushout;
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  try
+  {
+    std::vector<Override> overrides;
+    for (const std::string& s : sets)
+      overrides.push_back(parse_override(s));
+    const Scene scene = Scene::load(scene_file, overrides);
+    std::error_code ec;
+    std::filesystem::create_directories(out, ec);
+    const std::filesystem::path probe = std::filesystem::path(out) / ".pushout-write-test";
+    if (ec || !std::ofstream(probe))
+      throw SceneError("--out '" + out + "': cannot create or write this folder");
+    std::filesystem::remove(probe);
+    driver::RunOptions options{out, mesh::default_cache_dir(), quiet};
+    const output::Summary s = driver::run(scene, options);
+    if (!s.converged)
+    {
+      if (rank == 0)
+        std::cerr << "pushout: error: " << s.message << "; " << out << "/curve.csv keeps the "
+                  << s.steps << " converged steps" << std::endl;
+      return 3;
+    }
+    if (rank == 0 && !quiet)
+      std::cout << "pushout: done in " << std::fixed << std::setprecision(2) << s.wall_s << " s, "
+                << s.newton_iterations << " Newton iterations; curve: " << out << "/curve.csv"
+                << (scene.boolean("output.plot") ? ", plot: " + out + "/curve.png" : "")
+                << std::endl;
+    return 0;
+  }
+  catch (const SceneError& e)
+  {
+    if (rank == 0)
+      std::cerr << "pushout: error in scene: " << e.what() << std::endl;
+    return 2;
+  }
+  catch (const std::exception& e)
+  {
+    if (rank == 0)
+      std::cerr << "pushout: error: " << e.what() << std::endl;
+    return 1;
+  }
+  catch (const std::string& e) // gmsh reports errors this way
+  {
+    if (rank == 0)
+      std::cerr << "pushout: error: " << e << std::endl;
+    return 1;
+  }
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  CLI::App app{"pushout: push-out tests of RC slices with cohesive-frictional interfaces"};
+  app.require_subcommand(1);
+  app.allow_extras(); // the rest goes to PETSc
+  std::string scene_file, out;
+  std::vector<std::string> sets;
+  bool quiet = false;
+  CLI::App* run = app.add_subcommand("run", "run a scene");
+  run->add_option("scene", scene_file, "scene file (TOML)")->required();
+  run->add_option("--out", out, "output folder")->required();
+  run->add_option("--set", sets, "override a scene key: key=value (repeatable)");
+  run->add_flag("--quiet", quiet, "no progress lines");
+  run->allow_extras();
+  app.add_subcommand("keys", "print the scene keys (Markdown table)");
+  app.add_subcommand("laws", "print the interface laws and their parameters");
+  try
+  {
+    app.parse(argc, argv);
+  }
+  catch (const CLI::ParseError& e)
+  {
+    return app.exit(e);
+  }
+  if (app.got_subcommand("keys"))
+  {
+    print_keys();
+    return 0;
+  }
+  if (app.got_subcommand("laws"))
+  {
+    print_laws();
+    return 0;
+  }
+
+  // PETSc sees only the options CLI11 did not consume.
+  std::vector<std::string> extras = run->remaining();
+  std::vector<char*> petsc_argv = {argv[0]};
+  for (std::string& e : extras)
+    petsc_argv.push_back(e.data());
+  petsc_argv.push_back(nullptr);
+  int petsc_argc = int(petsc_argv.size()) - 1;
+  char** petsc_args = petsc_argv.data();
+  PetscInitialize(&petsc_argc, &petsc_args, nullptr, nullptr);
+  dolfinx::init_logging(1, argv);
+  loguru::g_stderr_verbosity = loguru::Verbosity_WARNING;
+  const int rc = run_scene(scene_file, out, sets, quiet);
+  PetscFinalize();
+  return rc;
+}

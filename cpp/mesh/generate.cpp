@@ -1,0 +1,161 @@
+#include "generate.h"
+#include <cstdlib>
+#include <dolfinx/io/cells.h>
+#include <fstream>
+#include <functional>
+#include <gmsh.h>
+#include <map>
+#include <sstream>
+#include <unistd.h>
+
+#ifndef PUSHOUT_MESH_DIR
+#error "PUSHOUT_MESH_DIR must point to the meshes/ folder"
+#endif
+
+namespace pushout::mesh
+{
+namespace
+{
+/// The .geo file and its constants for this scene.
+std::pair<std::filesystem::path, std::vector<std::pair<std::string, double>>>
+geo_for(const Scene& scene)
+{
+  const std::filesystem::path dir(PUSHOUT_MESH_DIR);
+  if (scene.string("model.type") == "single_joint")
+    return {dir / "single_joint.geo", {{"a", std::sqrt(scene.number("geometry.area"))}}};
+  const auto& c = scene.numbers("geometry.tube_center");
+  return {dir / "slice.geo",
+          {{"shape", scene.string("geometry.outer_shape") == "circle" ? 1.0 : 0.0},
+           {"W", scene.number("geometry.width")},
+           {"L", scene.number("geometry.thickness")},
+           {"D", scene.number("geometry.tube_outer_diameter")},
+           {"Di", scene.number("geometry.tube_inner_diameter")},
+           {"cx", c[0]},
+           {"cy", c[1]},
+           {"Ds", scene.number("geometry.support_inner_diameter")},
+           {"nq", double(scene.integer("mesh.elements_per_quarter"))},
+           {"nz", double(scene.integer("mesh.elements_through_thickness"))},
+           {"ns", double(scene.integer("mesh.steel_layers"))},
+           {"ratio", scene.number("mesh.outer_size_ratio")}}};
+}
+
+std::string read_file(const std::filesystem::path& p)
+{
+  std::ifstream in(p);
+  if (!in)
+    throw std::runtime_error("cannot read mesh geometry " + p.string());
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// Reads hexahedra and nodes of the current gmsh model.
+MeshData read_gmsh_model()
+{
+  MeshData m;
+  std::vector<std::size_t> tags;
+  std::vector<double> coords, param;
+  gmsh::model::mesh::getNodes(tags, coords, param, -1, -1, false, false);
+  std::map<std::size_t, std::size_t> gmsh_node; // gmsh tag -> coords index
+  for (std::size_t i = 0; i < tags.size(); ++i)
+    gmsh_node[tags[i]] = i;
+
+  const std::vector<std::uint8_t> perm =
+      dolfinx::io::cells::perm_gmsh(dolfinx::mesh::CellType::hexahedron, 8);
+  std::vector<std::int64_t> index(tags.size(), -1); // coords index -> node id
+  for (const Material mat : {steel, concrete})
+  {
+    std::vector<int> entities;
+    gmsh::model::getEntitiesForPhysicalGroup(3, mat, entities);
+    for (int e : entities)
+    {
+      std::vector<std::size_t> elements, nodes;
+      gmsh::model::mesh::getElementsByType(5, elements, nodes, e);
+      for (std::size_t c = 0; c < elements.size(); ++c)
+      {
+        for (int i = 0; i < 8; ++i)
+        {
+          const std::size_t k = gmsh_node.at(nodes[8 * c + perm[i]]);
+          if (index[k] < 0)
+          {
+            index[k] = std::int64_t(m.x.size() / 3);
+            m.x.insert(m.x.end(), coords.begin() + 3 * k, coords.begin() + 3 * k + 3);
+          }
+          m.cells.push_back(index[k]);
+        }
+        m.material.push_back(mat);
+      }
+    }
+  }
+  if (m.material.empty())
+    throw std::runtime_error("gmsh produced no hexahedra");
+  return m;
+}
+} // namespace
+
+std::filesystem::path default_cache_dir()
+{
+  if (const char* d = std::getenv("PUSHOUT_CACHE_DIR"); d && *d)
+    return d;
+  if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d)
+    return std::filesystem::path(d) / "pushout";
+  if (const char* d = std::getenv("HOME"); d && *d)
+    return std::filesystem::path(d) / ".cache" / "pushout";
+  return std::filesystem::temp_directory_path() / "pushout-cache";
+}
+
+MeshData generate(const Scene& scene, const std::filesystem::path& cache_dir, bool& reused)
+{
+  const auto [geo, constants] = geo_for(scene);
+  std::ostringstream key;
+  key << read_file(geo);
+  for (const auto& [name, value] : constants)
+    key << name << "=" << std::setprecision(17) << value << ";";
+  std::ostringstream hex;
+  hex << std::hex << std::hash<std::string>{}(key.str());
+  const std::filesystem::path cached = cache_dir / (geo.stem().string() + "-" + hex.str() + ".msh");
+
+  std::vector<std::string> args = {"pushout"};
+  for (const auto& [name, value] : constants)
+  {
+    std::ostringstream v;
+    v << std::setprecision(17) << value;
+    args.insert(args.end(), {"-setnumber", name, v.str()});
+  }
+  std::vector<char*> argv;
+  for (auto& a : args)
+    argv.push_back(a.data());
+
+  gmsh::initialize(int(argv.size()), argv.data(), false);
+  gmsh::option::setNumber("General.Terminal", 0);
+  MeshData m;
+  try
+  {
+    reused = std::filesystem::exists(cached);
+    if (reused)
+      gmsh::open(cached.string());
+    else
+    {
+      gmsh::open(geo.string());
+      gmsh::model::mesh::generate(3);
+      std::filesystem::create_directories(cache_dir);
+      // Write to a private name, then rename: concurrent runs never read a
+      // half-written file.
+      std::filesystem::path tmp = cached;
+      tmp.replace_extension(".tmp" + std::to_string(::getpid()) + ".msh");
+      gmsh::option::setNumber("Mesh.Binary", 1);
+      gmsh::write(tmp.string());
+      std::filesystem::rename(tmp, cached);
+    }
+    m = read_gmsh_model();
+  }
+  catch (...)
+  {
+    gmsh::finalize();
+    throw;
+  }
+  gmsh::finalize();
+  insert_interface(m);
+  return m;
+}
+} // namespace pushout::mesh

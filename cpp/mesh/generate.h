@@ -1,0 +1,19 @@
+// Meshes from the scene: gmsh runs meshes/*.geo with the scene's constants,
+// and the result is cached by parameters (reused when they come again).
+#pragma once
+
+#include "../scene/Scene.h"
+#include "MeshData.h"
+#include <filesystem>
+
+namespace pushout::mesh
+{
+/// The mesh the scene asks for, with its interface inserted. The gmsh mesh
+/// is cached in `cache_dir` under a hash of the .geo text and constants.
+/// `reused` reports whether the cache served it.
+MeshData generate(const Scene& scene, const std::filesystem::path& cache_dir, bool& reused);
+
+/// Default cache folder: $PUSHOUT_CACHE_DIR, else $XDG_CACHE_HOME/pushout,
+/// else ~/.cache/pushout.
+std::filesystem::path default_cache_dir();
+} // namespace pushout::mesh

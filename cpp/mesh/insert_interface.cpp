@@ -1,0 +1,90 @@
+#include "MeshData.h"
+#include <cmath>
+#include <stdexcept>
+
+namespace pushout::mesh
+{
+namespace
+{
+// Local vertices of the 6 facets of a DOLFINx hexahedron, tensor order.
+constexpr std::array<std::array<int, 4>, 6> hex_facets = {
+    {{0, 1, 2, 3}, {0, 1, 4, 5}, {0, 2, 4, 6}, {1, 3, 5, 7}, {2, 3, 6, 7}, {4, 5, 6, 7}}};
+
+std::array<double, 3> node(const MeshData& m, std::int64_t i)
+{
+  return {m.x[3 * i], m.x[3 * i + 1], m.x[3 * i + 2]};
+}
+} // namespace
+
+void insert_interface(MeshData& mesh)
+{
+  const std::size_t n_nodes = mesh.num_nodes();
+  std::vector<std::uint8_t> used_by(n_nodes, 0); // bit 1 steel, bit 2 concrete
+  for (std::size_t c = 0; c < mesh.num_cells(); ++c)
+    for (int i = 0; i < 8; ++i)
+      used_by[mesh.cells[8 * c + i]] |= mesh.material[c] == steel ? 1 : 2;
+
+  // Steel copies of the shared nodes.
+  std::vector<std::int64_t> copy(n_nodes, -1);
+  for (std::size_t i = 0; i < n_nodes; ++i)
+  {
+    if (used_by[i] == 3)
+    {
+      copy[i] = std::int64_t(mesh.num_nodes());
+      for (int d = 0; d < 3; ++d)
+        mesh.x.push_back(mesh.x[3 * i + d]);
+    }
+  }
+
+  for (std::size_t c = 0; c < mesh.num_cells(); ++c)
+  {
+    if (mesh.material[c] != steel)
+      continue;
+    std::int64_t* cell = mesh.cells.data() + 8 * c;
+    std::array<double, 3> centroid{0, 0, 0};
+    for (int i = 0; i < 8; ++i)
+      for (int d = 0; d < 3; ++d)
+        centroid[d] += mesh.x[3 * cell[i] + d] / 8;
+
+    for (const auto& f : hex_facets)
+    {
+      bool on_interface = true;
+      for (int v : f)
+        on_interface = on_interface && copy[cell[v]] >= 0;
+      if (!on_interface)
+        continue;
+      InterfacePair pair;
+      for (int i = 0; i < 4; ++i)
+      {
+        pair.concrete[i] = cell[f[i]];
+        pair.steel[i] = copy[cell[f[i]]];
+      }
+      // Orientation: the bilinear normal at the facet centre must point away
+      // from the steel cell; otherwise swap xi and eta.
+      const auto x0 = node(mesh, pair.concrete[0]), x1 = node(mesh, pair.concrete[1]),
+                 x2 = node(mesh, pair.concrete[2]), x3 = node(mesh, pair.concrete[3]);
+      std::array<double, 3> dxi, deta, mid;
+      for (int d = 0; d < 3; ++d)
+      {
+        dxi[d] = 0.5 * (x1[d] - x0[d] + x3[d] - x2[d]);
+        deta[d] = 0.5 * (x2[d] - x0[d] + x3[d] - x1[d]);
+        mid[d] = 0.25 * (x0[d] + x1[d] + x2[d] + x3[d]) - centroid[d];
+      }
+      const std::array<double, 3> n = {dxi[1] * deta[2] - dxi[2] * deta[1],
+                                       dxi[2] * deta[0] - dxi[0] * deta[2],
+                                       dxi[0] * deta[1] - dxi[1] * deta[0]};
+      if (n[0] * mid[0] + n[1] * mid[1] + n[2] * mid[2] < 0)
+      {
+        std::swap(pair.steel[1], pair.steel[2]);
+        std::swap(pair.concrete[1], pair.concrete[2]);
+      }
+      mesh.pairs.push_back(pair);
+    }
+    for (int i = 0; i < 8; ++i)
+      if (copy[cell[i]] >= 0)
+        cell[i] = copy[cell[i]];
+  }
+  if (mesh.pairs.empty())
+    throw std::runtime_error("mesh has no steel-concrete interface");
+}
+} // namespace pushout::mesh

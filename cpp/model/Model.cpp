@@ -1,0 +1,189 @@
+#include "Model.h"
+#include "../laws/LawRegistry.h"
+#include "elasticity.h"
+#include <dolfinx/common/IndexMap.h>
+#include <dolfinx/fem/assembler.h>
+#include <dolfinx/fem/petsc.h>
+#include <dolfinx/fem/utils.h>
+#include <dolfinx/la/SparsityPattern.h>
+#include <dolfinx/la/petsc.h>
+#include <dolfinx/mesh/cell_types.h>
+
+namespace pushout::model
+{
+namespace
+{
+using dolfinx::fem::Function;
+
+/// Fills a DG0 cell field from the cell materials.
+void set_by_material(Function<double>& f, const dolfinx::mesh::Mesh& mesh,
+                     const std::vector<std::int32_t>& material, double steel, double concrete)
+{
+  const auto& original = mesh.topology().original_cell_index;
+  auto dofmap = f.function_space()->dofmap();
+  std::span<double> values = f.x()->mutable_array();
+  for (std::size_t c = 0; c < original.size(); ++c)
+  {
+    const double v = material[original[c]] == mesh::steel ? steel : concrete;
+    values[dofmap->cell_dofs(std::int32_t(c))[0]] = v;
+  }
+  f.x()->scatter_fwd();
+}
+} // namespace
+
+Model::Model(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene)
+{
+  namespace fem = dolfinx::fem;
+  const fem::CoordinateElement cmap(dolfinx::mesh::CellType::hexahedron, 1);
+  dolfinx::graph::AdjacencyList<std::int64_t> cells(
+      std::vector<std::int64_t>(data.cells),
+      [&]
+      {
+        std::vector<std::int32_t> offsets(data.num_cells() + 1);
+        for (std::size_t i = 0; i < offsets.size(); ++i)
+          offsets[i] = std::int32_t(8 * i);
+        return offsets;
+      }());
+  mesh = std::make_shared<dolfinx::mesh::Mesh>(dolfinx::mesh::create_mesh(
+      comm, cells, cmap, data.x, {data.num_nodes(), 3}, dolfinx::mesh::GhostMode::none));
+
+  V = std::make_shared<fem::FunctionSpace>(
+      fem::create_functionspace(functionspace_form_elasticity_a, "u", mesh));
+  u = std::make_shared<Function<double>>(V);
+  auto Q = std::make_shared<fem::FunctionSpace>(
+      fem::create_functionspace(functionspace_form_elasticity_a, "E", mesh));
+  E = std::make_shared<Function<double>>(Q);
+  nu = std::make_shared<Function<double>>(Q);
+  alpha = std::make_shared<Function<double>>(Q);
+  set_by_material(*E, *mesh, data.material, scene.number("steel.E"), scene.number("concrete.E"));
+  set_by_material(*nu, *mesh, data.material, scene.number("steel.nu"), scene.number("concrete.nu"));
+  set_by_material(*alpha, *mesh, data.material, scene.number("steel.alpha"),
+                  scene.number("concrete.alpha"));
+  dT = std::make_shared<fem::Constant<double>>(0.0);
+
+  const std::map<std::string, std::shared_ptr<const Function<double>>> coeffs = {
+      {"E", E}, {"nu", nu}, {"alpha", alpha}};
+  _a = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+      *form_elasticity_a, {V, V}, coeffs,
+      std::map<std::string, std::shared_ptr<const fem::Constant<double>>>{}, {}));
+  _L_thermal = std::make_shared<fem::Form<double>>(
+      fem::create_form<double>(*form_elasticity_L_thermal, {V}, coeffs, {{"dT", dT}}, {}));
+
+  // Input node -> local dof block: P1 dofs sit at the cell's geometry nodes,
+  // in the same local order.
+  const auto& x_dofmap = mesh->geometry().dofmap();
+  const auto& input_index = mesh->geometry().input_global_indices();
+  const auto dofmap = V->dofmap();
+  node_block.assign(data.num_nodes(), -1);
+  for (std::int32_t c = 0; c < x_dofmap.num_nodes(); ++c)
+  {
+    auto xd = x_dofmap.links(c);
+    auto cd = dofmap->cell_dofs(c);
+    for (std::size_t i = 0; i < xd.size(); ++i)
+      node_block[input_index[xd[i]]] = cd[i];
+  }
+
+  // Interface: the pairs' dof blocks and steel-side coordinates.
+  std::vector<std::int32_t> pair_blocks;
+  std::vector<double> pair_x;
+  for (const mesh::InterfacePair& p : data.pairs)
+  {
+    for (std::int64_t n : p.steel)
+      pair_blocks.push_back(node_block[n]);
+    for (std::int64_t n : p.concrete)
+      pair_blocks.push_back(node_block[n]);
+    for (std::int64_t n : p.steel)
+      pair_x.insert(pair_x.end(), data.x.begin() + 3 * n, data.x.begin() + 3 * n + 3);
+  }
+  std::vector<std::unique_ptr<laws::InterfaceLaw>> layers;
+  for (std::size_t l = 0; l < scene.layers().size(); ++l)
+  {
+    const LayerSpec& spec = scene.layers()[l];
+    layers.push_back(
+        laws::find_law(spec.law)->make(spec.params, "interface." + std::to_string(l) + "."));
+  }
+  interface = std::make_unique<interface::Interface>(
+      std::move(pair_blocks), pair_x,
+      interface::make_quadrature(scene.string("mesh.interface_quadrature")), std::move(layers));
+
+  // K with the bulk pattern plus the interface couplings.
+  dolfinx::la::SparsityPattern pattern = fem::create_sparsity_pattern(*_a);
+  const auto blocks = interface->pair_blocks();
+  for (std::size_t p = 0; p < interface->num_pairs(); ++p)
+  {
+    std::span<const std::int32_t> b = blocks.subspan(8 * p, 8);
+    pattern.insert(b, b);
+  }
+  pattern.assemble();
+  K = dolfinx::la::petsc::create_matrix(comm, pattern);
+  MatSetOption(K, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE);
+  MatZeroEntries(K);
+  // Explicit zeros keep the interface couplings in the assembled pattern
+  // (PETSc squeezes out preallocated entries that were never set).
+  const std::vector<double> zeros(24 * 24, 0.0);
+  for (std::size_t p = 0; p < interface->num_pairs(); ++p)
+    MatSetValuesBlockedLocal(K, 8, blocks.data() + 8 * p, 8, blocks.data() + 8 * p, zeros.data(),
+                             ADD_VALUES);
+  fem::assemble_matrix(dolfinx::la::petsc::Matrix::set_block_fn(K, ADD_VALUES), *_a, {});
+  MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY);
+  MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY);
+}
+
+Model::~Model()
+{
+  if (K)
+    MatDestroy(&K);
+}
+
+std::int64_t Model::num_dofs() const
+{
+  return V->dofmap()->index_map->size_global() * V->dofmap()->index_map_bs();
+}
+
+Vec Model::thermal_load(double dT_value) const
+{
+  dT->value = {dT_value};
+  Vec b = dolfinx::la::petsc::create_vector(*V->dofmap()->index_map, V->dofmap()->index_map_bs());
+  VecSet(b, 0.0);
+  dolfinx::fem::petsc::assemble_vector(b, *_L_thermal);
+  VecGhostUpdateBegin(b, ADD_VALUES, SCATTER_REVERSE);
+  VecGhostUpdateEnd(b, ADD_VALUES, SCATTER_REVERSE);
+  return b;
+}
+
+std::shared_ptr<dolfinx::fem::Function<double>> Model::stress() const
+{
+  namespace fem = dolfinx::fem;
+  auto S = std::make_shared<fem::FunctionSpace>(
+      fem::create_functionspace(functionspace_form_elasticity_L_stress, "tau", mesh));
+  auto Q = E->function_space();
+  const std::map<std::string, std::shared_ptr<const Function<double>>> coeffs = {
+      {"E", E}, {"nu", nu}, {"alpha", alpha}, {"u_h", u}};
+  const auto L_stress =
+      fem::create_form<double>(*form_elasticity_L_stress, {S}, coeffs, {{"dT", dT}}, {});
+  const auto L_volume = fem::create_form<double>(
+      *form_elasticity_L_volume, {Q},
+      std::map<std::string, std::shared_ptr<const Function<double>>>{},
+      std::map<std::string, std::shared_ptr<const fem::Constant<double>>>{}, {});
+  auto sigma = std::make_shared<Function<double>>(S);
+  sigma->name = "stress";
+  std::span<double> s = sigma->x()->mutable_array();
+  std::fill(s.begin(), s.end(), 0.0);
+  fem::assemble_vector(s, L_stress);
+  std::vector<double> volume(
+      Q->dofmap()->index_map->size_local() + Q->dofmap()->index_map->num_ghosts(), 0.0);
+  fem::assemble_vector(std::span<double>(volume), L_volume);
+  // DG0 on both spaces: one dof (block) per cell.
+  const auto& S_dofs = *S->dofmap();
+  const auto& Q_dofs = *Q->dofmap();
+  const std::int32_t n_cells = mesh->topology().index_map(3)->size_local();
+  for (std::int32_t c = 0; c < n_cells; ++c)
+  {
+    const double vol = volume[Q_dofs.cell_dofs(c)[0]];
+    for (int i = 0; i < 9; ++i)
+      s[9 * S_dofs.cell_dofs(c)[0] + i] /= vol;
+  }
+  sigma->x()->scatter_fwd();
+  return sigma;
+}
+} // namespace pushout::model

@@ -1,0 +1,40 @@
+// curve.csv: a header, then one row per converged load step, flushed at once
+// so that a run that stops later keeps every step it finished.
+#pragma once
+
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pushout::output
+{
+class CurveWriter
+{
+public:
+  CurveWriter(const std::filesystem::path& file, const std::vector<std::string>& columns)
+  {
+    _out.open(file);
+    if (!_out)
+      throw std::runtime_error("cannot write " + file.string());
+    _out << "step";
+    for (const std::string& c : columns)
+      _out << "," << c;
+    _out << "\n" << std::flush;
+    _out << std::setprecision(12);
+  }
+
+  void row(int step, const std::vector<double>& values)
+  {
+    _out << step;
+    for (double v : values)
+      _out << "," << v;
+    _out << "\n" << std::flush;
+  }
+
+private:
+  std::ofstream _out;
+};
+} // namespace pushout::output

@@ -1,0 +1,30 @@
+// ParaView output (output.xdmf = true): fields.xdmf (displacement [mm],
+// cell-averaged stress [MPa]) and interface.xdmf (per joint element, the
+// average over its quadrature points: normal traction t_n, axial and
+// circumferential shear tractions t_s1, t_s2 [MPa], jump w_n, w_s1 [mm],
+// and per layer L the inelastic slip slip_L_s1, slip_L_s2 [mm] and damage_L),
+// one time step per converged load step.
+#pragma once
+
+#include "../model/Model.h"
+#include <dolfinx/io/XDMFFile.h>
+#include <filesystem>
+#include <memory>
+
+namespace pushout::output
+{
+class FieldWriter
+{
+public:
+  FieldWriter(const model::Model& model, const std::filesystem::path& dir);
+  ~FieldWriter();
+  void write(double t);
+
+private:
+  const model::Model& _model;
+  std::unique_ptr<dolfinx::io::XDMFFile> _fields, _interface;
+  std::shared_ptr<dolfinx::mesh::Mesh> _imesh;
+  std::vector<std::shared_ptr<dolfinx::fem::Function<double>>> _ifields;
+  std::vector<std::int32_t> _pair_of_dof; ///< DG0 dof -> interface pair
+};
+} // namespace pushout::output

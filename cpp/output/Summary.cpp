@@ -1,0 +1,31 @@
+#include "Summary.h"
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+namespace pushout::output
+{
+void Summary::write(const std::filesystem::path& file) const
+{
+  const nlohmann::json j = {
+      {"converged", converged},
+      {"interrupted", interrupted},
+      {"message", message},
+      {"model_type", model_type},
+      {"steps", steps},
+      {"newton_iterations", newton_iterations},
+      {"cuts", cuts},
+      {"wall_s", wall_s},
+      {"time_s", {{"mesh", mesh_s}, {"setup", setup_s}, {"solve", solve_s}, {"output", output_s}}},
+      {"mesh_reused", mesh_reused},
+      {"dofs", dofs},
+      {"cells", cells},
+      {"interface_pairs", interface_pairs},
+      {"processes", processes}};
+  const std::filesystem::path tmp = file.string() + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << j.dump(2) << "\n";
+  }
+  std::filesystem::rename(tmp, file);
+}
+} // namespace pushout::output

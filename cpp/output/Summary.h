@@ -1,0 +1,28 @@
+// summary.json: the run's outcome and costs.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+namespace pushout::output
+{
+struct Summary
+{
+  bool converged = false;   ///< every requested step converged
+  bool interrupted = false; ///< stopped by a signal
+  std::string message;      ///< why it stopped, if it did not finish
+  int steps = 0;            ///< converged load steps (rows after step 0)
+  int newton_iterations = 0;
+  int cuts = 0; ///< step cut-backs
+  double wall_s = 0;
+  double mesh_s = 0, setup_s = 0, solve_s = 0, output_s = 0;
+  bool mesh_reused = false;
+  std::int64_t dofs = 0;
+  std::int64_t cells = 0;
+  std::int64_t interface_pairs = 0;
+  int processes = 1;
+  std::string model_type;
+
+  void write(const std::filesystem::path& file) const;
+};
+} // namespace pushout::output

@@ -1,0 +1,36 @@
+// Declaration of one scene key: type, default, range, unit and doc.
+#pragma once
+
+#include "Value.h"
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace pushout
+{
+/// Which model types a key applies to.
+enum class Applies
+{
+  all,
+  pushout,
+  single_joint
+};
+
+struct KeyDef
+{
+  std::string path; ///< dotted path, e.g. "geometry.width"
+  KeyType type;
+  Value default_value;
+  std::string unit; ///< "mm", "N", "MPa", "N/mm^3", "degC", "-" or ""
+  std::string doc;  ///< one line
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool min_exclusive = false;            ///< value must be > min (not >=)
+  std::vector<std::string> choices = {}; ///< allowed strings (empty: any)
+  Applies applies = Applies::all;
+};
+
+/// Every scalar scene key outside [[interface]], declared once
+/// (cpp/scene/keys.cpp).
+const std::vector<KeyDef>& scene_keys();
+} // namespace pushout

@@ -1,0 +1,456 @@
+#include "Scene.h"
+#include "SceneError.h"
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <toml++/toml.h>
+
+namespace pushout
+{
+namespace
+{
+const KeyDef* find_key(const std::string& path)
+{
+  for (const KeyDef& k : scene_keys())
+    if (k.path == path)
+      return &k;
+  return nullptr;
+}
+
+std::vector<std::string> split(const std::string& s, char sep)
+{
+  std::vector<std::string> parts;
+  std::string part;
+  std::istringstream in(s);
+  while (std::getline(in, part, sep))
+    parts.push_back(part);
+  return parts;
+}
+
+bool is_index(const std::string& s)
+{
+  return !s.empty() && s.find_first_not_of("0123456789") == std::string::npos;
+}
+
+std::string where(const toml::node& node)
+{
+  const auto& src = node.source();
+  if (src.begin.line == 0)
+    return "";
+  return " (line " + std::to_string(src.begin.line) + ")";
+}
+
+/// Applies one `--set` to the parsed document.
+void apply_override(toml::table& root, const Override& o)
+{
+  const std::vector<std::string> parts = split(o.path, '.');
+  const std::string what = "--set " + o.path;
+  for (const std::string& p : parts)
+    if (p.empty())
+      throw SceneError(what + ": malformed key path");
+
+  toml::node* node = &root;
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i)
+  {
+    const std::string& seg = parts[i];
+    if (auto* tbl = node->as_table())
+    {
+      if (!tbl->contains(seg))
+      {
+        if (seg == "interface")
+          throw SceneError(what + ": the scene has no [[interface]] layers");
+        tbl->insert(seg, toml::table{});
+      }
+      node = tbl->get(seg);
+    }
+    else if (auto* arr = node->as_array())
+    {
+      if (!is_index(seg) || std::stoul(seg) >= arr->size())
+      {
+        throw SceneError(what + ": index '" + seg + "' is not one of the " +
+                         std::to_string(arr->size()) + " entries of '" + parts[i - 1] + "'");
+      }
+      node = arr->get(std::stoul(seg));
+    }
+    else
+      throw SceneError(what + ": '" + seg + "' is inside a value, not a table");
+  }
+
+  toml::node_view<toml::node> parsed;
+  toml::table holder;
+  try
+  {
+    holder = toml::parse("v = " + o.value);
+  }
+  catch (const toml::parse_error&)
+  {
+    holder = toml::table{{"v", o.value}}; // a bare word: take it as a string
+  }
+  const std::string& key = parts.back();
+  if (auto* tbl = node->as_table())
+    tbl->insert_or_assign(key, *holder.get("v"));
+  else if (auto* arr = node->as_array(); arr && is_index(key))
+  {
+    if (std::stoul(key) >= arr->size())
+      throw SceneError(what + ": index " + key + " is out of range");
+    arr->replace(arr->begin() + std::stoul(key), *holder.get("v"));
+  }
+  else
+    throw SceneError(what + ": cannot set a value here");
+}
+
+/// Converts a TOML node to the declared type, or throws naming the key.
+Value convert(const toml::node& node, KeyType type, const std::string& path)
+{
+  const auto bad = [&]()
+  { return SceneError("'" + path + "'" + where(node) + " must be " + type_name(type)); };
+  switch (type)
+  {
+  case KeyType::number:
+    if (auto v = node.value<double>(); v && (node.is_floating_point() || node.is_integer()))
+      return *v;
+    throw bad();
+  case KeyType::integer:
+    if (node.is_integer())
+      return *node.value<std::int64_t>();
+    throw bad();
+  case KeyType::boolean:
+    if (node.is_boolean())
+      return *node.value<bool>();
+    throw bad();
+  case KeyType::string:
+    if (node.is_string())
+      return *node.value<std::string>();
+    throw bad();
+  case KeyType::number_array:
+  {
+    const auto* arr = node.as_array();
+    if (!arr)
+      throw bad();
+    std::vector<double> out;
+    for (const toml::node& e : *arr)
+    {
+      if (!(e.is_floating_point() || e.is_integer()))
+        throw bad();
+      out.push_back(*e.value<double>());
+    }
+    return out;
+  }
+  }
+  throw bad();
+}
+
+std::string range_text(double min, double max, bool min_exclusive)
+{
+  std::ostringstream s;
+  if (std::isfinite(min))
+    s << (min_exclusive ? "> " : ">= ") << min;
+  if (std::isfinite(min) && std::isfinite(max))
+    s << " and ";
+  if (std::isfinite(max))
+    s << "<= " << max;
+  return s.str();
+}
+
+void check_range(double x, double min, double max, bool min_exclusive, const std::string& path,
+                 const std::string& unit)
+{
+  const bool low = min_exclusive ? !(x > min) : !(x >= min);
+  if (low || !(x <= max) || !std::isfinite(x))
+  {
+    std::ostringstream s;
+    s << "'" << path << "' = " << x << (unit.empty() || unit == "-" ? "" : " " + unit)
+      << " is out of range: it must be " << range_text(min, max, min_exclusive);
+    throw SceneError(s.str());
+  }
+}
+
+void check_value(const KeyDef& def, const Value& v)
+{
+  if (const auto* d = std::get_if<double>(&v))
+    check_range(*d, def.min, def.max, def.min_exclusive, def.path, def.unit);
+  else if (const auto* i = std::get_if<std::int64_t>(&v))
+    check_range(double(*i), def.min, def.max, def.min_exclusive, def.path, def.unit);
+  else if (const auto* s = std::get_if<std::string>(&v); s && !def.choices.empty())
+  {
+    bool ok = false;
+    std::string list;
+    for (const std::string& c : def.choices)
+    {
+      ok = ok || c == *s;
+      list += (list.empty() ? "" : ", ") + c;
+    }
+    if (!ok)
+      throw SceneError("'" + def.path + "' = \"" + *s + "\" is not one of: " + list);
+  }
+}
+
+std::string known_keys_in(const std::string& section)
+{
+  std::string list;
+  for (const KeyDef& k : scene_keys())
+    if (k.path.rfind(section + ".", 0) == 0)
+      list += (list.empty() ? "" : ", ") + k.path.substr(section.size() + 1);
+  return list;
+}
+
+LayerSpec read_layer(const toml::node& node, std::size_t index)
+{
+  const std::string prefix = "interface." + std::to_string(index) + ".";
+  const auto* tbl = node.as_table();
+  if (!tbl)
+    throw SceneError("'interface." + std::to_string(index) + "' must be a table ([[interface]])");
+  LayerSpec layer;
+  layer.law = "friction";
+  if (const toml::node* law = tbl->get("law"))
+  {
+    if (!law->is_string())
+      throw SceneError("'" + prefix + "law'" + where(*law) + " must be a string");
+    layer.law = *law->value<std::string>();
+  }
+  const laws::LawInfo* info = laws::find_law(layer.law);
+  if (!info)
+  {
+    std::string list;
+    for (const auto& l : laws::registered_laws())
+      list += (list.empty() ? "" : ", ") + l.name;
+    throw SceneError("'" + prefix + "law' = \"" + layer.law +
+                     "\" is not a known law; known laws: " + list);
+  }
+
+  for (const auto& [key, value] : *tbl)
+  {
+    const std::string name(key.str());
+    if (name == "law")
+      continue;
+    const laws::ParamDef* def = nullptr;
+    for (const auto& p : info->params)
+      if (p.name == name)
+        def = &p;
+    if (!def)
+    {
+      std::string list;
+      for (const auto& p : info->params)
+        list += (list.empty() ? "" : ", ") + p.name;
+      throw SceneError("unknown key '" + prefix + name + "'" + where(value) + " for law '" +
+                       layer.law + "'; its parameters: " + list);
+    }
+    layer.params[name] = std::get<double>(convert(value, KeyType::number, prefix + name));
+  }
+  // Defaults: first fixed ones, then those copied from another parameter.
+  for (const auto& p : info->params)
+    if (!layer.params.count(p.name) && p.default_value)
+      layer.params[p.name] = *p.default_value;
+  for (const auto& p : info->params)
+  {
+    if (layer.params.count(p.name))
+      continue;
+    if (!p.default_from.empty() && layer.params.count(p.default_from))
+      layer.params[p.name] = layer.params.at(p.default_from);
+    else
+      throw SceneError("'" + prefix + p.name + "' (" + p.doc + ", " + p.unit +
+                       ") is required for law '" + layer.law + "'");
+  }
+  for (const auto& p : info->params)
+    check_range(layer.params.at(p.name), p.min, std::numeric_limits<double>::infinity(),
+                p.min_exclusive, prefix + p.name, p.unit);
+  info->make(layer.params, prefix); // checks combinations of parameters
+  return layer;
+}
+
+bool applies(const KeyDef& def, const std::string& model)
+{
+  return def.applies == Applies::all || (def.applies == Applies::pushout && model == "pushout") ||
+         (def.applies == Applies::single_joint && model == "single_joint");
+}
+} // namespace
+
+Override parse_override(const std::string& text)
+{
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw SceneError("--set '" + text + "': expected key=value");
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+Scene Scene::load(const std::filesystem::path& file, const std::vector<Override>& overrides)
+{
+  std::ifstream in(file);
+  if (!in)
+    throw SceneError("cannot read scene file '" + file.string() + "'");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse(text.str(), overrides, file.string());
+}
+
+Scene Scene::parse(const std::string& toml_text, const std::vector<Override>& overrides,
+                   const std::string& origin)
+{
+  toml::table root;
+  try
+  {
+    root = toml::parse(toml_text, origin);
+  }
+  catch (const toml::parse_error& e)
+  {
+    throw SceneError(origin + ": TOML syntax error at line " +
+                     std::to_string(e.source().begin.line) + ": " + std::string(e.description()));
+  }
+  for (const Override& o : overrides)
+    apply_override(root, o);
+
+  Scene scene;
+  std::string model = "pushout";
+  if (const toml::node* m = root.at_path("model.type").node())
+  {
+    scene._values["model.type"] = convert(*m, KeyType::string, "model.type");
+    check_value(*find_key("model.type"), scene._values["model.type"]);
+    model = std::get<std::string>(scene._values["model.type"]);
+  }
+
+  for (const auto& [section_key, section] : root)
+  {
+    const std::string sname(section_key.str());
+    if (sname == "interface")
+    {
+      const auto* arr = section.as_array();
+      if (!arr)
+        throw SceneError("'interface' must be written as [[interface]] tables");
+      for (std::size_t i = 0; i < arr->size(); ++i)
+        scene._layers.push_back(read_layer(*arr->get(i), i));
+      continue;
+    }
+    const auto* tbl = section.as_table();
+    if (!tbl)
+    {
+      throw SceneError("unknown key '" + sname + "'" + where(section) +
+                       ": top-level keys must be sections such as [geometry]");
+    }
+    for (const auto& [key, value] : *tbl)
+    {
+      const std::string path = sname + "." + std::string(key.str());
+      const KeyDef* def = find_key(path);
+      if (!def)
+      {
+        const std::string known = known_keys_in(sname);
+        throw SceneError("unknown key '" + path + "'" + where(value) +
+                         (known.empty() ? ": unknown section [" + sname + "]"
+                                        : "; keys in [" + sname + "]: " + known));
+      }
+      if (!applies(*def, model))
+        throw SceneError("'" + path + "'" + where(value) + " does not apply to model.type = \"" +
+                         model + "\"");
+      Value v = convert(value, def->type, path);
+      check_value(*def, v);
+      scene._values[path] = v;
+    }
+  }
+  for (const KeyDef& def : scene_keys())
+    if (applies(def, model) && !scene._values.count(def.path))
+      scene._values[def.path] = def.default_value;
+
+  if (scene._layers.empty())
+  {
+    toml::table t{{"law", "friction"}};
+    scene._layers.push_back(read_layer(t, 0));
+  }
+
+  // Relations between keys that no single range can express.
+  if (model == "pushout")
+  {
+    const double W = scene.number("geometry.width");
+    const double D = scene.number("geometry.tube_outer_diameter");
+    const double Di = scene.number("geometry.tube_inner_diameter");
+    const double Ds = scene.number("geometry.support_inner_diameter");
+    const auto& c = scene.numbers("geometry.tube_center");
+    if (c.size() != 2)
+      throw SceneError("'geometry.tube_center' must have 2 entries (x, y)");
+    if (!(Di < D))
+      throw SceneError("'geometry.tube_inner_diameter' must be smaller than "
+                       "'geometry.tube_outer_diameter'");
+    if (!(Ds > D))
+      throw SceneError("'geometry.support_inner_diameter' must be larger than "
+                       "'geometry.tube_outer_diameter' (the support holds the "
+                       "concrete, not the tube)");
+    const bool circle = scene.string("geometry.outer_shape") == "circle";
+    // The support hole must leave a ring of concrete of at least one
+    // interface element size inside the slice.
+    const double margin =
+        circle ? W / 2 - Ds / 2 : std::min({c[0], c[1], W - c[0], W - c[1]}) - Ds / 2;
+    if (!(margin > 0))
+      throw SceneError("'geometry.support_inner_diameter' (or "
+                       "'geometry.tube_center') leaves no support outside "
+                       "the hole: the hole must fit inside the slice");
+    if (scene.number("loading.push_displacement") >= scene.number("geometry.thickness"))
+      throw SceneError("'loading.push_displacement' must be smaller than "
+                       "'geometry.thickness'");
+  }
+  else if (scene.numbers("loading.shear_path").empty())
+    throw SceneError("'loading.shear_path' must have at least one value");
+  return scene;
+}
+
+const Value& Scene::get(const std::string& path, KeyType type) const
+{
+  const auto it = _values.find(path);
+  const KeyDef* def = find_key(path);
+  if (it == _values.end() || !def || def->type != type)
+    throw std::logic_error("scene key '" + path + "' read as " + type_name(type) +
+                           " but not declared so");
+  return it->second;
+}
+
+double Scene::number(const std::string& path) const
+{
+  return std::get<double>(get(path, KeyType::number));
+}
+std::int64_t Scene::integer(const std::string& path) const
+{
+  return std::get<std::int64_t>(get(path, KeyType::integer));
+}
+bool Scene::boolean(const std::string& path) const
+{
+  return std::get<bool>(get(path, KeyType::boolean));
+}
+const std::string& Scene::string(const std::string& path) const
+{
+  return std::get<std::string>(get(path, KeyType::string));
+}
+const std::vector<double>& Scene::numbers(const std::string& path) const
+{
+  return std::get<std::vector<double>>(get(path, KeyType::number_array));
+}
+
+std::string Scene::to_toml() const
+{
+  std::ostringstream out;
+  out << "# Resolved scene: every key with its value (defaults and --set "
+         "overrides applied).\n";
+  std::string section;
+  for (const KeyDef& def : scene_keys())
+  {
+    const auto it = _values.find(def.path);
+    if (it == _values.end())
+      continue;
+    const auto dot = def.path.find('.');
+    const std::string sec = def.path.substr(0, dot);
+    if (sec != section)
+    {
+      out << "\n[" << sec << "]\n";
+      section = sec;
+    }
+    out << def.path.substr(dot + 1) << " = " << pushout::to_toml(it->second);
+    if (!def.unit.empty() && def.unit != "-")
+      out << "  # " << def.unit;
+    out << "\n";
+  }
+  for (const LayerSpec& layer : _layers)
+  {
+    out << "\n[[interface]]\nlaw = \"" << layer.law << "\"\n";
+    for (const auto& p : laws::find_law(layer.law)->params)
+      out << p.name << " = " << pushout::to_toml(layer.params.at(p.name)) << "  # " << p.unit
+          << "\n";
+  }
+  return out.str();
+}
+} // namespace pushout

@@ -1,0 +1,59 @@
+// The scene: the user's TOML file, with `--set` overrides applied, checked
+// against the declared keys (keys.cpp, cpp/laws/) and completed with defaults.
+#pragma once
+
+#include "../laws/LawRegistry.h"
+#include "KeyDef.h"
+#include "Value.h"
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace pushout
+{
+/// One [[interface]] layer: its law and resolved parameters.
+struct LayerSpec
+{
+  std::string law;
+  laws::Params params;
+};
+
+/// A `--set key=value` override, as typed by the user.
+struct Override
+{
+  std::string path;
+  std::string value;
+};
+
+/// Parses "key=value"; throws SceneError on a malformed override.
+Override parse_override(const std::string& text);
+
+class Scene
+{
+public:
+  /// Reads `file`, applies `overrides` in order, validates and fills
+  /// defaults. Throws SceneError naming the key on any problem.
+  static Scene load(const std::filesystem::path& file, const std::vector<Override>& overrides = {});
+
+  /// Same, from TOML text (`origin` names it in messages).
+  static Scene parse(const std::string& toml_text, const std::vector<Override>& overrides = {},
+                     const std::string& origin = "scene");
+
+  double number(const std::string& path) const;
+  std::int64_t integer(const std::string& path) const;
+  bool boolean(const std::string& path) const;
+  const std::string& string(const std::string& path) const;
+  const std::vector<double>& numbers(const std::string& path) const;
+
+  const std::vector<LayerSpec>& layers() const { return _layers; }
+
+  /// The fully resolved scene as TOML (every key, defaults included).
+  std::string to_toml() const;
+
+private:
+  const Value& get(const std::string& path, KeyType type) const;
+  std::map<std::string, Value> _values;
+  std::vector<LayerSpec> _layers;
+};
+} // namespace pushout

@@ -1,0 +1,103 @@
+#include "Equilibrium.h"
+#include <dolfinx/common/IndexMap.h>
+#include <dolfinx/la/petsc.h>
+
+namespace pushout::solver
+{
+Equilibrium::Equilibrium(model::Model& model)
+    : _model(model), _f_interface(model.V->dofmap()->index_map, model.V->dofmap()->index_map_bs())
+{
+  _f_external = dolfinx::la::petsc::create_vector(*model.V->dofmap()->index_map,
+                                                  model.V->dofmap()->index_map_bs());
+  VecSet(_f_external, 0.0);
+}
+
+Equilibrium::~Equilibrium()
+{
+  if (_f_thermal)
+    VecDestroy(&_f_thermal);
+  VecDestroy(&_f_external);
+}
+
+void Equilibrium::set_temperature_change(double dT)
+{
+  if (_f_thermal)
+    VecDestroy(&_f_thermal);
+  _f_thermal = dT != 0.0 ? _model.thermal_load(dT) : nullptr;
+}
+
+void Equilibrium::set_external_forces(const std::vector<std::pair<std::int32_t, double>>& forces)
+{
+  VecSet(_f_external, 0.0);
+  double* f;
+  VecGetArray(_f_external, &f);
+  for (const auto& [dof, value] : forces)
+    f[dof] += value;
+  VecRestoreArray(_f_external, &f);
+}
+
+void Equilibrium::apply_constraints(Vec x) const
+{
+  double* a;
+  VecGetArray(x, &a);
+  for (std::size_t i = 0; i < _bc.dofs.size(); ++i)
+    a[_bc.dofs[i]] = _bc.values[i];
+  VecRestoreArray(x, &a);
+}
+
+void Equilibrium::update_displacement(Vec x)
+{
+  const double* a;
+  VecGetArrayRead(x, &a);
+  std::span<double> u = _model.u->x()->mutable_array();
+  const std::size_t n_owned =
+      _model.V->dofmap()->index_map->size_local() * _model.V->dofmap()->index_map_bs();
+  std::copy_n(a, n_owned, u.begin());
+  VecRestoreArrayRead(x, &a);
+  _model.u->x()->scatter_fwd();
+}
+
+bool Equilibrium::residual(Vec x, Vec F, bool constrained_rows)
+{
+  update_displacement(x);
+  std::span<double> fi = _f_interface.mutable_array();
+  std::fill(fi.begin(), fi.end(), 0.0);
+  const bool ok = _model.interface->assemble(_model.u->x()->array(), fi, nullptr);
+  _f_interface.scatter_rev(std::plus<double>());
+
+  MatMult(_model.K, x, F);
+  if (_f_thermal)
+    VecAXPY(F, -1.0, _f_thermal);
+  VecAXPY(F, -1.0, _f_external);
+  double* f;
+  VecGetArray(F, &f);
+  PetscInt n_owned;
+  VecGetLocalSize(F, &n_owned);
+  for (PetscInt i = 0; i < n_owned; ++i)
+    f[i] += fi[i];
+  if (constrained_rows)
+  {
+    const double* a;
+    VecGetArrayRead(x, &a);
+    for (std::size_t i = 0; i < _bc.dofs.size(); ++i)
+      f[_bc.dofs[i]] = a[_bc.dofs[i]] - _bc.values[i];
+    VecRestoreArrayRead(x, &a);
+  }
+  VecRestoreArray(F, &f);
+  return ok;
+}
+
+bool Equilibrium::jacobian(Vec x, Mat J)
+{
+  update_displacement(x);
+  MatCopy(_model.K, J, SAME_NONZERO_PATTERN);
+  std::span<double> fi = _f_interface.mutable_array();
+  std::fill(fi.begin(), fi.end(), 0.0);
+  const bool ok = _model.interface->assemble(_model.u->x()->array(), fi, J);
+  MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY);
+  MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY);
+  static_assert(sizeof(PetscInt) == sizeof(std::int32_t), "PETSc with 32-bit indices expected");
+  MatZeroRowsLocal(J, PetscInt(_bc.dofs.size()), _bc.dofs.data(), 1.0, nullptr, nullptr);
+  return ok;
+}
+} // namespace pushout::solver

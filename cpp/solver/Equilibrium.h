@@ -1,0 +1,59 @@
+// The nonlinear system of one load step:
+//   F(u) = K u + f_interface(u) - f_thermal - f_external = 0
+// on the free dofs, and u = g on the constrained dofs (F = u - g there).
+// Internal forces at the constrained dofs are the reactions.
+#pragma once
+
+#include "../model/Model.h"
+#include <dolfinx/la/Vector.h>
+#include <petscmat.h>
+#include <petscvec.h>
+#include <vector>
+
+namespace pushout::solver
+{
+/// Prescribed values of some dofs. Dofs are local unblocked indices
+/// (3 * block + component), owned by this process.
+struct Constraints
+{
+  std::vector<std::int32_t> dofs;
+  std::vector<double> values;
+};
+
+class Equilibrium
+{
+public:
+  explicit Equilibrium(model::Model& model);
+  ~Equilibrium();
+  Equilibrium(const Equilibrium&) = delete;
+  Equilibrium& operator=(const Equilibrium&) = delete;
+
+  model::Model& model() { return _model; }
+
+  /// Thermal load of temperature change dT [degC] (0: none).
+  void set_temperature_change(double dT);
+  /// External nodal forces [N]: local unblocked dof -> value.
+  void set_external_forces(const std::vector<std::pair<std::int32_t, double>>& forces);
+  void set_constraints(Constraints c) { _bc = std::move(c); }
+  const Constraints& constraints() const { return _bc; }
+
+  /// Puts the prescribed values into x (start of a step).
+  void apply_constraints(Vec x) const;
+
+  /// F(x). With `constrained_rows = false`, F holds K x + f_int - loads at
+  /// every dof: the reactions at the constrained ones. Returns false if an
+  /// interface law failed.
+  bool residual(Vec x, Vec F, bool constrained_rows = true);
+  /// Jacobian dF/dx into J (same pattern as model.K).
+  bool jacobian(Vec x, Mat J);
+
+  /// Copies x into the model's displacement (ghosts updated).
+  void update_displacement(Vec x);
+
+private:
+  model::Model& _model;
+  Vec _f_thermal = nullptr, _f_external = nullptr;
+  Constraints _bc;
+  dolfinx::la::Vector<double> _f_interface;
+};
+} // namespace pushout::solver

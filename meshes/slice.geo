@@ -1,0 +1,143 @@
+// Push-out slice: a steel tube in a concrete slice (paper §2.1, §4.1).
+//
+// Structured hexahedra: the cross-section is cut into 4 quarters (block
+// corners at 45, 135, 225, 315 degrees); each quarter has three transfinite
+// blocks -- the tube wall (Ri..R), a concrete ring up to the support circle
+// (R..Rs) so that the support edge is a mesh line, and a graded block out to
+// the slice boundary (square side or circle) -- then everything is extruded
+// through the thickness. Steel and concrete share the nodes on r = R here;
+// pushout duplicates them to insert the interface (joint) elements.
+//
+// Open it in gmsh to see the block structure; pushout sets the constants
+// from the scene (gmsh -setnumber). Units: mm.
+DefineConstant[
+  shape = {0, Name "outer_shape: 0 square, 1 circle"},
+  W = {100, Name "width (square side or circle diameter)"},
+  L = {20, Name "thickness"},
+  D = {20, Name "tube outer diameter"},
+  Di = {16, Name "tube inner diameter"},
+  cx = {50, Name "tube centre x"},
+  cy = {50, Name "tube centre y"},
+  Ds = {30, Name "support inner diameter"},
+  nq = {16, Name "elements per quarter circumference"},
+  nz = {8, Name "elements through thickness"},
+  ns = {3, Name "steel layers"},
+  ratio = {10, Name "outer size ratio"}
+];
+
+R = D / 2; Ri = Di / 2; Rs = Ds / 2;
+h = Pi / 2 * R / nq;                 // interface element size
+
+// Concrete ring R..Rs: elements of about the interface size.
+nr1 = Floor((Rs - R) / h + 0.5);
+If (nr1 < 1)
+  nr1 = 1;
+EndIf
+
+// Graded block Rs..boundary: first element ~h, last ~ratio*h (geometric).
+Lr = W / 2 - Rs;
+If (shape == 0)
+  Lr = W / 2;
+  If (cx < Lr) Lr = cx; EndIf
+  If (cy < Lr) Lr = cy; EndIf
+  If (W - cx < Lr) Lr = W - cx; EndIf
+  If (W - cy < Lr) Lr = W - cy; EndIf
+  Lr = Lr - Rs;
+EndIf
+he = ratio * h;
+q = 1;
+nr2 = Ceil(Lr / h);
+If (ratio > 1 && he < Lr)
+  q0 = (Lr - h) / (Lr - he);
+  nr2 = Floor(Log(ratio) / Log(q0) + 1.5);
+  If (nr2 < 2) nr2 = 2; EndIf
+  q = Exp(Log(ratio) / (nr2 - 1));
+EndIf
+If (nr2 < 1) nr2 = 1; EndIf
+
+pc = newp; Point(pc) = {cx, cy, 0};
+radii[] = {Ri, R, Rs};
+For k In {0:3}
+  a = Pi / 4 + k * Pi / 2;
+  For j In {0:2}
+    p[4 * j + k] = newp;
+    Point(p[4 * j + k]) = {cx + radii[j] * Cos(a), cy + radii[j] * Sin(a), 0};
+  EndFor
+  po[k] = newp;
+  If (shape == 0)
+    sx = (k == 0 || k == 3) ? W : 0;
+    sy = (k == 0 || k == 1) ? W : 0;
+    Point(po[k]) = {sx, sy, 0};
+  Else
+    Point(po[k]) = {cx + W / 2 * Cos(a), cy + W / 2 * Sin(a), 0};
+  EndIf
+EndFor
+
+// Arcs on r = Ri, R, Rs and the outer boundary, quarter k from corner k to k+1.
+For k In {0:3}
+  k1 = (k + 1) % 4;
+  For j In {0:2}
+    arc[4 * j + k] = newc;
+    Circle(arc[4 * j + k]) = {p[4 * j + k], pc, p[4 * j + k1]};
+    Transfinite Curve{arc[4 * j + k]} = nq + 1;
+  EndFor
+  outer[k] = newc;
+  If (shape == 0)
+    Line(outer[k]) = {po[k], po[k1]};
+  Else
+    Circle(outer[k]) = {po[k], pc, po[k1]};
+  EndIf
+  Transfinite Curve{outer[k]} = nq + 1;
+EndFor
+
+// Radial lines at each corner: tube wall, concrete ring, graded block.
+For k In {0:3}
+  rad0[k] = newc; Line(rad0[k]) = {p[k], p[4 + k]};
+  Transfinite Curve{rad0[k]} = ns + 1;
+  rad1[k] = newc; Line(rad1[k]) = {p[4 + k], p[8 + k]};
+  Transfinite Curve{rad1[k]} = nr1 + 1;
+  rad2[k] = newc; Line(rad2[k]) = {p[8 + k], po[k]};
+  Transfinite Curve{rad2[k]} = nr2 + 1 Using Progression q;
+EndFor
+
+steel_surfaces[] = {};
+concrete_surfaces[] = {};
+For k In {0:3}
+  k1 = (k + 1) % 4;
+  For j In {0:2}
+    c_in = arc[4 * j + k];
+    If (j < 2)
+      c_out = arc[4 * (j + 1) + k];
+    Else
+      c_out = outer[k];
+    EndIf
+    If (j == 0) r0 = rad0[k]; r1 = rad0[k1]; EndIf
+    If (j == 1) r0 = rad1[k]; r1 = rad1[k1]; EndIf
+    If (j == 2) r0 = rad2[k]; r1 = rad2[k1]; EndIf
+    cl = newll; Curve Loop(cl) = {c_in, r1, -c_out, -r0};
+    s = news; Plane Surface(s) = {cl};
+    Transfinite Surface{s};
+    Recombine Surface{s};
+    If (j == 0)
+      steel_surfaces[] += s;
+    Else
+      concrete_surfaces[] += s;
+    EndIf
+  EndFor
+EndFor
+
+// One extrusion for all blocks, so that neighbouring blocks share faces.
+all_surfaces[] = {steel_surfaces[], concrete_surfaces[]};
+ex[] = Extrude {0, 0, L} { Surface{all_surfaces[]}; Layers{nz}; Recombine; };
+steel_volumes[] = {};
+concrete_volumes[] = {};
+For i In {0:#all_surfaces[] - 1}
+  If (i < #steel_surfaces[])
+    steel_volumes[] += ex[6 * i + 1];
+  Else
+    concrete_volumes[] += ex[6 * i + 1];
+  EndIf
+EndFor
+
+Physical Volume("steel", 1) = {steel_volumes[]};
+Physical Volume("concrete", 2) = {concrete_volumes[]};

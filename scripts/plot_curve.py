@@ -1,0 +1,48 @@
+#!/usr/bin/python3
+"""Draw curve.csv of a pushout run as a PNG.
+
+push-out: nominal bond stress tau [MPa] against tube displacement delta [um]
+(paper eq. 1); single joint: shear force F_s [N] against shear displacement
+u_s [mm]. Usage: plot_curve.py CURVE.csv OUT.png --kind pushout|single_joint
+"""
+import argparse
+import csv
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def read(path):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    return {k: [float(r[k]) for r in rows] for k in (rows[0].keys() if rows else [])}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("csv")
+    ap.add_argument("png")
+    ap.add_argument("--kind", default="pushout", choices=["pushout", "single_joint"])
+    ap.add_argument("--title", default=None)
+    args = ap.parse_args()
+    data = read(args.csv)
+    fig, ax = plt.subplots(figsize=(6, 4), dpi=120)
+    if args.kind == "pushout":
+        ax.plot([d * 1e3 for d in data.get("delta_mm", [])], data.get("tau_MPa", []), "o-", ms=3)
+        ax.set_xlabel("tube displacement $\\delta$ [µm]")
+        ax.set_ylabel("nominal bond stress $\\tau$ [MPa]")
+    else:
+        ax.plot(data.get("u_s_mm", []), data.get("F_s_N", []), "o-", ms=3)
+        ax.set_xlabel("shear displacement $u_s$ [mm]")
+        ax.set_ylabel("shear force $F_s$ [N]")
+    ax.axhline(0, color="0.6", lw=0.5)
+    ax.grid(alpha=0.3)
+    ax.set_title(args.title or args.csv)
+    fig.tight_layout()
+    fig.savefig(args.png)
+
+
+if __name__ == "__main__":
+    main()
