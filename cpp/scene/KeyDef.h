@@ -25,7 +25,7 @@ struct KeyDef
   std::string doc;  ///< one line
   double min = -std::numeric_limits<double>::infinity();
   double max = std::numeric_limits<double>::infinity();
-  bool min_exclusive = false;            ///< value must be > min (not >=)
+  bool open = false;                     ///< both bounds exclusive: min < value < max
   std::vector<std::string> choices = {}; ///< allowed strings (empty: any)
   Applies applies = Applies::all;
 };

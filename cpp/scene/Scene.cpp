@@ -140,27 +140,28 @@ Value convert(const toml::node& node, KeyType type, const std::string& path)
   throw bad();
 }
 
-std::string range_text(double min, double max, bool min_exclusive)
+std::string range_text(double min, double max, bool open)
 {
   std::ostringstream s;
   if (std::isfinite(min))
-    s << (min_exclusive ? "> " : ">= ") << min;
+    s << (open ? "> " : ">= ") << min;
   if (std::isfinite(min) && std::isfinite(max))
     s << " and ";
   if (std::isfinite(max))
-    s << "<= " << max;
+    s << (open ? "< " : "<= ") << max;
   return s.str();
 }
 
-void check_range(double x, double min, double max, bool min_exclusive, const std::string& path,
+/// Throws unless min <= x <= max (open: min < x < max) and x is finite.
+void check_range(double x, double min, double max, bool open, const std::string& path,
                  const std::string& unit)
 {
-  const bool low = min_exclusive ? !(x > min) : !(x >= min);
-  if (low || !(x <= max) || !std::isfinite(x))
+  const bool inside = open ? (x > min && x < max) : (x >= min && x <= max);
+  if (!inside || !std::isfinite(x))
   {
     std::ostringstream s;
     s << "'" << path << "' = " << x << (unit.empty() || unit == "-" ? "" : " " + unit)
-      << " is out of range: it must be " << range_text(min, max, min_exclusive);
+      << " is out of range: it must be " << range_text(min, max, open);
     throw SceneError(s.str());
   }
 }
@@ -168,9 +169,9 @@ void check_range(double x, double min, double max, bool min_exclusive, const std
 void check_value(const KeyDef& def, const Value& v)
 {
   if (const auto* d = std::get_if<double>(&v))
-    check_range(*d, def.min, def.max, def.min_exclusive, def.path, def.unit);
+    check_range(*d, def.min, def.max, def.open, def.path, def.unit);
   else if (const auto* i = std::get_if<std::int64_t>(&v))
-    check_range(double(*i), def.min, def.max, def.min_exclusive, def.path, def.unit);
+    check_range(double(*i), def.min, def.max, def.open, def.path, def.unit);
   else if (const auto* s = std::get_if<std::string>(&v); s && !def.choices.empty())
   {
     bool ok = false;

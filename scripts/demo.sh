@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# Sets up pushout (scripts/setup.sh) and runs the default scene,
+# demo/pushout_friction.toml, into results/pushout_friction/.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/setup.sh
+out=results/pushout_friction
+build/pushout run demo/pushout_friction.toml --out "$out" "$@"
+echo "curve: $out/curve.csv  plot: $out/curve.png  summary: $out/summary.json"

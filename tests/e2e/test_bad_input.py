@@ -1,0 +1,62 @@
+"""Malformed scenes and command lines: each must exit non-zero (not by a
+signal) with one message naming the problem, and leave no results behind."""
+import os
+
+from common import SOURCE, check, out_dir, run
+
+GOOD = """
+[mesh]
+elements_per_quarter = 4
+elements_through_thickness = 2
+[[interface]]
+law = "friction"
+k = 1000.0
+mu = 0.4
+"""
+
+cases = [
+    # (name, scene text, --set overrides, expected words in stderr)
+    ("toml syntax", GOOD + "\n[loading\n", [], ["TOML syntax error", "line"]),
+    ("unknown key", GOOD + "\n[geometry]\nwidht = 100.0\n", [], ["geometry.widht"]),
+    ("unknown section", GOOD + "\n[geometri]\nwidth = 100.0\n", [], ["geometri"]),
+    ("wrong type", GOOD + '\n[geometry]\nwidth = "wide"\n', [], ["geometry.width", "number"]),
+    ("integer expected", GOOD + "\n[loading]\nsteps = 2.5\n", [], ["loading.steps", "integer"]),
+    ("unknown law", GOOD.replace('"friction"', '"glue"'), [], ["interface.0.law", "glue"]),
+    ("unknown law key", GOOD.replace("mu = 0.4", "mu = 0.4\nphi = 3.0"), [], ["interface.0.phi"]),
+    ("negative k", GOOD.replace("k = 1000.0", "k = -1000.0"), [], ["interface.0.k", "out of range"]),
+    ("zero k", GOOD.replace("k = 1000.0", "k = 0.0"), [], ["interface.0.k"]),
+    ("negative mu", GOOD.replace("mu = 0.4", "mu = -0.1"), [], ["interface.0.mu"]),
+    ("zero steps", GOOD + "\n[loading]\nsteps = 0\n", [], ["loading.steps"]),
+    ("zero mesh count", GOOD.replace("elements_per_quarter = 4", "elements_per_quarter = 0"), [],
+     ["mesh.elements_per_quarter"]),
+    ("tube wall inverted", GOOD + "\n[geometry]\ntube_inner_diameter = 25.0\n", [], ["tube_inner_diameter"]),
+    ("support hole smaller than tube", GOOD + "\n[geometry]\nsupport_inner_diameter = 15.0\n", [],
+     ["support_inner_diameter"]),
+    ("tube outside slice", GOOD + "\n[geometry]\ntube_center = [5.0, 50.0]\n", [], ["tube_center"]),
+    ("negative E", GOOD + "\n[concrete]\nE = -3.0\n", [], ["concrete.E"]),
+    ("poisson 0.5", GOOD + "\n[steel]\nnu = 0.5\n", [], ["steel.nu"]),
+    ("unsupported degree", GOOD.replace("[mesh]", "[mesh]\ndegree = 2"), [], ["mesh.degree"]),
+    ("bad choice", GOOD + '\n[geometry]\nouter_shape = "hexagon"\n', [], ["geometry.outer_shape", "square"]),
+    ("key of the other model type", '[model]\ntype = "single_joint"\n[geometry]\nwidth = 3.0\n', [],
+     ["geometry.width", "single_joint"]),
+    ("--set missing layer", GOOD, ["interface.3.mu=0.2"], ["interface.3.mu"]),
+    ("--set unknown key", GOOD, ["loading.stepz=3"], ["loading.stepz"]),
+    ("--set malformed", GOOD, ["loading.steps"], ["loading.steps", "key=value"]),
+    ("--set wrong type", GOOD, ["loading.steps=many"], ["loading.steps"]),
+]
+
+for name, text, sets, words in cases:
+    out = out_dir("bad_" + name.replace(" ", "_").replace("-", ""))
+    p = run(text, out, sets=sets, check=False)
+    err = p.stderr.strip()
+    check(0 < p.returncode < 128, f"{name}: exit {p.returncode} (non-zero, no signal)")
+    check(all(w in err for w in words), f"{name}: message names {words}: {err!r}")
+    check(len(err.splitlines()) == 1, f"{name}: one message line")
+    check(not os.path.exists(os.path.join(out, "curve.csv")), f"{name}: no curve.csv")
+
+# Missing scene file and an output folder that cannot be written.
+p = run(os.path.join(SOURCE, "demo", "no_such_scene.toml"), out_dir("bad_missing"), check=False)
+check(0 < p.returncode < 128 and "no_such_scene.toml" in p.stderr, "missing scene file named")
+p = run(GOOD, "/proc/pushout-cannot-write-here", check=False)
+check(0 < p.returncode < 128 and "--out" in p.stderr, "unwritable output folder named")
+print(f"{len(cases) + 2} malformed inputs rejected")

@@ -1,0 +1,24 @@
+"""Friction interface, no retraction: nothing presses the concrete on the
+tube, so Coulomb friction transmits nothing and tau stays 0."""
+from common import check, curve, out_dir, run
+
+scene = """
+[mesh]
+elements_per_quarter = 4
+elements_through_thickness = 2
+[[interface]]
+law = "friction"
+k = 1000.0
+mu = 0.4
+[loading]
+temperature_change = 0.0
+push_displacement = 0.01
+steps = 3
+"""
+out = out_dir("pushout_no_pressure")
+run(scene, out)
+rows = curve(out)
+check(len(rows) == 4, "step 0 + 3 steps")
+worst = max(abs(r["tau_MPa"]) for r in rows)
+check(worst < 1e-9, f"max |tau| = {worst:.2e} MPa (no pressure, no friction)")
+check(abs(rows[-1]["delta_mm"] - 0.01) < 1e-12, "the tube moved 10 um")

@@ -1,0 +1,107 @@
+// Friction with inelastic slip (paper §3): analytic paths, vector slip,
+// opening, and the consistent tangent against finite differences.
+#include "law_testing.h"
+#include "laws/Friction.h"
+#include <gtest/gtest.h>
+#include <random>
+
+using pushout::laws::Friction;
+using pushout::laws::Vec3;
+
+namespace
+{
+/// Runs a shear path along s1 at fixed w_n, committing every step.
+std::vector<double> shear_path(const Friction& law, double wn, const std::vector<double>& us)
+{
+  std::vector<double> state = {0, 0}, trial(2), t;
+  for (double u : us)
+  {
+    const auto r = law.update(state, {wn, u, 0}, trial);
+    t.push_back(r.t[1]);
+    state = trial;
+  }
+  return t;
+}
+} // namespace
+
+TEST(Friction, StickThenSlideThenReverse)
+{
+  // k 100, mu 0.4, w_n = -0.004 -> p = 0.4 MPa, limit 0.16 MPa (Fig. 6).
+  const Friction law(100.0, 0.4);
+  const auto t = shear_path(law, -0.004, {0.001, 0.0016, 0.01, 0.02, 0.019, 0.0168, 0.01, 0.012});
+  EXPECT_NEAR(t[0], 0.1, 1e-14);  // stick: k u
+  EXPECT_NEAR(t[1], 0.16, 1e-14); // just at the limit
+  EXPECT_NEAR(t[2], 0.16, 1e-14); // sliding
+  EXPECT_NEAR(t[3], 0.16, 1e-14);
+  EXPECT_NEAR(t[4], 0.06, 1e-14);  // elastic unloading: 0.16 - 100 * 0.001
+  EXPECT_NEAR(t[5], -0.16, 1e-14); // reverse limit reached at 0.0168
+  EXPECT_NEAR(t[6], -0.16, 1e-14); // reverse sliding
+  EXPECT_NEAR(t[7], 0.04, 1e-14);  // reloading: -0.16 + 100 * 0.002
+}
+
+TEST(Friction, SlipIsAVectorAlongTheTrialTraction)
+{
+  const Friction law(1000.0, 0.5);
+  const std::vector<double> s0 = {0.001, -0.002};
+  std::vector<double> s1(2);
+  const Vec3 w = {-0.01, 0.02, 0.01}; // p = 10 MPa, limit 5 MPa
+  const auto r = law.update(s0, w, s1);
+  const double t1 = 1000 * (w[1] - s0[0]), t2 = 1000 * (w[2] - s0[1]);
+  const double norm = std::hypot(t1, t2);
+  EXPECT_NEAR(std::hypot(r.t[1], r.t[2]), 5.0, 1e-12);
+  EXPECT_NEAR(r.t[1] * t2 - r.t[2] * t1, 0.0, 1e-9); // parallel to the trial
+  EXPECT_NEAR(s1[0] - s0[0], (norm - 5.0) / 1000 * t1 / norm, 1e-15);
+  EXPECT_NEAR(s1[1] - s0[1], (norm - 5.0) / 1000 * t2 / norm, 1e-15);
+  EXPECT_DOUBLE_EQ(r.t[0], -10.0);
+}
+
+TEST(Friction, OpeningCarriesNoShearAndKeepsNormalStiffness)
+{
+  const Friction law(1000.0, 0.4);
+  std::vector<double> s1(2);
+  const auto r = law.update(std::vector<double>{0, 0}, {0.001, 0.003, -0.002}, s1);
+  EXPECT_DOUBLE_EQ(r.t[0], 1.0);
+  EXPECT_DOUBLE_EQ(r.t[1], 0.0);
+  EXPECT_DOUBLE_EQ(r.t[2], 0.0);
+  EXPECT_DOUBLE_EQ(r.D[0], 1000.0);
+  EXPECT_DOUBLE_EQ(s1[0], 0.003); // the whole shear jump became slip
+  EXPECT_DOUBLE_EQ(s1[1], -0.002);
+}
+
+TEST(Friction, ZeroFrictionSlidesFreely)
+{
+  const Friction law(1000.0, 0.0);
+  const auto t = shear_path(law, -0.01, {0.001, -0.003});
+  EXPECT_DOUBLE_EQ(t[0], 0.0);
+  EXPECT_DOUBLE_EQ(t[1], 0.0);
+}
+
+TEST(Friction, TangentMatchesFiniteDifferencesAtRandomStates)
+{
+  std::mt19937 gen(42);
+  std::uniform_real_distribution<double> U(-1, 1);
+  const double h = 1e-9, scale = 1e-3; // FD step and jump scale [mm]
+  int sliding = 0, sticking = 0, open = 0;
+  while (sliding + sticking + open < 300)
+  {
+    const double k = std::pow(10.0, 2 + 2 * (U(gen) + 1)); // 1e2 .. 1e6 N/mm^3
+    const double mu = 0.1 + 0.5 * (U(gen) + 1);
+    const Friction law(k, mu);
+    const Vec3 w = {scale * U(gen), scale * U(gen), scale * U(gen)};
+    // A third of the states start near the jump, so that many stick.
+    const bool near = U(gen) < -1.0 / 3;
+    const std::vector<double> s0 = {near ? w[1] + 1e-2 * scale * U(gen) : scale * U(gen),
+                                    near ? w[2] + 1e-2 * scale * U(gen) : scale * U(gen)};
+    // Trial yield function (eq. 6): keep away from the kinks (the yield
+    // surface and w_n = 0), where central differences straddle two branches.
+    const double f = k * std::hypot(w[1] - s0[0], w[2] - s0[1]) - mu * std::max(-k * w[0], 0.0);
+    if (std::abs(w[0]) < 1e3 * h || std::abs(f) < 1e3 * k * h)
+      continue;
+    EXPECT_LT(pushout::testing::tangent_error(law, s0, w, h, k), 1e-6)
+        << "k " << k << " mu " << mu << " w " << w[0] << " " << w[1] << " " << w[2];
+    (w[0] > 0 ? open : f > 0 ? sliding : sticking)++;
+  }
+  EXPECT_GT(sliding, 50);
+  EXPECT_GT(sticking, 20);
+  EXPECT_GT(open, 50);
+}
