@@ -7,6 +7,7 @@ u_s [mm]. Usage: plot_curve.py CURVE.csv OUT.png --kind pushout|single_joint
 """
 import argparse
 import csv
+import os
 
 import matplotlib
 
@@ -39,7 +40,7 @@ def main():
         ax.set_ylabel("shear force $F_s$ [N]")
     ax.axhline(0, color="0.6", lw=0.5)
     ax.grid(alpha=0.3)
-    ax.set_title(args.title or args.csv)
+    ax.set_title(args.title or os.path.basename(os.path.dirname(os.path.abspath(args.csv))))
     fig.tight_layout()
     fig.savefig(args.png)
 

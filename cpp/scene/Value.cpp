@@ -24,11 +24,18 @@ const char* type_name(KeyType type)
 
 namespace
 {
+/// Shortest decimal form that reads back to exactly x.
 std::string format_number(double x)
 {
-  std::ostringstream s;
-  s << std::setprecision(17) << x;
-  std::string out = s.str();
+  std::string out;
+  for (int digits = 15; digits <= 17; ++digits)
+  {
+    std::ostringstream s;
+    s << std::setprecision(digits) << x;
+    out = s.str();
+    if (std::stod(out) == x)
+      break;
+  }
   if (out.find_first_of(".eEn") == std::string::npos)
     out += ".0";
   return out;
