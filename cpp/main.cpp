@@ -46,6 +46,8 @@ void print_laws()
         std::cout << " (default " << *p.default_value << ")";
       else if (!p.default_from.empty())
         std::cout << " (default: " << p.default_from << ")";
+      else if (p.optional)
+        std::cout << " (optional)";
       else
         std::cout << " (required)";
       std::cout << "\n";

@@ -1,7 +1,11 @@
 // One line per law: this is where laws are registered.
 #include "LawRegistry.h"
+#include "CohesiveFriction.h"
 #include "Elastic.h"
+#include "ExponentialSoftening.h"
 #include "Friction.h"
+#include "LinearSoftening.h"
+#include "LinearSofteningFriction.h"
 
 namespace pushout::laws
 {
@@ -10,6 +14,10 @@ const std::vector<LawInfo>& registered_laws()
   static const std::vector<LawInfo> laws = {
       describe<Elastic>(),
       describe<Friction>(),
+      describe<LinearSoftening>(),
+      describe<LinearSofteningFriction>(),
+      describe<ExponentialSoftening>(),
+      describe<CohesiveFriction>(),
   };
   return laws;
 }

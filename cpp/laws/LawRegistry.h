@@ -24,10 +24,11 @@ struct ParamDef
   double min = -std::numeric_limits<double>::infinity();
   bool min_exclusive = false;
   std::string default_from = {}; ///< defaults to this other parameter's value
+  bool optional = false;         ///< may be absent (then not in Params)
 };
 
-/// Resolved parameters of one layer, by name. `at(name)` is always valid for
-/// declared names after the scene is read.
+/// Resolved parameters of one layer, by name. `at(name)` is valid for every
+/// declared parameter except absent optional ones.
 using Params = std::map<std::string, double>;
 
 struct LawInfo

@@ -248,13 +248,14 @@ LayerSpec read_layer(const toml::node& node, std::size_t index)
       continue;
     if (!p.default_from.empty() && layer.params.count(p.default_from))
       layer.params[p.name] = layer.params.at(p.default_from);
-    else
+    else if (!p.optional)
       throw SceneError("'" + prefix + p.name + "' (" + p.doc + ", " + p.unit +
                        ") is required for law '" + layer.law + "'");
   }
   for (const auto& p : info->params)
-    check_range(layer.params.at(p.name), p.min, std::numeric_limits<double>::infinity(),
-                p.min_exclusive, prefix + p.name, p.unit);
+    if (layer.params.count(p.name))
+      check_range(layer.params.at(p.name), p.min, std::numeric_limits<double>::infinity(),
+                  p.min_exclusive, prefix + p.name, p.unit);
   info->make(layer.params, prefix); // checks combinations of parameters
   return layer;
 }
@@ -449,8 +450,9 @@ std::string Scene::to_toml() const
   {
     out << "\n[[interface]]\nlaw = \"" << layer.law << "\"\n";
     for (const auto& p : laws::find_law(layer.law)->params)
-      out << p.name << " = " << pushout::to_toml(layer.params.at(p.name)) << "  # " << p.unit
-          << "\n";
+      if (layer.params.count(p.name))
+        out << p.name << " = " << pushout::to_toml(layer.params.at(p.name)) << "  # " << p.unit
+            << "\n";
   }
   return out.str();
 }

@@ -1,0 +1,93 @@
+// Cohesive damage after Camanho & Davila (2002), as the paper uses it (§2.3,
+// Fig. 5a/b, eq. 3), shared by the softening laws.
+//
+//   equivalent jump  delta = sqrt(|w_s|^2 + <w_n>^2)
+//     (the paper writes w_m = w_s + <w_n>, eq. 3; we take the Euclidean norm
+//      of the opening part of the jump, which is frame invariant)
+//   history          kappa = max(kappa_old, delta),  w0 = f_t / k
+//   secant stiffness g(kappa) = k for kappa <= w0, sigma(kappa) / kappa after
+//   traction         t_s = g w_s;  t_n = g w_n in opening, k w_n in
+//                    compression (always elastic, never damaged)
+//   damage           D = 1 - g / k (unloading and reloading run secant to the
+//                    origin)
+// Consistent tangent on loading (delta > kappa_old, delta > w0):
+//   dt_a/dw_b = g I_ab + g'(delta) w_a w_b / delta over the opening
+//   components, g' = (sigma' delta - sigma) / delta^2; secant otherwise.
+#pragma once
+
+#include "Envelope.h"
+#include "InterfaceLaw.h"
+#include <cmath>
+
+namespace pushout::laws
+{
+class CamanhoDavila
+{
+public:
+  CamanhoDavila(double k, Envelope envelope) : _k(k), _env(envelope), _w0(envelope.f_t / k) {}
+
+  double k() const { return _k; }
+  double w0() const { return _w0; }
+
+  /// Secant stiffness g(kappa) [N/mm^3].
+  double secant(double kappa) const
+  {
+    if (kappa <= _w0)
+      return _k;
+    return _env.evaluate(kappa, _w0).sigma / kappa;
+  }
+
+  /// Damage D = 1 - g / k in [0, 1].
+  double damage(double kappa) const { return 1 - secant(kappa) / _k; }
+
+  /// Equivalent jump delta of w.
+  static double equivalent(const Vec3& w)
+  {
+    const double wn = std::max(w[0], 0.0);
+    return std::sqrt(wn * wn + w[1] * w[1] + w[2] * w[2]);
+  }
+
+  /// History update kappa_new and whether this is loading on the envelope.
+  bool loading(double kappa_old, const Vec3& w, double& kappa_new) const
+  {
+    const double delta = equivalent(w);
+    kappa_new = std::max(kappa_old, delta);
+    return delta > kappa_old && delta > _w0;
+  }
+
+  /// d g / d delta at delta (on the envelope, delta > w0).
+  double dsecant(double delta) const
+  {
+    const Envelope::Value v = _env.evaluate(delta, _w0);
+    return (v.dsigma * delta - v.sigma) / (delta * delta);
+  }
+
+  /// The cohesive traction and tangent at committed history kappa_old.
+  LawResult update(double kappa_old, const Vec3& w, double& kappa_new) const
+  {
+    LawResult r;
+    const bool on_envelope = loading(kappa_old, w, kappa_new);
+    const double g = secant(kappa_new);
+    const bool open = w[0] > 0;
+    r.t = {(open ? g : _k) * w[0], g * w[1], g * w[2]};
+    r.D = {open ? g : _k, 0, 0, 0, g, 0, 0, 0, g};
+    if (on_envelope)
+    {
+      const double delta = kappa_new;
+      const double c = dsecant(delta) / delta;
+      const Vec3 we = {open ? w[0] : 0.0, w[1], w[2]};
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b)
+          r.D[3 * a + b] += c * we[a] * we[b];
+    }
+    if (!std::isfinite(r.t[0] + r.t[1] + r.t[2]))
+      r.status = LawStatus::failed;
+    return r;
+  }
+
+private:
+  double _k;
+  Envelope _env;
+  double _w0;
+};
+} // namespace pushout::laws

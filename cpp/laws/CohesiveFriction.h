@@ -1,0 +1,111 @@
+// One law carrying cohesion and friction (the paper's future work, §4.3, §5),
+// after Alfano & Sacco (2006), "Combining interface damage and friction in a
+// cohesive-zone model", Int. J. Numer. Meth. Engng 68:542-582.
+//
+// A fraction D of the interface is damaged (D from the Camanho-Davila
+// envelope, CamanhoDavila.h); the undamaged part is elastic, the damaged
+// part is in unilateral contact with Coulomb friction and plastic slip
+// (Friction.h):
+//
+//   t = (1 - D) k w + D t_d
+//   t_d,n = k min(w_n, 0)                  (contact: no tension)
+//   t_d,s = Coulomb return mapping of k (w_s - w^p), p = max(-k w_n, 0)
+//
+// Limits: D = 0 is `elastic` (k); D = 1 is `friction` (k, mu) in contact.
+// In compression t_n = k w_n whatever D; in opening t_n = (1 - D) k w_n.
+// Consistent tangent: (1 - D) k I + D dt_d/dw + (t_d - k w) (x) dD/dw, with
+// dD/dw = -(g'(delta)/k) w_open/delta on loading (0 otherwise).
+//
+// Envelope: linear (give w_c2) or exponential (give c), both to zero: the
+// residual stress comes from friction. State: [kappa, w^p_s1, w^p_s2] (mm).
+// Parameters: k [N/mm^3], mu [-], f_t [MPa], w_c2 [mm] or c [1/mm].
+#pragma once
+
+#include "../scene/SceneError.h"
+#include "CamanhoDavila.h"
+#include "Friction.h"
+#include "LawRegistry.h"
+
+namespace pushout::laws
+{
+class CohesiveFriction
+{
+public:
+  static constexpr const char* name = "cohesive_friction";
+  static constexpr const char* doc = "damage transfers load from cohesion to Coulomb friction "
+                                     "(Alfano & Sacco 2006): k, mu, f_t, and w_c2 or c";
+  static constexpr int state_size = 3;
+
+  static std::vector<ParamDef> params()
+  {
+    ParamDef w_c2{"w_c2", std::nullopt, "mm", "linear envelope: softening length", 0, true};
+    ParamDef c{"c", std::nullopt, "1/mm", "exponential envelope: decay rate", 0, true};
+    w_c2.optional = c.optional = true;
+    return {{"k", 1000.0, "N/mm^3", "penalty stiffness", 0, true},
+            {"mu", 0.4, "-", "friction coefficient of the damaged part", 0, false},
+            {"f_t", 3.0, "MPa", "tensile strength (peak traction)", 0, true},
+            w_c2,
+            c};
+  }
+
+  CohesiveFriction(double k, double mu, Envelope envelope) : _cd(k, envelope), _friction(k, mu) {}
+  CohesiveFriction(const Params& p, const std::string& prefix)
+      : CohesiveFriction(p.at("k"), p.at("mu"), envelope(p, prefix))
+  {
+  }
+
+  LawResult update(std::span<const double> state_old, const Vec3& w,
+                   std::span<double> state_new) const
+  {
+    const double k = _cd.k();
+    double& kappa = state_new[0];
+    const bool on_envelope = _cd.loading(state_old[0], w, kappa);
+    const double D = _cd.damage(kappa);
+    const LawResult fr = _friction.update(state_old.subspan(1, 2), w, state_new.subspan(1, 2));
+
+    // Damaged part: contact normal and friction shear.
+    Vec3 td = {k * std::min(w[0], 0.0), fr.t[1], fr.t[2]};
+    Mat3 Dd = fr.D;
+    Dd[0] = w[0] < 0 ? k : 0.0;
+
+    LawResult r;
+    for (int a = 0; a < 3; ++a)
+    {
+      r.t[a] = (1 - D) * k * w[a] + D * td[a];
+      for (int b = 0; b < 3; ++b)
+        r.D[3 * a + b] = (a == b ? (1 - D) * k : 0.0) + D * Dd[3 * a + b];
+    }
+    if (on_envelope)
+    {
+      const double delta = kappa;
+      const Vec3 we = {std::max(w[0], 0.0), w[1], w[2]};
+      const double dD = -_cd.dsecant(delta) / k / delta; // times we_b
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b)
+          r.D[3 * a + b] += (td[a] - k * w[a]) * dD * we[b];
+    }
+    r.status = fr.status;
+    if (!std::isfinite(r.t[0] + r.t[1] + r.t[2]))
+      r.status = LawStatus::failed;
+    return r;
+  }
+
+  std::array<double, 2> slip(std::span<const double> state) const { return {state[1], state[2]}; }
+  double damage(std::span<const double> state) const { return _cd.damage(state[0]); }
+
+private:
+  static Envelope envelope(const Params& p, const std::string& prefix)
+  {
+    const bool linear = p.count("w_c2"), exponential = p.count("c");
+    if (linear == exponential)
+      throw SceneError("'" + prefix + "w_c2' (linear envelope) or '" + prefix +
+                       "c' (exponential envelope): give exactly one for law 'cohesive_friction'");
+    if (linear)
+      return {Envelope::Kind::linear, p.at("f_t"), p.at("w_c2")};
+    return {Envelope::Kind::exponential, p.at("f_t"), 0.0, 0.0, p.at("c")};
+  }
+
+  CamanhoDavila _cd;
+  Friction _friction;
+};
+} // namespace pushout::laws

@@ -1,0 +1,53 @@
+// Softening envelopes sigma(kappa) of the cohesive laws (paper §2.3, Fig. 5):
+// the traction reached on monotonic loading at equivalent jump kappa >= w0,
+// w0 = f_t / k the jump at the peak (elastic branch before it).
+//
+//   linear:               f_t (1 - (kappa - w0) / w_c2), zero beyond w0 + w_c2
+//   linear with residual: the linear branch until it reaches f_fr, then f_fr
+//   exponential:          f_fr + (f_t - f_fr) exp(-c (kappa - w0))
+//
+// Units: f_t, f_fr [MPa]; w_c2, kappa [mm]; c [1/mm].
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+namespace pushout::laws
+{
+struct Envelope
+{
+  enum class Kind
+  {
+    linear,
+    linear_residual,
+    exponential
+  };
+  Kind kind;
+  double f_t;      ///< tensile strength (peak) [MPa]
+  double w_c2 = 0; ///< linear: softening length from the peak to zero [mm]
+  double f_fr = 0; ///< residual (asymptote) [MPa]
+  double c = 0;    ///< exponential decay [1/mm]
+
+  struct Value
+  {
+    double sigma;  ///< traction on the envelope [MPa]
+    double dsigma; ///< d sigma / d kappa [N/mm^3]
+  };
+
+  /// sigma(kappa) and its slope, for kappa >= w0.
+  Value evaluate(double kappa, double w0) const
+  {
+    const double x = kappa - w0;
+    if (kind == Kind::exponential)
+    {
+      const double e = std::exp(-c * x);
+      return {f_fr + (f_t - f_fr) * e, -c * (f_t - f_fr) * e};
+    }
+    const double floor = kind == Kind::linear ? 0.0 : f_fr;
+    const double sigma = f_t * (1 - x / w_c2);
+    if (sigma <= floor)
+      return {floor, 0.0};
+    return {sigma, -f_t / w_c2};
+  }
+};
+} // namespace pushout::laws

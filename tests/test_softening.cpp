@@ -1,0 +1,172 @@
+// Cohesive softening laws (paper §2.3, Fig. 5a/b): analytic paths, secant
+// unloading, compression, energy to full separation, FD tangents.
+#include "law_testing.h"
+#include "laws/ExponentialSoftening.h"
+#include "laws/LinearSoftening.h"
+#include "laws/LinearSofteningFriction.h"
+#include <gtest/gtest.h>
+#include <random>
+
+using namespace pushout::laws;
+
+namespace
+{
+Params params(std::initializer_list<std::pair<const std::string, double>> p)
+{
+  return Params(p);
+}
+
+const LinearSoftening linear(params({{"k", 100}, {"f_t", 1}, {"w_c2", 0.3}}), "");
+const LinearSofteningFriction
+    linear_fr(params({{"k", 100}, {"f_t", 1}, {"w_c2", 0.3}, {"f_fr", 0.4}}), "");
+const ExponentialSoftening exponential(params({{"k", 1000}, {"f_t", 3}, {"c", 25}, {"f_fr", 0}}),
+                                       "");
+
+/// Traction along a path of jumps, committing every step.
+template <typename L> std::vector<Vec3> path(const L& law, const std::vector<Vec3>& jumps)
+{
+  std::vector<double> s = {0}, s1 = {0};
+  std::vector<Vec3> t;
+  for (const Vec3& w : jumps)
+  {
+    t.push_back(law.update(s, w, s1).t);
+    s = s1;
+  }
+  return t;
+}
+
+/// Work of the normal traction over a monotonic opening to w_end [N/mm].
+template <typename L> double opening_work(const L& law, double w_end, int n)
+{
+  std::vector<double> s = {0}, s1 = {0};
+  double work = 0, t_prev = 0;
+  for (int i = 1; i <= n; ++i)
+  {
+    const double w = w_end * i / n;
+    const double t = law.update(s, {w, 0, 0}, s1).t[0];
+    work += 0.5 * (t + t_prev) * w_end / n;
+    t_prev = t;
+    s = s1;
+  }
+  return work;
+}
+} // namespace
+
+TEST(LinearSoftening, PureShearPeakSofteningSecantUnloadingReloading)
+{
+  // w0 = f_t / k = 0.01 mm; sigma = 1 - (kappa - 0.01) / 0.3.
+  const auto t = path(linear, {{0, 0.005, 0},
+                               {0, 0.01, 0},
+                               {0, 0.16, 0},
+                               {0, 0.08, 0},
+                               {0, 0.16, 0},
+                               {0, 0.31, 0},
+                               {0, 0.4, 0}});
+  EXPECT_NEAR(t[0][1], 0.5, 1e-14);  // elastic
+  EXPECT_NEAR(t[1][1], 1.0, 1e-14);  // peak
+  EXPECT_NEAR(t[2][1], 0.5, 1e-14);  // halfway down
+  EXPECT_NEAR(t[3][1], 0.25, 1e-14); // secant to the origin
+  EXPECT_NEAR(t[4][1], 0.5, 1e-14);  // back on the envelope
+  EXPECT_NEAR(t[5][1], 0.0, 1e-14);  // fully damaged
+  EXPECT_NEAR(t[6][1], 0.0, 1e-14);
+  std::vector<double> s = {0.4}, s1(1);
+  EXPECT_NEAR(linear.damage(s), 1.0, 1e-14);
+}
+
+TEST(LinearSoftening, PureOpeningAndMixedModeUseTheEuclideanJump)
+{
+  const auto t = path(linear, {{0.16, 0, 0}});
+  EXPECT_NEAR(t[0][0], 0.5, 1e-14);
+  // Mixed: |(0.096, 0.128)| = 0.16 -> secant 0.5 / 0.16 on both components.
+  const auto m = path(linear, {{0.096, 0.128, 0}});
+  EXPECT_NEAR(m[0][0], 0.5 / 0.16 * 0.096, 1e-14);
+  EXPECT_NEAR(m[0][1], 0.5 / 0.16 * 0.128, 1e-14);
+}
+
+TEST(LinearSoftening, CompressionIsElasticAndDoesNotDamage)
+{
+  std::vector<double> s = {0}, s1 = {0};
+  const auto r = linear.update(s, {-0.5, 0, 0}, s1);
+  EXPECT_DOUBLE_EQ(r.t[0], -50.0);
+  EXPECT_DOUBLE_EQ(s1[0], 0.0);
+  // Damaged, then compressed: still the full k in the normal direction.
+  s = {0.2};
+  EXPECT_DOUBLE_EQ(linear.update(s, {-0.01, 0, 0}, s1).t[0], -1.0);
+}
+
+TEST(LinearSofteningFriction, SoftensToTheResidual)
+{
+  const auto t =
+      path(linear_fr, {{0, 0.01, 0}, {0, 0.1, 0}, {0, 0.2, 0}, {0, 1.0, 0}, {0, 0.5, 0}});
+  EXPECT_NEAR(t[0][1], 1.0, 1e-14);
+  EXPECT_NEAR(t[1][1], 0.7, 1e-14);
+  EXPECT_NEAR(t[2][1], 0.4, 1e-14); // reached f_fr at kappa = 0.19
+  EXPECT_NEAR(t[3][1], 0.4, 1e-14);
+  EXPECT_NEAR(t[4][1], 0.2, 1e-14); // secant unloading from the residual
+}
+
+TEST(ExponentialSoftening, Envelope)
+{
+  // w0 = 0.003 mm; sigma = 3 exp(-25 (kappa - w0)).
+  const auto t = path(exponential, {{0.003, 0, 0}, {0.043, 0, 0}, {0.0215, 0, 0}});
+  EXPECT_NEAR(t[0][0], 3.0, 1e-13);
+  EXPECT_NEAR(t[1][0], 3 * std::exp(-1.0), 1e-13);
+  EXPECT_NEAR(t[2][0], 1.5 * std::exp(-1.0), 1e-13);
+}
+
+TEST(Softening, EnergyToFullSeparationIsTheAreaUnderTheEnvelope)
+{
+  // Linear: f_t (w0 + w_c2) / 2 = 1 x 0.31 / 2.
+  EXPECT_NEAR(opening_work(linear, 0.4, 40000) / 0.155 - 1, 0, 1e-3);
+  // Exponential, f_fr = 0: f_t w0 / 2 + f_t / c = 0.0045 + 0.12.
+  const double G = 3 * 0.003 / 2 + 3.0 / 25;
+  EXPECT_NEAR(opening_work(exponential, 0.003 + 40.0 / 25, 200000) / G - 1, 0, 1e-3);
+}
+
+TEST(Softening, ParametersAreChecked)
+{
+  EXPECT_THROW(LinearSofteningFriction(params({{"k", 100}, {"f_t", 1}, {"w_c2", 0.3}, {"f_fr", 2}}),
+                                       "interface.0."),
+               pushout::SceneError);
+  EXPECT_THROW(
+      ExponentialSoftening(params({{"k", 100}, {"f_t", 1}, {"c", 3}, {"f_fr", 1.5}}), "x."),
+      pushout::SceneError);
+}
+
+namespace
+{
+/// FD tangent check at random states of a softening law, away from kinks.
+template <typename L> void check_random_tangents(const L& law, double k, double w0, double kink2)
+{
+  std::mt19937 gen(3);
+  std::uniform_real_distribution<double> U(-1, 1);
+  const double h = 1e-9;
+  int loading = 0, unloading = 0, compressed = 0, tested = 0;
+  while (tested < 200)
+  {
+    const double scale = 4 * w0 * std::abs(U(gen)) + kink2 * std::abs(U(gen));
+    const Vec3 w = {scale * U(gen), scale * U(gen), scale * U(gen)};
+    const std::vector<double> s0 = {std::abs(U(gen)) * (2 * w0 + kink2)};
+    const double delta = CamanhoDavila::equivalent(w);
+    const double margin = 1e3 * h;
+    if (std::abs(w[0]) < margin || std::abs(delta - s0[0]) < margin ||
+        std::abs(delta - w0) < margin || std::abs(delta - kink2) < margin || delta < margin)
+      continue;
+    EXPECT_LT(pushout::testing::tangent_error(law, s0, w, h, k), 1e-6)
+        << "kappa " << s0[0] << " w " << w[0] << " " << w[1] << " " << w[2];
+    ++tested;
+    (delta > s0[0] && delta > w0 ? loading : unloading)++;
+    compressed += w[0] < 0;
+  }
+  EXPECT_GT(loading, 40);
+  EXPECT_GT(unloading, 40);
+  EXPECT_GT(compressed, 40);
+}
+} // namespace
+
+TEST(Softening, TangentsMatchFiniteDifferencesAtRandomStates)
+{
+  check_random_tangents(linear, 100, 0.01, 0.31);
+  check_random_tangents(linear_fr, 100, 0.01, 0.19);
+  check_random_tangents(exponential, 1000, 0.003, 0.2);
+}
