@@ -25,7 +25,7 @@ double jacobian_error(const std::string& quadrature)
       pushout::mesh::generate(scene, pushout::mesh::default_cache_dir(), reused);
   model::Model model(MPI_COMM_WORLD, data, scene);
   solver::Equilibrium eq(model);
-  solver::NewtonSolver::set_default_options();
+  solver::NewtonSolver::set_default_options(solver::NewtonSolver::Preconditioner::jacobian);
 
   // A loaded state: shrinkage presses the interface; then give the whole
   // concrete a vertical shift so that every point slides, plus noise.
@@ -33,7 +33,7 @@ double jacobian_error(const std::string& quadrature)
   Vec x = dolfinx::la::petsc::create_vector(*model.V->dofmap()->index_map, 3);
   VecSet(x, 0.0);
   {
-    solver::NewtonSolver newton(eq);
+    solver::NewtonSolver newton(eq, solver::NewtonSolver::Preconditioner::jacobian);
     EXPECT_TRUE(newton.solve(x).converged);
   }
   model.interface->state().commit();

@@ -57,9 +57,12 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   t0 = Clock::now();
   model::Model model(MPI_COMM_WORLD, data, scene);
   const std::unique_ptr<Scenario> scenario = make_scenario(scene, data, model);
-  solver::NewtonSolver::set_default_options();
+  const auto pc = scene.string("solver.preconditioner") == "lagged"
+                      ? solver::NewtonSolver::Preconditioner::lagged
+                      : solver::NewtonSolver::Preconditioner::jacobian;
+  solver::NewtonSolver::set_default_options(pc);
   solver::Equilibrium equilibrium(model);
-  solver::NewtonSolver newton(equilibrium);
+  solver::NewtonSolver newton(equilibrium, pc, int(scene.integer("solver.refactor_iterations")));
   summary.dofs = model.num_dofs();
   summary.cells = std::int64_t(data.num_cells());
   summary.interface_pairs = std::int64_t(model.interface->num_pairs());
@@ -183,6 +186,7 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   }
   summary.solve_s = seconds_since(t0) - summary.output_s;
   summary.converged = ok;
+  summary.factorizations = newton.factorizations();
   VecDestroy(&x);
   VecDestroy(&x_committed);
   VecDestroy(&reactions);

@@ -14,6 +14,7 @@ void Summary::write(const std::filesystem::path& file) const
       {"steps", steps},
       {"newton_iterations", newton_iterations},
       {"cuts", cuts},
+      {"factorizations", factorizations},
       {"wall_s", wall_s},
       {"time_s", {{"mesh", mesh_s}, {"setup", setup_s}, {"solve", solve_s}, {"output", output_s}}},
       {"mesh_reused", mesh_reused},

@@ -13,7 +13,8 @@ struct Summary
   std::string message;      ///< why it stopped, if it did not finish
   int steps = 0;            ///< converged load steps (rows after step 0)
   int newton_iterations = 0;
-  int cuts = 0; ///< step cut-backs
+  int cuts = 0;           ///< step cut-backs
+  int factorizations = 0; ///< LU factorisations of the Newton systems
   double wall_s = 0;
   double mesh_s = 0, setup_s = 0, solve_s = 0, output_s = 0;
   bool mesh_reused = false;

@@ -235,6 +235,23 @@ std::vector<KeyDef> make_keys()
        {},
        A::single_joint},
 
+      // Solver (PETSc options from the command line refine it).
+      {"solver.preconditioner",
+       K::string,
+       std::string("lagged"),
+       "",
+       "lagged: GMRES on the current Jacobian, preconditioned by the LU of an earlier one "
+       "(the elastic tangent first), refactored only when GMRES slows down; jacobian: LU of "
+       "the current Jacobian in every Newton iteration",
+       -inf,
+       inf,
+       false,
+       {"lagged", "jacobian"}},
+      {"solver.refactor_iterations", K::integer, std::int64_t(10), "",
+       "lagged: refactor from the current Jacobian when the last linear solve took more "
+       "GMRES iterations than this",
+       1, 1e9, false},
+
       // Output.
       {"output.xdmf", K::boolean, false, "",
        "write fields.xdmf (displacement, stress) and interface.xdmf"},

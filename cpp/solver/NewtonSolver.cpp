@@ -12,14 +12,6 @@ PetscErrorCode form_function(SNES snes, Vec x, Vec F, void* ctx)
   return 0;
 }
 
-PetscErrorCode form_jacobian(SNES snes, Vec x, Mat J, Mat, void* ctx)
-{
-  auto* problem = static_cast<Equilibrium*>(ctx);
-  if (!problem->jacobian(x, J))
-    SNESSetJacobianDomainError(snes);
-  return 0;
-}
-
 void set_default(const char* name, const char* value)
 {
   PetscBool set = PETSC_FALSE;
@@ -29,7 +21,7 @@ void set_default(const char* name, const char* value)
 }
 } // namespace
 
-void NewtonSolver::set_default_options()
+void NewtonSolver::set_default_options(Preconditioner pc)
 {
   set_default("-snes_type", "newtonls");
   set_default("-snes_linesearch_type", "bt");
@@ -37,12 +29,21 @@ void NewtonSolver::set_default_options()
   set_default("-snes_atol", "1e-10");
   set_default("-snes_stol", "1e-14");
   set_default("-snes_max_it", "50");
-  set_default("-ksp_type", "preonly");
+  if (pc == Preconditioner::lagged)
+  {
+    set_default("-ksp_type", "gmres");
+    set_default("-ksp_gmres_restart", "200");
+    set_default("-ksp_rtol", "1e-10");
+    set_default("-ksp_max_it", "1000");
+  }
+  else
+    set_default("-ksp_type", "preonly");
   set_default("-pc_type", "lu");
   set_default("-pc_factor_mat_solver_type", "mumps");
 }
 
-NewtonSolver::NewtonSolver(Equilibrium& problem) : _problem(problem)
+NewtonSolver::NewtonSolver(Equilibrium& problem, Preconditioner pc, int refactor_iterations)
+    : _problem(problem), _pc(pc), _refactor_iterations(refactor_iterations)
 {
   Mat K = problem.model().K;
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(K));
@@ -51,19 +52,70 @@ NewtonSolver::NewtonSolver(Equilibrium& problem) : _problem(problem)
   MatCreateVecs(K, nullptr, &_F);
   SNESCreate(comm, &_snes);
   SNESSetFunction(_snes, _F, form_function, &_problem);
-  SNESSetJacobian(_snes, _J, _J, form_jacobian, &_problem);
+  if (_pc == Preconditioner::lagged)
+  {
+    MatDuplicate(K, MAT_COPY_VALUES, &_P);
+    MatSetOption(_P, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE);
+    SNESSetJacobian(_snes, _J, _P, jacobian_callback, this);
+  }
+  else
+    SNESSetJacobian(_snes, _J, _J, jacobian_callback, this);
   SNESSetFromOptions(_snes);
+}
+
+PetscErrorCode NewtonSolver::jacobian_callback(SNES snes, Vec x, Mat J, Mat P, void* ctx)
+{
+  auto* self = static_cast<NewtonSolver*>(ctx);
+  if (!self->_problem.jacobian(x, J))
+    SNESSetJacobianDomainError(snes);
+  if (self->_pc == Preconditioner::jacobian)
+  {
+    ++self->_factorizations; // J is its own preconditioner
+    return 0;
+  }
+  KSP ksp;
+  SNESGetKSP(snes, &ksp);
+  PetscInt its = 0;
+  KSPGetIterationNumber(ksp, &its);
+  if (self->_P_ready && its > self->_refactor_iterations)
+    self->_refactor = true;
+  if (self->_refactor)
+  {
+    MatCopy(J, P, SAME_NONZERO_PATTERN);
+    self->_refactor = false;
+    self->_P_ready = true;
+    ++self->_factorizations;
+    KSPSetReusePreconditioner(ksp, PETSC_FALSE);
+  }
+  else
+    KSPSetReusePreconditioner(ksp, PETSC_TRUE);
+  return 0;
 }
 
 NewtonSolver::~NewtonSolver()
 {
   SNESDestroy(&_snes);
   MatDestroy(&_J);
+  if (_P)
+    MatDestroy(&_P);
   VecDestroy(&_F);
 }
 
 SolveReport NewtonSolver::solve(Vec x)
 {
+  if (_pc == Preconditioner::lagged && !_P_ready)
+  {
+    // The first solve of a run starts from the virgin interface state and
+    // the constraints of the run (their dofs never change, only values):
+    // the Jacobian at zero displacement is the elastic tangent.
+    Vec zero;
+    VecDuplicate(x, &zero);
+    VecSet(zero, 0.0);
+    _problem.jacobian(zero, _P);
+    VecDestroy(&zero);
+    _P_ready = true;
+    ++_factorizations;
+  }
   SolveReport r;
   SNESSolve(_snes, nullptr, x);
   SNESConvergedReason reason;
@@ -73,6 +125,8 @@ SolveReport NewtonSolver::solve(Vec x)
   r.converged = reason > 0;
   r.iterations = int(its);
   r.reason = SNESConvergedReasons[reason];
+  if (!r.converged && _pc == Preconditioner::lagged)
+    _refactor = true; // a retry starts from a fresh factorisation
   return r;
 }
 } // namespace pushout::solver

@@ -2,6 +2,17 @@
 // by default) on an Equilibrium. Every PETSc option from the command line
 // reaches SNES, KSP and PC (-snes_monitor, -ksp_type, -pc_type, ...); the
 // defaults below apply only where the user gave none.
+//
+// Two ways to solve the Newton systems J du = -F:
+//  - Preconditioner::jacobian: factor J (MUMPS LU) in every iteration.
+//  - Preconditioner::lagged: the bulk is linear and only the interface
+//    tangent changes, so J - P lives on the interface dofs for any earlier
+//    Jacobian P, and GMRES preconditioned by the LU of P converges in a few
+//    iterations. P starts as the elastic tangent (virgin interface, zero
+//    jump) and is refreshed from the current J, at the start of a Newton
+//    iteration, only when the previous linear solve needed more than
+//    `refactor_iterations` GMRES iterations or failed. A MUMPS solve costs
+//    about 1/20 of a factorisation here, so this saves most of them.
 #pragma once
 
 #include "Equilibrium.h"
@@ -20,7 +31,13 @@ struct SolveReport
 class NewtonSolver
 {
 public:
-  explicit NewtonSolver(Equilibrium& problem);
+  enum class Preconditioner
+  {
+    jacobian,
+    lagged
+  };
+
+  NewtonSolver(Equilibrium& problem, Preconditioner pc, int refactor_iterations = 10);
   ~NewtonSolver();
   NewtonSolver(const NewtonSolver&) = delete;
   NewtonSolver& operator=(const NewtonSolver&) = delete;
@@ -30,12 +47,24 @@ public:
 
   /// Sets PETSc's options database defaults for pushout (MUMPS LU, tight
   /// tolerances) where the user did not set them. Call before NewtonSolver.
-  static void set_default_options();
+  static void set_default_options(Preconditioner pc);
 
 private:
   Equilibrium& _problem;
+  Preconditioner _pc;
   SNES _snes = nullptr;
-  Mat _J = nullptr;
+  int _refactor_iterations;
+  Mat _J = nullptr, _P = nullptr;
   Vec _F = nullptr;
+  bool _P_ready = false;   ///< P holds a factorable matrix
+  bool _refactor = false;  ///< refresh P at the next Jacobian evaluation
+  int _factorizations = 0; ///< numeric factorisations so far
+
+public:
+  /// Numeric factorisations so far (for the summary).
+  int factorizations() const { return _factorizations; }
+
+private:
+  static PetscErrorCode jacobian_callback(SNES snes, Vec x, Mat J, Mat P, void* ctx);
 };
 } // namespace pushout::solver
