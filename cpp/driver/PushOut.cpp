@@ -35,7 +35,10 @@ PushOut::PushOut(const Scene& scene, const mesh::MeshData& m,
                  const std::vector<std::int32_t>& node_block)
     : _D(scene.number("geometry.tube_outer_diameter")), _L(scene.number("geometry.thickness")),
       _delta_final(scene.number("loading.push_displacement")),
-      _dT(scene.number("loading.temperature_change")), _steps(int(scene.integer("loading.steps")))
+      _dT(scene.number("loading.temperature_change")), _growth(scene.number("loading.step_growth")),
+      _steps(int(scene.integer("loading.steps"))),
+      _hold_top_in_thermal_step(scene.string("loading.thermal_tube_top") == "held"),
+      _layers(scene.layers().size())
 {
   const auto& c = scene.numbers("geometry.tube_center");
   const double Rs = scene.number("geometry.support_inner_diameter") / 2;
@@ -65,16 +68,42 @@ PushOut::PushOut(const Scene& scene, const mesh::MeshData& m,
   const std::int64_t b = nearest(m, support, {c[0] - Rs, c[1], 0});
   const std::int64_t t = nearest(m, top, {c[0] + Ri, c[1], _L});
   _fixed = {dof(a, 0), dof(a, 1), dof(b, 1), dof(t, 1)};
+  _top_start.assign(_top_z.size(), 0.0);
+}
+
+std::vector<std::string> PushOut::columns() const
+{
+  std::vector<std::string> c = {"delta_mm", "P_N", "tau_MPa", "p_MPa"};
+  if (_layers > 1)
+    for (std::size_t l = 0; l < _layers; ++l)
+      c.push_back("p_" + std::to_string(l) + "_MPa");
+  return c;
+}
+
+double PushOut::delta_at(double s) const
+{
+  if (_growth == 1.0)
+    return _delta_final * s / _steps;
+  return _delta_final * (std::pow(_growth, s) - 1) / (std::pow(_growth, _steps) - 1);
+}
+
+void PushOut::start_loading(std::span<const double> x)
+{
+  for (std::size_t i = 0; i < _top_z.size(); ++i)
+    _top_start[i] = x[_top_z[i]];
 }
 
 void PushOut::apply_load(double s, solver::Equilibrium& eq) const
 {
-  const double delta = _delta_final * s / _steps;
   solver::Constraints bc;
-  for (std::int32_t d : _top_z)
+  if (s > 0 || _hold_top_in_thermal_step)
   {
-    bc.dofs.push_back(d);
-    bc.values.push_back(-delta);
+    const double delta = delta_at(s);
+    for (std::size_t i = 0; i < _top_z.size(); ++i)
+    {
+      bc.dofs.push_back(_top_z[i]);
+      bc.values.push_back(_top_start[i] - delta);
+    }
   }
   for (const auto& list : {_support_z, _fixed})
     for (std::int32_t d : list)
@@ -86,26 +115,41 @@ void PushOut::apply_load(double s, solver::Equilibrium& eq) const
   eq.set_temperature_change(_dT);
 }
 
-std::vector<double> PushOut::row(std::span<const double> reactions, std::span<const double> x) const
+std::vector<double> PushOut::row(std::span<const double> reactions, std::span<const double> x,
+                                 const model::Model& model) const
 {
-  double P = 0, delta = 0;
+  const interface::Interface& itf = *model.interface;
+  // Local sums: P, delta, number of top dofs, area, normal force per layer.
+  std::vector<double> local = {0, 0, double(_top_z.size()), itf.area()};
   for (std::int32_t d : _support_z)
-    P += reactions[d];
-  for (std::int32_t d : _top_z)
-    delta += -x[d];
-  double local[3] = {P, delta, double(_top_z.size())}, global[3];
-  MPI_Allreduce(local, global, 3, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-  P = global[0];
-  delta = global[1] / global[2];
+    local[0] += reactions[d];
+  for (std::size_t i = 0; i < _top_z.size(); ++i)
+    local[1] += _top_start[i] - x[_top_z[i]];
+  const std::vector<double> normal = itf.normal_force(model.u->x()->array());
+  local.insert(local.end(), normal.begin(), normal.end());
+  std::vector<double> g(local.size());
+  MPI_Allreduce(local.data(), g.data(), int(local.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  const double P = g[0], delta = g[1] / g[2], area = g[3];
   const double tau = P / (std::numbers::pi * _D * (_L - delta)); // eq. (1)
-  return {delta, P, tau};
+  double p_total = 0;
+  std::vector<double> p_layer;
+  for (std::size_t l = 0; l < _layers; ++l)
+  {
+    p_layer.push_back(-g[4 + l] / area);
+    p_total += p_layer.back();
+  }
+  std::vector<double> out = {delta, P, tau, p_total};
+  if (_layers > 1)
+    out.insert(out.end(), p_layer.begin(), p_layer.end());
+  return out;
 }
 
 std::string PushOut::progress(const std::vector<double>& r) const
 {
   std::ostringstream s;
   s.precision(4);
-  s << "delta = " << r[0] * 1e3 << " um  P = " << r[1] << " N  tau = " << r[2] << " MPa";
+  s << "delta = " << r[0] * 1e3 << " um  P = " << r[1] << " N  tau = " << r[2]
+    << " MPa  p = " << r[3] << " MPa";
   return s.str();
 }
 } // namespace pushout::driver

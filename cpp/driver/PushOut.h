@@ -2,9 +2,11 @@
 // outside the support circle; the tube's top nodes are pushed down by delta.
 //
 // Constraints:
-//  - tube top (steel nodes at z = L): u_z = -delta (0 during the thermal
-//    step: the paper's choice, §4.2, which causes its negative initial
-//    stress);
+//  - tube top (steel nodes at z = L): u_z = -delta. During the thermal step
+//    they are held at 0 (loading.thermal_tube_top = "held": the paper's
+//    choice, §4.2, which causes its negative initial stress) or free
+//    ("free"); the push then moves them by -delta from where the thermal
+//    step left them;
 //  - support (concrete nodes at z = 0, r >= support radius): u_z = 0;
 //  - in-plane rigid modes of the slice: the bottom concrete node nearest to
 //    (xc + Rs, yc) fixed in x and y, the one nearest to (xc - Rs, yc) in y
@@ -13,8 +15,11 @@
 //    nothing resists when the interface carries no pressure: the top steel
 //    node nearest to (xc + Ri, yc) fixed in y. By symmetry its reaction is
 //    zero in every scene with the tube centred.
+// Push steps: delta(s) = delta_final (r^s - 1) / (r^N - 1) for step growth
+// r (delta_final s / N for r = 1).
 // Measured: delta, P = sum of the support reactions, tau = P / (pi D (L -
-// delta)) (paper eq. 1).
+// delta)) (paper eq. 1), the mean interface pressure p = -int t_n dA / A,
+// and with several layers each layer's share p_L.
 #pragma once
 
 #include "../scene/Scene.h"
@@ -28,18 +33,25 @@ public:
   PushOut(const Scene& scene, const mesh::MeshData& mesh,
           const std::vector<std::int32_t>& node_block);
 
-  std::vector<std::string> columns() const override { return {"delta_mm", "P_N", "tau_MPa"}; }
+  std::vector<std::string> columns() const override;
   int steps() const override { return _steps; }
   bool initial_solve() const override { return _dT != 0.0; }
   void apply_load(double s, solver::Equilibrium& eq) const override;
-  std::vector<double> row(std::span<const double> reactions,
-                          std::span<const double> x) const override;
+  void start_loading(std::span<const double> x) override;
+  std::vector<double> row(std::span<const double> reactions, std::span<const double> x,
+                          const model::Model& model) const override;
   std::string progress(const std::vector<double>& row) const override;
 
+  /// Push displacement at load parameter s [mm].
+  double delta_at(double s) const;
+
 private:
-  double _D, _L, _delta_final, _dT;
+  double _D, _L, _delta_final, _dT, _growth;
   int _steps;
+  bool _hold_top_in_thermal_step;
+  std::size_t _layers;
   std::vector<std::int32_t> _top_z;     ///< tube top z dofs
+  std::vector<double> _top_start;       ///< their u_z when the push starts
   std::vector<std::int32_t> _support_z; ///< support z dofs
   std::vector<std::int32_t> _fixed;     ///< in-plane fixings (value 0)
 };

@@ -105,7 +105,7 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
     PetscInt n;
     VecGetLocalSize(x, &n);
     std::vector<double> values =
-        scenario->row(std::span<const double>(r, n), std::span<const double>(xa, n));
+        scenario->row(std::span<const double>(r, n), std::span<const double>(xa, n), model);
     VecRestoreArrayRead(reactions, &r);
     VecRestoreArrayRead(x, &xa);
     const std::string line = scenario->progress(values);
@@ -142,6 +142,12 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   {
     model.interface->state().commit();
     VecCopy(x, x_committed);
+    const double* xa;
+    PetscInt n;
+    VecGetLocalSize(x, &n);
+    VecGetArrayRead(x, &xa);
+    scenario->start_loading(std::span<const double>(xa, n));
+    VecRestoreArrayRead(x, &xa);
     record(its0, 0, 0, scenario->steps());
   }
 

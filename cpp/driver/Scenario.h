@@ -4,6 +4,7 @@
 #pragma once
 
 #include "../mesh/MeshData.h"
+#include "../model/Model.h"
 #include "../solver/Equilibrium.h"
 #include <string>
 #include <vector>
@@ -28,10 +29,15 @@ public:
   /// Sets constraints and loads for load parameter s.
   virtual void apply_load(double s, solver::Equilibrium& eq) const = 0;
 
+  /// Called once with the converged state of step 0 (owned dofs), before
+  /// the load steps.
+  virtual void start_loading(std::span<const double> /*x*/) {}
+
   /// Measured values, given the internal forces at all dofs (reactions at
-  /// the constrained ones), owned part, and the displacement x.
-  virtual std::vector<double> row(std::span<const double> reactions,
-                                  std::span<const double> x) const = 0;
+  /// the constrained ones), owned part, the displacement x (owned part) and
+  /// the model (for interface quantities).
+  virtual std::vector<double> row(std::span<const double> reactions, std::span<const double> x,
+                                  const model::Model& model) const = 0;
 
   /// One line for the progress output.
   virtual std::string progress(const std::vector<double>& row) const = 0;

@@ -71,8 +71,8 @@ void SingleJoint::apply_load(double s, solver::Equilibrium& eq) const
   eq.set_external_forces(forces);
 }
 
-std::vector<double> SingleJoint::row(std::span<const double> reactions,
-                                     std::span<const double> x) const
+std::vector<double> SingleJoint::row(std::span<const double> reactions, std::span<const double> x,
+                                     const model::Model&) const
 {
   double local[4] = {0, 0, 0, 0};
   for (std::int32_t d : _upper_x)

@@ -26,8 +26,8 @@ public:
   int steps() const override { return int(_path.size() - 1) * _per_segment; }
   bool initial_solve() const override { return true; }
   void apply_load(double s, solver::Equilibrium& eq) const override;
-  std::vector<double> row(std::span<const double> reactions,
-                          std::span<const double> x) const override;
+  std::vector<double> row(std::span<const double> reactions, std::span<const double> x,
+                          const model::Model& model) const override;
   std::string progress(const std::vector<double>& row) const override;
 
   /// Shear displacement u_s at load parameter s [mm].

@@ -76,7 +76,11 @@ Interface::Interface(std::vector<std::int32_t> pair_blocks, const std::vector<do
   }
   std::vector<int> sizes;
   for (const auto& law : _layers)
+  {
+    if (law->state_size() > 16)
+      throw std::invalid_argument("Interface: a law with more than 16 state variables");
     sizes.push_back(law->state_size());
+  }
   _state = InterfaceState(num_points(), sizes);
 }
 
@@ -181,6 +185,25 @@ PointOutput Interface::point_output(std::span<const double> u, std::size_t p, st
     out.damage.push_back(_layers[l]->damage(_state.trial(i, l)));
   }
   return out;
+}
+
+std::vector<double> Interface::normal_force(std::span<const double> u) const
+{
+  std::vector<double> force(_layers.size(), 0.0);
+  std::array<double, 16> scratch;
+  const std::size_t nq = _q.weights.size();
+  for (std::size_t p = 0; p < num_pairs(); ++p)
+    for (std::size_t q = 0; q < nq; ++q)
+    {
+      const std::size_t i = p * nq + q;
+      const laws::Vec3 w = jump(u, p, q);
+      for (std::size_t l = 0; l < _layers.size(); ++l)
+      {
+        std::span<double> s(scratch.data(), std::size_t(_layers[l]->state_size()));
+        force[l] += _layers[l]->update(_state.committed(i, l), w, s).t[0] * _dA[i];
+      }
+    }
+  return force;
 }
 
 double Interface::area() const

@@ -61,8 +61,12 @@ public:
   /// (equal to the committed one after a converged step).
   PointOutput point_output(std::span<const double> u, std::size_t p, std::size_t q) const;
 
-  /// Area of the interface [mm^2] (for checks and averages).
+  /// Area of the interface on this process [mm^2].
   double area() const;
+
+  /// Integral of each layer's normal traction over the interface on this
+  /// process [N], at the committed state (call after commit()).
+  std::vector<double> normal_force(std::span<const double> u) const;
 
   /// The local frame [n, s1, s2] (row-major 3x3) at point (p, q).
   std::span<const double> frame(std::size_t p, std::size_t q) const
