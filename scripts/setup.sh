@@ -12,6 +12,7 @@ packages=(
   libgmsh-dev                           # mesh generation (C++ API)
   libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   python3-matplotlib                    # curve.png
+  paraview xvfb xauth                   # pvbatch renders the interface maps (Fig. 8)
   libgtest-dev                          # unit tests
 )
 missing=()

@@ -1,0 +1,133 @@
+"""Render interface fields of a push-out run as unrolled maps (paper Fig. 8).
+
+Run with ParaView's pvbatch:
+  pvbatch scripts/render_interface.py RUN_DIR OUT.png [--fields t_n t_s1]
+          [--center 50 50] [--time LAST]
+
+Reads RUN_DIR/interface.xdmf (written with output.xdmf = true), unrolls the
+tube surface to (arc length s = R theta, z) and draws one map per field,
+stacked, at the last (or the given) time step. Units: tractions MPa, s and
+z mm. The seam is at the block corner theta = 225 deg, where the mesh has a
+node line; cells are unrolled one by one so that none straddles the seam.
+"""
+import argparse
+import os
+
+from paraview.simple import (AssignViewToLayout, ColorBy, CreateLayout, CreateRenderView,
+                             ExtractBlock, GetColorTransferFunction, GetScalarBar, MergeBlocks,
+                             ProgrammableFilter, ResetCamera, SaveScreenshot, Show, Text,
+                             XDMFReader)
+
+LABELS = {
+    "t_n": "normal traction t_n [MPa] (negative: pressure)",
+    "t_s1": "axial shear traction t_s1 [MPa]",
+    "t_s2": "circumferential shear traction t_s2 [MPa]",
+    "w_n": "normal jump w_n [mm]",
+    "w_s1": "axial slip w_s1 [mm]",
+}
+
+# Runs inside a ProgrammableFilter, whose namespace shadows sum/min/max with
+# VTK's array algorithms: use the builtins explicitly.
+UNROLL = """
+import builtins
+import math
+from vtkmodules.vtkCommonCore import vtkPoints
+from vtkmodules.vtkCommonDataModel import VTK_QUAD, vtkUnstructuredGrid
+src = self.GetInputDataObject(0, 0)
+out = self.GetOutputDataObject(0)
+cx, cy, seam = {cx!r}, {cy!r}, math.radians(225.0)
+pts = vtkPoints()
+out.Allocate(src.GetNumberOfCells())
+for c in range(src.GetNumberOfCells()):
+    cell = src.GetCell(c)
+    xyz = [src.GetPoint(cell.GetPointId(i)) for i in range(cell.GetNumberOfPoints())]
+    # angle measured from the seam, in (0, 2 pi)
+    ang = [(math.atan2(p[1] - cy, p[0] - cx) - seam) % (2 * math.pi) for p in xyz]
+    if builtins.max(ang) - builtins.min(ang) > math.pi:  # on the seam: keep the cell whole
+        ang = [a if a > math.pi else a + 2 * math.pi for a in ang]
+        if builtins.max(ang) - builtins.min(ang) > math.pi:
+            ang = [a - 2 * math.pi for a in ang]
+    r = builtins.sum(math.hypot(p[0] - cx, p[1] - cy) for p in xyz) / len(xyz)
+    ids = []
+    for a, p in zip(ang, xyz):
+        ids.append(pts.InsertNextPoint(r * a, p[2], 0.0))
+    out.InsertNextCell(VTK_QUAD, 4, ids)
+out.SetPoints(pts)
+out.GetCellData().ShallowCopy(src.GetCellData())
+"""
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("run_dir")
+    ap.add_argument("png")
+    ap.add_argument("--fields", nargs="+", default=["t_n", "t_s1"])
+    ap.add_argument("--center", nargs=2, type=float, default=[50.0, 50.0])
+    ap.add_argument("--time", type=float, default=None)
+    ap.add_argument("--title", default="")
+    args = ap.parse_args()
+
+    reader = XDMFReader(FileNames=[os.path.join(args.run_dir, "interface.xdmf")])
+    reader.UpdatePipelineInformation()
+    times = list(reader.TimestepValues) or [0.0]
+    t = times[-1] if args.time is None else args.time
+
+    layout = CreateLayout("interface maps")
+    cell = 0
+    for i, field in enumerate(args.fields):
+        block = MergeBlocks(Input=ExtractBlock(Input=reader, Selectors=["/Root/" + field]))
+        flat = ProgrammableFilter(Input=block)
+        flat.OutputDataSetType = "vtkUnstructuredGrid"
+        flat.Script = UNROLL.format(cx=args.center[0], cy=args.center[1])
+        flat.UpdatePipeline(t)
+        view = CreateRenderView()
+        view.ViewTime = t
+        view.OrientationAxesVisibility = 0
+        view.Background = [1, 1, 1]
+        if hasattr(view, "UseColorPaletteForBackground"):
+            view.UseColorPaletteForBackground = 0
+        display = Show(flat, view)
+        display.SetRepresentationType("Surface With Edges")
+        display.EdgeColor = [0.5, 0.5, 0.5]
+        ColorBy(display, ("CELLS", field))
+        lut = GetColorTransferFunction(field)
+        lut.ApplyPreset("Cool to Warm", True)
+        lo, hi = flat.CellData[field].GetRange()
+        if hi - lo < 1e-9 * (abs(hi) if abs(hi) > 1 else 1.0):
+            lo, hi = lo - 1e-6, hi + 1e-6
+        lut.RescaleTransferFunction(lo, hi)
+        display.SetScalarBarVisibility(view, True)
+        bar = GetScalarBar(lut, view)
+        bar.Title = LABELS.get(field, field)
+        bar.ComponentTitle = ""
+        bar.TitleColor = bar.LabelColor = [0, 0, 0]
+        bar.Orientation = "Horizontal"
+        bar.WindowLocation = "Any Location"
+        bar.Position = [0.25, 0.02]
+        bar.ScalarBarLength = 0.5
+        grid = display.DataAxesGrid
+        grid.GridAxesVisibility = 1
+        grid.XTitle, grid.YTitle = "s = R theta [mm] (from 225 deg)", "z [mm]"
+        for a in ("XTitleColor", "YTitleColor", "XLabelColor", "YLabelColor", "GridColor"):
+            setattr(grid, a, [0, 0, 0])
+        if i == 0 and args.title:
+            text = Text(Text=args.title)
+            td = Show(text, view)
+            td.Color = [0, 0, 0]
+            td.WindowLocation = "Upper Center"
+        view.InteractionMode = "2D"
+        ResetCamera(view)
+        view.CameraParallelScale *= 0.75
+        if i < len(args.fields) - 1:
+            cell = layout.SplitVertical(cell, 1.0 / (len(args.fields) - i))
+            AssignViewToLayout(view=view, layout=layout, hint=cell)
+            cell += 1
+        else:
+            AssignViewToLayout(view=view, layout=layout, hint=cell)
+    layout.SetSize(1400, 380 * len(args.fields))
+    SaveScreenshot(args.png, layout, ImageResolution=[1400, 380 * len(args.fields)])
+    print("wrote", args.png, "at time", t)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,230 @@
+#!/usr/bin/python3
+"""Runs the paper's push-out studies (§4.2-4.4) and draws their figures.
+
+  scripts/studies.py [--out results/studies] [--quick] [--jobs 2] [--only fig7 ...]
+
+Studies (each run keeps its resolved scene.toml next to its curve.csv):
+  fig7        Friction 2 (k 1000, mu 0.4 and 0.2) with retraction dT = -5, -10,
+              -25, -50 degC, then 10 um in 9 steps (10 for dT = -5): tau-delta.
+  fig8        mu 0.4, dT -5 at delta = 10 um: normal and shear traction maps
+              over the interface, from interface.xdmf, rendered by ParaView.
+  fig10       Friction 2 + Exp. soft. (k 1000, f_t 3, c 25 and 12.5, f_fr 0)
+              superposed, and the single cohesive_friction law with the same
+              parameters; dT = -5 ... -50; pushed to 1 mm.
+  retraction  the tube's top nodes held (paper) or free during the thermal
+              step, mu 0.4, dT -25.
+--quick runs the same studies on a coarse mesh with few steps (the test
+suite uses it). Writes OUT/<study>/<case>/ run folders, OUT/*.png figures,
+OUT/plateaus.csv (friction plateau vs mu p) and OUT/timing.json.
+"""
+import argparse
+import concurrent.futures
+import csv
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DEMO = os.path.join(ROOT, "demo")
+DTS = [-5.0, -10.0, -25.0, -50.0]
+COLORS = {-5.0: "tab:blue", -10.0: "tab:green", -25.0: "tab:orange", -50.0: "tab:red"}
+
+
+def mesh_sets(quick):
+    if quick:
+        return ["mesh.elements_per_quarter=4", "mesh.elements_through_thickness=2"]
+    return []  # the paper's mesh: 16 per quarter, 8 through the thickness
+
+
+def cases(study, quick):
+    """(name, scene, --set list) of every run of a study."""
+    out = []
+    if study == "fig7":
+        for mu in (0.4, 0.2):
+            for dT in DTS:
+                steps = 10 if dT == -5 else 9
+                out.append((f"mu{mu}_dT{dT:g}", "pushout_friction.toml",
+                            [f"interface.0.mu={mu}", f"loading.temperature_change={dT}",
+                             f"loading.steps={steps}"]))
+    elif study == "fig8":
+        out.append(("mu0.4_dT-5", "pushout_friction.toml",
+                    ["interface.0.mu=0.4", "loading.temperature_change=-5", "loading.steps=10",
+                     "output.xdmf=true"]))
+    elif study == "fig10":
+        steps = 30 if quick else 120
+        push = ["loading.push_displacement=1.0", f"loading.steps={steps}",
+                f"loading.step_growth={1.2 if quick else 1.045}"]
+        for c in (25.0, 12.5):
+            for dT in DTS:
+                out.append((f"superposed_c{c:g}_dT{dT:g}", "pushout_friction_adhesion.toml",
+                            [f"interface.1.c={c}", f"loading.temperature_change={dT}"] + push))
+                out.append((f"coupled_c{c:g}_dT{dT:g}", "pushout_cohesive_friction.toml",
+                            [f"interface.0.c={c}", f"loading.temperature_change={dT}"] + push))
+        if quick:  # for the peak-vs-f_t trend
+            out.append(("superposed_c25_dT-25_ft1.5", "pushout_friction_adhesion.toml",
+                        ["interface.1.f_t=1.5", "loading.temperature_change=-25"] + push))
+    elif study == "retraction":
+        for top in ("held", "free"):
+            out.append((top, "pushout_friction.toml",
+                        ["interface.0.mu=0.4", "loading.temperature_change=-25",
+                         f"loading.thermal_tube_top={top}"]))
+    return out
+
+
+def run_case(pushout, folder, scene, sets, quick):
+    cmd = [pushout, "run", os.path.join(DEMO, scene), "--out", folder, "--quiet",
+           "--set", "output.plot=false"]
+    for s in sets + mesh_sets(quick):
+        cmd += ["--set", s]
+    env = dict(os.environ, OPENBLAS_NUM_THREADS="1")  # one core per run, runs in parallel
+    t0 = time.time()
+    p = subprocess.run(cmd, capture_output=True, text=True, env=env)
+    if p.returncode != 0:
+        raise RuntimeError(f"{' '.join(cmd)} failed:\n{p.stderr}")
+    return time.time() - t0
+
+
+def read(folder):
+    with open(os.path.join(folder, "curve.csv"), newline="") as f:
+        return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+
+
+def plot_fig7(out, runs):
+    fig, ax = plt.subplots(figsize=(7, 4.5), dpi=120)
+    for mu, style in ((0.4, "-"), (0.2, "--")):
+        for dT in DTS:
+            rows = runs[("fig7", f"mu{mu}_dT{dT:g}")]
+            ax.plot([r["delta_mm"] * 1e3 for r in rows], [r["tau_MPa"] for r in rows], style,
+                    marker="o", ms=3, color=COLORS[dT], label=f"$\\mu$ {mu}, $\\Delta T$ {dT:g} °C")
+    ax.axhline(0, color="0.6", lw=0.5)
+    ax.set(xlabel="tube displacement $\\delta$ [µm]", ylabel="nominal bond stress $\\tau$ [MPa]",
+           title="Fig. 7: friction (k 1000) and retraction")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, ncol=2)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "fig7_friction_retraction.png"))
+
+
+def plot_fig10(out, runs):
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.5), dpi=120, sharey=True)
+    for ax, c in zip(axes, (25.0, 12.5)):
+        for dT in DTS:
+            for kind, style in (("superposed", "-"), ("coupled", "--")):
+                rows = runs[("fig10", f"{kind}_c{c:g}_dT{dT:g}")]
+                label = f"$\\Delta T$ {dT:g}" + (" (cohesive_friction)" if kind == "coupled" else "")
+                ax.plot([r["delta_mm"] * 1e3 for r in rows], [r["tau_MPa"] for r in rows], style,
+                        color=COLORS[dT], lw=1.2, label=label)
+        ax.set(xlabel="tube displacement $\\delta$ [µm]",
+               title=f"friction 2 + exp. soft., c = {c:g} 1/mm")
+        ax.grid(alpha=0.3)
+    axes[0].set_ylabel("nominal bond stress $\\tau$ [MPa]")
+    axes[1].legend(fontsize=7, ncol=2)
+    fig.suptitle("Fig. 10: friction and adhesion (solid: superposed layers, dashed: one coupled law)")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "fig10_friction_adhesion.png"))
+    for ax in axes:
+        ax.set_xlim(0, 100)
+    fig.savefig(os.path.join(out, "fig10_friction_adhesion_first_100um.png"))
+
+
+def plot_retraction(out, runs):
+    fig, ax = plt.subplots(figsize=(6.5, 4.2), dpi=120)
+    for top, label in (("held", "tube top held during shrinkage (paper)"),
+                       ("free", "tube free during shrinkage")):
+        rows = runs[("retraction", top)]
+        ax.plot([r["delta_mm"] * 1e3 for r in rows], [r["tau_MPa"] for r in rows], "o-", ms=3,
+                label=label)
+    ax.axhline(0, color="0.6", lw=0.5)
+    ax.set(xlabel="tube displacement $\\delta$ [µm]", ylabel="nominal bond stress $\\tau$ [MPa]",
+           title="Retraction boundary condition ($\\mu$ 0.4, $\\Delta T$ -25 °C)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "retraction_boundary_condition.png"))
+
+
+def render_fig8(out, folder):
+    pvbatch = shutil.which("pvbatch")
+    if not pvbatch:
+        print("fig8: ParaView's pvbatch is not installed (apt-get install paraview): maps skipped")
+        return False
+    cmd = [pvbatch, os.path.join(ROOT, "scripts", "render_interface.py"), folder,
+           os.path.join(out, "fig8_interface_maps.png"), "--title",
+           "mu 0.4, dT -5 degC, delta = 10 um (paper Fig. 8)"]
+    if not os.environ.get("DISPLAY") and shutil.which("xvfb-run"):
+        cmd = ["xvfb-run", "-a", "-s", "-screen 0 1600x1200x24"] + cmd
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        raise RuntimeError("fig8 rendering failed:\n" + p.stdout + p.stderr)
+    return True
+
+
+def plateau_table(out, runs):
+    """Friction plateau (last step) against mu p, p the mean interface pressure."""
+    rows = []
+    for (study, name), curve in sorted(runs.items()):
+        if study not in ("fig7", "retraction"):
+            continue
+        mu = 0.4 if "mu0.2" not in name else 0.2
+        last = curve[-1]
+        rows.append({"study": study, "case": name, "mu": mu, "tau_plateau_MPa": last["tau_MPa"],
+                     "p_MPa": last["p_MPa"], "mu_p_MPa": mu * last["p_MPa"],
+                     "ratio": last["tau_MPa"] / (mu * last["p_MPa"])})
+    with open(os.path.join(out, "plateaus.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        w.writeheader()
+        w.writerows(rows)
+    return rows
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--out", default=os.path.join(ROOT, "results", "studies"))
+    ap.add_argument("--pushout", default=os.path.join(ROOT, "build", "pushout"))
+    ap.add_argument("--quick", action="store_true", help="coarse mesh, few steps")
+    ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
+    ap.add_argument("--only", nargs="+", default=["fig7", "fig8", "fig10", "retraction"])
+    args = ap.parse_args()
+    os.makedirs(args.out, exist_ok=True)
+
+    t0 = time.time()
+    todo = [(study, name, scene, sets) for study in args.only for name, scene, sets in cases(study, args.quick)]
+    runs, seconds = {}, {}
+    with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
+        futures = {pool.submit(run_case, args.pushout, os.path.join(args.out, study, name), scene, sets,
+                               args.quick): (study, name) for study, name, scene, sets in todo}
+        for f in concurrent.futures.as_completed(futures):
+            study, name = futures[f]
+            seconds[f"{study}/{name}"] = f.result()
+            runs[(study, name)] = read(os.path.join(args.out, study, name))
+            print(f"{study}/{name}: {seconds[f'{study}/{name}']:.1f} s", flush=True)
+
+    if "fig7" in args.only:
+        plot_fig7(args.out, runs)
+    if "fig10" in args.only:
+        plot_fig10(args.out, runs)
+    if "retraction" in args.only:
+        plot_retraction(args.out, runs)
+    if "fig8" in args.only:
+        render_fig8(args.out, os.path.join(args.out, "fig8", "mu0.4_dT-5"))
+    if any(s in args.only for s in ("fig7", "retraction")):
+        for r in plateau_table(args.out, runs):
+            print(f"plateau {r['study']}/{r['case']}: tau {r['tau_plateau_MPa']:.4f} MPa, "
+                  f"mu p {r['mu_p_MPa']:.4f} MPa, ratio {r['ratio']:.4f}")
+    total = time.time() - t0
+    with open(os.path.join(args.out, "timing.json"), "w") as f:
+        json.dump({"wall_s": total, "jobs": args.jobs, "quick": args.quick, "runs_s": seconds}, f, indent=2)
+    print(f"studies done in {total:.0f} s ({len(todo)} runs, {args.jobs} at a time); figures in {args.out}")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
