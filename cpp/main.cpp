@@ -4,6 +4,7 @@
 //   pushout run SCENE.toml --out DIR [--set key=value]... [PETSc options]
 //   pushout keys        # the scene keys, with defaults, units and docs
 //   pushout laws        # the interface laws and their parameters
+#include "common/Interrupt.h"
 #include "driver/Run.h"
 #include "mesh/generate.h"
 #include "scene/SceneError.h"
@@ -74,8 +75,15 @@ int run_scene(const std::string& scene_file, const std::string& out,
     if (ec || !std::ofstream(probe))
       throw SceneError("--out '" + out + "': cannot create or write this folder");
     std::filesystem::remove(probe);
-    driver::RunOptions options{out, mesh::default_cache_dir(), quiet};
+    const driver::RunOptions options{out, mesh::default_cache_dir(), quiet};
     const output::Summary s = driver::run(scene, options);
+    if (s.interrupted)
+    {
+      if (rank == 0)
+        std::cerr << "pushout: " << s.message << "; " << out << "/curve.csv keeps them"
+                  << std::endl;
+      return 128 + s.signal;
+    }
     if (!s.converged)
     {
       if (rank == 0)
@@ -155,6 +163,8 @@ int main(int argc, char* argv[])
   int petsc_argc = int(petsc_argv.size()) - 1;
   char** petsc_args = petsc_argv.data();
   PetscInitialize(&petsc_argc, &petsc_args, nullptr, nullptr);
+  // After PETSc, whose own handlers would otherwise abort on SIGTERM.
+  pushout::interrupt::install();
   dolfinx::init_logging(1, argv);
   loguru::g_stderr_verbosity = loguru::Verbosity_WARNING;
   const int rc = run_scene(scene_file, out, sets, quiet);

@@ -1,4 +1,5 @@
 #include "Run.h"
+#include "../common/Interrupt.h"
 #include "../mesh/generate.h"
 #include "../model/Model.h"
 #include "../output/CurveWriter.h"
@@ -7,7 +8,9 @@
 #include "../solver/NewtonSolver.h"
 #include "PushOut.h"
 #include "SingleJoint.h"
+#include "Stepper.h"
 #include <chrono>
+#include <csignal>
 #include <dolfinx/common/IndexMap.h>
 #include <dolfinx/la/petsc.h>
 #include <fstream>
@@ -21,6 +24,20 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0)
 {
   return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/// Whether a signal asked to stop (agreed on by all processes); records it.
+bool stop_requested(output::Summary& summary)
+{
+  int local = interrupt::received(), global = 0;
+  MPI_Allreduce(&local, &global, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  if (global == 0)
+    return false;
+  summary.interrupted = true;
+  summary.signal = global;
+  summary.message = std::string("interrupted by ") + (global == SIGINT ? "SIGINT" : "SIGTERM") +
+                    " after " + std::to_string(summary.steps) + " load steps";
+  return true;
 }
 
 std::unique_ptr<Scenario> make_scenario(const Scene& scene, const mesh::MeshData& m,
@@ -128,14 +145,16 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   scenario->apply_load(0.0, equilibrium);
   int its0 = 0;
   bool ok = true;
-  if (scenario->initial_solve())
+  if (scenario->initial_solve() && stop_requested(summary))
+    ok = false;
+  else if (scenario->initial_solve())
   {
     equilibrium.apply_constraints(x);
     const solver::SolveReport rep = newton.solve(x);
     its0 = rep.iterations;
     summary.newton_iterations += rep.iterations;
     ok = rep.converged;
-    if (!ok)
+    if (!ok && !stop_requested(summary))
       summary.message = "step 0 (initial/thermal step) did not converge: " + rep.reason;
   }
   if (ok)
@@ -151,16 +170,22 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
     record(its0, 0, 0, scenario->steps());
   }
 
-  // Load steps, each cut in halves (from the committed state) until it
-  // converges or max_cuts is reached.
+  // Load steps: each nominal step is tried whole and cut in halves (from
+  // the committed state) when Newton fails; increments grow back after easy
+  // convergence (Stepper.h). A signal stops the loop between tries.
+  Stepper stepper(int(scene.integer("loading.max_cuts")), 4);
   double s = 0.0;
   for (int k = 1; ok && k <= scenario->steps(); ++k)
   {
-    double ds = double(k) - s;
     int cuts = 0;
-    while (s < double(k) - 1e-12)
+    while (ok && s < double(k) - 1e-12)
     {
-      const double s_try = std::min(s + ds, double(k));
+      if (stop_requested(summary))
+      {
+        ok = false;
+        break;
+      }
+      const double s_try = stepper.next(s, double(k));
       scenario->apply_load(s_try, equilibrium);
       equilibrium.apply_constraints(x);
       const solver::SolveReport rep = newton.solve(x);
@@ -171,23 +196,31 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
         VecCopy(x, x_committed);
         s = s_try;
         ++summary.steps;
+        stepper.converged(rep.iterations);
         record(rep.iterations, cuts, k, scenario->steps());
         continue;
       }
       model.interface->state().revert();
       VecCopy(x_committed, x);
-      if (++cuts > opt.max_cuts)
+      if (stop_requested(summary))
       {
-        summary.message = "load step " + std::to_string(k) + " did not converge after " +
-                          std::to_string(opt.max_cuts) + " cuts (" + rep.reason + ")";
         ok = false;
         break;
       }
+      if (!stepper.failed())
+      {
+        summary.message = "load step " + std::to_string(k) + " did not converge with " +
+                          std::to_string(cuts) + " cuts, down to " +
+                          std::to_string(stepper.increment()) + " of a step (" + rep.reason +
+                          "); stopped";
+        ok = false;
+        break;
+      }
+      ++cuts;
       ++summary.cuts;
-      ds /= 2;
       if (talk)
-        std::cout << "step " << k << ": " << rep.reason << ", cutting the step to " << ds
-                  << std::endl;
+        std::cout << "step " << k << ": " << rep.reason << "; retrying with " << stepper.increment()
+                  << " of a step" << std::endl;
     }
   }
   summary.solve_s = seconds_since(t0) - summary.output_s;

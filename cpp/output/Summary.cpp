@@ -9,6 +9,7 @@ void Summary::write(const std::filesystem::path& file) const
   const nlohmann::json j = {
       {"converged", converged},
       {"interrupted", interrupted},
+      {"signal", signal},
       {"message", message},
       {"model_type", model_type},
       {"steps", steps},

@@ -10,6 +10,7 @@ struct Summary
 {
   bool converged = false;   ///< every requested step converged
   bool interrupted = false; ///< stopped by a signal
+  int signal = 0;           ///< the signal, if interrupted
   std::string message;      ///< why it stopped, if it did not finish
   int steps = 0;            ///< converged load steps (rows after step 0)
   int newton_iterations = 0;

@@ -225,6 +225,10 @@ std::vector<KeyDef> make_keys()
        false,
        {},
        A::pushout},
+      {"loading.max_cuts", K::integer, std::int64_t(10), "",
+       "a step whose Newton solve fails is retried with half the increment, at most down to "
+       "2^-max_cuts of a step",
+       0, 60, false},
       {"loading.normal_force_per_node",
        K::number,
        -0.1,

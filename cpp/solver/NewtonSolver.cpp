@@ -1,4 +1,5 @@
 #include "NewtonSolver.h"
+#include "../common/Interrupt.h"
 
 namespace pushout::solver
 {
@@ -7,7 +8,8 @@ namespace
 PetscErrorCode form_function(SNES snes, Vec x, Vec F, void* ctx)
 {
   auto* problem = static_cast<Equilibrium*>(ctx);
-  if (!problem->residual(x, F))
+  // A failed law or a pending signal fails this solve; the step loop decides.
+  if (!problem->residual(x, F) || interrupt::received())
     SNESSetFunctionDomainError(snes);
   return 0;
 }

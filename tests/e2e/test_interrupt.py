@@ -1,0 +1,32 @@
+"""A run killed with SIGTERM or SIGINT mid-way exits with 128 + signal, keeps
+a valid curve.csv with every finished step, and its summary.json says it was
+interrupted (and not converged)."""
+import os
+import signal
+import subprocess
+import sys
+import time
+
+from common import check, curve, out_dir, summary
+
+PUSHOUT = sys.argv[1]
+scene = os.path.join(os.environ.get("PUSHOUT_TEST_OUT", "/tmp"), "interrupt.toml")
+with open(scene, "w") as f:
+    f.write("[mesh]\nelements_per_quarter = 4\nelements_through_thickness = 2\n"
+            "[loading]\nsteps = 100000\n")
+for sig in (signal.SIGTERM, signal.SIGINT):
+    out = out_dir(f"interrupt_{sig.name}")
+    p = subprocess.Popen([PUSHOUT, "run", scene, "--out", out, "--quiet"],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    csv = os.path.join(out, "curve.csv")
+    deadline = time.time() + 120
+    while time.time() < deadline and (not os.path.exists(csv) or len(open(csv).readlines()) < 4):
+        time.sleep(0.1)
+    p.send_signal(sig)
+    _, err = p.communicate(timeout=120)
+    check(p.returncode == 128 + sig, f"{sig.name}: exit {p.returncode} = 128 + {int(sig)}")
+    check("interrupted" in err, f"{sig.name}: says so: {err.strip()!r}")
+    s, rows = summary(out), curve(out)
+    check(s["interrupted"] and not s["converged"], f"{sig.name}: summary.json says interrupted")
+    check(len(rows) == s["steps"] + 1 >= 4, f"{sig.name}: curve.csv keeps all {len(rows)} rows")
+    check(all(len(r) == len(rows[0]) for r in rows), f"{sig.name}: every row complete")
