@@ -60,9 +60,9 @@ def cases(study, quick):
                     ["interface.0.mu=0.4", "loading.temperature_change=-5", "loading.steps=10",
                      "output.xdmf=true"]))
     elif study == "fig10":
-        steps = 30 if quick else 120
+        steps = 30 if quick else 80
         push = ["loading.push_displacement=1.0", f"loading.steps={steps}",
-                f"loading.step_growth={1.2 if quick else 1.045}"]
+                f"loading.step_growth={1.2 if quick else 1.07}"]
         for c in (25.0, 12.5):
             for dT in DTS:
                 out.append((f"superposed_c{c:g}_dT{dT:g}", "pushout_friction_adhesion.toml",
