@@ -31,8 +31,7 @@ std::int64_t nearest(const mesh::MeshData& m, const std::vector<std::int64_t>& c
 }
 } // namespace
 
-PushOut::PushOut(const Scene& scene, const mesh::MeshData& m,
-                 const std::vector<std::int32_t>& node_block)
+PushOut::PushOut(const Scene& scene, const mesh::MeshData& m, const model::Model& model)
     : _D(scene.number("geometry.tube_outer_diameter")), _L(scene.number("geometry.thickness")),
       _delta_final(scene.number("loading.push_displacement")),
       _dT(scene.number("loading.temperature_change")), _growth(scene.number("loading.step_growth")),
@@ -59,15 +58,24 @@ PushOut::PushOut(const Scene& scene, const mesh::MeshData& m,
     if (is_concrete[n] && std::abs(z) < tol && std::hypot(x - c[0], y - c[1]) > Rs - tol)
       support.push_back(std::int64_t(n));
   }
-  const auto dof = [&](std::int64_t node, int comp) { return 3 * node_block[node] + comp; };
+  // Dof lists of the owned nodes only: each constraint is applied, and each
+  // reaction counted, by exactly one process.
+  const auto add = [&](std::vector<std::int32_t>& list, std::int64_t node, int comp)
+  {
+    if (model.owned(model.node_block[node]))
+      list.push_back(3 * model.node_block[node] + comp);
+  };
   for (std::int64_t n : top)
-    _top_z.push_back(dof(n, 2));
+    add(_top_z, n, 2);
   for (std::int64_t n : support)
-    _support_z.push_back(dof(n, 2));
+    add(_support_z, n, 2);
   const std::int64_t a = nearest(m, support, {c[0] + Rs, c[1], 0});
   const std::int64_t b = nearest(m, support, {c[0] - Rs, c[1], 0});
   const std::int64_t t = nearest(m, top, {c[0] + Ri, c[1], _L});
-  _fixed = {dof(a, 0), dof(a, 1), dof(b, 1), dof(t, 1)};
+  add(_fixed, a, 0);
+  add(_fixed, a, 1);
+  add(_fixed, b, 1);
+  add(_fixed, t, 1);
   _top_start.assign(_top_z.size(), 0.0);
 }
 
@@ -121,6 +129,7 @@ std::vector<double> PushOut::row(std::span<const double> reactions, std::span<co
   const interface::Interface& itf = *model.interface;
   // Local sums: P, delta, number of top dofs, area, normal force per layer.
   std::vector<double> local = {0, 0, double(_top_z.size()), itf.area()};
+  // (sums over owned dofs and local pairs, reduced over processes)
   for (std::int32_t d : _support_z)
     local[0] += reactions[d];
   for (std::size_t i = 0; i < _top_z.size(); ++i)

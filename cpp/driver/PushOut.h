@@ -30,8 +30,8 @@ namespace pushout::driver
 class PushOut : public Scenario
 {
 public:
-  PushOut(const Scene& scene, const mesh::MeshData& mesh,
-          const std::vector<std::int32_t>& node_block);
+  /// Constraints and loads go to the dofs this process owns.
+  PushOut(const Scene& scene, const mesh::MeshData& mesh, const model::Model& model);
 
   std::vector<std::string> columns() const override;
   int steps() const override { return _steps; }

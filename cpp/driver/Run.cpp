@@ -44,8 +44,8 @@ std::unique_ptr<Scenario> make_scenario(const Scene& scene, const mesh::MeshData
                                         const model::Model& model)
 {
   if (scene.string("model.type") == "single_joint")
-    return std::make_unique<SingleJoint>(scene, m, model.node_block);
-  return std::make_unique<PushOut>(scene, m, model.node_block);
+    return std::make_unique<SingleJoint>(scene, m, model);
+  return std::make_unique<PushOut>(scene, m, model);
 }
 } // namespace
 
@@ -82,7 +82,8 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   solver::NewtonSolver newton(equilibrium, pc, int(scene.integer("solver.refactor_iterations")));
   summary.dofs = model.num_dofs();
   summary.cells = std::int64_t(data.num_cells());
-  summary.interface_pairs = std::int64_t(model.interface->num_pairs());
+  const std::int64_t local_pairs = std::int64_t(model.interface->num_pairs());
+  MPI_Allreduce(&local_pairs, &summary.interface_pairs, 1, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
   summary.setup_s = seconds_since(t0);
   if (talk)
     std::cout << "pushout: " << summary.model_type << ", " << summary.cells << " cells, "

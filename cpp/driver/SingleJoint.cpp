@@ -6,8 +6,7 @@
 
 namespace pushout::driver
 {
-SingleJoint::SingleJoint(const Scene& scene, const mesh::MeshData& m,
-                         const std::vector<std::int32_t>& node_block)
+SingleJoint::SingleJoint(const Scene& scene, const mesh::MeshData& m, const model::Model& model)
     : _path(scene.numbers("loading.shear_path")),
       _per_segment(int(scene.integer("loading.steps_per_segment"))),
       _force_per_node(scene.number("loading.normal_force_per_node"))
@@ -24,7 +23,9 @@ SingleJoint::SingleJoint(const Scene& scene, const mesh::MeshData& m,
       on_joint[n] = 1;
   for (std::size_t n = 0; n < m.num_nodes(); ++n)
   {
-    const std::int32_t b = node_block[n];
+    const std::int32_t b = model.node_block[n];
+    if (!model.owned(b))
+      continue; // another process applies its constraints and loads
     if (in_steel[n])
       for (int d = 0; d < 3; ++d)
         _lower.push_back(3 * b + d);
@@ -74,18 +75,22 @@ void SingleJoint::apply_load(double s, solver::Equilibrium& eq) const
 std::vector<double> SingleJoint::row(std::span<const double> reactions, std::span<const double> x,
                                      const model::Model&) const
 {
-  double local[4] = {0, 0, 0, 0};
+  // Sums over owned dofs: u_s, F_s, count of x dofs, u_n, F_n, count of
+  // joint nodes; reduced over processes.
+  double local[6] = {0, 0, double(_upper_x.size()), 0, 0, double(_joint_z.size())};
   for (std::int32_t d : _upper_x)
+  {
+    local[0] += x[d];
     local[1] += reactions[d];
+  }
   for (std::int32_t d : _joint_z)
   {
-    local[2] += x[d] / double(_joint_z.size());
-    local[3] += _force_per_node;
+    local[3] += x[d];
+    local[4] += _force_per_node;
   }
-  local[0] = _upper_x.empty() ? 0.0 : x[_upper_x[0]];
-  double global[4];
-  MPI_Allreduce(local, global, 4, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-  return {global[0], global[1], global[2], global[3]};
+  double g[6];
+  MPI_Allreduce(local, g, 6, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  return {g[0] / g[2], g[1], g[3] / g[5], g[4]};
 }
 
 std::string SingleJoint::progress(const std::vector<double>& r) const

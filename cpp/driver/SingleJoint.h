@@ -16,8 +16,8 @@ namespace pushout::driver
 class SingleJoint : public Scenario
 {
 public:
-  SingleJoint(const Scene& scene, const mesh::MeshData& mesh,
-              const std::vector<std::int32_t>& node_block);
+  /// Constraints and loads go to the dofs this process owns.
+  SingleJoint(const Scene& scene, const mesh::MeshData& mesh, const model::Model& model);
 
   std::vector<std::string> columns() const override
   {

@@ -44,7 +44,8 @@ public:
             Quadrature quadrature, std::vector<std::unique_ptr<laws::InterfaceLaw>> layers);
 
   std::size_t num_pairs() const { return _blocks.size() / 8; }
-  std::size_t num_points() const { return num_pairs() * _q.weights.size(); }
+  std::size_t num_points() const { return num_pairs() * points_per_pair(); }
+  std::size_t points_per_pair() const { return _q.weights.size(); }
   std::size_t num_layers() const { return _layers.size(); }
   std::span<const std::int32_t> pair_blocks() const { return _blocks; }
   const InterfaceState& state() const { return _state; }

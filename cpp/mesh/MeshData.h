@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <mpi.h>
 #include <vector>
 
 namespace pushout::mesh
@@ -22,6 +23,8 @@ struct InterfacePair
 {
   std::array<std::int64_t, 4> steel;
   std::array<std::int64_t, 4> concrete;
+  std::int64_t steel_cell;    ///< the cell of the steel facet
+  std::int64_t concrete_cell; ///< the cell of the concrete facet
 };
 
 /// Hexahedral mesh with duplicated nodes on the steel-concrete surface.
@@ -40,4 +43,7 @@ struct MeshData
 /// copies of them, and every steel facet lying on them becomes a joint
 /// element paired with the concrete facet at the same place.
 void insert_interface(MeshData& mesh);
+
+/// Copies rank `root`'s mesh to every process of `comm`.
+void broadcast(MeshData& mesh, MPI_Comm comm, int root = 0);
 } // namespace pushout::mesh

@@ -104,7 +104,10 @@ std::filesystem::path default_cache_dir()
   return std::filesystem::temp_directory_path() / "pushout-cache";
 }
 
-MeshData generate(const Scene& scene, const std::filesystem::path& cache_dir, bool& reused)
+namespace
+{
+/// gmsh on this process: the cached or a new mesh.
+MeshData generate_here(const Scene& scene, const std::filesystem::path& cache_dir, bool& reused)
 {
   const auto [geo, constants] = geo_for(scene);
   std::ostringstream key;
@@ -156,6 +159,49 @@ MeshData generate(const Scene& scene, const std::filesystem::path& cache_dir, bo
   }
   gmsh::finalize();
   insert_interface(m);
+  return m;
+}
+} // namespace
+
+MeshData generate(const Scene& scene, const std::filesystem::path& cache_dir, bool& reused,
+                  MPI_Comm comm)
+{
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  MeshData m;
+  std::string error;
+  int flags[2] = {0, 0}; // failed, reused
+  if (rank == 0)
+  {
+    try
+    {
+      m = generate_here(scene, cache_dir, reused);
+      flags[1] = reused;
+    }
+    catch (const std::exception& e)
+    {
+      error = e.what();
+      flags[0] = 1;
+    }
+    catch (const std::string& e) // gmsh's errors
+    {
+      error = e;
+      flags[0] = 1;
+    }
+  }
+  // Every process learns of a failure and throws: none waits in a
+  // collective that the others skipped.
+  MPI_Bcast(flags, 2, MPI_INT, 0, comm);
+  if (flags[0])
+  {
+    std::uint64_t n = error.size();
+    MPI_Bcast(&n, 1, MPI_UINT64_T, 0, comm);
+    error.resize(n);
+    MPI_Bcast(error.data(), int(n), MPI_CHAR, 0, comm);
+    throw std::runtime_error("mesh generation failed: " + error);
+  }
+  reused = flags[1];
+  broadcast(m, comm, 0);
   return m;
 }
 } // namespace pushout::mesh

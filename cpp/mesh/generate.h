@@ -8,10 +8,12 @@
 
 namespace pushout::mesh
 {
-/// The mesh the scene asks for, with its interface inserted. The gmsh mesh
+/// The mesh the scene asks for, with its interface inserted. Rank 0 of
+/// `comm` runs gmsh and every process receives the whole mesh. The gmsh mesh
 /// is cached in `cache_dir` under a hash of the .geo text and constants.
-/// `reused` reports whether the cache served it.
-MeshData generate(const Scene& scene, const std::filesystem::path& cache_dir, bool& reused);
+/// `reused` reports whether the cache served it. Collective.
+MeshData generate(const Scene& scene, const std::filesystem::path& cache_dir, bool& reused,
+                  MPI_Comm comm = MPI_COMM_WORLD);
 
 /// Default cache folder: $PUSHOUT_CACHE_DIR, else $XDG_CACHE_HOME/pushout,
 /// else ~/.cache/pushout.

@@ -1,5 +1,7 @@
 #include "MeshData.h"
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 namespace pushout::mesh
@@ -23,6 +25,30 @@ void insert_interface(MeshData& mesh)
   for (std::size_t c = 0; c < mesh.num_cells(); ++c)
     for (int i = 0; i < 8; ++i)
       used_by[mesh.cells[8 * c + i]] |= mesh.material[c] == steel ? 1 : 2;
+
+  // Concrete facets on the shared nodes, by their sorted node ids.
+  std::map<std::array<std::int64_t, 4>, std::int64_t> concrete_facet;
+  for (std::size_t c = 0; c < mesh.num_cells(); ++c)
+  {
+    if (mesh.material[c] != concrete)
+      continue;
+    const std::int64_t* cell = mesh.cells.data() + 8 * c;
+    for (const auto& f : hex_facets)
+    {
+      std::array<std::int64_t, 4> key;
+      bool shared = true;
+      for (int i = 0; i < 4; ++i)
+      {
+        key[i] = cell[f[i]];
+        shared = shared && used_by[key[i]] == 3;
+      }
+      if (shared)
+      {
+        std::sort(key.begin(), key.end());
+        concrete_facet[key] = std::int64_t(c);
+      }
+    }
+  }
 
   // Steel copies of the shared nodes.
   std::vector<std::int64_t> copy(n_nodes, -1);
@@ -59,6 +85,13 @@ void insert_interface(MeshData& mesh)
         pair.concrete[i] = cell[f[i]];
         pair.steel[i] = copy[cell[f[i]]];
       }
+      std::array<std::int64_t, 4> key = pair.concrete;
+      std::sort(key.begin(), key.end());
+      const auto partner = concrete_facet.find(key);
+      if (partner == concrete_facet.end())
+        throw std::runtime_error("interface facet without a concrete partner");
+      pair.steel_cell = std::int64_t(c);
+      pair.concrete_cell = partner->second;
       // Orientation: the bilinear normal at the facet centre must point away
       // from the steel cell; otherwise swap xi and eta.
       const auto x0 = node(mesh, pair.concrete[0]), x1 = node(mesh, pair.concrete[1]),
@@ -86,5 +119,27 @@ void insert_interface(MeshData& mesh)
   }
   if (mesh.pairs.empty())
     throw std::runtime_error("mesh has no steel-concrete interface");
+}
+} // namespace pushout::mesh
+
+namespace pushout::mesh
+{
+namespace
+{
+template <typename T> void broadcast_vector(std::vector<T>& v, MPI_Comm comm, int root)
+{
+  std::uint64_t n = v.size();
+  MPI_Bcast(&n, 1, MPI_UINT64_T, root, comm);
+  v.resize(n);
+  MPI_Bcast(v.data(), int(n * sizeof(T)), MPI_BYTE, root, comm);
+}
+} // namespace
+
+void broadcast(MeshData& mesh, MPI_Comm comm, int root)
+{
+  broadcast_vector(mesh.x, comm, root);
+  broadcast_vector(mesh.cells, comm, root);
+  broadcast_vector(mesh.material, comm, root);
+  broadcast_vector(mesh.pairs, comm, root);
 }
 } // namespace pushout::mesh

@@ -1,19 +1,72 @@
 #include "Model.h"
 #include "../laws/LawRegistry.h"
 #include "elasticity.h"
+#include <algorithm>
 #include <dolfinx/common/IndexMap.h>
 #include <dolfinx/fem/assembler.h>
 #include <dolfinx/fem/petsc.h>
 #include <dolfinx/fem/utils.h>
+#include <dolfinx/graph/AdjacencyList.h>
 #include <dolfinx/la/SparsityPattern.h>
 #include <dolfinx/la/petsc.h>
 #include <dolfinx/mesh/cell_types.h>
+#include <dolfinx/mesh/utils.h>
 
 namespace pushout::model
 {
 namespace
 {
 using dolfinx::fem::Function;
+
+/// The default graph partitioner decides the owners; then each pair's
+/// concrete cell follows its steel cell, so that one process owns both sides
+/// of every joint element (each interface cell has one interface facet: the
+/// pairs are a matching). Every cell is also ghosted on the processes that
+/// own a cell sharing a vertex with it (GhostMode::shared_vertex): DOLFINx
+/// 0.5 finds shared vertices only through ghosts or shared facets, and the
+/// partition may touch along edges only.
+dolfinx::mesh::CellPartitionFunction pair_keeping_partitioner(const mesh::MeshData& data)
+{
+  return [&data](MPI_Comm comm, int nparts, int tdim,
+                 const dolfinx::graph::AdjacencyList<std::int64_t>& cells, dolfinx::mesh::GhostMode)
+  {
+    const dolfinx::graph::AdjacencyList<std::int32_t> dest =
+        dolfinx::mesh::create_cell_partitioner()(comm, nparts, tdim, cells,
+                                                 dolfinx::mesh::GhostMode::none);
+    if (cells.num_nodes() == 0)
+      return dest;
+    // Rank 0 holds every cell, in input order. The first destination is the
+    // owner.
+    const std::int32_t n = cells.num_nodes();
+    std::vector<std::int32_t> owner(n);
+    for (std::int32_t c = 0; c < n; ++c)
+      owner[c] = dest.links(c)[0];
+    for (const mesh::InterfacePair& p : data.pairs)
+      owner[p.concrete_cell] = owner[p.steel_cell];
+
+    // Owners of the cells around each vertex.
+    std::int64_t n_vertices = 0;
+    for (std::int64_t v : cells.array())
+      n_vertices = std::max(n_vertices, v + 1);
+    std::vector<std::vector<std::int32_t>> vertex_ranks(n_vertices);
+    for (std::int32_t c = 0; c < n; ++c)
+      for (std::int64_t v : cells.links(c))
+        vertex_ranks[v].push_back(owner[c]);
+
+    std::vector<std::int32_t> list, offsets = {0};
+    for (std::int32_t c = 0; c < n; ++c)
+    {
+      std::vector<std::int32_t> ranks = {owner[c]};
+      for (std::int64_t v : cells.links(c))
+        for (std::int32_t r : vertex_ranks[v])
+          if (std::find(ranks.begin(), ranks.end(), r) == ranks.end())
+            ranks.push_back(r);
+      list.insert(list.end(), ranks.begin(), ranks.end());
+      offsets.push_back(std::int32_t(list.size()));
+    }
+    return dolfinx::graph::AdjacencyList<std::int32_t>(std::move(list), std::move(offsets));
+  };
+}
 
 /// Fills a DG0 cell field from the cell materials.
 void set_by_material(Function<double>& f, const dolfinx::mesh::Mesh& mesh,
@@ -35,17 +88,20 @@ Model::Model(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene)
 {
   namespace fem = dolfinx::fem;
   const fem::CoordinateElement cmap(dolfinx::mesh::CellType::hexahedron, 1);
-  dolfinx::graph::AdjacencyList<std::int64_t> cells(
-      std::vector<std::int64_t>(data.cells),
-      [&]
-      {
-        std::vector<std::int32_t> offsets(data.num_cells() + 1);
-        for (std::size_t i = 0; i < offsets.size(); ++i)
-          offsets[i] = std::int32_t(8 * i);
-        return offsets;
-      }());
-  mesh = std::make_shared<dolfinx::mesh::Mesh>(dolfinx::mesh::create_mesh(
-      comm, cells, cmap, data.x, {data.num_nodes(), 3}, dolfinx::mesh::GhostMode::none));
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  // Rank 0 supplies the whole mesh; create_mesh distributes it.
+  const std::size_t n_in = rank == 0 ? data.num_cells() : 0;
+  std::vector<std::int32_t> offsets(n_in + 1);
+  for (std::size_t i = 0; i < offsets.size(); ++i)
+    offsets[i] = std::int32_t(8 * i);
+  const dolfinx::graph::AdjacencyList<std::int64_t> cells(
+      std::vector<std::int64_t>(data.cells.begin(), data.cells.begin() + 8 * n_in),
+      std::move(offsets));
+  const std::span<const double> x_in(data.x.data(), rank == 0 ? data.x.size() : 0);
+  mesh = std::make_shared<dolfinx::mesh::Mesh>(
+      dolfinx::mesh::create_mesh(comm, cells, cmap, x_in, {x_in.size() / 3, 3},
+                                 dolfinx::mesh::GhostMode::none, pair_keeping_partitioner(data)));
 
   V = std::make_shared<fem::FunctionSpace>(
       fem::create_functionspace(functionspace_form_elasticity_a, "u", mesh));
@@ -83,11 +139,22 @@ Model::Model(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene)
       node_block[input_index[xd[i]]] = cd[i];
   }
 
-  // Interface: the pairs' dof blocks and steel-side coordinates.
+  // Interface: the pairs of this process's cells (the partitioner keeps
+  // both cells of a pair together), their dof blocks and steel-side
+  // coordinates.
+  const auto& original = mesh->topology().original_cell_index;
+  const std::int32_t n_owned_cells = mesh->topology().index_map(3)->size_local();
+  std::vector<std::uint8_t> local_cell(data.num_cells(), 0); // owned cells only
+  for (std::int32_t c = 0; c < n_owned_cells; ++c)
+    local_cell[original[c]] = 1;
   std::vector<std::int32_t> pair_blocks;
   std::vector<double> pair_x;
   for (const mesh::InterfacePair& p : data.pairs)
   {
+    if (!local_cell[p.steel_cell])
+      continue;
+    if (!local_cell[p.concrete_cell])
+      throw std::logic_error("interface pair split across processes");
     for (std::int64_t n : p.steel)
       pair_blocks.push_back(node_block[n]);
     for (std::int64_t n : p.concrete)

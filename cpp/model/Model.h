@@ -43,6 +43,12 @@ public:
   /// Number of global displacement dofs.
   std::int64_t num_dofs() const;
 
+  /// Whether a local dof block is owned by this process (not a ghost).
+  bool owned(std::int32_t block) const
+  {
+    return block >= 0 && block < V->dofmap()->index_map->size_local();
+  }
+
   /// Equivalent nodal forces of the thermal strain for `dT` [N], owned part.
   Vec thermal_load(double dT_value) const;
 

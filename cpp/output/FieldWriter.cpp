@@ -1,7 +1,9 @@
 #include "FieldWriter.h"
 #include <basix/finite-element.h>
 #include <dolfinx/fem/utils.h>
+#include <dolfinx/graph/AdjacencyList.h>
 #include <dolfinx/mesh/cell_types.h>
+#include <dolfinx/mesh/utils.h>
 
 namespace pushout::output
 {
@@ -13,16 +15,25 @@ FieldWriter::FieldWriter(const model::Model& model, const std::filesystem::path&
   _fields = std::make_unique<dolfinx::io::XDMFFile>(comm, (dir / "fields.xdmf").string(), "w");
   _fields->write_mesh(*model.mesh);
 
-  // Interface surface mesh: one quadrilateral per pair, on the steel side.
+  // Interface surface mesh: one quadrilateral per pair of this process, on
+  // the steel side, numbered globally after the lower processes' ones and
+  // kept on this process.
   const auto& itf = *model.interface;
   const std::vector<double> dof_x = model.V->tabulate_dof_coordinates(false);
+  const std::int64_t n_local = std::int64_t(itf.num_pairs());
+  std::int64_t first = 0;
+  MPI_Exscan(&n_local, &first, 1, MPI_INT64_T, MPI_SUM, comm);
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  if (rank == 0)
+    first = 0;
   std::vector<double> coords;
   std::vector<std::int64_t> cells;
   const auto blocks = itf.pair_blocks();
   for (std::size_t p = 0; p < itf.num_pairs(); ++p)
     for (int a = 0; a < 4; ++a)
     {
-      cells.push_back(std::int64_t(coords.size() / 3));
+      cells.push_back(4 * first + std::int64_t(coords.size() / 3));
       const std::int32_t b = blocks[8 * p + a];
       coords.insert(coords.end(), dof_x.begin() + 3 * b, dof_x.begin() + 3 * b + 3);
     }
@@ -30,9 +41,16 @@ FieldWriter::FieldWriter(const model::Model& model, const std::filesystem::path&
   for (std::size_t i = 0; i < offsets.size(); ++i)
     offsets[i] = std::int32_t(4 * i);
   const fem::CoordinateElement cmap(dolfinx::mesh::CellType::quadrilateral, 1);
+  const auto stay_here = [rank](MPI_Comm, int, int,
+                                const dolfinx::graph::AdjacencyList<std::int64_t>& c,
+                                dolfinx::mesh::GhostMode)
+  {
+    return dolfinx::graph::regular_adjacency_list(std::vector<std::int32_t>(c.num_nodes(), rank),
+                                                  1);
+  };
   _imesh = std::make_shared<dolfinx::mesh::Mesh>(dolfinx::mesh::create_mesh(
-      MPI_COMM_SELF, dolfinx::graph::AdjacencyList<std::int64_t>(cells, offsets), cmap, coords,
-      {coords.size() / 3, 3}, dolfinx::mesh::GhostMode::none));
+      comm, dolfinx::graph::AdjacencyList<std::int64_t>(cells, offsets), cmap, coords,
+      {coords.size() / 3, 3}, dolfinx::mesh::GhostMode::none, stay_here));
   _imesh->name = "interface";
   const basix::FiniteElement e =
       basix::create_element(basix::element::family::P, basix::cell::type::quadrilateral, 0,
@@ -51,10 +69,10 @@ FieldWriter::FieldWriter(const model::Model& model, const std::filesystem::path&
   const auto& original = _imesh->topology().original_cell_index;
   _pair_of_dof.assign(original.size(), 0);
   for (std::size_t c = 0; c < original.size(); ++c)
-    _pair_of_dof[Q->dofmap()->cell_dofs(std::int32_t(c))[0]] = std::int32_t(original[c]);
+    _pair_of_dof[Q->dofmap()->cell_dofs(std::int32_t(c))[0]] = std::int32_t(original[c] - first);
 
-  _interface = std::make_unique<dolfinx::io::XDMFFile>(MPI_COMM_SELF,
-                                                       (dir / "interface.xdmf").string(), "w");
+  _interface =
+      std::make_unique<dolfinx::io::XDMFFile>(comm, (dir / "interface.xdmf").string(), "w");
   _interface->write_mesh(*_imesh);
 }
 
@@ -71,7 +89,7 @@ void FieldWriter::write(double t)
   _fields->write_function(*_model.stress(), t);
 
   const auto& itf = *_model.interface;
-  const std::size_t nq = itf.num_points() / itf.num_pairs();
+  const std::size_t nq = itf.points_per_pair();
   const std::size_t nf = _ifields.size();
   std::vector<double> sum(nf);
   for (std::size_t dof = 0; dof < _pair_of_dof.size(); ++dof)
