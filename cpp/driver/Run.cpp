@@ -15,6 +15,7 @@
 #include <dolfinx/la/petsc.h>
 #include <fstream>
 #include <iostream>
+#include <sys/resource.h>
 
 namespace pushout::driver
 {
@@ -103,7 +104,7 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
                             [&]
                             {
                               auto c = scenario->columns();
-                              c.insert(c.end(), {"newton_iterations", "cuts"});
+                              c.insert(c.end(), {"newton_iterations", "cuts", "wall_s"});
                               return c;
                             }());
   std::unique_ptr<output::FieldWriter> fields;
@@ -127,7 +128,7 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
     VecRestoreArrayRead(reactions, &r);
     VecRestoreArrayRead(x, &xa);
     const std::string line = scenario->progress(values);
-    values.insert(values.end(), {double(iterations), double(cuts)});
+    values.insert(values.end(), {double(iterations), double(cuts), seconds_since(t_start)});
     if (rank == 0)
       curve.row(row_index, values);
     if (fields)
@@ -239,6 +240,12 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
       std::cerr << "pushout: warning: no curve.png: " << why << std::endl;
   }
   summary.wall_s = seconds_since(t_start);
+  // Peak resident memory, the largest over the processes [MB].
+  rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  double peak_mb = double(usage.ru_maxrss) / 1024.0;
+  MPI_Allreduce(MPI_IN_PLACE, &peak_mb, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  summary.peak_memory_mb = peak_mb;
   if (rank == 0)
     summary.write(opt.out / "summary.json");
   return summary;

@@ -22,7 +22,8 @@ void Summary::write(const std::filesystem::path& file) const
       {"dofs", dofs},
       {"cells", cells},
       {"interface_pairs", interface_pairs},
-      {"processes", processes}};
+      {"processes", processes},
+      {"peak_memory_mb", peak_memory_mb}};
   const std::filesystem::path tmp = file.string() + ".tmp";
   {
     std::ofstream out(tmp);

@@ -23,6 +23,7 @@ struct Summary
   std::int64_t cells = 0;
   std::int64_t interface_pairs = 0;
   int processes = 1;
+  double peak_memory_mb = 0; ///< largest peak resident memory of a process
   std::string model_type;
 
   void write(const std::filesystem::path& file) const;

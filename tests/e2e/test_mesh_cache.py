@@ -22,5 +22,6 @@ run(scene, c, sets=["mesh.steel_layers=2"])
 check(not summary(a)["mesh_reused"], "first run generates the mesh")
 check(summary(b)["mesh_reused"], "second run reuses it")
 check(not summary(c)["mesh_reused"], "another steel_layers makes a new mesh")
-check(curve(a) == curve(b), "same curve from the cached mesh")
+strip = lambda rows: [{k: v for k, v in r.items() if k != "wall_s"} for r in rows]  # noqa: E731
+check(strip(curve(a)) == strip(curve(b)), "same curve from the cached mesh")
 check(summary(c)["dofs"] != summary(a)["dofs"], "the new mesh differs")

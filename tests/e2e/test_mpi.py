@@ -37,7 +37,7 @@ for name, (scene, sets) in cases.items():
         check(summary(out)["processes"] == n, f"{name}: summary says {n} processes")
         curves[n] = curve(out)
     ref = curves[1]
-    columns = [c for c in ref[0] if c not in ("step", "newton_iterations", "cuts")]
+    columns = [c for c in ref[0] if c not in ("step", "newton_iterations", "cuts", "wall_s")]
     for n in (2, 3):
         check(len(curves[n]) == len(ref), f"{name}: {n} processes, same number of steps")
         worst = 0.0
