@@ -11,6 +11,12 @@ SOURCE = os.environ.get("PUSHOUT_SOURCE_DIR", os.path.join(os.path.dirname(__fil
 OUT_ROOT = os.environ.get("PUSHOUT_TEST_OUT", "/tmp/pushout-test-output")
 
 
+# Scene pieces the tests share (TOML text).
+COARSE_MESH = "[mesh]\nelements_per_quarter = 4\nelements_through_thickness = 2\n"
+FRICTION_2 = '[[interface]]\nlaw = "friction"\nk = 1000.0\nmu = 0.4\n'  # Table 1
+EXP_SOFT = '[[interface]]\nlaw = "exponential_softening"\nk = 1000.0\nf_t = 3.0\nc = 25.0\n'
+
+
 def out_dir(name):
     d = os.path.join(OUT_ROOT, name)
     shutil.rmtree(d, ignore_errors=True)

@@ -2,17 +2,9 @@
 signal) with one message naming the problem, and leave no results behind."""
 import os
 
-from common import SOURCE, check, out_dir, run
+from common import COARSE_MESH, FRICTION_2, SOURCE, check, out_dir, run
 
-GOOD = """
-[mesh]
-elements_per_quarter = 4
-elements_through_thickness = 2
-[[interface]]
-law = "friction"
-k = 1000.0
-mu = 0.4
-"""
+GOOD = COARSE_MESH + FRICTION_2
 
 cases = [
     # (name, scene text, --set overrides, expected words in stderr)

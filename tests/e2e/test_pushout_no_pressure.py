@@ -1,15 +1,8 @@
 """Friction interface, no retraction: nothing presses the concrete on the
 tube, so Coulomb friction transmits nothing and tau stays 0."""
-from common import check, curve, out_dir, run
+from common import COARSE_MESH, FRICTION_2, check, curve, out_dir, run
 
-scene = """
-[mesh]
-elements_per_quarter = 4
-elements_through_thickness = 2
-[[interface]]
-law = "friction"
-k = 1000.0
-mu = 0.4
+scene = COARSE_MESH + FRICTION_2 + """
 [loading]
 temperature_change = 0.0
 push_displacement = 0.01

@@ -7,21 +7,9 @@ Checked for both linear solvers (exact LU, and GMRES with the lagged LU)."""
 import math
 import re
 
-from common import check, out_dir, run
+from common import COARSE_MESH, EXP_SOFT, FRICTION_2, check, out_dir, run
 
-scene = """
-[mesh]
-elements_per_quarter = 4
-elements_through_thickness = 2
-[[interface]]
-law = "friction"
-k = 1000.0
-mu = 0.4
-[[interface]]
-law = "exponential_softening"
-k = 1000.0
-f_t = 3.0
-c = 25.0
+scene = COARSE_MESH + FRICTION_2 + EXP_SOFT + """
 [loading]
 temperature_change = -25.0
 push_displacement = 0.03

@@ -1,21 +1,9 @@
 """Correctness guard for the lagged preconditioner: the default (GMRES with a
 lagged LU) and the plain Newton (LU of every Jacobian) give the same curve to
 1e-6 relative on a friction + adhesion push-out through the peak."""
-from common import check, curve, out_dir, run, summary
+from common import COARSE_MESH, EXP_SOFT, FRICTION_2, check, curve, out_dir, run, summary
 
-scene = """
-[mesh]
-elements_per_quarter = 4
-elements_through_thickness = 2
-[[interface]]
-law = "friction"
-k = 1000.0
-mu = 0.4
-[[interface]]
-law = "exponential_softening"
-k = 1000.0
-f_t = 3.0
-c = 25.0
+scene = COARSE_MESH + FRICTION_2 + EXP_SOFT + """
 [loading]
 temperature_change = -25.0
 push_displacement = 0.05
