@@ -1,5 +1,7 @@
 #include "NewtonSolver.h"
 #include "../common/Interrupt.h"
+#include <algorithm>
+#include <dolfinx/common/IndexMap.h>
 
 namespace pushout::solver
 {
@@ -62,6 +64,25 @@ NewtonSolver::NewtonSolver(Equilibrium& problem, Preconditioner pc, int refactor
   }
   else
     SNESSetJacobian(_snes, _J, _J, jacobian_callback, this);
+  // Rigid-body modes for algebraic multigrid (-pc_type gamg), from the
+  // coordinates of the owned dofs.
+  const model::Model& m = problem.model();
+  const std::vector<double> x = m.V->tabulate_dof_coordinates(false);
+  const PetscInt n_owned = m.V->dofmap()->index_map->size_local();
+  Vec coords;
+  VecCreateMPI(comm, 3 * n_owned, PETSC_DETERMINE, &coords);
+  VecSetBlockSize(coords, 3);
+  double* c;
+  VecGetArray(coords, &c);
+  std::copy_n(x.begin(), 3 * n_owned, c);
+  VecRestoreArray(coords, &c);
+  MatNullSpace rigid;
+  MatNullSpaceCreateRigidBody(coords, &rigid);
+  MatSetNearNullSpace(_J, rigid);
+  if (_P)
+    MatSetNearNullSpace(_P, rigid);
+  MatNullSpaceDestroy(&rigid);
+  VecDestroy(&coords);
   SNESSetFromOptions(_snes);
 }
 
