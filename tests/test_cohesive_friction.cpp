@@ -21,7 +21,7 @@ TEST(CohesiveFriction, UndamagedIsElastic)
 {
   const Elastic elastic(k, k);
   const Vec3 w = {-0.002, 0.004, -0.003}; // delta = 0.005 < w0 = 0.01
-  std::vector<double> s0 = {0, 0, 0}, s1(3);
+  std::vector<double> s0 = {0, 0, 0, 0}, s1(4);
   const auto a = coupled.update(s0, w, s1);
   const auto b = elastic.update({}, w, {});
   for (int i = 0; i < 3; ++i)
@@ -39,15 +39,16 @@ TEST(CohesiveFriction, FullyDamagedIsFrictionInContact)
   {
     const Vec3 w = {-0.01 * std::abs(U(gen)) - 1e-4, 0.02 * U(gen), 0.02 * U(gen)};
     const std::vector<double> slip = {0.01 * U(gen), 0.01 * U(gen)};
-    std::vector<double> s0 = {1.0, slip[0], slip[1]}, s1(3), f1(2); // kappa beyond w0 + w_c2
+    std::vector<double> s0 = {1.0, 0.0, slip[0], slip[1]}, s1(4), f1(2); // beyond w0 + w_c2
     const auto a = coupled.update(s0, w, s1);
     const auto b = friction.update(slip, w, f1);
     for (int j = 0; j < 3; ++j)
       EXPECT_NEAR(a.t[j], b.t[j], 1e-13);
     for (int j = 0; j < 9; ++j)
       EXPECT_NEAR(a.D[j], b.D[j], 1e-10);
-    EXPECT_NEAR(s1[1], f1[0], 1e-15);
-    EXPECT_NEAR(s1[2], f1[1], 1e-15);
+    EXPECT_NEAR(s1[1], 1.0, 1e-15); // fully damaged
+    EXPECT_NEAR(s1[2], f1[0], 1e-15);
+    EXPECT_NEAR(s1[3], f1[1], 1e-15);
   }
 }
 
@@ -55,9 +56,9 @@ TEST(CohesiveFriction, LiesBetweenCohesionAloneAndTheSuperposition)
 {
   // Shear path under compression (p = 0.4 MPa), as in the paper's Fig. 9.
   const Friction friction(k, mu);
-  const LinearSoftening cohesive(Params{{"k", k}, {"f_t", f_t}, {"w_c2", w_c2}}, "");
-  std::vector<double> sc = {0, 0, 0}, sf = {0, 0}, sd = {0};
-  std::vector<double> nc(3), nf(2), nd(1);
+  const LinearSoftening cohesive(Params{{"k", k}, {"f_t", f_t}, {"w_c2", w_c2}, {"eta", 0}}, "");
+  std::vector<double> sc = {0, 0, 0, 0}, sf = {0, 0}, sd = {0, 0};
+  std::vector<double> nc(4), nf(2), nd(2);
   for (int i = 1; i <= 400; ++i)
   {
     const double u = 0.4 * i / 400;
@@ -77,11 +78,13 @@ TEST(CohesiveFriction, LiesBetweenCohesionAloneAndTheSuperposition)
 
 TEST(CohesiveFriction, NeedsExactlyOneEnvelope)
 {
-  EXPECT_THROW(CohesiveFriction(Params{{"k", 1}, {"mu", 0.4}, {"f_t", 1}}, "interface.0."),
-               pushout::SceneError);
-  EXPECT_THROW(CohesiveFriction(Params{{"k", 1}, {"mu", 0.4}, {"f_t", 1}, {"c", 2}, {"w_c2", 1}},
-                                "interface.0."),
-               pushout::SceneError);
+  EXPECT_THROW(
+      CohesiveFriction(Params{{"k", 1}, {"mu", 0.4}, {"f_t", 1}, {"eta", 0}}, "interface.0."),
+      pushout::SceneError);
+  EXPECT_THROW(
+      CohesiveFriction(Params{{"k", 1}, {"mu", 0.4}, {"f_t", 1}, {"c", 2}, {"w_c2", 1}, {"eta", 0}},
+                       "interface.0."),
+      pushout::SceneError);
 }
 
 TEST(CohesiveFriction, TangentMatchesFiniteDifferencesAtRandomStates)
@@ -101,7 +104,8 @@ TEST(CohesiveFriction, TangentMatchesFiniteDifferencesAtRandomStates)
     {
       const double scale = 5 * ww0 * std::abs(U(gen)) + 1e-4;
       const Vec3 w = {scale * U(gen), scale * U(gen), scale * U(gen)};
-      const std::vector<double> s0 = {3 * ww0 * std::abs(U(gen)), scale * U(gen), scale * U(gen)};
+      const std::vector<double> s0 = {3 * ww0 * std::abs(U(gen)), 0.0, scale * U(gen),
+                                      scale * U(gen)};
       const double delta = CamanhoDavila::equivalent(w);
       const double f = kk * std::hypot(w[1] - s0[1], w[2] - s0[2]) - mm * std::max(-kk * w[0], 0.0);
       if (std::abs(w[0]) < margin || std::abs(delta - s0[0]) < margin ||

@@ -17,16 +17,16 @@ Params params(std::initializer_list<std::pair<const std::string, double>> p)
   return Params(p);
 }
 
-const LinearSoftening linear(params({{"k", 100}, {"f_t", 1}, {"w_c2", 0.3}}), "");
+const LinearSoftening linear(params({{"k", 100}, {"f_t", 1}, {"w_c2", 0.3}, {"eta", 0}}), "");
 const LinearSofteningFriction
-    linear_fr(params({{"k", 100}, {"f_t", 1}, {"w_c2", 0.3}, {"f_fr", 0.4}}), "");
-const ExponentialSoftening exponential(params({{"k", 1000}, {"f_t", 3}, {"c", 25}, {"f_fr", 0}}),
-                                       "");
+    linear_fr(params({{"k", 100}, {"f_t", 1}, {"w_c2", 0.3}, {"f_fr", 0.4}, {"eta", 0}}), "");
+const ExponentialSoftening
+    exponential(params({{"k", 1000}, {"f_t", 3}, {"c", 25}, {"f_fr", 0}, {"eta", 0}}), "");
 
 /// Traction along a path of jumps, committing every step.
 template <typename L> std::vector<Vec3> path(const L& law, const std::vector<Vec3>& jumps)
 {
-  std::vector<double> s = {0}, s1 = {0};
+  std::vector<double> s = {0, 0}, s1 = {0, 0};
   std::vector<Vec3> t;
   for (const Vec3& w : jumps)
   {
@@ -39,7 +39,7 @@ template <typename L> std::vector<Vec3> path(const L& law, const std::vector<Vec
 /// Work of the normal traction over a monotonic opening to w_end [N/mm].
 template <typename L> double opening_work(const L& law, double w_end, int n)
 {
-  std::vector<double> s = {0}, s1 = {0};
+  std::vector<double> s = {0, 0}, s1 = {0, 0};
   double work = 0, t_prev = 0;
   for (int i = 1; i <= n; ++i)
   {
@@ -70,8 +70,9 @@ TEST(LinearSoftening, PureShearPeakSofteningSecantUnloadingReloading)
   EXPECT_NEAR(t[4][1], 0.5, 1e-14);  // back on the envelope
   EXPECT_NEAR(t[5][1], 0.0, 1e-14);  // fully damaged
   EXPECT_NEAR(t[6][1], 0.0, 1e-14);
-  std::vector<double> s = {0.4}, s1(1);
-  EXPECT_NEAR(linear.damage(s), 1.0, 1e-14);
+  std::vector<double> s = {0, 0}, s1(2);
+  linear.update(s, {0, 0.4, 0}, s1);
+  EXPECT_NEAR(linear.damage(s1), 1.0, 1e-14);
 }
 
 TEST(LinearSoftening, PureOpeningAndMixedModeUseTheEuclideanJump)
@@ -86,12 +87,13 @@ TEST(LinearSoftening, PureOpeningAndMixedModeUseTheEuclideanJump)
 
 TEST(LinearSoftening, CompressionIsElasticAndDoesNotDamage)
 {
-  std::vector<double> s = {0}, s1 = {0};
+  std::vector<double> s = {0, 0}, s1 = {0, 0};
   const auto r = linear.update(s, {-0.5, 0, 0}, s1);
   EXPECT_DOUBLE_EQ(r.t[0], -50.0);
   EXPECT_DOUBLE_EQ(s1[0], 0.0);
+  EXPECT_DOUBLE_EQ(s1[1], 0.0);
   // Damaged, then compressed: still the full k in the normal direction.
-  s = {0.2};
+  s = {0.2, 0.5};
   EXPECT_DOUBLE_EQ(linear.update(s, {-0.01, 0, 0}, s1).t[0], -1.0);
 }
 
@@ -129,12 +131,13 @@ TEST(Softening, EnergyToFullSeparationIsTheAreaUnderTheEnvelope)
 
 TEST(Softening, ParametersAreChecked)
 {
-  EXPECT_THROW(LinearSofteningFriction(params({{"k", 100}, {"f_t", 1}, {"w_c2", 0.3}, {"f_fr", 2}}),
-                                       "interface.0."),
-               pushout::SceneError);
   EXPECT_THROW(
-      ExponentialSoftening(params({{"k", 100}, {"f_t", 1}, {"c", 3}, {"f_fr", 1.5}}), "x."),
+      LinearSofteningFriction(
+          params({{"k", 100}, {"f_t", 1}, {"w_c2", 0.3}, {"f_fr", 2}, {"eta", 0}}), "interface.0."),
       pushout::SceneError);
+  EXPECT_THROW(ExponentialSoftening(
+                   params({{"k", 100}, {"f_t", 1}, {"c", 3}, {"f_fr", 1.5}, {"eta", 0}}), "x."),
+               pushout::SceneError);
 }
 
 namespace
@@ -151,7 +154,7 @@ template <typename L> void check_random_tangents(const L& law, double k, double 
   {
     const double scale = 4 * w0 * std::abs(U(gen)) + kink2 * std::abs(U(gen));
     const Vec3 w = {scale * U(gen), scale * U(gen), scale * U(gen)};
-    const std::vector<double> s0 = {std::abs(U(gen)) * (2 * w0 + kink2)};
+    const std::vector<double> s0 = {std::abs(U(gen)) * (2 * w0 + kink2), 0.0};
     const double delta = CamanhoDavila::equivalent(w);
     const double margin = 1e3 * h;
     if (std::abs(w[0]) < margin || std::abs(delta - s0[0]) < margin ||
@@ -176,4 +179,67 @@ TEST(Softening, TangentsMatchFiniteDifferencesAtRandomStates)
   check_random_tangents(linear, 100, 0.01, 0.31);
   check_random_tangents(linear_fr, 100, 0.01, 0.19);
   check_random_tangents(exponential, 1000, 0.003, 0.2);
+}
+
+TEST(ViscousDamage, LagsTheRateIndependentDamageAndRecoversItAsEtaVanishes)
+{
+  // Linear softening, eta = 0.01 mm: one step from 0 to 0.16 mm (D = 0.84
+  // rate independent) over dt = 0.01 mm: theta = 1/2, D_v = 0.42.
+  Params p{{"k", 100}, {"f_t", 1}, {"w_c2", 0.3}, {"eta", 0.01}};
+  const LinearSoftening viscous(p, "");
+  std::vector<double> s = {0, 0}, s1(2), s0(2);
+  const auto r = viscous.update(s, {0, 0.16, 0}, s1, 0.01);
+  const double D = 1 - 0.5 / (100 * 0.16);
+  EXPECT_NEAR(s1[1], 0.5 * D, 1e-14);
+  EXPECT_NEAR(r.t[1], (1 - 0.5 * D) * 100 * 0.16, 1e-12);
+  EXPECT_GT(r.t[1], linear.update(s, {0, 0.16, 0}, s0).t[1]);
+  // dt / eta -> infinity: the rate-independent answer.
+  EXPECT_NEAR(viscous.update(s, {0, 0.16, 0}, s1, 1e9).t[1], 0.5, 1e-8);
+  // Holding the jump, D_v keeps relaxing towards D and never exceeds it.
+  std::vector<double> a = s1;
+  for (int i = 0; i < 50; ++i)
+  {
+    viscous.update(a, {0, 0.16, 0}, s1, 0.01);
+    EXPECT_GE(s1[1], a[1]);
+    EXPECT_LE(s1[1], D + 1e-15);
+    a = s1;
+  }
+  EXPECT_NEAR(a[1], D, 1e-12);
+}
+
+TEST(ViscousDamage, TangentMatchesFiniteDifferences)
+{
+  Params p{{"k", 1000}, {"f_t", 3}, {"c", 25}, {"f_fr", 0}, {"eta", 0.005}};
+  const ExponentialSoftening law(p, "");
+  std::mt19937 gen(9);
+  std::uniform_real_distribution<double> U(-1, 1);
+  double worst = 0;
+  for (int n = 0; n < 100;)
+  {
+    const Vec3 w = {0.02 * U(gen), 0.05 * U(gen), 0.05 * U(gen)};
+    const double kappa = 0.05 * std::abs(U(gen));
+    const std::vector<double> s0 = {kappa, 0.5 * std::abs(U(gen)) *
+                                               law.damage(std::vector<double>{kappa, 0.0})};
+    const double delta = CamanhoDavila::equivalent(w);
+    if (std::abs(w[0]) < 1e-6 || std::abs(delta - kappa) < 1e-6 || std::abs(delta - 0.003) < 1e-6)
+      continue;
+    ++n;
+    std::vector<double> s1(2);
+    const double dt = 0.001 * std::abs(U(gen)) + 1e-5;
+    // tangent_error uses dt = 0; check with dt by hand.
+    const auto r = law.update(s0, w, s1, dt);
+    double err = 0;
+    for (int j = 0; j < 3; ++j)
+    {
+      Vec3 wp = w, wm = w;
+      wp[j] += 1e-9;
+      wm[j] -= 1e-9;
+      const Vec3 tp = law.update(s0, wp, s1, dt).t, tm = law.update(s0, wm, s1, dt).t;
+      for (int i = 0; i < 3; ++i)
+        err = std::max(err, std::abs((tp[i] - tm[i]) / 2e-9 - r.D[3 * i + j]) / 1000);
+    }
+    worst = std::max(worst, err);
+  }
+  std::cout << "viscous exponential_softening: max FD tangent error " << worst << "\n";
+  EXPECT_LT(worst, 1e-6);
 }

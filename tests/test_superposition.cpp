@@ -27,7 +27,7 @@ interface::Interface one_pair(std::vector<std::unique_ptr<laws::InterfaceLaw>> l
 TEST(Superposition, TwoLayersAreTheSumOfEachAlone)
 {
   const laws::Params fr = {{"k", 100}, {"mu", 0.4}};
-  const laws::Params ls = {{"k", 100}, {"f_t", 1}, {"w_c2", 0.3}};
+  const laws::Params ls = {{"k", 100}, {"f_t", 1}, {"w_c2", 0.3}, {"eta", 0}};
   std::vector<std::unique_ptr<laws::InterfaceLaw>> both, a, b;
   both.push_back(make("friction", fr));
   both.push_back(make("linear_softening", ls));

@@ -36,6 +36,7 @@ public:
   std::vector<std::string> columns() const override;
   int steps() const override { return _steps; }
   bool initial_solve() const override { return _dT != 0.0; }
+  double time_at(double s) const override { return delta_at(s); }
   void apply_load(double s, solver::Equilibrium& eq) const override;
   void start_loading(std::span<const double> x) override;
   std::vector<double> row(std::span<const double> reactions, std::span<const double> x,

@@ -189,6 +189,7 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
       }
       const double s_try = stepper.next(s, double(k));
       scenario->apply_load(s_try, equilibrium);
+      model.interface->set_time_increment(scenario->time_at(s_try) - scenario->time_at(s));
       equilibrium.apply_constraints(x);
       const solver::SolveReport rep = newton.solve(x);
       summary.newton_iterations += rep.iterations;

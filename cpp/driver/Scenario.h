@@ -26,6 +26,10 @@ public:
   /// unloaded state.
   virtual bool initial_solve() const = 0;
 
+  /// Pseudo-time at load parameter s, for viscous laws (push-out: the push
+  /// displacement in mm; single joint: the shear path length in mm).
+  virtual double time_at(double s) const = 0;
+
   /// Sets constraints and loads for load parameter s.
   virtual void apply_load(double s, solver::Equilibrium& eq) const = 0;
 

@@ -47,6 +47,16 @@ double SingleJoint::shear_at(double s) const
   return _path[i] + f * (_path[i + 1] - _path[i]);
 }
 
+double SingleJoint::time_at(double s) const
+{
+  // Path length: the full segments before s, then the part of s's segment.
+  double length = 0;
+  const std::size_t i = std::min(std::size_t(s / _per_segment), _path.size() - 2);
+  for (std::size_t j = 0; j < i; ++j)
+    length += std::abs(_path[j + 1] - _path[j]);
+  return length + std::abs(shear_at(s) - _path[i]);
+}
+
 void SingleJoint::apply_load(double s, solver::Equilibrium& eq) const
 {
   solver::Constraints bc;

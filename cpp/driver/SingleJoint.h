@@ -25,6 +25,7 @@ public:
   }
   int steps() const override { return int(_path.size() - 1) * _per_segment; }
   bool initial_solve() const override { return true; }
+  double time_at(double s) const override;
   void apply_load(double s, solver::Equilibrium& eq) const override;
   std::vector<double> row(std::span<const double> reactions, std::span<const double> x,
                           const model::Model& model) const override;

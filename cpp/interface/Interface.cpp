@@ -114,7 +114,8 @@ bool Interface::assemble(std::span<const double> u, std::span<double> f, Mat A)
       laws::Mat3 D{};
       for (std::size_t l = 0; l < _layers.size(); ++l)
       {
-        const laws::LawResult r = _layers[l]->update(_state.committed(i, l), w, _state.trial(i, l));
+        const laws::LawResult r =
+            _layers[l]->update(_state.committed(i, l), w, _state.trial(i, l), _dt);
         ok = ok && r.status == laws::LawStatus::ok;
         for (int c = 0; c < 3; ++c)
           t[c] += r.t[c];
@@ -178,7 +179,7 @@ PointOutput Interface::point_output(std::span<const double> u, std::size_t p, st
   {
     // Re-evaluating from the committed state reproduces the trial traction.
     std::span<double> s(scratch.data(), std::size_t(_layers[l]->state_size()));
-    const laws::LawResult r = _layers[l]->update(_state.committed(i, l), out.w, s);
+    const laws::LawResult r = _layers[l]->update(_state.committed(i, l), out.w, s, _dt);
     for (int c = 0; c < 3; ++c)
       out.t[c] += r.t[c];
     out.slip.push_back(_layers[l]->slip(_state.trial(i, l)));
@@ -200,7 +201,7 @@ std::vector<double> Interface::normal_force(std::span<const double> u) const
       for (std::size_t l = 0; l < _layers.size(); ++l)
       {
         std::span<double> s(scratch.data(), std::size_t(_layers[l]->state_size()));
-        force[l] += _layers[l]->update(_state.committed(i, l), w, s).t[0] * _dA[i];
+        force[l] += _layers[l]->update(_state.committed(i, l), w, s, _dt).t[0] * _dA[i];
       }
     }
   return force;

@@ -51,6 +51,10 @@ public:
   const InterfaceState& state() const { return _state; }
   InterfaceState& state() { return _state; }
 
+  /// Pseudo-time increment of the current step, for viscous laws (the
+  /// scenario's time unit; 0: none).
+  void set_time_increment(double dt) { _dt = dt; }
+
   /// Evaluates the laws at the displacement `u` (local blocked array,
   /// ghosts included), writes the trial state, adds the interface forces to
   /// `f` (same layout) and, if `A` is given, the tangent to `A` (blocked
@@ -85,5 +89,6 @@ private:
   std::vector<double> _frame;            ///< rows n, s1, s2 per point
   std::vector<std::unique_ptr<laws::InterfaceLaw>> _layers;
   InterfaceState _state;
+  double _dt = 0; ///< pseudo-time increment of the step
 };
 } // namespace pushout::interface

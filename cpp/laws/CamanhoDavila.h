@@ -24,7 +24,12 @@ namespace pushout::laws
 class CamanhoDavila
 {
 public:
-  CamanhoDavila(double k, Envelope envelope) : _k(k), _env(envelope), _w0(envelope.f_t / k) {}
+  static constexpr int state_size = 2;
+
+  CamanhoDavila(double k, Envelope envelope, double eta = 0)
+      : _k(k), _env(envelope), _w0(envelope.f_t / k), _eta(eta)
+  {
+  }
 
   double k() const { return _k; }
   double w0() const { return _w0; }
@@ -62,19 +67,31 @@ public:
     return (v.dsigma * delta - v.sigma) / (delta * delta);
   }
 
-  /// The cohesive traction and tangent at committed history kappa_old.
-  LawResult update(double kappa_old, const Vec3& w, double& kappa_new) const
+  /// Weight theta of the new damage in the implicit viscous update.
+  double theta(double dt) const { return _eta > 0 ? (dt / _eta) / (1 + dt / _eta) : 1.0; }
+
+  /// The acting damage D_v after a step from (kappa_new, D_v,old) over dt.
+  double acting_damage(double kappa_new, double damage_old, double dt) const
+  {
+    return damage_old + theta(dt) * (damage(kappa_new) - damage_old);
+  }
+
+  /// The cohesive traction and tangent from the committed state
+  /// [kappa, D_v] over the pseudo-time increment dt; writes the new state.
+  LawResult update(std::span<const double> old, const Vec3& w, std::span<double> now,
+                   double dt) const
   {
     LawResult r;
-    const bool on_envelope = loading(kappa_old, w, kappa_new);
-    const double g = secant(kappa_new);
+    const bool on_envelope = loading(old[0], w, now[0]);
+    now[1] = acting_damage(now[0], old[1], dt);
+    const double g = (1 - now[1]) * _k;
     const bool open = w[0] > 0;
     r.t = {(open ? g : _k) * w[0], g * w[1], g * w[2]};
     r.D = {open ? g : _k, 0, 0, 0, g, 0, 0, 0, g};
     if (on_envelope)
     {
-      const double delta = kappa_new;
-      const double c = dsecant(delta) / delta;
+      const double delta = now[0];
+      const double c = theta(dt) * dsecant(delta) / delta;
       const Vec3 we = {open ? w[0] : 0.0, w[1], w[2]};
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b)
@@ -89,5 +106,6 @@ private:
   double _k;
   Envelope _env;
   double _w0;
+  double _eta; ///< viscosity (pseudo-time) of the damage; 0: none
 };
 } // namespace pushout::laws

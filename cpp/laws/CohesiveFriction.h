@@ -17,14 +17,17 @@
 // dD/dw = -(g'(delta)/k) w_open/delta on loading (0 otherwise).
 //
 // Envelope: linear (give w_c2) or exponential (give c), both to zero: the
-// residual stress comes from friction. State: [kappa, w^p_s1, w^p_s2] (mm).
-// Parameters: k [N/mm^3], mu [-], f_t [MPa], w_c2 [mm] or c [1/mm].
+// residual stress comes from friction. Optional damage viscosity eta as in
+// CamanhoDavila.h (D is then the acting damage D_v). State: [kappa (mm),
+// D_v, w^p_s1, w^p_s2 (mm)].
+// Parameters: k [N/mm^3], mu [-], f_t [MPa], w_c2 [mm] or c [1/mm], eta [mm].
 #pragma once
 
 #include "../scene/SceneError.h"
 #include "CamanhoDavila.h"
 #include "Friction.h"
 #include "LawRegistry.h"
+#include "SofteningLaw.h"
 
 namespace pushout::laws
 {
@@ -34,7 +37,7 @@ public:
   static constexpr const char* name = "cohesive_friction";
   static constexpr const char* doc = "damage transfers load from cohesion to Coulomb friction "
                                      "(Alfano & Sacco 2006): k, mu, f_t, and w_c2 or c";
-  static constexpr int state_size = 3;
+  static constexpr int state_size = 4;
 
   static std::vector<ParamDef> params()
   {
@@ -45,23 +48,27 @@ public:
             {"mu", 0.4, "-", "friction coefficient of the damaged part", 0, false},
             {"f_t", 3.0, "MPa", "tensile strength (peak traction)", 0, true},
             w_c2,
-            c};
+            c,
+            viscosity_param()};
   }
 
-  CohesiveFriction(double k, double mu, Envelope envelope) : _cd(k, envelope), _friction(k, mu) {}
+  CohesiveFriction(double k, double mu, Envelope envelope, double eta = 0)
+      : _cd(k, envelope, eta), _friction(k, mu)
+  {
+  }
   CohesiveFriction(const Params& p, const std::string& prefix)
-      : CohesiveFriction(p.at("k"), p.at("mu"), envelope(p, prefix))
+      : CohesiveFriction(p.at("k"), p.at("mu"), envelope(p, prefix), p.at("eta"))
   {
   }
 
-  LawResult update(std::span<const double> state_old, const Vec3& w,
-                   std::span<double> state_new) const
+  LawResult update(std::span<const double> state_old, const Vec3& w, std::span<double> state_new,
+                   double dt = 0) const
   {
     const double k = _cd.k();
     double& kappa = state_new[0];
     const bool on_envelope = _cd.loading(state_old[0], w, kappa);
-    const double D = _cd.damage(kappa);
-    const LawResult fr = _friction.update(state_old.subspan(1, 2), w, state_new.subspan(1, 2));
+    const double D = state_new[1] = _cd.acting_damage(kappa, state_old[1], dt);
+    const LawResult fr = _friction.update(state_old.subspan(2, 2), w, state_new.subspan(2, 2));
 
     // Damaged part: contact normal and friction shear.
     Vec3 td = {k * std::min(w[0], 0.0), fr.t[1], fr.t[2]};
@@ -79,7 +86,7 @@ public:
     {
       const double delta = kappa;
       const Vec3 we = {std::max(w[0], 0.0), w[1], w[2]};
-      const double dD = -_cd.dsecant(delta) / k / delta; // times we_b
+      const double dD = -_cd.theta(dt) * _cd.dsecant(delta) / k / delta; // times we_b
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b)
           r.D[3 * a + b] += (td[a] - k * w[a]) * dD * we[b];

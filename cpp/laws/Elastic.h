@@ -26,7 +26,8 @@ public:
   Elastic(double k_n, double k_s) : _kn(k_n), _ks(k_s) {}
   Elastic(const Params& p, const std::string&) : Elastic(p.at("k_n"), p.at("k_s")) {}
 
-  LawResult update(std::span<const double>, const Vec3& w, std::span<double>) const
+  LawResult update(std::span<const double>, const Vec3& w, std::span<double>,
+                   double /*dt*/ = 0) const
   {
     LawResult r;
     r.t = {_kn * w[0], _ks * w[1], _ks * w[2]};

@@ -40,8 +40,8 @@ public:
   Friction(double k, double mu) : _k(k), _mu(mu) {}
   Friction(const Params& p, const std::string&) : Friction(p.at("k"), p.at("mu")) {}
 
-  LawResult update(std::span<const double> state_old, const Vec3& w,
-                   std::span<double> state_new) const
+  LawResult update(std::span<const double> state_old, const Vec3& w, std::span<double> state_new,
+                   double /*dt*/ = 0) const
   {
     LawResult r;
     const double k = _k;

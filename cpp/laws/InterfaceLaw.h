@@ -43,10 +43,12 @@ public:
   /// Number of history variables per quadrature point.
   virtual int state_size() const = 0;
 
-  /// The update: `state_old` is the committed state, `w` the jump [mm];
-  /// writes the trial state into `state_new` (same size).
+  /// The update: `state_old` is the committed state, `w` the jump [mm],
+  /// `dt` the pseudo-time increment of the step (used by rate-dependent,
+  /// i.e. viscous, laws only); writes the trial state into `state_new`
+  /// (same size).
   virtual LawResult update(std::span<const double> state_old, const Vec3& w,
-                           std::span<double> state_new) const = 0;
+                           std::span<double> state_new, double dt) const = 0;
 
   /// Inelastic (plastic) slip in the tangent plane [mm], for output.
   virtual std::array<double, 2> slip(std::span<const double> state) const = 0;
@@ -62,10 +64,10 @@ template <typename L> class LawAdapter final : public InterfaceLaw
 public:
   explicit LawAdapter(L law) : _law(std::move(law)) {}
   int state_size() const override { return L::state_size; }
-  LawResult update(std::span<const double> state_old, const Vec3& w,
-                   std::span<double> state_new) const override
+  LawResult update(std::span<const double> state_old, const Vec3& w, std::span<double> state_new,
+                   double dt) const override
   {
-    return _law.update(state_old, w, state_new);
+    return _law.update(state_old, w, state_new, dt);
   }
   std::array<double, 2> slip(std::span<const double> state) const override
   {

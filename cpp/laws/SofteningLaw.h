@@ -1,6 +1,7 @@
 // The three cohesive softening laws of the paper (§2.3, Fig. 5a/b, Table 1),
-// each a CamanhoDavila damage with its envelope (Envelope.h). State: [kappa]
-// (the largest equivalent jump reached, mm).
+// each a CamanhoDavila damage with its envelope (Envelope.h) and optional
+// viscosity `eta`. State: [kappa (the largest equivalent jump reached, mm),
+// D_v (the acting damage)].
 #pragma once
 
 #include "../scene/SceneError.h"
@@ -9,32 +10,17 @@
 
 namespace pushout::laws
 {
-/// Shared body of the softening laws: `Spec` supplies name, doc, params()
-/// and envelope(Params).
-template <typename Spec> class SofteningLaw
+/// The optional damage viscosity shared by the damage laws.
+inline ParamDef viscosity_param()
 {
-public:
-  static constexpr const char* name = Spec::name;
-  static constexpr const char* doc = Spec::doc;
-  static constexpr int state_size = 1;
-  static std::vector<ParamDef> params() { return Spec::params(); }
-
-  SofteningLaw(const Params& p, const std::string& prefix)
-      : _cd(p.at("k"), Spec::envelope(p, prefix))
-  {
-  }
-
-  LawResult update(std::span<const double> state_old, const Vec3& w,
-                   std::span<double> state_new) const
-  {
-    return _cd.update(state_old[0], w, state_new[0]);
-  }
-  std::array<double, 2> slip(std::span<const double>) const { return {0, 0}; }
-  double damage(std::span<const double> state) const { return _cd.damage(state[0]); }
-
-private:
-  CamanhoDavila _cd;
-};
+  return {"eta",
+          0.0,
+          "mm",
+          "damage viscosity: pseudo-time constant in mm of push (single joint: mm of shear "
+          "path); 0: rate independent",
+          0,
+          false};
+}
 
 /// Throws unless f_fr <= f_t.
 inline void check_residual(const Params& p, const std::string& prefix)
@@ -44,4 +30,36 @@ inline void check_residual(const Params& p, const std::string& prefix)
                      " MPa must not exceed '" + prefix + "f_t' = " + std::to_string(p.at("f_t")) +
                      " MPa");
 }
+/// Shared body of the softening laws: `Spec` supplies name, doc, params()
+/// and envelope(Params).
+template <typename Spec> class SofteningLaw
+{
+public:
+  static constexpr const char* name = Spec::name;
+  static constexpr const char* doc = Spec::doc;
+  static constexpr int state_size = CamanhoDavila::state_size;
+  static std::vector<ParamDef> params()
+  {
+    std::vector<ParamDef> p = Spec::params();
+    p.push_back(viscosity_param());
+    return p;
+  }
+
+  SofteningLaw(const Params& p, const std::string& prefix)
+      : _cd(p.at("k"), Spec::envelope(p, prefix), p.at("eta"))
+  {
+  }
+
+  LawResult update(std::span<const double> state_old, const Vec3& w, std::span<double> state_new,
+                   double dt = 0) const
+  {
+    return _cd.update(state_old, w, state_new, dt);
+  }
+  std::array<double, 2> slip(std::span<const double>) const { return {0, 0}; }
+  double damage(std::span<const double> state) const { return state[1]; }
+
+private:
+  CamanhoDavila _cd;
+};
+
 } // namespace pushout::laws
