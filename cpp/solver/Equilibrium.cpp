@@ -21,6 +21,9 @@ Equilibrium::~Equilibrium()
 
 void Equilibrium::set_temperature_change(double dT)
 {
+  if (dT == _dT)
+    return; // the thermal load is assembled once per temperature change
+  _dT = dT;
   if (_f_thermal)
     VecDestroy(&_f_thermal);
   _f_thermal = dT != 0.0 ? _model.thermal_load(dT) : nullptr;

@@ -30,7 +30,8 @@ public:
 
   model::Model& model() { return _model; }
 
-  /// Thermal load of temperature change dT [degC] (0: none).
+  /// Thermal load of temperature change dT [degC] (0: none); assembled only
+  /// when dT changes.
   void set_temperature_change(double dT);
   /// External nodal forces [N]: local unblocked dof -> value.
   void set_external_forces(const std::vector<std::pair<std::int32_t, double>>& forces);
@@ -53,6 +54,7 @@ public:
 private:
   model::Model& _model;
   Vec _f_thermal = nullptr, _f_external = nullptr;
+  double _dT = 0; ///< temperature change of _f_thermal [degC]
   Constraints _bc;
   dolfinx::la::Vector<double> _f_interface;
 };
