@@ -171,11 +171,16 @@ def render_fig8(out, folder):
            os.path.join(out, "fig8_interface_maps.png"), "--title",
            "mu 0.4, dT -5 degC, delta = 10 um (paper Fig. 8)"]
     if not os.environ.get("DISPLAY") and shutil.which("xvfb-run"):
-        cmd = ["xvfb-run", "-a", "-s", "-screen 0 1600x1200x24"] + cmd
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    if p.returncode != 0:
-        raise RuntimeError("fig8 rendering failed:\n" + p.stdout + p.stderr)
-    return True
+        cmd = ["xvfb-run", "-a", "-s", "-screen 0 1600x1200x24 -nolisten tcp"] + cmd
+    # A loaded machine can start pvbatch before the virtual X server is ready
+    # ("bad X server connection"): try again a few times before giving up.
+    for attempt in range(3):
+        p = subprocess.run(cmd, capture_output=True, text=True)
+        if p.returncode == 0:
+            return True
+        time.sleep(2 * (attempt + 1))
+    lines = [l for l in (p.stdout + p.stderr).splitlines() if "ERR" in l or "Error" in l]
+    raise RuntimeError("fig8 rendering failed three times: " + " | ".join(lines[-3:]))
 
 
 def plateau_table(out, runs):
