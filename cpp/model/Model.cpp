@@ -218,39 +218,42 @@ Vec Model::thermal_load(double dT_value) const
   return b;
 }
 
-std::shared_ptr<dolfinx::fem::Function<double>> Model::stress() const
+StressProjection::StressProjection(const Model& model)
 {
   namespace fem = dolfinx::fem;
   auto S = std::make_shared<fem::FunctionSpace>(
-      fem::create_functionspace(functionspace_form_elasticity_L_stress, "tau", mesh));
-  auto Q = E->function_space();
+      fem::create_functionspace(functionspace_form_elasticity_L_stress, "tau", model.mesh));
+  auto Q = model.E->function_space();
   const std::map<std::string, std::shared_ptr<const Function<double>>> coeffs = {
-      {"E", E}, {"nu", nu}, {"alpha", alpha}, {"u_h", u}};
-  const auto L_stress =
-      fem::create_form<double>(*form_elasticity_L_stress, {S}, coeffs, {{"dT", dT}}, {});
+      {"E", model.E}, {"nu", model.nu}, {"alpha", model.alpha}, {"u_h", model.u}};
+  _L_stress = std::make_shared<fem::Form<double>>(
+      fem::create_form<double>(*form_elasticity_L_stress, {S}, coeffs, {{"dT", model.dT}}, {}));
+  _sigma = std::make_shared<Function<double>>(S);
+  _sigma->name = "stress";
+
+  // Cell volumes, once: DG0 on both spaces, one dof (block) per cell.
   const auto L_volume = fem::create_form<double>(
       *form_elasticity_L_volume, {Q},
       std::map<std::string, std::shared_ptr<const Function<double>>>{},
       std::map<std::string, std::shared_ptr<const fem::Constant<double>>>{}, {});
-  auto sigma = std::make_shared<Function<double>>(S);
-  sigma->name = "stress";
-  std::span<double> s = sigma->x()->mutable_array();
-  std::fill(s.begin(), s.end(), 0.0);
-  fem::assemble_vector(s, L_stress);
   std::vector<double> volume(
       Q->dofmap()->index_map->size_local() + Q->dofmap()->index_map->num_ghosts(), 0.0);
   fem::assemble_vector(std::span<double>(volume), L_volume);
-  // DG0 on both spaces: one dof (block) per cell.
-  const auto& S_dofs = *S->dofmap();
-  const auto& Q_dofs = *Q->dofmap();
-  const std::int32_t n_cells = mesh->topology().index_map(3)->size_local();
+  const std::int32_t n_cells = model.mesh->topology().index_map(3)->size_local();
   for (std::int32_t c = 0; c < n_cells; ++c)
-  {
-    const double vol = volume[Q_dofs.cell_dofs(c)[0]];
+    _inverse_volume.emplace_back(S->dofmap()->cell_dofs(c)[0],
+                                 1.0 / volume[Q->dofmap()->cell_dofs(c)[0]]);
+}
+
+const Function<double>& StressProjection::update()
+{
+  std::span<double> s = _sigma->x()->mutable_array();
+  std::fill(s.begin(), s.end(), 0.0);
+  dolfinx::fem::assemble_vector(s, *_L_stress);
+  for (const auto& [block, inv] : _inverse_volume)
     for (int i = 0; i < 9; ++i)
-      s[9 * S_dofs.cell_dofs(c)[0] + i] /= vol;
-  }
-  sigma->x()->scatter_fwd();
-  return sigma;
+      s[9 * block + i] *= inv;
+  _sigma->x()->scatter_fwd();
+  return *_sigma;
 }
 } // namespace pushout::model

@@ -52,10 +52,21 @@ public:
   /// Equivalent nodal forces of the thermal strain for `dT` [N], owned part.
   Vec thermal_load(double dT_value) const;
 
-  /// Cell-averaged stress [MPa] for output (DG0 tensor).
-  std::shared_ptr<dolfinx::fem::Function<double>> stress() const;
-
 private:
   std::shared_ptr<dolfinx::fem::Form<double>> _a, _L_thermal;
+};
+/// Cell-averaged stress [MPa] for output: the DG0 projection of the stress
+/// of forms/elasticity.py (L_stress divided by the cell volumes). Built once;
+/// update() reassembles it from the model's current displacement.
+class StressProjection
+{
+public:
+  explicit StressProjection(const Model& model);
+  const dolfinx::fem::Function<double>& update();
+
+private:
+  std::shared_ptr<dolfinx::fem::Form<double>> _L_stress;
+  std::shared_ptr<dolfinx::fem::Function<double>> _sigma;
+  std::vector<std::pair<std::int32_t, double>> _inverse_volume; ///< (DG0 block, 1/volume)
 };
 } // namespace pushout::model

@@ -8,7 +8,7 @@
 namespace pushout::output
 {
 FieldWriter::FieldWriter(const model::Model& model, const std::filesystem::path& dir)
-    : _model(model)
+    : _model(model), _stress(model)
 {
   namespace fem = dolfinx::fem;
   MPI_Comm comm = model.mesh->comm();
@@ -86,7 +86,7 @@ void FieldWriter::write(double t)
 {
   _model.u->name = "displacement";
   _fields->write_function(*_model.u, t);
-  _fields->write_function(*_model.stress(), t);
+  _fields->write_function(_stress.update(), t);
 
   const auto& itf = *_model.interface;
   const std::size_t nq = itf.points_per_pair();

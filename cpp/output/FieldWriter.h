@@ -23,6 +23,7 @@ public:
 private:
   const model::Model& _model;
   std::unique_ptr<dolfinx::io::XDMFFile> _fields, _interface;
+  model::StressProjection _stress;
   std::shared_ptr<dolfinx::mesh::Mesh> _imesh;
   std::vector<std::shared_ptr<dolfinx::fem::Function<double>>> _ifields;
   std::vector<std::int32_t> _pair_of_dof; ///< DG0 dof -> interface pair
