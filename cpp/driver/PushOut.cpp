@@ -37,7 +37,7 @@ PushOut::PushOut(const Scene& scene, const mesh::MeshData& m, const model::Model
       _dT(scene.number("loading.temperature_change")), _growth(scene.number("loading.step_growth")),
       _steps(int(scene.integer("loading.steps"))),
       _hold_top_in_thermal_step(scene.string("loading.thermal_tube_top") == "held"),
-      _layers(scene.layers().size())
+      _layers(scene.layers().size()), _copies(m.copies)
 {
   const auto& c = scene.numbers("geometry.tube_center");
   const double Rs = scene.number("geometry.support_inner_diameter") / 2;
@@ -69,14 +69,39 @@ PushOut::PushOut(const Scene& scene, const mesh::MeshData& m, const model::Model
     add(_top_z, n, 2);
   for (std::int64_t n : support)
     add(_support_z, n, 2);
-  const std::int64_t a = nearest(m, support, {c[0] + Rs, c[1], 0});
-  const std::int64_t b = nearest(m, support, {c[0] - Rs, c[1], 0});
-  const std::int64_t t = nearest(m, top, {c[0] + Ri, c[1], _L});
-  add(_fixed, a, 0);
-  add(_fixed, a, 1);
-  add(_fixed, b, 1);
-  add(_fixed, t, 1);
+  if (_copies == 4)
+  {
+    // Quarter model: u_x = 0 on x = xc, u_y = 0 on y = yc (both sides of
+    // the interface); they also remove the in-plane rigid modes and the
+    // tube's rotation.
+    const auto [xc, yc] = m.symmetry_center;
+    for (std::size_t n = 0; n < m.num_nodes(); ++n)
+    {
+      if (std::abs(m.x[3 * n] - xc) < tol)
+        add(_fixed, std::int64_t(n), 0);
+      if (std::abs(m.x[3 * n + 1] - yc) < tol)
+        add(_fixed, std::int64_t(n), 1);
+    }
+  }
+  else
+  {
+    const std::int64_t a = nearest(m, support, {c[0] + Rs, c[1], 0});
+    const std::int64_t b = nearest(m, support, {c[0] - Rs, c[1], 0});
+    const std::int64_t t = nearest(m, top, {c[0] + Ri, c[1], _L});
+    add(_fixed, a, 0);
+    add(_fixed, a, 1);
+    add(_fixed, b, 1);
+    add(_fixed, t, 1);
+  }
   _top_start.assign(_top_z.size(), 0.0);
+  Vec slip = model.mean_axial_slip_functional();
+  const double* sa;
+  PetscInt n;
+  VecGetLocalSize(slip, &n);
+  VecGetArrayRead(slip, &sa);
+  _slip.assign(sa, sa + n);
+  VecRestoreArrayRead(slip, &sa);
+  VecDestroy(&slip);
 }
 
 std::vector<std::string> PushOut::columns() const
@@ -85,6 +110,7 @@ std::vector<std::string> PushOut::columns() const
   if (_layers > 1)
     for (std::size_t l = 0; l < _layers; ++l)
       c.push_back("p_" + std::to_string(l) + "_MPa");
+  c.push_back("slip_mm");
   return c;
 }
 
@@ -103,16 +129,23 @@ void PushOut::start_loading(std::span<const double> x)
 
 void PushOut::apply_load(double s, solver::Equilibrium& eq) const
 {
+  constrain(s > 0 || _hold_top_in_thermal_step, delta_at(s), eq);
+}
+
+void PushOut::apply_load_factor(double delta, solver::Equilibrium& eq) const
+{
+  constrain(true, delta, eq);
+}
+
+void PushOut::constrain(bool top_held, double delta, solver::Equilibrium& eq) const
+{
   solver::Constraints bc;
-  if (s > 0 || _hold_top_in_thermal_step)
-  {
-    const double delta = delta_at(s);
+  if (top_held)
     for (std::size_t i = 0; i < _top_z.size(); ++i)
     {
       bc.dofs.push_back(_top_z[i]);
       bc.values.push_back(_top_start[i] - delta);
     }
-  }
   for (const auto& list : {_support_z, _fixed})
     for (std::int32_t d : list)
     {
@@ -127,29 +160,33 @@ std::vector<double> PushOut::row(std::span<const double> reactions, std::span<co
                                  const model::Model& model) const
 {
   const interface::Interface& itf = *model.interface;
-  // Local sums: P, delta, number of top dofs, area, normal force per layer.
-  std::vector<double> local = {0, 0, double(_top_z.size()), itf.area()};
+  // Local sums: P, delta, number of top dofs, area, mean slip, normal force
+  // per layer.
+  std::vector<double> local = {0, 0, double(_top_z.size()), itf.area(), 0};
   // (sums over owned dofs and local pairs, reduced over processes)
   for (std::int32_t d : _support_z)
     local[0] += reactions[d];
   for (std::size_t i = 0; i < _top_z.size(); ++i)
     local[1] += _top_start[i] - x[_top_z[i]];
+  for (std::size_t i = 0; i < _slip.size(); ++i)
+    local[4] += _slip[i] * x[i];
   const std::vector<double> normal = itf.normal_force(model.u->x()->array());
   local.insert(local.end(), normal.begin(), normal.end());
   std::vector<double> g(local.size());
   MPI_Allreduce(local.data(), g.data(), int(local.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-  const double P = g[0], delta = g[1] / g[2], area = g[3];
+  const double P = _copies * g[0], delta = g[1] / g[2], area = g[3];
   const double tau = P / (std::numbers::pi * _D * (_L - delta)); // eq. (1)
   double p_total = 0;
   std::vector<double> p_layer;
   for (std::size_t l = 0; l < _layers; ++l)
   {
-    p_layer.push_back(-g[4 + l] / area);
+    p_layer.push_back(-g[5 + l] / area);
     p_total += p_layer.back();
   }
   std::vector<double> out = {delta, P, tau, p_total};
   if (_layers > 1)
     out.insert(out.end(), p_layer.begin(), p_layer.end());
+  out.push_back(g[4]);
   return out;
 }
 

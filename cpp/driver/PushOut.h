@@ -15,11 +15,15 @@
 //    nothing resists when the interface carries no pressure: the top steel
 //    node nearest to (xc + Ri, yc) fixed in y. By symmetry its reaction is
 //    zero in every scene with the tube centred.
+// Quarter model (mesh/symmetry.h): symmetry conditions u_x = 0 on x = xc
+// and u_y = 0 on y = yc replace the in-plane fixings, and P counts the
+// four quarters.
 // Push steps: delta(s) = delta_final (r^s - 1) / (r^N - 1) for step growth
 // r (delta_final s / N for r = 1).
 // Measured: delta, P = sum of the support reactions, tau = P / (pi D (L -
 // delta)) (paper eq. 1), the mean interface pressure p = -int t_n dA / A,
-// and with several layers each layer's share p_L.
+// with several layers each layer's share p_L, and the mean axial slip s
+// over the interface (the control variable of path following).
 #pragma once
 
 #include "../scene/Scene.h"
@@ -39,6 +43,10 @@ public:
   double time_at(double s) const override { return delta_at(s); }
   void apply_load(double s, solver::Equilibrium& eq) const override;
   void start_loading(std::span<const double> x) override;
+  /// The load factor of path following is the push delta [mm].
+  bool has_load_factor() const override { return true; }
+  double final_load_factor() const override { return _delta_final; }
+  void apply_load_factor(double delta, solver::Equilibrium& eq) const override;
   std::vector<double> row(std::span<const double> reactions, std::span<const double> x,
                           const model::Model& model) const override;
   std::string progress(const std::vector<double>& row) const override;
@@ -47,13 +55,18 @@ public:
   double delta_at(double s) const;
 
 private:
+  /// Constraints of the push (top held at start - delta if `top_held`).
+  void constrain(bool top_held, double delta, solver::Equilibrium& eq) const;
+
   double _D, _L, _delta_final, _dT, _growth;
   int _steps;
   bool _hold_top_in_thermal_step;
   std::size_t _layers;
+  int _copies; ///< mirror copies of the mesh in the specimen (4: quarter model)
   std::vector<std::int32_t> _top_z;     ///< tube top z dofs
   std::vector<double> _top_start;       ///< their u_z when the push starts
   std::vector<std::int32_t> _support_z; ///< support z dofs
   std::vector<std::int32_t> _fixed;     ///< in-plane fixings (value 0)
+  std::vector<double> _slip;            ///< mean axial slip functional, owned dofs
 };
 } // namespace pushout::driver

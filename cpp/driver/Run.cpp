@@ -5,6 +5,7 @@
 #include "../output/CurveWriter.h"
 #include "../output/FieldWriter.h"
 #include "../output/plot.h"
+#include "../solver/ArcLengthSolver.h"
 #include "../solver/NewtonSolver.h"
 #include "PushOut.h"
 #include "SingleJoint.h"
@@ -14,7 +15,9 @@
 #include <dolfinx/common/IndexMap.h>
 #include <dolfinx/la/petsc.h>
 #include <fstream>
+#include <functional>
 #include <iostream>
+#include <sstream>
 #include <sys/resource.h>
 
 namespace pushout::driver
@@ -38,6 +41,189 @@ bool stop_requested(output::Summary& summary)
   summary.signal = global;
   summary.message = std::string("interrupted by ") + (global == SIGINT ? "SIGINT" : "SIGTERM") +
                     " after " + std::to_string(summary.steps) + " load steps";
+  return true;
+}
+
+/// What the step loops share: the model, the solvers, the committed state
+/// and the outputs.
+struct StepLoop
+{
+  Scenario& scenario;
+  model::Model& model;
+  solver::Equilibrium& equilibrium;
+  solver::NewtonSolver& newton;
+  Vec x, x_committed;
+  output::Summary& summary;
+  std::function<void(int iterations, int cuts, int step, int steps)> record;
+  bool talk;
+  int max_cuts;
+
+  void commit()
+  {
+    model.interface->state().commit();
+    VecCopy(x, x_committed);
+    ++summary.steps;
+  }
+  void revert()
+  {
+    model.interface->state().revert();
+    VecCopy(x_committed, x);
+  }
+};
+
+/// Displacement control: each nominal step is tried whole and cut in halves
+/// (from the committed state) when Newton fails; increments grow back after
+/// easy convergence (Stepper.h). A signal stops the loop between tries.
+bool step_displacement(StepLoop& L)
+{
+  Stepper stepper(L.max_cuts, 4);
+  double s = 0.0;
+  for (int k = 1; k <= L.scenario.steps(); ++k)
+  {
+    int cuts = 0;
+    while (s < double(k) - 1e-12)
+    {
+      if (stop_requested(L.summary))
+        return false;
+      const double s_try = stepper.next(s, double(k));
+      L.scenario.apply_load(s_try, L.equilibrium);
+      L.model.interface->set_time_increment(L.scenario.time_at(s_try) - L.scenario.time_at(s));
+      L.equilibrium.apply_constraints(L.x);
+      const solver::SolveReport rep = L.newton.solve(L.x);
+      L.summary.newton_iterations += rep.iterations;
+      if (rep.converged)
+      {
+        L.commit();
+        s = s_try;
+        stepper.converged(rep.iterations);
+        L.record(rep.iterations, cuts, k, L.scenario.steps());
+        continue;
+      }
+      L.revert();
+      if (stop_requested(L.summary))
+        return false;
+      if (!stepper.failed())
+      {
+        L.summary.message = "load step " + std::to_string(k) + " did not converge with " +
+                            std::to_string(cuts) + " cuts, down to " +
+                            std::to_string(stepper.increment()) + " of a step (" + rep.reason +
+                            "); stopped";
+        return false;
+      }
+      ++cuts;
+      ++L.summary.cuts;
+      if (L.talk)
+        std::cout << "step " << k << ": " << rep.reason << "; retrying with " << stepper.increment()
+                  << " of a step" << std::endl;
+    }
+  }
+  return true;
+}
+
+/// Path following (solver/ArcLengthSolver.h) in steps of length
+/// h = lambda_final / steps in the plane (lambda, s) of the push delta and
+/// the mean slip [mm]. The first step is displacement-controlled (delta =
+/// h); each later one prescribes the slip increment of the previous step
+/// scaled to length h,  ds = ds_prev h / |(dlambda_prev, ds_prev)|,  which
+/// depends only on converged states (not on the tangent at a kink of the
+/// laws). Failed steps are halved, easy ones grow back (Stepper.h). The step
+/// that would pass lambda_final is replaced by a displacement-controlled step
+/// to exactly lambda_final.
+bool follow_path(StepLoop& L, solver::NewtonSolver::Preconditioner pc, int refactor_iterations)
+{
+  Vec a = L.model.mean_axial_slip_functional();
+  solver::ArcLengthSolver arc(L.equilibrium, a, pc, refactor_iterations);
+  VecDestroy(&a);
+  const double lambda_final = L.scenario.final_load_factor();
+  const double h_nominal = lambda_final / L.scenario.steps(); // [mm]
+  // Snap-back makes the path longer than lambda_final; this bounds a run
+  // whose path never reaches it.
+  const int max_steps = 20 * L.scenario.steps() + 100;
+  const auto set_load = [&](double lambda) { L.scenario.apply_load_factor(lambda, L.equilibrium); };
+  // Displacement-controlled step to lambda (first and last steps).
+  const auto displacement_step = [&](double lambda_from, double lambda_to)
+  {
+    set_load(lambda_to);
+    L.model.interface->set_time_increment(lambda_to - lambda_from);
+    L.equilibrium.apply_constraints(L.x);
+    return L.newton.solve(L.x);
+  };
+  Stepper stepper(L.max_cuts, 4);
+  double lambda = 0.0, slip = arc.control(L.x);
+  double d_lambda_prev = 0.0, d_slip_prev = 0.0; // the last converged step
+  int cuts = 0;
+  for (int k = 1; lambda < lambda_final;)
+  {
+    if (stop_requested(L.summary))
+      return false;
+    if (k > max_steps)
+    {
+      L.summary.message = "path following did not reach the final push displacement in " +
+                          std::to_string(max_steps) + " steps (delta = " + std::to_string(lambda) +
+                          " mm); stopped";
+      return false;
+    }
+    const double h = stepper.increment() * h_nominal;
+    double lambda_new = lambda;
+    solver::SolveReport rep;
+    if (k == 1)
+    {
+      lambda_new = std::min(h, lambda_final);
+      rep = displacement_step(lambda, lambda_new);
+    }
+    else
+    {
+      const double d_slip = d_slip_prev * h / std::hypot(d_lambda_prev, d_slip_prev);
+      L.model.interface->set_time_increment(h);
+      rep = arc.step(L.x, lambda_new, d_slip, set_load);
+      if (rep.converged && lambda_new > lambda_final)
+      {
+        L.summary.newton_iterations += rep.iterations;
+        L.revert();
+        lambda_new = lambda_final;
+        rep = displacement_step(lambda, lambda_new);
+      }
+    }
+    L.summary.newton_iterations += rep.iterations;
+    if (rep.converged)
+    {
+      const double slip_new = arc.control(L.x);
+      if (!(slip_new > slip))
+      {
+        L.summary.message = "path following: the mean slip did not grow in step " +
+                            std::to_string(k) + "; the push cannot be followed by slip control";
+        return false;
+      }
+      L.commit();
+      d_lambda_prev = lambda_new - lambda;
+      d_slip_prev = slip_new - slip;
+      lambda = lambda_new;
+      slip = slip_new;
+      stepper.converged(rep.iterations);
+      L.record(rep.iterations, cuts, k, 0);
+      cuts = 0;
+      ++k;
+      continue;
+    }
+    L.revert();
+    if (stop_requested(L.summary))
+      return false;
+    if (!stepper.failed())
+    {
+      std::ostringstream m;
+      m << "path-following step " << k << " did not converge with " << cuts
+        << " cuts, down to a length of " << stepper.increment() * h_nominal << " mm (" << rep.reason
+        << "); stopped";
+      L.summary.message = m.str();
+      return false;
+    }
+    ++cuts;
+    ++L.summary.cuts;
+    if (L.talk)
+      std::cout << "step " << k << ": " << rep.reason << "; retrying with length "
+                << stepper.increment() * h_nominal << " mm" << std::endl;
+  }
+  L.summary.factorizations += arc.factorizations();
   return true;
 }
 
@@ -83,12 +269,14 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   solver::NewtonSolver newton(equilibrium, pc, int(scene.integer("solver.refactor_iterations")));
   summary.dofs = model.num_dofs();
   summary.cells = std::int64_t(data.num_cells());
+  summary.symmetry = data.copies == 4 ? "quarter" : "full";
   const std::int64_t local_pairs = std::int64_t(model.interface->num_pairs());
   MPI_Allreduce(&local_pairs, &summary.interface_pairs, 1, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
   summary.setup_s = seconds_since(t0);
   if (talk)
     std::cout << "pushout: " << summary.model_type << ", " << summary.cells << " cells, "
               << summary.dofs << " dofs, " << summary.interface_pairs << " joint elements"
+              << (data.copies == 4 ? " (quarter model by symmetry)" : "")
               << (summary.mesh_reused ? " (mesh from cache)" : "") << std::endl;
 
   const auto& map = *model.V->dofmap()->index_map;
@@ -136,11 +324,28 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
     ++row_index;
     summary.output_s += seconds_since(t_out);
     if (talk)
-      std::cout << "step " << step << "/" << steps << "  " << line << "  (newton " << iterations
+    {
+      std::cout << "step " << step;
+      if (steps > 0) // path following does not know its number of steps
+        std::cout << "/" << steps;
+      std::cout << "  " << line << "  (newton " << iterations
                 << (cuts ? ", cuts " + std::to_string(cuts) : "") << ", " << std::fixed
                 << std::setprecision(2) << seconds_since(t_start) << " s)" << std::defaultfloat
                 << std::endl;
+    }
   };
+
+  // The floor: one linear solve of the first load step (the thermal load
+  // included), from the unloaded state.
+  if (scene.boolean("solver.time_linear_solve"))
+  {
+    scenario->apply_load(1.0, equilibrium);
+    equilibrium.apply_constraints(x);
+    summary.linear_solve_s = newton.time_linear_solve(x);
+    VecSet(x, 0.0);
+    if (talk)
+      std::cout << "one linear solve: " << summary.linear_solve_s << " s" << std::endl;
+  }
 
   // Step 0: the thermal step or preload (if the scenario has one).
   t0 = Clock::now();
@@ -172,63 +377,16 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
     record(its0, 0, 0, scenario->steps());
   }
 
-  // Load steps: each nominal step is tried whole and cut in halves (from
-  // the committed state) when Newton fails; increments grow back after easy
-  // convergence (Stepper.h). A signal stops the loop between tries.
-  Stepper stepper(int(scene.integer("loading.max_cuts")), 4);
-  double s = 0.0;
-  for (int k = 1; ok && k <= scenario->steps(); ++k)
-  {
-    int cuts = 0;
-    while (ok && s < double(k) - 1e-12)
-    {
-      if (stop_requested(summary))
-      {
-        ok = false;
-        break;
-      }
-      const double s_try = stepper.next(s, double(k));
-      scenario->apply_load(s_try, equilibrium);
-      model.interface->set_time_increment(scenario->time_at(s_try) - scenario->time_at(s));
-      equilibrium.apply_constraints(x);
-      const solver::SolveReport rep = newton.solve(x);
-      summary.newton_iterations += rep.iterations;
-      if (rep.converged)
-      {
-        model.interface->state().commit();
-        VecCopy(x, x_committed);
-        s = s_try;
-        ++summary.steps;
-        stepper.converged(rep.iterations);
-        record(rep.iterations, cuts, k, scenario->steps());
-        continue;
-      }
-      model.interface->state().revert();
-      VecCopy(x_committed, x);
-      if (stop_requested(summary))
-      {
-        ok = false;
-        break;
-      }
-      if (!stepper.failed())
-      {
-        summary.message = "load step " + std::to_string(k) + " did not converge with " +
-                          std::to_string(cuts) + " cuts, down to " +
-                          std::to_string(stepper.increment()) + " of a step (" + rep.reason +
-                          "); stopped";
-        ok = false;
-        break;
-      }
-      ++cuts;
-      ++summary.cuts;
-      if (talk)
-        std::cout << "step " << k << ": " << rep.reason << "; retrying with " << stepper.increment()
-                  << " of a step" << std::endl;
-    }
-  }
+  // Load steps.
+  StepLoop loop{*scenario,   model,   equilibrium, newton, x,
+                x_committed, summary, record,      talk,   int(scene.integer("loading.max_cuts"))};
+  if (ok)
+    ok = summary.model_type == "pushout" && scene.string("loading.control") == "arc_length"
+             ? follow_path(loop, pc, int(scene.integer("solver.refactor_iterations")))
+             : step_displacement(loop);
   summary.solve_s = seconds_since(t0) - summary.output_s;
   summary.converged = ok;
-  summary.factorizations = newton.factorizations();
+  summary.factorizations += newton.factorizations();
   VecDestroy(&x);
   VecDestroy(&x_committed);
   VecDestroy(&reactions);

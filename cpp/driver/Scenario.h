@@ -33,6 +33,14 @@ public:
   /// Sets constraints and loads for load parameter s.
   virtual void apply_load(double s, solver::Equilibrium& eq) const = 0;
 
+  /// Path following (loading.control = "arc_length"): whether the scenario
+  /// has a load factor lambda that moves its prescribed displacements
+  /// affinely, and lambda's final value.
+  virtual bool has_load_factor() const { return false; }
+  virtual double final_load_factor() const { return 0.0; }
+  /// Sets constraints and loads for load factor lambda (after step 0).
+  virtual void apply_load_factor(double /*lambda*/, solver::Equilibrium& /*eq*/) const {}
+
   /// Called once with the converged state of step 0 (owned dofs), before
   /// the load steps.
   virtual void start_loading(std::span<const double> /*x*/) {}

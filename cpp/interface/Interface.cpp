@@ -207,6 +207,27 @@ std::vector<double> Interface::normal_force(std::span<const double> u) const
   return force;
 }
 
+void Interface::add_axial_jump_functional(std::span<double> a) const
+{
+  const std::size_t nq = _q.weights.size();
+  for (std::size_t p = 0; p < num_pairs(); ++p)
+  {
+    const std::int32_t* b = _blocks.data() + 8 * p;
+    for (std::size_t q = 0; q < nq; ++q)
+    {
+      const std::size_t i = p * nq + q;
+      const double* s1 = _frame.data() + 9 * i + 3;
+      for (int n = 0; n < 4; ++n)
+        for (int d = 0; d < 3; ++d)
+        {
+          const double c = _N[q][n] * s1[d] * _dA[i];
+          a[3 * b[n] + d] -= c;     // steel side
+          a[3 * b[4 + n] + d] += c; // concrete side
+        }
+    }
+  }
+}
+
 double Interface::area() const
 {
   double a = 0;

@@ -34,6 +34,11 @@ struct MeshData
   std::vector<std::int64_t> cells;    ///< [cell][8] nodes, DOLFINx order
   std::vector<std::int32_t> material; ///< [cell] Material
   std::vector<InterfacePair> pairs;   ///< joint elements
+  /// The specimen is `copies` mirror images of this mesh: 1, or 4 for a
+  /// quarter model in x >= symmetry_center[0], y >= symmetry_center[1]
+  /// (mesh/symmetry.h).
+  int copies = 1;
+  std::array<double, 2> symmetry_center = {0, 0};
 
   std::size_t num_nodes() const { return x.size() / 3; }
   std::size_t num_cells() const { return material.size(); }

@@ -1,4 +1,5 @@
 #include "generate.h"
+#include "symmetry.h"
 #include <cstdlib>
 #include <dolfinx/io/cells.h>
 #include <fstream>
@@ -202,6 +203,12 @@ MeshData generate(const Scene& scene, const std::filesystem::path& cache_dir, bo
   }
   reused = flags[1];
   broadcast(m, comm, 0);
+  std::string why;
+  if (use_quarter_model(scene, why))
+  {
+    const auto& c = scene.numbers("geometry.tube_center");
+    keep_quarter(m, c[0], c[1]);
+  }
   return m;
 }
 } // namespace pushout::mesh

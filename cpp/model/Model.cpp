@@ -8,6 +8,7 @@
 #include <dolfinx/fem/utils.h>
 #include <dolfinx/graph/AdjacencyList.h>
 #include <dolfinx/la/SparsityPattern.h>
+#include <dolfinx/la/Vector.h>
 #include <dolfinx/la/petsc.h>
 #include <dolfinx/mesh/cell_types.h>
 #include <dolfinx/mesh/utils.h>
@@ -216,6 +217,28 @@ Vec Model::thermal_load(double dT_value) const
   VecGhostUpdateBegin(b, ADD_VALUES, SCATTER_REVERSE);
   VecGhostUpdateEnd(b, ADD_VALUES, SCATTER_REVERSE);
   return b;
+}
+
+Vec Model::mean_axial_slip_functional() const
+{
+  const auto& map = V->dofmap()->index_map;
+  const int bs = V->dofmap()->index_map_bs();
+  dolfinx::la::Vector<double> a(map, bs);
+  std::fill(a.mutable_array().begin(), a.mutable_array().end(), 0.0);
+  interface->add_axial_jump_functional(a.mutable_array());
+  a.scatter_rev(std::plus<double>());
+  double area = interface->area();
+  MPI_Allreduce(MPI_IN_PLACE, &area, 1, MPI_DOUBLE, MPI_SUM, mesh->comm());
+  if (!(area > 0))
+    throw std::runtime_error("path following needs an interface (its area is 0)");
+  Vec v = dolfinx::la::petsc::create_vector(*map, bs);
+  double* va;
+  VecGetArray(v, &va);
+  const std::size_t n_owned = std::size_t(map->size_local() * bs);
+  for (std::size_t i = 0; i < n_owned; ++i)
+    va[i] = a.array()[i] / area;
+  VecRestoreArray(v, &va);
+  return v;
 }
 
 StressProjection::StressProjection(const Model& model)

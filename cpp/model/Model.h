@@ -49,6 +49,11 @@ public:
     return block >= 0 && block < V->dofmap()->index_map->size_local();
   }
 
+  /// Coefficients a of the mean axial slip s = a . u [mm] (the axial jump
+  /// averaged over the whole interface), owned part: the control variable
+  /// of path following.
+  Vec mean_axial_slip_functional() const;
+
   /// Equivalent nodal forces of the thermal strain for `dT` [N], owned part.
   Vec thermal_load(double dT_value) const;
 

@@ -18,6 +18,9 @@ struct Summary
   int factorizations = 0; ///< LU factorisations of the Newton systems
   double wall_s = 0;
   double mesh_s = 0, setup_s = 0, solve_s = 0, output_s = 0;
+  /// One linear solve of the first load step with the run's solver
+  /// (solver.time_linear_solve; < 0: not measured) [s]: the floor of a curve.
+  double linear_solve_s = -1;
   bool mesh_reused = false;
   std::int64_t dofs = 0;
   std::int64_t cells = 0;
@@ -25,6 +28,7 @@ struct Summary
   int processes = 1;
   double peak_memory_mb = 0; ///< largest peak resident memory of a process
   std::string model_type;
+  std::string symmetry = "full"; ///< quarter: the model is a quarter of the specimen
 
   void write(const std::filesystem::path& file) const;
 };

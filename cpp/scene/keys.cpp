@@ -23,6 +23,18 @@ std::vector<KeyDef> make_keys()
        inf,
        false,
        {"pushout", "single_joint"}},
+      {"model.symmetry",
+       K::string,
+       std::string("auto"),
+       "",
+       "auto: a push-out symmetric about x = xc and y = yc (tube centred, even "
+       "elements_per_quarter, no output.xdmf) runs on a quarter of the mesh with symmetry "
+       "conditions, 1/4 of the dofs, the same curve; full: always the whole slice",
+       -inf,
+       inf,
+       false,
+       {"auto", "full"},
+       A::pushout},
 
       // Geometry of the slice (paper §2.1, Fig. 1; the defaults the paper does
       // not state are documented assumptions).
@@ -225,6 +237,19 @@ std::vector<KeyDef> make_keys()
        false,
        {},
        A::pushout},
+      {"loading.control",
+       K::string,
+       std::string("displacement"),
+       "",
+       "displacement: steps of the push delta; arc_length: path following on the mean "
+       "axial slip of the interface, steps of length push_displacement/steps in the "
+       "(delta, slip) plane, through snap-back (delta may decrease) until delta reaches "
+       "push_displacement",
+       -inf,
+       inf,
+       false,
+       {"displacement", "arc_length"},
+       A::pushout},
       {"loading.max_cuts", K::integer, std::int64_t(10), "",
        "a step whose Newton solve fails is retried with half the increment, at most down to "
        "2^-max_cuts of a step",
@@ -277,6 +302,9 @@ std::vector<KeyDef> make_keys()
        "lagged: refactor from the current Jacobian when the last linear solve took more "
        "GMRES iterations than this",
        1, 1e9, false},
+      {"solver.time_linear_solve", K::boolean, false, "",
+       "before the run, time one linear solve of the first load step with the run's solver "
+       "(summary.json linear_solve_s: the floor a whole curve is compared with)"},
 
       // Output.
       {"output.xdmf", K::boolean, false, "",

@@ -1,5 +1,6 @@
 #include "NewtonSolver.h"
 #include "../common/Interrupt.h"
+#include "RigidBodyModes.h"
 #include <algorithm>
 #include <dolfinx/common/IndexMap.h>
 
@@ -64,25 +65,10 @@ NewtonSolver::NewtonSolver(Equilibrium& problem, Preconditioner pc, int refactor
   }
   else
     SNESSetJacobian(_snes, _J, _J, jacobian_callback, this);
-  // Rigid-body modes for algebraic multigrid (-pc_type gamg), from the
-  // coordinates of the owned dofs.
-  const model::Model& m = problem.model();
-  const std::vector<double> x = m.V->tabulate_dof_coordinates(false);
-  const PetscInt n_owned = m.V->dofmap()->index_map->size_local();
-  Vec coords;
-  VecCreateMPI(comm, 3 * n_owned, PETSC_DETERMINE, &coords);
-  VecSetBlockSize(coords, 3);
-  double* c;
-  VecGetArray(coords, &c);
-  std::copy_n(x.begin(), 3 * n_owned, c);
-  VecRestoreArray(coords, &c);
-  MatNullSpace rigid;
-  MatNullSpaceCreateRigidBody(coords, &rigid);
-  MatSetNearNullSpace(_J, rigid);
+  // Rigid-body modes for algebraic multigrid (-pc_type gamg).
+  set_rigid_body_modes(problem.model(), _J);
   if (_P)
-    MatSetNearNullSpace(_P, rigid);
-  MatNullSpaceDestroy(&rigid);
-  VecDestroy(&coords);
+    set_rigid_body_modes(problem.model(), _P);
   SNESSetFromOptions(_snes);
 }
 
@@ -122,6 +108,31 @@ NewtonSolver::~NewtonSolver()
   if (_P)
     MatDestroy(&_P);
   VecDestroy(&_F);
+}
+
+double NewtonSolver::time_linear_solve(Vec x)
+{
+  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(x));
+  Vec F, dx;
+  VecDuplicate(x, &F);
+  VecDuplicate(x, &dx);
+  _problem.residual(x, F);
+  VecScale(F, -1.0);
+  _problem.jacobian(x, _J);
+  KSP ksp;
+  KSPCreate(comm, &ksp);
+  KSPSetOperators(ksp, _J, _J);
+  KSPSetFromOptions(ksp);
+  MPI_Barrier(comm);
+  const double t0 = MPI_Wtime();
+  KSPSetUp(ksp);
+  KSPSolve(ksp, F, dx);
+  MPI_Barrier(comm);
+  const double t = MPI_Wtime() - t0;
+  KSPDestroy(&ksp);
+  VecDestroy(&F);
+  VecDestroy(&dx);
+  return t;
 }
 
 SolveReport NewtonSolver::solve(Vec x)

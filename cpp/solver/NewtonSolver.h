@@ -45,6 +45,11 @@ public:
   /// Solves F(x) = 0 from the initial guess x (constraints already in x).
   SolveReport solve(Vec x);
 
+  /// Times one linear solve J(x) dx = -F(x) with the solver configured for
+  /// the Newton systems (a fresh KSP from the same options, the first
+  /// factorisation included) [s]. Leaves x and the committed state alone.
+  double time_linear_solve(Vec x);
+
   /// Sets PETSc's options database defaults for pushout (MUMPS LU, tight
   /// tolerances) where the user did not set them. Call before NewtonSolver.
   static void set_default_options(Preconditioner pc);

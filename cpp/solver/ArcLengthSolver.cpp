@@ -1,0 +1,206 @@
+#include "ArcLengthSolver.h"
+#include "../common/Interrupt.h"
+#include "RigidBodyModes.h"
+#include <cmath>
+
+namespace pushout::solver
+{
+ArcLengthSolver::ArcLengthSolver(Equilibrium& problem, Vec control, NewtonSolver::Preconditioner pc,
+                                 int refactor_iterations)
+    : _problem(problem), _pc(pc), _refactor_iterations(refactor_iterations)
+{
+  Mat K = problem.model().K;
+  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(K));
+  MatDuplicate(K, MAT_COPY_VALUES, &_J);
+  MatSetOption(_J, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE);
+  set_rigid_body_modes(problem.model(), _J);
+  if (_pc == NewtonSolver::Preconditioner::lagged)
+  {
+    MatDuplicate(K, MAT_COPY_VALUES, &_P);
+    MatSetOption(_P, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE);
+    set_rigid_body_modes(problem.model(), _P);
+  }
+  VecDuplicate(control, &_a);
+  VecCopy(control, _a);
+  for (Vec* v : {&_e, &_F, &_v1, &_v2})
+    VecDuplicate(control, v);
+  KSPCreate(comm, &_ksp);
+  KSPSetFromOptions(_ksp);
+  PetscOptionsGetReal(nullptr, nullptr, "-snes_rtol", &_rtol, nullptr);
+  PetscOptionsGetReal(nullptr, nullptr, "-snes_atol", &_atol, nullptr);
+  PetscOptionsGetReal(nullptr, nullptr, "-snes_stol", &_stol, nullptr);
+  PetscOptionsGetInt(nullptr, nullptr, "-snes_max_it", &_max_it, nullptr);
+  PetscOptionsHasName(nullptr, nullptr, "-arc_monitor", &_monitor);
+}
+
+ArcLengthSolver::~ArcLengthSolver()
+{
+  KSPDestroy(&_ksp);
+  MatDestroy(&_J);
+  if (_P)
+    MatDestroy(&_P);
+  for (Vec* v : {&_a, &_e, &_F, &_v1, &_v2})
+    VecDestroy(v);
+}
+
+double ArcLengthSolver::control(Vec x) const
+{
+  double s;
+  VecDot(_a, x, &s);
+  return s;
+}
+
+bool ArcLengthSolver::residual(Vec x, double& reactions)
+{
+  const bool ok = _problem.residual(x, _F, false);
+  const Constraints& bc = _problem.constraints();
+  double* f;
+  const double* xa;
+  VecGetArray(_F, &f);
+  VecGetArrayRead(x, &xa);
+  double r2 = 0;
+  for (std::size_t i = 0; i < bc.dofs.size(); ++i)
+  {
+    r2 += f[bc.dofs[i]] * f[bc.dofs[i]];
+    f[bc.dofs[i]] = xa[bc.dofs[i]] - bc.values[i];
+  }
+  VecRestoreArrayRead(x, &xa);
+  VecRestoreArray(_F, &f);
+  MPI_Allreduce(MPI_IN_PLACE, &r2, 1, MPI_DOUBLE, MPI_SUM,
+                PetscObjectComm(reinterpret_cast<PetscObject>(x)));
+  reactions = std::sqrt(r2);
+  return ok;
+}
+
+bool ArcLengthSolver::setup_operators(Vec x)
+{
+  if (!_problem.jacobian(x, _J))
+    return false;
+  if (_pc == NewtonSolver::Preconditioner::jacobian)
+  {
+    KSPSetOperators(_ksp, _J, _J);
+    ++_factorizations;
+    return true;
+  }
+  if (!_P_ready || _refactor)
+  {
+    MatCopy(_J, _P, SAME_NONZERO_PATTERN);
+    _P_ready = true;
+    _refactor = false;
+    ++_factorizations;
+    KSPSetReusePreconditioner(_ksp, PETSC_FALSE);
+  }
+  else
+    KSPSetReusePreconditioner(_ksp, PETSC_TRUE);
+  KSPSetOperators(_ksp, _J, _P);
+  return true;
+}
+
+bool ArcLengthSolver::solve(Vec b, Vec y)
+{
+  for (int attempt = 0; attempt < 2; ++attempt)
+  {
+    VecSet(y, 0.0);
+    KSPSolve(_ksp, b, y);
+    KSPConvergedReason reason;
+    KSPGetConvergedReason(_ksp, &reason);
+    PetscInt its;
+    KSPGetIterationNumber(_ksp, &its);
+    if (_pc == NewtonSolver::Preconditioner::lagged && its > _refactor_iterations)
+      _refactor = true; // refresh P at the next Jacobian
+    if (reason > 0)
+      return true;
+    if (_pc != NewtonSolver::Preconditioner::lagged)
+      return false;
+    // The lagged preconditioner was too far from J: factor J itself.
+    MatCopy(_J, _P, SAME_NONZERO_PATTERN);
+    ++_factorizations;
+    _refactor = false;
+    KSPSetReusePreconditioner(_ksp, PETSC_FALSE);
+    KSPSetOperators(_ksp, _J, _P);
+  }
+  return false;
+}
+
+SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
+                                  const std::function<void(double)>& set_load)
+{
+  SolveReport rep;
+  // Direction e = dg/dlambda of the prescribed values (affine in lambda).
+  set_load(lambda + 1.0);
+  const Constraints g1 = _problem.constraints();
+  set_load(lambda);
+  {
+    const Constraints& g0 = _problem.constraints();
+    VecSet(_e, 0.0);
+    double* e;
+    VecGetArray(_e, &e);
+    for (std::size_t i = 0; i < g0.dofs.size(); ++i)
+      e[g0.dofs[i]] = g1.values[i] - g0.values[i];
+    VecRestoreArray(_e, &e);
+  }
+  const double eta0 = control(x), eta = eta0 + d_eta;
+  double lam = lambda;
+  const auto fail = [&](std::string why)
+  {
+    rep.converged = false;
+    rep.reason = std::move(why);
+    if (_pc == NewtonSolver::Preconditioner::lagged)
+      _refactor = true; // a retry starts from a fresh factorisation
+    return rep;
+  };
+  for (PetscInt it = 0;; ++it)
+  {
+    set_load(lam);
+    double reactions = 0;
+    if (!residual(x, reactions))
+      return fail("an interface law failed");
+    double fnorm;
+    VecNorm(_F, NORM_2, &fnorm);
+    if (!std::isfinite(fnorm))
+      return fail("residual not finite");
+    if (_monitor)
+      PetscPrintf(PetscObjectComm(reinterpret_cast<PetscObject>(x)),
+                  "  arc %d: |F| %.6e N (tol %.3e), lambda %.9e mm, slip - target %.3e mm\n",
+                  int(it), fnorm, std::max(_atol, _rtol * reactions), lam, control(x) - eta);
+    if (it > 0 && fnorm <= std::max(_atol, _rtol * reactions) &&
+        std::abs(control(x) - eta) <= 1e-8 * std::abs(d_eta))
+    {
+      rep.converged = true;
+      rep.reason = "CONVERGED_FNORM";
+      break;
+    }
+    if (it == _max_it)
+      return fail("DIVERGED_MAX_IT");
+    if (interrupt::received())
+      return fail("interrupted");
+    if (!setup_operators(x))
+      return fail("an interface law failed");
+    VecScale(_F, -1.0);
+    if (!solve(_F, _v1) || !solve(_e, _v2))
+      return fail("DIVERGED_LINEAR_SOLVE");
+    const double r = control(_v2); // d(control)/d(lambda) along the tangent
+    if (!std::isfinite(r) || r == 0.0)
+      return fail("singular bordered system (d control / d lambda = 0)");
+    const double dlambda = -(control(x) - eta + control(_v1)) / r;
+    VecAXPY(_v1, dlambda, _v2); // dx
+    lam += dlambda;
+    VecAXPY(x, 1.0, _v1);
+    rep.iterations = int(it + 1);
+    double dx, xn;
+    VecNorm(_v1, NORM_2, &dx);
+    VecNorm(x, NORM_2, &xn);
+    if (!std::isfinite(dx) || !std::isfinite(lam))
+      return fail("update not finite");
+    if (it > 0 && dx <= _stol * xn && std::abs(dlambda) <= _stol * std::abs(lam))
+    {
+      set_load(lam);
+      rep.converged = true;
+      rep.reason = "CONVERGED_SNORM_RELATIVE";
+      break;
+    }
+  }
+  lambda = lam;
+  return rep;
+}
+} // namespace pushout::solver
