@@ -41,7 +41,8 @@ def main():
                os.path.join(ROOT, "demo", "pushout_friction.toml"), "--out", out, "--quiet",
                "--set", f"mesh.elements_per_quarter={args.quarter}",
                "--set", f"mesh.elements_through_thickness={args.layers}", "--set", "output.plot=false",
-               "--set", f"loading.steps={args.steps}", "--set", "solver.refactor_iterations=1000"]
+               "--set", f"loading.steps={args.steps}", "--set", "solver.refactor_iterations=1000",
+               "--set", "model.symmetry=full"]
         cmd += args.petsc.split()
         subprocess.run(cmd, check=True, env=dict(os.environ, OPENBLAS_NUM_THREADS="1"))
         with open(os.path.join(out, "summary.json")) as f:

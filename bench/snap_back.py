@@ -17,18 +17,15 @@ Timings in snap_back.csv: wall_s of each run alone on the 2-core reference
 machine (one run at a time).
 """
 import argparse
-import csv
-import json
 import os
-import subprocess
 import time
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from common import PUSHOUT, ROOT, curve, run, summary, write_csv  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SNAP = os.path.join(ROOT, "bench", "scenes", "snap_back.toml")
 FIG10 = os.path.join(ROOT, "demo", "pushout_friction_adhesion.toml")
 FIG10_SETS = ["mesh.elements_per_quarter=8", "mesh.elements_through_thickness=4",
@@ -43,23 +40,15 @@ RUNS = [  # name, scene, --set list
 ]
 
 
-def run(pushout, name, scene, sets, reuse):
+def run_case(pushout, name, scene, sets, reuse):
     out = os.path.join(ROOT, "results", "snap_back", name)
-    cmd = [pushout, "run", scene, "--out", out, "--quiet"]
-    for s in sets:
-        cmd += ["--set", s]
-    returncode, wall = 0, 0.0
-    if not (reuse and os.path.exists(os.path.join(out, "summary.json"))):
-        t0 = time.time()
-        returncode = subprocess.run(cmd, capture_output=True, text=True).returncode
-        wall = time.time() - t0
-    with open(os.path.join(out, "curve.csv"), newline="") as f:
-        rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
-    with open(os.path.join(out, "summary.json")) as f:
-        s = json.load(f)
+    t0 = time.time()
+    code = run(pushout, scene, out, sets, reuse=reuse, check=False)
+    wall = time.time() - t0
+    rows, s = curve(out), summary(out)
     if reuse:
-        returncode, wall = (0 if s["converged"] else 3), s["wall_s"]
-    return rows, {"run": name, "exit": returncode, "converged": s["converged"],
+        code, wall = (0 if s["converged"] else 3), s["wall_s"]
+    return rows, {"run": name, "exit": code, "converged": s["converged"],
                   "points": len(rows), "newton_iterations": s["newton_iterations"],
                   "cuts": s["cuts"], "wall_s": round(wall, 1),
                   "peak_tau_MPa": round(max(r["tau_MPa"] for r in rows), 4),
@@ -72,13 +61,13 @@ def run(pushout, name, scene, sets, reuse):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--pushout", default=os.path.join(ROOT, "build", "pushout"))
+    ap.add_argument("--pushout", default=PUSHOUT)
     ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results"))
     ap.add_argument("--reuse", action="store_true", help="replot the runs in results/snap_back/")
     args = ap.parse_args()
     curves, table = {}, []
     for name, scene, sets in RUNS:
-        curves[name], row = run(args.pushout, name, scene, sets, args.reuse)
+        curves[name], row = run_case(args.pushout, name, scene, sets, args.reuse)
         table.append(row)
         print(row)
 
@@ -124,10 +113,7 @@ def main():
     fig.tight_layout()
     os.makedirs(args.out, exist_ok=True)
     fig.savefig(os.path.join(args.out, "snap_back.png"))
-    with open(os.path.join(args.out, "snap_back.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(table[0].keys()))
-        w.writeheader()
-        w.writerows(table)
+    write_csv(os.path.join(args.out, "snap_back.csv"), table)
 
 
 if __name__ == "__main__":

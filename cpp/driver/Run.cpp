@@ -1,6 +1,7 @@
 #include "Run.h"
 #include "../common/Interrupt.h"
 #include "../mesh/generate.h"
+#include "../mesh/symmetry.h"
 #include "../model/Model.h"
 #include "../output/CurveWriter.h"
 #include "../output/FieldWriter.h"
@@ -131,10 +132,22 @@ bool step_displacement(StepLoop& L)
 /// to exactly lambda_final.
 bool follow_path(StepLoop& L, solver::NewtonSolver::Preconditioner pc, int refactor_iterations)
 {
+  const double lambda_final = L.scenario.final_load_factor();
+  if (!(lambda_final > 0))
+  {
+    L.summary.message = "path following needs a positive final push displacement";
+    return false;
+  }
   Vec a = L.model.mean_axial_slip_functional();
   solver::ArcLengthSolver arc(L.equilibrium, a, pc, refactor_iterations);
   VecDestroy(&a);
-  const double lambda_final = L.scenario.final_load_factor();
+  // Counts the arc solver's factorisations on every way out.
+  struct Count
+  {
+    output::Summary& s;
+    const solver::ArcLengthSolver& arc;
+    ~Count() { s.factorizations += arc.factorizations(); }
+  } count{L.summary, arc};
   const double h_nominal = lambda_final / L.scenario.steps(); // [mm]
   // Snap-back makes the path longer than lambda_final; this bounds a run
   // whose path never reaches it.
@@ -190,6 +203,7 @@ bool follow_path(StepLoop& L, solver::NewtonSolver::Preconditioner pc, int refac
       const double slip_new = arc.control(L.x);
       if (!(slip_new > slip))
       {
+        L.revert();
         L.summary.message = "path following: the mean slip did not grow in step " +
                             std::to_string(k) + "; the push cannot be followed by slip control";
         return false;
@@ -223,8 +237,17 @@ bool follow_path(StepLoop& L, solver::NewtonSolver::Preconditioner pc, int refac
       std::cout << "step " << k << ": " << rep.reason << "; retrying with length "
                 << stepper.increment() * h_nominal << " mm" << std::endl;
   }
-  L.summary.factorizations += arc.factorizations();
   return true;
+}
+
+/// Why a push-out runs on the full model, for the progress line ("" if it
+/// does not or is not a push-out).
+std::string full_model_why(const Scene& scene)
+{
+  std::string why;
+  if (mesh::use_quarter_model(scene, why) || why.empty())
+    return "";
+  return " (full model: " + why + ")";
 }
 
 std::unique_ptr<Scenario> make_scenario(const Scene& scene, const mesh::MeshData& m,
@@ -276,7 +299,7 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   if (talk)
     std::cout << "pushout: " << summary.model_type << ", " << summary.cells << " cells, "
               << summary.dofs << " dofs, " << summary.interface_pairs << " joint elements"
-              << (data.copies == 4 ? " (quarter model by symmetry)" : "")
+              << (data.copies == 4 ? " (quarter model by symmetry)" : full_model_why(scene))
               << (summary.mesh_reused ? " (mesh from cache)" : "") << std::endl;
 
   const auto& map = *model.V->dofmap()->index_map;
@@ -381,7 +404,7 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   StepLoop loop{*scenario,   model,   equilibrium, newton, x,
                 x_committed, summary, record,      talk,   int(scene.integer("loading.max_cuts"))};
   if (ok)
-    ok = summary.model_type == "pushout" && scene.string("loading.control") == "arc_length"
+    ok = scenario->has_load_factor() && scene.string("loading.control") == "arc_length"
              ? follow_path(loop, pc, int(scene.integer("solver.refactor_iterations")))
              : step_displacement(loop);
   summary.solve_s = seconds_since(t0) - summary.output_s;

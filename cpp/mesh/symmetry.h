@@ -19,7 +19,7 @@ namespace pushout::mesh
 /// Whether the scene runs on a quarter model: model.symmetry = "auto", a
 /// push-out, the tube centred (square) or any circle, an even
 /// mesh.elements_per_quarter, and no field output (fields cover the whole
-/// specimen). `why` says why not (for the progress line).
+/// specimen). `why` says why not.
 bool use_quarter_model(const Scene& scene, std::string& why);
 
 /// Keeps the cells in x >= xc, y >= yc (by centroid) and the joint elements

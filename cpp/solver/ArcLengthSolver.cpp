@@ -50,9 +50,21 @@ double ArcLengthSolver::control(Vec x) const
   return s;
 }
 
+namespace
+{
+/// Whether `ok` holds on every process (a law may fail on one only).
+bool all(bool ok, Vec v)
+{
+  int local = ok ? 1 : 0, global = 0;
+  MPI_Allreduce(&local, &global, 1, MPI_INT, MPI_MIN,
+                PetscObjectComm(reinterpret_cast<PetscObject>(v)));
+  return global == 1;
+}
+} // namespace
+
 bool ArcLengthSolver::residual(Vec x, double& reactions)
 {
-  const bool ok = _problem.residual(x, _F, false);
+  const bool ok = all(_problem.residual(x, _F, false), x);
   const Constraints& bc = _problem.constraints();
   double* f;
   const double* xa;
@@ -74,7 +86,7 @@ bool ArcLengthSolver::residual(Vec x, double& reactions)
 
 bool ArcLengthSolver::setup_operators(Vec x)
 {
-  if (!_problem.jacobian(x, _J))
+  if (!all(_problem.jacobian(x, _J), x))
     return false;
   if (_pc == NewtonSolver::Preconditioner::jacobian)
   {
@@ -172,7 +184,7 @@ SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
     }
     if (it == _max_it)
       return fail("DIVERGED_MAX_IT");
-    if (interrupt::received())
+    if (!all(!interrupt::received(), x)) // a signal on any process
       return fail("interrupted");
     if (!setup_operators(x))
       return fail("an interface law failed");

@@ -132,6 +132,7 @@ double NewtonSolver::time_linear_solve(Vec x)
   KSPDestroy(&ksp);
   VecDestroy(&F);
   VecDestroy(&dx);
+  _problem.model().interface->state().revert(); // forget the trial state
   return t;
 }
 
