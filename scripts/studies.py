@@ -42,11 +42,6 @@ COLORS = {-5.0: "tab:blue", -10.0: "tab:green", -25.0: "tab:orange", -50.0: "tab
 def mesh_sets(study, quick):
     if quick:
         return ["mesh.elements_per_quarter=4", "mesh.elements_through_thickness=2"]
-    if study == "fig10":
-        # 1 mm of push through the peak in 80 steps, 16 curves: half the
-        # paper's mesh in each direction keeps the set at minutes on 2 cores
-        # (docs/results.md shows what the mesh changes).
-        return ["mesh.elements_per_quarter=8", "mesh.elements_through_thickness=4"]
     return []  # the paper's mesh: 16 per quarter, 8 through the thickness
 
 
