@@ -1,6 +1,7 @@
 """The same executable under mpirun gives the same curve on 1, 2 and 3
 processes (3: an uneven split) to 1e-8 relative, for a friction push-out, a
-friction + exponential-softening push-out and a single joint; the interface
+friction + exponential-softening push-out (quarter model), the same with path
+following (arc length) and a single joint; the interface
 pressure columns (global integrals of the interface traction field) agree
 too, and the XDMF output is written once."""
 import os
@@ -21,6 +22,9 @@ cases = {
     "friction": ("pushout_friction.toml", coarse + ["loading.steps=5", "output.xdmf=true"]),
     "friction_adhesion": ("pushout_friction_adhesion.toml",
                           coarse + ["loading.steps=12", "loading.push_displacement=0.06"]),
+    "arc_length": ("pushout_friction_adhesion.toml",
+                   coarse + ["loading.steps=10", "loading.push_displacement=0.05",
+                             "loading.control=arc_length"]),
     "single_joint": ("single_joint_fig9.toml", []),
 }
 for name, (scene, sets) in cases.items():
