@@ -20,6 +20,7 @@ import statistics
 import subprocess
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from common import write_csv  # noqa: E402
 
 
 def main():
@@ -58,10 +59,7 @@ def main():
                      "tau_end_MPa": curve[-1]["tau_MPa"], "petsc": args.petsc})
         print(rows[-1], flush=True)
     os.makedirs(args.out, exist_ok=True)
-    with open(os.path.join(args.out, "scaling.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        w.writerows(rows)
+    write_csv(os.path.join(args.out, "scaling.csv"), rows)
     with open(os.path.join(args.out, "scaling.md"), "w") as f:
         f.write("| processes | dofs | setup [s] | thermal step [s] | push step (median) [s] | whole curve [s] | "
                 "Newton its | preconditioner set-ups | peak memory / process [MB] | tau at 10 um [MPa] | solver |\n")

@@ -24,6 +24,7 @@ import subprocess
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from common import write_csv  # noqa: E402
 SCENE = """
 [mesh]
 elements_per_quarter = 4
@@ -113,10 +114,7 @@ def main():
                       "max_err_tau_MPa": err if math.isnan(err) else round(err, 5),
                       "nan_in_output": nan, "message": s.get("message", "") or " ".join(r["stderr"])})
     os.makedirs(args.out, exist_ok=True)
-    with open(os.path.join(args.out, "stress_matrix.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(table[0].keys()))
-        w.writeheader()
-        w.writerows(table)
+    write_csv(os.path.join(args.out, "stress_matrix.csv"), table)
     with open(os.path.join(args.out, "stress_matrix.md"), "w") as f:
         f.write("| k [N/mm³] | steps | μ | quadrature | converged | cuts | Newton its | wall [s] | peak τ [MPa] | max \\|τ − τ_ref\\| [MPa] | note |\n")
         f.write("|---|---|---|---|---|---|---|---|---|---|---|\n")

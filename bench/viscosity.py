@@ -17,6 +17,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from common import write_csv  # noqa: E402
 
 
 def main():
@@ -51,10 +52,7 @@ def main():
     fig.tight_layout()
     os.makedirs(args.out, exist_ok=True)
     fig.savefig(os.path.join(args.out, "viscosity.png"))
-    with open(os.path.join(args.out, "viscosity.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        w.writerows(rows)
+    write_csv(os.path.join(args.out, "viscosity.csv"), rows)
     for r in rows:
         print(r)
 
