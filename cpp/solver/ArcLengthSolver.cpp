@@ -7,14 +7,14 @@ namespace pushout::solver
 {
 ArcLengthSolver::ArcLengthSolver(Equilibrium& problem, Vec control, NewtonSolver::Preconditioner pc,
                                  int refactor_iterations)
-    : _problem(problem), _pc(pc), _refactor_iterations(refactor_iterations)
+    : _problem(problem), _policy(pc == NewtonSolver::Preconditioner::lagged, refactor_iterations)
 {
   Mat K = problem.model().K;
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(K));
   MatDuplicate(K, MAT_COPY_VALUES, &_J);
   MatSetOption(_J, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE);
   set_rigid_body_modes(problem.model(), _J);
-  if (_pc == NewtonSolver::Preconditioner::lagged)
+  if (_policy.lagged())
   {
     MatDuplicate(K, MAT_COPY_VALUES, &_P);
     MatSetOption(_P, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE);
@@ -88,23 +88,8 @@ bool ArcLengthSolver::setup_operators(Vec x)
 {
   if (!all(_problem.jacobian(x, _J), x))
     return false;
-  if (_pc == NewtonSolver::Preconditioner::jacobian)
-  {
-    KSPSetOperators(_ksp, _J, _J);
-    ++_factorizations;
-    return true;
-  }
-  if (!_P_ready || _refactor)
-  {
-    MatCopy(_J, _P, SAME_NONZERO_PATTERN);
-    _P_ready = true;
-    _refactor = false;
-    ++_factorizations;
-    KSPSetReusePreconditioner(_ksp, PETSC_FALSE);
-  }
-  else
-    KSPSetReusePreconditioner(_ksp, PETSC_TRUE);
-  KSPSetOperators(_ksp, _J, _P);
+  KSPSetReusePreconditioner(_ksp, _policy.update(_J, _P) ? PETSC_FALSE : PETSC_TRUE);
+  KSPSetOperators(_ksp, _J, _policy.lagged() ? _P : _J);
   return true;
 }
 
@@ -118,17 +103,14 @@ bool ArcLengthSolver::solve(Vec b, Vec y)
     KSPGetConvergedReason(_ksp, &reason);
     PetscInt its;
     KSPGetIterationNumber(_ksp, &its);
-    if (_pc == NewtonSolver::Preconditioner::lagged && its > _refactor_iterations)
-      _refactor = true; // refresh P at the next Jacobian
+    _policy.solved(its);
     if (reason > 0)
       return true;
-    if (_pc != NewtonSolver::Preconditioner::lagged)
+    if (!_policy.lagged())
       return false;
     // The lagged preconditioner was too far from J: factor J itself.
-    MatCopy(_J, _P, SAME_NONZERO_PATTERN);
-    ++_factorizations;
-    _refactor = false;
-    KSPSetReusePreconditioner(_ksp, PETSC_FALSE);
+    _policy.refresh();
+    KSPSetReusePreconditioner(_ksp, _policy.update(_J, _P) ? PETSC_FALSE : PETSC_TRUE);
     KSPSetOperators(_ksp, _J, _P);
   }
   return false;
@@ -157,8 +139,7 @@ SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
   {
     rep.converged = false;
     rep.reason = std::move(why);
-    if (_pc == NewtonSolver::Preconditioner::lagged)
-      _refactor = true; // a retry starts from a fresh factorisation
+    _policy.refresh(); // a retry starts from a fresh factorisation
     return rep;
   };
   for (PetscInt it = 0;; ++it)

@@ -61,7 +61,7 @@ public:
   double control(Vec x) const;
 
   /// Numeric factorisations so far (for the summary).
-  int factorizations() const { return _factorizations; }
+  int factorizations() const { return _policy.factorizations(); }
 
 private:
   /// F(x) with constrained rows; the norm of the reactions into `reactions`.
@@ -72,13 +72,10 @@ private:
   bool solve(Vec b, Vec y);
 
   Equilibrium& _problem;
-  NewtonSolver::Preconditioner _pc;
-  int _refactor_iterations;
+  PreconditionerPolicy _policy;
   KSP _ksp = nullptr;
   Mat _J = nullptr, _P = nullptr;
   Vec _a = nullptr, _e = nullptr, _F = nullptr, _v1 = nullptr, _v2 = nullptr;
-  bool _P_ready = false, _refactor = false;
-  int _factorizations = 0;
   double _rtol = 1e-10, _atol = 1e-10, _stol = 1e-14;
   PetscInt _max_it = 50;
   PetscBool _monitor = PETSC_FALSE; ///< -arc_monitor: print each iteration

@@ -48,7 +48,7 @@ void NewtonSolver::set_default_options(Preconditioner pc)
 }
 
 NewtonSolver::NewtonSolver(Equilibrium& problem, Preconditioner pc, int refactor_iterations)
-    : _problem(problem), _pc(pc), _refactor_iterations(refactor_iterations)
+    : _problem(problem), _policy(pc == Preconditioner::lagged, refactor_iterations)
 {
   Mat K = problem.model().K;
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(K));
@@ -57,7 +57,7 @@ NewtonSolver::NewtonSolver(Equilibrium& problem, Preconditioner pc, int refactor
   MatCreateVecs(K, nullptr, &_F);
   SNESCreate(comm, &_snes);
   SNESSetFunction(_snes, _F, form_function, &_problem);
-  if (_pc == Preconditioner::lagged)
+  if (_policy.lagged())
   {
     MatDuplicate(K, MAT_COPY_VALUES, &_P);
     MatSetOption(_P, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE);
@@ -77,27 +77,12 @@ PetscErrorCode NewtonSolver::jacobian_callback(SNES snes, Vec x, Mat J, Mat P, v
   auto* self = static_cast<NewtonSolver*>(ctx);
   if (!self->_problem.jacobian(x, J))
     SNESSetJacobianDomainError(snes);
-  if (self->_pc == Preconditioner::jacobian)
-  {
-    ++self->_factorizations; // J is its own preconditioner
-    return 0;
-  }
   KSP ksp;
   SNESGetKSP(snes, &ksp);
   PetscInt its = 0;
-  KSPGetIterationNumber(ksp, &its);
-  if (self->_P_ready && its > self->_refactor_iterations)
-    self->_refactor = true;
-  if (self->_refactor)
-  {
-    MatCopy(J, P, SAME_NONZERO_PATTERN);
-    self->_refactor = false;
-    self->_P_ready = true;
-    ++self->_factorizations;
-    KSPSetReusePreconditioner(ksp, PETSC_FALSE);
-  }
-  else
-    KSPSetReusePreconditioner(ksp, PETSC_TRUE);
+  KSPGetIterationNumber(ksp, &its); // of the previous linear solve
+  self->_policy.solved(its);
+  KSPSetReusePreconditioner(ksp, self->_policy.update(J, P) ? PETSC_FALSE : PETSC_TRUE);
   return 0;
 }
 
@@ -138,7 +123,7 @@ double NewtonSolver::time_linear_solve(Vec x)
 
 SolveReport NewtonSolver::solve(Vec x)
 {
-  if (_pc == Preconditioner::lagged && !_P_ready)
+  if (_policy.lagged() && !_policy.has_P())
   {
     // The first solve of a run starts from the virgin interface state and
     // the constraints of the run (their dofs never change, only values):
@@ -148,8 +133,7 @@ SolveReport NewtonSolver::solve(Vec x)
     VecSet(zero, 0.0);
     _problem.jacobian(zero, _P);
     VecDestroy(&zero);
-    _P_ready = true;
-    ++_factorizations;
+    _policy.P_filled();
   }
   SolveReport r;
   SNESSolve(_snes, nullptr, x);
@@ -160,8 +144,8 @@ SolveReport NewtonSolver::solve(Vec x)
   r.converged = reason > 0;
   r.iterations = int(its);
   r.reason = SNESConvergedReasons[reason];
-  if (!r.converged && _pc == Preconditioner::lagged)
-    _refactor = true; // a retry starts from a fresh factorisation
+  if (!r.converged)
+    _policy.refresh(); // a retry starts from a fresh factorisation
   return r;
 }
 } // namespace pushout::solver

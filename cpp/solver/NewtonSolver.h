@@ -16,6 +16,7 @@
 #pragma once
 
 #include "Equilibrium.h"
+#include "PreconditionerPolicy.h"
 #include <petscsnes.h>
 #include <string>
 
@@ -56,18 +57,14 @@ public:
 
 private:
   Equilibrium& _problem;
-  Preconditioner _pc;
   SNES _snes = nullptr;
-  int _refactor_iterations;
+  PreconditionerPolicy _policy;
   Mat _J = nullptr, _P = nullptr;
   Vec _F = nullptr;
-  bool _P_ready = false;   ///< P holds a factorable matrix
-  bool _refactor = false;  ///< refresh P at the next Jacobian evaluation
-  int _factorizations = 0; ///< numeric factorisations so far
 
 public:
   /// Numeric factorisations so far (for the summary).
-  int factorizations() const { return _factorizations; }
+  int factorizations() const { return _policy.factorizations(); }
 
 private:
   static PetscErrorCode jacobian_callback(SNES snes, Vec x, Mat J, Mat P, void* ctx);
