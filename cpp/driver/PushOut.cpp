@@ -156,7 +156,7 @@ void PushOut::constrain(bool top_held, double delta, solver::Equilibrium& eq) co
   eq.set_temperature_change(_dT);
 }
 
-std::vector<double> PushOut::row(std::span<const double> reactions, std::span<const double> x,
+std::vector<double> PushOut::row(std::span<const double> /*reactions*/, std::span<const double> x,
                                  const model::Model& model) const
 {
   const interface::Interface& itf = *model.interface;
@@ -164,8 +164,9 @@ std::vector<double> PushOut::row(std::span<const double> reactions, std::span<co
   // per layer.
   std::vector<double> local = {0, 0, double(_top_z.size()), itf.area(), 0};
   // (sums over owned dofs and local pairs, reduced over processes)
-  for (std::int32_t d : _support_z)
-    local[0] += reactions[d];
+  // The interface forces are internal forces (f = +int N t on the concrete
+  // side): the tube pushes the concrete with -t, downwards when P > 0.
+  local[0] = itf.resultant(model.u->x()->array())[2];
   for (std::size_t i = 0; i < _top_z.size(); ++i)
     local[1] += _top_start[i] - x[_top_z[i]];
   for (std::size_t i = 0; i < _slip.size(); ++i)

@@ -20,7 +20,10 @@
 // four quarters.
 // Push steps: delta(s) = delta_final (r^s - 1) / (r^N - 1) for step growth
 // r (delta_final s / N for r = 1).
-// Measured: delta, P = sum of the support reactions, tau = P / (pi D (L -
+// Measured: delta, P = the push force, from the interface: the axial
+// resultant of the interface tractions (the tube's equilibrium: the top
+// reactions carry it; equal to the sum of the support reactions, the
+// thermal loads being self-equilibrated), tau = P / (pi D (L -
 // delta)) (paper eq. 1), the mean interface pressure p = -int t_n dA / A,
 // with several layers each layer's share p_L, and the mean axial slip s
 // over the interface (the control variable of path following).
@@ -47,6 +50,7 @@ public:
   bool has_load_factor() const override { return true; }
   double final_load_factor() const override { return _delta_final; }
   void apply_load_factor(double delta, solver::Equilibrium& eq) const override;
+  bool uses_bulk() const override { return false; }
   std::vector<double> row(std::span<const double> reactions, std::span<const double> x,
                           const model::Model& model) const override;
   std::string progress(const std::vector<double>& row) const override;

@@ -6,8 +6,9 @@
 #include "../output/CurveWriter.h"
 #include "../output/FieldWriter.h"
 #include "../output/plot.h"
+#include "../scene/SceneError.h"
 #include "../solver/ArcLengthSolver.h"
-#include "../solver/NewtonSolver.h"
+#include "../solver/LoadStepSolver.h"
 #include "PushOut.h"
 #include "SingleJoint.h"
 #include "Stepper.h"
@@ -52,7 +53,7 @@ struct StepLoop
   Scenario& scenario;
   model::Model& model;
   solver::Equilibrium& equilibrium;
-  solver::NewtonSolver& newton;
+  solver::LoadStepSolver& solver;
   Vec x, x_committed;
   output::Summary& summary;
   std::function<void(int iterations, int cuts, int step, int steps)> record;
@@ -90,7 +91,7 @@ bool step_displacement(StepLoop& L)
       L.scenario.apply_load(s_try, L.equilibrium);
       L.model.interface->set_time_increment(L.scenario.time_at(s_try) - L.scenario.time_at(s));
       L.equilibrium.apply_constraints(L.x);
-      const solver::SolveReport rep = L.newton.solve(L.x);
+      const solver::SolveReport rep = L.solver.solve(L.x);
       L.summary.newton_iterations += rep.iterations;
       if (rep.converged)
       {
@@ -138,9 +139,14 @@ bool follow_path(StepLoop& L, solver::NewtonSolver::Preconditioner pc, int refac
     L.summary.message = "path following needs a positive final push displacement";
     return false;
   }
-  Vec a = L.model.mean_axial_slip_functional();
-  solver::ArcLengthSolver arc(L.equilibrium, a, pc, refactor_iterations);
+  // The constraints of the push (their dofs stay; only values move) before
+  // the solver's problem is taken.
+  L.scenario.apply_load_factor(0.0, L.equilibrium);
+  Vec a_whole = L.model.mean_axial_slip_functional();
+  Vec a = L.solver.functional(a_whole);
+  solver::ArcLengthSolver arc(L.solver.problem(), a, pc, refactor_iterations);
   VecDestroy(&a);
+  VecDestroy(&a_whole);
   // Counts the arc solver's factorisations on every way out.
   struct Count
   {
@@ -159,10 +165,11 @@ bool follow_path(StepLoop& L, solver::NewtonSolver::Preconditioner pc, int refac
     set_load(lambda_to);
     L.model.interface->set_time_increment(lambda_to - lambda_from);
     L.equilibrium.apply_constraints(L.x);
-    return L.newton.solve(L.x);
+    return L.solver.solve(L.x);
   };
   Stepper stepper(L.max_cuts, 4);
-  double lambda = 0.0, slip = arc.control(L.x);
+  const auto slip_of = [&] { return arc.control(L.solver.to_problem(L.x)); };
+  double lambda = 0.0, slip = slip_of();
   double d_lambda_prev = 0.0, d_slip_prev = 0.0; // the last converged step
   int cuts = 0;
   for (int k = 1; lambda < lambda_final;)
@@ -188,7 +195,9 @@ bool follow_path(StepLoop& L, solver::NewtonSolver::Preconditioner pc, int refac
     {
       const double d_slip = d_slip_prev * h / std::hypot(d_lambda_prev, d_slip_prev);
       L.model.interface->set_time_increment(h);
-      rep = arc.step(L.x, lambda_new, d_slip, set_load);
+      rep = arc.step(L.solver.to_problem(L.x), lambda_new, d_slip, set_load);
+      if (rep.converged)
+        L.solver.from_problem(L.x);
       if (rep.converged && lambda_new > lambda_final)
       {
         L.summary.newton_iterations += rep.iterations;
@@ -200,7 +209,7 @@ bool follow_path(StepLoop& L, solver::NewtonSolver::Preconditioner pc, int refac
     L.summary.newton_iterations += rep.iterations;
     if (rep.converged)
     {
-      const double slip_new = arc.control(L.x);
+      const double slip_new = slip_of();
       if (!(slip_new > slip))
       {
         L.revert();
@@ -238,6 +247,29 @@ bool follow_path(StepLoop& L, solver::NewtonSolver::Preconditioner pc, int refac
                 << stepper.increment() * h_nominal << " mm" << std::endl;
   }
   return true;
+}
+
+/// Whether Newton runs on the condensed interface system (solver/
+/// Condensation.h); if not, `why` gets " (reason)" unless it was asked for.
+bool use_condensation(const Scene& scene, const solver::Equilibrium& eq, std::string& why)
+{
+  const std::string mode = scene.string("solver.condensation");
+  if (mode == "off")
+    return false;
+  std::string reason;
+  bool can = solver::Condensation::possible(eq, reason);
+  const std::int64_t n = solver::Condensation::interface_dofs(eq.model());
+  if (can && mode == "auto" && n > solver::Condensation::default_max_dofs)
+  {
+    can = false;
+    reason = std::to_string(n) + " interface dofs, more than " +
+             std::to_string(solver::Condensation::default_max_dofs);
+  }
+  if (!can && mode == "on")
+    throw SceneError("solver.condensation = \"on\" is not possible here: " + reason);
+  if (!can)
+    why = " (not condensed: " + reason + ")";
+  return can;
 }
 
 /// Why a push-out runs on the full model, for the progress line ("" if it
@@ -289,7 +321,13 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
                       : solver::NewtonSolver::Preconditioner::jacobian;
   solver::NewtonSolver::set_default_options(pc);
   solver::Equilibrium equilibrium(model);
-  solver::NewtonSolver newton(equilibrium, pc, int(scene.integer("solver.refactor_iterations")));
+  std::string whole_why;
+  const bool condense = use_condensation(scene, equilibrium, whole_why);
+  solver::LoadStepSolver newton(equilibrium, condense, pc,
+                                int(scene.integer("solver.refactor_iterations")));
+  scenario->apply_load(0.0, equilibrium); // the constraints of step 0
+  newton.problem();                       // condensed here (setup), if it is
+  summary.condensed_dofs = newton.condensed_size();
   summary.dofs = model.num_dofs();
   summary.cells = std::int64_t(data.num_cells());
   summary.symmetry = data.copies == 4 ? "quarter" : "full";
@@ -300,7 +338,11 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
     std::cout << "pushout: " << summary.model_type << ", " << summary.cells << " cells, "
               << summary.dofs << " dofs, " << summary.interface_pairs << " joint elements"
               << (data.copies == 4 ? " (quarter model by symmetry)" : full_model_why(scene))
-              << (summary.mesh_reused ? " (mesh from cache)" : "") << std::endl;
+              << (summary.mesh_reused ? " (mesh from cache)" : "") << "; Newton on "
+              << (condense ? "the " + std::to_string(summary.condensed_dofs) +
+                                 " interface jumps (bulk condensed)"
+                           : "the whole model" + whole_why)
+              << std::endl;
 
   const auto& map = *model.V->dofmap()->index_map;
   const int bs = model.V->dofmap()->index_map_bs();
@@ -322,12 +364,19 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   if (scene.boolean("output.xdmf"))
     fields = std::make_unique<output::FieldWriter>(model, opt.out);
 
+  // A condensed solver recovers the bulk after each load step only if an
+  // output reads it (step 0 always: start_loading reads the whole x).
+  const bool bulk_needed = scenario->uses_bulk() || fields != nullptr;
+
   // Records the committed state as a curve row.
   int row_index = 0;
   const auto record = [&](int iterations, int cuts, int step, int steps)
   {
     const auto t_out = Clock::now();
-    equilibrium.residual(x, reactions, false);
+    if (bulk_needed)
+      equilibrium.internal_forces(x, reactions);
+    else
+      equilibrium.update_displacement(x); // the interface reads model.u
     const double* r;
     const double* xa;
     VecGetArrayRead(reactions, &r);
@@ -387,6 +436,7 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
     if (!ok && !stop_requested(summary))
       summary.message = "step 0 (initial/thermal step) did not converge: " + rep.reason;
   }
+  newton.set_bulk_needed(bulk_needed);
   if (ok)
   {
     model.interface->state().commit();

@@ -45,6 +45,11 @@ public:
   /// the load steps.
   virtual void start_loading(std::span<const double> /*x*/) {}
 
+  /// Whether row() reads reactions, or displacements off the interface and
+  /// the constrained dofs (if not, a condensed solver need not recover the
+  /// bulk after each step).
+  virtual bool uses_bulk() const { return true; }
+
   /// Measured values, given the internal forces at all dofs (reactions at
   /// the constrained ones), owned part, the displacement x (owned part) and
   /// the model (for interface quantities).

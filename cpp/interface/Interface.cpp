@@ -207,6 +207,29 @@ std::vector<double> Interface::normal_force(std::span<const double> u) const
   return force;
 }
 
+laws::Vec3 Interface::resultant(std::span<const double> u) const
+{
+  laws::Vec3 force{0, 0, 0};
+  std::array<double, 16> scratch;
+  const std::size_t nq = _q.weights.size();
+  for (std::size_t p = 0; p < num_pairs(); ++p)
+    for (std::size_t q = 0; q < nq; ++q)
+    {
+      const std::size_t i = p * nq + q;
+      const laws::Vec3 w = jump(u, p, q);
+      const double* R = _frame.data() + 9 * i;
+      for (std::size_t l = 0; l < _layers.size(); ++l)
+      {
+        std::span<double> s(scratch.data(), std::size_t(_layers[l]->state_size()));
+        const laws::Vec3 t = _layers[l]->update(_state.committed(i, l), w, s, _dt).t;
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c)
+            force[c] += R[3 * r + c] * t[r] * _dA[i];
+      }
+    }
+  return force;
+}
+
 void Interface::add_axial_jump_functional(std::span<double> a) const
 {
   const std::size_t nq = _q.weights.size();

@@ -81,6 +81,12 @@ public:
   /// process [N], at the committed state (call after commit()).
   std::vector<double> normal_force(std::span<const double> u) const;
 
+  /// Resultant int t dA of the tractions over this process's pairs, global
+  /// frame [N] (the internal force on the concrete side; the tube acts on
+  /// the concrete with its opposite), at the committed state (call after
+  /// commit()).
+  laws::Vec3 resultant(std::span<const double> u) const;
+
   /// The local frame [n, s1, s2] (row-major 3x3) at point (p, q).
   std::span<const double> frame(std::size_t p, std::size_t q) const
   {

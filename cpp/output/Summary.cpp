@@ -13,6 +13,7 @@ void Summary::write(const std::filesystem::path& file) const
       {"message", message},
       {"model_type", model_type},
       {"symmetry", symmetry},
+      {"condensed_dofs", condensed_dofs},
       {"steps", steps},
       {"newton_iterations", newton_iterations},
       {"cuts", cuts},

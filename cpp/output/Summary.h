@@ -29,6 +29,8 @@ struct Summary
   double peak_memory_mb = 0; ///< largest peak resident memory of a process
   std::string model_type;
   std::string symmetry = "full"; ///< quarter: the model is a quarter of the specimen
+  /// Size of the condensed system Newton ran on (0: the whole model).
+  std::int64_t condensed_dofs = 0;
 
   void write(const std::filesystem::path& file) const;
 };

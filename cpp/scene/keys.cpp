@@ -298,6 +298,18 @@ std::vector<KeyDef> make_keys()
        inf,
        false,
        {"lagged", "jacobian"}},
+      {"solver.condensation",
+       K::string,
+       std::string("auto"),
+       "",
+       "Newton on the interface dofs only, after condensing the linear bulk onto them once "
+       "(Schur complement; exact, the curve is the whole model's). auto: when the run has one "
+       "process, an LU preconditioner and at most 6000 interface dofs; on: the same, an error "
+       "otherwise; off: Newton on the whole model",
+       -inf,
+       inf,
+       false,
+       {"auto", "on", "off"}},
       {"solver.refactor_iterations", K::integer, std::int64_t(10), "",
        "lagged: refactor from the current Jacobian when the last linear solve took more "
        "GMRES iterations than this",

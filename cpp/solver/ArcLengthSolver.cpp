@@ -1,31 +1,28 @@
 #include "ArcLengthSolver.h"
 #include "../common/Interrupt.h"
-#include "RigidBodyModes.h"
 #include <cmath>
 
 namespace pushout::solver
 {
-ArcLengthSolver::ArcLengthSolver(Equilibrium& problem, Vec control, NewtonSolver::Preconditioner pc,
-                                 int refactor_iterations)
+ArcLengthSolver::ArcLengthSolver(NonlinearProblem& problem, Vec control,
+                                 NewtonSolver::Preconditioner pc, int refactor_iterations)
     : _problem(problem), _policy(pc == NewtonSolver::Preconditioner::lagged, refactor_iterations)
 {
-  Mat K = problem.model().K;
-  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(K));
-  MatDuplicate(K, MAT_COPY_VALUES, &_J);
-  MatSetOption(_J, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE);
-  set_rigid_body_modes(problem.model(), _J);
   if (_policy.lagged())
   {
-    MatDuplicate(K, MAT_COPY_VALUES, &_P);
-    MatSetOption(_P, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE);
-    set_rigid_body_modes(problem.model(), _P);
+    _J = problem.create_operator();
+    _P = problem.create_matrix();
   }
+  else
+    _J = problem.create_matrix();
+  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(control));
   VecDuplicate(control, &_a);
   VecCopy(control, _a);
   for (Vec* v : {&_e, &_F, &_v1, &_v2})
     VecDuplicate(control, v);
   KSPCreate(comm, &_ksp);
   KSPSetFromOptions(_ksp);
+  problem.configure(_ksp);
   PetscOptionsGetReal(nullptr, nullptr, "-snes_rtol", &_rtol, nullptr);
   PetscOptionsGetReal(nullptr, nullptr, "-snes_atol", &_atol, nullptr);
   PetscOptionsGetReal(nullptr, nullptr, "-snes_stol", &_stol, nullptr);
@@ -64,31 +61,14 @@ bool all(bool ok, Vec v)
 
 bool ArcLengthSolver::residual(Vec x, double& reactions)
 {
-  const bool ok = all(_problem.residual(x, _F, false), x);
-  const Constraints& bc = _problem.constraints();
-  double* f;
-  const double* xa;
-  VecGetArray(_F, &f);
-  VecGetArrayRead(x, &xa);
-  double r2 = 0;
-  for (std::size_t i = 0; i < bc.dofs.size(); ++i)
-  {
-    r2 += f[bc.dofs[i]] * f[bc.dofs[i]];
-    f[bc.dofs[i]] = xa[bc.dofs[i]] - bc.values[i];
-  }
-  VecRestoreArrayRead(x, &xa);
-  VecRestoreArray(_F, &f);
-  MPI_Allreduce(MPI_IN_PLACE, &r2, 1, MPI_DOUBLE, MPI_SUM,
-                PetscObjectComm(reinterpret_cast<PetscObject>(x)));
-  reactions = std::sqrt(r2);
-  return ok;
+  return all(_problem.residual(x, _F, reactions), x);
 }
 
 bool ArcLengthSolver::setup_operators(Vec x)
 {
   if (!all(_problem.jacobian(x, _J), x))
     return false;
-  KSPSetReusePreconditioner(_ksp, _policy.update(_J, _P) ? PETSC_FALSE : PETSC_TRUE);
+  KSPSetReusePreconditioner(_ksp, _policy.update(_problem, _J, _P) ? PETSC_FALSE : PETSC_TRUE);
   KSPSetOperators(_ksp, _J, _policy.lagged() ? _P : _J);
   return true;
 }
@@ -110,7 +90,7 @@ bool ArcLengthSolver::solve(Vec b, Vec y)
       return false;
     // The lagged preconditioner was too far from J: factor J itself.
     _policy.refresh();
-    KSPSetReusePreconditioner(_ksp, _policy.update(_J, _P) ? PETSC_FALSE : PETSC_TRUE);
+    KSPSetReusePreconditioner(_ksp, _policy.update(_problem, _J, _P) ? PETSC_FALSE : PETSC_TRUE);
     KSPSetOperators(_ksp, _J, _P);
   }
   return false;
@@ -120,19 +100,14 @@ SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
                                   const std::function<void(double)>& set_load)
 {
   SolveReport rep;
-  // Direction e = dg/dlambda of the prescribed values (affine in lambda).
+  // e = -dF/dlambda = F(x, lambda) - F(x, lambda + 1): F is affine in lambda.
+  double reactions = 0;
   set_load(lambda + 1.0);
-  const Constraints g1 = _problem.constraints();
+  residual(x, reactions);
+  VecCopy(_F, _e);
   set_load(lambda);
-  {
-    const Constraints& g0 = _problem.constraints();
-    VecSet(_e, 0.0);
-    double* e;
-    VecGetArray(_e, &e);
-    for (std::size_t i = 0; i < g0.dofs.size(); ++i)
-      e[g0.dofs[i]] = g1.values[i] - g0.values[i];
-    VecRestoreArray(_e, &e);
-  }
+  residual(x, reactions);
+  VecAYPX(_e, -1.0, _F);
   const double eta0 = control(x), eta = eta0 + d_eta;
   double lam = lambda;
   const auto fail = [&](std::string why)
@@ -145,7 +120,6 @@ SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
   for (PetscInt it = 0;; ++it)
   {
     set_load(lam);
-    double reactions = 0;
     if (!residual(x, reactions))
       return fail("an interface law failed");
     double fnorm;

@@ -3,9 +3,11 @@
 // displacement control on the interface jump, a form of arc length.
 //
 // Unknowns: the displacement x and a load factor lambda that moves the
-// prescribed dofs, u_c = g(lambda), affine in lambda with direction
-// e = dg/dlambda (push-out: lambda is the push delta [mm], e = -1 at the
-// tube's top z dofs). Equations:
+// prescribed dofs, u_c = g(lambda), affine in lambda (push-out: lambda is
+// the push delta [mm], dg/dlambda = -1 at the tube's top z dofs), so that
+// F is affine in lambda with e = -dF/dlambda (on the whole model: e = dg/
+// dlambda at the constrained rows, 0 elsewhere; on the condensed interface
+// system the bulk carries the load to every row). Equations:
 //   F(x, lambda) = 0        equilibrium (constrained rows: x_c - g(lambda))
 //   a . x = eta             control: a . x is the mean axial slip s [mm]
 // Newton on the bordered system
@@ -27,8 +29,8 @@
 // localised event whose slip is small compared with the whole interface.
 #pragma once
 
-#include "Equilibrium.h"
 #include "NewtonSolver.h"
+#include "NonlinearProblem.h"
 #include <functional>
 #include <petscksp.h>
 
@@ -42,7 +44,7 @@ public:
   /// -snes_stol, -snes_max_it; -arc_monitor prints each iteration); the linear solver is configured
   /// like SNES's KSP (-ksp_type, -pc_type, ...), with the same preconditioner policy as
   /// NewtonSolver.
-  ArcLengthSolver(Equilibrium& problem, Vec control, NewtonSolver::Preconditioner pc,
+  ArcLengthSolver(NonlinearProblem& problem, Vec control, NewtonSolver::Preconditioner pc,
                   int refactor_iterations);
   ~ArcLengthSolver();
   ArcLengthSolver(const ArcLengthSolver&) = delete;
@@ -64,14 +66,15 @@ public:
   int factorizations() const { return _policy.factorizations(); }
 
 private:
-  /// F(x) with constrained rows; the norm of the reactions into `reactions`.
+  /// F(x) into _F on every process's say; the norm of the reactions into
+  /// `reactions`.
   bool residual(Vec x, double& reactions);
   /// Jacobian at x into the operators of the KSP (refreshing P by policy).
   bool setup_operators(Vec x);
   /// Solves J y = b; false if the linear solve failed even after refreshing P.
   bool solve(Vec b, Vec y);
 
-  Equilibrium& _problem;
+  NonlinearProblem& _problem;
   PreconditionerPolicy _policy;
   KSP _ksp = nullptr;
   Mat _J = nullptr, _P = nullptr;

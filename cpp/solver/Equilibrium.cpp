@@ -1,4 +1,6 @@
 #include "Equilibrium.h"
+#include "RigidBodyModes.h"
+#include <cmath>
 #include <dolfinx/common/IndexMap.h>
 #include <dolfinx/la/petsc.h>
 
@@ -60,7 +62,7 @@ void Equilibrium::update_displacement(Vec x)
   _model.u->x()->scatter_fwd();
 }
 
-bool Equilibrium::residual(Vec x, Vec F, bool constrained_rows)
+bool Equilibrium::internal_forces(Vec x, Vec F)
 {
   update_displacement(x);
   std::span<double> fi = _f_interface.mutable_array();
@@ -78,16 +80,63 @@ bool Equilibrium::residual(Vec x, Vec F, bool constrained_rows)
   VecGetLocalSize(F, &n_owned);
   for (PetscInt i = 0; i < n_owned; ++i)
     f[i] += fi[i];
-  if (constrained_rows)
-  {
-    const double* a;
-    VecGetArrayRead(x, &a);
-    for (std::size_t i = 0; i < _bc.dofs.size(); ++i)
-      f[_bc.dofs[i]] = a[_bc.dofs[i]] - _bc.values[i];
-    VecRestoreArrayRead(x, &a);
-  }
   VecRestoreArray(F, &f);
   return ok;
+}
+
+bool Equilibrium::residual(Vec x, Vec F)
+{
+  double reaction_norm;
+  return residual(x, F, reaction_norm);
+}
+
+bool Equilibrium::residual(Vec x, Vec F, double& reaction_norm)
+{
+  const bool ok = internal_forces(x, F);
+  double* f;
+  const double* a;
+  VecGetArray(F, &f);
+  VecGetArrayRead(x, &a);
+  double r2 = 0;
+  for (std::size_t i = 0; i < _bc.dofs.size(); ++i)
+  {
+    r2 += f[_bc.dofs[i]] * f[_bc.dofs[i]];
+    f[_bc.dofs[i]] = a[_bc.dofs[i]] - _bc.values[i];
+  }
+  VecRestoreArrayRead(x, &a);
+  VecRestoreArray(F, &f);
+  MPI_Allreduce(MPI_IN_PLACE, &r2, 1, MPI_DOUBLE, MPI_SUM,
+                PetscObjectComm(reinterpret_cast<PetscObject>(x)));
+  reaction_norm = std::sqrt(r2);
+  return ok;
+}
+
+void Equilibrium::linear_rhs(Vec b) const
+{
+  VecCopy(_f_external, b);
+  if (_f_thermal)
+    VecAXPY(b, 1.0, _f_thermal);
+  double* a;
+  VecGetArray(b, &a);
+  for (std::size_t i = 0; i < _bc.dofs.size(); ++i)
+    a[_bc.dofs[i]] = _bc.values[i];
+  VecRestoreArray(b, &a);
+}
+
+Mat Equilibrium::create_matrix() const
+{
+  Mat J;
+  MatDuplicate(_model.K, MAT_COPY_VALUES, &J);
+  MatSetOption(J, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE);
+  set_rigid_body_modes(_model, J); // for algebraic multigrid (-pc_type gamg)
+  return J;
+}
+
+Vec Equilibrium::create_vector() const
+{
+  Vec v;
+  MatCreateVecs(_model.K, nullptr, &v);
+  return v;
 }
 
 bool Equilibrium::jacobian(Vec x, Mat J)

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "../model/Model.h"
+#include "NonlinearProblem.h"
 #include <dolfinx/la/Vector.h>
 #include <petscmat.h>
 #include <petscvec.h>
@@ -20,7 +21,7 @@ struct Constraints
   std::vector<double> values;
 };
 
-class Equilibrium
+class Equilibrium : public NonlinearProblem
 {
 public:
   explicit Equilibrium(model::Model& model);
@@ -29,6 +30,7 @@ public:
   Equilibrium& operator=(const Equilibrium&) = delete;
 
   model::Model& model() { return _model; }
+  const model::Model& model() const { return _model; }
 
   /// Thermal load of temperature change dT [degC] (0: none); assembled only
   /// when dT changes.
@@ -41,12 +43,21 @@ public:
   /// Puts the prescribed values into x (start of a step).
   void apply_constraints(Vec x) const;
 
-  /// F(x). With `constrained_rows = false`, F holds K x + f_int - loads at
-  /// every dof: the reactions at the constrained ones. Returns false if an
-  /// interface law failed.
-  bool residual(Vec x, Vec F, bool constrained_rows = true);
-  /// Jacobian dF/dx into J (same pattern as model.K).
-  bool jacobian(Vec x, Mat J);
+  /// K x + f_int - loads at every dof: the reactions at the constrained
+  /// ones. Returns false if an interface law failed.
+  bool internal_forces(Vec x, Vec F);
+  /// The right-hand side of the linear part: the loads at the free dofs and
+  /// the prescribed values at the constrained ones, so that F(x) = J0 x +
+  /// f_int(x) - b with J0 = K with unit constrained rows (owned part).
+  void linear_rhs(Vec b) const;
+
+  // NonlinearProblem; J has the pattern of model.K.
+  Mat create_matrix() const override;
+  Vec create_vector() const override;
+  bool residual(Vec x, Vec F) override;
+  bool residual(Vec x, Vec F, double& reaction_norm) override;
+  bool jacobian(Vec x, Mat J) override;
+  void forget_trial_state() override { _model.interface->state().revert(); }
 
   /// Copies x into the model's displacement (ghosts updated).
   void update_displacement(Vec x);

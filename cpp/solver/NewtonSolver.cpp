@@ -1,8 +1,6 @@
 #include "NewtonSolver.h"
 #include "../common/Interrupt.h"
-#include "RigidBodyModes.h"
 #include <algorithm>
-#include <dolfinx/common/IndexMap.h>
 
 namespace pushout::solver
 {
@@ -10,7 +8,7 @@ namespace
 {
 PetscErrorCode form_function(SNES snes, Vec x, Vec F, void* ctx)
 {
-  auto* problem = static_cast<Equilibrium*>(ctx);
+  auto* problem = static_cast<NonlinearProblem*>(ctx);
   // A failed law or a pending signal fails this solve; the step loop decides.
   if (!problem->residual(x, F) || interrupt::received())
     SNESSetFunctionDomainError(snes);
@@ -47,29 +45,24 @@ void NewtonSolver::set_default_options(Preconditioner pc)
   set_default("-pc_factor_mat_solver_type", "mumps");
 }
 
-NewtonSolver::NewtonSolver(Equilibrium& problem, Preconditioner pc, int refactor_iterations)
+NewtonSolver::NewtonSolver(NonlinearProblem& problem, Preconditioner pc, int refactor_iterations)
     : _problem(problem), _policy(pc == Preconditioner::lagged, refactor_iterations)
 {
-  Mat K = problem.model().K;
-  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(K));
-  MatDuplicate(K, MAT_COPY_VALUES, &_J);
-  MatSetOption(_J, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE);
-  MatCreateVecs(K, nullptr, &_F);
-  SNESCreate(comm, &_snes);
+  _J = _policy.lagged() ? problem.create_operator() : problem.create_matrix();
+  _F = problem.create_vector();
+  SNESCreate(PetscObjectComm(reinterpret_cast<PetscObject>(_F)), &_snes);
   SNESSetFunction(_snes, _F, form_function, &_problem);
   if (_policy.lagged())
   {
-    MatDuplicate(K, MAT_COPY_VALUES, &_P);
-    MatSetOption(_P, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE);
+    _P = problem.create_matrix();
     SNESSetJacobian(_snes, _J, _P, jacobian_callback, this);
   }
   else
     SNESSetJacobian(_snes, _J, _J, jacobian_callback, this);
-  // Rigid-body modes for algebraic multigrid (-pc_type gamg).
-  set_rigid_body_modes(problem.model(), _J);
-  if (_P)
-    set_rigid_body_modes(problem.model(), _P);
   SNESSetFromOptions(_snes);
+  KSP ksp;
+  SNESGetKSP(_snes, &ksp);
+  problem.configure(ksp);
 }
 
 PetscErrorCode NewtonSolver::jacobian_callback(SNES snes, Vec x, Mat J, Mat P, void* ctx)
@@ -82,7 +75,8 @@ PetscErrorCode NewtonSolver::jacobian_callback(SNES snes, Vec x, Mat J, Mat P, v
   PetscInt its = 0;
   KSPGetIterationNumber(ksp, &its); // of the previous linear solve
   self->_policy.solved(its);
-  KSPSetReusePreconditioner(ksp, self->_policy.update(J, P) ? PETSC_FALSE : PETSC_TRUE);
+  KSPSetReusePreconditioner(ksp,
+                            self->_policy.update(self->_problem, J, P) ? PETSC_FALSE : PETSC_TRUE);
   return 0;
 }
 
@@ -108,6 +102,7 @@ double NewtonSolver::time_linear_solve(Vec x)
   KSPCreate(comm, &ksp);
   KSPSetOperators(ksp, _J, _J);
   KSPSetFromOptions(ksp);
+  _problem.configure(ksp);
   MPI_Barrier(comm);
   const double t0 = MPI_Wtime();
   KSPSetUp(ksp);
@@ -117,7 +112,7 @@ double NewtonSolver::time_linear_solve(Vec x)
   KSPDestroy(&ksp);
   VecDestroy(&F);
   VecDestroy(&dx);
-  _problem.model().interface->state().revert(); // forget the trial state
+  _problem.forget_trial_state();
   return t;
 }
 

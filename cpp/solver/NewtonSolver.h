@@ -1,5 +1,6 @@
 // Thin layer over PETSc SNES: Newton with line search (PETSc's newtonls/bt
-// by default) on an Equilibrium. Every PETSc option from the command line
+// by default) on a NonlinearProblem (the whole model or its condensed
+// interface system). Every PETSc option from the command line
 // reaches SNES, KSP and PC (-snes_monitor, -ksp_type, -pc_type, ...); the
 // defaults below apply only where the user gave none.
 //
@@ -15,7 +16,7 @@
 //    about 1/20 of a factorisation here, so this saves most of them.
 #pragma once
 
-#include "Equilibrium.h"
+#include "NonlinearProblem.h"
 #include "PreconditionerPolicy.h"
 #include <petscsnes.h>
 #include <string>
@@ -38,7 +39,7 @@ public:
     lagged
   };
 
-  NewtonSolver(Equilibrium& problem, Preconditioner pc, int refactor_iterations = 10);
+  NewtonSolver(NonlinearProblem& problem, Preconditioner pc, int refactor_iterations = 10);
   ~NewtonSolver();
   NewtonSolver(const NewtonSolver&) = delete;
   NewtonSolver& operator=(const NewtonSolver&) = delete;
@@ -56,7 +57,7 @@ public:
   static void set_default_options(Preconditioner pc);
 
 private:
-  Equilibrium& _problem;
+  NonlinearProblem& _problem;
   SNES _snes = nullptr;
   PreconditionerPolicy _policy;
   Mat _J = nullptr, _P = nullptr;

@@ -6,7 +6,7 @@
 //    Krylov iterations, or when a caller asks (after a failure).
 #pragma once
 
-#include <petscmat.h>
+#include "NonlinearProblem.h"
 
 namespace pushout::solver
 {
@@ -30,9 +30,10 @@ public:
     ++_factorizations;
   }
 
-  /// After J is assembled: copies J into P when due (lagged). Returns
-  /// whether the preconditioner must be rebuilt (false: reuse it).
-  bool update(Mat J, Mat P)
+  /// After the problem's Jacobian is in J: copies it into P when due
+  /// (lagged). Returns whether the preconditioner must be rebuilt (false:
+  /// reuse it).
+  bool update(const NonlinearProblem& problem, Mat J, Mat P)
   {
     if (!_lagged)
     {
@@ -41,7 +42,7 @@ public:
     }
     if (_has_P && !_refresh)
       return false;
-    MatCopy(J, P, SAME_NONZERO_PATTERN);
+    problem.copy_jacobian(J, P);
     P_filled();
     return true;
   }

@@ -1,5 +1,6 @@
 """The same executable under mpirun gives the same curve on 1, 2 and 3
-processes (3: an uneven split) to 1e-8 relative, for a friction push-out, a
+processes (3: an uneven split; 1 process condenses the bulk, more do not) to
+1e-8 relative, for a friction push-out, a
 friction + exponential-softening push-out (quarter model), the same with path
 following (arc length) and a single joint; the interface
 pressure columns (global integrals of the interface traction field) agree
@@ -39,6 +40,9 @@ for name, (scene, sets) in cases.items():
                            env=dict(os.environ, OMPI_MCA_btl_vader_single_copy_mechanism="none"))
         check(p.returncode == 0, f"{name} on {n} processes: exit {p.returncode} {p.stderr[-500:]}")
         check(summary(out)["processes"] == n, f"{name}: summary says {n} processes")
+        # One process condenses the bulk (solver.condensation auto); more do not.
+        check((summary(out)["condensed_dofs"] > 0) == (n == 1),
+              f"{name}: {summary(out)['condensed_dofs']} condensed dofs on {n} processes")
         curves[n] = curve(out)
     ref = curves[1]
     columns = [c for c in ref[0] if c not in ("step", "newton_iterations", "cuts", "wall_s")]

@@ -1,0 +1,127 @@
+// Condensation of the linear bulk onto the interface jumps (issue 6).
+//
+// Only the joint elements are nonlinear, and they see the displacement
+// only through the jumps d = u_concrete - u_steel of the interface node
+// pairs (3 per pair): their nodal forces are f_int = G^T F(d), with G the
+// difference operator (d = G x) and F the forces on the concrete nodes.
+// Everything else is linear. With
+//   J0 = K with unit constrained rows, plus eps G^T G on the free rows of
+//        the interface nodes (a linear joint of stiffness eps [N/mm] per
+//        node pair that makes J0 regular when a body is held only by the
+//        interface, like the tube of the full model, free in x),
+//   b  = the linear right-hand side (loads at free rows, prescribed values
+//        at constrained ones; Equilibrium::linear_rhs),
+// the whole model's F(x) = 0 reads  J0 x = b - E_I G_I^T (F(d) - eps d)
+// (E_I G_I^T: onto the free interface rows). Hence, exactly,
+//   x = J0^-1 b - Z r,    Z = J0^-1 E_I G_I^T,   r = F(d) - eps d,
+//   R(d) = d + C r - d_b = 0,   C = G Z,   d_b = G J0^-1 b,
+// a dense system of 3 unknowns per node pair (a quarter of the paper's
+// mesh: 459) that the Newton and arc-length solvers take in place of the
+// whole model. R is scaled by k = 1 / mean diag(C) [N/mm] so that its
+// tolerances are forces. Jacobian: k (I - eps C + C dF/dd), dF/dd sparse;
+// the Krylov solver applies it matrix-free (a sparse and a dense product),
+// and it is formed only when the lagged preconditioner is refreshed.
+//
+// One MUMPS factorisation of J0 with the interface dofs last gives their
+// Schur complement S; Z restricted to the interface is S^-1 E_I G_I^T
+// (dense), so C costs no more solves with J0. Loads: d_b is linear in b and
+// the loads of a run span a few directions (thermal load, push), so it
+// comes from an orthonormal basis of the b solved so far; a solve with J0
+// happens only when b leaves that span. After a step: the interface
+// displacements from the basis and Z (cheap), or the whole x by one solve
+// with J0 (expand(), when outputs need the bulk).
+//
+// One process only (PETSc 3.18 has no parallel MUMPS Schur complements);
+// the Newton systems are dense LU (PETSc's, LAPACK), lagged as on the whole
+// model.
+#pragma once
+
+#include "Equilibrium.h"
+#include "NonlinearProblem.h"
+#include <string>
+#include <vector>
+
+namespace pushout::solver
+{
+class Condensation : public NonlinearProblem
+{
+public:
+  /// Largest number of interface dofs condensed by default (two dense
+  /// matrices of the node-pair jumps, 3000 x 3000).
+  static constexpr std::int64_t default_max_dofs = 6000;
+
+  /// Whether the model can be condensed (its interface has node pairs, one
+  /// process, an LU preconditioner); `why` says why not.
+  static bool possible(const Equilibrium& eq, std::string& why);
+
+  /// Number of interface dofs (both sides).
+  static std::int64_t interface_dofs(const model::Model& model);
+
+  /// Factors J0 and computes C. The constrained dofs of `eq` (set by the
+  /// scenario, values not needed) must stay the same while it is used.
+  explicit Condensation(Equilibrium& eq);
+  ~Condensation();
+  Condensation(const Condensation&) = delete;
+  Condensation& operator=(const Condensation&) = delete;
+
+  /// Unknowns of the condensed system (3 per node pair).
+  std::int64_t size() const { return std::int64_t(_steel.size()); }
+
+  /// d = the jumps of the whole-model x.
+  void restrict_to(Vec x, Vec d) const;
+  /// The jump-space coefficients of a whole-model functional of the jumps
+  /// (a . x = a_d . d; a must be opposite on the two sides of each pair).
+  void restrict_functional(Vec a, Vec a_d) const;
+  /// The whole-model x of jumps d at the current loads (one solve).
+  void expand(Vec d, Vec x);
+  /// Only the interface and constrained entries of x from d (no solve);
+  /// the other entries are left alone.
+  void expand_interface(Vec d, Vec x);
+
+  // NonlinearProblem on the jumps.
+  Mat create_matrix() const override;
+  Mat create_operator() const override;
+  void copy_jacobian(Mat J, Mat P) const override;
+  Vec create_vector() const override;
+  bool residual(Vec d, Vec R) override;
+  bool residual(Vec d, Vec R, double& reaction_norm) override;
+  bool jacobian(Vec d, Mat J) override;
+  void configure(KSP ksp) const override;
+  void forget_trial_state() override { _eq.forget_trial_state(); }
+
+private:
+  /// F(d) and r = F - eps d into _r (and dF/dd into _T if asked); false if
+  /// a law failed.
+  bool interface_forces(Vec d, bool tangent, double* force_norm = nullptr);
+  /// The Jacobian at the last jacobian() call, explicitly, into J.
+  void form_jacobian(Mat J) const;
+  static PetscErrorCode operator_mult(Mat J, Vec v, Vec y);
+  /// The coefficients of the current b on the basis (extended if needed).
+  std::vector<double> load_coefficients();
+  /// Adds sum_k c_k v_k to y.
+  static void combine(const std::vector<double>& c, const std::vector<Vec>& v, Vec y);
+
+  Equilibrium& _eq;
+  std::vector<std::int32_t> _steel, _concrete; ///< whole-model dof of each jump
+  std::vector<std::uint8_t> _steel_free, _concrete_free;
+  std::vector<std::int32_t> _bc_dofs; ///< the constrained dofs it was built for
+  double _eps = 0;                    ///< J0's joint stiffness [N/mm]
+  double _k = 1;                      ///< residual scale [N/mm]
+  Mat _J0 = nullptr, _factor = nullptr;
+  Mat _Z = nullptr;           ///< Z on the interface dofs (steel jumps, then concrete), dense
+  Mat _C = nullptr;           ///< C = G Z, dense
+  Mat _E = nullptr;           ///< I - eps C, dense
+  Mat _T = nullptr;           ///< dF/dd, sparse (node-pair blocks)
+  Vec _b = nullptr;           ///< whole model: right-hand side
+  Vec _r = nullptr;           ///< jumps: F(d) - eps d
+  Vec _d_b = nullptr;         ///< jumps: d_b of the current loads
+  Vec _g = nullptr;           ///< interface dofs: scratch
+  Vec _rest = nullptr;        ///< whole model: scratch
+  Vec _Tv = nullptr;          ///< jumps: scratch
+  std::vector<double> _u, _f; ///< whole-model local arrays for the interface kernel
+  /// Orthonormal load directions, their J0^-1 on the interface dofs, and
+  /// their jumps d_b.
+  std::vector<Vec> _basis, _basis_g, _basis_d;
+  ISLocalToGlobalMapping _l2g = nullptr; ///< model blocks -> node pairs (concrete side)
+};
+} // namespace pushout::solver

@@ -1,0 +1,94 @@
+#include "LoadStepSolver.h"
+
+namespace pushout::solver
+{
+LoadStepSolver::LoadStepSolver(Equilibrium& eq, bool condense, NewtonSolver::Preconditioner pc,
+                               int refactor_iterations)
+    : _eq(eq), _condense(condense), _pc(pc), _refactor_iterations(refactor_iterations),
+      _whole(eq, pc, refactor_iterations)
+{
+}
+
+LoadStepSolver::~LoadStepSolver()
+{
+  if (_x)
+    VecDestroy(&_x);
+}
+
+void LoadStepSolver::update()
+{
+  if (!_condense || (_condensation && _eq.constraints().dofs == _bc_dofs))
+    return;
+  if (_condensation)
+    _retired_factorizations += 1 + _newton->factorizations();
+  _newton.reset();
+  _condensation.reset();
+  if (_x)
+    VecDestroy(&_x);
+  _condensation = std::make_unique<Condensation>(_eq);
+  _newton = std::make_unique<NewtonSolver>(*_condensation, _pc, _refactor_iterations);
+  _bc_dofs = _eq.constraints().dofs;
+  _x = _condensation->create_vector();
+}
+
+NonlinearProblem& LoadStepSolver::problem()
+{
+  update();
+  if (_condensation)
+    return *_condensation;
+  return _eq;
+}
+
+Vec LoadStepSolver::to_problem(Vec x)
+{
+  update();
+  if (!_condensation)
+    return x;
+  _condensation->restrict_to(x, _x);
+  return _x;
+}
+
+void LoadStepSolver::from_problem(Vec x)
+{
+  if (!_condensation)
+    return;
+  if (_bulk_needed)
+    _condensation->expand(_x, x);
+  else
+    _condensation->expand_interface(_x, x);
+}
+
+Vec LoadStepSolver::functional(Vec a)
+{
+  update();
+  Vec v;
+  if (!_condensation)
+  {
+    VecDuplicate(a, &v);
+    VecCopy(a, v);
+    return v;
+  }
+  v = _condensation->create_vector();
+  _condensation->restrict_functional(a, v);
+  return v;
+}
+
+SolveReport LoadStepSolver::solve(Vec x)
+{
+  if (!_condense)
+    return _whole.solve(x);
+  Vec xp = to_problem(x);
+  SolveReport r = _newton->solve(xp);
+  if (r.converged)
+    from_problem(x);
+  return r;
+}
+
+int LoadStepSolver::factorizations() const
+{
+  int n = _whole.factorizations() + _retired_factorizations;
+  if (_condensation)
+    n += 1 + _newton->factorizations();
+  return n;
+}
+} // namespace pushout::solver

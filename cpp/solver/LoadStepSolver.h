@@ -1,0 +1,73 @@
+// The solver of one load step on the whole model's displacement x: Newton
+// on the whole model, or on the interface jumps after condensing the linear
+// bulk (Condensation.h), with x recovered after convergence. The
+// condensation is built for the constrained dofs of the step and built
+// again when they change (a thermal step with the tube top free, then the
+// push). Path following works in the same space (problem(), to_problem(),
+// from_problem()).
+#pragma once
+
+#include "Condensation.h"
+#include "NewtonSolver.h"
+#include <memory>
+
+namespace pushout::solver
+{
+class LoadStepSolver
+{
+public:
+  /// `condense`: solve on the interface dofs (Condensation::possible must
+  /// hold).
+  LoadStepSolver(Equilibrium& eq, bool condense, NewtonSolver::Preconditioner pc,
+                 int refactor_iterations);
+  ~LoadStepSolver();
+  LoadStepSolver(const LoadStepSolver&) = delete;
+  LoadStepSolver& operator=(const LoadStepSolver&) = delete;
+
+  /// Solves the current load step from x (whole model, constraints in x).
+  SolveReport solve(Vec x);
+
+  /// The problem the Newton systems are solved on, for the current
+  /// constraints.
+  NonlinearProblem& problem();
+  /// x in the problem's space: x itself, or its interface entries (a vector
+  /// owned by this object, valid until the next call).
+  Vec to_problem(Vec x);
+  /// After the problem's vector from to_problem() was solved: x from it
+  /// (condensed: only its interface and constrained entries unless the
+  /// bulk is needed).
+  void from_problem(Vec x);
+  /// Whether x must be whole after each solve (outputs of the bulk; the
+  /// default) or only on the interface and constrained dofs.
+  void set_bulk_needed(bool needed) { _bulk_needed = needed; }
+  /// A new vector of the problem's space with the entries of the whole-model
+  /// functional `a` (zero off the interface if condensed); the caller
+  /// destroys it.
+  Vec functional(Vec a);
+
+  /// Times one linear solve of the whole model (NewtonSolver).
+  double time_linear_solve(Vec x) { return _whole.time_linear_solve(x); }
+
+  bool condensed() const { return _condense; }
+  /// Size of the condensed system (0 if not condensed).
+  std::int64_t condensed_size() const { return _condensation ? _condensation->size() : 0; }
+  /// Numeric factorisations so far (whole, condensed and J0 factors).
+  int factorizations() const;
+
+private:
+  /// Builds the condensation again if the constrained dofs changed.
+  void update();
+
+  Equilibrium& _eq;
+  bool _condense;
+  NewtonSolver::Preconditioner _pc;
+  int _refactor_iterations;
+  bool _bulk_needed = true;
+  NewtonSolver _whole;
+  std::unique_ptr<Condensation> _condensation;
+  std::unique_ptr<NewtonSolver> _newton; ///< on the condensation
+  std::vector<std::int32_t> _bc_dofs;    ///< the constrained dofs it was built for
+  Vec _x = nullptr;                      ///< interface entries of x
+  int _retired_factorizations = 0;       ///< of condensations built before
+};
+} // namespace pushout::solver

@@ -1,0 +1,48 @@
+// What the Newton and path-following solvers need of a system
+//   F(x) = 0,   F_c = x_c - g_c on its constrained rows c,
+// whatever space x lives in: the whole displacement (Equilibrium.h) or the
+// interface dofs after condensing the linear bulk (Condensation.h).
+#pragma once
+
+#include <petscksp.h>
+#include <petscmat.h>
+#include <petscvec.h>
+
+namespace pushout::solver
+{
+class NonlinearProblem
+{
+public:
+  virtual ~NonlinearProblem() = default;
+
+  /// A new matrix with the layout of the Jacobian (the caller destroys it).
+  virtual Mat create_matrix() const = 0;
+  /// The Jacobian as an operator for Krylov methods (the caller destroys
+  /// it): create_matrix() unless the problem has a cheaper matrix-free
+  /// product; jacobian() updates it too.
+  virtual Mat create_operator() const { return create_matrix(); }
+  /// The Jacobian held by an operator J (after jacobian(x, J)) into a
+  /// create_matrix() matrix P.
+  virtual void copy_jacobian(Mat J, Mat P) const { MatCopy(J, P, SAME_NONZERO_PATTERN); }
+  /// A new vector of the problem's space (the caller destroys it).
+  virtual Vec create_vector() const = 0;
+
+  /// F(x), constrained rows x_c - g_c. Returns false if an interface law
+  /// failed.
+  virtual bool residual(Vec x, Vec F) = 0;
+  /// F(x) as above, and the 2-norm over all processes of the forces at the
+  /// constrained rows before they are replaced (the reactions [N]: the scale
+  /// of the residual).
+  virtual bool residual(Vec x, Vec F, double& reaction_norm) = 0;
+  /// The Jacobian dF/dx into J (a matrix from create_matrix()).
+  virtual bool jacobian(Vec x, Mat J) = 0;
+
+  /// Adjusts a linear solver already set from the options to what the
+  /// matrices of this problem support (called by the solvers).
+  virtual void configure(KSP /*ksp*/) const {}
+
+  /// Forgets the interface state the last evaluation wrote (trial state
+  /// back to the committed one).
+  virtual void forget_trial_state() = 0;
+};
+} // namespace pushout::solver
