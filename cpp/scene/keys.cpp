@@ -302,7 +302,7 @@ std::vector<KeyDef> make_keys()
        K::string,
        std::string("auto"),
        "",
-       "Newton on the interface dofs only, after condensing the linear bulk onto them once "
+       "Newton on the interface jumps only, after condensing the linear bulk onto them once "
        "(Schur complement; exact, the curve is the whole model's). auto: when the run has one "
        "process, an LU preconditioner and at most 6000 interface dofs; on: the same, an error "
        "otherwise; off: Newton on the whole model",
@@ -315,8 +315,9 @@ std::vector<KeyDef> make_keys()
        "GMRES iterations than this",
        1, 1e9, false},
       {"solver.time_linear_solve", K::boolean, false, "",
-       "before the run, time one linear solve of the first load step with the run's solver "
-       "(summary.json linear_solve_s: the floor a whole curve is compared with)"},
+       "before the run, time one linear solve of the first load step of the whole model with "
+       "the PETSc options' solver, MUMPS LU by default (summary.json linear_solve_s: the floor "
+       "a whole curve is compared with)"},
 
       // Output.
       {"output.xdmf", K::boolean, false, "",

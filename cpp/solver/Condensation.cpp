@@ -150,10 +150,7 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
   MatFactorInfoInitialize(&info);
   MatLUFactorSymbolic(_factor, _J0, nullptr, nullptr, &info);
   MatLUFactorNumeric(_factor, _J0, &info);
-  Mat S;
-  MatFactorSchurStatus status;
-  MatFactorCreateSchurComplement(_factor, &S, &status);
-  MatFactorFactorizeSchurComplement(_factor); // for the solves with J0
+  MatFactorFactorizeSchurComplement(_factor); // dense LU of S, kept in the factor
 
   // Z on the interface = S^-1 E_I G_I^T; column j: -1 at the steel dof of
   // jump j, +1 at its concrete dof (free ones only).
@@ -167,11 +164,13 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
       Bd(n + j, j) = _concrete_free[j] ? 1.0 : 0.0;
     }
   }
-  MatLUFactor(S, nullptr, nullptr, &info);
+  Mat S;
+  MatFactorSchurStatus status;
+  MatFactorGetSchurComplement(_factor, &S, &status); // factored; the factor owns it
   MatCreateSeqDense(PETSC_COMM_SELF, 2 * n, n, nullptr, &_Z);
   MatMatSolve(S, B, _Z);
+  MatFactorRestoreSchurComplement(_factor, &S, status);
   MatDestroy(&B);
-  MatDestroy(&S);
 
   // C = G Z, E = I - eps C, k = 1 / mean diag(C).
   MatCreateSeqDense(PETSC_COMM_SELF, n, n, nullptr, &_C);
@@ -212,13 +211,14 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
   VecCreateSeq(PETSC_COMM_SELF, 2 * n, &_g);
   VecDuplicate(_b, &_rest);
   _Tv = create_vector();
+  VecDuplicate(_g, &_Zr);
   _u.assign(std::size_t(3) * n_blocks, 0.0);
   _f.assign(_u.size(), 0.0);
 }
 
 Condensation::~Condensation()
 {
-  for (Vec* v : {&_b, &_r, &_d_b, &_g, &_rest, &_Tv})
+  for (Vec* v : {&_b, &_r, &_d_b, &_g, &_rest, &_Tv, &_Zr})
     VecDestroy(v);
   for (auto* list : {&_basis, &_basis_g, &_basis_d})
     for (Vec& v : *list)
@@ -484,11 +484,8 @@ void Condensation::expand_interface(Vec d, Vec x)
 {
   combine(load_coefficients(), _basis_g, _g);
   interface_forces(d, false);
-  Vec zr;
-  VecDuplicate(_g, &zr);
-  MatMult(_Z, _r, zr);
-  VecAXPY(_g, -1.0, zr);
-  VecDestroy(&zr);
+  MatMult(_Z, _r, _Zr);
+  VecAXPY(_g, -1.0, _Zr);
   const double* g;
   double* xa;
   VecGetArrayRead(_g, &g);
@@ -509,8 +506,7 @@ void Condensation::expand(Vec d, Vec x)
   load_coefficients(); // _b: the current loads
   interface_forces(d, false);
   // x = J0^-1 (b - E_I G_I^T r).
-  Vec rhs;
-  VecDuplicate(_b, &rhs);
+  Vec rhs = _rest;
   VecCopy(_b, rhs);
   double* ra;
   const double* r;
@@ -526,7 +522,6 @@ void Condensation::expand(Vec d, Vec x)
   VecRestoreArrayRead(_r, &r);
   VecRestoreArray(rhs, &ra);
   MatSolve(_factor, rhs, x);
-  VecDestroy(&rhs);
   VecGhostUpdateBegin(x, INSERT_VALUES, SCATTER_FORWARD);
   VecGhostUpdateEnd(x, INSERT_VALUES, SCATTER_FORWARD);
 }

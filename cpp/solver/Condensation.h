@@ -118,6 +118,7 @@ private:
   Vec _g = nullptr;           ///< interface dofs: scratch
   Vec _rest = nullptr;        ///< whole model: scratch
   Vec _Tv = nullptr;          ///< jumps: scratch
+  Vec _Zr = nullptr;          ///< interface dofs: scratch
   std::vector<double> _u, _f; ///< whole-model local arrays for the interface kernel
   /// Orthonormal load directions, their J0^-1 on the interface dofs, and
   /// their jumps d_b.
