@@ -15,7 +15,7 @@ finest run, 32/16 with twice the steps; its own convergence is in the
 table): relative L2 error of tau(delta) over the curve (the run interpolated
 at the reference's delta), and the relative errors of the peak tau and of
 tau at the end (the residual at 1 mm for fig10). Runs use the defaults
-otherwise (quarter model by symmetry, lagged MUMPS), one at a time, one
+otherwise (quarter model by symmetry, condensed bulk), one at a time, one
 thread (OPENBLAS_NUM_THREADS=1).
 
 Writes bench/results/pareto.csv and pareto.png (error against wall time,
