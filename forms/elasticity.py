@@ -55,4 +55,13 @@ q = TestFunction(Q)
 L_stress = inner(stress, tau) * dx
 L_volume = q * dx
 
-forms = [a, L_thermal, L_stress, L_volume]
+# The same with a triquadratic displacement (mesh.degree = 2, on the same
+# trilinear geometry): a locking check on the trilinear bulk.
+V2 = FunctionSpace(mesh, VectorElement("Lagrange", hexahedron, 2))
+u2, v2 = TrialFunction(V2), TestFunction(V2)
+u_h2 = Coefficient(V2)  # displacement, for the stress output [mm]
+a_q2 = inner(sigma(epsilon(u2)), epsilon(v2)) * dx
+L_thermal_q2 = inner(sigma(eps_thermal), epsilon(v2)) * dx
+L_stress_q2 = inner(sigma(epsilon(u_h2) - eps_thermal), tau) * dx
+
+forms = [a, L_thermal, L_stress, L_volume, a_q2, L_thermal_q2, L_stress_q2]

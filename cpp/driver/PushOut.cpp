@@ -58,40 +58,48 @@ PushOut::PushOut(const Scene& scene, const mesh::MeshData& m, const model::Model
     if (is_concrete[n] && std::abs(z) < tol && std::hypot(x - c[0], y - c[1]) > Rs - tol)
       support.push_back(std::int64_t(n));
   }
-  // Dof lists of the owned nodes only: each constraint is applied, and each
-  // reaction counted, by exactly one process.
-  const auto add = [&](std::vector<std::int32_t>& list, std::int64_t node, int comp)
+  // Dof lists of the owned dof blocks only: each constraint is applied, and
+  // each reaction counted, by exactly one process. Chosen by the blocks'
+  // positions and materials, so that a P2 bulk's edge, face and interior
+  // dofs on the constrained surfaces are included.
+  const std::vector<double> X = model.V->tabulate_dof_coordinates(false);
+  const auto dofmap = model.V->dofmap();
+  const auto& original = model.mesh->topology().original_cell_index;
+  std::vector<std::uint8_t> block_steel(X.size() / 3, 0), block_concrete(X.size() / 3, 0);
+  for (std::size_t cell = 0; cell < original.size(); ++cell)
+    for (std::int32_t b : dofmap->cell_dofs(std::int32_t(cell)))
+      (m.material[original[cell]] == mesh::steel ? block_steel : block_concrete)[b] = 1;
+  const auto [xc, yc] = m.symmetry_center;
+  const std::int32_t n_owned = dofmap->index_map->size_local();
+  for (std::int32_t b = 0; b < n_owned; ++b)
   {
-    if (model.owned(model.node_block[node]))
-      list.push_back(3 * model.node_block[node] + comp);
-  };
-  for (std::int64_t n : top)
-    add(_top_z, n, 2);
-  for (std::int64_t n : support)
-    add(_support_z, n, 2);
-  if (_copies == 4)
-  {
+    const double x = X[3 * b], y = X[3 * b + 1], z = X[3 * b + 2];
+    if (block_steel[b] && std::abs(z - _L) < tol)
+      _top_z.push_back(3 * b + 2);
+    if (block_concrete[b] && std::abs(z) < tol && std::hypot(x - c[0], y - c[1]) > Rs - tol)
+      _support_z.push_back(3 * b + 2);
     // Quarter model: u_x = 0 on x = xc, u_y = 0 on y = yc (both sides of
     // the interface); they also remove the in-plane rigid modes and the
     // tube's rotation.
-    const auto [xc, yc] = m.symmetry_center;
-    for (std::size_t n = 0; n < m.num_nodes(); ++n)
-    {
-      if (std::abs(m.x[3 * n] - xc) < tol)
-        add(_fixed, std::int64_t(n), 0);
-      if (std::abs(m.x[3 * n + 1] - yc) < tol)
-        add(_fixed, std::int64_t(n), 1);
-    }
+    if (_copies == 4 && std::abs(x - xc) < tol)
+      _fixed.push_back(3 * b);
+    if (_copies == 4 && std::abs(y - yc) < tol)
+      _fixed.push_back(3 * b + 1);
   }
-  else
+  if (_copies != 4)
   {
+    const auto add = [&](std::int64_t node, int comp)
+    {
+      if (model.owned(model.node_block[node]))
+        _fixed.push_back(3 * model.node_block[node] + comp);
+    };
     const std::int64_t a = nearest(m, support, {c[0] + Rs, c[1], 0});
     const std::int64_t b = nearest(m, support, {c[0] - Rs, c[1], 0});
     const std::int64_t t = nearest(m, top, {c[0] + Ri, c[1], _L});
-    add(_fixed, a, 0);
-    add(_fixed, a, 1);
-    add(_fixed, b, 1);
-    add(_fixed, t, 1);
+    add(a, 0);
+    add(a, 1);
+    add(b, 1);
+    add(t, 1);
   }
   _top_start.assign(_top_z.size(), 0.0);
   Vec slip = model.mean_axial_slip_functional();

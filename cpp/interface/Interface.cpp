@@ -25,13 +25,17 @@ Vec normalized(const Vec& a)
 
 Interface::Interface(std::vector<std::int32_t> pair_blocks, const std::vector<double>& x,
                      Quadrature quadrature, std::vector<std::unique_ptr<laws::InterfaceLaw>> layers)
-    : _blocks(std::move(pair_blocks)), _q(std::move(quadrature)), _layers(std::move(layers))
+    : _blocks(std::move(pair_blocks)), _num_pairs(x.size() / 12),
+      _n(_num_pairs > 0 ? int(_blocks.size() / (2 * _num_pairs)) : 4), _q(std::move(quadrature)),
+      _layers(std::move(layers))
 {
-  if (_blocks.size() % 8 != 0 || x.size() != num_pairs() * 12)
+  if (x.size() % 12 != 0 || (_n != 4 && _n != 9) || _blocks.size() != 2 * _n * _num_pairs)
     throw std::invalid_argument("Interface: inconsistent pair arrays");
   const std::size_t nq = _q.weights.size();
   for (const auto& pt : _q.points)
-    _N.push_back(shape(pt));
+    for (double v : shape(pt, _n))
+      _N.push_back(v);
+  _Ke.resize(std::size_t(36) * _n * _n);
   _dA.resize(num_points());
   _frame.resize(9 * num_points());
   for (std::size_t p = 0; p < num_pairs(); ++p)
@@ -86,12 +90,13 @@ Interface::Interface(std::vector<std::int32_t> pair_blocks, const std::vector<do
 
 laws::Vec3 Interface::jump(std::span<const double> u, std::size_t p, std::size_t q) const
 {
-  const std::int32_t* b = _blocks.data() + 8 * p;
+  const std::int32_t* b = _blocks.data() + 2 * _n * p;
   const double* R = _frame.data() + 9 * (p * _q.weights.size() + q);
+  const double* N = _N.data() + _n * q;
   Vec w{0, 0, 0};
-  for (int a = 0; a < 4; ++a)
+  for (int a = 0; a < _n; ++a)
     for (int d = 0; d < 3; ++d)
-      w[d] += _N[q][a] * (u[3 * b[4 + a] + d] - u[3 * b[a] + d]);
+      w[d] += N[a] * (u[3 * b[_n + a] + d] - u[3 * b[a] + d]);
   return {R[0] * w[0] + R[1] * w[1] + R[2] * w[2], R[3] * w[0] + R[4] * w[1] + R[5] * w[2],
           R[6] * w[0] + R[7] * w[1] + R[8] * w[2]};
 }
@@ -100,12 +105,12 @@ bool Interface::assemble(std::span<const double> u, std::span<double> f, Mat A)
 {
   const std::size_t nq = _q.weights.size();
   bool ok = true;
-  std::array<double, 24 * 24> Ke;
+  const int n = _n, rows = 6 * n; // nodes per side, rows of Ke
   for (std::size_t p = 0; p < num_pairs(); ++p)
   {
-    const std::int32_t* b = _blocks.data() + 8 * p;
+    const std::int32_t* b = _blocks.data() + 2 * n * p;
     if (A)
-      Ke.fill(0.0);
+      std::fill(_Ke.begin(), _Ke.end(), 0.0);
     for (std::size_t q = 0; q < nq; ++q)
     {
       const std::size_t i = p * nq + q;
@@ -128,13 +133,13 @@ bool Interface::assemble(std::span<const double> u, std::span<double> f, Mat A)
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c)
           tg[c] += R[3 * r + c] * t[r];
-      const std::array<double, 4>& N = _N[q];
-      for (int a = 0; a < 4; ++a)
+      const double* N = _N.data() + n * q;
+      for (int a = 0; a < n; ++a)
         for (int d = 0; d < 3; ++d)
         {
           const double fa = N[a] * tg[d] * _dA[i];
           f[3 * b[a] + d] -= fa;     // steel side
-          f[3 * b[4 + a] + d] += fa; // concrete side
+          f[3 * b[n + a] + d] += fa; // concrete side
         }
       if (!A)
         continue;
@@ -151,19 +156,21 @@ bool Interface::assemble(std::span<const double> u, std::span<double> f, Mat A)
       // Node a of side sa (0 steel, 1 concrete) against node b of side sb:
       // sign + on the same side, - across.
       for (int sa = 0; sa < 2; ++sa)
-        for (int a = 0; a < 4; ++a)
+        for (int a = 0; a < n; ++a)
           for (int sb = 0; sb < 2; ++sb)
-            for (int bb = 0; bb < 4; ++bb)
+            for (int bb = 0; bb < n; ++bb)
             {
               const double c = (sa == sb ? 1.0 : -1.0) * N[a] * N[bb] * _dA[i];
-              const int row = 3 * (4 * sa + a), col = 3 * (4 * sb + bb);
+              if (c == 0.0)
+                continue; // nodal quadrature: other nodes
+              const int row = 3 * (n * sa + a), col = 3 * (n * sb + bb);
               for (int r = 0; r < 3; ++r)
                 for (int k = 0; k < 3; ++k)
-                  Ke[24 * (row + r) + col + k] += c * Dg[3 * r + k];
+                  _Ke[rows * (row + r) + col + k] += c * Dg[3 * r + k];
             }
     }
     if (A)
-      MatSetValuesBlockedLocal(A, 8, b, 8, b, Ke.data(), ADD_VALUES);
+      MatSetValuesBlockedLocal(A, 2 * n, b, 2 * n, b, _Ke.data(), ADD_VALUES);
   }
   return ok;
 }
@@ -235,17 +242,17 @@ void Interface::add_axial_jump_functional(std::span<double> a) const
   const std::size_t nq = _q.weights.size();
   for (std::size_t p = 0; p < num_pairs(); ++p)
   {
-    const std::int32_t* b = _blocks.data() + 8 * p;
+    const std::int32_t* b = _blocks.data() + 2 * _n * p;
     for (std::size_t q = 0; q < nq; ++q)
     {
       const std::size_t i = p * nq + q;
       const double* s1 = _frame.data() + 9 * i + 3;
-      for (int n = 0; n < 4; ++n)
+      for (int n = 0; n < _n; ++n)
         for (int d = 0; d < 3; ++d)
         {
-          const double c = _N[q][n] * s1[d] * _dA[i];
-          a[3 * b[n] + d] -= c;     // steel side
-          a[3 * b[4 + n] + d] += c; // concrete side
+          const double c = _N[_n * q + n] * s1[d] * _dA[i];
+          a[3 * b[n] + d] -= c;      // steel side
+          a[3 * b[_n + n] + d] += c; // concrete side
         }
     }
   }

@@ -37,13 +37,17 @@ struct PointOutput
 class Interface
 {
 public:
-  /// `pair_blocks[8 * p + i]`: local dof block of node i of pair p (steel
-  /// nodes 0-3, then concrete 0-3). `x` are the node coordinates of the
-  /// pairs' steel side, [pair][4][3].
+  /// `pair_blocks[2 n p + i]`: local dof block of node i of pair p, with n
+  /// = 4 or 9 nodes per side in the order of Quadrature.h (steel nodes 0 to
+  /// n-1, then concrete). `x` are the corner coordinates of the pairs'
+  /// steel side, [pair][4][3] (the facets are bilinear). `quadrature` is for
+  /// n nodes.
   Interface(std::vector<std::int32_t> pair_blocks, const std::vector<double>& x,
             Quadrature quadrature, std::vector<std::unique_ptr<laws::InterfaceLaw>> layers);
 
-  std::size_t num_pairs() const { return _blocks.size() / 8; }
+  std::size_t num_pairs() const { return _num_pairs; }
+  /// Nodes per side of a joint element (4, or 9 for mesh.degree = 2).
+  int nodes_per_side() const { return _n; }
   std::size_t num_points() const { return num_pairs() * points_per_pair(); }
   std::size_t points_per_pair() const { return _q.weights.size(); }
   std::size_t num_layers() const { return _layers.size(); }
@@ -97,10 +101,13 @@ private:
   laws::Vec3 jump(std::span<const double> u, std::size_t p, std::size_t q) const;
 
   std::vector<std::int32_t> _blocks;
+  std::size_t _num_pairs;
+  int _n; ///< nodes per side
   Quadrature _q;
-  std::vector<std::array<double, 4>> _N; ///< shape values per quad point
-  std::vector<double> _dA;               ///< weight * area element [mm^2]
-  std::vector<double> _frame;            ///< rows n, s1, s2 per point
+  std::vector<double> _N;     ///< shape values [quad point][node]
+  std::vector<double> _Ke;    ///< element tangent scratch, (6 n)^2
+  std::vector<double> _dA;    ///< weight * area element [mm^2]
+  std::vector<double> _frame; ///< rows n, s1, s2 per point
   std::vector<std::unique_ptr<laws::InterfaceLaw>> _layers;
   InterfaceState _state;
   double _dt = 0; ///< pseudo-time increment of the step

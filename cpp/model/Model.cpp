@@ -1,7 +1,9 @@
 #include "Model.h"
+#include "../interface/Quadrature.h"
 #include "../laws/LawRegistry.h"
 #include "elasticity.h"
 #include <algorithm>
+#include <cmath>
 #include <dolfinx/common/IndexMap.h>
 #include <dolfinx/fem/assembler.h>
 #include <dolfinx/fem/petsc.h>
@@ -104,8 +106,11 @@ Model::Model(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene)
       dolfinx::mesh::create_mesh(comm, cells, cmap, x_in, {x_in.size() / 3, 3},
                                  dolfinx::mesh::GhostMode::none, pair_keeping_partitioner(data)));
 
+  degree = int(scene.integer("mesh.degree"));
+  const bool q2 = degree == 2;
   V = std::make_shared<fem::FunctionSpace>(
-      fem::create_functionspace(functionspace_form_elasticity_a, "u", mesh));
+      q2 ? fem::create_functionspace(functionspace_form_elasticity_a_q2, "u2", mesh)
+         : fem::create_functionspace(functionspace_form_elasticity_a, "u", mesh));
   u = std::make_shared<Function<double>>(V);
   auto Q = std::make_shared<fem::FunctionSpace>(
       fem::create_functionspace(functionspace_form_elasticity_a, "E", mesh));
@@ -121,13 +126,15 @@ Model::Model(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene)
   const std::map<std::string, std::shared_ptr<const Function<double>>> coeffs = {
       {"E", E}, {"nu", nu}, {"alpha", alpha}};
   _a = std::make_shared<fem::Form<double>>(fem::create_form<double>(
-      *form_elasticity_a, {V, V}, coeffs,
+      q2 ? *form_elasticity_a_q2 : *form_elasticity_a, {V, V}, coeffs,
       std::map<std::string, std::shared_ptr<const fem::Constant<double>>>{}, {}));
   _L_thermal = std::make_shared<fem::Form<double>>(
-      fem::create_form<double>(*form_elasticity_L_thermal, {V}, coeffs, {{"dT", dT}}, {}));
+      fem::create_form<double>(q2 ? *form_elasticity_L_thermal_q2 : *form_elasticity_L_thermal, {V},
+                               coeffs, {{"dT", dT}}, {}));
 
-  // Input node -> local dof block: P1 dofs sit at the cell's geometry nodes,
-  // in the same local order.
+  // Input node -> local dof block: the first dofs of a cell (P1: all; P2:
+  // the vertices' before the edges', faces' and interior's) sit at the
+  // cell's geometry nodes, in the same local order.
   const auto& x_dofmap = mesh->geometry().dofmap();
   const auto& input_index = mesh->geometry().input_global_indices();
   const auto dofmap = V->dofmap();
@@ -145,23 +152,61 @@ Model::Model(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene)
   // coordinates.
   const auto& original = mesh->topology().original_cell_index;
   const std::int32_t n_owned_cells = mesh->topology().index_map(3)->size_local();
-  std::vector<std::uint8_t> local_cell(data.num_cells(), 0); // owned cells only
+  std::vector<std::int32_t> local_cell(data.num_cells(), -1); // owned cells only
   for (std::int32_t c = 0; c < n_owned_cells; ++c)
-    local_cell[original[c]] = 1;
+    local_cell[original[c]] = c;
   std::vector<std::int32_t> pair_blocks;
   std::vector<double> pair_x;
+  const std::vector<double> dof_x = q2 ? V->tabulate_dof_coordinates(false) : std::vector<double>{};
   for (const mesh::InterfacePair& p : data.pairs)
   {
-    if (!local_cell[p.steel_cell])
+    if (local_cell[p.steel_cell] < 0)
       continue;
-    if (!local_cell[p.concrete_cell])
+    if (local_cell[p.concrete_cell] < 0)
       throw std::logic_error("interface pair split across processes");
-    for (std::int64_t n : p.steel)
-      pair_blocks.push_back(node_block[n]);
-    for (std::int64_t n : p.concrete)
-      pair_blocks.push_back(node_block[n]);
+    const std::size_t first_x = pair_x.size();
     for (std::int64_t n : p.steel)
       pair_x.insert(pair_x.end(), data.x.begin() + 3 * n, data.x.begin() + 3 * n + 3);
+    if (!q2)
+    {
+      for (std::int64_t n : p.steel)
+        pair_blocks.push_back(node_block[n]);
+      for (std::int64_t n : p.concrete)
+        pair_blocks.push_back(node_block[n]);
+      continue;
+    }
+    // P2: the 9 dofs of each side's facet, found by position (the facet is
+    // the bilinear image of the reference square; Quadrature.h's order).
+    const double* corner = pair_x.data() + first_x;
+    for (std::int64_t cell : {p.steel_cell, p.concrete_cell})
+    {
+      const auto cd = dofmap->cell_dofs(local_cell[cell]);
+      for (const auto& [xi, eta] : interface::reference_nodes(9))
+      {
+        const std::array<double, 4> N = {(1 - xi) * (1 - eta), xi * (1 - eta), (1 - xi) * eta,
+                                         xi * eta};
+        std::array<double, 3> target{0, 0, 0};
+        for (int a = 0; a < 4; ++a)
+          for (int d = 0; d < 3; ++d)
+            target[d] += N[a] * corner[3 * a + d];
+        std::int32_t best = -1;
+        double d_best =
+            1e-6 * (1 + std::abs(target[0]) + std::abs(target[1]) + std::abs(target[2]));
+        for (std::int32_t dof : cd)
+        {
+          const double* y = dof_x.data() + 3 * dof;
+          const double dist = std::hypot(y[0] - target[0], y[1] - target[1], y[2] - target[2]);
+          if (dist < d_best)
+          {
+            d_best = dist;
+            best = dof;
+          }
+        }
+        if (best < 0)
+          throw std::logic_error("P2 interface: no dof of the cell at a facet node");
+        pair_blocks.push_back(best);
+      }
+    }
   }
   std::vector<std::unique_ptr<laws::InterfaceLaw>> layers;
   for (std::size_t l = 0; l < scene.layers().size(); ++l)
@@ -172,14 +217,16 @@ Model::Model(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene)
   }
   interface = std::make_unique<interface::Interface>(
       std::move(pair_blocks), pair_x,
-      interface::make_quadrature(scene.string("mesh.interface_quadrature")), std::move(layers));
+      interface::make_quadrature(scene.string("mesh.interface_quadrature"), q2 ? 9 : 4),
+      std::move(layers));
 
   // K with the bulk pattern plus the interface couplings.
   dolfinx::la::SparsityPattern pattern = fem::create_sparsity_pattern(*_a);
   const auto blocks = interface->pair_blocks();
+  const int nb = 2 * interface->nodes_per_side(); // blocks per joint element
   for (std::size_t p = 0; p < interface->num_pairs(); ++p)
   {
-    std::span<const std::int32_t> b = blocks.subspan(8 * p, 8);
+    std::span<const std::int32_t> b = blocks.subspan(nb * p, nb);
     pattern.insert(b, b);
   }
   pattern.assemble();
@@ -188,10 +235,10 @@ Model::Model(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene)
   MatZeroEntries(K);
   // Explicit zeros keep the interface couplings in the assembled pattern
   // (PETSc squeezes out preallocated entries that were never set).
-  const std::vector<double> zeros(24 * 24, 0.0);
+  const std::vector<double> zeros(9 * nb * nb, 0.0);
   for (std::size_t p = 0; p < interface->num_pairs(); ++p)
-    MatSetValuesBlockedLocal(K, 8, blocks.data() + 8 * p, 8, blocks.data() + 8 * p, zeros.data(),
-                             ADD_VALUES);
+    MatSetValuesBlockedLocal(K, nb, blocks.data() + nb * p, nb, blocks.data() + nb * p,
+                             zeros.data(), ADD_VALUES);
   fem::assemble_matrix(dolfinx::la::petsc::Matrix::set_block_fn(K, ADD_VALUES), *_a, {});
   MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY);
   MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY);
@@ -248,9 +295,13 @@ StressProjection::StressProjection(const Model& model)
       fem::create_functionspace(functionspace_form_elasticity_L_stress, "tau", model.mesh));
   auto Q = model.E->function_space();
   const std::map<std::string, std::shared_ptr<const Function<double>>> coeffs = {
-      {"E", model.E}, {"nu", model.nu}, {"alpha", model.alpha}, {"u_h", model.u}};
-  _L_stress = std::make_shared<fem::Form<double>>(
-      fem::create_form<double>(*form_elasticity_L_stress, {S}, coeffs, {{"dT", model.dT}}, {}));
+      {"E", model.E},
+      {"nu", model.nu},
+      {"alpha", model.alpha},
+      {model.degree == 2 ? "u_h2" : "u_h", model.u}};
+  _L_stress = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+      model.degree == 2 ? *form_elasticity_L_stress_q2 : *form_elasticity_L_stress, {S}, coeffs,
+      {{"dT", model.dT}}, {}));
   _sigma = std::make_shared<Function<double>>(S);
   _sigma->name = "stress";
 

@@ -26,8 +26,9 @@ public:
   Model& operator=(const Model&) = delete;
 
   std::shared_ptr<dolfinx::mesh::Mesh> mesh;
-  std::shared_ptr<dolfinx::fem::FunctionSpace> V;               ///< P1 displacement, bs 3
-  std::shared_ptr<dolfinx::fem::Function<double>> u;            ///< displacement [mm]
+  int degree = 1;                                    ///< of the displacement (mesh.degree)
+  std::shared_ptr<dolfinx::fem::FunctionSpace> V;    ///< P1 or P2 displacement, bs 3
+  std::shared_ptr<dolfinx::fem::Function<double>> u; ///< displacement [mm]
   std::shared_ptr<dolfinx::fem::Function<double>> E, nu, alpha; ///< per cell
   std::shared_ptr<dolfinx::fem::Constant<double>> dT;           ///< [degC]
 

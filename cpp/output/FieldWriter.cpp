@@ -34,7 +34,7 @@ FieldWriter::FieldWriter(const model::Model& model, const std::filesystem::path&
     for (int a = 0; a < 4; ++a)
     {
       cells.push_back(4 * first + std::int64_t(coords.size() / 3));
-      const std::int32_t b = blocks[8 * p + a];
+      const std::int32_t b = blocks[2 * itf.nodes_per_side() * p + a]; // the corners
       coords.insert(coords.end(), dof_x.begin() + 3 * b, dof_x.begin() + 3 * b + 3);
     }
   std::vector<std::int32_t> offsets(itf.num_pairs() + 1);

@@ -16,10 +16,11 @@ constexpr std::size_t max_basis = 6;
 std::vector<std::pair<std::int32_t, std::int32_t>> node_pairs(const model::Model& model)
 {
   const auto b = model.interface->pair_blocks();
+  const int n = model.interface->nodes_per_side();
   std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
-  for (std::size_t p = 0; p < b.size() / 8; ++p)
-    for (int a = 0; a < 4; ++a)
-      pairs.emplace_back(b[8 * p + 4 + a], b[8 * p + a]);
+  for (std::size_t p = 0; p < model.interface->num_pairs(); ++p)
+    for (int a = 0; a < n; ++a)
+      pairs.emplace_back(b[2 * n * p + n + a], b[2 * n * p + a]);
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   for (std::size_t k = 1; k < pairs.size(); ++k)

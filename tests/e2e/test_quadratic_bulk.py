@@ -1,0 +1,58 @@
+"""The triquadratic bulk (mesh.degree = 2: 27-node displacement on the
+trilinear hexahedra, 9-node joint elements):
+ - its quarter model with the condensed bulk gives the plain full-Newton
+   full model's curve to 1e-6 (friction + adhesion through the peak, thermal
+   step): the P2 constraints (edge, face and interior dofs on the top,
+   support and symmetry planes) and the 9-node pairs are consistent;
+ - on the Lame shrink fit it converges to the trilinear bulk's plateau: the
+   P2 error against the trilinear 16/8 plateau falls by >= 3x from the 4/2
+   to the 8/4 mesh (h^2) and is below 0.5 % at 8/4, so both degrees agree
+   on the limit and the trilinear bulk does not lock here.
+(The assembled 9-node tangent is checked against finite differences in the
+unit tests; the P2 points of the run-time/error study are in bench/pareto.py.)"""
+from common import COARSE_MESH, EXP_SOFT, FRICTION_2, check, curve, out_dir, run, summary
+
+adhesion = COARSE_MESH + "degree = 2\n" + FRICTION_2 + EXP_SOFT + """
+[loading]
+temperature_change = -25.0
+push_displacement = 0.05
+steps = 10
+"""
+quarter, full = out_dir("p2_quarter"), out_dir("p2_full_plain")
+run(adhesion, quarter)
+run(adhesion, full, sets=["model.symmetry=full", "solver.condensation=off",
+                          "solver.preconditioner=jacobian"])
+sq, sf = summary(quarter), summary(full)
+check(sq["symmetry"] == "quarter" and sq["condensed_dofs"] > 0 and sf["symmetry"] == "full",
+      f"P2: quarter model condensed onto {sq['condensed_dofs']} jumps; reference {sf['dofs']} dofs")
+a, b = curve(quarter), curve(full)
+check(len(a) == len(b) == 11, "P2: both converged through 10 steps")
+for key in ("P_N", "p_MPa", "slip_mm"):
+    scale = max(abs(r[key]) for r in b)
+    diff = max(abs(x[key] - y[key]) for x, y in zip(a, b))
+    check(diff <= 1e-6 * scale, f"P2 {key}: max |quarter condensed - full plain| = {diff:.1e} <= 1e-6 x {scale:.4g}")
+
+lame = """
+[geometry]
+outer_shape = "circle"
+width = 100.0
+[[interface]]
+law = "friction"
+k = 1000.0
+mu = 0.4
+[loading]
+temperature_change = -25.0
+push_displacement = 0.01
+steps = 4
+"""
+plateau = {}
+for degree, nq, nz in ((1, 16, 8), (2, 4, 2), (2, 8, 4)):
+    out = out_dir(f"p2_lame_{degree}_{nq}")
+    run(lame, out, sets=[f"mesh.degree={degree}", f"mesh.elements_per_quarter={nq}",
+                         f"mesh.elements_through_thickness={nz}"])
+    plateau[(degree, nq)] = curve(out)[-1]["tau_MPa"]
+ref = plateau[(1, 16)]
+e4, e8 = (abs(plateau[(2, n)] / ref - 1) for n in (4, 8))
+check(e4 / e8 >= 3, f"Lame plateau, P2 against P1 16/8 ({ref:.5f} MPa): 4/2 {100 * e4:.2f} %, "
+                    f"8/4 {100 * e8:.2f} %, ratio {e4 / e8:.1f} >= 3")
+check(e8 < 5e-3, f"P2 8/4 within 0.5 % of the trilinear 16/8 plateau ({100 * e8:.2f} %)")
