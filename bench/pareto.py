@@ -9,8 +9,8 @@
 
 Swept: mesh resolution (elements per quarter 4..32, through the thickness
 2..16), steel layers, grading of the outer block, interface quadrature
-(gauss/nodal) and the number of steps. The bulk is trilinear (degree 1);
-degree 2 is not implemented. Each curve is compared with the reference (the
+(gauss/nodal), the number of steps and the bulk's degree (1: trilinear; 2:
+triquadratic displacement on the same trilinear hexahedra, "P2" runs). Each curve is compared with the reference (the
 finest run, 32/16 with twice the steps; its own convergence is in the
 table): relative L2 error of tau(delta) over the curve (the run interpolated
 at the reference's delta), and the relative errors of the peak tau and of
@@ -65,6 +65,8 @@ def cases(study):
             out.append((f"16/8 {n} steps", mesh(16, 8) + fig10_steps(n)))
         for n in (20, 40):
             out.append((f"8/4 {n} steps", mesh(8, 4) + fig10_steps(n)))
+        for nq, nz in ((4, 2), (8, 4), (16, 8)):
+            out.append((f"{nq}/{nz} P2", mesh(nq, nz, degree=2) + fig10_steps(80)))
         return "pushout_friction_adhesion.toml", [(n, s + base) for n, s in out]
     base = ["output.plot=false", "loading.temperature_change=-25"]
     out = [("ref 32/16 27 steps", mesh(32, 16) + ["loading.steps=27"])]
@@ -75,6 +77,8 @@ def cases(study):
     out.append(("8/8", mesh(8, 8)))
     for n in (3, 27):
         out.append((f"16/8 {n} steps", mesh(16, 8) + [f"loading.steps={n}"]))
+    for nq, nz in ((4, 2), (8, 4), (16, 8)):
+        out.append((f"{nq}/{nz} P2", mesh(nq, nz, degree=2)))
     return "pushout_friction.toml", [(n, s + base) for n, s in out]
 
 

@@ -174,12 +174,12 @@ std::vector<double> PushOut::row(std::span<const double> /*reactions*/, std::spa
   // (sums over owned dofs and local pairs, reduced over processes)
   // The interface forces are internal forces (f = +int N t on the concrete
   // side): the tube pushes the concrete with -t, downwards when P > 0.
-  local[0] = itf.resultant(model.u->x()->array())[2];
+  local[0] = itf.resultant()[2];
   for (std::size_t i = 0; i < _top_z.size(); ++i)
     local[1] += _top_start[i] - x[_top_z[i]];
   for (std::size_t i = 0; i < _slip.size(); ++i)
     local[4] += _slip[i] * x[i];
-  const std::vector<double> normal = itf.normal_force(model.u->x()->array());
+  const std::vector<double> normal = itf.normal_force();
   local.insert(local.end(), normal.begin(), normal.end());
   std::vector<double> g(local.size());
   MPI_Allreduce(local.data(), g.data(), int(local.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);

@@ -95,10 +95,10 @@ bool step_displacement(StepLoop& L)
       L.summary.newton_iterations += rep.iterations;
       if (rep.converged)
       {
+        L.record(rep.iterations, cuts, k, L.scenario.steps()); // before the commit: see record
         L.commit();
         s = s_try;
         stepper.converged(rep.iterations);
-        L.record(rep.iterations, cuts, k, L.scenario.steps());
         continue;
       }
       L.revert();
@@ -217,13 +217,13 @@ bool follow_path(StepLoop& L, solver::NewtonSolver::Preconditioner pc, int refac
                             std::to_string(k) + "; the push cannot be followed by slip control";
         return false;
       }
+      L.record(rep.iterations, cuts, k, 0); // before the commit: see record
       L.commit();
       d_lambda_prev = lambda_new - lambda;
       d_slip_prev = slip_new - slip;
       lambda = lambda_new;
       slip = slip_new;
       stepper.converged(rep.iterations);
-      L.record(rep.iterations, cuts, k, 0);
       cuts = 0;
       ++k;
       continue;
@@ -368,7 +368,9 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   // output reads it (step 0 always: start_loading reads the whole x).
   const bool bulk_needed = scenario->uses_bulk() || fields != nullptr;
 
-  // Records the committed state as a curve row.
+  // Records the converged state of a step as a curve row, before it is
+  // committed: evaluating the laws again (the reactions) from the committed
+  // state would advance a viscous law a second time.
   int row_index = 0;
   const auto record = [&](int iterations, int cuts, int step, int steps)
   {
@@ -439,15 +441,15 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   newton.set_bulk_needed(bulk_needed);
   if (ok)
   {
-    model.interface->state().commit();
-    VecCopy(x, x_committed);
     const double* xa;
     PetscInt n;
     VecGetLocalSize(x, &n);
     VecGetArrayRead(x, &xa);
     scenario->start_loading(std::span<const double>(xa, n));
     VecRestoreArrayRead(x, &xa);
-    record(its0, 0, 0, scenario->steps());
+    record(its0, 0, 0, scenario->steps()); // before the commit: see record
+    model.interface->state().commit();
+    VecCopy(x, x_committed);
   }
 
   // Load steps.

@@ -86,6 +86,7 @@ Interface::Interface(std::vector<std::int32_t> pair_blocks, const std::vector<do
     sizes.push_back(law->state_size());
   }
   _state = InterfaceState(num_points(), sizes);
+  _t_layer.assign(3 * num_points() * _layers.size(), 0.0);
 }
 
 laws::Vec3 Interface::jump(std::span<const double> u, std::size_t p, std::size_t q) const
@@ -122,6 +123,7 @@ bool Interface::assemble(std::span<const double> u, std::span<double> f, Mat A)
         const laws::LawResult r =
             _layers[l]->update(_state.committed(i, l), w, _state.trial(i, l), _dt);
         ok = ok && r.status == laws::LawStatus::ok;
+        std::copy(r.t.begin(), r.t.end(), _t_layer.begin() + 3 * (i * _layers.size() + l));
         for (int c = 0; c < 3; ++c)
           t[c] += r.t[c];
         for (int c = 0; c < 9; ++c)
@@ -181,59 +183,39 @@ PointOutput Interface::point_output(std::span<const double> u, std::size_t p, st
   PointOutput out;
   out.w = jump(u, p, q);
   out.t = {0, 0, 0};
-  std::array<double, 16> scratch;
   for (std::size_t l = 0; l < _layers.size(); ++l)
   {
-    // Re-evaluating from the committed state reproduces the trial traction.
-    std::span<double> s(scratch.data(), std::size_t(_layers[l]->state_size()));
-    const laws::LawResult r = _layers[l]->update(_state.committed(i, l), out.w, s, _dt);
     for (int c = 0; c < 3; ++c)
-      out.t[c] += r.t[c];
+      out.t[c] += layer_traction(i, l)[c];
     out.slip.push_back(_layers[l]->slip(_state.trial(i, l)));
     out.damage.push_back(_layers[l]->damage(_state.trial(i, l)));
   }
   return out;
 }
 
-std::vector<double> Interface::normal_force(std::span<const double> u) const
+std::vector<double> Interface::normal_force() const
 {
   std::vector<double> force(_layers.size(), 0.0);
-  std::array<double, 16> scratch;
-  const std::size_t nq = _q.weights.size();
-  for (std::size_t p = 0; p < num_pairs(); ++p)
-    for (std::size_t q = 0; q < nq; ++q)
-    {
-      const std::size_t i = p * nq + q;
-      const laws::Vec3 w = jump(u, p, q);
-      for (std::size_t l = 0; l < _layers.size(); ++l)
-      {
-        std::span<double> s(scratch.data(), std::size_t(_layers[l]->state_size()));
-        force[l] += _layers[l]->update(_state.committed(i, l), w, s, _dt).t[0] * _dA[i];
-      }
-    }
+  for (std::size_t i = 0; i < num_points(); ++i)
+    for (std::size_t l = 0; l < _layers.size(); ++l)
+      force[l] += layer_traction(i, l)[0] * _dA[i];
   return force;
 }
 
-laws::Vec3 Interface::resultant(std::span<const double> u) const
+laws::Vec3 Interface::resultant() const
 {
   laws::Vec3 force{0, 0, 0};
-  std::array<double, 16> scratch;
-  const std::size_t nq = _q.weights.size();
-  for (std::size_t p = 0; p < num_pairs(); ++p)
-    for (std::size_t q = 0; q < nq; ++q)
+  for (std::size_t i = 0; i < num_points(); ++i)
+  {
+    const double* R = _frame.data() + 9 * i;
+    for (std::size_t l = 0; l < _layers.size(); ++l)
     {
-      const std::size_t i = p * nq + q;
-      const laws::Vec3 w = jump(u, p, q);
-      const double* R = _frame.data() + 9 * i;
-      for (std::size_t l = 0; l < _layers.size(); ++l)
-      {
-        std::span<double> s(scratch.data(), std::size_t(_layers[l]->state_size()));
-        const laws::Vec3 t = _layers[l]->update(_state.committed(i, l), w, s, _dt).t;
-        for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 3; ++c)
-            force[c] += R[3 * r + c] * t[r] * _dA[i];
-      }
+      const double* t = layer_traction(i, l);
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+          force[c] += R[3 * r + c] * t[r] * _dA[i];
     }
+  }
   return force;
 }
 

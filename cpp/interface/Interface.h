@@ -66,8 +66,9 @@ public:
   /// any law failed.
   bool assemble(std::span<const double> u, std::span<double> f, Mat A);
 
-  /// Output quantities of quadrature point q of pair p from the trial state
-  /// (equal to the committed one after a converged step).
+  /// Output quantities of quadrature point q of pair p: the tractions of
+  /// the last evaluation (assemble()), the jump of `u`, the trial state's
+  /// slips and damage. After a converged step all are the converged state's.
   PointOutput point_output(std::span<const double> u, std::size_t p, std::size_t q) const;
 
   /// Adds the coefficients of the linear functional
@@ -81,15 +82,16 @@ public:
   /// Area of the interface on this process [mm^2].
   double area() const;
 
-  /// Integral of each layer's normal traction over the interface on this
-  /// process [N], at the committed state (call after commit()).
-  std::vector<double> normal_force(std::span<const double> u) const;
+  /// Integral of each layer's normal traction over this process's pairs
+  /// [N], from the last evaluation (assemble(): after a converged step, its
+  /// state; stored, not re-evaluated, since a viscous law's update from the
+  /// new committed state would advance it again).
+  std::vector<double> normal_force() const;
 
   /// Resultant int t dA of the tractions over this process's pairs, global
   /// frame [N] (the internal force on the concrete side; the tube acts on
-  /// the concrete with its opposite), at the committed state (call after
-  /// commit()).
-  laws::Vec3 resultant(std::span<const double> u) const;
+  /// the concrete with its opposite), from the last evaluation as above.
+  laws::Vec3 resultant() const;
 
   /// The local frame [n, s1, s2] (row-major 3x3) at point (p, q).
   std::span<const double> frame(std::size_t p, std::size_t q) const
@@ -110,6 +112,11 @@ private:
   std::vector<double> _frame; ///< rows n, s1, s2 per point
   std::vector<std::unique_ptr<laws::InterfaceLaw>> _layers;
   InterfaceState _state;
+  std::vector<double> _t_layer; ///< traction per point and layer, local frame, last evaluation
+  const double* layer_traction(std::size_t i, std::size_t l) const
+  {
+    return _t_layer.data() + 3 * (i * _layers.size() + l);
+  }
   double _dt = 0; ///< pseudo-time increment of the step
 };
 } // namespace pushout::interface
