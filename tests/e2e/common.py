@@ -15,6 +15,23 @@ OUT_ROOT = os.environ.get("PUSHOUT_TEST_OUT", "/tmp/pushout-test-output")
 COARSE_MESH = "[mesh]\nelements_per_quarter = 4\nelements_through_thickness = 2\n"
 FRICTION_2 = '[[interface]]\nlaw = "friction"\nk = 1000.0\nmu = 0.4\n'  # Table 1
 EXP_SOFT = '[[interface]]\nlaw = "exponential_softening"\nk = 1000.0\nf_t = 3.0\nc = 25.0\n'
+# Thermal step, then through the adhesion peak (with FRICTION_2 + EXP_SOFT).
+THROUGH_PEAK = "[loading]\ntemperature_change = -25.0\npush_displacement = 0.05\nsteps = 10\n"
+# Lame shrink fit: a circular slice (outer diameter 100 mm) shrinks onto the
+# tube through a friction interface; its plateau is tau = mu p (test_lame).
+LAME = """
+[geometry]
+outer_shape = "circle"
+width = 100.0
+[[interface]]
+law = "friction"
+k = 1000.0
+mu = 0.4
+[loading]
+temperature_change = -25.0
+push_displacement = 0.01
+steps = 4
+"""
 
 
 def out_dir(name):

@@ -8,17 +8,12 @@
    grows, and the path reaches the final delta on the friction plateau.
 3. The plain Newton (LU every iteration) traces the same path as the default
    lagged preconditioner."""
-from common import COARSE_MESH, FRICTION_2, check, curve, out_dir, run, summary
+from common import COARSE_MESH, FRICTION_2, THROUGH_PEAK, check, curve, out_dir, run, summary
 
 EXP = '[[interface]]\nlaw = "exponential_softening"\nk = 1000.0\nf_t = 3.0\nc = {c}\n'
 
 # 1. Fig. 10 (c = 25 1/mm): no snap-back; both controls reach delta = 0.05.
-fig10 = COARSE_MESH + FRICTION_2 + EXP.format(c=25.0) + """
-[loading]
-temperature_change = -25.0
-push_displacement = 0.05
-steps = 10
-"""
+fig10 = COARSE_MESH + FRICTION_2 + EXP.format(c=25.0) + THROUGH_PEAK
 disp, arc = out_dir("arc_fig10_displacement"), out_dir("arc_fig10_arc_length")
 run(fig10, disp)
 run(fig10, arc, sets=["loading.control=arc_length"])

@@ -13,14 +13,9 @@ It is the default where possible, and solver.condensation = "on" is refused
 with a clear error where it is not."""
 import os
 
-from common import COARSE_MESH, EXP_SOFT, FRICTION_2, SOURCE, check, curve, out_dir, run, summary
+from common import COARSE_MESH, EXP_SOFT, FRICTION_2, SOURCE, THROUGH_PEAK, check, curve, out_dir, run, summary
 
-adhesion = COARSE_MESH + FRICTION_2 + EXP_SOFT + """
-[loading]
-temperature_change = -25.0
-push_displacement = 0.05
-steps = 10
-"""
+adhesion = COARSE_MESH + FRICTION_2 + EXP_SOFT + THROUGH_PEAK
 single_joint = os.path.join(SOURCE, "demo", "single_joint_cohesive_friction.toml")
 cases = {
     "full_model": (adhesion, ["model.symmetry=full"]),

@@ -10,14 +10,9 @@ trilinear hexahedra, 9-node joint elements):
    on the limit and the trilinear bulk does not lock here.
 (The assembled 9-node tangent is checked against finite differences in the
 unit tests; the P2 points of the run-time/error study are in bench/pareto.py.)"""
-from common import COARSE_MESH, EXP_SOFT, FRICTION_2, check, curve, out_dir, run, summary
+from common import COARSE_MESH, EXP_SOFT, FRICTION_2, LAME, THROUGH_PEAK, check, curve, out_dir, run, summary
 
-adhesion = COARSE_MESH + "degree = 2\n" + FRICTION_2 + EXP_SOFT + """
-[loading]
-temperature_change = -25.0
-push_displacement = 0.05
-steps = 10
-"""
+adhesion = COARSE_MESH + "degree = 2\n" + FRICTION_2 + EXP_SOFT + THROUGH_PEAK
 quarter, full = out_dir("p2_quarter"), out_dir("p2_full_plain")
 run(adhesion, quarter)
 run(adhesion, full, sets=["model.symmetry=full", "solver.condensation=off",
@@ -32,23 +27,10 @@ for key in ("P_N", "p_MPa", "slip_mm"):
     diff = max(abs(x[key] - y[key]) for x, y in zip(a, b))
     check(diff <= 1e-6 * scale, f"P2 {key}: max |quarter condensed - full plain| = {diff:.1e} <= 1e-6 x {scale:.4g}")
 
-lame = """
-[geometry]
-outer_shape = "circle"
-width = 100.0
-[[interface]]
-law = "friction"
-k = 1000.0
-mu = 0.4
-[loading]
-temperature_change = -25.0
-push_displacement = 0.01
-steps = 4
-"""
 plateau = {}
 for degree, nq, nz in ((1, 16, 8), (2, 4, 2), (2, 8, 4)):
     out = out_dir(f"p2_lame_{degree}_{nq}")
-    run(lame, out, sets=[f"mesh.degree={degree}", f"mesh.elements_per_quarter={nq}",
+    run(LAME, out, sets=[f"mesh.degree={degree}", f"mesh.elements_per_quarter={nq}",
                          f"mesh.elements_through_thickness={nz}"])
     plateau[(degree, nq)] = curve(out)[-1]["tau_MPa"]
 ref = plateau[(1, 16)]

@@ -3,14 +3,9 @@
 (solver.condensation), and both together, give the plain full-Newton curve
 (LU of every whole-model Jacobian) to 1e-6 relative on a friction + adhesion
 push-out through the peak."""
-from common import COARSE_MESH, EXP_SOFT, FRICTION_2, check, curve, out_dir, run, summary
+from common import COARSE_MESH, EXP_SOFT, FRICTION_2, THROUGH_PEAK, check, curve, out_dir, run, summary
 
-scene = COARSE_MESH + FRICTION_2 + EXP_SOFT + """
-[loading]
-temperature_change = -25.0
-push_displacement = 0.05
-steps = 10
-"""
+scene = COARSE_MESH + FRICTION_2 + EXP_SOFT + THROUGH_PEAK
 plain = out_dir("solver_plain")
 run(scene, plain, sets=["solver.preconditioner=jacobian", "solver.condensation=off"])
 ref = curve(plain)

@@ -3,14 +3,9 @@ quarter of the mesh with symmetry conditions and gives the plain
 full-Newton full model's curve to 1e-6 relative (friction + adhesion through the peak, with the
 thermal step); scenes without the symmetry, or asking for fields, run on
 the full model."""
-from common import COARSE_MESH, EXP_SOFT, FRICTION_2, check, curve, out_dir, run, summary
+from common import COARSE_MESH, EXP_SOFT, FRICTION_2, THROUGH_PEAK, check, curve, out_dir, run, summary
 
-scene = COARSE_MESH + FRICTION_2 + EXP_SOFT + """
-[loading]
-temperature_change = -25.0
-push_displacement = 0.05
-steps = 10
-"""
+scene = COARSE_MESH + FRICTION_2 + EXP_SOFT + THROUGH_PEAK
 # The quarter model with the default (lagged) solver against the plain
 # full-Newton full model (LU of every Jacobian).
 quarter, full = out_dir("symmetry_quarter"), out_dir("symmetry_full")
