@@ -100,6 +100,7 @@ SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
                                   const std::function<void(double)>& set_load)
 {
   SolveReport rep;
+  _policy.check_constraints(_problem);
   // e = -dF/dlambda = F(x, lambda) - F(x, lambda + 1): F is affine in lambda.
   double reactions = 0;
   set_load(lambda + 1.0);

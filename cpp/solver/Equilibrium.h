@@ -37,7 +37,12 @@ public:
   void set_temperature_change(double dT);
   /// External nodal forces [N]: local unblocked dof -> value.
   void set_external_forces(const std::vector<std::pair<std::int32_t, double>>& forces);
-  void set_constraints(Constraints c) { _bc = std::move(c); }
+  void set_constraints(Constraints c)
+  {
+    if (c.dofs != _bc.dofs)
+      ++_constraint_version;
+    _bc = std::move(c);
+  }
   const Constraints& constraints() const { return _bc; }
 
   /// Puts the prescribed values into x (start of a step).
@@ -58,6 +63,7 @@ public:
   bool residual(Vec x, Vec F, double& reaction_norm) override;
   bool jacobian(Vec x, Mat J) override;
   void forget_trial_state() override { _model.interface->state().revert(); }
+  int constraint_version() const override { return _constraint_version; }
 
   /// Copies x into the model's displacement (ghosts updated).
   void update_displacement(Vec x);
@@ -67,6 +73,7 @@ private:
   Vec _f_thermal = nullptr, _f_external = nullptr;
   double _dT = 0; ///< temperature change of _f_thermal [degC]
   Constraints _bc;
+  int _constraint_version = 0;
   dolfinx::la::Vector<double> _f_interface;
 };
 } // namespace pushout::solver

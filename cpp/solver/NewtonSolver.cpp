@@ -118,6 +118,7 @@ double NewtonSolver::time_linear_solve(Vec x)
 
 SolveReport NewtonSolver::solve(Vec x)
 {
+  _policy.check_constraints(_problem);
   if (_policy.lagged() && !_policy.has_P())
   {
     // The first solve of a run starts from the virgin interface state and

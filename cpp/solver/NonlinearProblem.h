@@ -41,6 +41,11 @@ public:
   /// matrices of this problem support (called by the solvers).
   virtual void configure(KSP /*ksp*/) const {}
 
+  /// A number that changes when the constrained rows of the Jacobian
+  /// change (not their values): a lagged preconditioner built before is
+  /// then refreshed.
+  virtual int constraint_version() const { return 0; }
+
   /// Forgets the interface state the last evaluation wrote (trial state
   /// back to the committed one).
   virtual void forget_trial_state() = 0;

@@ -57,6 +57,15 @@ public:
   /// Refresh P at the next update (after a failed solve).
   void refresh() { _refresh = _lagged; }
 
+  /// Before a solve: refresh P if the problem's constrained rows changed
+  /// since P was built (its unit rows would be the wrong ones).
+  void check_constraints(const NonlinearProblem& problem)
+  {
+    if (problem.constraint_version() != _constraint_version)
+      refresh();
+    _constraint_version = problem.constraint_version();
+  }
+
   /// Numeric factorisations (preconditioner builds) so far.
   int factorizations() const { return _factorizations; }
 
@@ -66,5 +75,6 @@ private:
   bool _has_P = false;
   bool _refresh = false;
   int _factorizations = 0;
+  int _constraint_version = 0;
 };
 } // namespace pushout::solver
