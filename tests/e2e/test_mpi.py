@@ -1,10 +1,10 @@
 """The same executable under mpirun gives the same curve on 1, 2 and 3
 processes (3: an uneven split; 1 process condenses the bulk, more do not) to
-1e-8 relative, for a friction push-out, a
-friction + exponential-softening push-out (quarter model), the same with path
-following (arc length) and a single joint; the interface
-pressure columns (global integrals of the interface traction field) agree
-too, and the XDMF output is written once."""
+1e-8 relative, for a friction push-out, a friction + exponential-softening
+push-out (quarter model), the same with path following (arc length), the
+same with the triquadratic bulk, and a single joint; the interface pressure
+columns (global integrals of the interface traction field) agree too, and
+the XDMF output is written once."""
 import os
 import shutil
 import subprocess
@@ -26,6 +26,8 @@ cases = {
     "arc_length": ("pushout_friction_adhesion.toml",
                    coarse + ["loading.steps=10", "loading.push_displacement=0.05",
                              "loading.control=arc_length"]),
+    "degree_2": ("pushout_friction_adhesion.toml",
+                 coarse + ["mesh.degree=2", "loading.steps=6", "loading.push_displacement=0.03"]),
     "single_joint": ("single_joint_fig9.toml", []),
 }
 for name, (scene, sets) in cases.items():
