@@ -323,26 +323,27 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   solver::Equilibrium equilibrium(model);
   std::string whole_why;
   const bool condense = use_condensation(scene, equilibrium, whole_why);
-  solver::LoadStepSolver newton(equilibrium, condense, pc,
-                                int(scene.integer("solver.refactor_iterations")));
-  scenario->apply_load(0.0, equilibrium); // the constraints of step 0
-  newton.problem();                       // condensed here (setup), if it is
-  summary.condensed_dofs = newton.condensed_size();
+  solver::LoadStepSolver step_solver(equilibrium, condense, pc,
+                                     int(scene.integer("solver.refactor_iterations")));
   summary.dofs = model.num_dofs();
   summary.cells = std::int64_t(data.num_cells());
   summary.symmetry = data.copies == 4 ? "quarter" : "full";
   const std::int64_t local_pairs = std::int64_t(model.interface->num_pairs());
   MPI_Allreduce(&local_pairs, &summary.interface_pairs, 1, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
-  summary.setup_s = seconds_since(t0);
-  if (talk)
+  if (talk) // before the condensation, which takes a while on a large interface
     std::cout << "pushout: " << summary.model_type << ", " << summary.cells << " cells, "
               << summary.dofs << " dofs, " << summary.interface_pairs << " joint elements"
               << (data.copies == 4 ? " (quarter model by symmetry)" : full_model_why(scene))
               << (summary.mesh_reused ? " (mesh from cache)" : "") << "; Newton on "
-              << (condense ? "the " + std::to_string(summary.condensed_dofs) +
-                                 " interface jumps (bulk condensed)"
-                           : "the whole model" + whole_why)
+              << (condense
+                      ? "the " + std::to_string(solver::Condensation::interface_dofs(model) / 2) +
+                            " interface jumps (bulk condensed)"
+                      : "the whole model" + whole_why)
               << std::endl;
+  scenario->apply_load(0.0, equilibrium); // the constraints of step 0
+  step_solver.problem();                  // the condensation, if any
+  summary.condensed_dofs = step_solver.condensed_size();
+  summary.setup_s = seconds_since(t0);
 
   const auto& map = *model.V->dofmap()->index_map;
   const int bs = model.V->dofmap()->index_map_bs();
@@ -415,7 +416,7 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   {
     scenario->apply_load(1.0, equilibrium);
     equilibrium.apply_constraints(x);
-    summary.linear_solve_s = newton.time_linear_solve(x);
+    summary.linear_solve_s = step_solver.time_linear_solve(x);
     VecSet(x, 0.0);
     if (talk)
       std::cout << "one linear solve: " << summary.linear_solve_s << " s" << std::endl;
@@ -431,14 +432,14 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   else if (scenario->initial_solve())
   {
     equilibrium.apply_constraints(x);
-    const solver::SolveReport rep = newton.solve(x);
+    const solver::SolveReport rep = step_solver.solve(x);
     its0 = rep.iterations;
     summary.newton_iterations += rep.iterations;
     ok = rep.converged;
     if (!ok && !stop_requested(summary))
       summary.message = "step 0 (initial/thermal step) did not converge: " + rep.reason;
   }
-  newton.set_bulk_needed(bulk_needed);
+  step_solver.set_bulk_needed(bulk_needed);
   if (ok)
   {
     const double* xa;
@@ -453,15 +454,16 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   }
 
   // Load steps.
-  StepLoop loop{*scenario,   model,   equilibrium, newton, x,
-                x_committed, summary, record,      talk,   int(scene.integer("loading.max_cuts"))};
+  StepLoop loop{
+      *scenario,   model,   equilibrium, step_solver, x,
+      x_committed, summary, record,      talk,        int(scene.integer("loading.max_cuts"))};
   if (ok)
     ok = scenario->has_load_factor() && scene.string("loading.control") == "arc_length"
              ? follow_path(loop, pc, int(scene.integer("solver.refactor_iterations")))
              : step_displacement(loop);
   summary.solve_s = seconds_since(t0) - summary.output_s;
   summary.converged = ok;
-  summary.factorizations += newton.factorizations();
+  summary.factorizations += step_solver.factorizations();
   VecDestroy(&x);
   VecDestroy(&x_committed);
   VecDestroy(&reactions);
