@@ -1,4 +1,5 @@
 #include "FieldWriter.h"
+#include "elasticity.h"
 #include <basix/finite-element.h>
 #include <dolfinx/fem/utils.h>
 #include <dolfinx/graph/AdjacencyList.h>
@@ -14,6 +15,12 @@ FieldWriter::FieldWriter(const model::Model& model, const std::filesystem::path&
   MPI_Comm comm = model.mesh->comm();
   _fields = std::make_unique<dolfinx::io::XDMFFile>(comm, (dir / "fields.xdmf").string(), "w");
   _fields->write_mesh(*model.mesh);
+  if (model.degree == 2)
+  {
+    _u1 = std::make_shared<fem::Function<double>>(std::make_shared<fem::FunctionSpace>(
+        fem::create_functionspace(functionspace_form_elasticity_a, "u", model.mesh)));
+    _u1->name = "displacement";
+  }
 
   // Interface surface mesh: one quadrilateral per pair of this process, on
   // the steel side, numbered globally after the lower processes' ones and
@@ -85,7 +92,9 @@ FieldWriter::~FieldWriter()
 void FieldWriter::write(double t)
 {
   _model.u->name = "displacement";
-  _fields->write_function(*_model.u, t);
+  if (_u1)
+    _u1->interpolate(*_model.u);
+  _fields->write_function(_u1 ? *_u1 : *_model.u, t);
   _fields->write_function(_stress.update(), t);
 
   const auto& itf = *_model.interface;

@@ -1,6 +1,6 @@
-// ParaView output (output.xdmf = true): fields.xdmf (displacement [mm],
-// cell-averaged stress [MPa]) and interface.xdmf (per joint element, the
-// average over its quadrature points: normal traction t_n, axial and
+// ParaView output (output.xdmf = true): fields.xdmf (displacement [mm], at
+// the mesh nodes also for mesh.degree = 2; cell-averaged stress [MPa]) and interface.xdmf (per
+// joint element, the average over its quadrature points: normal traction t_n, axial and
 // circumferential shear tractions t_s1, t_s2 [MPa], jump w_n, w_s1 [mm],
 // and per layer L the inelastic slip slip_L_s1, slip_L_s2 [mm] and damage_L),
 // one time step per converged load step.
@@ -24,6 +24,9 @@ private:
   const model::Model& _model;
   std::unique_ptr<dolfinx::io::XDMFFile> _fields, _interface;
   model::StressProjection _stress;
+  /// mesh.degree = 2: the displacement interpolated to the trilinear space
+  /// of the mesh for XDMF (which stores fields at the mesh's nodes).
+  std::shared_ptr<dolfinx::fem::Function<double>> _u1;
   std::shared_ptr<dolfinx::mesh::Mesh> _imesh;
   std::vector<std::shared_ptr<dolfinx::fem::Function<double>>> _ifields;
   std::vector<std::int32_t> _pair_of_dof; ///< DG0 dof -> interface pair

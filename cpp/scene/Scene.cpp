@@ -360,8 +360,6 @@ Scene Scene::parse(const std::string& toml_text, const std::vector<Override>& ov
   // Relations between keys that no single range can express.
   if (scene.integer("mesh.degree") == 2 && model != "pushout")
     throw SceneError("'mesh.degree' = 2 is implemented for model.type = \"pushout\" only");
-  if (scene.integer("mesh.degree") == 2 && scene.boolean("output.xdmf"))
-    throw SceneError("'mesh.degree' = 2 writes no fields yet: it needs output.xdmf = false");
   if (model == "pushout")
   {
     const double W = scene.number("geometry.width");

@@ -163,8 +163,8 @@ std::vector<KeyDef> make_keys()
        A::pushout},
       {"mesh.degree", K::integer, std::int64_t(1), "",
        "polynomial degree of the bulk displacement on the trilinear hexahedra: 1 (trilinear, "
-       "8 nodes) or 2 (triquadratic, 27 nodes; push-out without output.xdmf), a check of "
-       "the trilinear bulk's locking",
+       "8 nodes) or 2 (triquadratic, 27 nodes; push-out only), a check of the trilinear "
+       "bulk's locking",
        1, 2, false},
       {"mesh.interface_quadrature",
        K::string,

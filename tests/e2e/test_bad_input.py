@@ -28,8 +28,6 @@ cases = [
     ("negative E", GOOD + "\n[concrete]\nE = -3.0\n", [], ["concrete.E"]),
     ("poisson 0.5", GOOD + "\n[steel]\nnu = 0.5\n", [], ["steel.nu"]),
     ("unsupported degree", GOOD.replace("[mesh]", "[mesh]\ndegree = 3"), [], ["mesh.degree"]),
-    ("degree 2 with fields", GOOD.replace("[mesh]", "[mesh]\ndegree = 2"), ["output.xdmf=true"],
-     ["mesh.degree", "output.xdmf"]),
     ("degree 2 single joint", '[model]\ntype = "single_joint"\n[mesh]\ndegree = 2\n', [],
      ["mesh.degree", "pushout"]),
     ("bad choice", GOOD + '\n[geometry]\nouter_shape = "hexagon"\n', [], ["geometry.outer_shape", "square"]),

@@ -8,8 +8,12 @@ trilinear hexahedra, 9-node joint elements):
    P2 error against the trilinear 16/8 plateau falls by >= 3x from the 4/2
    to the 8/4 mesh (h^2) and is below 0.5 % at 8/4, so both degrees agree
    on the limit and the trilinear bulk does not lock here.
+ - with output.xdmf, the displacement is written at the mesh nodes.
 (The assembled 9-node tangent is checked against finite differences in the
 unit tests; the P2 points of the run-time/error study are in bench/pareto.py.)"""
+import os
+import re
+
 from common import COARSE_MESH, EXP_SOFT, FRICTION_2, LAME, THROUGH_PEAK, check, curve, out_dir, run, summary
 
 adhesion = COARSE_MESH + "degree = 2\n" + FRICTION_2 + EXP_SOFT + THROUGH_PEAK
@@ -38,3 +42,11 @@ e4, e8 = (abs(plateau[(2, n)] / ref - 1) for n in (4, 8))
 check(e4 / e8 >= 3, f"Lame plateau, P2 against P1 16/8 ({ref:.5f} MPa): 4/2 {100 * e4:.2f} %, "
                     f"8/4 {100 * e8:.2f} %, ratio {e4 / e8:.1f} >= 3")
 check(e8 < 5e-3, f"P2 8/4 within 0.5 % of the trilinear 16/8 plateau ({100 * e8:.2f} %)")
+
+out = out_dir("p2_fields")
+run(COARSE_MESH + "degree = 2\n" + FRICTION_2, out, sets=["loading.steps=2", "output.xdmf=true"])
+text = open(os.path.join(out, "fields.xdmf")).read()
+nodes = re.search(r'Dimensions="(\d+) 3" Format="HDF">fields.h5:/Mesh/mesh/geometry', text).group(1)
+displacement = re.search(r'Attribute Name="displacement"[^>]*>\s*<DataItem Dimensions="(\d+) 3"', text)
+check(displacement is not None and displacement.group(1) == nodes,
+      f"P2 fields: displacement at the {nodes} mesh nodes")
