@@ -92,7 +92,7 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
   const PetscInt n = PetscInt(_steel.size());
 
   const Constraints& bc = eq.constraints();
-  _bc_dofs = bc.dofs;
+  _constraint_version = eq.constraint_version();
   std::vector<std::uint8_t> constrained(std::size_t(3) * n_blocks, 0);
   for (std::int32_t d : bc.dofs)
     constrained[d] = 1;
@@ -292,7 +292,7 @@ void Condensation::combine(const std::vector<double>& c, const std::vector<Vec>&
 
 std::vector<double> Condensation::load_coefficients()
 {
-  if (_eq.constraints().dofs != _bc_dofs)
+  if (_eq.constraint_version() != _constraint_version)
     throw std::logic_error("condensation: the constrained dofs changed");
   _eq.linear_rhs(_b);
   double b_norm;

@@ -104,9 +104,9 @@ private:
   Equilibrium& _eq;
   std::vector<std::int32_t> _steel, _concrete; ///< whole-model dof of each jump
   std::vector<std::uint8_t> _steel_free, _concrete_free;
-  std::vector<std::int32_t> _bc_dofs; ///< the constrained dofs it was built for
-  double _eps = 0;                    ///< J0's joint stiffness [N/mm]
-  double _k = 1;                      ///< residual scale [N/mm]
+  int _constraint_version; ///< of the constraints it was built for
+  double _eps = 0;         ///< J0's joint stiffness [N/mm]
+  double _k = 1;           ///< residual scale [N/mm]
   Mat _J0 = nullptr, _factor = nullptr;
   Mat _Z = nullptr;           ///< Z on the interface dofs (steel jumps, then concrete), dense
   Mat _C = nullptr;           ///< C = G Z, dense

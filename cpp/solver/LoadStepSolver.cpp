@@ -17,7 +17,7 @@ LoadStepSolver::~LoadStepSolver()
 
 void LoadStepSolver::update()
 {
-  if (!_condense || (_condensation && _eq.constraints().dofs == _bc_dofs))
+  if (!_condense || (_condensation && _eq.constraint_version() == _constraint_version))
     return;
   if (_condensation)
     _retired_factorizations += 1 + _newton->factorizations();
@@ -27,7 +27,7 @@ void LoadStepSolver::update()
     VecDestroy(&_x);
   _condensation = std::make_unique<Condensation>(_eq);
   _newton = std::make_unique<NewtonSolver>(*_condensation, _pc, _refactor_iterations);
-  _bc_dofs = _eq.constraints().dofs;
+  _constraint_version = _eq.constraint_version();
   _x = _condensation->create_vector();
 }
 

@@ -66,7 +66,7 @@ private:
   NewtonSolver _whole;
   std::unique_ptr<Condensation> _condensation;
   std::unique_ptr<NewtonSolver> _newton; ///< on the condensation
-  std::vector<std::int32_t> _bc_dofs;    ///< the constrained dofs it was built for
+  int _constraint_version = 0;           ///< of the constraints it was built for
   Vec _x = nullptr;                      ///< interface entries of x
   int _retired_factorizations = 0;       ///< of condensations built before
 };
