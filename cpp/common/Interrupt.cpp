@@ -17,6 +17,9 @@ void install()
 {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
+  // A closed pipe (`pushout run ... | head`) ends the run quietly, as for
+  // any command, instead of through PETSc's error handler.
+  std::signal(SIGPIPE, SIG_DFL);
 }
 
 int received()

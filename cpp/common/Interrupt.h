@@ -6,7 +6,8 @@
 
 namespace pushout::interrupt
 {
-/// Installs the handlers for SIGINT and SIGTERM.
+/// Installs the handlers for SIGINT and SIGTERM (after PetscInitialize,
+/// whose handlers they replace), and the default action for SIGPIPE.
 void install();
 
 /// The signal received (0: none). Local to this process.
