@@ -46,6 +46,14 @@ def write_csv(path, rows):
         w.writerows(rows)
 
 
+def save_figure_and_table(fig, out_dir, name, rows):
+    """Writes out_dir/NAME.png (the figure, laid out) and NAME.csv (the rows)."""
+    fig.tight_layout()
+    os.makedirs(out_dir, exist_ok=True)
+    fig.savefig(os.path.join(out_dir, name + ".png"))
+    write_csv(os.path.join(out_dir, name + ".csv"), rows)
+
+
 def markdown_table(header, rows):
     """A markdown table: header names, then one line per row (its values)."""
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]

@@ -31,7 +31,7 @@ import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-from common import PUSHOUT, ROOT, curve, run, summary, write_csv  # noqa: E402
+from common import PUSHOUT, ROOT, curve, run, save_figure_and_table, summary  # noqa: E402
 
 
 
@@ -154,10 +154,7 @@ def main():
                     title="fig10: mesh convergence (first 100 um)")
             ax2.grid(alpha=0.3)
             ax2.legend(fontsize=7)
-    fig.tight_layout()
-    os.makedirs(args.out, exist_ok=True)
-    fig.savefig(os.path.join(args.out, "pareto.png"))
-    write_csv(os.path.join(args.out, "pareto.csv"), table)
+    save_figure_and_table(fig, args.out, "pareto", table)
     for r in table:
         print(r)
 

@@ -24,7 +24,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-from common import PUSHOUT, ROOT, curve, run, summary, write_csv  # noqa: E402
+from common import PUSHOUT, ROOT, curve, run, save_figure_and_table, summary  # noqa: E402
 
 SNAP = os.path.join(ROOT, "bench", "scenes", "snap_back.toml")
 FIG10 = os.path.join(ROOT, "demo", "pushout_friction_adhesion.toml")
@@ -110,10 +110,7 @@ def main():
     for ax in axes:
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7, loc="upper left" if ax is axes[0] else "lower right")
-    fig.tight_layout()
-    os.makedirs(args.out, exist_ok=True)
-    fig.savefig(os.path.join(args.out, "snap_back.png"))
-    write_csv(os.path.join(args.out, "snap_back.csv"), table)
+    save_figure_and_table(fig, args.out, "snap_back", table)
 
 
 if __name__ == "__main__":

@@ -7,35 +7,28 @@ bench/results/viscosity.png and viscosity.csv (max |tau_eta - tau_0|).
   bench/viscosity.py [--pushout build/pushout]
 """
 import argparse
-import csv
 import os
-import subprocess
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-from common import write_csv  # noqa: E402
+from common import PUSHOUT, ROOT, curve, run, save_figure_and_table  # noqa: E402
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--pushout", default=os.path.join(ROOT, "build", "pushout"))
+    ap.add_argument("--pushout", default=PUSHOUT)
     ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results"))
     args = ap.parse_args()
     etas = [0.0, 1e-4, 1e-3, 1e-2]
     curves = {}
     for eta in etas:
         out = os.path.join(ROOT, "results", "viscosity", f"eta{eta:g}")
-        subprocess.run([args.pushout, "run", os.path.join(ROOT, "demo", "pushout_friction_adhesion.toml"),
-                        "--out", out, "--quiet", "--set", f"interface.1.eta={eta}",
-                        "--set", "loading.push_displacement=0.1", "--set", "loading.steps=80",
-                        "--set", "mesh.elements_per_quarter=8", "--set", "mesh.elements_through_thickness=4",
-                        "--set", "output.plot=false"], check=True)
-        with open(os.path.join(out, "curve.csv"), newline="") as f:
-            curves[eta] = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+        run(args.pushout, os.path.join(ROOT, "demo", "pushout_friction_adhesion.toml"), out,
+            [f"interface.1.eta={eta}", "loading.push_displacement=0.1", "loading.steps=80",
+             "mesh.elements_per_quarter=8", "mesh.elements_through_thickness=4", "output.plot=false"])
+        curves[eta] = curve(out)
     fig, ax = plt.subplots(figsize=(6.5, 4.2), dpi=120)
     rows = []
     for eta in etas:
@@ -49,10 +42,7 @@ def main():
            title="Viscous damage: friction 2 + exp. soft., $\\Delta T$ -25 °C")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
-    fig.tight_layout()
-    os.makedirs(args.out, exist_ok=True)
-    fig.savefig(os.path.join(args.out, "viscosity.png"))
-    write_csv(os.path.join(args.out, "viscosity.csv"), rows)
+    save_figure_and_table(fig, args.out, "viscosity", rows)
     for r in rows:
         print(r)
 
