@@ -290,17 +290,21 @@ void Condensation::combine(const std::vector<double>& c, const std::vector<Vec>&
     VecAXPY(y, c[k], v[k]);
 }
 
-std::vector<double> Condensation::load_coefficients()
+const std::vector<double>& Condensation::load_coefficients()
 {
   if (_eq.constraint_version() != _constraint_version)
     throw std::logic_error("condensation: the constrained dofs changed");
+  if (_eq.load_version() == _load_version)
+    return _load_c; // the loads did not change (Newton iterations of a step)
+  _load_version = _eq.load_version();
   _eq.linear_rhs(_b);
   double b_norm;
   VecNorm(_b, NORM_2, &b_norm);
   // Project b on the basis (classical Gram-Schmidt, twice).
   Vec rest = _rest;
   VecCopy(_b, rest);
-  std::vector<double> c(_basis.size(), 0.0);
+  std::vector<double>& c = _load_c;
+  c.assign(_basis.size(), 0.0);
   for (int pass = 0; pass < 2; ++pass)
     for (std::size_t k = 0; k < _basis.size(); ++k)
     {

@@ -97,16 +97,18 @@ private:
   void form_jacobian(Mat J) const;
   static PetscErrorCode operator_mult(Mat J, Vec v, Vec y);
   /// The coefficients of the current b on the basis (extended if needed).
-  std::vector<double> load_coefficients();
+  const std::vector<double>& load_coefficients();
   /// Adds sum_k c_k v_k to y.
   static void combine(const std::vector<double>& c, const std::vector<Vec>& v, Vec y);
 
   Equilibrium& _eq;
   std::vector<std::int32_t> _steel, _concrete; ///< whole-model dof of each jump
   std::vector<std::uint8_t> _steel_free, _concrete_free;
-  int _constraint_version; ///< of the constraints it was built for
-  double _eps = 0;         ///< J0's joint stiffness [N/mm]
-  double _k = 1;           ///< residual scale [N/mm]
+  int _constraint_version;     ///< of the constraints it was built for
+  int _load_version = -1;      ///< of the loads of _load_c
+  std::vector<double> _load_c; ///< coefficients of the current b on the basis
+  double _eps = 0;             ///< J0's joint stiffness [N/mm]
+  double _k = 1;               ///< residual scale [N/mm]
   Mat _J0 = nullptr, _factor = nullptr;
   Mat _Z = nullptr;           ///< Z on the interface dofs (steel jumps, then concrete), dense
   Mat _C = nullptr;           ///< C = G Z, dense

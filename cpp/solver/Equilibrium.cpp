@@ -26,6 +26,7 @@ void Equilibrium::set_temperature_change(double dT)
   if (dT == _dT)
     return; // the thermal load is assembled once per temperature change
   _dT = dT;
+  ++_load_version;
   if (_f_thermal)
     VecDestroy(&_f_thermal);
   _f_thermal = dT != 0.0 ? _model.thermal_load(dT) : nullptr;
@@ -33,6 +34,7 @@ void Equilibrium::set_temperature_change(double dT)
 
 void Equilibrium::set_external_forces(const std::vector<std::pair<std::int32_t, double>>& forces)
 {
+  ++_load_version;
   VecSet(_f_external, 0.0);
   double* f;
   VecGetArray(_f_external, &f);

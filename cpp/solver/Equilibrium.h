@@ -42,7 +42,11 @@ public:
     if (c.dofs != _bc.dofs)
       ++_constraint_version;
     _bc = std::move(c);
+    ++_load_version;
   }
+  /// A number that changes whenever the loads or prescribed values may have
+  /// changed (linear_rhs() is the same while it is).
+  int load_version() const { return _load_version; }
   const Constraints& constraints() const { return _bc; }
 
   /// Puts the prescribed values into x (start of a step).
@@ -74,6 +78,7 @@ private:
   double _dT = 0; ///< temperature change of _f_thermal [degC]
   Constraints _bc;
   int _constraint_version = 0;
+  int _load_version = 0;
   dolfinx::la::Vector<double> _f_interface;
 };
 } // namespace pushout::solver
