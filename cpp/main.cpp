@@ -5,6 +5,7 @@
 //   pushout keys        # the scene keys, with defaults, units and docs
 //   pushout laws        # the interface laws and their parameters
 #include "common/Interrupt.h"
+#include "driver/ResourceGuard.h"
 #include "driver/Run.h"
 #include "mesh/generate.h"
 #include "scene/SceneError.h"
@@ -58,7 +59,7 @@ void print_laws()
 
 /// Runs a scene; returns the process exit code.
 int run_scene(const std::string& scene_file, const std::string& out,
-              const std::vector<std::string>& sets, bool quiet)
+              const std::vector<std::string>& sets, bool quiet, bool force)
 {
   using namespace pushout;
   int rank = 0;
@@ -75,7 +76,7 @@ int run_scene(const std::string& scene_file, const std::string& out,
     if (ec || !std::ofstream(probe))
       throw SceneError("--out '" + out + "': cannot create or write this folder");
     std::filesystem::remove(probe);
-    const driver::RunOptions options{out, mesh::default_cache_dir(), quiet};
+    const driver::RunOptions options{out, mesh::default_cache_dir(), quiet, force};
     const output::Summary s = driver::run(scene, options);
     if (s.interrupted)
     {
@@ -97,6 +98,12 @@ int run_scene(const std::string& scene_file, const std::string& out,
                 << (scene.boolean("output.plot") ? ", plot: " + out + "/curve.png" : "")
                 << std::endl;
     return 0;
+  }
+  catch (const driver::TooLarge& e)
+  {
+    if (rank == 0)
+      std::cerr << "pushout: error: " << e.what() << std::endl;
+    return 2;
   }
   catch (const SceneError& e)
   {
@@ -126,12 +133,13 @@ int main(int argc, char* argv[])
   app.allow_extras(); // the rest goes to PETSc
   std::string scene_file, out;
   std::vector<std::string> sets;
-  bool quiet = false;
+  bool quiet = false, force = false;
   CLI::App* run = app.add_subcommand("run", "run a scene");
   run->add_option("scene", scene_file, "scene file (TOML)")->required();
   run->add_option("--out", out, "output folder")->required();
   run->add_option("--set", sets, "override a scene key: key=value (repeatable)");
   run->add_flag("--quiet", quiet, "no progress lines");
+  run->add_flag("--force", force, "run even if the size guard estimates it cannot fit in memory");
   run->allow_extras();
   app.add_subcommand("keys", "print the scene keys (Markdown table)");
   app.add_subcommand("laws", "print the interface laws and their parameters");
@@ -167,7 +175,7 @@ int main(int argc, char* argv[])
   pushout::interrupt::install();
   dolfinx::init_logging(1, argv);
   loguru::g_stderr_verbosity = loguru::Verbosity_WARNING;
-  const int rc = run_scene(scene_file, out, sets, quiet);
+  const int rc = run_scene(scene_file, out, sets, quiet, force);
   PetscFinalize();
   return rc;
 }

@@ -10,6 +10,7 @@
 #include "../solver/ArcLengthSolver.h"
 #include "../solver/LoadStepSolver.h"
 #include "PushOut.h"
+#include "ResourceGuard.h"
 #include "SingleJoint.h"
 #include "Stepper.h"
 #include <chrono>
@@ -19,6 +20,8 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <mutex>
+#include <optional>
 #include <sstream>
 #include <sys/resource.h>
 
@@ -27,9 +30,22 @@ namespace pushout::driver
 namespace
 {
 using Clock = std::chrono::steady_clock;
+
+/// How long a signal may wait for a load step to stop by itself (between
+/// Newton iterations) before the process is ended where it is, e.g. inside a
+/// long factorisation [s].
+constexpr double stop_grace_s = 5;
 double seconds_since(Clock::time_point t0)
 {
   return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/// Peak resident memory of this process so far [MB].
+double peak_memory_here_mb()
+{
+  rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  return double(usage.ru_maxrss) / 1024.0;
 }
 
 /// Whether a signal asked to stop (agreed on by all processes); records it.
@@ -41,8 +57,9 @@ bool stop_requested(output::Summary& summary)
     return false;
   summary.interrupted = true;
   summary.signal = global;
-  summary.message = std::string("interrupted by ") + (global == SIGINT ? "SIGINT" : "SIGTERM") +
-                    " after " + std::to_string(summary.steps) + " load steps";
+  summary.stopped_in = "load steps";
+  summary.message = "interrupted by " + interrupt::signal_name(global) + " after " +
+                    std::to_string(summary.steps) + " load steps";
   return true;
 }
 
@@ -60,11 +77,14 @@ struct StepLoop
   bool talk;
   int max_cuts;
 
+  std::function<void()> publish; ///< the summary for a forced stop
+
   void commit()
   {
     model.interface->state().commit();
     VecCopy(x, x_committed);
     ++summary.steps;
+    publish();
   }
   void revert()
   {
@@ -254,20 +274,14 @@ bool follow_path(StepLoop& L, solver::NewtonSolver::Preconditioner pc, int refac
 bool use_condensation(const Scene& scene, const solver::Equilibrium& eq, std::string& why)
 {
   const std::string mode = scene.string("solver.condensation");
-  if (mode == "off")
-    return false;
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
   std::string reason;
-  bool can = solver::Condensation::possible(eq, reason);
-  const std::int64_t n = solver::Condensation::interface_dofs(eq.model());
-  if (can && mode == "auto" && n > solver::Condensation::default_max_dofs)
-  {
-    can = false;
-    reason = std::to_string(n) + " interface dofs, more than " +
-             std::to_string(solver::Condensation::default_max_dofs);
-  }
+  const bool can = solver::Condensation::chosen(
+      mode, size, solver::Condensation::interface_dofs(eq.model()), reason);
   if (!can && mode == "on")
     throw SceneError("solver.condensation = \"on\" is not possible here: " + reason);
-  if (!can)
+  if (!can && !reason.empty())
     why = " (not condensed: " + reason + ")";
   return can;
 }
@@ -307,12 +321,55 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
     std::ofstream(opt.out / "scene.toml") << scene.to_toml();
   }
 
+  // What a stop forced by a signal reports (common/Interrupt.h): the state
+  // last published by the run, and where it was.
+  std::mutex published_mutex;
+  output::Summary published = summary;
+  const auto publish = [&]
+  {
+    std::lock_guard lock(published_mutex);
+    published = summary;
+  };
+  const interrupt::ReportOnStop on_stop(
+      [&, rank](int sig, const std::string& phase)
+      {
+        std::lock_guard lock(published_mutex);
+        output::Summary s = published;
+        s.interrupted = true;
+        s.converged = false;
+        s.signal = sig;
+        s.stopped_in = phase;
+        s.message = "interrupted by " + interrupt::signal_name(sig) + " during " + phase +
+                    " after " + std::to_string(s.steps) + " load steps";
+        s.wall_s = seconds_since(t_start);
+        s.peak_memory_mb = peak_memory_here_mb();
+        if (rank != 0)
+          return;
+        s.write(opt.out / "summary.json");
+        std::cerr << "pushout: " << s.message << "; " << (opt.out / "summary.json").string()
+                  << " says so" << std::endl;
+      });
+  std::optional<interrupt::Phase> phase;
+
+  // The size guard, before meshing.
+  const ResourceEstimate estimate = estimate_resources(scene, MPI_COMM_WORLD);
+  check_fits(estimate, scene, opt.force);
+  summary.estimate = {estimate.size.dofs, estimate.size.cells, estimate.size.joint_elements,
+                      estimate.peak_mb()};
+  summary.symmetry = estimate.size.quarter ? "quarter" : "full";
+  publish();
+  if (talk)
+    std::cout << "pushout: meshing " << estimate.size.cells << " cells (" << estimate.memory()
+              << " of memory at the peak)" << std::endl;
+
   // Mesh.
+  phase.emplace("meshing", 0);
   auto t0 = Clock::now();
   const mesh::MeshData data = mesh::generate(scene, opt.mesh_cache, summary.mesh_reused);
   summary.mesh_s = seconds_since(t0);
 
   // Model: spaces, bulk stiffness, interface.
+  phase.emplace("set-up", 0);
   t0 = Clock::now();
   model::Model model(MPI_COMM_WORLD, data, scene);
   const std::unique_ptr<Scenario> scenario = make_scenario(scene, data, model);
@@ -375,6 +432,7 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   int row_index = 0;
   const auto record = [&](int iterations, int cuts, int step, int steps)
   {
+    const interrupt::Phase writing("writing step outputs", -1);
     const auto t_out = Clock::now();
     if (bulk_needed)
       equilibrium.internal_forces(x, reactions);
@@ -423,6 +481,8 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   }
 
   // Step 0: the thermal step or preload (if the scenario has one).
+  publish();
+  phase.emplace("load steps", stop_grace_s);
   t0 = Clock::now();
   scenario->apply_load(0.0, equilibrium);
   int its0 = 0;
@@ -456,11 +516,13 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   // Load steps.
   StepLoop loop{
       *scenario,   model,   equilibrium, step_solver, x,
-      x_committed, summary, record,      talk,        int(scene.integer("loading.max_cuts"))};
+      x_committed, summary, record,      talk,        int(scene.integer("loading.max_cuts")),
+      publish};
   if (ok)
     ok = scenario->has_load_factor() && scene.string("loading.control") == "arc_length"
              ? follow_path(loop, pc, int(scene.integer("solver.refactor_iterations")))
              : step_displacement(loop);
+  phase.emplace("writing outputs", -1);
   summary.solve_s = seconds_since(t0) - summary.output_s;
   summary.converged = ok;
   summary.factorizations += step_solver.factorizations();
@@ -477,9 +539,7 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   }
   summary.wall_s = seconds_since(t_start);
   // Peak resident memory, the largest over the processes [MB].
-  rusage usage;
-  getrusage(RUSAGE_SELF, &usage);
-  double peak_mb = double(usage.ru_maxrss) / 1024.0;
+  double peak_mb = peak_memory_here_mb();
   MPI_Allreduce(MPI_IN_PLACE, &peak_mb, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
   summary.peak_memory_mb = peak_mb;
   if (rank == 0)

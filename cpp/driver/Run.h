@@ -12,7 +12,7 @@ struct RunOptions
   std::filesystem::path out;        ///< output folder
   std::filesystem::path mesh_cache; ///< gmsh mesh cache folder
   bool quiet = false;               ///< no progress lines
-  int max_cuts = 8;                 ///< halvings of one load step
+  bool force = false;               ///< run even if the size guard says it cannot fit
 };
 
 /// Runs the scene; writes curve.csv, summary.json, scene.toml (and

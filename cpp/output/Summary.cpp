@@ -26,7 +26,13 @@ void Summary::write(const std::filesystem::path& file) const
       {"cells", cells},
       {"interface_pairs", interface_pairs},
       {"processes", processes},
-      {"peak_memory_mb", peak_memory_mb}};
+      {"peak_memory_mb", peak_memory_mb},
+      {"estimate",
+       {{"dofs", estimate.dofs},
+        {"cells", estimate.cells},
+        {"interface_pairs", estimate.interface_pairs},
+        {"peak_memory_mb", estimate.peak_memory_mb}}},
+      {"stopped_in", stopped_in}};
   const std::filesystem::path tmp = file.string() + ".tmp";
   {
     std::ofstream out(tmp);

@@ -27,6 +27,13 @@ struct Summary
   std::int64_t interface_pairs = 0;
   int processes = 1;
   double peak_memory_mb = 0; ///< largest peak resident memory of a process
+  /// The size guard's estimate, made before meshing (driver/ResourceGuard.h).
+  struct Estimate
+  {
+    std::int64_t dofs = 0, cells = 0, interface_pairs = 0;
+    double peak_memory_mb = 0;
+  } estimate;
+  std::string stopped_in; ///< the phase a signal stopped the run in ("": none)
   std::string model_type;
   std::string symmetry = "full"; ///< quarter: the model is a quarter of the specimen
   /// Size of the condensed system Newton ran on (0: the whole model).

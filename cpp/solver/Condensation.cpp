@@ -56,18 +56,39 @@ bool Condensation::possible(const Equilibrium& eq, std::string& why)
 {
   int size = 1;
   MPI_Comm_size(PetscObjectComm(reinterpret_cast<PetscObject>(eq.model().K)), &size);
+  return possible(size, interface_dofs(eq.model()), why);
+}
+
+bool Condensation::possible(int processes, std::int64_t n_interface, std::string& why)
+{
   char pc_type[64] = "";
   PetscBool pc_set = PETSC_FALSE;
   PetscOptionsGetString(nullptr, nullptr, "-pc_type", pc_type, sizeof(pc_type), &pc_set);
-  if (size > 1)
+  if (processes > 1)
     why = "more than one process";
   else if (pc_set && std::string(pc_type) != "lu")
     why = std::string("-pc_type ") + pc_type + " (condensed systems are solved by dense LU)";
-  else if (interface_dofs(eq.model()) == 0)
+  else if (n_interface == 0)
     why = "no interface";
   else
     return true;
   return false;
+}
+
+bool Condensation::chosen(const std::string& mode, int processes, std::int64_t n_interface,
+                          std::string& why)
+{
+  if (mode == "off")
+    return false;
+  if (!possible(processes, n_interface, why))
+    return false;
+  if (mode == "auto" && n_interface > default_max_dofs)
+  {
+    why = std::to_string(n_interface) + " interface dofs, more than " +
+          std::to_string(default_max_dofs);
+    return false;
+  }
+  return true;
 }
 
 Condensation::Condensation(Equilibrium& eq) : _eq(eq)

@@ -45,6 +45,14 @@ void NewtonSolver::set_default_options(Preconditioner pc)
   set_default("-pc_factor_mat_solver_type", "mumps");
 }
 
+bool NewtonSolver::direct_factorization()
+{
+  char pc_type[64] = "";
+  PetscBool set = PETSC_FALSE;
+  PetscOptionsGetString(nullptr, nullptr, "-pc_type", pc_type, sizeof(pc_type), &set);
+  return !set || std::string(pc_type) == "lu" || std::string(pc_type) == "cholesky";
+}
+
 NewtonSolver::NewtonSolver(NonlinearProblem& problem, Preconditioner pc, int refactor_iterations)
     : _problem(problem), _policy(pc == Preconditioner::lagged, refactor_iterations)
 {

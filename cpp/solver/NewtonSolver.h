@@ -56,6 +56,11 @@ public:
   /// tolerances) where the user did not set them. Call before NewtonSolver.
   static void set_default_options(Preconditioner pc);
 
+  /// Whether the Newton systems are factored (-pc_type lu, the default, or
+  /// cholesky) rather than preconditioned iteratively (-pc_type gamg, ...).
+  /// Reads PETSc's options database.
+  static bool direct_factorization();
+
 private:
   NonlinearProblem& _problem;
   SNES _snes = nullptr;

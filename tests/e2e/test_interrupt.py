@@ -30,3 +30,30 @@ for sig in (signal.SIGTERM, signal.SIGINT):
     check(s["interrupted"] and not s["converged"], f"{sig.name}: summary.json says interrupted")
     check(len(rows) == s["steps"] + 1 >= 4, f"{sig.name}: curve.csv keeps all {len(rows)} rows")
     check(all(len(r) == len(rows[0]) for r in rows), f"{sig.name}: every row complete")
+
+# A signal during meshing (gmsh cannot look at it): the run stops within a
+# few seconds, with the same exit code, and summary.json says where. The
+# mesh is large (gmsh needs about a minute) and never cached.
+big = ["--set", "mesh.elements_per_quarter=500", "--set", "mesh.elements_through_thickness=4"]
+for sig in (signal.SIGTERM, signal.SIGINT):
+    out = out_dir(f"interrupt_meshing_{sig.name}")
+    cache = out_dir(f"interrupt_meshing_cache_{sig.name}")
+    p = subprocess.Popen([PUSHOUT, "run", scene, "--out", out, "--force"] + big,
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         env=dict(os.environ, PUSHOUT_CACHE_DIR=cache))
+    line = p.stdout.readline()
+    check(line.startswith("pushout: meshing"), f"{sig.name}: the run says it is meshing: {line.strip()!r}")
+    time.sleep(2)
+    check(p.poll() is None, f"{sig.name}: still meshing 2 s later")
+    t0 = time.time()
+    p.send_signal(sig)
+    _, err = p.communicate(timeout=60)
+    waited = time.time() - t0
+    check(p.returncode == 128 + sig, f"{sig.name} during meshing: exit {p.returncode} = 128 + {int(sig)}")
+    check(waited < 5, f"{sig.name} during meshing: stopped {waited:.2f} s after the signal")
+    check("interrupted by " + sig.name + " during meshing" in err, f"{sig.name}: says where: {err.strip()!r}")
+    s = summary(out)
+    check(s["interrupted"] and not s["converged"] and s["stopped_in"] == "meshing"
+          and s["signal"] == int(sig), f"{sig.name}: summary.json says it stopped in meshing")
+    check(not any(f.endswith(".msh") for f in os.listdir(cache)) if os.path.isdir(cache) else True,
+          f"{sig.name}: no half-made mesh in the cache")

@@ -1,0 +1,72 @@
+#include "size.h"
+#include "symmetry.h"
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace pushout::mesh
+{
+SliceDivisions slice_divisions(const Scene& scene)
+{
+  // meshes/slice.geo, line for line.
+  const double W = scene.number("geometry.width");
+  const double R = scene.number("geometry.tube_outer_diameter") / 2;
+  const double Rs = scene.number("geometry.support_inner_diameter") / 2;
+  const double ratio = scene.number("mesh.outer_size_ratio");
+  const auto& c = scene.numbers("geometry.tube_center");
+  SliceDivisions d;
+  d.circumferential = scene.integer("mesh.elements_per_quarter");
+  d.steel = scene.integer("mesh.steel_layers");
+  d.thickness = scene.integer("mesh.elements_through_thickness");
+  const double h = std::numbers::pi / 2 * R / double(d.circumferential); // interface element [mm]
+  d.ring = std::max<std::int64_t>(std::int64_t(std::floor((Rs - R) / h + 0.5)), 1);
+  double Lr = W / 2 - Rs;
+  if (scene.string("geometry.outer_shape") == "square")
+    Lr = std::min({W / 2, c[0], c[1], W - c[0], W - c[1]}) - Rs;
+  const double he = ratio * h;
+  d.graded = std::int64_t(std::ceil(Lr / h));
+  if (ratio > 1 && he < Lr)
+  {
+    const double q0 = (Lr - h) / (Lr - he);
+    d.graded =
+        std::max<std::int64_t>(std::int64_t(std::floor(std::log(ratio) / std::log(q0) + 1.5)), 2);
+  }
+  d.graded = std::max<std::int64_t>(d.graded, 1);
+  return d;
+}
+
+MeshSize predict_size(const Scene& scene)
+{
+  MeshSize s;
+  const int p = int(scene.integer("mesh.degree")); // nodes per element edge - 1
+  if (scene.string("model.type") == "single_joint")
+  {
+    // meshes/single_joint.geo: two stacked unit cells, one joint element.
+    s.cells = s.cells_generated = 2;
+    // Two stacked cells whose shared face is the interface: no node shared.
+    s.nodes = 2 * (p + 1) * (p + 1) * (p + 1);
+    s.joint_elements = 1;
+    s.interface_dofs = 6 * (p + 1) * (p + 1);
+    s.dofs = 3 * s.nodes;
+    return s;
+  }
+  const SliceDivisions d = slice_divisions(scene);
+  const std::int64_t radial = d.steel + d.ring + d.graded; // elements along a radius
+  std::string why;
+  s.quarter = use_quarter_model(scene, why);
+  const std::int64_t around = s.quarter ? d.circumferential : 4 * d.circumferential;
+  s.cells_generated = 4 * d.circumferential * radial * d.thickness;
+  s.cells = around * radial * d.thickness;
+  s.joint_elements = around * d.thickness;
+  // Node positions of the degree: around the tube (a closed ring for the
+  // full model), along a radius (the interface position twice) and through
+  // the thickness.
+  const std::int64_t n_around = s.quarter ? p * around + 1 : p * around;
+  const std::int64_t n_radial = p * radial + 2;
+  const std::int64_t n_thick = p * d.thickness + 1;
+  s.nodes = n_around * n_radial * n_thick;
+  s.dofs = 3 * s.nodes;
+  s.interface_dofs = 6 * n_around * n_thick;
+  return s;
+}
+} // namespace pushout::mesh

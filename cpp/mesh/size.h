@@ -1,0 +1,39 @@
+// The size of the mesh a scene asks for, counted from the mesh keys before
+// any meshing: meshes/slice.geo is a structured block mesh, so its element
+// counts follow from its block divisions in closed form. Used to refuse a run
+// that cannot fit in memory before gmsh spends minutes on it
+// (driver/ResourceGuard.h).
+#pragma once
+
+#include "../scene/Scene.h"
+#include <cstdint>
+
+namespace pushout::mesh
+{
+struct MeshSize
+{
+  std::int64_t cells = 0;           ///< hexahedra of the model (quarter or full)
+  std::int64_t cells_generated = 0; ///< hexahedra gmsh generates (always the full slice)
+  std::int64_t nodes = 0;           ///< mesh nodes, interface nodes counted twice
+  std::int64_t dofs = 0;            ///< displacement dofs (3 per node of the degree)
+  std::int64_t joint_elements = 0;  ///< interface pairs of the model
+  std::int64_t interface_dofs = 0;  ///< dofs on both sides of the interface
+  bool quarter = false;             ///< the model is a quarter by symmetry
+};
+
+/// The block divisions of meshes/slice.geo for a push-out scene. These
+/// formulas mirror the .geo file: change both together (the e2e test
+/// test_resource_guard compares them with generated meshes).
+struct SliceDivisions
+{
+  std::int64_t circumferential; ///< elements per quarter circumference (nq)
+  std::int64_t steel;           ///< radial elements in the tube wall (ns)
+  std::int64_t ring;            ///< radial elements from R to the support circle (nr1)
+  std::int64_t graded;          ///< radial elements from there to the boundary (nr2)
+  std::int64_t thickness;       ///< elements through the thickness (nz)
+};
+SliceDivisions slice_divisions(const Scene& scene);
+
+/// The size of the scene's mesh and model (push-out or single joint).
+MeshSize predict_size(const Scene& scene);
+} // namespace pushout::mesh

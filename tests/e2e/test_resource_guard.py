@@ -1,0 +1,82 @@
+"""The size guard (driver/ResourceGuard.h): the mesh size predicted from the
+mesh keys before meshing equals the mesh gmsh makes, the peak-memory
+estimate is within a factor 2 of the measured peak, and a run that cannot
+fit is refused at once with exit 2 and a message that says what to change;
+--force runs it anyway."""
+import os
+import subprocess
+import sys
+import time
+
+from common import check, out_dir, run, summary
+
+PUSHOUT = sys.argv[1]
+SCENE = os.path.join(os.environ.get("PUSHOUT_SOURCE_DIR", "."), "demo", "pushout_friction.toml")
+SHORT = ["loading.steps=1", "output.plot=false"]
+
+# Exact sizes: the counts of meshes/slice.geo in closed form (mesh/size.cpp).
+cases = {
+    "quarter": ["mesh.elements_per_quarter=6", "mesh.elements_through_thickness=3"],
+    "full": ["mesh.elements_per_quarter=6", "mesh.elements_through_thickness=3",
+             "model.symmetry=\"full\""],
+    "odd": ["mesh.elements_per_quarter=5", "mesh.elements_through_thickness=2",
+            "mesh.steel_layers=2"],
+    "off_centre": ["mesh.elements_per_quarter=6", "mesh.elements_through_thickness=2",
+                   "geometry.tube_center=[35.0, 50.0]"],
+    "circle": ["mesh.elements_per_quarter=8", "mesh.elements_through_thickness=2",
+               "geometry.outer_shape=\"circle\"", "mesh.outer_size_ratio=4.0"],
+    "no_grading": ["mesh.elements_per_quarter=4", "mesh.elements_through_thickness=2",
+                   "mesh.outer_size_ratio=1.0"],
+    "degree2": ["mesh.elements_per_quarter=4", "mesh.elements_through_thickness=2",
+                "mesh.degree=2"],
+    "degree2_full": ["mesh.elements_per_quarter=4", "mesh.elements_through_thickness=2",
+                     "mesh.degree=2", "model.symmetry=\"full\""],
+}
+for name, sets in cases.items():
+    out = out_dir(f"guard_{name}")
+    run(SCENE, out, sets=sets + SHORT)
+    s = summary(out)
+    e = s["estimate"]
+    for key in ("dofs", "cells", "interface_pairs"):
+        check(e[key] == s[key], f"{name}: predicted {key} {e[key]} = meshed {s[key]}")
+single = os.path.join(os.environ.get("PUSHOUT_SOURCE_DIR", "."), "demo", "single_joint_fig6.toml")
+out = out_dir("guard_single_joint")
+run(single, out, sets=["output.plot=false"])
+s = summary(out)
+check(all(s["estimate"][k] == s[k] for k in ("dofs", "cells", "interface_pairs")),
+      f"single joint: predicted size = meshed ({s['dofs']} dofs)")
+
+# Memory within a factor 2 of the measurement (bench/memory_estimate.py has
+# the table over sizes), on the condensed and on the whole-model path.
+for name, sets in {"condensed": [], "whole": ["solver.condensation=\"off\""]}.items():
+    out = out_dir(f"guard_memory_{name}")
+    run(SCENE, out, sets=["mesh.elements_per_quarter=24"] + sets + SHORT)
+    s = summary(out)
+    ratio = s["estimate"]["peak_memory_mb"] / s["peak_memory_mb"]
+    check(0.5 < ratio < 2, f"{name}: estimated {s['estimate']['peak_memory_mb']:.0f} MB vs measured "
+                           f"{s['peak_memory_mb']:.0f} MB (ratio {ratio:.2f})")
+
+# Too large: refused before meshing, at once, with exit 2 and what to change.
+out = out_dir("guard_too_large")
+t0 = time.time()
+p = run(SCENE, out, sets=["mesh.elements_per_quarter=2000"], check=False)
+wall = time.time() - t0
+err = p.stderr.strip()
+check(p.returncode == 2, f"elements_per_quarter = 2000: exit {p.returncode} = 2 ({wall:.1f} s)")
+check(wall < 10, f"refused before meshing: {wall:.1f} s")
+check(len(err.splitlines()) == 1 and "GB" in err and "available" in err and "--force" in err
+      and "mesh.elements_per_quarter (2000)" in err, f"one line that says why and what to change: {err!r}")
+check(not os.path.exists(os.path.join(out, "curve.csv")), "no curve.csv from a refused run")
+
+# --force runs what the guard refuses (stopped once it is meshing).
+out = out_dir("guard_force")
+big = ["mesh.elements_per_quarter=600", "mesh.elements_through_thickness=2", "output.plot=false"]
+p = run(SCENE, out, sets=big, check=False)
+check(p.returncode == 2, f"600 elements per quarter are refused here ({p.stderr.strip()[:90]}...)")
+proc = subprocess.Popen([PUSHOUT, "run", SCENE, "--out", out, "--force", "--quiet"] +
+                        [a for s in big for a in ("--set", s)],
+                        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+time.sleep(3)
+check(proc.poll() is None, "--force: the same run starts meshing")
+proc.terminate()
+proc.communicate(timeout=30)
