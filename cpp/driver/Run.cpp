@@ -491,6 +491,10 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
     ok = false;
   else if (scenario->initial_solve())
   {
+    // The thermal step (or preload) takes the pseudo-time of one nominal
+    // load step, so that a viscous damage layer damages in it as it would in
+    // one step of the push (without it, dt = 0 would freeze its damage).
+    model.interface->set_time_increment(scenario->time_at(1.0) - scenario->time_at(0.0));
     equilibrium.apply_constraints(x);
     const solver::SolveReport rep = step_solver.solve(x);
     its0 = rep.iterations;

@@ -1,5 +1,7 @@
 #include "generate.h"
 #include "symmetry.h"
+#include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <dolfinx/io/cells.h>
 #include <fstream>
@@ -105,6 +107,59 @@ std::filesystem::path default_cache_dir()
   return std::filesystem::temp_directory_path() / "pushout-cache";
 }
 
+double cache_limit_mb()
+{
+  if (const char* v = std::getenv("PUSHOUT_CACHE_MAX_MB"); v && *v)
+  {
+    char* end = nullptr;
+    const double mb = std::strtod(v, &end);
+    if (end == v || *end != '\0' || !(mb >= 0))
+      throw std::runtime_error(std::string("PUSHOUT_CACHE_MAX_MB = '") + v +
+                               "': a size in MB (>= 0) is needed");
+    return mb;
+  }
+  return default_cache_limit_mb;
+}
+
+void prune_cache(const std::filesystem::path& cache_dir, double limit_mb,
+                 const std::filesystem::path& keep)
+{
+  namespace fs = std::filesystem;
+  struct Entry
+  {
+    fs::path path;
+    fs::file_time_type used;
+    std::uintmax_t bytes;
+  };
+  std::vector<Entry> entries;
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(cache_dir, ec))
+  {
+    if (e.path().extension() != ".msh" || e.path() == keep)
+      continue;
+    std::error_code ec_entry;
+    const auto used = fs::last_write_time(e.path(), ec_entry);
+    // Another run's mesh being written (generate_here's private name) is
+    // left alone for a day.
+    const bool being_written = e.path().stem().extension().string().starts_with(".tmp");
+    if (being_written && fs::file_time_type::clock::now() - used < std::chrono::hours(24))
+      continue;
+    const auto bytes = fs::file_size(e.path(), ec_entry);
+    if (!ec_entry)
+      entries.push_back({e.path(), used, bytes});
+  }
+  std::sort(entries.begin(), entries.end(),
+            [](const Entry& a, const Entry& b) { return a.used > b.used; });
+  std::error_code ec_keep;
+  double total_mb = fs::exists(keep, ec_keep) ? double(fs::file_size(keep, ec_keep)) / 1048576 : 0;
+  for (const Entry& e : entries) // newest first: the oldest go
+  {
+    total_mb += double(e.bytes) / 1048576;
+    if (total_mb > limit_mb)
+      fs::remove(e.path, ec); // another run may have removed it: no error
+  }
+}
+
 namespace
 {
 /// gmsh on this process: the cached or a new mesh.
@@ -135,9 +190,20 @@ MeshData generate_here(const Scene& scene, const std::filesystem::path& cache_di
   MeshData m;
   try
   {
-    reused = std::filesystem::exists(cached);
+    const double limit_mb = cache_limit_mb();
+    reused = limit_mb > 0 && std::filesystem::exists(cached);
     if (reused)
+    {
       gmsh::open(cached.string());
+      // Marks it used: the cache forgets the least recently used first.
+      std::error_code ec;
+      std::filesystem::last_write_time(cached, std::filesystem::file_time_type::clock::now(), ec);
+    }
+    else if (limit_mb == 0) // no cache
+    {
+      gmsh::open(geo.string());
+      gmsh::model::mesh::generate(3);
+    }
     else
     {
       gmsh::open(geo.string());
@@ -150,6 +216,7 @@ MeshData generate_here(const Scene& scene, const std::filesystem::path& cache_di
       gmsh::option::setNumber("Mesh.Binary", 1);
       gmsh::write(tmp.string());
       std::filesystem::rename(tmp, cached);
+      prune_cache(cache_dir, limit_mb, cached);
     }
     m = read_gmsh_model();
   }

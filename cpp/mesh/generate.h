@@ -18,4 +18,18 @@ MeshData generate(const Scene& scene, const std::filesystem::path& cache_dir, bo
 /// Default cache folder: $PUSHOUT_CACHE_DIR, else $XDG_CACHE_HOME/pushout,
 /// else ~/.cache/pushout.
 std::filesystem::path default_cache_dir();
+
+/// The cache keeps at most this many MB of meshes by default; the least
+/// recently used go first. $PUSHOUT_CACHE_MAX_MB sets another bound (0: no
+/// cache: every run meshes, nothing is stored).
+constexpr double default_cache_limit_mb = 1024;
+
+/// The bound in force [MB]: $PUSHOUT_CACHE_MAX_MB or the default.
+double cache_limit_mb();
+
+/// Removes the least recently used meshes (*.msh, by modification time, which
+/// a reuse renews) of `cache_dir` until they and `keep` take at most
+/// `limit_mb`; `keep` (the mesh just written) always stays.
+void prune_cache(const std::filesystem::path& cache_dir, double limit_mb,
+                 const std::filesystem::path& keep);
 } // namespace pushout::mesh

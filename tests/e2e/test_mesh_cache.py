@@ -25,3 +25,38 @@ check(not summary(c)["mesh_reused"], "another steel_layers makes a new mesh")
 strip = lambda rows: [{k: v for k, v in r.items() if k != "wall_s"} for r in rows]  # noqa: E731
 check(strip(curve(a)) == strip(curve(b)), "same curve from the cached mesh")
 check(summary(c)["dofs"] != summary(a)["dofs"], "the new mesh differs")
+
+# The cache is bounded ($PUSHOUT_CACHE_MAX_MB): past the bound the least
+# recently used meshes go; a reused mesh counts as used. Each coarse mesh
+# here is 40-100 kB.
+shutil.rmtree(cache, ignore_errors=True)
+meshes = lambda: sorted(f for f in os.listdir(cache) if f.endswith(".msh"))  # noqa: E731
+os.environ["PUSHOUT_CACHE_MAX_MB"] = "0.25"
+layers = {n: ["mesh.steel_layers=" + str(n)] for n in (1, 2, 3, 4, 5)}
+run(scene, out_dir("cache_l1"), sets=layers[1])
+first = meshes()
+run(scene, out_dir("cache_l2"), sets=layers[2])
+run(scene, out_dir("cache_l1_again"), sets=layers[1])  # renews the first
+check(summary(os.path.join(os.path.dirname(a), "cache_l1_again"))["mesh_reused"],
+      "a cached mesh is reused under a bound")
+for n in (3, 4, 5):
+    run(scene, out_dir(f"cache_l{n}"), sets=layers[n])
+size_mb = sum(os.path.getsize(os.path.join(cache, f)) for f in meshes()) / 2 ** 20
+check(size_mb <= 0.25, f"the cache holds {size_mb:.3f} MB <= 0.25 MB ({len(meshes())} meshes)")
+check(len(meshes()) >= 2, "it still holds the newest meshes")
+run(scene, out_dir("cache_l5_again"), sets=layers[5])
+check(summary(os.path.join(os.path.dirname(a), "cache_l5_again"))["mesh_reused"], "the newest stays")
+run(scene, out_dir("cache_l2_again"), sets=layers[2])
+check(not summary(os.path.join(os.path.dirname(a), "cache_l2_again"))["mesh_reused"],
+      "the least recently used went first")
+
+# PUSHOUT_CACHE_MAX_MB = 0: no cache at all.
+shutil.rmtree(cache, ignore_errors=True)
+os.environ["PUSHOUT_CACHE_MAX_MB"] = "0"
+run(scene, out_dir("cache_off_1"))
+run(scene, out_dir("cache_off_2"))
+check(not summary(os.path.join(os.path.dirname(a), "cache_off_2"))["mesh_reused"]
+      and not (os.path.isdir(cache) and meshes()), "PUSHOUT_CACHE_MAX_MB=0 stores and reuses nothing")
+os.environ["PUSHOUT_CACHE_MAX_MB"] = "lots"
+p = run(scene, out_dir("cache_bad"), check=False)
+check(p.returncode != 0 and "PUSHOUT_CACHE_MAX_MB" in p.stderr, f"a bad bound is a clear error: {p.stderr.strip()!r}")

@@ -28,3 +28,33 @@ i_peak = max(range(len(ref)), key=lambda i: ref[i]["tau_MPa"])
 after = i_peak + 2
 check(curves[1e-2][after]["tau_MPa"] > ref[after]["tau_MPa"],
       f"viscosity delays the softening: {curves[1e-2][after]['tau_MPa']:.3f} > {ref[after]['tau_MPa']:.3f} MPa")
+
+# The thermal step takes the pseudo-time of one nominal step: with the tube
+# top held, the concrete's shrinkage damages the adhesion layer already in
+# step 0 (|alpha dT| L = 10 um > f_t / k = 3 um), and a viscous layer does
+# so too, the more the smaller eta (the tau of step 0 moves towards the
+# rate-independent one). With no pseudo-time (dt = 0) a viscous layer
+# would keep D_v = 0 in step 0 whatever eta.
+thermal = COARSE_MESH + FRICTION_2 + EXP_SOFT + """
+[loading]
+temperature_change = -50.0
+thermal_tube_top = "held"
+push_displacement = 0.01
+steps = 10
+"""
+tau0 = {}
+for eta in (0.0, 1e-2, 1e-3, 1e-5):
+    out = out_dir(f"viscous_thermal_{eta:g}")
+    run(thermal, out, sets=[f"interface.1.eta={eta}", "output.plot=false"])
+    tau0[eta] = curve(out)[0]["tau_MPa"]
+out = out_dir("viscous_thermal_elastic")
+run(thermal.replace(EXP_SOFT, '[[interface]]\nlaw = "elastic"\nk = 1000.0\n'), out,
+    sets=["output.plot=false"])
+undamaged = curve(out)[0]["tau_MPa"]
+check(abs(tau0[0.0] - undamaged) > 0.05 * abs(undamaged),
+      f"step 0 damages the adhesion layer: tau0 {tau0[0.0]:.4f} MPa vs undamaged {undamaged:.4f} MPa")
+gaps = [abs(tau0[eta] - tau0[0.0]) for eta in (1e-2, 1e-3, 1e-5)]
+check(gaps[0] > gaps[1] > gaps[2], "a viscous layer damages in step 0, the more the smaller eta: "
+      + ", ".join(f"eta {eta:g}: {tau0[eta]:.4f}" for eta in (1e-2, 1e-3, 1e-5)))
+check(gaps[2] < 0.02 * abs(tau0[0.0] - undamaged),
+      f"eta 1e-5 mm: step 0 within 2 % of the rate-independent one ({tau0[1e-5]:.4f} vs {tau0[0.0]:.4f} MPa)")
