@@ -12,7 +12,8 @@ packages=(
   libgmsh-dev                           # mesh generation (C++ API)
   libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   python3-matplotlib                    # curve.png
-  paraview xvfb xauth                   # pvbatch renders the interface maps (Fig. 8)
+  paraview python3-paraview xvfb xauth  # pvbatch renders the interface maps (Fig. 8);
+                                        # its Python module is only a recommended package
   libgtest-dev                          # unit tests
 )
 missing=()

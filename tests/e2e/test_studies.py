@@ -6,8 +6,9 @@ mesh, few steps), with the trends the paper states checked in numbers:
   Fig. 10: the peak grows with f_t; after the drop the residual branch is
           friction alone, mu p (p of the friction layer);
   retraction BC: held tube top -> negative initial tau, free -> zero, same
-          plateau;
-  Fig. 8: the interface maps render from interface.xdmf in ParaView (pvbatch).
+          plateau.
+The Fig. 8 maps (ParaView) are test_render_interface's: a rendering failure
+never hides these numbers.
 """
 import os
 import subprocess
@@ -18,7 +19,7 @@ from common import OUT_ROOT, SOURCE, check, curve, out_dir
 PUSHOUT = sys.argv[1]
 out = out_dir("studies_quick")
 p = subprocess.run([sys.executable, os.path.join(SOURCE, "scripts", "studies.py"), "--quick",
-                    "--out", out, "--pushout", PUSHOUT], capture_output=True, text=True)
+                    "--out", out, "--pushout", PUSHOUT, "--no-render"], capture_output=True, text=True)
 check(p.returncode == 0, "scripts/studies.py --quick ran: " + p.stdout[-300:] + p.stderr[-2000:])
 
 
@@ -72,9 +73,4 @@ check(abs(held[-1]["tau_MPa"] / free[-1]["tau_MPa"] - 1) < 0.01, "same plateau e
 
 for png in ("fig7_friction_retraction.png", "fig10_friction_adhesion.png", "retraction_boundary_condition.png"):
     check(os.path.getsize(os.path.join(out, png)) > 10000, f"{png} drawn")
-maps = os.path.join(out, "fig8_interface_maps.png")
-if os.path.exists(maps):
-    check(os.path.getsize(maps) > 20000, "fig8: interface maps rendered by ParaView from interface.xdmf")
-else:
-    print("SKIPPED fig8 rendering: ParaView's pvbatch is not installed (scripts/setup.sh installs it)")
-    sys.exit(77)
+check(not os.path.exists(os.path.join(out, "fig8_interface_maps.png")), "--no-render renders nothing")

@@ -1,0 +1,92 @@
+#!/usr/bin/env bash
+# Runs the README's two commands on a freshly made Debian 12 root: what a new
+# user's machine has (git and nothing else), not what this machine has
+# collected. Not part of CI: it downloads ~1 GB of packages and builds, and
+# takes 15-30 minutes.
+#
+#   scripts/fresh-check.sh [--worktree] [--keep] [--root DIR]
+#
+# The project goes in as a fresh `git clone` of this checkout's HEAD (what is
+# committed); --worktree adds the uncommitted changes and untracked files
+# (for a check before committing). Then, inside `chroot`, as root:
+#   scripts/demo.sh     (sets up, builds and runs the default scene)
+#   scripts/test.sh     (sets up and runs the tests)
+# each timed. The root (a new folder under /tmp, or DIR) is removed at the end
+# unless --keep. Needs root and mmdebstrap (apt-get install mmdebstrap).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+source_dir=$(pwd)
+
+worktree=0 keep=0 root=""
+while (($#)); do
+  case "$1" in
+    --worktree) worktree=1 ;;
+    --keep) keep=1 ;;
+    --root) root="$2"; shift ;;
+    -h|--help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "fresh-check: unknown option $1 (see --help)" >&2; exit 2 ;;
+  esac
+  shift
+done
+[ "$(id -u)" -eq 0 ] || { echo "fresh-check: needs root (mmdebstrap, chroot, mounts)" >&2; exit 2; }
+command -v mmdebstrap >/dev/null || { echo "fresh-check: apt-get install mmdebstrap" >&2; exit 2; }
+[ -n "$root" ] || root=$(mktemp -d /tmp/pushout-fresh.XXXXXX)
+
+mounted=()
+cleanup() {
+  local m
+  for ((i = ${#mounted[@]} - 1; i >= 0; i--)); do
+    umount -l "${mounted[i]}" 2>/dev/null || true
+  done
+  if ((keep)); then
+    echo "fresh-check: root kept in $root"
+  else
+    rm -rf --one-file-system "$root"
+  fi
+}
+trap cleanup EXIT
+
+echo "fresh-check: making a Debian 12 root in $root"
+# mmdebstrap wants an empty or absent target.
+rmdir "$root" 2>/dev/null || true
+mmdebstrap --quiet --variant=apt --include=git,ca-certificates bookworm "$root"
+
+echo "fresh-check: cloning $(git rev-parse --short HEAD)$( ((worktree)) && echo ' with the working tree')"
+git clone --quiet "$source_dir" "$root/work/pushout"
+if ((worktree)); then
+  # Uncommitted changes and untracked (not ignored) files, as they are here.
+  git diff HEAD --binary | git -C "$root/work/pushout" apply --whitespace=nowarn --allow-empty
+  git ls-files --others --exclude-standard -z | xargs -0 -r cp --parents -t "$root/work/pushout"
+fi
+
+for fs in proc sys dev dev/pts; do
+  mount --bind "/$fs" "$root/$fs"
+  mounted+=("$root/$fs")
+done
+cp /etc/resolv.conf "$root/etc/resolv.conf"
+
+# Runs a command in the root as a new user's shell would (root, no sudo).
+in_root() {
+  chroot "$root" /usr/bin/env -i HOME=/root PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
+    LANG=C.UTF-8 TERM=dumb bash -c "cd /work/pushout && $1"
+}
+
+declare -A rc seconds
+for cmd in scripts/demo.sh scripts/test.sh; do
+  echo "fresh-check: $cmd"
+  t0=$(date +%s)
+  set +e
+  in_root "$cmd" 2>&1 | sed 's/^/  | /'
+  rc[$cmd]=${PIPESTATUS[0]}
+  set -e
+  seconds[$cmd]=$(($(date +%s) - t0))
+done
+
+echo
+echo "fresh-check: results on a fresh Debian 12 root"
+status=0
+for cmd in scripts/demo.sh scripts/test.sh; do
+  printf '  %-16s exit %d  %4d s\n' "$cmd" "${rc[$cmd]}" "${seconds[$cmd]}"
+  [ "${rc[$cmd]}" -eq 0 ] || status=1
+done
+exit $status
