@@ -18,13 +18,30 @@
 #include "Envelope.h"
 #include "InterfaceLaw.h"
 #include <cmath>
+#include <span>
 
 namespace pushout::laws
 {
+/// Named view of the damage history at a point, the one place that knows
+/// its layout [kappa, D_v]. T is double (to write) or const double.
+template <typename T> class DamageHistory
+{
+public:
+  static constexpr int size = 2;
+  explicit DamageHistory(std::span<T> state) : _s(state.first(size)) {}
+  /// The largest equivalent jump reached [mm].
+  T& kappa() const { return _s[0]; }
+  /// The acting damage D_v in [0, 1]: D(kappa), or behind it with viscosity.
+  T& damage() const { return _s[1]; }
+
+private:
+  std::span<T> _s;
+};
+
 class CamanhoDavila
 {
 public:
-  static constexpr int state_size = 2;
+  static constexpr int state_size = DamageHistory<double>::size;
 
   CamanhoDavila(double k, Envelope envelope, double eta = 0)
       : _k(k), _env(envelope), _w0(envelope.f_t / k), _eta(eta)
@@ -76,21 +93,23 @@ public:
     return damage_old + theta(dt) * (damage(kappa_new) - damage_old);
   }
 
-  /// The cohesive traction and tangent from the committed state
-  /// [kappa, D_v] over the pseudo-time increment dt; writes the new state.
-  LawResult update(std::span<const double> old, const Vec3& w, std::span<double> now,
+  /// The cohesive traction and tangent from the committed damage history
+  /// over the pseudo-time increment dt; writes the new history.
+  LawResult update(std::span<const double> state_old, const Vec3& w, std::span<double> state_new,
                    double dt) const
   {
     LawResult r;
-    const bool on_envelope = loading(old[0], w, now[0]);
-    now[1] = acting_damage(now[0], old[1], dt);
-    const double g = (1 - now[1]) * _k;
+    const DamageHistory old(state_old);
+    const DamageHistory now(state_new);
+    const bool on_envelope = loading(old.kappa(), w, now.kappa());
+    now.damage() = acting_damage(now.kappa(), old.damage(), dt);
+    const double g = (1 - now.damage()) * _k;
     const bool open = w[0] > 0;
     r.t = {(open ? g : _k) * w[0], g * w[1], g * w[2]};
     r.D = {open ? g : _k, 0, 0, 0, g, 0, 0, 0, g};
     if (on_envelope)
     {
-      const double delta = now[0];
+      const double delta = now.kappa();
       const double c = theta(dt) * dsecant(delta) / delta;
       const Vec3 we = {open ? w[0] : 0.0, w[1], w[2]};
       for (int a = 0; a < 3; ++a)

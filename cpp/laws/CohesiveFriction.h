@@ -31,13 +31,33 @@
 
 namespace pushout::laws
 {
+/// Named view of the state of CohesiveFriction: its damage history, then
+/// the plastic slip of its damaged part. T is double or const double.
+template <typename T> class CohesiveFrictionState
+{
+public:
+  static constexpr int size = DamageHistory<T>::size + PlasticSlip<T>::size;
+  explicit CohesiveFrictionState(std::span<T> state)
+      : _history(state.first(DamageHistory<T>::size)),
+        _slip(state.subspan(DamageHistory<T>::size, PlasticSlip<T>::size))
+  {
+  }
+  std::span<T> history() const { return _history; } ///< for CamanhoDavila
+  std::span<T> slip() const { return _slip; }       ///< for Friction
+  DamageHistory<T> damage_history() const { return DamageHistory<T>(_history); }
+  PlasticSlip<T> plastic_slip() const { return PlasticSlip<T>(_slip); }
+
+private:
+  std::span<T> _history, _slip;
+};
+
 class CohesiveFriction
 {
 public:
   static constexpr const char* name = "cohesive_friction";
   static constexpr const char* doc = "damage transfers load from cohesion to Coulomb friction "
                                      "(Alfano & Sacco 2006): k, mu, f_t, and w_c2 or c";
-  static constexpr int state_size = 4;
+  static constexpr int state_size = CohesiveFrictionState<double>::size;
 
   static std::vector<ParamDef> params()
   {
@@ -65,10 +85,14 @@ public:
                    double dt = 0) const
   {
     const double k = _cd.k();
-    double& kappa = state_new[0];
-    const bool on_envelope = _cd.loading(state_old[0], w, kappa);
-    const double D = state_new[1] = _cd.acting_damage(kappa, state_old[1], dt);
-    const LawResult fr = _friction.update(state_old.subspan(2, 2), w, state_new.subspan(2, 2));
+    const CohesiveFrictionState old(state_old);
+    const CohesiveFrictionState now(state_new);
+    const DamageHistory history_old = old.damage_history();
+    const DamageHistory history = now.damage_history();
+    double& kappa = history.kappa();
+    const bool on_envelope = _cd.loading(history_old.kappa(), w, kappa);
+    const double D = history.damage() = _cd.acting_damage(kappa, history_old.damage(), dt);
+    const LawResult fr = _friction.update(old.slip(), w, now.slip());
 
     // Damaged part: contact normal and friction shear.
     Vec3 td = {k * std::min(w[0], 0.0), fr.t[1], fr.t[2]};
@@ -97,8 +121,16 @@ public:
     return r;
   }
 
-  std::array<double, 2> slip(std::span<const double> state) const { return {state[1], state[2]}; }
-  double damage(std::span<const double> state) const { return _cd.damage(state[0]); }
+  /// The plastic slip of the damaged part [mm].
+  std::array<double, 2> slip(std::span<const double> state) const
+  {
+    return CohesiveFrictionState(state).plastic_slip().vector();
+  }
+  /// The acting damage D_v (with viscosity, behind D(kappa)).
+  double damage(std::span<const double> state) const
+  {
+    return CohesiveFrictionState(state).damage_history().damage();
+  }
 
 private:
   static Envelope envelope(const Params& p, const std::string& prefix)

@@ -24,12 +24,27 @@
 
 namespace pushout::laws
 {
+/// Named view of the plastic slip at a point, the one place that knows its
+/// layout [w^p_s1, w^p_s2] (mm). T is double (to write) or const double.
+template <typename T> class PlasticSlip
+{
+public:
+  static constexpr int size = 2;
+  explicit PlasticSlip(std::span<T> state) : _s(state.first(size)) {}
+  T& s1() const { return _s[0]; } ///< along the tangent s1 (axial) [mm]
+  T& s2() const { return _s[1]; } ///< along the tangent s2 (circumferential) [mm]
+  std::array<double, 2> vector() const { return {_s[0], _s[1]}; }
+
+private:
+  std::span<T> _s;
+};
+
 class Friction
 {
 public:
   static constexpr const char* name = "friction";
   static constexpr const char* doc = "Coulomb friction with vector plastic slip, paper §3 (k, mu)";
-  static constexpr int state_size = 2;
+  static constexpr int state_size = PlasticSlip<double>::size;
 
   static std::vector<ParamDef> params()
   {
@@ -44,26 +59,28 @@ public:
                    double /*dt*/ = 0) const
   {
     LawResult r;
+    const PlasticSlip old(state_old);
+    const PlasticSlip now(state_new);
     const double k = _k;
     const double tn = k * w[0];
     const double p = tn < 0 ? -tn : 0.0;
-    const double ts1 = k * (w[1] - state_old[0]);
-    const double ts2 = k * (w[2] - state_old[1]);
+    const double ts1 = k * (w[1] - old.s1());
+    const double ts2 = k * (w[2] - old.s2());
     const double norm = std::hypot(ts1, ts2);
     const double f = norm - _mu * p;
 
     r.t[0] = tn;
     r.D = {k, 0, 0, 0, k, 0, 0, 0, k};
-    state_new[0] = state_old[0];
-    state_new[1] = state_old[1];
+    now.s1() = old.s1();
+    now.s2() = old.s2();
     if (f > 0)
     {
       const double m1 = ts1 / norm, m2 = ts2 / norm;
       const double scale = _mu * p / norm;
       r.t[1] = _mu * p * m1;
       r.t[2] = _mu * p * m2;
-      state_new[0] += f / k * m1;
-      state_new[1] += f / k * m2;
+      now.s1() += f / k * m1;
+      now.s2() += f / k * m2;
       r.D[4] = scale * k * (1 - m1 * m1);
       r.D[5] = -scale * k * m1 * m2;
       r.D[7] = -scale * k * m2 * m1;
@@ -82,7 +99,10 @@ public:
     return r;
   }
 
-  std::array<double, 2> slip(std::span<const double> state) const { return {state[0], state[1]}; }
+  std::array<double, 2> slip(std::span<const double> state) const
+  {
+    return PlasticSlip(state).vector();
+  }
   double damage(std::span<const double>) const { return 0; }
 
 private:

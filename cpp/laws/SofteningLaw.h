@@ -56,7 +56,7 @@ public:
     return _cd.update(state_old, w, state_new, dt);
   }
   std::array<double, 2> slip(std::span<const double>) const { return {0, 0}; }
-  double damage(std::span<const double> state) const { return state[1]; }
+  double damage(std::span<const double> state) const { return DamageHistory(state).damage(); }
 
 private:
   CamanhoDavila _cd;
