@@ -80,11 +80,11 @@ TEST(CohesiveFriction, NeedsExactlyOneEnvelope)
 {
   EXPECT_THROW(
       CohesiveFriction(Params{{"k", 1}, {"mu", 0.4}, {"f_t", 1}, {"eta", 0}}, "interface.0."),
-      pushout::SceneError);
+      pushout::laws::ParameterError);
   EXPECT_THROW(
       CohesiveFriction(Params{{"k", 1}, {"mu", 0.4}, {"f_t", 1}, {"c", 2}, {"w_c2", 1}, {"eta", 0}},
                        "interface.0."),
-      pushout::SceneError);
+      pushout::laws::ParameterError);
 }
 
 TEST(CohesiveFriction, TangentMatchesFiniteDifferencesAtRandomStates)

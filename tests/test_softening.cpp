@@ -134,10 +134,10 @@ TEST(Softening, ParametersAreChecked)
   EXPECT_THROW(
       LinearSofteningFriction(
           params({{"k", 100}, {"f_t", 1}, {"w_c2", 0.3}, {"f_fr", 2}, {"eta", 0}}), "interface.0."),
-      pushout::SceneError);
+      pushout::laws::ParameterError);
   EXPECT_THROW(ExponentialSoftening(
                    params({{"k", 100}, {"f_t", 1}, {"c", 3}, {"f_fr", 1.5}, {"eta", 0}}), "x."),
-               pushout::SceneError);
+               pushout::laws::ParameterError);
 }
 
 namespace

@@ -23,10 +23,10 @@
 // Parameters: k [N/mm^3], mu [-], f_t [MPa], w_c2 [mm] or c [1/mm], eta [mm].
 #pragma once
 
-#include "../scene/SceneError.h"
 #include "CamanhoDavila.h"
 #include "Friction.h"
 #include "LawRegistry.h"
+#include "ParameterError.h"
 #include "SofteningLaw.h"
 
 namespace pushout::laws
@@ -137,8 +137,9 @@ private:
   {
     const bool linear = p.count("w_c2"), exponential = p.count("c");
     if (linear == exponential)
-      throw SceneError("'" + prefix + "w_c2' (linear envelope) or '" + prefix +
-                       "c' (exponential envelope): give exactly one for law 'cohesive_friction'");
+      throw ParameterError(
+          "'" + prefix + "w_c2' (linear envelope) or '" + prefix +
+          "c' (exponential envelope): give exactly one for law 'cohesive_friction'");
     if (linear)
       return {Envelope::Kind::linear, p.at("f_t"), p.at("w_c2")};
     return {Envelope::Kind::exponential, p.at("f_t"), 0.0, 0.0, p.at("c")};

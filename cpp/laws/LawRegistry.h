@@ -36,7 +36,7 @@ struct LawInfo
   std::string name;
   std::string doc;
   std::vector<ParamDef> params;
-  /// Builds the law; throws SceneError (naming `prefix` + key) on parameter
+  /// Builds the law; throws ParameterError (naming `prefix` + key) on parameter
   /// combinations the per-parameter ranges cannot express.
   std::function<std::unique_ptr<InterfaceLaw>(const Params&, const std::string& prefix)> make;
 };

@@ -4,9 +4,9 @@
 // D_v (the acting damage)].
 #pragma once
 
-#include "../scene/SceneError.h"
 #include "CamanhoDavila.h"
 #include "LawRegistry.h"
+#include "ParameterError.h"
 
 namespace pushout::laws
 {
@@ -26,9 +26,9 @@ inline ParamDef viscosity_param()
 inline void check_residual(const Params& p, const std::string& prefix)
 {
   if (p.at("f_fr") > p.at("f_t"))
-    throw SceneError("'" + prefix + "f_fr' = " + std::to_string(p.at("f_fr")) +
-                     " MPa must not exceed '" + prefix + "f_t' = " + std::to_string(p.at("f_t")) +
-                     " MPa");
+    throw ParameterError("'" + prefix + "f_fr' = " + std::to_string(p.at("f_fr")) +
+                         " MPa must not exceed '" + prefix +
+                         "f_t' = " + std::to_string(p.at("f_t")) + " MPa");
 }
 /// Shared body of the softening laws: `Spec` supplies name, doc, params()
 /// and envelope(Params).

@@ -1,4 +1,5 @@
 #include "Scene.h"
+#include "../laws/ParameterError.h"
 #include "SceneError.h"
 #include <cmath>
 #include <fstream>
@@ -256,7 +257,14 @@ LayerSpec read_layer(const toml::node& node, std::size_t index)
     if (layer.params.count(p.name))
       check_range(layer.params.at(p.name), p.min, std::numeric_limits<double>::infinity(),
                   p.min_exclusive, prefix + p.name, p.unit);
-  info->make(layer.params, prefix); // checks combinations of parameters
+  try
+  {
+    info->make(layer.params, prefix); // checks combinations of parameters
+  }
+  catch (const laws::ParameterError& e)
+  {
+    throw SceneError(e.what());
+  }
   return layer;
 }
 
