@@ -86,9 +86,9 @@ std::string ResourceEstimate::describe() const
 
 std::string ResourceEstimate::memory() const
 {
-  std::string s = "about " + gigabytes(machine_mb);
+  std::string s = "about " + gigabytes(machine_mb) + " of memory";
   if (processes_here > 1)
-    s += " for " + std::to_string(processes_here) + " processes";
+    s += " (" + std::to_string(processes_here) + " processes)";
   return s;
 }
 
@@ -131,7 +131,7 @@ void check_fits(const ResourceEstimate& e, const Scene& scene, bool force)
   if (force || e.available_mb < 0 || e.machine_mb <= e.available_mb)
     return;
   std::ostringstream m;
-  m << "this run needs " << e.memory() << " of memory, more than the " << gigabytes(e.available_mb)
+  m << "this run needs " << e.memory() << ", more than the " << gigabytes(e.available_mb)
     << " available here (" << e.describe() << ")";
   if (scene.string("model.type") == "pushout")
     m << "; lower mesh.elements_per_quarter (" << scene.integer("mesh.elements_per_quarter")

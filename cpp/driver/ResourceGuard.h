@@ -43,7 +43,7 @@ struct ResourceEstimate
   double peak_mb() const;
   /// Dofs, joint elements and the solver path, in words.
   std::string describe() const;
-  /// The memory this machine needs, in words ("about 1.2 GB").
+  /// The memory this machine needs, in words ("about 1.20 GB of memory").
   std::string memory() const;
 };
 

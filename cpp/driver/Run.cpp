@@ -360,7 +360,7 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   publish();
   if (talk)
     std::cout << "pushout: meshing " << estimate.size.cells << " cells (" << estimate.memory()
-              << " of memory at the peak)" << std::endl;
+              << " at the peak)" << std::endl;
 
   // Mesh.
   phase.emplace("meshing", 0);
