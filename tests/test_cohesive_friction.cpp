@@ -15,13 +15,26 @@ namespace
 {
 const double k = 100, mu = 0.4, f_t = 1, w_c2 = 0.3;
 const CohesiveFriction coupled(k, mu, Envelope{Envelope::Kind::linear, f_t, w_c2});
+
+/// A state with the largest jump kappa [mm], the acting damage D_v and the
+/// plastic slip (s1, s2) [mm], written through its named view.
+std::vector<double> state(double kappa, double damage, double s1, double s2)
+{
+  std::vector<double> s(CohesiveFriction::state_size);
+  const CohesiveFrictionState<double> v(s);
+  v.damage_history().kappa() = kappa;
+  v.damage_history().damage() = damage;
+  v.plastic_slip().s1() = s1;
+  v.plastic_slip().s2() = s2;
+  return s;
+}
 } // namespace
 
 TEST(CohesiveFriction, UndamagedIsElastic)
 {
   const Elastic elastic(k, k);
   const Vec3 w = {-0.002, 0.004, -0.003}; // delta = 0.005 < w0 = 0.01
-  std::vector<double> s0 = {0, 0, 0, 0}, s1(4);
+  std::vector<double> s0(CohesiveFriction::state_size), s1(s0.size());
   const auto a = coupled.update(s0, w, s1);
   const auto b = elastic.update({}, w, {});
   for (int i = 0; i < 3; ++i)
@@ -38,17 +51,20 @@ TEST(CohesiveFriction, FullyDamagedIsFrictionInContact)
   for (int i = 0; i < 50; ++i)
   {
     const Vec3 w = {-0.01 * std::abs(U(gen)) - 1e-4, 0.02 * U(gen), 0.02 * U(gen)};
-    const std::vector<double> slip = {0.01 * U(gen), 0.01 * U(gen)};
-    std::vector<double> s0 = {1.0, 0.0, slip[0], slip[1]}, s1(4), f1(2); // beyond w0 + w_c2
+    const double p1 = 0.01 * U(gen), p2 = 0.01 * U(gen);    // plastic slip [mm]
+    const std::vector<double> s0 = state(1.0, 0.0, p1, p2); // beyond w0 + w_c2
+    std::vector<double> s1(s0.size()), f0(Friction::state_size), f1(f0.size());
+    PlasticSlip<double>(f0).s1() = p1;
+    PlasticSlip<double>(f0).s2() = p2;
     const auto a = coupled.update(s0, w, s1);
-    const auto b = friction.update(slip, w, f1);
+    const auto b = friction.update(f0, w, f1);
     for (int j = 0; j < 3; ++j)
       EXPECT_NEAR(a.t[j], b.t[j], 1e-13);
     for (int j = 0; j < 9; ++j)
       EXPECT_NEAR(a.D[j], b.D[j], 1e-10);
-    EXPECT_NEAR(s1[1], 1.0, 1e-15); // fully damaged
-    EXPECT_NEAR(s1[2], f1[0], 1e-15);
-    EXPECT_NEAR(s1[3], f1[1], 1e-15);
+    EXPECT_NEAR(coupled.damage(s1), 1.0, 1e-15); // fully damaged
+    EXPECT_NEAR(coupled.slip(s1)[0], friction.slip(f1)[0], 1e-15);
+    EXPECT_NEAR(coupled.slip(s1)[1], friction.slip(f1)[1], 1e-15);
   }
 }
 
@@ -57,8 +73,9 @@ TEST(CohesiveFriction, LiesBetweenCohesionAloneAndTheSuperposition)
   // Shear path under compression (p = 0.4 MPa), as in the paper's Fig. 9.
   const Friction friction(k, mu);
   const LinearSoftening cohesive(Params{{"k", k}, {"f_t", f_t}, {"w_c2", w_c2}, {"eta", 0}}, "");
-  std::vector<double> sc = {0, 0, 0, 0}, sf = {0, 0}, sd = {0, 0};
-  std::vector<double> nc(4), nf(2), nd(2);
+  std::vector<double> sc(CohesiveFriction::state_size), sf(Friction::state_size),
+      sd(LinearSoftening::state_size);
+  std::vector<double> nc(sc.size()), nf(sf.size()), nd(sd.size());
   for (int i = 1; i <= 400; ++i)
   {
     const double u = 0.4 * i / 400;
@@ -104,20 +121,21 @@ TEST(CohesiveFriction, TangentMatchesFiniteDifferencesAtRandomStates)
     {
       const double scale = 5 * ww0 * std::abs(U(gen)) + 1e-4;
       const Vec3 w = {scale * U(gen), scale * U(gen), scale * U(gen)};
-      const std::vector<double> s0 = {3 * ww0 * std::abs(U(gen)), 0.0, scale * U(gen),
-                                      scale * U(gen)};
+      // Without viscosity the committed D_v does not enter the update.
+      const double kappa = 3 * ww0 * std::abs(U(gen)), p1 = scale * U(gen), p2 = scale * U(gen);
+      const std::vector<double> s0 = state(kappa, 0.0, p1, p2);
       const double delta = CamanhoDavila::equivalent(w);
-      const double f = kk * std::hypot(w[1] - s0[1], w[2] - s0[2]) - mm * std::max(-kk * w[0], 0.0);
-      if (std::abs(w[0]) < margin || std::abs(delta - s0[0]) < margin ||
+      const double f = kk * std::hypot(w[1] - p1, w[2] - p2) - mm * std::max(-kk * w[0], 0.0);
+      if (std::abs(w[0]) < margin || std::abs(delta - kappa) < margin ||
           std::abs(delta - ww0) < margin || std::abs(f) < kk * margin ||
           std::abs(delta - ww0 - w_c2) < margin)
         continue;
       const double err = pushout::testing::tangent_error(*law, s0, w, h, kk);
       worst = std::max(worst, err);
-      EXPECT_LT(err, 1e-6) << "kappa " << s0[0] << " w " << w[0] << " " << w[1] << " " << w[2];
+      EXPECT_LT(err, 1e-6) << "kappa " << kappa << " w " << w[0] << " " << w[1] << " " << w[2];
       ++n;
       ++tested;
-      loading += delta > s0[0] && delta > ww0;
+      loading += delta > kappa && delta > ww0;
       sliding += f > 0;
     }
   }

@@ -7,14 +7,25 @@
 #include <random>
 
 using pushout::laws::Friction;
+using pushout::laws::PlasticSlip;
 using pushout::laws::Vec3;
 
 namespace
 {
+/// A state with plastic slip (s1, s2) [mm], written through its named view.
+std::vector<double> with_slip(double s1, double s2)
+{
+  std::vector<double> state(Friction::state_size);
+  const PlasticSlip<double> slip(state);
+  slip.s1() = s1;
+  slip.s2() = s2;
+  return state;
+}
+
 /// Runs a shear path along s1 at fixed w_n, committing every step.
 std::vector<double> shear_path(const Friction& law, double wn, const std::vector<double>& us)
 {
-  std::vector<double> state = {0, 0}, trial(2), t;
+  std::vector<double> state(Friction::state_size), trial(state.size()), t;
   for (double u : us)
   {
     const auto r = law.update(state, {wn, u, 0}, trial);
@@ -43,30 +54,31 @@ TEST(Friction, StickThenSlideThenReverse)
 TEST(Friction, SlipIsAVectorAlongTheTrialTraction)
 {
   const Friction law(1000.0, 0.5);
-  const std::vector<double> s0 = {0.001, -0.002};
-  std::vector<double> s1(2);
+  const std::vector<double> s0 = with_slip(0.001, -0.002);
+  std::vector<double> s1(s0.size());
   const Vec3 w = {-0.01, 0.02, 0.01}; // p = 10 MPa, limit 5 MPa
   const auto r = law.update(s0, w, s1);
-  const double t1 = 1000 * (w[1] - s0[0]), t2 = 1000 * (w[2] - s0[1]);
+  const auto p0 = law.slip(s0), p1 = law.slip(s1); // (s1, s2) [mm]
+  const double t1 = 1000 * (w[1] - p0[0]), t2 = 1000 * (w[2] - p0[1]);
   const double norm = std::hypot(t1, t2);
   EXPECT_NEAR(std::hypot(r.t[1], r.t[2]), 5.0, 1e-12);
   EXPECT_NEAR(r.t[1] * t2 - r.t[2] * t1, 0.0, 1e-9); // parallel to the trial
-  EXPECT_NEAR(s1[0] - s0[0], (norm - 5.0) / 1000 * t1 / norm, 1e-15);
-  EXPECT_NEAR(s1[1] - s0[1], (norm - 5.0) / 1000 * t2 / norm, 1e-15);
+  EXPECT_NEAR(p1[0] - p0[0], (norm - 5.0) / 1000 * t1 / norm, 1e-15);
+  EXPECT_NEAR(p1[1] - p0[1], (norm - 5.0) / 1000 * t2 / norm, 1e-15);
   EXPECT_DOUBLE_EQ(r.t[0], -10.0);
 }
 
 TEST(Friction, OpeningCarriesNoShearAndKeepsNormalStiffness)
 {
   const Friction law(1000.0, 0.4);
-  std::vector<double> s1(2);
-  const auto r = law.update(std::vector<double>{0, 0}, {0.001, 0.003, -0.002}, s1);
+  std::vector<double> s1(Friction::state_size);
+  const auto r = law.update(std::vector<double>(s1.size()), {0.001, 0.003, -0.002}, s1);
   EXPECT_DOUBLE_EQ(r.t[0], 1.0);
   EXPECT_DOUBLE_EQ(r.t[1], 0.0);
   EXPECT_DOUBLE_EQ(r.t[2], 0.0);
   EXPECT_DOUBLE_EQ(r.D[0], 1000.0);
-  EXPECT_DOUBLE_EQ(s1[0], 0.003); // the whole shear jump became slip
-  EXPECT_DOUBLE_EQ(s1[1], -0.002);
+  EXPECT_DOUBLE_EQ(law.slip(s1)[0], 0.003); // the whole shear jump became slip
+  EXPECT_DOUBLE_EQ(law.slip(s1)[1], -0.002);
 }
 
 TEST(Friction, ZeroFrictionSlidesFreely)
@@ -92,11 +104,12 @@ TEST(Friction, TangentMatchesFiniteDifferencesAtRandomStates)
     const Vec3 w = {scale * U(gen), scale * U(gen), scale * U(gen)};
     // A third of the states start near the jump, so that many stick.
     const bool near = U(gen) < -1.0 / 3;
-    const std::vector<double> s0 = {near ? w[1] + 1e-2 * scale * U(gen) : scale * U(gen),
-                                    near ? w[2] + 1e-2 * scale * U(gen) : scale * U(gen)};
+    const double p1 = near ? w[1] + 1e-2 * scale * U(gen) : scale * U(gen),
+                 p2 = near ? w[2] + 1e-2 * scale * U(gen) : scale * U(gen);
+    const std::vector<double> s0 = with_slip(p1, p2);
     // Trial yield function (eq. 6): keep away from the kinks (the yield
     // surface and w_n = 0), where central differences straddle two branches.
-    const double f = k * std::hypot(w[1] - s0[0], w[2] - s0[1]) - mu * std::max(-k * w[0], 0.0);
+    const double f = k * std::hypot(w[1] - p1, w[2] - p2) - mu * std::max(-k * w[0], 0.0);
     if (std::abs(w[0]) < 1e3 * h || std::abs(f) < 1e3 * k * h)
       continue;
     const double err = pushout::testing::tangent_error(law, s0, w, h, k);

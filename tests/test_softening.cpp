@@ -23,10 +23,21 @@ const LinearSofteningFriction
 const ExponentialSoftening
     exponential(params({{"k", 1000}, {"f_t", 3}, {"c", 25}, {"f_fr", 0}, {"eta", 0}}), "");
 
+/// A damage history with the largest jump kappa [mm] and the acting damage
+/// D_v, written through its named view.
+std::vector<double> history(double kappa, double damage)
+{
+  std::vector<double> s(CamanhoDavila::state_size);
+  const DamageHistory<double> h(s);
+  h.kappa() = kappa;
+  h.damage() = damage;
+  return s;
+}
+
 /// Traction along a path of jumps, committing every step.
 template <typename L> std::vector<Vec3> path(const L& law, const std::vector<Vec3>& jumps)
 {
-  std::vector<double> s = {0, 0}, s1 = {0, 0};
+  std::vector<double> s(L::state_size), s1(s.size());
   std::vector<Vec3> t;
   for (const Vec3& w : jumps)
   {
@@ -39,7 +50,7 @@ template <typename L> std::vector<Vec3> path(const L& law, const std::vector<Vec
 /// Work of the normal traction over a monotonic opening to w_end [N/mm].
 template <typename L> double opening_work(const L& law, double w_end, int n)
 {
-  std::vector<double> s = {0, 0}, s1 = {0, 0};
+  std::vector<double> s(L::state_size), s1(s.size());
   double work = 0, t_prev = 0;
   for (int i = 1; i <= n; ++i)
   {
@@ -70,7 +81,7 @@ TEST(LinearSoftening, PureShearPeakSofteningSecantUnloadingReloading)
   EXPECT_NEAR(t[4][1], 0.5, 1e-14);  // back on the envelope
   EXPECT_NEAR(t[5][1], 0.0, 1e-14);  // fully damaged
   EXPECT_NEAR(t[6][1], 0.0, 1e-14);
-  std::vector<double> s = {0, 0}, s1(2);
+  std::vector<double> s(LinearSoftening::state_size), s1(s.size());
   linear.update(s, {0, 0.4, 0}, s1);
   EXPECT_NEAR(linear.damage(s1), 1.0, 1e-14);
 }
@@ -87,13 +98,13 @@ TEST(LinearSoftening, PureOpeningAndMixedModeUseTheEuclideanJump)
 
 TEST(LinearSoftening, CompressionIsElasticAndDoesNotDamage)
 {
-  std::vector<double> s = {0, 0}, s1 = {0, 0};
+  std::vector<double> s(LinearSoftening::state_size), s1(s.size());
   const auto r = linear.update(s, {-0.5, 0, 0}, s1);
   EXPECT_DOUBLE_EQ(r.t[0], -50.0);
-  EXPECT_DOUBLE_EQ(s1[0], 0.0);
-  EXPECT_DOUBLE_EQ(s1[1], 0.0);
+  EXPECT_DOUBLE_EQ(DamageHistory<const double>(s1).kappa(), 0.0);
+  EXPECT_DOUBLE_EQ(linear.damage(s1), 0.0);
   // Damaged, then compressed: still the full k in the normal direction.
-  s = {0.2, 0.5};
+  s = history(0.2, 0.5);
   EXPECT_DOUBLE_EQ(linear.update(s, {-0.01, 0, 0}, s1).t[0], -1.0);
 }
 
@@ -154,17 +165,19 @@ template <typename L> void check_random_tangents(const L& law, double k, double 
   {
     const double scale = 4 * w0 * std::abs(U(gen)) + kink2 * std::abs(U(gen));
     const Vec3 w = {scale * U(gen), scale * U(gen), scale * U(gen)};
-    const std::vector<double> s0 = {std::abs(U(gen)) * (2 * w0 + kink2), 0.0};
+    // Without viscosity the committed D_v does not enter the update.
+    const double kappa = std::abs(U(gen)) * (2 * w0 + kink2);
+    const std::vector<double> s0 = history(kappa, 0.0);
     const double delta = CamanhoDavila::equivalent(w);
     const double margin = 1e3 * h;
-    if (std::abs(w[0]) < margin || std::abs(delta - s0[0]) < margin ||
+    if (std::abs(w[0]) < margin || std::abs(delta - kappa) < margin ||
         std::abs(delta - w0) < margin || std::abs(delta - kink2) < margin || delta < margin)
       continue;
     const double err = pushout::testing::tangent_error(law, s0, w, h, k);
     worst = std::max(worst, err);
-    EXPECT_LT(err, 1e-6) << "kappa " << s0[0] << " w " << w[0] << " " << w[1] << " " << w[2];
+    EXPECT_LT(err, 1e-6) << "kappa " << kappa << " w " << w[0] << " " << w[1] << " " << w[2];
     ++tested;
-    (delta > s0[0] && delta > w0 ? loading : unloading)++;
+    (delta > kappa && delta > w0 ? loading : unloading)++;
     compressed += w[0] < 0;
   }
   std::cout << L::name << ": max FD tangent error " << worst << " over 200 states\n";
@@ -187,10 +200,10 @@ TEST(ViscousDamage, LagsTheRateIndependentDamageAndRecoversItAsEtaVanishes)
   // rate independent) over dt = 0.01 mm: theta = 1/2, D_v = 0.42.
   Params p{{"k", 100}, {"f_t", 1}, {"w_c2", 0.3}, {"eta", 0.01}};
   const LinearSoftening viscous(p, "");
-  std::vector<double> s = {0, 0}, s1(2), s0(2);
+  std::vector<double> s(LinearSoftening::state_size), s1(s.size()), s0(s.size());
   const auto r = viscous.update(s, {0, 0.16, 0}, s1, 0.01);
   const double D = 1 - 0.5 / (100 * 0.16);
-  EXPECT_NEAR(s1[1], 0.5 * D, 1e-14);
+  EXPECT_NEAR(viscous.damage(s1), 0.5 * D, 1e-14);
   EXPECT_NEAR(r.t[1], (1 - 0.5 * D) * 100 * 0.16, 1e-12);
   EXPECT_GT(r.t[1], linear.update(s, {0, 0.16, 0}, s0).t[1]);
   // dt / eta -> infinity: the rate-independent answer.
@@ -200,17 +213,19 @@ TEST(ViscousDamage, LagsTheRateIndependentDamageAndRecoversItAsEtaVanishes)
   for (int i = 0; i < 50; ++i)
   {
     viscous.update(a, {0, 0.16, 0}, s1, 0.01);
-    EXPECT_GE(s1[1], a[1]);
-    EXPECT_LE(s1[1], D + 1e-15);
+    EXPECT_GE(viscous.damage(s1), viscous.damage(a));
+    EXPECT_LE(viscous.damage(s1), D + 1e-15);
     a = s1;
   }
-  EXPECT_NEAR(a[1], D, 1e-12);
+  EXPECT_NEAR(viscous.damage(a), D, 1e-12);
 }
 
 TEST(ViscousDamage, TangentMatchesFiniteDifferences)
 {
   Params p{{"k", 1000}, {"f_t", 3}, {"c", 25}, {"f_fr", 0}, {"eta", 0.005}};
   const ExponentialSoftening law(p, "");
+  // The same damage without viscosity, for D(kappa).
+  const CamanhoDavila rate_free(1000, Envelope{Envelope::Kind::exponential, 3, 0, 0, 25});
   std::mt19937 gen(9);
   std::uniform_real_distribution<double> U(-1, 1);
   double worst = 0;
@@ -218,13 +233,13 @@ TEST(ViscousDamage, TangentMatchesFiniteDifferences)
   {
     const Vec3 w = {0.02 * U(gen), 0.05 * U(gen), 0.05 * U(gen)};
     const double kappa = 0.05 * std::abs(U(gen));
-    const std::vector<double> s0 = {kappa, 0.5 * std::abs(U(gen)) *
-                                               law.damage(std::vector<double>{kappa, 0.0})};
+    // The committed D_v lags D(kappa): anywhere in [0, D(kappa) / 2].
+    const std::vector<double> s0 = history(kappa, 0.5 * std::abs(U(gen)) * rate_free.damage(kappa));
     const double delta = CamanhoDavila::equivalent(w);
     if (std::abs(w[0]) < 1e-6 || std::abs(delta - kappa) < 1e-6 || std::abs(delta - 0.003) < 1e-6)
       continue;
     ++n;
-    std::vector<double> s1(2);
+    std::vector<double> s1(s0.size());
     const double dt = 0.001 * std::abs(U(gen)) + 1e-5;
     // tangent_error uses dt = 0; check with dt by hand.
     const auto r = law.update(s0, w, s1, dt);

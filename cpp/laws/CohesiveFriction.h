@@ -42,8 +42,7 @@ public:
         _slip(state.subspan(DamageHistory<T>::size, PlasticSlip<T>::size))
   {
   }
-  std::span<T> history() const { return _history; } ///< for CamanhoDavila
-  std::span<T> slip() const { return _slip; }       ///< for Friction
+  std::span<T> slip() const { return _slip; } ///< for Friction
   DamageHistory<T> damage_history() const { return DamageHistory<T>(_history); }
   PlasticSlip<T> plastic_slip() const { return PlasticSlip<T>(_slip); }
 
