@@ -1,12 +1,11 @@
-"""What the bench scripts share: running build/pushout on a scene, reading
-its outputs, writing result tables."""
-import csv
-import json
+"""What the bench scripts share: running build/pushout on a scene and reading
+its outputs (scripts/pushout_runs.py), writing result tables."""
 import os
-import subprocess
+import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-PUSHOUT = os.path.join(ROOT, "build", "pushout")
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scripts"))
+import pushout_runs  # noqa: E402
+from pushout_runs import PUSHOUT, ROOT, curve, summary, write_csv  # noqa: E402,F401
 
 
 def run(pushout, scene, out, sets=(), petsc=(), reuse=False, timeout=None, check=True):
@@ -14,36 +13,8 @@ def run(pushout, scene, out, sets=(), petsc=(), reuse=False, timeout=None, check
     Returns the exit code (0 when reused) or None if it ran out of time."""
     if reuse and os.path.exists(os.path.join(out, "summary.json")):
         return 0
-    cmd = [pushout, "run", scene, "--out", out, "--quiet"]
-    for s in sets:
-        cmd += ["--set", s]
-    cmd += list(petsc)
-    try:
-        p = subprocess.run(cmd, env=dict(os.environ, OPENBLAS_NUM_THREADS="1"), capture_output=True,
-                           text=True, timeout=timeout)
-    except subprocess.TimeoutExpired:
-        return None
-    if check and p.returncode != 0:
-        raise RuntimeError(f"{' '.join(cmd)} failed ({p.returncode}):\n{p.stderr}")
-    return p.returncode
-
-
-def curve(out):
-    with open(os.path.join(out, "curve.csv"), newline="") as f:
-        return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
-
-
-def summary(out):
-    with open(os.path.join(out, "summary.json")) as f:
-        return json.load(f)
-
-
-def write_csv(path, rows):
-    os.makedirs(os.path.dirname(path), exist_ok=True)
-    with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        w.writerows(rows)
+    p = pushout_runs.run(pushout, scene, out, sets, petsc, one_thread=True, timeout=timeout, check=check)
+    return None if p is None else p.returncode
 
 
 def save_figure_and_table(fig, out_dir, name, rows):

@@ -9,10 +9,9 @@ iterative preconditioner. Writes bench/results/memory_estimate.csv and .md.
 """
 import argparse
 import os
-import subprocess
 import time
 
-from common import ROOT, markdown_table, summary, write_csv
+from common import ROOT, markdown_table, pushout_runs, summary, write_csv
 
 SCENE = os.path.join(ROOT, "demo", "pushout_friction.toml")
 WHOLE = ['solver.condensation="off"']
@@ -42,17 +41,11 @@ def main():
     rows = []
     for path, nq, nz, sets, procs, petsc in (QUICK if args.quick else CASES):
         out = os.path.join(args.out, f"{path.replace(' ', '_')}_{nq}x{nz}")
-        cmd = [args.pushout, "run", SCENE, "--out", out, "--quiet"]
-        for s in sets + [f"mesh.elements_per_quarter={nq}", f"mesh.elements_through_thickness={nz}",
-                         "loading.steps=1", "output.plot=false"]:
-            cmd += ["--set", s]
-        cmd += petsc
-        if procs > 1:
-            cmd = ["mpirun", "-n", str(procs)] + cmd
-        env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMPI_ALLOW_RUN_AS_ROOT="1",
-                   OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1")
+        sets = sets + [f"mesh.elements_per_quarter={nq}", f"mesh.elements_through_thickness={nz}",
+                       "loading.steps=1", "output.plot=false"]
         t0 = time.time()
-        subprocess.run(cmd, env=env, check=True, capture_output=True)
+        pushout_runs.run(args.pushout, SCENE, out, sets, petsc, one_thread=True, check=True,
+                         mpirun=procs if procs > 1 else None)
         s = summary(out)
         est, meas = s["estimate"]["peak_memory_mb"], s["peak_memory_mb"]
         rows.append({"path": path, "mesh": f"{nq}x{nz}", "processes": procs, "dofs": s["dofs"],

@@ -6,10 +6,7 @@ overlaid, into docs/figures/.
 Usage: scripts/figures_single_joint.py [--pushout build/pushout] [--out docs/figures]
 """
 import argparse
-import csv
 import os
-import subprocess
-import sys
 import tempfile
 
 import matplotlib
@@ -18,18 +15,15 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "tests", "e2e"))
-import analytic  # noqa: E402
+import analytic  # noqa: E402  (beside this script)
+import pushout_runs  # noqa: E402
 
 
 def run(pushout, scene, out, sets=()):
-    cmd = [pushout, "run", scene, "--out", out, "--quiet", "--set", "output.plot=false"]
-    for s in sets:
-        cmd += ["--set", s]
-    subprocess.run(cmd, check=True)
-    with open(os.path.join(out, "curve.csv"), newline="") as f:
-        rows = list(csv.DictReader(f))
-    return [float(r["u_s_mm"]) for r in rows], [float(r["F_s_N"]) for r in rows]
+    """The single joint's (u_s, F_s) curve of a scene."""
+    pushout_runs.run(pushout, scene, out, ["output.plot=false"] + list(sets), check=True)
+    rows = pushout_runs.curve(out)
+    return [r["u_s_mm"] for r in rows], [r["F_s_N"] for r in rows]
 
 
 def main():

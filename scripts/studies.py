@@ -21,7 +21,6 @@ import argparse
 import concurrent.futures
 import csv
 import json
-import math
 import os
 import shutil
 import subprocess
@@ -32,6 +31,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import pushout_runs  # noqa: E402  (beside this script)
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DEMO = os.path.join(ROOT, "demo")
@@ -81,26 +81,13 @@ def cases(study, quick):
 
 
 def run_case(pushout, study, folder, scene, sets, quick, reuse):
-    summary = os.path.join(folder, "summary.json")
-    if reuse and os.path.exists(summary):
-        with open(summary) as f:
-            if json.load(f).get("converged"):
-                return 0.0
-    cmd = [pushout, "run", os.path.join(DEMO, scene), "--out", folder, "--quiet",
-           "--set", "output.plot=false"]
-    for s in sets + mesh_sets(study, quick):
-        cmd += ["--set", s]
-    env = dict(os.environ, OPENBLAS_NUM_THREADS="1")  # one core per run, runs in parallel
+    if reuse and pushout_runs.converged_before(folder):
+        return 0.0
     t0 = time.time()
-    p = subprocess.run(cmd, capture_output=True, text=True, env=env)
-    if p.returncode != 0:
-        raise RuntimeError(f"{' '.join(cmd)} failed:\n{p.stderr}")
+    # One core per run: the runs go side by side.
+    pushout_runs.run(pushout, os.path.join(DEMO, scene), folder,
+                     ["output.plot=false"] + sets + mesh_sets(study, quick), one_thread=True, check=True)
     return time.time() - t0
-
-
-def read(folder):
-    with open(os.path.join(folder, "curve.csv"), newline="") as f:
-        return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
 
 
 def plot_fig7(out, runs):
@@ -233,7 +220,7 @@ def main():
         for f in concurrent.futures.as_completed(futures):
             study, name = futures[f]
             seconds[f"{study}/{name}"] = f.result()
-            runs[(study, name)] = read(os.path.join(args.out, study, name))
+            runs[(study, name)] = pushout_runs.curve(os.path.join(args.out, study, name))
             print(f"{study}/{name}: {seconds[f'{study}/{name}']:.1f} s", flush=True)
 
     if "fig7" in args.only:

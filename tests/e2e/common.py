@@ -1,14 +1,16 @@
-"""Helpers for the whole-pipeline tests: run build/pushout, read its outputs."""
-import csv
-import json
+"""Helpers for the whole-pipeline tests: the scene pieces they share, and
+running build/pushout (scripts/pushout_runs.py) with a failure as a test
+failure."""
 import os
 import shutil
-import subprocess
 import sys
 
 PUSHOUT = sys.argv[1] if len(sys.argv) > 1 else None
 SOURCE = os.environ.get("PUSHOUT_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
 OUT_ROOT = os.environ.get("PUSHOUT_TEST_OUT", "/tmp/pushout-test-output")
+sys.path.insert(0, os.path.join(SOURCE, "scripts"))
+import pushout_runs  # noqa: E402
+from pushout_runs import curve, summary  # noqa: E402,F401  (the tests read outputs through these)
 
 
 # Scene pieces the tests share (TOML text).
@@ -48,24 +50,13 @@ def run(scene, out, sets=(), extra=(), check=True):
         with open(path, "w") as f:
             f.write(scene)
         scene = path
-    cmd = [PUSHOUT, "run", scene, "--out", out, "--quiet"]
-    for s in sets:
-        cmd += ["--set", s]
-    cmd += list(extra)
-    p = subprocess.run(cmd, capture_output=True, text=True, timeout=1200)
-    if check and p.returncode != 0:
-        raise SystemExit(f"FAILED: {' '.join(cmd)}\nexit {p.returncode}\n{p.stdout}\n{p.stderr}")
+    try:
+        p = pushout_runs.run(PUSHOUT, scene, out, sets, extra, timeout=1200, check=check)
+    except pushout_runs.RunError as e:
+        raise SystemExit(f"FAILED: {e}")
+    if p is None:
+        raise SystemExit(f"FAILED: {scene} did not finish in 1200 s")
     return p
-
-
-def curve(out):
-    with open(os.path.join(out, "curve.csv"), newline="") as f:
-        return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
-
-
-def summary(out):
-    with open(os.path.join(out, "summary.json")) as f:
-        return json.load(f)
 
 
 def check(cond, message):

@@ -6,8 +6,9 @@ friction alone and no larger size); it is elastic before the peak and pure
 friction (mu p A = 0.16 N) at full damage."""
 import os
 
-import analytic
 from common import SOURCE, check, curve, out_dir, run
+
+import analytic  # scripts/analytic.py, on the path through common
 
 out = out_dir("single_joint_cohesive_friction")
 run(os.path.join(SOURCE, "demo", "single_joint_cohesive_friction.toml"), out)

@@ -6,7 +6,7 @@ shear force follows the 1D Coulomb law F = k A (u - u_p), |F| <= 0.16 N, whose
 exact value at each path point depends only on the turning points."""
 import os
 
-from common import PUSHOUT, SOURCE, check, curve, out_dir, run
+from common import SOURCE, check, curve, out_dir, run
 
 out = out_dir("fig6")
 run(os.path.join(SOURCE, "demo", "single_joint_fig6.toml"), out)

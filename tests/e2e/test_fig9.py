@@ -4,8 +4,9 @@ of the two single-layer runs (each at -0.1 N per node: the cohesive layer is
 insensitive to compression, and each single layer then sees p = 0.4 MPa)."""
 import os
 
-import analytic
 from common import SOURCE, check, curve, out_dir, run
+
+import analytic  # scripts/analytic.py, on the path through common
 
 sup = out_dir("fig9_superposed")
 run(os.path.join(SOURCE, "demo", "single_joint_fig9.toml"), sup)

@@ -14,7 +14,7 @@ import os
 import subprocess
 import sys
 
-from common import OUT_ROOT, SOURCE, check, curve, out_dir
+from common import SOURCE, check, curve, out_dir
 
 PUSHOUT = sys.argv[1]
 out = out_dir("studies_quick")

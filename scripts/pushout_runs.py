@@ -1,0 +1,74 @@
+"""Running build/pushout on a scene and reading what it writes: the one place
+where the tests, the benches and the scripts do it (standard library only).
+
+    import pushout_runs as pr
+    p = pr.run("build/pushout", "demo/pushout_friction.toml", "out", sets=["loading.steps=4"])
+    rows = pr.curve("out")        # curve.csv as a list of {column: float}
+    s = pr.summary("out")         # summary.json as a dict
+"""
+import csv
+import json
+import os
+import subprocess
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+PUSHOUT = os.path.join(ROOT, "build", "pushout")
+
+
+class RunError(RuntimeError):
+    """A run that exited non-zero; the message has the command, its exit code and stderr."""
+
+
+def command(pushout, scene, out, sets=(), petsc=(), quiet=True):
+    """The command line of `pushout run`: --set overrides, then PETSc options."""
+    cmd = [pushout, "run", scene, "--out", out] + (["--quiet"] if quiet else [])
+    for s in sets:
+        cmd += ["--set", s]
+    return cmd + list(petsc)
+
+
+def run(pushout, scene, out, sets=(), petsc=(), one_thread=False, timeout=None, check=False,
+        mpirun=None):
+    """Runs a scene; returns the CompletedProcess (output captured), or None if it ran
+    out of `timeout` seconds. `one_thread`: BLAS on one core (runs side by side);
+    `mpirun`: a number of processes; `check`: raise RunError on a non-zero exit."""
+    cmd = command(pushout, scene, out, sets, petsc)
+    if mpirun:
+        cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-n", str(mpirun)] + cmd
+    env = dict(os.environ, OPENBLAS_NUM_THREADS="1") if one_thread else None
+    try:
+        p = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return None
+    if check and p.returncode != 0:
+        raise RunError(f"{' '.join(cmd)}\nexit {p.returncode}\n{p.stdout}\n{p.stderr}")
+    return p
+
+
+def curve(out):
+    """out/curve.csv: one {column: float} per row."""
+    with open(os.path.join(out, "curve.csv"), newline="") as f:
+        return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+
+
+def summary(out):
+    """out/summary.json."""
+    with open(os.path.join(out, "summary.json")) as f:
+        return json.load(f)
+
+
+def converged_before(out):
+    """Whether out/ already holds a converged run (to reuse it)."""
+    try:
+        return summary(out).get("converged", False)
+    except (OSError, ValueError):
+        return False
+
+
+def write_csv(path, rows):
+    """Rows (dicts with the same keys) as a CSV file with a header."""
+    os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        w.writeheader()
+        w.writerows(rows)
