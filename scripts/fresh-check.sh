@@ -11,8 +11,10 @@
 # (for a check before committing). Then, inside `chroot`, as root:
 #   scripts/demo.sh     (sets up, builds and runs the default scene)
 #   scripts/test.sh     (sets up and runs the tests)
-# each timed. The root (a new folder under /tmp, or DIR) is removed at the end
-# unless --keep. Needs root and mmdebstrap (apt-get install mmdebstrap).
+# each timed; at the end each command's exit code and wall time, and the exit
+# status is non-zero if either failed. The root (a new folder under /tmp, or
+# DIR, which must be absent or empty) is removed at the end unless --keep.
+# Needs root and mmdebstrap (apt-get install mmdebstrap). docs/development.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source_dir=$(pwd)
@@ -23,20 +25,34 @@ while (($#)); do
     --worktree) worktree=1 ;;
     --keep) keep=1 ;;
     --root) root="$2"; shift ;;
-    -h|--help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "fresh-check: unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
   shift
 done
 [ "$(id -u)" -eq 0 ] || { echo "fresh-check: needs root (mmdebstrap, chroot, mounts)" >&2; exit 2; }
 command -v mmdebstrap >/dev/null || { echo "fresh-check: apt-get install mmdebstrap" >&2; exit 2; }
-[ -n "$root" ] || root=$(mktemp -d /tmp/pushout-fresh.XXXXXX)
+if [ -n "$root" ]; then
+  # Never remove (at the end) what was there before.
+  if [ -e "$root" ] && [ -n "$(ls -A "$root" 2>/dev/null)" ]; then
+    echo "fresh-check: $root is not empty; give an absent or empty folder" >&2; exit 2
+  fi
+  mkdir -p "$root"
+  root=$(cd "$root" && pwd)
+else
+  root=$(mktemp -d /tmp/pushout-fresh.XXXXXX)
+fi
 
 mounted=()
 cleanup() {
-  local m
+  local pid i
+  # Processes left in the root (a virtual X server, an MPI daemon) were
+  # started by this check: end them, then unmount and remove.
+  for pid in $(ls /proc | grep -E '^[0-9]+$'); do
+    [ "$(readlink "/proc/$pid/root" 2>/dev/null)" = "$root" ] && kill -9 "$pid" 2>/dev/null
+  done
   for ((i = ${#mounted[@]} - 1; i >= 0; i--)); do
-    umount -l "${mounted[i]}" 2>/dev/null || true
+    umount "${mounted[i]}" 2>/dev/null || umount -l "${mounted[i]}" 2>/dev/null || true
   done
   if ((keep)); then
     echo "fresh-check: root kept in $root"
@@ -45,6 +61,9 @@ cleanup() {
   fi
 }
 trap cleanup EXIT
+trap 'exit 130' INT
+trap 'exit 143' TERM
+trap 'exit 129' HUP
 
 echo "fresh-check: making a Debian 12 root in $root"
 # mmdebstrap wants an empty or absent target.
@@ -52,6 +71,7 @@ rmdir "$root" 2>/dev/null || true
 mmdebstrap --quiet --variant=apt --include=git,ca-certificates bookworm "$root"
 
 echo "fresh-check: cloning $(git rev-parse --short HEAD)$( ((worktree)) && echo ' with the working tree')"
+((worktree)) && git status --short | sed 's/^/  /'
 git clone --quiet "$source_dir" "$root/work/pushout"
 if ((worktree)); then
   # Uncommitted changes and untracked (not ignored) files, as they are here.
@@ -72,6 +92,7 @@ in_root() {
 }
 
 declare -A rc seconds
+start=$(date +%s)
 for cmd in scripts/demo.sh scripts/test.sh; do
   echo "fresh-check: $cmd"
   t0=$(date +%s)
@@ -89,4 +110,5 @@ for cmd in scripts/demo.sh scripts/test.sh; do
   printf '  %-16s exit %d  %4d s\n' "$cmd" "${rc[$cmd]}" "${seconds[$cmd]}"
   [ "${rc[$cmd]}" -eq 0 ] || status=1
 done
+printf '  %-16s %s  %4d s\n' "total" "      " "$(($(date +%s) - start))"
 exit $status
