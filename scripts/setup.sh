@@ -14,7 +14,7 @@ packages=(
   python3-matplotlib                    # curve.png
   paraview python3-paraview xvfb xauth  # pvbatch renders the interface maps (Fig. 8);
                                         # its Python module is only a recommended package
-  libgtest-dev                          # unit tests
+  libgtest-dev clang-format             # unit tests; the format test (ctest -R format)
 )
 missing=()
 for p in "${packages[@]}"; do
