@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Cost against problem size (issue 6): the friction push-out (Fig. 7 scene,
+"""Cost against problem size: the friction push-out (Fig. 7 scene,
 dT -25 degC, two push steps of 1.1 um after the thermal step) on the full
 slice (model.symmetry = "full", so the dofs are the specimen's) from the
 paper's mesh up to > 1 M dofs, on one process. For each size and solver:

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Run time against error (issue 6) on the paper's two push-out scenes:
+"""Run time against error on the paper's two push-out scenes:
 
   fig10: Friction 2 + Exp. soft. (c 25 1/mm), dT -25 degC, pushed to 1 mm
          (demo/pushout_friction_adhesion.toml), steps growing geometrically

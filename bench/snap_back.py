@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Path following through the snap-back after the adhesion peak (issue 5):
+"""Path following through the snap-back after the adhesion peak:
 
   1. bench/scenes/snap_back.toml (80 mm slice, brittle adhesion) with
      loading.control = "arc_length", "displacement" (stops at the peak), and

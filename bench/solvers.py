@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Linear solvers, and the whole curve against its floor (issue 6).
+"""Linear solvers, and the whole curve against its floor.
 
 Each run also times one linear solve of its first load step with MUMPS LU
 on the whole model (solver.time_linear_solve), in the same process, so

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Stress matrix of numerical stability (issue: stability).
+"""Stress matrix of numerical stability.
 
 Runs the friction + exponential-softening push-out (Friction 2 + Exp. soft.
 of Table 1 with both penalties set to k; dT = -25 degC; pushed to 0.1 mm,
