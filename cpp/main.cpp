@@ -5,6 +5,8 @@
 //   pushout keys        # the scene keys, with defaults, units and docs
 //   pushout laws        # the interface laws and their parameters
 #include "common/Interrupt.h"
+#include "common/mpi_errors.h"
+#include "common/petsc_check.h"
 #include "driver/ResourceGuard.h"
 #include "driver/Run.h"
 #include "mesh/generate.h"
@@ -28,7 +30,7 @@ void print_keys()
     {
       doc += " (";
       for (std::size_t i = 0; i < k.choices.size(); ++i)
-        doc += (i ? " | " : "") + k.choices[i];
+        doc += (i ? ", " : "") + k.choices[i];
       doc += ")";
     }
     std::cout << "| `" << k.path << "` | " << type_name(k.type) << " | `"
@@ -57,6 +59,27 @@ void print_laws()
   }
 }
 
+/// The scene file with the --set overrides applied.
+pushout::Scene load_scene(const std::string& scene_file, const std::vector<std::string>& sets)
+{
+  std::vector<pushout::Override> overrides;
+  for (const std::string& s : sets)
+    overrides.push_back(pushout::parse_override(s));
+  return pushout::Scene::load(scene_file, overrides);
+}
+
+/// Creates the output folder and writes a file there (rank 0 only: the
+/// others learn the outcome collectively).
+void probe_output_folder(const std::string& out)
+{
+  std::error_code ec;
+  std::filesystem::create_directories(out, ec);
+  const std::filesystem::path probe = std::filesystem::path(out) / ".pushout-write-test";
+  if (ec || !std::ofstream(probe))
+    throw pushout::SceneError("--out '" + out + "': cannot create or write this folder");
+  std::filesystem::remove(probe);
+}
+
 /// Runs a scene; returns the process exit code.
 int run_scene(const std::string& scene_file, const std::string& out,
               const std::vector<std::string>& sets, bool quiet, bool force)
@@ -66,18 +89,19 @@ int run_scene(const std::string& scene_file, const std::string& out,
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   try
   {
-    std::vector<Override> overrides;
-    for (const std::string& s : sets)
-      overrides.push_back(parse_override(s));
-    const Scene scene = Scene::load(scene_file, overrides);
-    std::error_code ec;
-    std::filesystem::create_directories(out, ec);
-    const std::filesystem::path probe = std::filesystem::path(out) / ".pushout-write-test";
-    if (ec || !std::ofstream(probe))
-      throw SceneError("--out '" + out + "': cannot create or write this folder");
-    std::filesystem::remove(probe);
+    // Each phase is agreed on by all processes (common/mpi_errors.h): an
+    // error on any one is the same error on all, printed once (rank 0).
+    const Scene scene =
+        mpi::collectively<SceneError>(MPI_COMM_WORLD, [&] { return load_scene(scene_file, sets); });
+    mpi::collectively<SceneError>(MPI_COMM_WORLD,
+                                  [&]
+                                  {
+                                    if (rank == 0)
+                                      probe_output_folder(out);
+                                  });
     const driver::RunOptions options{out, mesh::default_cache_dir(), quiet, force};
-    const output::Summary s = driver::run(scene, options);
+    const output::Summary s = mpi::collectively<SceneError, driver::TooLarge>(
+        MPI_COMM_WORLD, [&] { return driver::run(scene, options); });
     if (s.interrupted)
     {
       if (rank == 0)
@@ -170,12 +194,25 @@ int main(int argc, char* argv[])
   petsc_argv.push_back(nullptr);
   int petsc_argc = int(petsc_argv.size()) - 1;
   char** petsc_args = petsc_argv.data();
-  PetscInitialize(&petsc_argc, &petsc_args, nullptr, nullptr);
+  try
+  {
+    pushout::petsc::check(PetscInitialize(&petsc_argc, &petsc_args, nullptr, nullptr),
+                          "PetscInitialize");
+    // PETSc prints nothing of an error: it reaches the user once, as the
+    // exception of the checked call (common/petsc_check.h).
+    pushout::petsc::check(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr),
+                          "PetscPushErrorHandler");
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "pushout: error: " << e.what() << std::endl;
+    return 1;
+  }
   // After PETSc, whose own handlers would otherwise abort on SIGTERM.
   pushout::interrupt::install();
   dolfinx::init_logging(1, argv);
   loguru::g_stderr_verbosity = loguru::Verbosity_WARNING;
   const int rc = run_scene(scene_file, out, sets, quiet, force);
-  PetscFinalize();
+  pushout::petsc::check_nothrow(PetscFinalize(), "PetscFinalize");
   return rc;
 }

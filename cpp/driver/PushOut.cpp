@@ -1,4 +1,5 @@
 #include "PushOut.h"
+#include "../common/petsc_check.h"
 #include <cmath>
 #include <limits>
 #include <mpi.h>
@@ -8,6 +9,8 @@
 
 namespace pushout::driver
 {
+using petsc::check;
+
 namespace
 {
 /// Node of `candidates` nearest to p.
@@ -105,11 +108,11 @@ PushOut::PushOut(const Scene& scene, const mesh::MeshData& m, const model::Model
   Vec slip = model.mean_axial_slip_functional();
   const double* sa;
   PetscInt n;
-  VecGetLocalSize(slip, &n);
-  VecGetArrayRead(slip, &sa);
+  check(VecGetLocalSize(slip, &n), "VecGetLocalSize");
+  check(VecGetArrayRead(slip, &sa), "VecGetArrayRead");
   _slip.assign(sa, sa + n);
-  VecRestoreArrayRead(slip, &sa);
-  VecDestroy(&slip);
+  check(VecRestoreArrayRead(slip, &sa), "VecRestoreArrayRead");
+  check(VecDestroy(&slip), "VecDestroy");
 }
 
 std::vector<std::string> PushOut::columns() const

@@ -1,5 +1,7 @@
 #include "Run.h"
 #include "../common/Interrupt.h"
+#include "../common/mpi_errors.h"
+#include "../common/petsc_check.h"
 #include "../mesh/generate.h"
 #include "../mesh/symmetry.h"
 #include "../model/Model.h"
@@ -15,6 +17,7 @@
 #include "Stepper.h"
 #include <chrono>
 #include <csignal>
+#include <cstdlib>
 #include <dolfinx/common/IndexMap.h>
 #include <dolfinx/la/petsc.h>
 #include <fstream>
@@ -27,6 +30,8 @@
 
 namespace pushout::driver
 {
+using petsc::check;
+
 namespace
 {
 using Clock = std::chrono::steady_clock;
@@ -48,9 +53,36 @@ double peak_memory_here_mb()
   return double(usage.ru_maxrss) / 1024.0;
 }
 
+/// Test hook, not a scene key (tests/e2e/test_mpi_errors.py): with the
+/// environment variables PUSHOUT_TEST_FAIL_RANK=r and PUSHOUT_TEST_FAIL_AT=
+/// `at`, process r alone throws here, as an error found on one process
+/// only would: "setup" at the end of the set-up, "step" after two load
+/// steps, "collective" there too but where the others next wait in a
+/// collective that is no agreement (common/mpi_errors.h: the run ends
+/// with MPI_Abort after abandon_after_s).
+void test_failure(const char* at)
+{
+  static const char* fail_rank = std::getenv("PUSHOUT_TEST_FAIL_RANK");
+  static const char* fail_at = std::getenv("PUSHOUT_TEST_FAIL_AT");
+  if (!fail_rank || !fail_at || std::string(fail_at) != at)
+    return;
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  if (rank == std::atoi(fail_rank))
+    throw std::runtime_error(std::string("test failure on process ") + fail_rank + " at " + at +
+                             " (PUSHOUT_TEST_FAIL_AT)");
+}
+
 /// Whether a signal asked to stop (agreed on by all processes); records it.
+/// First, an error of any process since the last agreement is thrown here
+/// on all (common/mpi_errors.h).
 bool stop_requested(output::Summary& summary)
 {
+  if (summary.steps == 2)
+    test_failure("step");
+  mpi::checkpoint(MPI_COMM_WORLD);
+  if (summary.steps == 2)
+    test_failure("collective");
   int local = interrupt::received(), global = 0;
   MPI_Allreduce(&local, &global, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
   if (global == 0)
@@ -82,14 +114,14 @@ struct StepLoop
   void commit()
   {
     model.interface->state().commit();
-    VecCopy(x, x_committed);
+    check(VecCopy(x, x_committed), "VecCopy");
     ++summary.steps;
     publish();
   }
   void revert()
   {
     model.interface->state().revert();
-    VecCopy(x_committed, x);
+    check(VecCopy(x_committed, x), "VecCopy");
   }
 };
 
@@ -165,8 +197,8 @@ bool follow_path(StepLoop& L, solver::NewtonSolver::Preconditioner pc, int refac
   Vec a_whole = L.model.mean_axial_slip_functional();
   Vec a = L.solver.functional(a_whole);
   solver::ArcLengthSolver arc(L.solver.problem(), a, pc, refactor_iterations);
-  VecDestroy(&a);
-  VecDestroy(&a_whole);
+  check(VecDestroy(&a), "VecDestroy");
+  check(VecDestroy(&a_whole), "VecDestroy");
   // Counts the arc solver's factorisations on every way out.
   struct Count
   {
@@ -401,23 +433,29 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   step_solver.problem();                  // the condensation, if any
   summary.condensed_dofs = step_solver.condensed_size();
   summary.setup_s = seconds_since(t0);
+  test_failure("setup");
+  mpi::checkpoint(MPI_COMM_WORLD); // an error of the set-up on any process
 
   const auto& map = *model.V->dofmap()->index_map;
   const int bs = model.V->dofmap()->index_map_bs();
   Vec x = dolfinx::la::petsc::create_vector(map, bs);
   Vec x_committed, reactions;
-  VecSet(x, 0.0);
-  VecDuplicate(x, &x_committed);
-  VecDuplicate(x, &reactions);
-  VecCopy(x, x_committed);
+  check(VecSet(x, 0.0), "VecSet");
+  check(VecDuplicate(x, &x_committed), "VecDuplicate");
+  check(VecDuplicate(x, &reactions), "VecDuplicate");
+  check(VecCopy(x, x_committed), "VecCopy");
 
-  output::CurveWriter curve(opt.out / "curve.csv",
-                            [&]
-                            {
-                              auto c = scenario->columns();
-                              c.insert(c.end(), {"newton_iterations", "cuts", "wall_s"});
-                              return c;
-                            }());
+  // curve.csv: rank 0 writes it; every process learns whether it could.
+  std::optional<output::CurveWriter> curve;
+  mpi::collectively(MPI_COMM_WORLD,
+                    [&]
+                    {
+                      if (rank != 0)
+                        return;
+                      auto c = scenario->columns();
+                      c.insert(c.end(), {"newton_iterations", "cuts", "wall_s"});
+                      curve.emplace(opt.out / "curve.csv", c);
+                    });
   std::unique_ptr<output::FieldWriter> fields;
   if (scene.boolean("output.xdmf"))
     fields = std::make_unique<output::FieldWriter>(model, opt.out);
@@ -440,18 +478,22 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
       equilibrium.update_displacement(x); // the interface reads model.u
     const double* r;
     const double* xa;
-    VecGetArrayRead(reactions, &r);
-    VecGetArrayRead(x, &xa);
+    check(VecGetArrayRead(reactions, &r), "VecGetArrayRead");
+    check(VecGetArrayRead(x, &xa), "VecGetArrayRead");
     PetscInt n;
-    VecGetLocalSize(x, &n);
+    check(VecGetLocalSize(x, &n), "VecGetLocalSize");
     std::vector<double> values =
         scenario->row(std::span<const double>(r, n), std::span<const double>(xa, n), model);
-    VecRestoreArrayRead(reactions, &r);
-    VecRestoreArrayRead(x, &xa);
+    check(VecRestoreArrayRead(reactions, &r), "VecRestoreArrayRead");
+    check(VecRestoreArrayRead(x, &xa), "VecRestoreArrayRead");
     const std::string line = scenario->progress(values);
     values.insert(values.end(), {double(iterations), double(cuts), seconds_since(t_start)});
-    if (rank == 0)
-      curve.row(row_index, values);
+    mpi::collectively(MPI_COMM_WORLD,
+                      [&]
+                      {
+                        if (rank == 0)
+                          curve->row(row_index, values);
+                      });
     if (fields)
       fields->write(double(row_index));
     ++row_index;
@@ -475,7 +517,7 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
     scenario->apply_load(1.0, equilibrium);
     equilibrium.apply_constraints(x);
     summary.linear_solve_s = step_solver.time_linear_solve(x);
-    VecSet(x, 0.0);
+    check(VecSet(x, 0.0), "VecSet");
     if (talk)
       std::cout << "one linear solve: " << summary.linear_solve_s << " s" << std::endl;
   }
@@ -496,7 +538,8 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
     // one step of the push (without it, dt = 0 would freeze its damage).
     model.interface->set_time_increment(scenario->time_at(1.0) - scenario->time_at(0.0));
     equilibrium.apply_constraints(x);
-    const solver::SolveReport rep = step_solver.solve(x);
+    const solver::SolveReport rep =
+        mpi::collectively(MPI_COMM_WORLD, [&] { return step_solver.solve(x); });
     its0 = rep.iterations;
     summary.newton_iterations += rep.iterations;
     ok = rep.converged;
@@ -508,13 +551,13 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   {
     const double* xa;
     PetscInt n;
-    VecGetLocalSize(x, &n);
-    VecGetArrayRead(x, &xa);
+    check(VecGetLocalSize(x, &n), "VecGetLocalSize");
+    check(VecGetArrayRead(x, &xa), "VecGetArrayRead");
     scenario->start_loading(std::span<const double>(xa, n));
-    VecRestoreArrayRead(x, &xa);
+    check(VecRestoreArrayRead(x, &xa), "VecRestoreArrayRead");
     record(its0, 0, 0, scenario->steps()); // before the commit: see record
     model.interface->state().commit();
-    VecCopy(x, x_committed);
+    check(VecCopy(x, x_committed), "VecCopy");
   }
 
   // Load steps.
@@ -522,17 +565,25 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
       *scenario,   model,   equilibrium, step_solver, x,
       x_committed, summary, record,      talk,        int(scene.integer("loading.max_cuts")),
       publish};
+  // An error on one process is agreed on here, where the solvers still
+  // live: destroying a MUMPS factor is collective, so a process must not
+  // leave with it while the others go on (common/mpi_errors.h).
   if (ok)
-    ok = scenario->has_load_factor() && scene.string("loading.control") == "arc_length"
-             ? follow_path(loop, pc, int(scene.integer("solver.refactor_iterations")))
-             : step_displacement(loop);
+    ok = mpi::collectively(
+        MPI_COMM_WORLD,
+        [&]
+        {
+          return scenario->has_load_factor() && scene.string("loading.control") == "arc_length"
+                     ? follow_path(loop, pc, int(scene.integer("solver.refactor_iterations")))
+                     : step_displacement(loop);
+        });
   phase.emplace("writing outputs", -1);
   summary.solve_s = seconds_since(t0) - summary.output_s;
   summary.converged = ok;
   summary.factorizations += step_solver.factorizations();
-  VecDestroy(&x);
-  VecDestroy(&x_committed);
-  VecDestroy(&reactions);
+  check(VecDestroy(&x), "VecDestroy");
+  check(VecDestroy(&x_committed), "VecDestroy");
+  check(VecDestroy(&reactions), "VecDestroy");
   fields.reset();
 
   if (rank == 0 && scene.boolean("output.plot"))

@@ -1,4 +1,5 @@
 #include "Interface.h"
+#include "../common/petsc_check.h"
 #include <cmath>
 #include <stdexcept>
 
@@ -106,6 +107,7 @@ bool Interface::assemble(std::span<const double> u, std::span<double> f, Mat A)
 {
   const std::size_t nq = _q.weights.size();
   bool ok = true;
+  PetscErrorCode inserted = 0;    // the first failed insertion into A (checked after the loop)
   const int n = _n, rows = 6 * n; // nodes per side, rows of Ke
   for (std::size_t p = 0; p < num_pairs(); ++p)
   {
@@ -171,9 +173,10 @@ bool Interface::assemble(std::span<const double> u, std::span<double> f, Mat A)
                   _Ke[rows * (row + r) + col + k] += c * Dg[3 * r + k];
             }
     }
-    if (A)
-      MatSetValuesBlockedLocal(A, 2 * n, b, 2 * n, b, _Ke.data(), ADD_VALUES);
+    if (A && inserted == 0)
+      inserted = MatSetValuesBlockedLocal(A, 2 * n, b, 2 * n, b, _Ke.data(), ADD_VALUES);
   }
+  petsc::check(inserted, "MatSetValuesBlockedLocal");
   return ok;
 }
 

@@ -1,4 +1,6 @@
 #include "Model.h"
+#include "../common/mpi_errors.h"
+#include "../common/petsc_check.h"
 #include "../interface/Quadrature.h"
 #include "../laws/LawRegistry.h"
 #include "elasticity.h"
@@ -17,6 +19,8 @@
 
 namespace pushout::model
 {
+using petsc::check;
+
 namespace
 {
 using dolfinx::fem::Function;
@@ -158,56 +162,65 @@ Model::Model(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene)
   std::vector<std::int32_t> pair_blocks;
   std::vector<double> pair_x;
   const std::vector<double> dof_x = q2 ? V->tabulate_dof_coordinates(false) : std::vector<double>{};
-  for (const mesh::InterfacePair& p : data.pairs)
-  {
-    if (local_cell[p.steel_cell] < 0)
-      continue;
-    if (local_cell[p.concrete_cell] < 0)
-      throw std::logic_error("interface pair split across processes");
-    const std::size_t first_x = pair_x.size();
-    for (std::int64_t n : p.steel)
-      pair_x.insert(pair_x.end(), data.x.begin() + 3 * n, data.x.begin() + 3 * n + 3);
-    if (!q2)
-    {
-      for (std::int64_t n : p.steel)
-        pair_blocks.push_back(node_block[n]);
-      for (std::int64_t n : p.concrete)
-        pair_blocks.push_back(node_block[n]);
-      continue;
-    }
-    // P2: the 9 dofs of each side's facet, found by position (the facet is
-    // the bilinear image of the reference square; Quadrature.h's order).
-    const double* corner = pair_x.data() + first_x;
-    for (std::int64_t cell : {p.steel_cell, p.concrete_cell})
-    {
-      const auto cd = dofmap->cell_dofs(local_cell[cell]);
-      for (const auto& [xi, eta] : interface::reference_nodes(9))
+  // A pair split across processes is found on one process: the same error
+  // on all of them (common/mpi_errors.h), not one leaving the others in the
+  // next collective.
+  mpi::collectively(
+      comm,
+      [&]
       {
-        const std::array<double, 4> N = {(1 - xi) * (1 - eta), xi * (1 - eta), (1 - xi) * eta,
-                                         xi * eta};
-        std::array<double, 3> target{0, 0, 0};
-        for (int a = 0; a < 4; ++a)
-          for (int d = 0; d < 3; ++d)
-            target[d] += N[a] * corner[3 * a + d];
-        std::int32_t best = -1;
-        double d_best =
-            1e-6 * (1 + std::abs(target[0]) + std::abs(target[1]) + std::abs(target[2]));
-        for (std::int32_t dof : cd)
+        for (const mesh::InterfacePair& p : data.pairs)
         {
-          const double* y = dof_x.data() + 3 * dof;
-          const double dist = std::hypot(y[0] - target[0], y[1] - target[1], y[2] - target[2]);
-          if (dist < d_best)
+          if (local_cell[p.steel_cell] < 0)
+            continue;
+          if (local_cell[p.concrete_cell] < 0)
+            throw std::logic_error("interface pair split across processes");
+          const std::size_t first_x = pair_x.size();
+          for (std::int64_t n : p.steel)
+            pair_x.insert(pair_x.end(), data.x.begin() + 3 * n, data.x.begin() + 3 * n + 3);
+          if (!q2)
           {
-            d_best = dist;
-            best = dof;
+            for (std::int64_t n : p.steel)
+              pair_blocks.push_back(node_block[n]);
+            for (std::int64_t n : p.concrete)
+              pair_blocks.push_back(node_block[n]);
+            continue;
+          }
+          // P2: the 9 dofs of each side's facet, found by position (the facet is
+          // the bilinear image of the reference square; Quadrature.h's order).
+          const double* corner = pair_x.data() + first_x;
+          for (std::int64_t cell : {p.steel_cell, p.concrete_cell})
+          {
+            const auto cd = dofmap->cell_dofs(local_cell[cell]);
+            for (const auto& [xi, eta] : interface::reference_nodes(9))
+            {
+              const std::array<double, 4> N = {(1 - xi) * (1 - eta), xi * (1 - eta), (1 - xi) * eta,
+                                               xi * eta};
+              std::array<double, 3> target{0, 0, 0};
+              for (int a = 0; a < 4; ++a)
+                for (int d = 0; d < 3; ++d)
+                  target[d] += N[a] * corner[3 * a + d];
+              std::int32_t best = -1;
+              double d_best =
+                  1e-6 * (1 + std::abs(target[0]) + std::abs(target[1]) + std::abs(target[2]));
+              for (std::int32_t dof : cd)
+              {
+                const double* y = dof_x.data() + 3 * dof;
+                const double dist =
+                    std::hypot(y[0] - target[0], y[1] - target[1], y[2] - target[2]);
+                if (dist < d_best)
+                {
+                  d_best = dist;
+                  best = dof;
+                }
+              }
+              if (best < 0)
+                throw std::logic_error("P2 interface: no dof of the cell at a facet node");
+              pair_blocks.push_back(best);
+            }
           }
         }
-        if (best < 0)
-          throw std::logic_error("P2 interface: no dof of the cell at a facet node");
-        pair_blocks.push_back(best);
-      }
-    }
-  }
+      });
   std::vector<std::unique_ptr<laws::InterfaceLaw>> layers;
   for (std::size_t l = 0; l < scene.layers().size(); ++l)
   {
@@ -215,10 +228,15 @@ Model::Model(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene)
     layers.push_back(
         laws::find_law(spec.law)->make(spec.params, "interface." + std::to_string(l) + "."));
   }
-  interface = std::make_unique<interface::Interface>(
-      std::move(pair_blocks), pair_x,
-      interface::make_quadrature(scene.string("mesh.interface_quadrature"), q2 ? 9 : 4),
-      std::move(layers));
+  interface = mpi::collectively(
+      comm,
+      [&]
+      {
+        return std::make_unique<interface::Interface>(
+            std::move(pair_blocks), pair_x,
+            interface::make_quadrature(scene.string("mesh.interface_quadrature"), q2 ? 9 : 4),
+            std::move(layers));
+      });
 
   // K with the bulk pattern plus the interface couplings.
   dolfinx::la::SparsityPattern pattern = fem::create_sparsity_pattern(*_a);
@@ -231,23 +249,24 @@ Model::Model(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene)
   }
   pattern.assemble();
   K = dolfinx::la::petsc::create_matrix(comm, pattern);
-  MatSetOption(K, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE);
-  MatZeroEntries(K);
+  check(MatSetOption(K, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE), "MatSetOption");
+  check(MatZeroEntries(K), "MatZeroEntries");
   // Explicit zeros keep the interface couplings in the assembled pattern
   // (PETSc squeezes out preallocated entries that were never set).
   const std::vector<double> zeros(9 * nb * nb, 0.0);
   for (std::size_t p = 0; p < interface->num_pairs(); ++p)
-    MatSetValuesBlockedLocal(K, nb, blocks.data() + nb * p, nb, blocks.data() + nb * p,
-                             zeros.data(), ADD_VALUES);
+    check(MatSetValuesBlockedLocal(K, nb, blocks.data() + nb * p, nb, blocks.data() + nb * p,
+                                   zeros.data(), ADD_VALUES),
+          "MatSetValuesBlockedLocal");
   fem::assemble_matrix(dolfinx::la::petsc::Matrix::set_block_fn(K, ADD_VALUES), *_a, {});
-  MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY);
-  MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY);
+  check(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
 }
 
 Model::~Model()
 {
   if (K)
-    MatDestroy(&K);
+    petsc::check_nothrow(MatDestroy(&K), "MatDestroy");
 }
 
 std::int64_t Model::num_dofs() const
@@ -259,10 +278,10 @@ Vec Model::thermal_load(double dT_value) const
 {
   dT->value = {dT_value};
   Vec b = dolfinx::la::petsc::create_vector(*V->dofmap()->index_map, V->dofmap()->index_map_bs());
-  VecSet(b, 0.0);
+  check(VecSet(b, 0.0), "VecSet");
   dolfinx::fem::petsc::assemble_vector(b, *_L_thermal);
-  VecGhostUpdateBegin(b, ADD_VALUES, SCATTER_REVERSE);
-  VecGhostUpdateEnd(b, ADD_VALUES, SCATTER_REVERSE);
+  check(VecGhostUpdateBegin(b, ADD_VALUES, SCATTER_REVERSE), "VecGhostUpdateBegin");
+  check(VecGhostUpdateEnd(b, ADD_VALUES, SCATTER_REVERSE), "VecGhostUpdateEnd");
   return b;
 }
 
@@ -280,11 +299,11 @@ Vec Model::mean_axial_slip_functional() const
     throw std::runtime_error("path following needs an interface (its area is 0)");
   Vec v = dolfinx::la::petsc::create_vector(*map, bs);
   double* va;
-  VecGetArray(v, &va);
+  check(VecGetArray(v, &va), "VecGetArray");
   const std::size_t n_owned = std::size_t(map->size_local() * bs);
   for (std::size_t i = 0; i < n_owned; ++i)
     va[i] = a.array()[i] / area;
-  VecRestoreArray(v, &va);
+  check(VecRestoreArray(v, &va), "VecRestoreArray");
   return v;
 }
 

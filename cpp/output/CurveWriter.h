@@ -1,5 +1,7 @@
 // curve.csv: a header, then one row per converged load step, flushed at once
-// so that a run that stops later keeps every step it finished.
+// so that a run that stops later keeps every step it finished. One process
+// writes it (rank 0, driver/Run.cpp); a failure to write throws there and
+// the run agrees on it (common/mpi_errors.h).
 #pragma once
 
 #include <filesystem>
@@ -15,6 +17,7 @@ class CurveWriter
 {
 public:
   CurveWriter(const std::filesystem::path& file, const std::vector<std::string>& columns)
+      : _file(file)
   {
     _out.open(file);
     if (!_out)
@@ -24,6 +27,8 @@ public:
       _out << "," << c;
     _out << "\n" << std::flush;
     _out << std::setprecision(12);
+    if (!_out)
+      throw std::runtime_error("cannot write " + file.string());
   }
 
   void row(int step, const std::vector<double>& values)
@@ -32,9 +37,12 @@ public:
     for (double v : values)
       _out << "," << v;
     _out << "\n" << std::flush;
+    if (!_out)
+      throw std::runtime_error("cannot write " + _file.string() + " (disk full?)");
   }
 
 private:
+  std::filesystem::path _file;
   std::ofstream _out;
 };
 } // namespace pushout::output

@@ -1,9 +1,14 @@
 #include "ArcLengthSolver.h"
 #include "../common/Interrupt.h"
+#include "../common/mpi_errors.h"
+#include "../common/petsc_check.h"
+#include <algorithm>
 #include <cmath>
 
 namespace pushout::solver
 {
+using petsc::check;
+
 ArcLengthSolver::ArcLengthSolver(NonlinearProblem& problem, Vec control,
                                  NewtonSolver::Preconditioner pc, int refactor_iterations)
     : _problem(problem), _policy(pc == NewtonSolver::Preconditioner::lagged, refactor_iterations)
@@ -16,84 +21,99 @@ ArcLengthSolver::ArcLengthSolver(NonlinearProblem& problem, Vec control,
   else
     _J = problem.create_matrix();
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(control));
-  VecDuplicate(control, &_a);
-  VecCopy(control, _a);
+  check(VecDuplicate(control, &_a), "VecDuplicate");
+  check(VecCopy(control, _a), "VecCopy");
   for (Vec* v : {&_e, &_F, &_v1, &_v2})
-    VecDuplicate(control, v);
-  KSPCreate(comm, &_ksp);
-  KSPSetFromOptions(_ksp);
+    check(VecDuplicate(control, v), "VecDuplicate");
+  check(KSPCreate(comm, &_ksp), "KSPCreate");
+  check(KSPSetFromOptions(_ksp), "KSPSetFromOptions");
   problem.configure(_ksp);
-  PetscOptionsGetReal(nullptr, nullptr, "-snes_rtol", &_rtol, nullptr);
-  PetscOptionsGetReal(nullptr, nullptr, "-snes_atol", &_atol, nullptr);
-  PetscOptionsGetReal(nullptr, nullptr, "-snes_stol", &_stol, nullptr);
-  PetscOptionsGetInt(nullptr, nullptr, "-snes_max_it", &_max_it, nullptr);
-  PetscOptionsHasName(nullptr, nullptr, "-arc_monitor", &_monitor);
+  check(PetscOptionsGetReal(nullptr, nullptr, "-snes_rtol", &_rtol, nullptr),
+        "PetscOptionsGetReal");
+  check(PetscOptionsGetReal(nullptr, nullptr, "-snes_atol", &_atol, nullptr),
+        "PetscOptionsGetReal");
+  check(PetscOptionsGetReal(nullptr, nullptr, "-snes_stol", &_stol, nullptr),
+        "PetscOptionsGetReal");
+  check(PetscOptionsGetInt(nullptr, nullptr, "-snes_max_it", &_max_it, nullptr),
+        "PetscOptionsGetInt");
+  check(PetscOptionsHasName(nullptr, nullptr, "-arc_monitor", &_monitor), "PetscOptionsHasName");
 }
 
 ArcLengthSolver::~ArcLengthSolver()
 {
-  KSPDestroy(&_ksp);
-  MatDestroy(&_J);
+  petsc::check_nothrow(KSPDestroy(&_ksp), "KSPDestroy");
+  petsc::check_nothrow(MatDestroy(&_J), "MatDestroy");
   if (_P)
-    MatDestroy(&_P);
+    petsc::check_nothrow(MatDestroy(&_P), "MatDestroy");
   for (Vec* v : {&_a, &_e, &_F, &_v1, &_v2})
-    VecDestroy(v);
+    petsc::check_nothrow(VecDestroy(v), "VecDestroy");
 }
 
 double ArcLengthSolver::control(Vec x) const
 {
   double s;
-  VecDot(_a, x, &s);
+  check(VecDot(_a, x, &s), "VecDot");
   return s;
 }
 
 namespace
 {
-/// Whether `ok` holds on every process (a law may fail on one only).
-bool all(bool ok, Vec v)
+MPI_Comm comm_of(Vec v)
 {
-  int local = ok ? 1 : 0, global = 0;
-  MPI_Allreduce(&local, &global, 1, MPI_INT, MPI_MIN,
-                PetscObjectComm(reinterpret_cast<PetscObject>(v)));
-  return global == 1;
+  return PetscObjectComm(reinterpret_cast<PetscObject>(v));
 }
 } // namespace
 
+// A law may fail on one process only, and so may an exception: both are
+// agreed on by all (common/mpi_errors.h).
 bool ArcLengthSolver::residual(Vec x, double& reactions)
 {
-  return all(_problem.residual(x, _F, reactions), x);
+  return mpi::all(comm_of(x), mpi::collectively(comm_of(x), [&]
+                                                { return _problem.residual(x, _F, reactions); }));
 }
 
 bool ArcLengthSolver::setup_operators(Vec x)
 {
-  if (!all(_problem.jacobian(x, _J), x))
+  if (!mpi::all(comm_of(x),
+                mpi::collectively(comm_of(x), [&] { return _problem.jacobian(x, _J); })))
     return false;
-  KSPSetReusePreconditioner(_ksp, _policy.update(_problem, _J, _P) ? PETSC_FALSE : PETSC_TRUE);
-  KSPSetOperators(_ksp, _J, _policy.lagged() ? _P : _J);
+  check(
+      KSPSetReusePreconditioner(_ksp, _policy.update(_problem, _J, _P) ? PETSC_FALSE : PETSC_TRUE),
+      "KSPSetReusePreconditioner");
+  check(KSPSetOperators(_ksp, _J, _policy.lagged() ? _P : _J), "KSPSetOperators");
   return true;
 }
 
-bool ArcLengthSolver::solve(Vec b, Vec y)
+std::string ArcLengthSolver::solve(Vec b, Vec y)
 {
+  std::string why = "DIVERGED_LINEAR_SOLVE";
   for (int attempt = 0; attempt < 2; ++attempt)
   {
-    VecSet(y, 0.0);
-    KSPSolve(_ksp, b, y);
+    check(VecSet(y, 0.0), "VecSet");
+    // A failed factorisation fails the step (cut back), as in NewtonSolver.
+    const PetscErrorCode code = KSPSolve(_ksp, b, y);
+    if (zero_pivot_error(code) && !petsc::callback_failed())
+      return "DIVERGED_LINEAR_SOLVE (zero pivot)";
+    check(code, "KSPSolve");
     KSPConvergedReason reason;
-    KSPGetConvergedReason(_ksp, &reason);
+    check(KSPGetConvergedReason(_ksp, &reason), "KSPGetConvergedReason");
     PetscInt its;
-    KSPGetIterationNumber(_ksp, &its);
+    check(KSPGetIterationNumber(_ksp, &its), "KSPGetIterationNumber");
     _policy.solved(its);
     if (reason > 0)
-      return true;
+      return "";
+    if (const std::string f = factorization_failure(_ksp); !f.empty())
+      why = "DIVERGED_LINEAR_SOLVE (" + f + ")";
     if (!_policy.lagged())
-      return false;
+      return why;
     // The lagged preconditioner was too far from J: factor J itself.
     _policy.refresh();
-    KSPSetReusePreconditioner(_ksp, _policy.update(_problem, _J, _P) ? PETSC_FALSE : PETSC_TRUE);
-    KSPSetOperators(_ksp, _J, _P);
+    check(KSPSetReusePreconditioner(_ksp,
+                                    _policy.update(_problem, _J, _P) ? PETSC_FALSE : PETSC_TRUE),
+          "KSPSetReusePreconditioner");
+    check(KSPSetOperators(_ksp, _J, _P), "KSPSetOperators");
   }
-  return false;
+  return why;
 }
 
 SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
@@ -105,10 +125,10 @@ SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
   double reactions = 0;
   set_load(lambda + 1.0);
   residual(x, reactions);
-  VecCopy(_F, _e);
+  check(VecCopy(_F, _e), "VecCopy");
   set_load(lambda);
   residual(x, reactions);
-  VecAYPX(_e, -1.0, _F);
+  check(VecAYPX(_e, -1.0, _F), "VecAYPX");
   const double eta0 = control(x), eta = eta0 + d_eta;
   double lam = lambda;
   const auto fail = [&](std::string why)
@@ -124,15 +144,19 @@ SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
     if (!residual(x, reactions))
       return fail("an interface law failed");
     double fnorm;
-    VecNorm(_F, NORM_2, &fnorm);
+    check(VecNorm(_F, NORM_2, &fnorm), "VecNorm");
     if (!std::isfinite(fnorm))
       return fail("residual not finite");
     if (_monitor)
-      PetscPrintf(PetscObjectComm(reinterpret_cast<PetscObject>(x)),
-                  "  arc %d: |F| %.6e N (tol %.3e), lambda %.9e mm, slip - target %.3e mm\n",
-                  int(it), fnorm, std::max(_atol, _rtol * reactions), lam, control(x) - eta);
-    if (it > 0 && fnorm <= std::max(_atol, _rtol * reactions) &&
-        std::abs(control(x) - eta) <= 1e-8 * std::abs(d_eta))
+      check(PetscPrintf(PetscObjectComm(reinterpret_cast<PetscObject>(x)),
+                        "  arc %d: |F| %.6e N (tol %.3e), lambda %.9e mm, slip - target %.3e mm\n",
+                        int(it), fnorm, std::max(_atol, _rtol * reactions), lam, control(x) - eta),
+            "PetscPrintf");
+    // PETSc's tolerances, or the round-off floor of the residual below which
+    // they cannot be met (NewtonSolver.h).
+    const bool small = fnorm <= std::max(_atol, _rtol * reactions) ||
+                       fnorm <= _problem.residual_floor(x); // the same on every process
+    if (it > 0 && small && std::abs(control(x) - eta) <= 1e-8 * std::abs(d_eta))
     {
       rep.converged = true;
       rep.reason = "CONVERGED_FNORM";
@@ -140,24 +164,26 @@ SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
     }
     if (it == _max_it)
       return fail("DIVERGED_MAX_IT");
-    if (!all(!interrupt::received(), x)) // a signal on any process
+    if (!mpi::all(comm_of(x), !interrupt::received())) // a signal on any process
       return fail("interrupted");
     if (!setup_operators(x))
       return fail("an interface law failed");
-    VecScale(_F, -1.0);
-    if (!solve(_F, _v1) || !solve(_e, _v2))
-      return fail("DIVERGED_LINEAR_SOLVE");
+    check(VecScale(_F, -1.0), "VecScale");
+    if (std::string why = solve(_F, _v1); !why.empty())
+      return fail(why);
+    if (std::string why = solve(_e, _v2); !why.empty())
+      return fail(why);
     const double r = control(_v2); // d(control)/d(lambda) along the tangent
     if (!std::isfinite(r) || r == 0.0)
       return fail("singular bordered system (d control / d lambda = 0)");
     const double dlambda = -(control(x) - eta + control(_v1)) / r;
-    VecAXPY(_v1, dlambda, _v2); // dx
+    check(VecAXPY(_v1, dlambda, _v2), "VecAXPY"); // dx
     lam += dlambda;
-    VecAXPY(x, 1.0, _v1);
+    check(VecAXPY(x, 1.0, _v1), "VecAXPY");
     rep.iterations = int(it + 1);
     double dx, xn;
-    VecNorm(_v1, NORM_2, &dx);
-    VecNorm(x, NORM_2, &xn);
+    check(VecNorm(_v1, NORM_2, &dx), "VecNorm");
+    check(VecNorm(x, NORM_2, &xn), "VecNorm");
     if (!std::isfinite(dx) || !std::isfinite(lam))
       return fail("update not finite");
     if (it > 0 && dx <= _stol * xn && std::abs(dlambda) <= _stol * std::abs(lam))

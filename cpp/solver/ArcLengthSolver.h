@@ -33,6 +33,7 @@
 #include "NonlinearProblem.h"
 #include <functional>
 #include <petscksp.h>
+#include <string>
 
 namespace pushout::solver
 {
@@ -71,8 +72,9 @@ private:
   bool residual(Vec x, double& reactions);
   /// Jacobian at x into the operators of the KSP (refreshing P by policy).
   bool setup_operators(Vec x);
-  /// Solves J y = b; false if the linear solve failed even after refreshing P.
-  bool solve(Vec b, Vec y);
+  /// Solves J y = b; "" or why the linear solve failed even after
+  /// refreshing P.
+  std::string solve(Vec b, Vec y);
 
   NonlinearProblem& _problem;
   PreconditionerPolicy _policy;

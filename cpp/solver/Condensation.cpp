@@ -1,11 +1,15 @@
 #include "Condensation.h"
+#include "../common/petsc_check.h"
 #include <algorithm>
 #include <cmath>
 #include <dolfinx/common/IndexMap.h>
+#include <limits>
 #include <stdexcept>
 
 namespace pushout::solver
 {
+using petsc::check;
+
 namespace
 {
 /// Load directions kept before the basis starts again.
@@ -39,10 +43,10 @@ struct Dense
   PetscInt lda = 0;
   explicit Dense(Mat M) : A(M)
   {
-    MatDenseGetLDA(A, &lda);
-    MatDenseGetArray(A, &a);
+    check(MatDenseGetLDA(A, &lda), "MatDenseGetLDA");
+    check(MatDenseGetArray(A, &a), "MatDenseGetArray");
   }
-  ~Dense() { MatDenseRestoreArray(A, &a); }
+  ~Dense() { petsc::check_nothrow(MatDenseRestoreArray(A, &a), "MatDenseRestoreArray"); }
   double& operator()(PetscInt i, PetscInt j) { return a[i + j * lda]; }
 };
 } // namespace
@@ -63,7 +67,8 @@ bool Condensation::possible(int processes, std::int64_t n_interface, std::string
 {
   char pc_type[64] = "";
   PetscBool pc_set = PETSC_FALSE;
-  PetscOptionsGetString(nullptr, nullptr, "-pc_type", pc_type, sizeof(pc_type), &pc_set);
+  check(PetscOptionsGetString(nullptr, nullptr, "-pc_type", pc_type, sizeof(pc_type), &pc_set),
+        "PetscOptionsGetString");
   if (processes > 1)
     why = "more than one process";
   else if (pc_set && std::string(pc_type) != "lu")
@@ -125,19 +130,20 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
 
   // J0: K with unit constrained rows, plus eps G^T G on the free interface
   // rows; eps a hundredth of K's mean diagonal there.
-  MatDuplicate(model.K, MAT_COPY_VALUES, &_J0);
-  MatZeroRowsLocal(_J0, PetscInt(bc.dofs.size()), bc.dofs.data(), 1.0, nullptr, nullptr);
+  check(MatDuplicate(model.K, MAT_COPY_VALUES, &_J0), "MatDuplicate");
+  check(MatZeroRowsLocal(_J0, PetscInt(bc.dofs.size()), bc.dofs.data(), 1.0, nullptr, nullptr),
+        "MatZeroRowsLocal");
   {
     Vec diag;
-    MatCreateVecs(model.K, &diag, nullptr);
-    MatGetDiagonal(model.K, diag);
+    check(MatCreateVecs(model.K, &diag, nullptr), "MatCreateVecs");
+    check(MatGetDiagonal(model.K, diag), "MatGetDiagonal");
     const double* dg;
-    VecGetArrayRead(diag, &dg);
+    check(VecGetArrayRead(diag, &dg), "VecGetArrayRead");
     double sum = 0;
     for (PetscInt j = 0; j < n; ++j)
       sum += std::abs(dg[_steel[j]]) + std::abs(dg[_concrete[j]]);
-    VecRestoreArrayRead(diag, &dg);
-    VecDestroy(&diag);
+    check(VecRestoreArrayRead(diag, &dg), "VecRestoreArrayRead");
+    check(VecDestroy(&diag), "VecDestroy");
     _eps = 1e-2 * sum / double(2 * n);
   }
   for (PetscInt j = 0; j < n; ++j)
@@ -145,39 +151,67 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
     const PetscInt s = _steel[j], c = _concrete[j];
     if (_steel_free[j])
     {
-      MatSetValueLocal(_J0, s, s, _eps, ADD_VALUES);
-      MatSetValueLocal(_J0, s, c, -_eps, ADD_VALUES);
+      check(MatSetValueLocal(_J0, s, s, _eps, ADD_VALUES), "MatSetValueLocal");
+      check(MatSetValueLocal(_J0, s, c, -_eps, ADD_VALUES), "MatSetValueLocal");
     }
     if (_concrete_free[j])
     {
-      MatSetValueLocal(_J0, c, c, _eps, ADD_VALUES);
-      MatSetValueLocal(_J0, c, s, -_eps, ADD_VALUES);
+      check(MatSetValueLocal(_J0, c, c, _eps, ADD_VALUES), "MatSetValueLocal");
+      check(MatSetValueLocal(_J0, c, s, -_eps, ADD_VALUES), "MatSetValueLocal");
     }
   }
-  MatAssemblyBegin(_J0, MAT_FINAL_ASSEMBLY);
-  MatAssemblyEnd(_J0, MAT_FINAL_ASSEMBLY);
+  check(MatAssemblyBegin(_J0, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(_J0, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
 
   // One MUMPS factorisation with the interface dofs (steel, then concrete)
-  // last; their Schur complement S comes out of it.
-  MatGetFactor(_J0, MATSOLVERMUMPS, MAT_FACTOR_LU, &_factor);
+  // last; their Schur complement S comes out of it. MUMPS records a failure
+  // (a zero pivot: a body held by nothing) instead of raising an error: it
+  // is a clear error here.
+  const auto factored = [&](const std::string& phase)
+  {
+    MatFactorError error;
+    check(MatFactorGetError(_factor, &error), "MatFactorGetError");
+    if (error == MAT_FACTOR_NOERROR)
+      return;
+    std::string what = "MUMPS failed";
+    if (error == MAT_FACTOR_STRUCT_ZEROPIVOT || error == MAT_FACTOR_NUMERIC_ZEROPIVOT)
+    {
+      PetscReal pivot = 0;
+      PetscInt row = -1;
+      check(MatFactorGetErrorZeroPivot(_factor, &pivot, &row), "MatFactorGetErrorZeroPivot");
+      what = "zero pivot" + (row >= 0 ? " in row " + std::to_string(row) : std::string());
+    }
+    else if (error == MAT_FACTOR_OUTMEMORY)
+      what = "out of memory";
+    throw std::runtime_error("condensation: the " + phase +
+                             " of the bulk stiffness J0 (MUMPS, with the interface Schur "
+                             "complement) failed: " +
+                             what + "; solver.condensation = \"off\" solves the whole model");
+  };
+  check(MatGetFactor(_J0, MATSOLVERMUMPS, MAT_FACTOR_LU, &_factor), "MatGetFactor");
   {
     std::vector<PetscInt> gamma(_steel.begin(), _steel.end());
     gamma.insert(gamma.end(), _concrete.begin(), _concrete.end());
     IS is;
-    ISCreateGeneral(PETSC_COMM_SELF, PetscInt(gamma.size()), gamma.data(), PETSC_COPY_VALUES, &is);
-    MatFactorSetSchurIS(_factor, is);
-    ISDestroy(&is);
+    check(ISCreateGeneral(PETSC_COMM_SELF, PetscInt(gamma.size()), gamma.data(), PETSC_COPY_VALUES,
+                          &is),
+          "ISCreateGeneral");
+    check(MatFactorSetSchurIS(_factor, is), "MatFactorSetSchurIS");
+    check(ISDestroy(&is), "ISDestroy");
   }
   MatFactorInfo info;
-  MatFactorInfoInitialize(&info);
-  MatLUFactorSymbolic(_factor, _J0, nullptr, nullptr, &info);
-  MatLUFactorNumeric(_factor, _J0, &info);
-  MatFactorFactorizeSchurComplement(_factor); // dense LU of S, kept in the factor
+  check(MatFactorInfoInitialize(&info), "MatFactorInfoInitialize");
+  check(MatLUFactorSymbolic(_factor, _J0, nullptr, nullptr, &info), "MatLUFactorSymbolic");
+  factored("analysis");
+  check(MatLUFactorNumeric(_factor, _J0, &info), "MatLUFactorNumeric");
+  factored("numerical factorisation");
+  check(MatFactorFactorizeSchurComplement(_factor),
+        "MatFactorFactorizeSchurComplement"); // dense LU of S, kept in the factor
 
   // Z on the interface = S^-1 E_I G_I^T; column j: -1 at the steel dof of
   // jump j, +1 at its concrete dof (free ones only).
   Mat B;
-  MatCreateSeqDense(PETSC_COMM_SELF, 2 * n, n, nullptr, &B);
+  check(MatCreateSeqDense(PETSC_COMM_SELF, 2 * n, n, nullptr, &B), "MatCreateSeqDense");
   {
     Dense Bd(B);
     for (PetscInt j = 0; j < n; ++j)
@@ -188,15 +222,16 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
   }
   Mat S;
   MatFactorSchurStatus status;
-  MatFactorGetSchurComplement(_factor, &S, &status); // factored; the factor owns it
-  MatCreateSeqDense(PETSC_COMM_SELF, 2 * n, n, nullptr, &_Z);
-  MatMatSolve(S, B, _Z);
-  MatFactorRestoreSchurComplement(_factor, &S, status);
-  MatDestroy(&B);
+  check(MatFactorGetSchurComplement(_factor, &S, &status),
+        "MatFactorGetSchurComplement"); // factored; the factor owns it
+  check(MatCreateSeqDense(PETSC_COMM_SELF, 2 * n, n, nullptr, &_Z), "MatCreateSeqDense");
+  check(MatMatSolve(S, B, _Z), "MatMatSolve");
+  check(MatFactorRestoreSchurComplement(_factor, &S, status), "MatFactorRestoreSchurComplement");
+  check(MatDestroy(&B), "MatDestroy");
 
   // C = G Z, E = I - eps C, k = 1 / mean diag(C).
-  MatCreateSeqDense(PETSC_COMM_SELF, n, n, nullptr, &_C);
-  MatCreateSeqDense(PETSC_COMM_SELF, n, n, nullptr, &_E);
+  check(MatCreateSeqDense(PETSC_COMM_SELF, n, n, nullptr, &_C), "MatCreateSeqDense");
+  check(MatCreateSeqDense(PETSC_COMM_SELF, n, n, nullptr, &_E), "MatCreateSeqDense");
   {
     Dense Z(_Z), C(_C), E(_E);
     double trace = 0;
@@ -217,23 +252,24 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
   }
 
   // dF/dd: 3 x 3 blocks of node pairs; the steel blocks map to nothing.
-  ISLocalToGlobalMappingCreate(PETSC_COMM_SELF, 3, n_blocks, pair_of_block.data(),
-                               PETSC_COPY_VALUES, &_l2g);
-  MatCreate(PETSC_COMM_SELF, &_T);
-  MatSetSizes(_T, n, n, n, n);
-  MatSetType(_T, MATSEQBAIJ);
-  MatSetBlockSize(_T, 3);
-  MatSeqBAIJSetPreallocation(_T, 3, 9, nullptr);
-  MatSetOption(_T, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE);
-  MatSetLocalToGlobalMapping(_T, _l2g, _l2g);
+  check(ISLocalToGlobalMappingCreate(PETSC_COMM_SELF, 3, n_blocks, pair_of_block.data(),
+                                     PETSC_COPY_VALUES, &_l2g),
+        "ISLocalToGlobalMappingCreate");
+  check(MatCreate(PETSC_COMM_SELF, &_T), "MatCreate");
+  check(MatSetSizes(_T, n, n, n, n), "MatSetSizes");
+  check(MatSetType(_T, MATSEQBAIJ), "MatSetType");
+  check(MatSetBlockSize(_T, 3), "MatSetBlockSize");
+  check(MatSeqBAIJSetPreallocation(_T, 3, 9, nullptr), "MatSeqBAIJSetPreallocation");
+  check(MatSetOption(_T, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE), "MatSetOption");
+  check(MatSetLocalToGlobalMapping(_T, _l2g, _l2g), "MatSetLocalToGlobalMapping");
 
-  MatCreateVecs(_J0, &_b, nullptr);
+  check(MatCreateVecs(_J0, &_b, nullptr), "MatCreateVecs");
   _r = create_vector();
   _d_b = create_vector();
-  VecCreateSeq(PETSC_COMM_SELF, 2 * n, &_g);
-  VecDuplicate(_b, &_rest);
+  check(VecCreateSeq(PETSC_COMM_SELF, 2 * n, &_g), "VecCreateSeq");
+  check(VecDuplicate(_b, &_rest), "VecDuplicate");
   _Tv = create_vector();
-  VecDuplicate(_g, &_Zr);
+  check(VecDuplicate(_g, &_Zr), "VecDuplicate");
   _u.assign(std::size_t(3) * n_blocks, 0.0);
   _f.assign(_u.size(), 0.0);
 }
@@ -241,56 +277,56 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
 Condensation::~Condensation()
 {
   for (Vec* v : {&_b, &_r, &_d_b, &_g, &_rest, &_Tv, &_Zr})
-    VecDestroy(v);
+    petsc::check_nothrow(VecDestroy(v), "VecDestroy");
   for (auto* list : {&_basis, &_basis_g, &_basis_d})
     for (Vec& v : *list)
-      VecDestroy(&v);
+      petsc::check_nothrow(VecDestroy(&v), "VecDestroy");
   for (Mat* m : {&_Z, &_C, &_E, &_T, &_factor, &_J0})
-    MatDestroy(m);
-  ISLocalToGlobalMappingDestroy(&_l2g);
+    petsc::check_nothrow(MatDestroy(m), "MatDestroy");
+  petsc::check_nothrow(ISLocalToGlobalMappingDestroy(&_l2g), "ISLocalToGlobalMappingDestroy");
 }
 
 Mat Condensation::create_matrix() const
 {
   Mat J;
-  MatCreateSeqDense(PETSC_COMM_SELF, size(), size(), nullptr, &J);
-  MatCopy(_E, J, SAME_NONZERO_PATTERN);
+  check(MatCreateSeqDense(PETSC_COMM_SELF, size(), size(), nullptr, &J), "MatCreateSeqDense");
+  check(MatCopy(_E, J, SAME_NONZERO_PATTERN), "MatCopy");
   return J;
 }
 
 Vec Condensation::create_vector() const
 {
   Vec v;
-  VecCreateSeq(PETSC_COMM_SELF, size(), &v);
+  check(VecCreateSeq(PETSC_COMM_SELF, size(), &v), "VecCreateSeq");
   return v;
 }
 
 void Condensation::configure(KSP ksp) const
 {
   PC pc;
-  KSPGetPC(ksp, &pc);
-  PCFactorSetMatSolverType(pc, MATSOLVERPETSC);
-  PCFactorSetMatOrderingType(pc, MATORDERINGNATURAL);
+  check(KSPGetPC(ksp, &pc), "KSPGetPC");
+  check(PCFactorSetMatSolverType(pc, MATSOLVERPETSC), "PCFactorSetMatSolverType");
+  check(PCFactorSetMatOrderingType(pc, MATORDERINGNATURAL), "PCFactorSetMatOrderingType");
 }
 
 void Condensation::restrict_to(Vec x, Vec d) const
 {
   const double* a;
   double* g;
-  VecGetArrayRead(x, &a);
-  VecGetArray(d, &g);
+  check(VecGetArrayRead(x, &a), "VecGetArrayRead");
+  check(VecGetArray(d, &g), "VecGetArray");
   for (std::size_t j = 0; j < _steel.size(); ++j)
     g[j] = a[_concrete[j]] - a[_steel[j]];
-  VecRestoreArray(d, &g);
-  VecRestoreArrayRead(x, &a);
+  check(VecRestoreArray(d, &g), "VecRestoreArray");
+  check(VecRestoreArrayRead(x, &a), "VecRestoreArrayRead");
 }
 
 void Condensation::restrict_functional(Vec a, Vec a_d) const
 {
   const double* aa;
   double* g;
-  VecGetArrayRead(a, &aa);
-  VecGetArray(a_d, &g);
+  check(VecGetArrayRead(a, &aa), "VecGetArrayRead");
+  check(VecGetArray(a_d, &g), "VecGetArray");
   double scale = 0, mismatch = 0;
   for (std::size_t j = 0; j < _steel.size(); ++j)
   {
@@ -298,17 +334,17 @@ void Condensation::restrict_functional(Vec a, Vec a_d) const
     scale = std::max(scale, std::abs(g[j]));
     mismatch = std::max(mismatch, std::abs(aa[_steel[j]] + aa[_concrete[j]]));
   }
-  VecRestoreArray(a_d, &g);
-  VecRestoreArrayRead(a, &aa);
+  check(VecRestoreArray(a_d, &g), "VecRestoreArray");
+  check(VecRestoreArrayRead(a, &aa), "VecRestoreArrayRead");
   if (mismatch > 1e-12 * scale)
     throw std::logic_error("condensation: the functional is not one of the jumps");
 }
 
 void Condensation::combine(const std::vector<double>& c, const std::vector<Vec>& v, Vec y)
 {
-  VecSet(y, 0.0);
+  check(VecSet(y, 0.0), "VecSet");
   for (std::size_t k = 0; k < c.size(); ++k)
-    VecAXPY(y, c[k], v[k]);
+    check(VecAXPY(y, c[k], v[k]), "VecAXPY");
 }
 
 const std::vector<double>& Condensation::load_coefficients()
@@ -320,22 +356,22 @@ const std::vector<double>& Condensation::load_coefficients()
   _load_version = _eq.load_version();
   _eq.linear_rhs(_b);
   double b_norm;
-  VecNorm(_b, NORM_2, &b_norm);
+  check(VecNorm(_b, NORM_2, &b_norm), "VecNorm");
   // Project b on the basis (classical Gram-Schmidt, twice).
   Vec rest = _rest;
-  VecCopy(_b, rest);
+  check(VecCopy(_b, rest), "VecCopy");
   std::vector<double>& c = _load_c;
   c.assign(_basis.size(), 0.0);
   for (int pass = 0; pass < 2; ++pass)
     for (std::size_t k = 0; k < _basis.size(); ++k)
     {
       double ck;
-      VecDot(_basis[k], rest, &ck);
-      VecAXPY(rest, -ck, _basis[k]);
+      check(VecDot(_basis[k], rest, &ck), "VecDot");
+      check(VecAXPY(rest, -ck, _basis[k]), "VecAXPY");
       c[k] += ck;
     }
   double r_norm;
-  VecNorm(rest, NORM_2, &r_norm);
+  check(VecNorm(rest, NORM_2, &r_norm), "VecNorm");
   if (r_norm > 1e-12 * b_norm)
   {
     if (_basis.size() == max_basis) // start again from b
@@ -343,28 +379,28 @@ const std::vector<double>& Condensation::load_coefficients()
       for (auto* list : {&_basis, &_basis_g, &_basis_d})
       {
         for (Vec& v : *list)
-          VecDestroy(&v);
+          check(VecDestroy(&v), "VecDestroy");
         list->clear();
       }
       c.clear();
-      VecCopy(_b, rest);
+      check(VecCopy(_b, rest), "VecCopy");
       r_norm = b_norm;
     }
     // The new direction q = rest / |rest|: J0^-1 q on the interface, and
     // its jumps.
-    VecDuplicate(_b, &rest);
-    VecCopy(_rest, rest);
-    VecScale(rest, 1.0 / r_norm);
+    check(VecDuplicate(_b, &rest), "VecDuplicate");
+    check(VecCopy(_rest, rest), "VecCopy");
+    check(VecScale(rest, 1.0 / r_norm), "VecScale");
     Vec y, g, d;
-    VecDuplicate(_b, &y);
-    MatSolve(_factor, rest, y);
-    VecDuplicate(_g, &g);
+    check(VecDuplicate(_b, &y), "VecDuplicate");
+    check(MatSolve(_factor, rest, y), "MatSolve");
+    check(VecDuplicate(_g, &g), "VecDuplicate");
     d = create_vector();
     const double* ya;
     double *ga, *da;
-    VecGetArrayRead(y, &ya);
-    VecGetArray(g, &ga);
-    VecGetArray(d, &da);
+    check(VecGetArrayRead(y, &ya), "VecGetArrayRead");
+    check(VecGetArray(g, &ga), "VecGetArray");
+    check(VecGetArray(d, &da), "VecGetArray");
     const std::size_t n = _steel.size();
     for (std::size_t j = 0; j < n; ++j)
     {
@@ -372,10 +408,10 @@ const std::vector<double>& Condensation::load_coefficients()
       ga[n + j] = ya[_concrete[j]];
       da[j] = ga[n + j] - ga[j];
     }
-    VecRestoreArray(d, &da);
-    VecRestoreArray(g, &ga);
-    VecRestoreArrayRead(y, &ya);
-    VecDestroy(&y);
+    check(VecRestoreArray(d, &da), "VecRestoreArray");
+    check(VecRestoreArray(g, &ga), "VecRestoreArray");
+    check(VecRestoreArrayRead(y, &ya), "VecRestoreArrayRead");
+    check(VecDestroy(&y), "VecDestroy");
     _basis.push_back(rest);
     _basis_g.push_back(g);
     _basis_d.push_back(d);
@@ -387,7 +423,7 @@ const std::vector<double>& Condensation::load_coefficients()
 bool Condensation::interface_forces(Vec d, bool tangent, double* force_norm)
 {
   const double* da;
-  VecGetArrayRead(d, &da);
+  check(VecGetArrayRead(d, &da), "VecGetArrayRead");
   for (std::size_t j = 0; j < _steel.size(); ++j)
   {
     _u[_steel[j]] = 0.0;
@@ -395,15 +431,15 @@ bool Condensation::interface_forces(Vec d, bool tangent, double* force_norm)
     _f[_steel[j]] = _f[_concrete[j]] = 0.0;
   }
   if (tangent)
-    MatZeroEntries(_T);
+    check(MatZeroEntries(_T), "MatZeroEntries");
   const bool ok = _eq.model().interface->assemble(_u, _f, tangent ? _T : nullptr);
   if (tangent)
   {
-    MatAssemblyBegin(_T, MAT_FINAL_ASSEMBLY);
-    MatAssemblyEnd(_T, MAT_FINAL_ASSEMBLY);
+    check(MatAssemblyBegin(_T, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+    check(MatAssemblyEnd(_T, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
   }
   double* r;
-  VecGetArray(_r, &r);
+  check(VecGetArray(_r, &r), "VecGetArray");
   double f2 = 0;
   for (std::size_t j = 0; j < _steel.size(); ++j)
   {
@@ -411,8 +447,8 @@ bool Condensation::interface_forces(Vec d, bool tangent, double* force_norm)
     f2 += F * F;
     r[j] = F - _eps * da[j];
   }
-  VecRestoreArray(_r, &r);
-  VecRestoreArrayRead(d, &da);
+  check(VecRestoreArray(_r, &r), "VecRestoreArray");
+  check(VecRestoreArrayRead(d, &da), "VecRestoreArrayRead");
   if (force_norm)
     *force_norm = std::sqrt(f2);
   return ok;
@@ -428,18 +464,41 @@ bool Condensation::residual(Vec d, Vec R, double& reaction_norm)
 {
   combine(load_coefficients(), _basis_d, _d_b);
   const bool ok = interface_forces(d, false, &reaction_norm);
-  MatMult(_C, _r, R);
-  VecAXPY(R, 1.0, d);
-  VecAXPY(R, -1.0, _d_b);
-  VecScale(R, _k);
+  check(MatMult(_C, _r, R), "MatMult");
+  check(VecAXPY(R, 1.0, d), "VecAXPY");
+  check(VecAXPY(R, -1.0, _d_b), "VecAXPY");
+  check(VecScale(R, _k), "VecScale");
   return ok;
+}
+
+// R = k (d + C r - d_b): floor = C_f eps k (||d|| + ||C|| ||r|| + ||d_b||),
+// C_f = residual_floor_factor, ||C|| = sqrt(||C||_1 ||C||_inf) >= ||C||_2,
+// r from the last residual. (C and d_b carry the round-off of J0's
+// factorisation too, but the same in every evaluation: Newton solves the
+// condensed system as computed, and that error is not a floor of it.)
+double Condensation::residual_floor(Vec d)
+{
+  if (_C_norm < 0)
+  {
+    double n1, ninf;
+    check(MatNorm(_C, NORM_1, &n1), "MatNorm");
+    check(MatNorm(_C, NORM_INFINITY, &ninf), "MatNorm");
+    _C_norm = std::sqrt(n1 * ninf);
+  }
+  double d_norm, r_norm, b_norm;
+  check(VecNorm(d, NORM_2, &d_norm), "VecNorm");
+  check(VecNorm(_r, NORM_2, &r_norm), "VecNorm");
+  check(VecNorm(_d_b, NORM_2, &b_norm), "VecNorm");
+  return residual_floor_factor * std::numeric_limits<double>::epsilon() * _k *
+         (d_norm + _C_norm * r_norm + b_norm);
 }
 
 bool Condensation::jacobian(Vec d, Mat J)
 {
   const bool ok = interface_forces(d, true); // dF/dd into _T
   PetscBool shell;
-  PetscObjectTypeCompare(reinterpret_cast<PetscObject>(J), MATSHELL, &shell);
+  check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(J), MATSHELL, &shell),
+        "PetscObjectTypeCompare");
   if (!shell)
     form_jacobian(J);
   return ok;
@@ -447,7 +506,7 @@ bool Condensation::jacobian(Vec d, Mat J)
 
 void Condensation::form_jacobian(Mat J) const
 {
-  MatCopy(_E, J, SAME_NONZERO_PATTERN);
+  check(MatCopy(_E, J, SAME_NONZERO_PATTERN), "MatCopy");
   {
     // J += C dF/dd, column by column: J(:, j) += T(i, j) C(:, i).
     Dense Jd(J), C(_C);
@@ -457,7 +516,7 @@ void Condensation::form_jacobian(Mat J) const
       PetscInt ncols;
       const PetscInt* cols;
       const double* vals;
-      MatGetRow(_T, i, &ncols, &cols, &vals);
+      check(MatGetRow(_T, i, &ncols, &cols, &vals), "MatGetRow");
       for (PetscInt c = 0; c < ncols; ++c)
       {
         const double t = vals[c];
@@ -468,62 +527,68 @@ void Condensation::form_jacobian(Mat J) const
         for (PetscInt r = 0; r < n; ++r)
           Jj[r] += t * Ci[r];
       }
-      MatRestoreRow(_T, i, &ncols, &cols, &vals);
+      check(MatRestoreRow(_T, i, &ncols, &cols, &vals), "MatRestoreRow");
     }
   }
-  MatScale(J, _k);
+  check(MatScale(J, _k), "MatScale");
 }
 
 Mat Condensation::create_operator() const
 {
   Mat J;
-  MatCreateShell(PETSC_COMM_SELF, size(), size(), size(), size(), const_cast<Condensation*>(this),
-                 &J);
-  MatShellSetOperation(J, MATOP_MULT, reinterpret_cast<void (*)(void)>(operator_mult));
+  check(MatCreateShell(PETSC_COMM_SELF, size(), size(), size(), size(),
+                       const_cast<Condensation*>(this), &J),
+        "MatCreateShell");
+  check(MatShellSetOperation(J, MATOP_MULT, reinterpret_cast<void (*)(void)>(operator_mult)),
+        "MatShellSetOperation");
   return J;
 }
 
 PetscErrorCode Condensation::operator_mult(Mat J, Vec v, Vec y)
 {
-  // y = k (v + C (dF/dd - eps) v).
-  Condensation* self;
-  MatShellGetContext(J, &self);
-  MatMult(self->_T, v, self->_Tv);
-  VecAXPY(self->_Tv, -self->_eps, v);
-  MatMult(self->_C, self->_Tv, y);
-  VecAXPY(y, 1.0, v);
-  VecScale(y, self->_k);
-  return 0;
+  return petsc::callback(
+      [&]
+      {
+        // y = k (v + C (dF/dd - eps) v).
+        Condensation* self;
+        check(MatShellGetContext(J, &self), "MatShellGetContext");
+        check(MatMult(self->_T, v, self->_Tv), "MatMult");
+        check(VecAXPY(self->_Tv, -self->_eps, v), "VecAXPY");
+        check(MatMult(self->_C, self->_Tv, y), "MatMult");
+        check(VecAXPY(y, 1.0, v), "VecAXPY");
+        check(VecScale(y, self->_k), "VecScale");
+      });
 }
 
 void Condensation::copy_jacobian(Mat J, Mat P) const
 {
   PetscBool shell;
-  PetscObjectTypeCompare(reinterpret_cast<PetscObject>(J), MATSHELL, &shell);
+  check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(J), MATSHELL, &shell),
+        "PetscObjectTypeCompare");
   if (shell)
     form_jacobian(P);
   else
-    MatCopy(J, P, SAME_NONZERO_PATTERN);
+    check(MatCopy(J, P, SAME_NONZERO_PATTERN), "MatCopy");
 }
 
 void Condensation::expand_interface(Vec d, Vec x)
 {
   combine(load_coefficients(), _basis_g, _g);
   interface_forces(d, false);
-  MatMult(_Z, _r, _Zr);
-  VecAXPY(_g, -1.0, _Zr);
+  check(MatMult(_Z, _r, _Zr), "MatMult");
+  check(VecAXPY(_g, -1.0, _Zr), "VecAXPY");
   const double* g;
   double* xa;
-  VecGetArrayRead(_g, &g);
-  VecGetArray(x, &xa);
+  check(VecGetArrayRead(_g, &g), "VecGetArrayRead");
+  check(VecGetArray(x, &xa), "VecGetArray");
   const std::size_t n = _steel.size();
   for (std::size_t j = 0; j < n; ++j)
   {
     xa[_steel[j]] = g[j];
     xa[_concrete[j]] = g[n + j];
   }
-  VecRestoreArray(x, &xa);
-  VecRestoreArrayRead(_g, &g);
+  check(VecRestoreArray(x, &xa), "VecRestoreArray");
+  check(VecRestoreArrayRead(_g, &g), "VecRestoreArrayRead");
   _eq.apply_constraints(x);
 }
 
@@ -533,11 +598,11 @@ void Condensation::expand(Vec d, Vec x)
   interface_forces(d, false);
   // x = J0^-1 (b - E_I G_I^T r).
   Vec rhs = _rest;
-  VecCopy(_b, rhs);
+  check(VecCopy(_b, rhs), "VecCopy");
   double* ra;
   const double* r;
-  VecGetArray(rhs, &ra);
-  VecGetArrayRead(_r, &r);
+  check(VecGetArray(rhs, &ra), "VecGetArray");
+  check(VecGetArrayRead(_r, &r), "VecGetArrayRead");
   for (std::size_t j = 0; j < _steel.size(); ++j)
   {
     if (_steel_free[j])
@@ -545,10 +610,10 @@ void Condensation::expand(Vec d, Vec x)
     if (_concrete_free[j])
       ra[_concrete[j]] -= r[j];
   }
-  VecRestoreArrayRead(_r, &r);
-  VecRestoreArray(rhs, &ra);
-  MatSolve(_factor, rhs, x);
-  VecGhostUpdateBegin(x, INSERT_VALUES, SCATTER_FORWARD);
-  VecGhostUpdateEnd(x, INSERT_VALUES, SCATTER_FORWARD);
+  check(VecRestoreArrayRead(_r, &r), "VecRestoreArrayRead");
+  check(VecRestoreArray(rhs, &ra), "VecRestoreArray");
+  check(MatSolve(_factor, rhs, x), "MatSolve");
+  check(VecGhostUpdateBegin(x, INSERT_VALUES, SCATTER_FORWARD), "VecGhostUpdateBegin");
+  check(VecGhostUpdateEnd(x, INSERT_VALUES, SCATTER_FORWARD), "VecGhostUpdateEnd");
 }
 } // namespace pushout::solver

@@ -1,4 +1,4 @@
-// Condensation of the linear bulk onto the interface jumps (issue 6).
+// Condensation of the linear bulk onto the interface jumps.
 //
 // Only the joint elements are nonlinear, and they see the displacement
 // only through the jumps d = u_concrete - u_steel of the interface node
@@ -96,6 +96,7 @@ public:
   bool residual(Vec d, Vec R) override;
   bool residual(Vec d, Vec R, double& reaction_norm) override;
   bool jacobian(Vec d, Mat J) override;
+  double residual_floor(Vec d) override;
   void configure(KSP ksp) const override;
   void forget_trial_state() override { _eq.forget_trial_state(); }
 
@@ -119,6 +120,7 @@ private:
   std::vector<double> _load_c; ///< coefficients of the current b on the basis
   double _eps = 0;             ///< J0's joint stiffness [N/mm]
   double _k = 1;               ///< residual scale [N/mm]
+  double _C_norm = -1;         ///< a bound of ||C||_2, once needed [mm/N]
   Mat _J0 = nullptr, _factor = nullptr;
   Mat _Z = nullptr;           ///< Z on the interface dofs (steel jumps, then concrete), dense
   Mat _C = nullptr;           ///< C = G Z, dense

@@ -1,24 +1,28 @@
 #include "Equilibrium.h"
+#include "../common/petsc_check.h"
 #include "RigidBodyModes.h"
 #include <cmath>
 #include <dolfinx/common/IndexMap.h>
 #include <dolfinx/la/petsc.h>
+#include <limits>
 
 namespace pushout::solver
 {
+using petsc::check;
+
 Equilibrium::Equilibrium(model::Model& model)
     : _model(model), _f_interface(model.V->dofmap()->index_map, model.V->dofmap()->index_map_bs())
 {
   _f_external = dolfinx::la::petsc::create_vector(*model.V->dofmap()->index_map,
                                                   model.V->dofmap()->index_map_bs());
-  VecSet(_f_external, 0.0);
+  check(VecSet(_f_external, 0.0), "VecSet");
 }
 
 Equilibrium::~Equilibrium()
 {
   if (_f_thermal)
-    VecDestroy(&_f_thermal);
-  VecDestroy(&_f_external);
+    petsc::check_nothrow(VecDestroy(&_f_thermal), "VecDestroy");
+  petsc::check_nothrow(VecDestroy(&_f_external), "VecDestroy");
 }
 
 void Equilibrium::set_temperature_change(double dT)
@@ -28,39 +32,39 @@ void Equilibrium::set_temperature_change(double dT)
   _dT = dT;
   ++_load_version;
   if (_f_thermal)
-    VecDestroy(&_f_thermal);
+    check(VecDestroy(&_f_thermal), "VecDestroy");
   _f_thermal = dT != 0.0 ? _model.thermal_load(dT) : nullptr;
 }
 
 void Equilibrium::set_external_forces(const std::vector<std::pair<std::int32_t, double>>& forces)
 {
   ++_load_version;
-  VecSet(_f_external, 0.0);
+  check(VecSet(_f_external, 0.0), "VecSet");
   double* f;
-  VecGetArray(_f_external, &f);
+  check(VecGetArray(_f_external, &f), "VecGetArray");
   for (const auto& [dof, value] : forces)
     f[dof] += value;
-  VecRestoreArray(_f_external, &f);
+  check(VecRestoreArray(_f_external, &f), "VecRestoreArray");
 }
 
 void Equilibrium::apply_constraints(Vec x) const
 {
   double* a;
-  VecGetArray(x, &a);
+  check(VecGetArray(x, &a), "VecGetArray");
   for (std::size_t i = 0; i < _bc.dofs.size(); ++i)
     a[_bc.dofs[i]] = _bc.values[i];
-  VecRestoreArray(x, &a);
+  check(VecRestoreArray(x, &a), "VecRestoreArray");
 }
 
 void Equilibrium::update_displacement(Vec x)
 {
   const double* a;
-  VecGetArrayRead(x, &a);
+  check(VecGetArrayRead(x, &a), "VecGetArrayRead");
   std::span<double> u = _model.u->x()->mutable_array();
   const std::size_t n_owned =
       _model.V->dofmap()->index_map->size_local() * _model.V->dofmap()->index_map_bs();
   std::copy_n(a, n_owned, u.begin());
-  VecRestoreArrayRead(x, &a);
+  check(VecRestoreArrayRead(x, &a), "VecRestoreArrayRead");
   _model.u->x()->scatter_fwd();
 }
 
@@ -72,17 +76,17 @@ bool Equilibrium::internal_forces(Vec x, Vec F)
   const bool ok = _model.interface->assemble(_model.u->x()->array(), fi, nullptr);
   _f_interface.scatter_rev(std::plus<double>());
 
-  MatMult(_model.K, x, F);
+  check(MatMult(_model.K, x, F), "MatMult");
   if (_f_thermal)
-    VecAXPY(F, -1.0, _f_thermal);
-  VecAXPY(F, -1.0, _f_external);
+    check(VecAXPY(F, -1.0, _f_thermal), "VecAXPY");
+  check(VecAXPY(F, -1.0, _f_external), "VecAXPY");
   double* f;
-  VecGetArray(F, &f);
+  check(VecGetArray(F, &f), "VecGetArray");
   PetscInt n_owned;
-  VecGetLocalSize(F, &n_owned);
+  check(VecGetLocalSize(F, &n_owned), "VecGetLocalSize");
   for (PetscInt i = 0; i < n_owned; ++i)
     f[i] += fi[i];
-  VecRestoreArray(F, &f);
+  check(VecRestoreArray(F, &f), "VecRestoreArray");
   return ok;
 }
 
@@ -97,39 +101,75 @@ bool Equilibrium::residual(Vec x, Vec F, double& reaction_norm)
   const bool ok = internal_forces(x, F);
   double* f;
   const double* a;
-  VecGetArray(F, &f);
-  VecGetArrayRead(x, &a);
+  check(VecGetArray(F, &f), "VecGetArray");
+  check(VecGetArrayRead(x, &a), "VecGetArrayRead");
   double r2 = 0;
   for (std::size_t i = 0; i < _bc.dofs.size(); ++i)
   {
     r2 += f[_bc.dofs[i]] * f[_bc.dofs[i]];
     f[_bc.dofs[i]] = a[_bc.dofs[i]] - _bc.values[i];
   }
-  VecRestoreArrayRead(x, &a);
-  VecRestoreArray(F, &f);
+  check(VecRestoreArrayRead(x, &a), "VecRestoreArrayRead");
+  check(VecRestoreArray(F, &f), "VecRestoreArray");
   MPI_Allreduce(MPI_IN_PLACE, &r2, 1, MPI_DOUBLE, MPI_SUM,
                 PetscObjectComm(reinterpret_cast<PetscObject>(x)));
   reaction_norm = std::sqrt(r2);
   return ok;
 }
 
+// F = K x + f_int - f_thermal - f_external: floor = C eps (||K||_inf ||x||
+// + ||f_thermal|| + ||f_external|| + ||f_int||), C = residual_floor_factor
+// (NonlinearProblem.h). The term of K x dominates when the tube moves as a
+// body: K x is then a sum of large terms that cancel.
+double Equilibrium::residual_floor(Vec x)
+{
+  if (_K_norm < 0)
+    check(MatNorm(_model.K, NORM_INFINITY, &_K_norm), "MatNorm");
+  double x_norm;
+  check(VecNorm(x, NORM_2, &x_norm), "VecNorm");
+  double squares[3] = {0, 0, 0}; // thermal, external, interface forces
+  PetscInt n;
+  check(VecGetLocalSize(x, &n), "VecGetLocalSize");
+  const std::span<const double> fi = _f_interface.array();
+  for (PetscInt i = 0; i < n; ++i)
+    squares[2] += fi[i] * fi[i];
+  int k = 0;
+  for (Vec f : {_f_thermal, _f_external})
+  {
+    if (f)
+    {
+      const double* a;
+      check(VecGetArrayRead(f, &a), "VecGetArrayRead");
+      for (PetscInt i = 0; i < n; ++i)
+        squares[k] += a[i] * a[i];
+      check(VecRestoreArrayRead(f, &a), "VecRestoreArrayRead");
+    }
+    ++k;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, squares, 3, MPI_DOUBLE, MPI_SUM,
+                PetscObjectComm(reinterpret_cast<PetscObject>(x)));
+  const double scale =
+      _K_norm * x_norm + std::sqrt(squares[0]) + std::sqrt(squares[1]) + std::sqrt(squares[2]);
+  return residual_floor_factor * std::numeric_limits<double>::epsilon() * scale;
+}
+
 void Equilibrium::linear_rhs(Vec b) const
 {
-  VecCopy(_f_external, b);
+  check(VecCopy(_f_external, b), "VecCopy");
   if (_f_thermal)
-    VecAXPY(b, 1.0, _f_thermal);
+    check(VecAXPY(b, 1.0, _f_thermal), "VecAXPY");
   double* a;
-  VecGetArray(b, &a);
+  check(VecGetArray(b, &a), "VecGetArray");
   for (std::size_t i = 0; i < _bc.dofs.size(); ++i)
     a[_bc.dofs[i]] = _bc.values[i];
-  VecRestoreArray(b, &a);
+  check(VecRestoreArray(b, &a), "VecRestoreArray");
 }
 
 Mat Equilibrium::create_matrix() const
 {
   Mat J;
-  MatDuplicate(_model.K, MAT_COPY_VALUES, &J);
-  MatSetOption(J, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE);
+  check(MatDuplicate(_model.K, MAT_COPY_VALUES, &J), "MatDuplicate");
+  check(MatSetOption(J, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE), "MatSetOption");
   set_rigid_body_modes(_model, J); // for algebraic multigrid (-pc_type gamg)
   return J;
 }
@@ -137,21 +177,22 @@ Mat Equilibrium::create_matrix() const
 Vec Equilibrium::create_vector() const
 {
   Vec v;
-  MatCreateVecs(_model.K, nullptr, &v);
+  check(MatCreateVecs(_model.K, nullptr, &v), "MatCreateVecs");
   return v;
 }
 
 bool Equilibrium::jacobian(Vec x, Mat J)
 {
   update_displacement(x);
-  MatCopy(_model.K, J, SAME_NONZERO_PATTERN);
+  check(MatCopy(_model.K, J, SAME_NONZERO_PATTERN), "MatCopy");
   std::span<double> fi = _f_interface.mutable_array();
   std::fill(fi.begin(), fi.end(), 0.0);
   const bool ok = _model.interface->assemble(_model.u->x()->array(), fi, J);
-  MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY);
-  MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY);
+  check(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
   static_assert(sizeof(PetscInt) == sizeof(std::int32_t), "PETSc with 32-bit indices expected");
-  MatZeroRowsLocal(J, PetscInt(_bc.dofs.size()), _bc.dofs.data(), 1.0, nullptr, nullptr);
+  check(MatZeroRowsLocal(J, PetscInt(_bc.dofs.size()), _bc.dofs.data(), 1.0, nullptr, nullptr),
+        "MatZeroRowsLocal");
   return ok;
 }
 } // namespace pushout::solver

@@ -66,6 +66,7 @@ public:
   bool residual(Vec x, Vec F) override;
   bool residual(Vec x, Vec F, double& reaction_norm) override;
   bool jacobian(Vec x, Mat J) override;
+  double residual_floor(Vec x) override;
   void forget_trial_state() override { _model.interface->state().revert(); }
   int constraint_version() const override { return _constraint_version; }
 
@@ -80,5 +81,6 @@ private:
   int _constraint_version = 0;
   int _load_version = 0;
   dolfinx::la::Vector<double> _f_interface;
+  double _K_norm = -1; ///< ||K||_inf, once needed [N/mm]
 };
 } // namespace pushout::solver

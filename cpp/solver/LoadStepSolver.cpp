@@ -1,7 +1,10 @@
 #include "LoadStepSolver.h"
+#include "../common/petsc_check.h"
 
 namespace pushout::solver
 {
+using petsc::check;
+
 LoadStepSolver::LoadStepSolver(Equilibrium& eq, bool condense, NewtonSolver::Preconditioner pc,
                                int refactor_iterations)
     : _eq(eq), _condense(condense), _pc(pc), _refactor_iterations(refactor_iterations),
@@ -12,7 +15,7 @@ LoadStepSolver::LoadStepSolver(Equilibrium& eq, bool condense, NewtonSolver::Pre
 LoadStepSolver::~LoadStepSolver()
 {
   if (_x)
-    VecDestroy(&_x);
+    petsc::check_nothrow(VecDestroy(&_x), "VecDestroy");
 }
 
 void LoadStepSolver::update()
@@ -24,7 +27,7 @@ void LoadStepSolver::update()
   _newton.reset();
   _condensation.reset();
   if (_x)
-    VecDestroy(&_x);
+    check(VecDestroy(&_x), "VecDestroy");
   _condensation = std::make_unique<Condensation>(_eq);
   _newton = std::make_unique<NewtonSolver>(*_condensation, _pc, _refactor_iterations);
   _constraint_version = _eq.constraint_version();
@@ -64,8 +67,8 @@ Vec LoadStepSolver::functional(Vec a)
   Vec v;
   if (!_condensation)
   {
-    VecDuplicate(a, &v);
-    VecCopy(a, v);
+    check(VecDuplicate(a, &v), "VecDuplicate");
+    check(VecCopy(a, v), "VecCopy");
     return v;
   }
   v = _condensation->create_vector();

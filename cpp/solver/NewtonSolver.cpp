@@ -1,28 +1,80 @@
 #include "NewtonSolver.h"
 #include "../common/Interrupt.h"
+#include "../common/mpi_errors.h"
+#include "../common/petsc_check.h"
 #include <algorithm>
+#include <cmath>
 
 namespace pushout::solver
 {
+using petsc::check;
+
 namespace
 {
+MPI_Comm comm_of(SNES snes)
+{
+  return PetscObjectComm(reinterpret_cast<PetscObject>(snes));
+}
+
 PetscErrorCode form_function(SNES snes, Vec x, Vec F, void* ctx)
 {
-  auto* problem = static_cast<NonlinearProblem*>(ctx);
-  // A failed law or a pending signal fails this solve; the step loop decides.
-  if (!problem->residual(x, F) || interrupt::received())
-    SNESSetFunctionDomainError(snes);
-  return 0;
+  return petsc::callback(
+      [&]
+      {
+        auto* problem = static_cast<NonlinearProblem*>(ctx);
+        // An exception on one process is the same error on all of them, not
+        // one process leaving SNES while the others wait in its next norm.
+        const bool ok = mpi::collectively(comm_of(snes), [&] { return problem->residual(x, F); });
+        // A failed law or a pending signal fails this solve; the step loop
+        // decides (SNES makes a domain error on one process everyone's).
+        if (!ok || interrupt::received())
+          check(SNESSetFunctionDomainError(snes), "SNESSetFunctionDomainError");
+      });
 }
 
 void set_default(const char* name, const char* value)
 {
   PetscBool set = PETSC_FALSE;
-  PetscOptionsHasName(nullptr, nullptr, name, &set);
+  check(PetscOptionsHasName(nullptr, nullptr, name, &set), "PetscOptionsHasName");
   if (!set)
-    PetscOptionsSetValue(nullptr, name, value);
+    check(PetscOptionsSetValue(nullptr, name, value), "PetscOptionsSetValue");
+}
+
+/// A failed factorisation in words.
+std::string factor_failure_text(PCFailedReason reason)
+{
+  switch (reason)
+  {
+  case PC_FACTOR_STRUCT_ZEROPIVOT:
+    return "structurally zero pivot";
+  case PC_FACTOR_NUMERIC_ZEROPIVOT:
+    return "zero pivot";
+  case PC_FACTOR_OUTMEMORY:
+    return "out of memory";
+  case PC_NOERROR:
+    return "";
+  default:
+    return "the factorisation failed";
+  }
 }
 } // namespace
+
+bool zero_pivot_error(PetscErrorCode code)
+{
+  return code == PETSC_ERR_MAT_LU_ZRPVT || code == PETSC_ERR_MAT_CH_ZRPVT;
+}
+
+std::string factorization_failure(KSP ksp)
+{
+  PC pc;
+  check(KSPGetPC(ksp, &pc), "KSPGetPC");
+  PCFailedReason reason = PC_NOERROR;
+  check(PCGetFailedReasonRank(pc, &reason), "PCGetFailedReasonRank");
+  int worst = int(reason);
+  MPI_Allreduce(MPI_IN_PLACE, &worst, 1, MPI_INT, MPI_MAX,
+                PetscObjectComm(reinterpret_cast<PetscObject>(ksp)));
+  return factor_failure_text(PCFailedReason(worst));
+}
 
 void NewtonSolver::set_default_options(Preconditioner pc)
 {
@@ -49,7 +101,8 @@ bool NewtonSolver::direct_factorization()
 {
   char pc_type[64] = "";
   PetscBool set = PETSC_FALSE;
-  PetscOptionsGetString(nullptr, nullptr, "-pc_type", pc_type, sizeof(pc_type), &set);
+  check(PetscOptionsGetString(nullptr, nullptr, "-pc_type", pc_type, sizeof(pc_type), &set),
+        "PetscOptionsGetString");
   return !set || std::string(pc_type) == "lu" || std::string(pc_type) == "cholesky";
 }
 
@@ -58,68 +111,102 @@ NewtonSolver::NewtonSolver(NonlinearProblem& problem, Preconditioner pc, int ref
 {
   _J = _policy.lagged() ? problem.create_operator() : problem.create_matrix();
   _F = problem.create_vector();
-  SNESCreate(PetscObjectComm(reinterpret_cast<PetscObject>(_F)), &_snes);
-  SNESSetFunction(_snes, _F, form_function, &_problem);
+  check(SNESCreate(PetscObjectComm(reinterpret_cast<PetscObject>(_F)), &_snes), "SNESCreate");
+  check(SNESSetFunction(_snes, _F, form_function, &_problem), "SNESSetFunction");
   if (_policy.lagged())
   {
     _P = problem.create_matrix();
-    SNESSetJacobian(_snes, _J, _P, jacobian_callback, this);
+    check(SNESSetJacobian(_snes, _J, _P, jacobian_callback, this), "SNESSetJacobian");
   }
   else
-    SNESSetJacobian(_snes, _J, _J, jacobian_callback, this);
-  SNESSetFromOptions(_snes);
+    check(SNESSetJacobian(_snes, _J, _J, jacobian_callback, this), "SNESSetJacobian");
+  // Before the options: -snes_convergence_test still replaces it.
+  check(SNESSetConvergenceTest(_snes, convergence_test, this, nullptr), "SNESSetConvergenceTest");
+  check(SNESSetFromOptions(_snes), "SNESSetFromOptions");
   KSP ksp;
-  SNESGetKSP(_snes, &ksp);
+  check(SNESGetKSP(_snes, &ksp), "SNESGetKSP");
   problem.configure(ksp);
 }
 
 PetscErrorCode NewtonSolver::jacobian_callback(SNES snes, Vec x, Mat J, Mat P, void* ctx)
 {
-  auto* self = static_cast<NewtonSolver*>(ctx);
-  if (!self->_problem.jacobian(x, J))
-    SNESSetJacobianDomainError(snes);
-  KSP ksp;
-  SNESGetKSP(snes, &ksp);
-  PetscInt its = 0;
-  KSPGetIterationNumber(ksp, &its); // of the previous linear solve
-  self->_policy.solved(its);
-  KSPSetReusePreconditioner(ksp,
-                            self->_policy.update(self->_problem, J, P) ? PETSC_FALSE : PETSC_TRUE);
-  return 0;
+  return petsc::callback(
+      [&]
+      {
+        auto* self = static_cast<NewtonSolver*>(ctx);
+        if (!mpi::collectively(comm_of(snes), [&] { return self->_problem.jacobian(x, J); }))
+          check(SNESSetJacobianDomainError(snes), "SNESSetJacobianDomainError");
+        KSP ksp;
+        check(SNESGetKSP(snes, &ksp), "SNESGetKSP");
+        PetscInt its = 0;
+        check(KSPGetIterationNumber(ksp, &its), "KSPGetIterationNumber"); // the previous solve's
+        self->_policy.solved(its);
+        check(KSPSetReusePreconditioner(
+                  ksp, self->_policy.update(self->_problem, J, P) ? PETSC_FALSE : PETSC_TRUE),
+              "KSPSetReusePreconditioner");
+      });
+}
+
+// PETSc's test (-snes_atol, -snes_rtol, -snes_stol, -snes_max_it), and one
+// more: ||F|| at the round-off floor of the residual (NonlinearProblem::
+// residual_floor) has converged, whatever the tolerances ask. Below it ||F||
+// is noise: a full Newton step no longer lowers it, the line search fails,
+// and a step would be cut back for nothing (-snes_atol 1e-30).
+PetscErrorCode NewtonSolver::convergence_test(SNES snes, PetscInt it, PetscReal xnorm,
+                                              PetscReal snorm, PetscReal fnorm,
+                                              SNESConvergedReason* reason, void* ctx)
+{
+  return petsc::callback(
+      [&]
+      {
+        check(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, nullptr),
+              "SNESConvergedDefault");
+        if (*reason > 0 || !std::isfinite(fnorm))
+          return;
+        auto* self = static_cast<NewtonSolver*>(ctx);
+        Vec x;
+        check(SNESGetSolution(snes, &x), "SNESGetSolution");
+        if (fnorm <= self->_problem.residual_floor(x))
+          *reason = SNES_CONVERGED_FNORM_ABS;
+      });
 }
 
 NewtonSolver::~NewtonSolver()
 {
-  SNESDestroy(&_snes);
-  MatDestroy(&_J);
+  petsc::check_nothrow(SNESDestroy(&_snes), "SNESDestroy");
+  petsc::check_nothrow(MatDestroy(&_J), "MatDestroy");
   if (_P)
-    MatDestroy(&_P);
-  VecDestroy(&_F);
+    petsc::check_nothrow(MatDestroy(&_P), "MatDestroy");
+  petsc::check_nothrow(VecDestroy(&_F), "VecDestroy");
 }
 
 double NewtonSolver::time_linear_solve(Vec x)
 {
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(x));
   Vec F, dx;
-  VecDuplicate(x, &F);
-  VecDuplicate(x, &dx);
+  check(VecDuplicate(x, &F), "VecDuplicate");
+  check(VecDuplicate(x, &dx), "VecDuplicate");
   _problem.residual(x, F);
-  VecScale(F, -1.0);
+  check(VecScale(F, -1.0), "VecScale");
   _problem.jacobian(x, _J);
   KSP ksp;
-  KSPCreate(comm, &ksp);
-  KSPSetOperators(ksp, _J, _J);
-  KSPSetFromOptions(ksp);
+  check(KSPCreate(comm, &ksp), "KSPCreate");
+  check(KSPSetOperators(ksp, _J, _J), "KSPSetOperators");
+  check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
   _problem.configure(ksp);
   MPI_Barrier(comm);
   const double t0 = MPI_Wtime();
-  KSPSetUp(ksp);
-  KSPSolve(ksp, F, dx);
+  check(KSPSetUp(ksp), "KSPSetUp");
+  if (const std::string why = factorization_failure(ksp); !why.empty())
+    throw std::runtime_error("solver.time_linear_solve: the factorisation of the first load "
+                             "step's Jacobian failed (" +
+                             why + ")");
+  check(KSPSolve(ksp, F, dx), "KSPSolve");
   MPI_Barrier(comm);
   const double t = MPI_Wtime() - t0;
-  KSPDestroy(&ksp);
-  VecDestroy(&F);
-  VecDestroy(&dx);
+  check(KSPDestroy(&ksp), "KSPDestroy");
+  check(VecDestroy(&F), "VecDestroy");
+  check(VecDestroy(&dx), "VecDestroy");
   _problem.forget_trial_state();
   return t;
 }
@@ -133,21 +220,39 @@ SolveReport NewtonSolver::solve(Vec x)
     // the constraints of the run (their dofs never change, only values):
     // the Jacobian at zero displacement is the elastic tangent.
     Vec zero;
-    VecDuplicate(x, &zero);
-    VecSet(zero, 0.0);
+    check(VecDuplicate(x, &zero), "VecDuplicate");
+    check(VecSet(zero, 0.0), "VecSet");
     _problem.jacobian(zero, _P);
-    VecDestroy(&zero);
+    check(VecDestroy(&zero), "VecDestroy");
     _policy.P_filled();
   }
   SolveReport r;
-  SNESSolve(_snes, nullptr, x);
+  // A factorisation that fails in a Newton iteration fails the solve, and
+  // the step loop cuts the step back, as for any diverged solve: MUMPS and
+  // PETSc's sparse LU record a failed reason (DIVERGED_LINEAR_SOLVE), a
+  // dense LU (condensed systems, one process) raises a zero-pivot error.
+  const PetscErrorCode code = SNESSolve(_snes, nullptr, x);
+  if (zero_pivot_error(code) && !petsc::callback_failed())
+  {
+    r.reason = "DIVERGED_LINEAR_SOLVE (zero pivot)";
+    _policy.refresh();
+    return r;
+  }
+  check(code, "SNESSolve");
   SNESConvergedReason reason;
-  SNESGetConvergedReason(_snes, &reason);
+  check(SNESGetConvergedReason(_snes, &reason), "SNESGetConvergedReason");
   PetscInt its;
-  SNESGetIterationNumber(_snes, &its);
+  check(SNESGetIterationNumber(_snes, &its), "SNESGetIterationNumber");
   r.converged = reason > 0;
   r.iterations = int(its);
   r.reason = SNESConvergedReasons[reason];
+  if (reason == SNES_DIVERGED_LINEAR_SOLVE)
+  {
+    KSP ksp;
+    check(SNESGetKSP(_snes, &ksp), "SNESGetKSP");
+    if (const std::string why = factorization_failure(ksp); !why.empty())
+      r.reason += " (" + why + ")";
+  }
   if (!r.converged)
     _policy.refresh(); // a retry starts from a fresh factorisation
   return r;

@@ -2,7 +2,10 @@
 // by default) on a NonlinearProblem (the whole model or its condensed
 // interface system). Every PETSc option from the command line
 // reaches SNES, KSP and PC (-snes_monitor, -ksp_type, -pc_type, ...); the
-// defaults below apply only where the user gave none.
+// defaults below apply only where the user gave none. Newton has converged
+// when PETSc's test says so, or when ||F|| is at the round-off floor of the
+// residual (NonlinearProblem::residual_floor), below which no tolerance can
+// be met; it is then reported as CONVERGED_FNORM_ABS.
 //
 // Two ways to solve the Newton systems J du = -F:
 //  - Preconditioner::jacobian: factor J (MUMPS LU) in every iteration.
@@ -74,5 +77,16 @@ public:
 
 private:
   static PetscErrorCode jacobian_callback(SNES snes, Vec x, Mat J, Mat P, void* ctx);
+  static PetscErrorCode convergence_test(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm,
+                                         PetscReal fnorm, SNESConvergedReason* reason, void* ctx);
 };
+
+/// Why the last set-up of the preconditioner of `ksp` failed on any of its
+/// processes, in words ("zero pivot", ...; "" if it did not). Collective.
+std::string factorization_failure(KSP ksp);
+
+/// Whether a PETSc error code is a zero pivot of a factorisation that raises
+/// an error instead of recording a failed reason (PETSc's dense LU: the
+/// condensed systems', on one process).
+bool zero_pivot_error(PetscErrorCode code);
 } // namespace pushout::solver

@@ -4,12 +4,21 @@
 // interface dofs after condensing the linear bulk (Condensation.h).
 #pragma once
 
+#include "../common/petsc_check.h"
 #include <petscksp.h>
 #include <petscmat.h>
 #include <petscvec.h>
 
 namespace pushout::solver
 {
+/// C of the round-off floors (NonlinearProblem::residual_floor). Measured
+/// where Newton stagnates on push-out models: ||F|| settles at 0.02 of eps
+/// times the bound's scale on the whole model (full model, 2016 dofs: 7e-11
+/// N against 3.4e-9 N) and at 0.1-0.2 of it on the condensed system, so C
+/// = 1 sits above the noise with a margin, and far below the tolerances a
+/// run needs (tests/e2e/test_solver_floor.py: -snes_atol 1e-30).
+constexpr double residual_floor_factor = 1.0;
+
 class NonlinearProblem
 {
 public:
@@ -23,7 +32,10 @@ public:
   virtual Mat create_operator() const { return create_matrix(); }
   /// The Jacobian held by an operator J (after jacobian(x, J)) into a
   /// create_matrix() matrix P.
-  virtual void copy_jacobian(Mat J, Mat P) const { MatCopy(J, P, SAME_NONZERO_PATTERN); }
+  virtual void copy_jacobian(Mat J, Mat P) const
+  {
+    petsc::check(MatCopy(J, P, SAME_NONZERO_PATTERN), "MatCopy");
+  }
   /// A new vector of the problem's space (the caller destroys it).
   virtual Vec create_vector() const = 0;
 
@@ -36,6 +48,15 @@ public:
   virtual bool residual(Vec x, Vec F, double& reaction_norm) = 0;
   /// The Jacobian dF/dx into J (a matrix from create_matrix()).
   virtual bool jacobian(Vec x, Mat J) = 0;
+
+  /// The round-off floor of ||F|| (2-norm) near x, after residual() at x:
+  /// the level below which ||F|| is the noise of evaluating F in floating
+  /// point and no Newton step lowers it. Collective. A safe bound, e.g.
+  ///   floor = C eps (||A||_inf ||x|| + ||loads|| + ...),
+  /// for F = A x - loads + ...: evaluating row i of A x sums terms of size
+  /// |A_ij x_j| with relative error eps each (the interface and the loads
+  /// likewise), and || |A| |x| || <= ||A||_inf ||x|| (A symmetric).
+  virtual double residual_floor(Vec x) = 0;
 
   /// Adjusts a linear solver already set from the options to what the
   /// matrices of this problem support (called by the solvers).

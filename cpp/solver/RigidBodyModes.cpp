@@ -1,25 +1,28 @@
 #include "RigidBodyModes.h"
+#include "../common/petsc_check.h"
 #include <algorithm>
 #include <dolfinx/common/IndexMap.h>
 
 namespace pushout::solver
 {
+using petsc::check;
+
 void set_rigid_body_modes(const model::Model& m, Mat A)
 {
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(A));
   const std::vector<double> x = m.V->tabulate_dof_coordinates(false);
   const PetscInt n_owned = m.V->dofmap()->index_map->size_local();
   Vec coords;
-  VecCreateMPI(comm, 3 * n_owned, PETSC_DETERMINE, &coords);
-  VecSetBlockSize(coords, 3);
+  check(VecCreateMPI(comm, 3 * n_owned, PETSC_DETERMINE, &coords), "VecCreateMPI");
+  check(VecSetBlockSize(coords, 3), "VecSetBlockSize");
   double* c;
-  VecGetArray(coords, &c);
+  check(VecGetArray(coords, &c), "VecGetArray");
   std::copy_n(x.begin(), 3 * n_owned, c);
-  VecRestoreArray(coords, &c);
+  check(VecRestoreArray(coords, &c), "VecRestoreArray");
   MatNullSpace rigid;
-  MatNullSpaceCreateRigidBody(coords, &rigid);
-  MatSetNearNullSpace(A, rigid);
-  MatNullSpaceDestroy(&rigid);
-  VecDestroy(&coords);
+  check(MatNullSpaceCreateRigidBody(coords, &rigid), "MatNullSpaceCreateRigidBody");
+  check(MatSetNearNullSpace(A, rigid), "MatSetNearNullSpace");
+  check(MatNullSpaceDestroy(&rigid), "MatNullSpaceDestroy");
+  check(VecDestroy(&coords), "VecDestroy");
 }
 } // namespace pushout::solver

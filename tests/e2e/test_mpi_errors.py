@@ -1,0 +1,80 @@
+"""Errors that reach everyone: an error found on one process of
+an `mpirun -n 2` run ends the whole run within seconds, non-zero, with one
+message on stderr (rank 0's, or the failing process's own when the other
+waits in a collective it skipped), never a hang. The failures on one
+process come from a test hook of the driver (PUSHOUT_TEST_FAIL_RANK,
+PUSHOUT_TEST_FAIL_AT: driver/Run.cpp), during the set-up and during the
+load steps. A PETSc error (a solver type that does not exist) is one clear
+message too, without PETSc's traceback, on 1 and 2 processes. mpirun adds
+its own notice that a process ended non-zero; only pushout's lines count.
+Exit 77 = no mpirun (skipped)."""
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+from common import COARSE_MESH, EXP_SOFT, FRICTION_2, OUT_ROOT, check, curve, out_dir
+
+PUSHOUT = sys.argv[1]
+MPIRUN = shutil.which("mpirun")
+if not MPIRUN:
+    print("SKIPPED: mpirun not found (Open MPI comes with libdolfinx-dev)")
+    sys.exit(77)
+scene = os.path.join(OUT_ROOT, "mpi_errors.toml")
+os.makedirs(OUT_ROOT, exist_ok=True)
+with open(scene, "w") as f:
+    f.write(COARSE_MESH + FRICTION_2 + EXP_SOFT +
+            "[loading]\ntemperature_change = -25.0\npush_displacement = 0.05\nsteps = 5\n")
+
+
+def run(name, processes, extra=(), env=None):
+    """Runs the scene; returns (exit code, stderr, wall time [s]); a run
+    still going after 60 s is killed (with its processes) and fails."""
+    out = out_dir("mpi_errors_" + name)
+    cmd = [PUSHOUT, "run", scene, "--out", out, "--quiet", "--set", "output.plot=false", *extra]
+    if processes > 1:
+        cmd = [MPIRUN, "--allow-run-as-root", "--oversubscribe", "-n", str(processes)] + cmd
+    t0 = time.time()
+    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         start_new_session=True,
+                         env=dict(os.environ, OMPI_MCA_btl_vader_single_copy_mechanism="none",
+                                  **(env or {})))
+    try:
+        _, err = p.communicate(timeout=60)
+    except subprocess.TimeoutExpired:
+        os.killpg(p.pid, signal.SIGKILL)
+        p.communicate()
+        check(False, f"{name}: still running after 60 s (a process waits for one that failed)")
+    return p.returncode, err, time.time() - t0, out
+
+
+def one_message(name, err, words):
+    ours = [line for line in err.splitlines() if line.startswith("pushout:")]
+    check(len(ours) == 1, f"{name}: one message from pushout: {ours}")
+    check(all(w in ours[0] for w in words), f"{name}: it says {words}: {ours[0]!r}")
+    check("PETSC ERROR" not in err, f"{name}: no PETSc traceback")
+
+
+for at, words in (("setup", ["error:", "test failure on process 1 at setup"]),
+                  ("step", ["error:", "test failure on process 1 at step"]),
+                  ("collective", ["error:", "test failure on process 1 at collective",
+                                  "did not come to agree"])):
+    name = "fail_" + at
+    rc, err, wall, out = run(name, 2, env={"PUSHOUT_TEST_FAIL_RANK": "1", "PUSHOUT_TEST_FAIL_AT": at})
+    check(rc != 0, f"{name}: exit {rc} (non-zero)")
+    check(wall < 30, f"{name}: ended {wall:.1f} s after the start")
+    one_message(name, err, words)
+    if at == "step":  # the load steps before the failure stay in curve.csv
+        check(len(curve(out)) == 3, f"{name}: curve.csv keeps step 0 and the 2 load steps")
+
+bad_solver = ["-pc_type", "lu", "-pc_factor_mat_solver_type", "nonexistent"]
+for processes, sets in ((1, ["--set", "solver.condensation=off"]), (2, [])):
+    name = f"petsc_error_{processes}"
+    rc, err, wall, _ = run(name, processes, extra=sets + bad_solver)
+    check(0 < rc < 128, f"{name}: exit {rc} (non-zero, no signal)")
+    check(wall < 30, f"{name}: ended {wall:.1f} s after the start")
+    one_message(name, err, ["error: PETSc:", "SNESSolve", "nonexistent"])
+    if processes == 1:
+        check(len(err.strip().splitlines()) == 1, f"{name}: nothing else on stderr: {err!r}")
