@@ -32,13 +32,13 @@ double jacobian_error(const std::string& quadrature, int degree = 1)
   // A loaded state: shrinkage presses the interface; then give the whole
   // concrete a vertical shift so that every point slides, plus noise.
   eq.set_temperature_change(-25.0);
-  Vec x = dolfinx::la::petsc::create_vector(*model.V->dofmap()->index_map, 3);
+  Vec x = model.create_vector();
   VecSet(x, 0.0);
   {
     solver::NewtonSolver newton(eq, solver::NewtonSolver::Preconditioner::jacobian);
     EXPECT_TRUE(newton.solve(x).converged);
   }
-  model.interface->state().commit();
+  model.interface().state().commit();
   std::mt19937 gen(7);
   std::uniform_real_distribution<double> U(-1, 1);
   PetscInt n;
@@ -50,7 +50,7 @@ double jacobian_error(const std::string& quadrature, int degree = 1)
   VecRestoreArray(x, &xa);
 
   Mat J;
-  MatDuplicate(model.K, MAT_COPY_VALUES, &J);
+  MatDuplicate(model.stiffness(), MAT_COPY_VALUES, &J);
   EXPECT_TRUE(eq.jacobian(x, J));
   Vec v, Jv, Fp, Fm, xp, xm;
   for (Vec* w : {&v, &Jv, &Fp, &Fm, &xp, &xm})

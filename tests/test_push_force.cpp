@@ -35,12 +35,12 @@ double push_force_mismatch(int degree)
   solver::Equilibrium eq(model);
   solver::NewtonSolver::set_default_options(solver::NewtonSolver::Preconditioner::jacobian);
   solver::NewtonSolver newton(eq, solver::NewtonSolver::Preconditioner::jacobian);
-  Vec x = dolfinx::la::petsc::create_vector(*model.V->dofmap()->index_map, 3);
+  Vec x = model.create_vector();
   VecSet(x, 0.0);
   pushout.apply_load(0.0, eq);
   eq.apply_constraints(x);
   EXPECT_TRUE(newton.solve(x).converged);
-  model.interface->state().commit();
+  model.interface().state().commit();
   PetscInt n;
   VecGetLocalSize(x, &n);
   const double* xa;
@@ -56,7 +56,7 @@ double push_force_mismatch(int degree)
   Vec reactions;
   VecDuplicate(x, &reactions);
   eq.internal_forces(x, reactions);
-  const std::vector<double> X = model.V->tabulate_dof_coordinates(false);
+  const std::vector<double> X = model.space()->tabulate_dof_coordinates(false);
   const double* r;
   VecGetArrayRead(reactions, &r);
   double P_supports = 0;
@@ -64,7 +64,7 @@ double push_force_mismatch(int degree)
     if (d % 3 == 2 && std::abs(X[d]) < 1e-9) // X[3 block + 2] = z of the block
       P_supports += r[d];
   VecRestoreArrayRead(reactions, &r);
-  const double P_interface = model.interface->resultant()[2];
+  const double P_interface = model.interface().resultant()[2];
   VecDestroy(&reactions);
   VecDestroy(&x);
   EXPECT_GT(std::abs(P_supports), 10.0); // N: a real push, not a trivial zero

@@ -1,5 +1,7 @@
 #include "PushOut.h"
 #include "../common/petsc_check.h"
+#include "../scene/SceneError.h"
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <mpi.h>
@@ -65,9 +67,9 @@ PushOut::PushOut(const Scene& scene, const mesh::MeshData& m, const model::Model
   // each reaction counted, by exactly one process. Chosen by the blocks'
   // positions and materials, so that a P2 bulk's edge, face and interior
   // dofs on the constrained surfaces are included.
-  const std::vector<double> X = model.V->tabulate_dof_coordinates(false);
-  const auto dofmap = model.V->dofmap();
-  const auto& original = model.mesh->topology().original_cell_index;
+  const std::vector<double> X = model.space()->tabulate_dof_coordinates(false);
+  const auto dofmap = model.space()->dofmap();
+  const auto& original = model.mesh()->topology().original_cell_index;
   std::vector<std::uint8_t> block_steel(X.size() / 3, 0), block_concrete(X.size() / 3, 0);
   for (std::size_t cell = 0; cell < original.size(); ++cell)
     for (std::int32_t b : dofmap->cell_dofs(std::int32_t(cell)))
@@ -93,8 +95,8 @@ PushOut::PushOut(const Scene& scene, const mesh::MeshData& m, const model::Model
   {
     const auto add = [&](std::int64_t node, int comp)
     {
-      if (model.owned(model.node_block[node]))
-        _fixed.push_back(3 * model.node_block[node] + comp);
+      if (model.owned(model.node_block(node)))
+        _fixed.push_back(3 * model.node_block(node) + comp);
     };
     const std::int64_t a = nearest(m, support, {c[0] + Rs, c[1], 0});
     const std::int64_t b = nearest(m, support, {c[0] - Rs, c[1], 0});
@@ -170,7 +172,7 @@ void PushOut::constrain(bool top_held, double delta, solver::Equilibrium& eq) co
 std::vector<double> PushOut::row(std::span<const double> /*reactions*/, std::span<const double> x,
                                  const model::Model& model) const
 {
-  const interface::Interface& itf = *model.interface;
+  const interface::Interface& itf = model.interface();
   // Local sums: P, delta, number of top dofs, area, mean slip, normal force
   // per layer.
   std::vector<double> local = {0, 0, double(_top_z.size()), itf.area(), 0};
@@ -209,5 +211,37 @@ std::string PushOut::progress(const std::vector<double>& r) const
   s << "delta = " << r[0] * 1e3 << " um  P = " << r[1] << " N  tau = " << r[2]
     << " MPa  p = " << r[3] << " MPa";
   return s.str();
+}
+} // namespace pushout::driver
+
+namespace pushout::driver
+{
+void PushOut::check_scene(const Scene& scene)
+{
+  const double W = scene.number("geometry.width");
+  const double D = scene.number("geometry.tube_outer_diameter");
+  const double Di = scene.number("geometry.tube_inner_diameter");
+  const double Ds = scene.number("geometry.support_inner_diameter");
+  const auto& c = scene.numbers("geometry.tube_center");
+  if (c.size() != 2)
+    throw SceneError("'geometry.tube_center' must have 2 entries (x, y)");
+  if (!(Di < D))
+    throw SceneError("'geometry.tube_inner_diameter' must be smaller than "
+                     "'geometry.tube_outer_diameter'");
+  if (!(Ds > D))
+    throw SceneError("'geometry.support_inner_diameter' must be larger than "
+                     "'geometry.tube_outer_diameter' (the support holds the "
+                     "concrete, not the tube)");
+  const bool circle = scene.string("geometry.outer_shape") == "circle";
+  // The support hole must leave a ring of concrete inside the slice.
+  const double margin =
+      circle ? W / 2 - Ds / 2 : std::min({c[0], c[1], W - c[0], W - c[1]}) - Ds / 2;
+  if (!(margin > 0))
+    throw SceneError("'geometry.support_inner_diameter' (or "
+                     "'geometry.tube_center') leaves no support outside "
+                     "the hole: the hole must fit inside the slice");
+  if (scene.number("loading.push_displacement") >= scene.number("geometry.thickness"))
+    throw SceneError("'loading.push_displacement' must be smaller than "
+                     "'geometry.thickness'");
 }
 } // namespace pushout::driver

@@ -40,6 +40,11 @@ public:
   /// Constraints and loads go to the dofs this process owns.
   PushOut(const Scene& scene, const mesh::MeshData& mesh, const model::Model& model);
 
+  /// The relations between the push-out's geometry keys that no single
+  /// key's range can express (the tube inside the slice, the support
+  /// outside the tube, ...); throws SceneError naming the keys.
+  static void check_scene(const Scene& scene);
+
   std::vector<std::string> columns() const override;
   int steps() const override { return _steps; }
   bool initial_solve() const override { return _dT != 0.0; }

@@ -5,7 +5,9 @@
 
 #include "../mesh/MeshData.h"
 #include "../model/Model.h"
+#include "../scene/Scene.h"
 #include "../solver/Equilibrium.h"
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -59,4 +61,12 @@ public:
   /// One line for the progress output.
   virtual std::string progress(const std::vector<double>& row) const = 0;
 };
+
+/// The checks of the scene that belong to its model type (model.type):
+/// relations between keys no single range expresses. Throws SceneError.
+void check_scene(const Scene& scene);
+
+/// The scenario of the scene's model type.
+std::unique_ptr<Scenario> make_scenario(const Scene& scene, const mesh::MeshData& mesh,
+                                        const model::Model& model);
 } // namespace pushout::driver

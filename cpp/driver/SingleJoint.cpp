@@ -1,4 +1,5 @@
 #include "SingleJoint.h"
+#include "../scene/SceneError.h"
 #include <algorithm>
 #include <cmath>
 #include <mpi.h>
@@ -23,7 +24,7 @@ SingleJoint::SingleJoint(const Scene& scene, const mesh::MeshData& m, const mode
       on_joint[n] = 1;
   for (std::size_t n = 0; n < m.num_nodes(); ++n)
   {
-    const std::int32_t b = model.node_block[n];
+    const std::int32_t b = model.node_block(n);
     if (!model.owned(b))
       continue; // another process applies its constraints and loads
     if (in_steel[n])
@@ -109,5 +110,16 @@ std::string SingleJoint::progress(const std::vector<double>& r) const
   s.precision(5);
   s << "u_s = " << r[0] << " mm  F_s = " << r[1] << " N  u_n = " << r[2] << " mm";
   return s.str();
+}
+} // namespace pushout::driver
+
+namespace pushout::driver
+{
+void SingleJoint::check_scene(const Scene& scene)
+{
+  if (scene.integer("mesh.degree") == 2)
+    throw SceneError("'mesh.degree' = 2 is implemented for model.type = \"pushout\" only");
+  if (scene.numbers("loading.shear_path").empty())
+    throw SceneError("'loading.shear_path' must have at least one value");
 }
 } // namespace pushout::driver

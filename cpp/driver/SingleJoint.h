@@ -19,6 +19,10 @@ public:
   /// Constraints and loads go to the dofs this process owns.
   SingleJoint(const Scene& scene, const mesh::MeshData& mesh, const model::Model& model);
 
+  /// The single joint's checks of the scene beyond the keys' ranges;
+  /// throws SceneError.
+  static void check_scene(const Scene& scene);
+
   std::vector<std::string> columns() const override
   {
     return {"u_s_mm", "F_s_N", "u_n_mm", "F_n_N"};

@@ -89,15 +89,13 @@ void set_by_material(Function<double>& f, const dolfinx::mesh::Mesh& mesh,
   }
   f.x()->scatter_fwd();
 }
-} // namespace
 
-Model::Model(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene)
+/// Step 1: rank 0 supplies the whole mesh; create_mesh distributes it.
+std::shared_ptr<dolfinx::mesh::Mesh> distribute_mesh(MPI_Comm comm, const mesh::MeshData& data)
 {
-  namespace fem = dolfinx::fem;
-  const fem::CoordinateElement cmap(dolfinx::mesh::CellType::hexahedron, 1);
+  const dolfinx::fem::CoordinateElement cmap(dolfinx::mesh::CellType::hexahedron, 1);
   int rank;
   MPI_Comm_rank(comm, &rank);
-  // Rank 0 supplies the whole mesh; create_mesh distributes it.
   const std::size_t n_in = rank == 0 ? data.num_cells() : 0;
   std::vector<std::int32_t> offsets(n_in + 1);
   for (std::size_t i = 0; i < offsets.size(); ++i)
@@ -106,69 +104,152 @@ Model::Model(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene)
       std::vector<std::int64_t>(data.cells.begin(), data.cells.begin() + 8 * n_in),
       std::move(offsets));
   const std::span<const double> x_in(data.x.data(), rank == 0 ? data.x.size() : 0);
-  mesh = std::make_shared<dolfinx::mesh::Mesh>(
+  return std::make_shared<dolfinx::mesh::Mesh>(
       dolfinx::mesh::create_mesh(comm, cells, cmap, x_in, {x_in.size() / 3, 3},
                                  dolfinx::mesh::GhostMode::none, pair_keeping_partitioner(data)));
+}
 
-  degree = int(scene.integer("mesh.degree"));
-  const bool q2 = degree == 2;
-  V = std::make_shared<fem::FunctionSpace>(
-      q2 ? fem::create_functionspace(functionspace_form_elasticity_a_q2, "u2", mesh)
-         : fem::create_functionspace(functionspace_form_elasticity_a, "u", mesh));
-  u = std::make_shared<Function<double>>(V);
+/// Step 2: the displacement space, P1 or P2 (mesh.degree), block size 3.
+std::shared_ptr<dolfinx::fem::FunctionSpace>
+displacement_space(std::shared_ptr<dolfinx::mesh::Mesh> mesh, int degree)
+{
+  namespace fem = dolfinx::fem;
+  return std::make_shared<fem::FunctionSpace>(
+      degree == 2 ? fem::create_functionspace(functionspace_form_elasticity_a_q2, "u2", mesh)
+                  : fem::create_functionspace(functionspace_form_elasticity_a, "u", mesh));
+}
+
+/// Step 3: E, nu, alpha per cell from its material ([steel], [concrete]).
+Materials assign_materials(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
+                           const std::vector<std::int32_t>& material, const Scene& scene)
+{
+  namespace fem = dolfinx::fem;
   auto Q = std::make_shared<fem::FunctionSpace>(
       fem::create_functionspace(functionspace_form_elasticity_a, "E", mesh));
-  E = std::make_shared<Function<double>>(Q);
-  nu = std::make_shared<Function<double>>(Q);
-  alpha = std::make_shared<Function<double>>(Q);
-  set_by_material(*E, *mesh, data.material, scene.number("steel.E"), scene.number("concrete.E"));
-  set_by_material(*nu, *mesh, data.material, scene.number("steel.nu"), scene.number("concrete.nu"));
-  set_by_material(*alpha, *mesh, data.material, scene.number("steel.alpha"),
-                  scene.number("concrete.alpha"));
-  dT = std::make_shared<fem::Constant<double>>(0.0);
+  Materials m{std::make_shared<Function<double>>(Q), std::make_shared<Function<double>>(Q),
+              std::make_shared<Function<double>>(Q), std::make_shared<fem::Constant<double>>(0.0)};
+  for (const auto& [f, key] : {std::pair{m.E, "E"}, {m.nu, "nu"}, {m.alpha, "alpha"}})
+    set_by_material(*f, *mesh, material, scene.number(std::string("steel.") + key),
+                    scene.number(std::string("concrete.") + key));
+  return m;
+}
 
-  const std::map<std::string, std::shared_ptr<const Function<double>>> coeffs = {
-      {"E", E}, {"nu", nu}, {"alpha", alpha}};
-  _a = std::make_shared<fem::Form<double>>(fem::create_form<double>(
-      q2 ? *form_elasticity_a_q2 : *form_elasticity_a, {V, V}, coeffs,
+using Coefficients = std::map<std::string, std::shared_ptr<const Function<double>>>;
+Coefficients coefficients(const Materials& m)
+{
+  return {{"E", m.E}, {"nu", m.nu}, {"alpha", m.alpha}};
+}
+
+/// Step 4a: the bulk bilinear form a(u, v) (forms/elasticity.py).
+std::shared_ptr<dolfinx::fem::Form<double>>
+bulk_form(std::shared_ptr<dolfinx::fem::FunctionSpace> V, int degree, const Materials& m)
+{
+  namespace fem = dolfinx::fem;
+  return std::make_shared<fem::Form<double>>(fem::create_form<double>(
+      degree == 2 ? *form_elasticity_a_q2 : *form_elasticity_a, {V, V}, coefficients(m),
       std::map<std::string, std::shared_ptr<const fem::Constant<double>>>{}, {}));
-  _L_thermal = std::make_shared<fem::Form<double>>(
-      fem::create_form<double>(q2 ? *form_elasticity_L_thermal_q2 : *form_elasticity_L_thermal, {V},
-                               coeffs, {{"dT", dT}}, {}));
+}
 
-  // Input node -> local dof block: the first dofs of a cell (P1: all; P2:
-  // the vertices' before the edges', faces' and interior's) sit at the
-  // cell's geometry nodes, in the same local order.
-  const auto& x_dofmap = mesh->geometry().dofmap();
-  const auto& input_index = mesh->geometry().input_global_indices();
-  const auto dofmap = V->dofmap();
-  node_block.assign(data.num_nodes(), -1);
+/// Step 4b: the thermal load form L(v) for the temperature change m.dT.
+std::shared_ptr<dolfinx::fem::Form<double>>
+thermal_form(std::shared_ptr<dolfinx::fem::FunctionSpace> V, int degree, const Materials& m)
+{
+  namespace fem = dolfinx::fem;
+  return std::make_shared<fem::Form<double>>(fem::create_form<double>(
+      degree == 2 ? *form_elasticity_L_thermal_q2 : *form_elasticity_L_thermal, {V},
+      coefficients(m), {{"dT", m.dT}}, {}));
+}
+
+/// Step 5: input node -> local dof block. The first dofs of a cell (P1: all;
+/// P2: the vertices' before the edges', faces' and interior's) sit at the
+/// cell's geometry nodes, in the same local order.
+std::vector<std::int32_t> node_blocks(const dolfinx::mesh::Mesh& mesh,
+                                      const dolfinx::fem::FunctionSpace& V, std::size_t n_nodes)
+{
+  const auto& x_dofmap = mesh.geometry().dofmap();
+  const auto& input_index = mesh.geometry().input_global_indices();
+  const auto dofmap = V.dofmap();
+  std::vector<std::int32_t> block(n_nodes, -1);
   for (std::int32_t c = 0; c < x_dofmap.num_nodes(); ++c)
   {
     auto xd = x_dofmap.links(c);
     auto cd = dofmap->cell_dofs(c);
     for (std::size_t i = 0; i < xd.size(); ++i)
-      node_block[input_index[xd[i]]] = cd[i];
+      block[input_index[xd[i]]] = cd[i];
   }
+  return block;
+}
 
-  // Interface: the pairs of this process's cells (the partitioner keeps
-  // both cells of a pair together), their dof blocks and steel-side
-  // coordinates.
-  const auto& original = mesh->topology().original_cell_index;
-  const std::int32_t n_owned_cells = mesh->topology().index_map(3)->size_local();
+/// P2: the 9 dof blocks of a pair side's facet in the order of Quadrature.h,
+/// found among the cell's dofs by position (the facet is the bilinear image
+/// of the reference square with the 4 `corner` coordinates [4][3]).
+void append_facet_blocks_p2(std::span<const std::int32_t> cell_dofs, std::span<const double> dof_x,
+                            const double* corner, std::vector<std::int32_t>& blocks)
+{
+  for (const auto& [xi, eta] : interface::reference_nodes(9))
+  {
+    const std::array<double, 4> N = {(1 - xi) * (1 - eta), xi * (1 - eta), (1 - xi) * eta,
+                                     xi * eta};
+    std::array<double, 3> target{0, 0, 0};
+    for (int a = 0; a < 4; ++a)
+      for (int d = 0; d < 3; ++d)
+        target[d] += N[a] * corner[3 * a + d];
+    std::int32_t best = -1;
+    double d_best = 1e-6 * (1 + std::abs(target[0]) + std::abs(target[1]) + std::abs(target[2]));
+    for (std::int32_t dof : cell_dofs)
+    {
+      const double* y = dof_x.data() + 3 * dof;
+      const double dist = std::hypot(y[0] - target[0], y[1] - target[1], y[2] - target[2]);
+      if (dist < d_best)
+      {
+        d_best = dist;
+        best = dof;
+      }
+    }
+    if (best < 0)
+      throw std::logic_error("P2 interface: no dof of the cell at a facet node");
+    blocks.push_back(best);
+  }
+}
+
+/// The laws of the [[interface]] layers.
+std::vector<std::unique_ptr<laws::InterfaceLaw>> make_layers(const Scene& scene)
+{
+  std::vector<std::unique_ptr<laws::InterfaceLaw>> layers;
+  for (std::size_t l = 0; l < scene.layers().size(); ++l)
+  {
+    const LayerSpec& spec = scene.layers()[l];
+    layers.push_back(
+        laws::find_law(spec.law)->make(spec.params, "interface." + std::to_string(l) + "."));
+  }
+  return layers;
+}
+
+/// Step 6: the interface of this process: the pairs of its cells (the
+/// partitioner keeps both cells of a pair together), their dof blocks and
+/// steel-side coordinates, and the layers' laws.
+std::unique_ptr<interface::Interface>
+build_interface(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene,
+                const dolfinx::mesh::Mesh& mesh, const dolfinx::fem::FunctionSpace& V, int degree,
+                const std::vector<std::int32_t>& node_block)
+{
+  const bool q2 = degree == 2;
+  const auto& original = mesh.topology().original_cell_index;
+  const std::int32_t n_owned_cells = mesh.topology().index_map(3)->size_local();
   std::vector<std::int32_t> local_cell(data.num_cells(), -1); // owned cells only
   for (std::int32_t c = 0; c < n_owned_cells; ++c)
     local_cell[original[c]] = c;
-  std::vector<std::int32_t> pair_blocks;
-  std::vector<double> pair_x;
-  const std::vector<double> dof_x = q2 ? V->tabulate_dof_coordinates(false) : std::vector<double>{};
+  const std::vector<double> dof_x = q2 ? V.tabulate_dof_coordinates(false) : std::vector<double>{};
+  std::vector<std::unique_ptr<laws::InterfaceLaw>> layers = make_layers(scene);
   // A pair split across processes is found on one process: the same error
   // on all of them (common/mpi_errors.h), not one leaving the others in the
   // next collective.
-  mpi::collectively(
+  return mpi::collectively(
       comm,
       [&]
       {
+        std::vector<std::int32_t> pair_blocks;
+        std::vector<double> pair_x;
         for (const mesh::InterfacePair& p : data.pairs)
         {
           if (local_cell[p.steel_cell] < 0)
@@ -180,104 +261,86 @@ Model::Model(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene)
             pair_x.insert(pair_x.end(), data.x.begin() + 3 * n, data.x.begin() + 3 * n + 3);
           if (!q2)
           {
-            for (std::int64_t n : p.steel)
-              pair_blocks.push_back(node_block[n]);
-            for (std::int64_t n : p.concrete)
-              pair_blocks.push_back(node_block[n]);
+            for (const auto& side : {p.steel, p.concrete})
+              for (std::int64_t n : side)
+                pair_blocks.push_back(node_block[n]);
             continue;
           }
-          // P2: the 9 dofs of each side's facet, found by position (the facet is
-          // the bilinear image of the reference square; Quadrature.h's order).
-          const double* corner = pair_x.data() + first_x;
           for (std::int64_t cell : {p.steel_cell, p.concrete_cell})
-          {
-            const auto cd = dofmap->cell_dofs(local_cell[cell]);
-            for (const auto& [xi, eta] : interface::reference_nodes(9))
-            {
-              const std::array<double, 4> N = {(1 - xi) * (1 - eta), xi * (1 - eta), (1 - xi) * eta,
-                                               xi * eta};
-              std::array<double, 3> target{0, 0, 0};
-              for (int a = 0; a < 4; ++a)
-                for (int d = 0; d < 3; ++d)
-                  target[d] += N[a] * corner[3 * a + d];
-              std::int32_t best = -1;
-              double d_best =
-                  1e-6 * (1 + std::abs(target[0]) + std::abs(target[1]) + std::abs(target[2]));
-              for (std::int32_t dof : cd)
-              {
-                const double* y = dof_x.data() + 3 * dof;
-                const double dist =
-                    std::hypot(y[0] - target[0], y[1] - target[1], y[2] - target[2]);
-                if (dist < d_best)
-                {
-                  d_best = dist;
-                  best = dof;
-                }
-              }
-              if (best < 0)
-                throw std::logic_error("P2 interface: no dof of the cell at a facet node");
-              pair_blocks.push_back(best);
-            }
-          }
+            append_facet_blocks_p2(V.dofmap()->cell_dofs(local_cell[cell]), dof_x,
+                                   pair_x.data() + first_x, pair_blocks);
         }
-      });
-  std::vector<std::unique_ptr<laws::InterfaceLaw>> layers;
-  for (std::size_t l = 0; l < scene.layers().size(); ++l)
-  {
-    const LayerSpec& spec = scene.layers()[l];
-    layers.push_back(
-        laws::find_law(spec.law)->make(spec.params, "interface." + std::to_string(l) + "."));
-  }
-  interface = mpi::collectively(
-      comm,
-      [&]
-      {
         return std::make_unique<interface::Interface>(
             std::move(pair_blocks), pair_x,
             interface::make_quadrature(scene.string("mesh.interface_quadrature"), q2 ? 9 : 4),
             std::move(layers));
       });
+}
 
-  // K with the bulk pattern plus the interface couplings.
-  dolfinx::la::SparsityPattern pattern = fem::create_sparsity_pattern(*_a);
-  const auto blocks = interface->pair_blocks();
-  const int nb = 2 * interface->nodes_per_side(); // blocks per joint element
-  for (std::size_t p = 0; p < interface->num_pairs(); ++p)
+/// Step 7: K with the bulk pattern plus the interface couplings, the bulk
+/// assembled into it.
+Mat assemble_stiffness(MPI_Comm comm, const dolfinx::fem::Form<double>& a,
+                       const interface::Interface& itf)
+{
+  dolfinx::la::SparsityPattern pattern = dolfinx::fem::create_sparsity_pattern(a);
+  const auto blocks = itf.pair_blocks();
+  const int nb = 2 * itf.nodes_per_side(); // blocks per joint element
+  for (std::size_t p = 0; p < itf.num_pairs(); ++p)
   {
     std::span<const std::int32_t> b = blocks.subspan(nb * p, nb);
     pattern.insert(b, b);
   }
   pattern.assemble();
-  K = dolfinx::la::petsc::create_matrix(comm, pattern);
+  Mat K = dolfinx::la::petsc::create_matrix(comm, pattern);
   check(MatSetOption(K, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE), "MatSetOption");
   check(MatZeroEntries(K), "MatZeroEntries");
   // Explicit zeros keep the interface couplings in the assembled pattern
   // (PETSc squeezes out preallocated entries that were never set).
   const std::vector<double> zeros(9 * nb * nb, 0.0);
-  for (std::size_t p = 0; p < interface->num_pairs(); ++p)
+  for (std::size_t p = 0; p < itf.num_pairs(); ++p)
     check(MatSetValuesBlockedLocal(K, nb, blocks.data() + nb * p, nb, blocks.data() + nb * p,
                                    zeros.data(), ADD_VALUES),
           "MatSetValuesBlockedLocal");
-  fem::assemble_matrix(dolfinx::la::petsc::Matrix::set_block_fn(K, ADD_VALUES), *_a, {});
+  dolfinx::fem::assemble_matrix(dolfinx::la::petsc::Matrix::set_block_fn(K, ADD_VALUES), a, {});
   check(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   check(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  return K;
+}
+} // namespace
+
+Model::Model(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene)
+    : _mesh(distribute_mesh(comm, data)), _degree(int(scene.integer("mesh.degree"))),
+      _V(displacement_space(_mesh, _degree)),
+      _u(std::make_shared<dolfinx::fem::Function<double>>(_V)),
+      _materials(assign_materials(_mesh, data.material, scene)),
+      _a(bulk_form(_V, _degree, _materials)), _L_thermal(thermal_form(_V, _degree, _materials)),
+      _node_block(node_blocks(*_mesh, *_V, data.num_nodes())),
+      _interface(build_interface(comm, data, scene, *_mesh, *_V, _degree, _node_block)),
+      _K(assemble_stiffness(comm, *_a, *_interface))
+{
+  _u->name = "displacement"; // in fields.xdmf
 }
 
 Model::~Model()
 {
-  if (K)
-    petsc::check_nothrow(MatDestroy(&K), "MatDestroy");
+  if (_K)
+    petsc::check_nothrow(MatDestroy(&_K), "MatDestroy");
 }
 
 std::int64_t Model::num_dofs() const
 {
-  return V->dofmap()->index_map->size_global() * V->dofmap()->index_map_bs();
+  return index_map().size_global() * block_size();
+}
+
+Vec Model::create_vector() const
+{
+  return dolfinx::la::petsc::create_vector(index_map(), block_size());
 }
 
 Vec Model::thermal_load(double dT_value) const
 {
-  dT->value = {dT_value};
-  Vec b = dolfinx::la::petsc::create_vector(*V->dofmap()->index_map, V->dofmap()->index_map_bs());
+  _materials.dT->value = {dT_value};
+  Vec b = create_vector();
   check(VecSet(b, 0.0), "VecSet");
   dolfinx::fem::petsc::assemble_vector(b, *_L_thermal);
   check(VecGhostUpdateBegin(b, ADD_VALUES, SCATTER_REVERSE), "VecGhostUpdateBegin");
@@ -287,66 +350,21 @@ Vec Model::thermal_load(double dT_value) const
 
 Vec Model::mean_axial_slip_functional() const
 {
-  const auto& map = V->dofmap()->index_map;
-  const int bs = V->dofmap()->index_map_bs();
-  dolfinx::la::Vector<double> a(map, bs);
+  dolfinx::la::Vector<double> a(_V->dofmap()->index_map, block_size());
   std::fill(a.mutable_array().begin(), a.mutable_array().end(), 0.0);
-  interface->add_axial_jump_functional(a.mutable_array());
+  _interface->add_axial_jump_functional(a.mutable_array());
   a.scatter_rev(std::plus<double>());
-  double area = interface->area();
-  MPI_Allreduce(MPI_IN_PLACE, &area, 1, MPI_DOUBLE, MPI_SUM, mesh->comm());
+  double area = _interface->area();
+  MPI_Allreduce(MPI_IN_PLACE, &area, 1, MPI_DOUBLE, MPI_SUM, comm());
   if (!(area > 0))
     throw std::runtime_error("path following needs an interface (its area is 0)");
-  Vec v = dolfinx::la::petsc::create_vector(*map, bs);
+  Vec v = create_vector();
   double* va;
   check(VecGetArray(v, &va), "VecGetArray");
-  const std::size_t n_owned = std::size_t(map->size_local() * bs);
+  const std::size_t n_owned = std::size_t(index_map().size_local() * block_size());
   for (std::size_t i = 0; i < n_owned; ++i)
     va[i] = a.array()[i] / area;
   check(VecRestoreArray(v, &va), "VecRestoreArray");
   return v;
-}
-
-StressProjection::StressProjection(const Model& model)
-{
-  namespace fem = dolfinx::fem;
-  auto S = std::make_shared<fem::FunctionSpace>(
-      fem::create_functionspace(functionspace_form_elasticity_L_stress, "tau", model.mesh));
-  auto Q = model.E->function_space();
-  const std::map<std::string, std::shared_ptr<const Function<double>>> coeffs = {
-      {"E", model.E},
-      {"nu", model.nu},
-      {"alpha", model.alpha},
-      {model.degree == 2 ? "u_h2" : "u_h", model.u}};
-  _L_stress = std::make_shared<fem::Form<double>>(fem::create_form<double>(
-      model.degree == 2 ? *form_elasticity_L_stress_q2 : *form_elasticity_L_stress, {S}, coeffs,
-      {{"dT", model.dT}}, {}));
-  _sigma = std::make_shared<Function<double>>(S);
-  _sigma->name = "stress";
-
-  // Cell volumes, once: DG0 on both spaces, one dof (block) per cell.
-  const auto L_volume = fem::create_form<double>(
-      *form_elasticity_L_volume, {Q},
-      std::map<std::string, std::shared_ptr<const Function<double>>>{},
-      std::map<std::string, std::shared_ptr<const fem::Constant<double>>>{}, {});
-  std::vector<double> volume(
-      Q->dofmap()->index_map->size_local() + Q->dofmap()->index_map->num_ghosts(), 0.0);
-  fem::assemble_vector(std::span<double>(volume), L_volume);
-  const std::int32_t n_cells = model.mesh->topology().index_map(3)->size_local();
-  for (std::int32_t c = 0; c < n_cells; ++c)
-    _inverse_volume.emplace_back(S->dofmap()->cell_dofs(c)[0],
-                                 1.0 / volume[Q->dofmap()->cell_dofs(c)[0]]);
-}
-
-const Function<double>& StressProjection::update()
-{
-  std::span<double> s = _sigma->x()->mutable_array();
-  std::fill(s.begin(), s.end(), 0.0);
-  dolfinx::fem::assemble_vector(s, *_L_stress);
-  for (const auto& [block, inv] : _inverse_volume)
-    for (int i = 0; i < 9; ++i)
-      s[9 * block + i] *= inv;
-  _sigma->x()->scatter_fwd();
-  return *_sigma;
 }
 } // namespace pushout::model

@@ -1,11 +1,16 @@
 // The discrete model: DOLFINx mesh and spaces, the bulk forms (forms/
 // elasticity.py), the bulk stiffness K (assembled once: the bulk is linear)
 // and the interface (joint elements) with its laws and state.
+//
+// Built in named steps (Model.cpp): distribute the mesh, the displacement
+// space, the materials, the bulk forms, the node -> dof map, the interface,
+// the stiffness. The rest of the code reads it through the accessors.
 #pragma once
 
 #include "../interface/Interface.h"
 #include "../mesh/MeshData.h"
 #include "../scene/Scene.h"
+#include <dolfinx/common/IndexMap.h>
 #include <dolfinx/fem/Constant.h>
 #include <dolfinx/fem/Form.h>
 #include <dolfinx/fem/Function.h>
@@ -17,6 +22,16 @@
 
 namespace pushout::model
 {
+/// Cell-wise material fields (DG0) and the temperature change of the
+/// thermal load, the coefficients of forms/elasticity.py.
+struct Materials
+{
+  std::shared_ptr<dolfinx::fem::Function<double>> E;     ///< Young's modulus [MPa]
+  std::shared_ptr<dolfinx::fem::Function<double>> nu;    ///< Poisson's ratio [-]
+  std::shared_ptr<dolfinx::fem::Function<double>> alpha; ///< thermal expansion [1/degC]
+  std::shared_ptr<dolfinx::fem::Constant<double>> dT;    ///< temperature change [degC]
+};
+
 class Model
 {
 public:
@@ -25,30 +40,37 @@ public:
   Model(const Model&) = delete;
   Model& operator=(const Model&) = delete;
 
-  std::shared_ptr<dolfinx::mesh::Mesh> mesh;
-  int degree = 1;                                    ///< of the displacement (mesh.degree)
-  std::shared_ptr<dolfinx::fem::FunctionSpace> V;    ///< P1 or P2 displacement, bs 3
-  std::shared_ptr<dolfinx::fem::Function<double>> u; ///< displacement [mm]
-  std::shared_ptr<dolfinx::fem::Function<double>> E, nu, alpha; ///< per cell
-  std::shared_ptr<dolfinx::fem::Constant<double>> dT;           ///< [degC]
-
-  /// Local dof block of each input node (MeshData numbering); -1 if the
-  /// node is not on this process.
-  std::vector<std::int32_t> node_block;
-
-  std::unique_ptr<interface::Interface> interface;
-
-  /// Bulk stiffness K [N/mm], with room for the interface couplings.
-  Mat K = nullptr;
-
+  std::shared_ptr<dolfinx::mesh::Mesh> mesh() const { return _mesh; }
+  MPI_Comm comm() const { return _mesh->comm(); }
+  /// Polynomial degree of the displacement (mesh.degree: 1 or 2).
+  int degree() const { return _degree; }
+  /// The displacement space (P1 or P2, block size 3).
+  std::shared_ptr<const dolfinx::fem::FunctionSpace> space() const { return _V; }
+  const dolfinx::common::IndexMap& index_map() const { return *_V->dofmap()->index_map; }
+  int block_size() const { return _V->dofmap()->index_map_bs(); }
+  /// A new vector of the displacement space (with ghosts); the caller
+  /// destroys it.
+  Vec create_vector() const;
   /// Number of global displacement dofs.
   std::int64_t num_dofs() const;
 
+  /// The displacement [mm] the interface and the outputs read.
+  dolfinx::fem::Function<double>& displacement() { return *_u; }
+  const dolfinx::fem::Function<double>& displacement() const { return *_u; }
+  std::shared_ptr<dolfinx::fem::Function<double>> displacement_ptr() const { return _u; }
+  const Materials& materials() const { return _materials; }
+
+  interface::Interface& interface() { return *_interface; }
+  const interface::Interface& interface() const { return *_interface; }
+
+  /// Bulk stiffness K [N/mm], with room for the interface couplings.
+  Mat stiffness() const { return _K; }
+
+  /// Local dof block of input node `node` (MeshData numbering); -1 if the
+  /// node is not on this process.
+  std::int32_t node_block(std::int64_t node) const { return _node_block[node]; }
   /// Whether a local dof block is owned by this process (not a ghost).
-  bool owned(std::int32_t block) const
-  {
-    return block >= 0 && block < V->dofmap()->index_map->size_local();
-  }
+  bool owned(std::int32_t block) const { return block >= 0 && block < index_map().size_local(); }
 
   /// Coefficients a of the mean axial slip s = a . u [mm] (the axial jump
   /// averaged over the whole interface), owned part: the control variable
@@ -59,20 +81,14 @@ public:
   Vec thermal_load(double dT_value) const;
 
 private:
+  std::shared_ptr<dolfinx::mesh::Mesh> _mesh;
+  int _degree;
+  std::shared_ptr<dolfinx::fem::FunctionSpace> _V;
+  std::shared_ptr<dolfinx::fem::Function<double>> _u;
+  Materials _materials;
   std::shared_ptr<dolfinx::fem::Form<double>> _a, _L_thermal;
-};
-/// Cell-averaged stress [MPa] for output: the DG0 projection of the stress
-/// of forms/elasticity.py (L_stress divided by the cell volumes). Built once;
-/// update() reassembles it from the model's current displacement.
-class StressProjection
-{
-public:
-  explicit StressProjection(const Model& model);
-  const dolfinx::fem::Function<double>& update();
-
-private:
-  std::shared_ptr<dolfinx::fem::Form<double>> _L_stress;
-  std::shared_ptr<dolfinx::fem::Function<double>> _sigma;
-  std::vector<std::pair<std::int32_t, double>> _inverse_volume; ///< (DG0 block, 1/volume)
+  std::vector<std::int32_t> _node_block;
+  std::unique_ptr<interface::Interface> _interface;
+  Mat _K = nullptr;
 };
 } // namespace pushout::model

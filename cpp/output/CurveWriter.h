@@ -1,6 +1,6 @@
 // curve.csv: a header, then one row per converged load step, flushed at once
 // so that a run that stops later keeps every step it finished. One process
-// writes it (rank 0, driver/Run.cpp); a failure to write throws there and
+// writes it (rank 0, driver/StepRecorder.cpp); a failure to write throws there and
 // the run agrees on it (common/mpi_errors.h).
 #pragma once
 

@@ -12,21 +12,21 @@ FieldWriter::FieldWriter(const model::Model& model, const std::filesystem::path&
     : _model(model), _stress(model)
 {
   namespace fem = dolfinx::fem;
-  MPI_Comm comm = model.mesh->comm();
+  MPI_Comm comm = model.comm();
   _fields = std::make_unique<dolfinx::io::XDMFFile>(comm, (dir / "fields.xdmf").string(), "w");
-  _fields->write_mesh(*model.mesh);
-  if (model.degree == 2)
+  _fields->write_mesh(*model.mesh());
+  if (model.degree() == 2)
   {
     _u1 = std::make_shared<fem::Function<double>>(std::make_shared<fem::FunctionSpace>(
-        fem::create_functionspace(functionspace_form_elasticity_a, "u", model.mesh)));
+        fem::create_functionspace(functionspace_form_elasticity_a, "u", model.mesh())));
     _u1->name = "displacement";
   }
 
   // Interface surface mesh: one quadrilateral per pair of this process, on
   // the steel side, numbered globally after the lower processes' ones and
   // kept on this process.
-  const auto& itf = *model.interface;
-  const std::vector<double> dof_x = model.V->tabulate_dof_coordinates(false);
+  const auto& itf = model.interface();
+  const std::vector<double> dof_x = model.space()->tabulate_dof_coordinates(false);
   const std::int64_t n_local = std::int64_t(itf.num_pairs());
   std::int64_t first = 0;
   MPI_Exscan(&n_local, &first, 1, MPI_INT64_T, MPI_SUM, comm);
@@ -91,13 +91,12 @@ FieldWriter::~FieldWriter()
 
 void FieldWriter::write(double t)
 {
-  _model.u->name = "displacement";
   if (_u1)
-    _u1->interpolate(*_model.u);
-  _fields->write_function(_u1 ? *_u1 : *_model.u, t);
+    _u1->interpolate(_model.displacement());
+  _fields->write_function(_u1 ? *_u1 : _model.displacement(), t);
   _fields->write_function(_stress.update(), t);
 
-  const auto& itf = *_model.interface;
+  const auto& itf = _model.interface();
   const std::size_t nq = itf.points_per_pair();
   const std::size_t nf = _ifields.size();
   std::vector<double> sum(nf);
@@ -107,7 +106,7 @@ void FieldWriter::write(double t)
     std::fill(sum.begin(), sum.end(), 0.0);
     for (std::size_t q = 0; q < nq; ++q)
     {
-      const interface::PointOutput o = itf.point_output(_model.u->x()->array(), p, q);
+      const interface::PointOutput o = itf.point_output(_model.displacement().x()->array(), p, q);
       std::vector<double> v = {o.t[0], o.t[1], o.t[2], o.w[0], o.w[1]};
       for (std::size_t l = 0; l < o.slip.size(); ++l)
         v.insert(v.end(), {o.slip[l][0], o.slip[l][1], o.damage[l]});

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "../model/Model.h"
+#include "StressProjection.h"
 #include <dolfinx/io/XDMFFile.h>
 #include <filesystem>
 #include <memory>
@@ -23,7 +24,7 @@ public:
 private:
   const model::Model& _model;
   std::unique_ptr<dolfinx::io::XDMFFile> _fields, _interface;
-  model::StressProjection _stress;
+  StressProjection _stress;
   /// mesh.degree = 2: the displacement interpolated to the trilinear space
   /// of the mesh for XDMF (which stores fields at the mesh's nodes).
   std::shared_ptr<dolfinx::fem::Function<double>> _u1;

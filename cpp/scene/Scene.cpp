@@ -365,40 +365,8 @@ Scene Scene::parse(const std::string& toml_text, const std::vector<Override>& ov
     scene._layers.push_back(read_layer(t, 0));
   }
 
-  // Relations between keys that no single range can express.
-  if (scene.integer("mesh.degree") == 2 && model != "pushout")
-    throw SceneError("'mesh.degree' = 2 is implemented for model.type = \"pushout\" only");
-  if (model == "pushout")
-  {
-    const double W = scene.number("geometry.width");
-    const double D = scene.number("geometry.tube_outer_diameter");
-    const double Di = scene.number("geometry.tube_inner_diameter");
-    const double Ds = scene.number("geometry.support_inner_diameter");
-    const auto& c = scene.numbers("geometry.tube_center");
-    if (c.size() != 2)
-      throw SceneError("'geometry.tube_center' must have 2 entries (x, y)");
-    if (!(Di < D))
-      throw SceneError("'geometry.tube_inner_diameter' must be smaller than "
-                       "'geometry.tube_outer_diameter'");
-    if (!(Ds > D))
-      throw SceneError("'geometry.support_inner_diameter' must be larger than "
-                       "'geometry.tube_outer_diameter' (the support holds the "
-                       "concrete, not the tube)");
-    const bool circle = scene.string("geometry.outer_shape") == "circle";
-    // The support hole must leave a ring of concrete of at least one
-    // interface element size inside the slice.
-    const double margin =
-        circle ? W / 2 - Ds / 2 : std::min({c[0], c[1], W - c[0], W - c[1]}) - Ds / 2;
-    if (!(margin > 0))
-      throw SceneError("'geometry.support_inner_diameter' (or "
-                       "'geometry.tube_center') leaves no support outside "
-                       "the hole: the hole must fit inside the slice");
-    if (scene.number("loading.push_displacement") >= scene.number("geometry.thickness"))
-      throw SceneError("'loading.push_displacement' must be smaller than "
-                       "'geometry.thickness'");
-  }
-  else if (scene.numbers("loading.shear_path").empty())
-    throw SceneError("'loading.shear_path' must have at least one value");
+  // Relations between keys of one model type are its scenario's
+  // (driver/Scenario.h: check_scene), checked before the run.
   return scene;
 }
 

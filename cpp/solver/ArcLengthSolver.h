@@ -16,7 +16,7 @@
 // by block elimination, two solves with the same J:
 //   J v1 = -F,   J v2 = e,
 //   dlambda = -(a . x - eta + a . v1) / (a . v2),   dx = v1 + dlambda v2.
-// The caller chooses the control increment of each step (driver/Run.cpp:
+// The caller chooses the control increment of each step (driver/StepLoop.cpp:
 // from the previous step, scaled to a path length in the (lambda, s) plane).
 // The slip of a push-out only grows (damage and friction never pull the
 // tube back), so a positive increment fixes the direction through a limit

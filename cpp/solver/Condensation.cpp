@@ -19,10 +19,10 @@ constexpr std::size_t max_basis = 6;
 /// sorted by concrete block.
 std::vector<std::pair<std::int32_t, std::int32_t>> node_pairs(const model::Model& model)
 {
-  const auto b = model.interface->pair_blocks();
-  const int n = model.interface->nodes_per_side();
+  const auto b = model.interface().pair_blocks();
+  const int n = model.interface().nodes_per_side();
   std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
-  for (std::size_t p = 0; p < model.interface->num_pairs(); ++p)
+  for (std::size_t p = 0; p < model.interface().num_pairs(); ++p)
     for (int a = 0; a < n; ++a)
       pairs.emplace_back(b[2 * n * p + n + a], b[2 * n * p + a]);
   std::sort(pairs.begin(), pairs.end());
@@ -59,7 +59,7 @@ std::int64_t Condensation::interface_dofs(const model::Model& model)
 bool Condensation::possible(const Equilibrium& eq, std::string& why)
 {
   int size = 1;
-  MPI_Comm_size(PetscObjectComm(reinterpret_cast<PetscObject>(eq.model().K)), &size);
+  MPI_Comm_size(PetscObjectComm(reinterpret_cast<PetscObject>(eq.model().stiffness())), &size);
   return possible(size, interface_dofs(eq.model()), why);
 }
 
@@ -102,7 +102,7 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
   if (!possible(eq, why))
     throw std::runtime_error("cannot condense the bulk: " + why);
   const model::Model& model = eq.model();
-  const auto& map = *model.V->dofmap()->index_map;
+  const auto& map = model.index_map();
   const std::int32_t n_blocks = map.size_local() + map.num_ghosts();
   const auto pairs = node_pairs(model);
   std::vector<std::int32_t> pair_of_block(n_blocks, -1); // concrete block -> node pair
@@ -130,13 +130,13 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
 
   // J0: K with unit constrained rows, plus eps G^T G on the free interface
   // rows; eps a hundredth of K's mean diagonal there.
-  check(MatDuplicate(model.K, MAT_COPY_VALUES, &_J0), "MatDuplicate");
+  check(MatDuplicate(model.stiffness(), MAT_COPY_VALUES, &_J0), "MatDuplicate");
   check(MatZeroRowsLocal(_J0, PetscInt(bc.dofs.size()), bc.dofs.data(), 1.0, nullptr, nullptr),
         "MatZeroRowsLocal");
   {
     Vec diag;
-    check(MatCreateVecs(model.K, &diag, nullptr), "MatCreateVecs");
-    check(MatGetDiagonal(model.K, diag), "MatGetDiagonal");
+    check(MatCreateVecs(model.stiffness(), &diag, nullptr), "MatCreateVecs");
+    check(MatGetDiagonal(model.stiffness(), diag), "MatGetDiagonal");
     const double* dg;
     check(VecGetArrayRead(diag, &dg), "VecGetArrayRead");
     double sum = 0;
@@ -432,7 +432,7 @@ bool Condensation::interface_forces(Vec d, bool tangent, double* force_norm)
   }
   if (tangent)
     check(MatZeroEntries(_T), "MatZeroEntries");
-  const bool ok = _eq.model().interface->assemble(_u, _f, tangent ? _T : nullptr);
+  const bool ok = _eq.model().interface().assemble(_u, _f, tangent ? _T : nullptr);
   if (tangent)
   {
     check(MatAssemblyBegin(_T, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");

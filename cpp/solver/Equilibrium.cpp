@@ -11,10 +11,9 @@ namespace pushout::solver
 using petsc::check;
 
 Equilibrium::Equilibrium(model::Model& model)
-    : _model(model), _f_interface(model.V->dofmap()->index_map, model.V->dofmap()->index_map_bs())
+    : _model(model), _f_interface(model.space()->dofmap()->index_map, model.block_size())
 {
-  _f_external = dolfinx::la::petsc::create_vector(*model.V->dofmap()->index_map,
-                                                  model.V->dofmap()->index_map_bs());
+  _f_external = model.create_vector();
   check(VecSet(_f_external, 0.0), "VecSet");
 }
 
@@ -60,12 +59,11 @@ void Equilibrium::update_displacement(Vec x)
 {
   const double* a;
   check(VecGetArrayRead(x, &a), "VecGetArrayRead");
-  std::span<double> u = _model.u->x()->mutable_array();
-  const std::size_t n_owned =
-      _model.V->dofmap()->index_map->size_local() * _model.V->dofmap()->index_map_bs();
+  std::span<double> u = _model.displacement().x()->mutable_array();
+  const std::size_t n_owned = _model.index_map().size_local() * _model.block_size();
   std::copy_n(a, n_owned, u.begin());
   check(VecRestoreArrayRead(x, &a), "VecRestoreArrayRead");
-  _model.u->x()->scatter_fwd();
+  _model.displacement().x()->scatter_fwd();
 }
 
 bool Equilibrium::internal_forces(Vec x, Vec F)
@@ -73,10 +71,10 @@ bool Equilibrium::internal_forces(Vec x, Vec F)
   update_displacement(x);
   std::span<double> fi = _f_interface.mutable_array();
   std::fill(fi.begin(), fi.end(), 0.0);
-  const bool ok = _model.interface->assemble(_model.u->x()->array(), fi, nullptr);
+  const bool ok = _model.interface().assemble(_model.displacement().x()->array(), fi, nullptr);
   _f_interface.scatter_rev(std::plus<double>());
 
-  check(MatMult(_model.K, x, F), "MatMult");
+  check(MatMult(_model.stiffness(), x, F), "MatMult");
   if (_f_thermal)
     check(VecAXPY(F, -1.0, _f_thermal), "VecAXPY");
   check(VecAXPY(F, -1.0, _f_external), "VecAXPY");
@@ -124,7 +122,7 @@ bool Equilibrium::residual(Vec x, Vec F, double& reaction_norm)
 double Equilibrium::residual_floor(Vec x)
 {
   if (_K_norm < 0)
-    check(MatNorm(_model.K, NORM_INFINITY, &_K_norm), "MatNorm");
+    check(MatNorm(_model.stiffness(), NORM_INFINITY, &_K_norm), "MatNorm");
   double x_norm;
   check(VecNorm(x, NORM_2, &x_norm), "VecNorm");
   double squares[3] = {0, 0, 0}; // thermal, external, interface forces
@@ -168,7 +166,7 @@ void Equilibrium::linear_rhs(Vec b) const
 Mat Equilibrium::create_matrix() const
 {
   Mat J;
-  check(MatDuplicate(_model.K, MAT_COPY_VALUES, &J), "MatDuplicate");
+  check(MatDuplicate(_model.stiffness(), MAT_COPY_VALUES, &J), "MatDuplicate");
   check(MatSetOption(J, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE), "MatSetOption");
   set_rigid_body_modes(_model, J); // for algebraic multigrid (-pc_type gamg)
   return J;
@@ -177,17 +175,17 @@ Mat Equilibrium::create_matrix() const
 Vec Equilibrium::create_vector() const
 {
   Vec v;
-  check(MatCreateVecs(_model.K, nullptr, &v), "MatCreateVecs");
+  check(MatCreateVecs(_model.stiffness(), nullptr, &v), "MatCreateVecs");
   return v;
 }
 
 bool Equilibrium::jacobian(Vec x, Mat J)
 {
   update_displacement(x);
-  check(MatCopy(_model.K, J, SAME_NONZERO_PATTERN), "MatCopy");
+  check(MatCopy(_model.stiffness(), J, SAME_NONZERO_PATTERN), "MatCopy");
   std::span<double> fi = _f_interface.mutable_array();
   std::fill(fi.begin(), fi.end(), 0.0);
-  const bool ok = _model.interface->assemble(_model.u->x()->array(), fi, J);
+  const bool ok = _model.interface().assemble(_model.displacement().x()->array(), fi, J);
   check(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   check(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
   static_assert(sizeof(PetscInt) == sizeof(std::int32_t), "PETSc with 32-bit indices expected");

@@ -60,14 +60,14 @@ public:
   /// f_int(x) - b with J0 = K with unit constrained rows (owned part).
   void linear_rhs(Vec b) const;
 
-  // NonlinearProblem; J has the pattern of model.K.
+  // NonlinearProblem; J has the pattern of the model's stiffness.
   Mat create_matrix() const override;
   Vec create_vector() const override;
   bool residual(Vec x, Vec F) override;
   bool residual(Vec x, Vec F, double& reaction_norm) override;
   bool jacobian(Vec x, Mat J) override;
   double residual_floor(Vec x) override;
-  void forget_trial_state() override { _model.interface->state().revert(); }
+  void forget_trial_state() override { _model.interface().state().revert(); }
   int constraint_version() const override { return _constraint_version; }
 
   /// Copies x into the model's displacement (ghosts updated).

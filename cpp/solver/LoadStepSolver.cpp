@@ -1,15 +1,38 @@
 #include "LoadStepSolver.h"
 #include "../common/petsc_check.h"
+#include "../scene/SceneError.h"
 
 namespace pushout::solver
 {
 using petsc::check;
 
 LoadStepSolver::LoadStepSolver(Equilibrium& eq, bool condense, NewtonSolver::Preconditioner pc,
-                               int refactor_iterations)
+                               int refactor_iterations, std::string description)
     : _eq(eq), _condense(condense), _pc(pc), _refactor_iterations(refactor_iterations),
-      _whole(eq, pc, refactor_iterations)
+      _description(std::move(description)), _whole(eq, pc, refactor_iterations)
 {
+}
+
+std::unique_ptr<LoadStepSolver> LoadStepSolver::from_scene(Equilibrium& eq, const Scene& scene)
+{
+  const auto pc = scene.string("solver.preconditioner") == "lagged"
+                      ? NewtonSolver::Preconditioner::lagged
+                      : NewtonSolver::Preconditioner::jacobian;
+  NewtonSolver::set_default_options(pc);
+
+  const std::string mode = scene.string("solver.condensation");
+  int processes = 1;
+  MPI_Comm_size(eq.model().comm(), &processes);
+  const std::int64_t interface_dofs = Condensation::interface_dofs(eq.model());
+  std::string why;
+  const bool condense = Condensation::chosen(mode, processes, interface_dofs, why);
+  if (!condense && mode == "on")
+    throw SceneError("solver.condensation = \"on\" is not possible here: " + why);
+  const std::string description =
+      condense ? "the " + std::to_string(interface_dofs / 2) + " interface jumps (bulk condensed)"
+               : "the whole model" + (why.empty() ? "" : " (not condensed: " + why + ")");
+  return std::make_unique<LoadStepSolver>(
+      eq, condense, pc, int(scene.integer("solver.refactor_iterations")), description);
 }
 
 LoadStepSolver::~LoadStepSolver()

@@ -3,13 +3,19 @@
 // bulk (Condensation.h), with x recovered after convergence. The
 // condensation is built for the constrained dofs of the step and built
 // again when they change (a thermal step with the tube top free, then the
-// push). Path following works in the same space (problem(), to_problem(),
-// from_problem()).
+// push). Path following works in the same space (PathFollower.h, through
+// problem(), to_problem(), from_problem()).
+//
+// from_scene() decides, from the solver.* keys and the number of processes,
+// whether the bulk is condensed (Condensation::chosen) and says so in
+// description() for the progress line.
 #pragma once
 
+#include "../scene/Scene.h"
 #include "Condensation.h"
 #include "NewtonSolver.h"
 #include <memory>
+#include <string>
 
 namespace pushout::solver
 {
@@ -17,9 +23,24 @@ class LoadStepSolver
 {
 public:
   /// `condense`: solve on the interface dofs (Condensation::possible must
-  /// hold).
+  /// hold). `description`: what Newton runs on, for the progress line.
   LoadStepSolver(Equilibrium& eq, bool condense, NewtonSolver::Preconditioner pc,
-                 int refactor_iterations);
+                 int refactor_iterations, std::string description = "");
+
+  /// The solver the scene's solver.* keys ask for, condensed or not
+  /// (solver.condensation, Condensation::chosen on this number of
+  /// processes); sets PETSc's default Newton options for the preconditioner
+  /// policy. Throws SceneError if solver.condensation = "on" is not possible.
+  static std::unique_ptr<LoadStepSolver> from_scene(Equilibrium& eq, const Scene& scene);
+
+  /// What Newton runs on: "the N interface jumps (bulk condensed)" or "the
+  /// whole model" (with " (not condensed: why)" when the choice was not the
+  /// user's).
+  const std::string& description() const { return _description; }
+
+  /// Builds what the current constraints need before the first solve (the
+  /// condensation, which takes a while on a large interface).
+  void prepare() { update(); }
   ~LoadStepSolver();
   LoadStepSolver(const LoadStepSolver&) = delete;
   LoadStepSolver& operator=(const LoadStepSolver&) = delete;
@@ -49,6 +70,8 @@ public:
   double time_linear_solve(Vec x) { return _whole.time_linear_solve(x); }
 
   bool condensed() const { return _condense; }
+  NewtonSolver::Preconditioner preconditioner() const { return _pc; }
+  int refactor_iterations() const { return _refactor_iterations; }
   /// Size of the condensed system (0 if not condensed).
   std::int64_t condensed_size() const { return _condensation ? _condensation->size() : 0; }
   /// Numeric factorisations so far (whole, condensed and J0 factors).
@@ -62,6 +85,7 @@ private:
   bool _condense;
   NewtonSolver::Preconditioner _pc;
   int _refactor_iterations;
+  std::string _description;
   bool _bulk_needed = true;
   NewtonSolver _whole;
   std::unique_ptr<Condensation> _condensation;

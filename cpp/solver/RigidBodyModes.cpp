@@ -10,8 +10,8 @@ using petsc::check;
 void set_rigid_body_modes(const model::Model& m, Mat A)
 {
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(A));
-  const std::vector<double> x = m.V->tabulate_dof_coordinates(false);
-  const PetscInt n_owned = m.V->dofmap()->index_map->size_local();
+  const std::vector<double> x = m.space()->tabulate_dof_coordinates(false);
+  const PetscInt n_owned = m.index_map().size_local();
   Vec coords;
   check(VecCreateMPI(comm, 3 * n_owned, PETSC_DETERMINE, &coords), "VecCreateMPI");
   check(VecSetBlockSize(coords, 3), "VecSetBlockSize");

@@ -1,0 +1,85 @@
+#include "RunReport.h"
+#include "../output/plot.h"
+#include <fstream>
+#include <iostream>
+#include <mpi.h>
+#include <sys/resource.h>
+
+namespace pushout::driver
+{
+double peak_memory_here_mb()
+{
+  rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  return double(usage.ru_maxrss) / 1024.0;
+}
+
+namespace
+{
+int rank_in_world()
+{
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  return rank;
+}
+} // namespace
+
+RunReport::RunReport(const Scene& scene, const std::filesystem::path& out, bool quiet)
+    : _out(out), _rank(rank_in_world()), _talk(_rank == 0 && !quiet),
+      _on_stop(
+          [this](int sig, const std::string& phase)
+          {
+            std::lock_guard lock(_published_mutex);
+            output::Summary s = _published;
+            s.interrupted = true;
+            s.converged = false;
+            s.signal = sig;
+            s.stopped_in = phase;
+            s.message = "interrupted by " + interrupt::signal_name(sig) + " during " + phase +
+                        " after " + std::to_string(s.steps) + " load steps";
+            s.wall_s = seconds();
+            s.peak_memory_mb = peak_memory_here_mb();
+            if (_rank != 0)
+              return;
+            s.write(_out / "summary.json");
+            std::cerr << "pushout: " << s.message << "; " << (_out / "summary.json").string()
+                      << " says so" << std::endl;
+          })
+{
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  _summary.model_type = scene.string("model.type");
+  _summary.processes = size;
+  if (_rank == 0)
+    std::ofstream(_out / "scene.toml") << scene.to_toml();
+  publish();
+}
+
+void RunReport::publish()
+{
+  std::lock_guard lock(_published_mutex);
+  _published = _summary;
+}
+
+double RunReport::seconds() const
+{
+  return std::chrono::duration<double>(Clock::now() - _start).count();
+}
+
+output::Summary RunReport::finish(const Scene& scene)
+{
+  if (_rank == 0 && scene.boolean("output.plot"))
+  {
+    std::string why;
+    if (!output::plot_curve(_out / "curve.csv", _out / "curve.png", _summary.model_type, why))
+      std::cerr << "pushout: warning: no curve.png: " << why << std::endl;
+  }
+  _summary.wall_s = seconds();
+  double peak_mb = peak_memory_here_mb();
+  MPI_Allreduce(MPI_IN_PLACE, &peak_mb, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  _summary.peak_memory_mb = peak_mb;
+  if (_rank == 0)
+    _summary.write(_out / "summary.json");
+  return _summary;
+}
+} // namespace pushout::driver

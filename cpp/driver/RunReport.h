@@ -1,0 +1,55 @@
+// What a run reports while it runs and when it ends: the summary as it
+// grows, the state a forced stop reports (common/Interrupt.h: the watcher
+// thread writes summary.json from the last published state), the progress
+// lines, and at the end curve.png, the wall time, the peak memory and
+// summary.json.
+#pragma once
+
+#include "../common/Interrupt.h"
+#include "../output/Summary.h"
+#include "../scene/Scene.h"
+#include <chrono>
+#include <filesystem>
+#include <mutex>
+#include <string>
+
+namespace pushout::driver
+{
+class RunReport
+{
+public:
+  /// Writes the resolved scene (scene.toml) into `out` (rank 0) and sets
+  /// the stop report. `quiet`: no progress lines.
+  RunReport(const Scene& scene, const std::filesystem::path& out, bool quiet);
+  RunReport(const RunReport&) = delete;
+  RunReport& operator=(const RunReport&) = delete;
+
+  output::Summary& summary() { return _summary; }
+  /// Makes the summary as it is now the one a forced stop reports.
+  void publish();
+
+  /// Whether this process prints progress lines (rank 0, not quiet).
+  bool talk() const { return _talk; }
+  /// Seconds since the run started.
+  double seconds() const;
+
+  /// The end of the run: curve.png (output.plot), the wall time and the
+  /// largest peak memory of the processes, summary.json (rank 0).
+  /// Collective. Returns the summary.
+  output::Summary finish(const Scene& scene);
+
+private:
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point _start = Clock::now();
+  std::filesystem::path _out;
+  int _rank = 0;
+  bool _talk = false;
+  output::Summary _summary;
+  std::mutex _published_mutex;
+  output::Summary _published; ///< guarded by _published_mutex
+  interrupt::ReportOnStop _on_stop;
+};
+
+/// Peak resident memory of this process so far [MB].
+double peak_memory_here_mb();
+} // namespace pushout::driver

@@ -1,0 +1,326 @@
+#include "StepLoop.h"
+#include "../common/Interrupt.h"
+#include "../common/mpi_errors.h"
+#include "../solver/PathFollower.h"
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+
+namespace pushout::driver
+{
+namespace
+{
+/// A try that converged in at most this many Newton iterations is easy;
+/// two easy tries in a row double the increment again (Stepper.h).
+constexpr int easy_iterations = 4;
+/// The load parameter reaches a nominal step within this tolerance.
+constexpr double step_tolerance = 1e-12;
+/// Path following: snap-back makes the path longer than the final push, so
+/// a run whose path never reaches it stops after path_steps_per_step x the
+/// nominal steps + path_steps_extra.
+constexpr int path_steps_per_step = 20;
+constexpr int path_steps_extra = 100;
+
+/// Test hook, not a scene key (tests/e2e/test_mpi_errors.py): with the
+/// environment variables PUSHOUT_TEST_FAIL_RANK=r and PUSHOUT_TEST_FAIL_AT=
+/// `at`, process r alone throws here, as an error found on one process
+/// only would: "setup" at the end of the set-up (driver/Run.cpp), "step"
+/// after two load steps, "collective" there too but where the others next
+/// wait in a collective that is no agreement (common/mpi_errors.h: the run
+/// ends with MPI_Abort after abandon_after_s).
+void test_failure(const char* at)
+{
+  static const char* fail_rank = std::getenv("PUSHOUT_TEST_FAIL_RANK");
+  static const char* fail_at = std::getenv("PUSHOUT_TEST_FAIL_AT");
+  if (!fail_rank || !fail_at || std::string(fail_at) != at)
+    return;
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  if (rank == std::atoi(fail_rank))
+    throw std::runtime_error(std::string("test failure on process ") + fail_rank + " at " + at +
+                             " (PUSHOUT_TEST_FAIL_AT)");
+}
+} // namespace
+
+void test_failure_at_setup()
+{
+  test_failure("setup");
+}
+
+StepLoop::StepLoop(Scenario& scenario, solver::Equilibrium& equilibrium,
+                   solver::LoadStepSolver& solver, StepRecorder& recorder, RunReport& report,
+                   int max_cuts)
+    : _scenario(scenario), _equilibrium(equilibrium), _solver(solver), _recorder(recorder),
+      _report(report), _summary(report.summary()), _max_cuts(max_cuts),
+      _x(equilibrium.model().create_vector())
+{
+  _x.set(0.0);
+  _x_committed = _x.duplicate();
+  _x_committed.copy_from(_x);
+}
+
+void StepLoop::time_linear_solve()
+{
+  _scenario.apply_load(1.0, _equilibrium);
+  _equilibrium.apply_constraints(_x);
+  _summary.linear_solve_s = _solver.time_linear_solve(_x);
+  _x.set(0.0);
+  if (_report.talk())
+    std::cout << "one linear solve: " << _summary.linear_solve_s << " s" << std::endl;
+}
+
+bool StepLoop::run(Control control)
+{
+  if (!initial_step())
+    return false;
+  if (control == Control::arc_length)
+    return path_following();
+  return displacement_control();
+}
+
+bool StepLoop::stop_requested()
+{
+  if (_summary.steps == 2)
+    test_failure("step");
+  mpi::checkpoint(MPI_COMM_WORLD);
+  if (_summary.steps == 2)
+    test_failure("collective");
+  int local = interrupt::received(), global = 0;
+  MPI_Allreduce(&local, &global, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  if (global == 0)
+    return false;
+  _summary.interrupted = true;
+  _summary.signal = global;
+  _summary.stopped_in = "load steps";
+  _summary.message = "interrupted by " + interrupt::signal_name(global) + " after " +
+                     std::to_string(_summary.steps) + " load steps";
+  return true;
+}
+
+void StepLoop::commit(int iterations, int cuts, int step, int steps)
+{
+  _recorder.record(_x, iterations, cuts, step, steps); // before the commit: StepRecorder.h
+  _equilibrium.model().interface().state().commit();
+  _x_committed.copy_from(_x);
+  ++_summary.steps;
+  _report.publish();
+}
+
+void StepLoop::revert()
+{
+  _equilibrium.model().interface().state().revert();
+  _x.copy_from(_x_committed);
+}
+
+template <class Words>
+bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
+                        const std::string& reason, Words size)
+{
+  if (stop_requested())
+    return false;
+  if (!stepper.failed())
+  {
+    _summary.message = what + " did not converge with " + std::to_string(cuts) + " cuts, down to " +
+                       size(stepper.increment()) + " (" + reason + "); stopped";
+    return false;
+  }
+  ++cuts;
+  ++_summary.cuts;
+  if (_report.talk())
+    std::cout << what.substr(what.rfind("step ")) << ": " << reason << "; retrying with "
+              << size(stepper.increment()) << std::endl;
+  return true;
+}
+
+/// Step 0: the thermal step or preload, if the scenario has one; it takes
+/// the pseudo-time of one nominal load step, so that a viscous damage layer
+/// damages in it as it would in one step of the push (with dt = 0 its
+/// damage would freeze).
+bool StepLoop::initial_step()
+{
+  _scenario.apply_load(0.0, _equilibrium);
+  int iterations = 0;
+  if (_scenario.initial_solve())
+  {
+    if (stop_requested())
+      return false;
+    _equilibrium.model().interface().set_time_increment(_scenario.time_at(1.0) -
+                                                        _scenario.time_at(0.0));
+    _equilibrium.apply_constraints(_x);
+    const solver::SolveReport rep = _solver.solve(_x);
+    iterations = rep.iterations;
+    _summary.newton_iterations += rep.iterations;
+    if (!rep.converged)
+    {
+      if (!stop_requested())
+        _summary.message = "step 0 (initial/thermal step) did not converge: " + rep.reason;
+      return false;
+    }
+  }
+  _solver.set_bulk_needed(_recorder.bulk_needed());
+  {
+    const solver::ReadView x(_x);
+    _scenario.start_loading(x.span());
+  }
+  _recorder.record(_x, iterations, 0, 0, _scenario.steps()); // before the commit
+  _equilibrium.model().interface().state().commit();
+  _x_committed.copy_from(_x);
+  return true;
+}
+
+/// Displacement control: each nominal step is tried whole and cut in halves
+/// (from the committed state) when Newton fails; increments grow back after
+/// easy convergence (Stepper.h).
+bool StepLoop::displacement_control()
+{
+  const int steps = _scenario.steps();
+  Stepper stepper(_max_cuts, easy_iterations);
+  const auto fraction = [](double increment)
+  {
+    std::ostringstream s;
+    s << increment << " of a step";
+    return s.str();
+  };
+  double s = 0.0;
+  for (int k = 1; k <= steps; ++k)
+  {
+    int cuts = 0;
+    while (s < double(k) - step_tolerance)
+    {
+      if (stop_requested())
+        return false;
+      const double s_try = stepper.next(s, double(k));
+      _scenario.apply_load(s_try, _equilibrium);
+      _equilibrium.model().interface().set_time_increment(_scenario.time_at(s_try) -
+                                                          _scenario.time_at(s));
+      _equilibrium.apply_constraints(_x);
+      const solver::SolveReport rep = _solver.solve(_x);
+      _summary.newton_iterations += rep.iterations;
+      if (rep.converged)
+      {
+        commit(rep.iterations, cuts, k, steps);
+        s = s_try;
+        stepper.converged(rep.iterations);
+        continue;
+      }
+      revert();
+      if (!cut_back(stepper, cuts, "load step " + std::to_string(k), rep.reason, fraction))
+        return false;
+    }
+  }
+  return true;
+}
+
+/// Path following (solver/PathFollower.h) in steps of length
+/// h = lambda_final / steps in the plane (lambda, s) of the push delta and
+/// the mean slip [mm]. The first step is displacement-controlled (delta =
+/// h); each later one prescribes the slip increment of the previous step
+/// scaled to length h,  ds = ds_prev h / |(dlambda_prev, ds_prev)|,  which
+/// depends only on converged states (not on the tangent at a kink of the
+/// laws). Failed steps are halved, easy ones grow back (Stepper.h). The step
+/// that would pass lambda_final is replaced by a displacement-controlled step
+/// to exactly lambda_final.
+bool StepLoop::path_following()
+{
+  const double lambda_final = _scenario.final_load_factor();
+  if (!(lambda_final > 0))
+  {
+    _summary.message = "path following needs a positive final push displacement";
+    return false;
+  }
+  interface::Interface& itf = _equilibrium.model().interface();
+  // The constraints of the push (their dofs stay; only values move) before
+  // the solver's problem is taken.
+  _scenario.apply_load_factor(0.0, _equilibrium);
+  const solver::Vector a(_equilibrium.model().mean_axial_slip_functional());
+  solver::PathFollower path(_solver, a);
+  // Counts the path's factorisations on every way out.
+  struct Count
+  {
+    output::Summary& s;
+    const solver::PathFollower& path;
+    ~Count() { s.factorizations += path.factorizations(); }
+  } count{_summary, path};
+
+  const double h_nominal = lambda_final / _scenario.steps(); // [mm]
+  const int max_steps = path_steps_per_step * _scenario.steps() + path_steps_extra;
+  const auto set_load = [&](double lambda) { _scenario.apply_load_factor(lambda, _equilibrium); };
+  // Displacement-controlled step to lambda (first and last steps).
+  const auto displacement_step = [&](double lambda_from, double lambda_to)
+  {
+    set_load(lambda_to);
+    itf.set_time_increment(lambda_to - lambda_from);
+    _equilibrium.apply_constraints(_x);
+    return _solver.solve(_x);
+  };
+  const auto length = [h_nominal](double increment)
+  {
+    std::ostringstream s;
+    s << "a length of " << increment * h_nominal << " mm";
+    return s.str();
+  };
+  Stepper stepper(_max_cuts, easy_iterations);
+  double lambda = 0.0, slip = path.control(_x);
+  double d_lambda_prev = 0.0, d_slip_prev = 0.0; // the last converged step
+  int cuts = 0;
+  for (int k = 1; lambda < lambda_final;)
+  {
+    if (stop_requested())
+      return false;
+    if (k > max_steps)
+    {
+      _summary.message = "path following did not reach the final push displacement in " +
+                         std::to_string(max_steps) + " steps (delta = " + std::to_string(lambda) +
+                         " mm); stopped";
+      return false;
+    }
+    const double h = stepper.increment() * h_nominal;
+    double lambda_new = lambda;
+    solver::SolveReport rep;
+    if (k == 1)
+    {
+      lambda_new = std::min(h, lambda_final);
+      rep = displacement_step(lambda, lambda_new);
+    }
+    else
+    {
+      const double d_slip = d_slip_prev * h / std::hypot(d_lambda_prev, d_slip_prev);
+      itf.set_time_increment(h);
+      rep = path.step(_x, lambda_new, d_slip, set_load);
+      if (rep.converged && lambda_new > lambda_final)
+      {
+        _summary.newton_iterations += rep.iterations;
+        revert();
+        lambda_new = lambda_final;
+        rep = displacement_step(lambda, lambda_new);
+      }
+    }
+    _summary.newton_iterations += rep.iterations;
+    if (rep.converged)
+    {
+      const double slip_new = path.control(_x);
+      if (!(slip_new > slip))
+      {
+        revert();
+        _summary.message = "path following: the mean slip did not grow in step " +
+                           std::to_string(k) + "; the push cannot be followed by slip control";
+        return false;
+      }
+      commit(rep.iterations, cuts, k, 0);
+      d_lambda_prev = lambda_new - lambda;
+      d_slip_prev = slip_new - slip;
+      lambda = lambda_new;
+      slip = slip_new;
+      stepper.converged(rep.iterations);
+      cuts = 0;
+      ++k;
+      continue;
+    }
+    revert();
+    if (!cut_back(stepper, cuts, "path-following step " + std::to_string(k), rep.reason, length))
+      return false;
+  }
+  return true;
+}
+} // namespace pushout::driver

@@ -1,0 +1,75 @@
+// The load steps of a run: step 0 (the thermal step or preload), then
+// displacement control (nominal steps, cut and grown back by Stepper.h) or
+// path following (solver/PathFollower.h), each converged step recorded and
+// committed, a failed one reverted and cut, a signal agreed on between
+// tries (common/Interrupt.h).
+#pragma once
+
+#include "../output/Summary.h"
+#include "../solver/LoadStepSolver.h"
+#include "../solver/Vector.h"
+#include "RunReport.h"
+#include "Scenario.h"
+#include "StepRecorder.h"
+#include "Stepper.h"
+#include <string>
+
+namespace pushout::driver
+{
+class StepLoop
+{
+public:
+  /// How the load steps are controlled (loading.control).
+  enum class Control
+  {
+    displacement, ///< nominal steps of the load parameter
+    arc_length    ///< path following by the mean axial slip (Scenario::has_load_factor)
+  };
+
+  /// `max_cuts`: halvings of a step before the run stops (loading.max_cuts).
+  StepLoop(Scenario& scenario, solver::Equilibrium& equilibrium, solver::LoadStepSolver& solver,
+           StepRecorder& recorder, RunReport& report, int max_cuts);
+
+  /// Times one linear solve of the first load step (the thermal load
+  /// included) from the unloaded state, into the summary.
+  void time_linear_solve();
+
+  /// Step 0, then the load steps. False if a step did not converge or a
+  /// signal stopped the run (summary.message says which).
+  bool run(Control control);
+
+private:
+  bool initial_step();
+  bool displacement_control();
+  bool path_following();
+
+  /// Records and commits the converged state of a step.
+  void commit(int iterations, int cuts, int step, int steps);
+  /// Back to the committed state.
+  void revert();
+  /// After a failed try (reverted): false (with the summary's message) if
+  /// the step cannot be cut again or a signal stops the run; otherwise
+  /// halves the increment, counts the cut and says so. `what` names the
+  /// step, `size(increment)` words its size.
+  template <class Words>
+  bool cut_back(Stepper& stepper, int& cuts, const std::string& what, const std::string& reason,
+                Words size);
+  /// Whether a signal asked to stop (agreed on by all processes); first an
+  /// error of any process since the last agreement is thrown on all.
+  bool stop_requested();
+
+  Scenario& _scenario;
+  solver::Equilibrium& _equilibrium;
+  solver::LoadStepSolver& _solver;
+  StepRecorder& _recorder;
+  RunReport& _report;
+  output::Summary& _summary;
+  int _max_cuts;
+  solver::Vector _x, _x_committed; ///< whole-model displacement [mm]: trial and committed
+};
+
+/// Test hook (tests/e2e/test_mpi_errors.py, StepLoop.cpp): with
+/// PUSHOUT_TEST_FAIL_AT=setup, process PUSHOUT_TEST_FAIL_RANK alone throws
+/// at the end of the set-up.
+void test_failure_at_setup();
+} // namespace pushout::driver

@@ -1,0 +1,85 @@
+#!/usr/bin/python3
+"""The include graph of cpp/ by folder, and whether it has a cycle.
+
+Prints each folder with the project folders it includes (cpp/<folder>/... or
+cpp/main.cpp), then the cycles; exits 1 if there is one. Data flows one way:
+scene -> mesh -> model -> solver -> driver -> output (DESIGN.md); laws/ and
+common/ include nothing but themselves. Used by the test include_graph.
+
+  scripts/include_graph.py [--dot]    (--dot: Graphviz text instead)
+"""
+import re
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent / "cpp"
+INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
+
+
+def folder_of(path: Path) -> str:
+    rel = path.relative_to(ROOT)
+    return rel.parts[0] if len(rel.parts) > 1 else "main"
+
+
+def graph():
+    edges = {}
+    for f in sorted(ROOT.rglob("*")):
+        if f.suffix not in (".h", ".cpp"):
+            continue
+        src = folder_of(f)
+        edges.setdefault(src, set())
+        for inc in INCLUDE.findall(f.read_text()):
+            target = (f.parent / inc).resolve()
+            if not target.exists() or ROOT not in target.parents:
+                continue  # generated (elasticity.h) or outside the project
+            dst = folder_of(target)
+            if dst != src:
+                edges[src].add(dst)
+    return edges
+
+
+def cycles(edges):
+    """Every elementary cycle's folders, found by depth-first search."""
+    found, seen = [], set()
+
+    def visit(node, path):
+        for nxt in sorted(edges.get(node, ())):
+            if nxt in path:
+                cyc = path[path.index(nxt):]
+                key = frozenset(cyc)
+                if key not in seen:
+                    seen.add(key)
+                    found.append(cyc + [nxt])
+            else:
+                visit(nxt, path + [nxt])
+    for start in sorted(edges):
+        visit(start, [start])
+    return found
+
+
+def main():
+    edges = graph()
+    if "--dot" in sys.argv:
+        print("digraph cpp {")
+        for a in sorted(edges):
+            for b in sorted(edges[a]):
+                print(f"  {a} -> {b};")
+        print("}")
+    else:
+        for a in sorted(edges):
+            print(f"{a:10s} -> {', '.join(sorted(edges[a])) or '(nothing)'}")
+    found = cycles(edges)
+    for c in found:
+        print("cycle: " + " -> ".join(c), file=sys.stderr)
+    if not found:
+        print("no cycle between folders")
+    # Folders that include nothing from the project but themselves.
+    leaks = [f"{leaf} includes {', '.join(sorted(edges.get(leaf, ())))}"
+             for leaf in ("laws", "common") if edges.get(leaf)]
+    for leak in leaks:
+        print(leak, file=sys.stderr)
+    return 1 if found or leaks else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
