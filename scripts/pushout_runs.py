@@ -45,10 +45,15 @@ def run(pushout, scene, out, sets=(), petsc=(), one_thread=False, timeout=None, 
     return p
 
 
-def curve(out):
-    """out/curve.csv: one {column: float} per row."""
-    with open(os.path.join(out, "curve.csv"), newline="") as f:
+def curve(out, name="curve.csv"):
+    """out/curve.csv (or another of the run's tables): one {column: float} per row."""
+    with open(os.path.join(out, name), newline="") as f:
         return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+
+
+def corrosion(out):
+    """out/corrosion.csv (the corrosion stage): one {column: float} per row."""
+    return curve(out, "corrosion.csv")
 
 
 def summary(out):

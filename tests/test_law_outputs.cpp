@@ -34,6 +34,9 @@ struct History
 
 const std::array<double, 2> e = {0.6, 0.8}; // the shear direction in (s1, s2)
 constexpr double dt = 1e-3;                 // pseudo-time per step [mm]
+// Every law gets the same oxide inputs; only oxide_friction reads them.
+constexpr double oxide_gap = 5e-4;        // free opening g0 [mm]
+constexpr double oxide_compliance = 2e-4; // [mm^3/N]: with k 1000 in series, 833.3 N/mm^3
 
 /// The path: 20 steps of growing shear (to 0.02 mm) and compression (to
 /// -0.002 mm), 8 of unloading shear (to 0.012 mm), 4 of opening (to 0.001 mm).
@@ -50,10 +53,10 @@ std::vector<std::pair<double, double>> path() // (w_n, |w_s| along e)
 }
 
 /// Coulomb friction along a line (paper §3, eqs. 4-6): the 1D return map
-/// clamps the slip to within mu p / k of the jump; p = max(-k w_n, 0).
-double friction_slip(double slip_old, double ws, double wn, double k, double mu)
+/// clamps the slip to within mu p / k of the jump, p the contact pressure.
+double friction_slip(double slip_old, double ws, double p, double k, double mu)
 {
-  const double reach = mu * std::max(-k * wn, 0.0) / k;
+  const double reach = mu * p / k;
   return std::clamp(slip_old, ws - reach, ws + reach);
 }
 
@@ -103,7 +106,7 @@ Analytic cohesive_friction(double k, double mu, double f_t, double eta,
   {
     h.kappa = std::max(h.kappa, std::hypot(std::max(wn, 0.0), ws));
     h.damage = acting(h.damage, damage_of(h.kappa, k, f_t, sigma), eta);
-    h.slip_e = friction_slip(h.slip_e, ws, wn, k, mu);
+    h.slip_e = friction_slip(h.slip_e, ws, std::max(-k * wn, 0.0), k, mu);
     const double D = h.damage;
     const double td_s = k * (ws - h.slip_e);
     return Expected{{(1 - D) * k * wn + D * k * std::min(wn, 0.0),
@@ -135,9 +138,22 @@ std::map<std::string, std::vector<Case>> cases()
        {},
        [](double wn, double ws, History& h)
        {
-         h.slip_e = friction_slip(h.slip_e, ws, wn, 1000, 0.4);
+         h.slip_e = friction_slip(h.slip_e, ws, std::max(-1000 * wn, 0.0), 1000, 0.4);
          const double ts = 1000 * (ws - h.slip_e);
          return Expected{{1000 * wn, ts * e[0], ts * e[1]}, {h.slip_e * e[0], h.slip_e * e[1]}, 0};
+       }}};
+  // The oxide's pressure p = (g0 - w_n) / (1/k + c_ox) in contact; opening
+  // beyond g0 resists with k.
+  c["oxide_friction"] = {
+      {"k 1000, mu 0.4, g0 5e-4, c_ox 2e-4",
+       {},
+       [](double wn, double ws, History& h)
+       {
+         const double k = 1000, k_contact = 1 / (1 / k + oxide_compliance);
+         const double tn = wn < oxide_gap ? k_contact * (wn - oxide_gap) : k * (wn - oxide_gap);
+         h.slip_e = friction_slip(h.slip_e, ws, std::max(-tn, 0.0), k, 0.4);
+         const double ts = k * (ws - h.slip_e);
+         return Expected{{tn, ts * e[0], ts * e[1]}, {h.slip_e * e[0], h.slip_e * e[1]}, 0};
        }}};
   for (double eta : {0.0, 5e-3})
   {
@@ -196,7 +212,7 @@ TEST(LawOutputs, EveryRegisteredLawMatchesItsClosedForms)
       {
         ++step;
         const Vec3 w = {wn, ws * e[0], ws * e[1]};
-        const LawResult r = law->update(committed, w, trial, dt);
+        const LawResult r = law->update(committed, w, trial, {dt, oxide_gap, oxide_compliance});
         const Expected x = c.expect(wn, ws, h);
         ASSERT_EQ(r.status, LawStatus::ok) << "step " << step;
         const double tol = 1e-9 * (1 + std::abs(x.t[0]) + std::abs(x.t[1]) + std::abs(x.t[2]));
@@ -209,11 +225,12 @@ TEST(LawOutputs, EveryRegisteredLawMatchesItsClosedForms)
         committed = trial;
       }
       // The path reaches what it is meant to: damage, slip, opening.
-      if (info.name != "elastic" && info.name != "friction")
+      const bool frictional = info.name.find("friction") != std::string::npos;
+      if (info.name != "elastic" && info.name != "friction" && info.name != "oxide_friction")
       {
         EXPECT_GT(h.damage, 0.1) << "the path damages the law";
       }
-      if (info.name == "friction" || info.name == "cohesive_friction")
+      if (frictional && info.name != "linear_softening_friction")
       {
         EXPECT_GT(std::abs(h.slip_e), 1e-3) << "the path slides the law";
       }

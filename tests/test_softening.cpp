@@ -201,18 +201,18 @@ TEST(ViscousDamage, LagsTheRateIndependentDamageAndRecoversItAsEtaVanishes)
   Params p{{"k", 100}, {"f_t", 1}, {"w_c2", 0.3}, {"eta", 0.01}};
   const LinearSoftening viscous(p, "");
   std::vector<double> s(LinearSoftening::state_size), s1(s.size()), s0(s.size());
-  const auto r = viscous.update(s, {0, 0.16, 0}, s1, 0.01);
+  const auto r = viscous.update(s, {0, 0.16, 0}, s1, {0.01});
   const double D = 1 - 0.5 / (100 * 0.16);
   EXPECT_NEAR(viscous.damage(s1), 0.5 * D, 1e-14);
   EXPECT_NEAR(r.t[1], (1 - 0.5 * D) * 100 * 0.16, 1e-12);
   EXPECT_GT(r.t[1], linear.update(s, {0, 0.16, 0}, s0).t[1]);
   // dt / eta -> infinity: the rate-independent answer.
-  EXPECT_NEAR(viscous.update(s, {0, 0.16, 0}, s1, 1e9).t[1], 0.5, 1e-8);
+  EXPECT_NEAR(viscous.update(s, {0, 0.16, 0}, s1, {1e9}).t[1], 0.5, 1e-8);
   // Holding the jump, D_v keeps relaxing towards D and never exceeds it.
   std::vector<double> a = s1;
   for (int i = 0; i < 50; ++i)
   {
-    viscous.update(a, {0, 0.16, 0}, s1, 0.01);
+    viscous.update(a, {0, 0.16, 0}, s1, {0.01});
     EXPECT_GE(viscous.damage(s1), viscous.damage(a));
     EXPECT_LE(viscous.damage(s1), D + 1e-15);
     a = s1;
@@ -242,14 +242,14 @@ TEST(ViscousDamage, TangentMatchesFiniteDifferences)
     std::vector<double> s1(s0.size());
     const double dt = 0.001 * std::abs(U(gen)) + 1e-5;
     // tangent_error uses dt = 0; check with dt by hand.
-    const auto r = law.update(s0, w, s1, dt);
+    const auto r = law.update(s0, w, s1, {dt});
     double err = 0;
     for (int j = 0; j < 3; ++j)
     {
       Vec3 wp = w, wm = w;
       wp[j] += 1e-9;
       wm[j] -= 1e-9;
-      const Vec3 tp = law.update(s0, wp, s1, dt).t, tm = law.update(s0, wm, s1, dt).t;
+      const Vec3 tp = law.update(s0, wp, s1, {dt}).t, tm = law.update(s0, wm, s1, {dt}).t;
       for (int i = 0; i < 3; ++i)
         err = std::max(err, std::abs((tp[i] - tm[i]) / 2e-9 - r.D[3 * i + j]) / 1000);
     }

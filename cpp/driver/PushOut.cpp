@@ -1,6 +1,6 @@
 #include "PushOut.h"
-#include "../common/petsc_check.h"
 #include "../scene/SceneError.h"
+#include "../solver/Vector.h"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -11,8 +11,6 @@
 
 namespace pushout::driver
 {
-using petsc::check;
-
 namespace
 {
 /// Node of `candidates` nearest to p.
@@ -107,14 +105,9 @@ PushOut::PushOut(const Scene& scene, const mesh::MeshData& m, const model::Model
     add(t, 1);
   }
   _top_start.assign(_top_z.size(), 0.0);
-  Vec slip = model.mean_axial_slip_functional();
-  const double* sa;
-  PetscInt n;
-  check(VecGetLocalSize(slip, &n), "VecGetLocalSize");
-  check(VecGetArrayRead(slip, &sa), "VecGetArrayRead");
-  _slip.assign(sa, sa + n);
-  check(VecRestoreArrayRead(slip, &sa), "VecRestoreArrayRead");
-  check(VecDestroy(&slip), "VecDestroy");
+  const solver::Vector slip(model.mean_axial_slip_functional());
+  const solver::ReadView slip_view(slip);
+  _slip.assign(slip_view.span().begin(), slip_view.span().end());
 }
 
 std::vector<std::string> PushOut::columns() const
@@ -243,5 +236,13 @@ void PushOut::check_scene(const Scene& scene)
   if (scene.number("loading.push_displacement") >= scene.number("geometry.thickness"))
     throw SceneError("'loading.push_displacement' must be smaller than "
                      "'geometry.thickness'");
+  // The oxide presses on the concrete only through a law that models it.
+  const auto& layers = scene.layers();
+  if (scene.number("corrosion.penetration") > 0 &&
+      std::none_of(layers.begin(), layers.end(),
+                   [](const LayerSpec& l) { return l.law == "oxide_friction"; }))
+    throw SceneError("'corrosion.penetration' > 0 needs an interface layer with law "
+                     "\"oxide_friction\": the oxide presses on the concrete through it "
+                     "(it replaces \"friction\"; docs/corrosion.md)");
 }
 } // namespace pushout::driver

@@ -5,6 +5,7 @@
 #include "../mesh/symmetry.h"
 #include "../model/Model.h"
 #include "../solver/LoadStepSolver.h"
+#include "Corrosion.h"
 #include "ResourceGuard.h"
 #include "RunReport.h"
 #include "Scenario.h"
@@ -95,7 +96,8 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
 
   // Outputs and load steps.
   StepRecorder recorder(scene, opt.out, *scenario, equilibrium, report);
-  StepLoop loop(*scenario, equilibrium, *solver, recorder, report,
+  Corrosion corrosion(scene, opt.out, report);
+  StepLoop loop(*scenario, corrosion, equilibrium, *solver, recorder, report,
                 int(scene.integer("loading.max_cuts")));
   if (scene.boolean("solver.time_linear_solve"))
     loop.time_linear_solve();

@@ -48,11 +48,11 @@ void test_failure_at_setup()
   test_failure("setup");
 }
 
-StepLoop::StepLoop(Scenario& scenario, solver::Equilibrium& equilibrium,
+StepLoop::StepLoop(Scenario& scenario, Corrosion& corrosion, solver::Equilibrium& equilibrium,
                    solver::LoadStepSolver& solver, StepRecorder& recorder, RunReport& report,
                    int max_cuts)
-    : _scenario(scenario), _equilibrium(equilibrium), _solver(solver), _recorder(recorder),
-      _report(report), _summary(report.summary()), _max_cuts(max_cuts),
+    : _scenario(scenario), _corrosion(corrosion), _equilibrium(equilibrium), _solver(solver),
+      _recorder(recorder), _report(report), _summary(report.summary()), _max_cuts(max_cuts),
       _x(equilibrium.model().create_vector())
 {
   _x.set(0.0);
@@ -72,11 +72,13 @@ void StepLoop::time_linear_solve()
 
 bool StepLoop::run(Control control)
 {
-  if (!initial_step())
+  // Step 0 and the corrosion stage end with the push's start recorded
+  // (curve.csv row 0) before their last commit.
+  if (!initial_step() || (_corrosion.active() && !corrode()))
     return false;
   if (control == Control::arc_length)
     return path_following();
-  return displacement_control();
+  return push_by_displacement();
 }
 
 bool StepLoop::stop_requested()
@@ -98,12 +100,10 @@ bool StepLoop::stop_requested()
   return true;
 }
 
-void StepLoop::commit(int iterations, int cuts, int step, int steps)
+void StepLoop::commit()
 {
-  _recorder.record(_x, iterations, cuts, step, steps); // before the commit: StepRecorder.h
   _equilibrium.model().interface().state().commit();
   _x_committed.copy_from(_x);
-  ++_summary.steps;
   _report.publish();
 }
 
@@ -158,23 +158,69 @@ bool StepLoop::initial_step()
       return false;
     }
   }
+  if (_corrosion.active())
+    _corrosion.record(0.0, _equilibrium.model(), iterations, 0, 0);
+  else
+    start_push(iterations);
+  commit();
+  return true;
+}
+
+void StepLoop::start_push(int iterations)
+{
   _solver.set_bulk_needed(_recorder.bulk_needed());
   {
     const solver::ReadView x(_x);
     _scenario.start_loading(x.span());
   }
   _recorder.record(_x, iterations, 0, 0, _scenario.steps()); // before the commit
-  _equilibrium.model().interface().state().commit();
-  _x_committed.copy_from(_x);
-  return true;
 }
 
-/// Displacement control: each nominal step is tried whole and cut in halves
-/// (from the committed state) when Newton fails; increments grow back after
-/// easy convergence (Stepper.h).
-bool StepLoop::displacement_control()
+/// The corrosion stage: the constraints and temperature of step 0, the
+/// interface's oxide inputs of depth x(s); each step takes the pseudo-time
+/// of one nominal push step (as step 0 does), for viscous laws.
+bool StepLoop::corrode()
+{
+  const double step_time = _scenario.time_at(1.0) - _scenario.time_at(0.0);
+  interface::Interface& itf = _equilibrium.model().interface();
+  const int steps = _corrosion.steps();
+  return nominal_steps({"corrosion step", steps,
+                        [&](double s)
+                        {
+                          _scenario.apply_load(0.0, _equilibrium);
+                          _corrosion.apply(s, itf);
+                        },
+                        [&](double s0, double s1) { return (s1 - s0) * step_time; },
+                        [&](int iterations, int cuts, int k, double s)
+                        {
+                          _corrosion.record(s, _equilibrium.model(), iterations, cuts, k);
+                          ++_summary.corrosion_steps;
+                          _summary.penetration_mm = _corrosion.penetration_at(s);
+                          if (s >= steps - step_tolerance)
+                            start_push(0);
+                        }});
+}
+
+/// Displacement control of the push.
+bool StepLoop::push_by_displacement()
 {
   const int steps = _scenario.steps();
+  return nominal_steps(
+      {"load step", steps, [&](double s) { _scenario.apply_load(s, _equilibrium); },
+       [&](double s0, double s1) { return _scenario.time_at(s1) - _scenario.time_at(s0); },
+       [&](int iterations, int cuts, int k, double)
+       {
+         _recorder.record(_x, iterations, cuts, k, steps);
+         ++_summary.steps;
+       }});
+}
+
+/// Each nominal step is tried whole and cut in halves (from the committed
+/// state) when Newton fails; increments grow back after easy convergence
+/// (Stepper.h).
+bool StepLoop::nominal_steps(const Stage& stage)
+{
+  const int steps = stage.steps;
   Stepper stepper(_max_cuts, easy_iterations);
   const auto fraction = [](double increment)
   {
@@ -191,21 +237,21 @@ bool StepLoop::displacement_control()
       if (stop_requested())
         return false;
       const double s_try = stepper.next(s, double(k));
-      _scenario.apply_load(s_try, _equilibrium);
-      _equilibrium.model().interface().set_time_increment(_scenario.time_at(s_try) -
-                                                          _scenario.time_at(s));
+      stage.apply(s_try);
+      _equilibrium.model().interface().set_time_increment(stage.duration(s, s_try));
       _equilibrium.apply_constraints(_x);
       const solver::SolveReport rep = _solver.solve(_x);
       _summary.newton_iterations += rep.iterations;
       if (rep.converged)
       {
-        commit(rep.iterations, cuts, k, steps);
+        stage.record(rep.iterations, cuts, k, s_try); // before the commit: StepRecorder.h
+        commit();
         s = s_try;
         stepper.converged(rep.iterations);
         continue;
       }
       revert();
-      if (!cut_back(stepper, cuts, "load step " + std::to_string(k), rep.reason, fraction))
+      if (!cut_back(stepper, cuts, stage.step_name + " " + std::to_string(k), rep.reason, fraction))
         return false;
     }
   }
@@ -307,7 +353,9 @@ bool StepLoop::path_following()
                            std::to_string(k) + "; the push cannot be followed by slip control";
         return false;
       }
-      commit(rep.iterations, cuts, k, 0);
+      _recorder.record(_x, rep.iterations, cuts, k, 0); // before the commit: StepRecorder.h
+      ++_summary.steps;
+      commit();
       d_lambda_prev = lambda_new - lambda;
       d_slip_prev = slip_new - slip;
       lambda = lambda_new;

@@ -1,6 +1,7 @@
-// The load steps of a run: step 0 (the thermal step or preload), then
+// The load steps of a run: step 0 (the thermal step or preload), the
+// corrosion stage if the scene has one (Corrosion.h), then the push under
 // displacement control (nominal steps, cut and grown back by Stepper.h) or
-// path following (solver/PathFollower.h), each converged step recorded and
+// path following (solver/PathFollower.h); each converged step recorded and
 // committed, a failed one reverted and cut, a signal agreed on between
 // tries (common/Interrupt.h).
 #pragma once
@@ -8,10 +9,12 @@
 #include "../output/Summary.h"
 #include "../solver/LoadStepSolver.h"
 #include "../solver/Vector.h"
+#include "Corrosion.h"
 #include "RunReport.h"
 #include "Scenario.h"
 #include "StepRecorder.h"
 #include "Stepper.h"
+#include <functional>
 #include <string>
 
 namespace pushout::driver
@@ -27,24 +30,42 @@ public:
   };
 
   /// `max_cuts`: halvings of a step before the run stops (loading.max_cuts).
-  StepLoop(Scenario& scenario, solver::Equilibrium& equilibrium, solver::LoadStepSolver& solver,
-           StepRecorder& recorder, RunReport& report, int max_cuts);
+  StepLoop(Scenario& scenario, Corrosion& corrosion, solver::Equilibrium& equilibrium,
+           solver::LoadStepSolver& solver, StepRecorder& recorder, RunReport& report, int max_cuts);
 
   /// Times one linear solve of the first load step (the thermal load
   /// included) from the unloaded state, into the summary.
   void time_linear_solve();
 
-  /// Step 0, then the load steps. False if a step did not converge or a
-  /// signal stopped the run (summary.message says which).
+  /// Step 0, the corrosion stage, then the push. False if a step did not
+  /// converge or a signal stopped the run (summary.message says which).
   bool run(Control control);
 
 private:
+  /// A stage of nominal steps s = 1, ..., steps of a load parameter s.
+  struct Stage
+  {
+    std::string step_name;                          ///< "load step" (messages)
+    int steps;                                      ///< nominal steps
+    std::function<void(double s)> apply;            ///< constraints, loads, inputs at s
+    std::function<double(double, double)> duration; ///< pseudo-time from s0 to s1
+    /// Records a converged try of nominal step k that reached s (before its
+    /// commit; a cut step has several).
+    std::function<void(int iterations, int cuts, int k, double s)> record;
+  };
+
   bool initial_step();
-  bool displacement_control();
+  /// The corrosion stage: steps of the corrosion depth, constraints of step 0.
+  bool corrode();
+  /// The push's start: the scenario's reference state and curve row 0.
+  void start_push(int iterations);
+  /// Nominal steps, each tried whole and cut in halves when Newton fails.
+  bool nominal_steps(const Stage& stage);
+  bool push_by_displacement();
   bool path_following();
 
-  /// Records and commits the converged state of a step.
-  void commit(int iterations, int cuts, int step, int steps);
+  /// Commits the converged state of a step (recorded before).
+  void commit();
   /// Back to the committed state.
   void revert();
   /// After a failed try (reverted): false (with the summary's message) if
@@ -59,6 +80,7 @@ private:
   bool stop_requested();
 
   Scenario& _scenario;
+  Corrosion& _corrosion;
   solver::Equilibrium& _equilibrium;
   solver::LoadStepSolver& _solver;
   StepRecorder& _recorder;

@@ -123,7 +123,7 @@ bool Interface::assemble(std::span<const double> u, std::span<double> f, Mat A)
       for (std::size_t l = 0; l < _layers.size(); ++l)
       {
         const laws::LawResult r =
-            _layers[l]->update(_state.committed(i, l), w, _state.trial(i, l), _dt);
+            _layers[l]->update(_state.committed(i, l), w, _state.trial(i, l), _inputs);
         ok = ok && r.status == laws::LawStatus::ok;
         std::copy(r.t.begin(), r.t.end(), _t_layer.begin() + 3 * (i * _layers.size() + l));
         for (int c = 0; c < 3; ++c)

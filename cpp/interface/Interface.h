@@ -57,7 +57,15 @@ public:
 
   /// Pseudo-time increment of the current step, for viscous laws (the
   /// scenario's time unit; 0: none).
-  void set_time_increment(double dt) { _dt = dt; }
+  void set_time_increment(double dt) { _inputs.dt = dt; }
+
+  /// The oxide layer of the corrosion stage: free normal opening g0 [mm] and
+  /// normal compliance [mm^3/N], read by laws that model it (oxide_friction).
+  void set_oxide(double gap, double compliance)
+  {
+    _inputs.oxide_gap = gap;
+    _inputs.oxide_compliance = compliance;
+  }
 
   /// Evaluates the laws at the displacement `u` (local blocked array,
   /// ghosts included), writes the trial state, adds the interface forces to
@@ -117,6 +125,6 @@ private:
   {
     return _t_layer.data() + 3 * (i * _layers.size() + l);
   }
-  double _dt = 0; ///< pseudo-time increment of the step
+  laws::StepInputs _inputs; ///< inputs of the current step
 };
 } // namespace pushout::interface

@@ -81,8 +81,9 @@ public:
   }
 
   LawResult update(std::span<const double> state_old, const Vec3& w, std::span<double> state_new,
-                   double dt = 0) const
+                   const StepInputs& in = {}) const
   {
+    const double dt = in.dt;
     const double k = _cd.k();
     const CohesiveFrictionState old(state_old);
     const CohesiveFrictionState now(state_new);

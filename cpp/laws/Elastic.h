@@ -27,7 +27,7 @@ public:
   Elastic(const Params& p, const std::string&) : Elastic(p.at("k_n"), p.at("k_s")) {}
 
   LawResult update(std::span<const double>, const Vec3& w, std::span<double>,
-                   double /*dt*/ = 0) const
+                   const StepInputs& /*in*/ = {}) const
   {
     LawResult r;
     r.t = {_kn * w[0], _ks * w[1], _ks * w[2]};

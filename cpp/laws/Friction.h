@@ -39,6 +39,44 @@ private:
   std::span<T> _s;
 };
 
+/// The shear part of eq. (6) on a given contact pressure p [MPa] (with
+/// dp/dw_n [N/mm^3] for the tangent): trial t_s = k (w_s - w^p_old), limit
+/// mu p, radial return. Writes r.t[1], r.t[2], the shear rows of r.D (the
+/// caller has set r.D to its elastic tangent) and the new slip; marks r
+/// failed if the traction is not finite.
+inline void coulomb_return(double k, double mu, double p, double dp_dwn, const Vec3& w,
+                           PlasticSlip<const double> old, PlasticSlip<double> now, LawResult& r)
+{
+  const double ts1 = k * (w[1] - old.s1());
+  const double ts2 = k * (w[2] - old.s2());
+  const double norm = std::hypot(ts1, ts2);
+  const double f = norm - mu * p;
+  now.s1() = old.s1();
+  now.s2() = old.s2();
+  if (f > 0)
+  {
+    const double m1 = ts1 / norm, m2 = ts2 / norm;
+    const double scale = mu * p / norm;
+    r.t[1] = mu * p * m1;
+    r.t[2] = mu * p * m2;
+    now.s1() += f / k * m1;
+    now.s2() += f / k * m2;
+    r.D[4] = scale * k * (1 - m1 * m1);
+    r.D[5] = -scale * k * m1 * m2;
+    r.D[7] = -scale * k * m2 * m1;
+    r.D[8] = scale * k * (1 - m2 * m2);
+    r.D[3] = mu * dp_dwn * m1;
+    r.D[6] = mu * dp_dwn * m2;
+  }
+  else
+  {
+    r.t[1] = ts1;
+    r.t[2] = ts2;
+  }
+  if (!std::isfinite(r.t[0] + r.t[1] + r.t[2]))
+    r.status = LawStatus::failed;
+}
+
 class Friction
 {
 public:
@@ -56,46 +94,16 @@ public:
   Friction(const Params& p, const std::string&) : Friction(p.at("k"), p.at("mu")) {}
 
   LawResult update(std::span<const double> state_old, const Vec3& w, std::span<double> state_new,
-                   double /*dt*/ = 0) const
+                   const StepInputs& /*in*/ = {}) const
   {
     LawResult r;
-    const PlasticSlip old(state_old);
-    const PlasticSlip now(state_new);
     const double k = _k;
     const double tn = k * w[0];
-    const double p = tn < 0 ? -tn : 0.0;
-    const double ts1 = k * (w[1] - old.s1());
-    const double ts2 = k * (w[2] - old.s2());
-    const double norm = std::hypot(ts1, ts2);
-    const double f = norm - _mu * p;
-
     r.t[0] = tn;
     r.D = {k, 0, 0, 0, k, 0, 0, 0, k};
-    now.s1() = old.s1();
-    now.s2() = old.s2();
-    if (f > 0)
-    {
-      const double m1 = ts1 / norm, m2 = ts2 / norm;
-      const double scale = _mu * p / norm;
-      r.t[1] = _mu * p * m1;
-      r.t[2] = _mu * p * m2;
-      now.s1() += f / k * m1;
-      now.s2() += f / k * m2;
-      r.D[4] = scale * k * (1 - m1 * m1);
-      r.D[5] = -scale * k * m1 * m2;
-      r.D[7] = -scale * k * m2 * m1;
-      r.D[8] = scale * k * (1 - m2 * m2);
-      const double dp_dwn = tn < 0 ? -k : 0.0;
-      r.D[3] = _mu * dp_dwn * m1;
-      r.D[6] = _mu * dp_dwn * m2;
-    }
-    else
-    {
-      r.t[1] = ts1;
-      r.t[2] = ts2;
-    }
-    if (!std::isfinite(r.t[0] + r.t[1] + r.t[2]))
-      r.status = LawStatus::failed;
+    const double p = tn < 0 ? -tn : 0.0;
+    const double dp_dwn = tn < 0 ? -k : 0.0;
+    coulomb_return(k, _mu, p, dp_dwn, w, PlasticSlip(state_old), PlasticSlip(state_new), r);
     return r;
   }
 

@@ -25,6 +25,15 @@ enum class LawStatus
   failed ///< non-finite input or result: the driver cuts the step
 };
 
+/// What the load stage gives every law at a step besides the jump: values of
+/// the step, not scene constants. Laws read what they need and ignore the rest.
+struct StepInputs
+{
+  double dt = 0;               ///< pseudo-time increment (viscous laws; 0: none)
+  double oxide_gap = 0;        ///< free normal opening g0 of the oxide layer [mm]
+  double oxide_compliance = 0; ///< normal compliance of the oxide layer [mm^3/N]
+};
+
 /// Result of one law update at one quadrature point.
 struct LawResult
 {
@@ -44,11 +53,11 @@ public:
   virtual int state_size() const = 0;
 
   /// The update: `state_old` is the committed state, `w` the jump [mm],
-  /// `dt` the pseudo-time increment of the step (used by rate-dependent,
-  /// i.e. viscous, laws only); writes the trial state into `state_new`
-  /// (same size).
+  /// `in` the inputs of the step (pseudo-time increment for viscous laws,
+  /// the oxide layer's opening and compliance during corrosion); writes the
+  /// trial state into `state_new` (same size).
   virtual LawResult update(std::span<const double> state_old, const Vec3& w,
-                           std::span<double> state_new, double dt) const = 0;
+                           std::span<double> state_new, const StepInputs& in) const = 0;
 
   /// Inelastic (plastic) slip in the tangent plane [mm], for output.
   virtual std::array<double, 2> slip(std::span<const double> state) const = 0;
@@ -65,9 +74,9 @@ public:
   explicit LawAdapter(L law) : _law(std::move(law)) {}
   int state_size() const override { return L::state_size; }
   LawResult update(std::span<const double> state_old, const Vec3& w, std::span<double> state_new,
-                   double dt) const override
+                   const StepInputs& in) const override
   {
-    return _law.update(state_old, w, state_new, dt);
+    return _law.update(state_old, w, state_new, in);
   }
   std::array<double, 2> slip(std::span<const double> state) const override
   {

@@ -6,6 +6,7 @@
 #include "Friction.h"
 #include "LinearSoftening.h"
 #include "LinearSofteningFriction.h"
+#include "OxideFriction.h"
 
 namespace pushout::laws
 {
@@ -18,6 +19,7 @@ const std::vector<LawInfo>& registered_laws()
       describe<LinearSofteningFriction>(),
       describe<ExponentialSoftening>(),
       describe<CohesiveFriction>(),
+      describe<OxideFriction>(),
   };
   return laws;
 }

@@ -51,9 +51,9 @@ public:
   }
 
   LawResult update(std::span<const double> state_old, const Vec3& w, std::span<double> state_new,
-                   double dt = 0) const
+                   const StepInputs& in = {}) const
   {
-    return _cd.update(state_old, w, state_new, dt);
+    return _cd.update(state_old, w, state_new, in.dt);
   }
   std::array<double, 2> slip(std::span<const double>) const { return {0, 0}; }
   double damage(std::span<const double> state) const { return DamageHistory(state).damage(); }

@@ -15,6 +15,8 @@ void Summary::write(const std::filesystem::path& file) const
       {"symmetry", symmetry},
       {"condensed_dofs", condensed_dofs},
       {"steps", steps},
+      {"corrosion_steps", corrosion_steps},
+      {"penetration_mm", penetration_mm},
       {"newton_iterations", newton_iterations},
       {"cuts", cuts},
       {"factorizations", factorizations},

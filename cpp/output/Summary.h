@@ -8,11 +8,13 @@ namespace pushout::output
 {
 struct Summary
 {
-  bool converged = false;   ///< every requested step converged
-  bool interrupted = false; ///< stopped by a signal
-  int signal = 0;           ///< the signal, if interrupted
-  std::string message;      ///< why it stopped, if it did not finish
-  int steps = 0;            ///< converged load steps (rows after step 0)
+  bool converged = false;    ///< every requested step converged
+  bool interrupted = false;  ///< stopped by a signal
+  int signal = 0;            ///< the signal, if interrupted
+  std::string message;       ///< why it stopped, if it did not finish
+  int steps = 0;             ///< converged load steps (rows after step 0)
+  int corrosion_steps = 0;   ///< converged corrosion steps (corrosion.csv rows after step 0)
+  double penetration_mm = 0; ///< corrosion depth x reached [mm]
   int newton_iterations = 0;
   int cuts = 0;           ///< step cut-backs
   int factorizations = 0; ///< LU factorisations of the Newton systems

@@ -1,0 +1,56 @@
+// The corrosion stage of a push-out (scene section [corrosion];
+// docs/corrosion.md): between the thermal step and the push, the steel
+// turns to oxide to depth x [mm] in `steps` equal steps. The oxide occupies
+// beta times the volume of the steel it replaces (Molina, Alonso & Andrade
+// 1993), so the interface gets the free normal opening
+//   g0 = max((beta - 1) x - porous_zone, 0)
+// and the oxide layer (thickness beta x, bulk modulus B_ox, confined and
+// shear-free) the normal compliance beta x / B_ox, in series with the
+// joint's penalty: the inputs of the law oxide_friction (laws/Oxide.h).
+// Each converged step writes a row of corrosion.csv (rank 0):
+//   step, penetration_mm, p_MPa, crack_width_mm, newton_iterations, cuts, wall_s
+// p the mean interface pressure (as in curve.csv), crack_width_mm the
+// largest crack-mouth opening (0 without crack planes).
+#pragma once
+
+#include "../laws/Oxide.h"
+#include "../model/Model.h"
+#include "../output/CurveWriter.h"
+#include "../scene/Scene.h"
+#include "RunReport.h"
+#include <filesystem>
+#include <optional>
+
+namespace pushout::driver
+{
+class Corrosion
+{
+public:
+  /// Opens corrosion.csv in `out` if the scene has a corrosion stage.
+  Corrosion(const Scene& scene, const std::filesystem::path& out, RunReport& report);
+
+  /// Whether the scene has a corrosion stage (penetration > 0).
+  bool active() const { return _x_final > 0; }
+  int steps() const { return _steps; }
+  /// Corrosion depth x at stage parameter s in [0, steps] [mm].
+  double penetration_at(double s) const { return _x_final * s / _steps; }
+
+  /// Sets the interface's oxide inputs for depth x(s).
+  void apply(double s, interface::Interface& itf) const;
+
+  /// Records the converged state at s of corrosion step `step` (0: before
+  /// corrosion): a corrosion.csv row and the progress line. Collective.
+  void record(double s, const model::Model& model, int iterations, int cuts, int step);
+
+private:
+  double _x_final = 0; ///< [mm]
+  int _steps = 1;
+  laws::OxideLayer _oxide;
+  RunReport& _report;
+  std::optional<output::CurveWriter> _csv; ///< rank 0
+};
+
+/// The mean pressure p = -int t_n dA / A over the whole interface [MPa],
+/// from the last evaluation of the laws. Collective.
+double mean_pressure(const interface::Interface& itf);
+} // namespace pushout::driver
