@@ -3,7 +3,9 @@
 
 push-out: nominal bond stress tau [MPa] against tube displacement delta [um]
 (paper eq. 1); single joint: shear force F_s [N] against shear displacement
-u_s [mm]. Usage: plot_curve.py CURVE.csv OUT.png --kind pushout|single_joint
+u_s [mm]; corrosion (corrosion.csv): interface pressure p [MPa] and crack
+widths [um] against the corrosion depth x [um].
+Usage: plot_curve.py CSV OUT.png --kind pushout|single_joint|corrosion
 """
 import argparse
 import csv
@@ -25,7 +27,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("csv")
     ap.add_argument("png")
-    ap.add_argument("--kind", default="pushout", choices=["pushout", "single_joint"])
+    ap.add_argument("--kind", default="pushout", choices=["pushout", "single_joint", "corrosion"])
     ap.add_argument("--title", default=None)
     args = ap.parse_args()
     data = read(args.csv)
@@ -34,6 +36,19 @@ def main():
         ax.plot([d * 1e3 for d in data.get("delta_mm", [])], data.get("tau_MPa", []), "o-", ms=3)
         ax.set_xlabel("tube displacement $\\delta$ [µm]")
         ax.set_ylabel("nominal bond stress $\\tau$ [MPa]")
+    elif args.kind == "corrosion":
+        x_um = [x * 1e3 for x in data.get("penetration_mm", [])]
+        ax.plot(x_um, data.get("p_MPa", []), "o-", ms=3, color="C0")
+        ax.set_xlabel("corrosion depth $x$ [µm]")
+        ax.set_ylabel("interface pressure $p$ [MPa]", color="C0")
+        widths = sorted(k for k in data if k.startswith("w_crack_"))
+        if widths:
+            ax2 = ax.twinx()
+            for i, k in enumerate(widths):
+                ax2.plot(x_um, [w * 1e3 for w in data[k]], "s-", ms=2, color=f"C{i + 1}",
+                         label=f"crack {k[len('w_crack_'):-3]}")
+            ax2.set_ylabel("crack-mouth opening [µm]")
+            ax2.legend(loc="upper left", fontsize=8)
     else:
         ax.plot(data.get("u_s_mm", []), data.get("F_s_N", []), "o-", ms=3)
         ax.set_xlabel("shear displacement $u_s$ [mm]")

@@ -29,7 +29,14 @@ LAWS = """
 
 One `[[interface]]` table per superposed layer (tractions and tangents add);
 with none, one `friction` layer with the defaults. `law` names the law, the
-other keys are its parameters:
+other keys are its parameters.
+
+`[[crack]]` tables (push-out only, zero or more; docs/corrosion.md): each a
+crack plane through the concrete from the interface to the slice's outer
+boundary, with `angle` (degrees from +x towards +y, or `"nearest_face"`: the
+square's side nearest the tube) and a law of this list in one layer (`law`,
+default `exponential_softening`, and its parameters). `--set crack.0.f_t=2.5`
+changes a crack's parameter.
 
 ```
 """

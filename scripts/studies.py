@@ -13,6 +13,12 @@ Studies (each run keeps its resolved scene.toml next to its curve.csv):
               parameters; dT = -5 ... -50; pushed to 1 mm.
   retraction  the tube's top nodes held (paper) or free during the thermal
               step, mu 0.4, dT -25.
+  corroded    demo/pushout_corroded.toml (oxide_friction k 1000, mu 0.4; crack
+              k 1e5, f_t 3, c 30: G_F 0.1 N/mm; dT -25): the tube centred or
+              15 mm from a face, one crack to the nearest face or four (0, 90,
+              180, 270 deg), beta 2 or 3, corroded to x = 0, 12.5, 25, 50 um,
+              then pushed 0.2 mm: residual bond stress against x and against
+              the crack width (not in the defaults: --only corroded).
 --quick runs the same studies on a coarse mesh with few steps (the test
 suite uses it). Writes OUT/<study>/<case>/ run folders, OUT/*.png figures,
 OUT/plateaus.csv (friction plateau vs mu p) and OUT/timing.json.
@@ -36,6 +42,9 @@ import pushout_runs  # noqa: E402  (beside this script)
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DEMO = os.path.join(ROOT, "demo")
 DTS = [-5.0, -10.0, -25.0, -50.0]
+CORROSION_DEPTHS_UM = [0.0, 12.5, 25.0, 50.0]
+# The corroded demo with four crack planes instead of one (written to OUT).
+FOUR_CRACKS = "pushout_corroded_four_cracks.toml"
 COLORS = {-5.0: "tab:blue", -10.0: "tab:green", -25.0: "tab:orange", -50.0: "tab:red"}
 
 
@@ -72,6 +81,18 @@ def cases(study, quick):
         if quick:  # for the peak-vs-f_t trend
             out.append(("superposed_c25_dT-25_ft1.5", "pushout_friction_adhesion.toml",
                         ["interface.1.f_t=1.5", "loading.temperature_change=-25"] + push))
+    elif study == "corroded":
+        steps = 10 if quick else 20
+        for where, centre in (("centred", "[50.0, 50.0]"), ("cover15", "[50.0, 25.0]")):
+            for cracks in ("one", "four"):
+                for beta in (2.0, 3.0):
+                    for x_um in CORROSION_DEPTHS_UM:
+                        sets = [f"geometry.tube_center={centre}", f"corrosion.beta={beta}",
+                                f"corrosion.penetration={x_um / 1e3}",
+                                f"corrosion.steps={max(1, round(x_um / 2.5))}",
+                                f"loading.steps={steps}"]
+                        scene = "pushout_corroded.toml" if cracks == "one" else FOUR_CRACKS
+                        out.append((f"{where}_{cracks}_beta{beta:g}_x{x_um:g}", scene, sets))
     elif study == "retraction":
         for top in ("held", "free"):
             out.append((top, "pushout_friction.toml",
@@ -80,12 +101,28 @@ def cases(study, quick):
     return out
 
 
+def four_cracks_scene(out):
+    """demo/pushout_corroded.toml with four crack planes at 0, 90, 180, 270 deg."""
+    text = open(os.path.join(DEMO, "pushout_corroded.toml")).read()
+    head, crack = text.split("[[crack]]", 1)
+    crack, tail = crack.split("\n\n", 1)
+    tables = "".join("[[crack]]" + crack.replace('"nearest_face"', f"{a:.1f}") + "\n\n"
+                     for a in (0.0, 90.0, 180.0, 270.0))
+    path = os.path.join(out, FOUR_CRACKS)
+    with open(path, "w") as f:
+        f.write(head + tables + tail)
+    return path
+
+
 def run_case(pushout, study, folder, scene, sets, quick, reuse):
     if reuse and pushout_runs.converged_before(folder):
         return 0.0
     t0 = time.time()
+    path = os.path.join(DEMO, scene)
+    if scene == FOUR_CRACKS:
+        path = os.path.join(os.path.dirname(os.path.dirname(folder)), FOUR_CRACKS)
     # One core per run: the runs go side by side.
-    pushout_runs.run(pushout, os.path.join(DEMO, scene), folder,
+    pushout_runs.run(pushout, path, folder,
                      ["output.plot=false"] + sets + mesh_sets(study, quick), one_thread=True, check=True)
     return time.time() - t0
 
@@ -196,6 +233,47 @@ def plateau_table(out, runs):
     return rows
 
 
+def plot_corroded(out, runs):
+    """Residual bond stress (tau at the last delta) against x and against
+    the crack width after corrosion; push-out curves; OUT/corroded.csv."""
+    table = []
+    for name in sorted({n for (study, n) in runs if study == "corroded"}):
+        folder = os.path.join(out, "corroded", name)
+        rows = runs[("corroded", name)]
+        where, cracks, beta, x = name.split("_")
+        corr = pushout_runs.corrosion(folder) if os.path.exists(os.path.join(folder, "corrosion.csv")) else []
+        table.append({"case": name, "tube": where, "cracks": cracks, "beta": float(beta[4:]),
+                      "x_um": float(x[1:]), "p_after_corrosion_MPa": rows[0]["p_MPa"],
+                      "crack_width_um": 1e3 * corr[-1]["crack_width_mm"] if corr else 0.0,
+                      "tau_peak_MPa": max(r["tau_MPa"] for r in rows),
+                      "tau_residual_MPa": rows[-1]["tau_MPa"]})
+    with open(os.path.join(out, "corroded.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(table[0]))
+        w.writeheader()
+        w.writerows(table)
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.5), dpi=120, sharey=True)
+    styles = {("centred", "one"): "o-", ("centred", "four"): "s-", ("cover15", "one"): "o--",
+              ("cover15", "four"): "s--"}
+    for (where, cracks), style in styles.items():
+        for beta, color in ((2.0, "tab:blue"), (3.0, "tab:red")):
+            sel = sorted((r for r in table if r["tube"] == where and r["cracks"] == cracks
+                          and r["beta"] == beta), key=lambda r: r["x_um"])
+            label = f"{where}, {cracks} crack{'s' if cracks == 'four' else ''}, $\\beta$ {beta:g}"
+            axes[0].plot([r["x_um"] for r in sel], [r["tau_residual_MPa"] for r in sel], style,
+                         color=color, ms=4, label=label)
+            axes[1].plot([r["crack_width_um"] for r in sel], [r["tau_residual_MPa"] for r in sel],
+                         style, color=color, ms=4)
+    axes[0].set(xlabel="corrosion depth $x$ [µm]", ylabel="residual bond stress $\\tau$ [MPa]")
+    axes[1].set(xlabel="crack-mouth opening after corrosion [µm]")
+    for ax in axes:
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize=7)
+    fig.suptitle("Corroded push-out: bond left against corrosion depth and crack width (assumed parameters)")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "corroded_residual_bond.png"))
+    return table
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", default=os.path.join(ROOT, "results", "studies"))
@@ -209,6 +287,8 @@ def main():
                     help="keep runs that already converged in OUT (after an interrupted set)")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
+    if "corroded" in args.only:
+        four_cracks_scene(args.out)
 
     t0 = time.time()
     todo = [(study, name, scene, sets) for study in args.only for name, scene, sets in cases(study, args.quick)]
@@ -229,6 +309,10 @@ def main():
         plot_fig10(args.out, runs)
     if "retraction" in args.only:
         plot_retraction(args.out, runs)
+    if "corroded" in args.only:
+        for r in plot_corroded(args.out, runs):
+            print(f"corroded {r['case']}: p {r['p_after_corrosion_MPa']:.2f} MPa, crack "
+                  f"{r['crack_width_um']:.1f} um, residual tau {r['tau_residual_MPa']:.3f} MPa")
     render_failed = None
     if "fig8" in args.only and not args.no_render:
         try:

@@ -1,7 +1,10 @@
 #include "Corrosion.h"
 #include "../common/mpi_errors.h"
+#include <algorithm>
 #include <iomanip>
 #include <iostream>
+#include <limits>
+#include <numbers>
 #include <numeric>
 #include <sstream>
 
@@ -16,18 +19,20 @@ Corrosion::Corrosion(const Scene& scene, const std::filesystem::path& out, RunRe
   _steps = int(scene.integer("corrosion.steps"));
   _oxide = {scene.number("corrosion.beta"), scene.number("corrosion.porous_zone"),
             scene.number("corrosion.oxide_bulk")};
+  _directions = mesh::crack_directions(scene);
   if (!active())
     return;
+  std::vector<std::string> columns = {"penetration_mm", "p_MPa", "crack_width_mm"};
+  for (std::size_t i = 0; i < scene.cracks().size(); ++i)
+    columns.push_back("w_crack_" + std::to_string(i) + "_mm");
+  columns.insert(columns.end(), {"newton_iterations", "cuts", "wall_s"});
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   mpi::collectively(MPI_COMM_WORLD,
                     [&]
                     {
                       if (rank == 0)
-                        _csv.emplace(out / "corrosion.csv",
-                                     std::vector<std::string>{"penetration_mm", "p_MPa",
-                                                              "crack_width_mm", "newton_iterations",
-                                                              "cuts", "wall_s"});
+                        _csv.emplace(out / "corrosion.csv", columns);
                     });
 }
 
@@ -41,9 +46,11 @@ void Corrosion::record(double s, const model::Model& model, int iterations, int 
 {
   const double x = penetration_at(s);
   const double p = mean_pressure(model.interface());
-  const double crack_width = 0; // no crack planes yet
-  const std::vector<double> values = {
-      x, p, crack_width, double(iterations), double(cuts), _report.seconds()};
+  const std::vector<double> widths = model.crack_mouth_openings();
+  const double crack_width = widths.empty() ? 0.0 : *std::max_element(widths.begin(), widths.end());
+  std::vector<double> values = {x, p, crack_width};
+  values.insert(values.end(), widths.begin(), widths.end());
+  values.insert(values.end(), {double(iterations), double(cuts), _report.seconds()});
   mpi::collectively(MPI_COMM_WORLD,
                     [&]
                     {
@@ -55,9 +62,34 @@ void Corrosion::record(double s, const model::Model& model, int iterations, int 
   std::ostringstream line;
   line.precision(4);
   line << "corrosion " << step << "/" << _steps << "  x = " << x * 1e3 << " um  p = " << p
-       << " MPa  (newton " << iterations << (cuts ? ", cuts " + std::to_string(cuts) : "") << ", "
+       << " MPa";
+  if (!widths.empty())
+    line << "  crack width = " << crack_width * 1e3 << " um";
+  line << "  (newton " << iterations << (cuts ? ", cuts " + std::to_string(cuts) : "") << ", "
        << std::fixed << std::setprecision(2) << _report.seconds() << " s)";
   std::cout << line.str() << std::endl;
+}
+
+void Corrosion::describe_cracks(const model::Model& model, output::Summary& summary) const
+{
+  const std::vector<double> mouth = model.crack_mouth_openings();
+  summary.cracks.clear();
+  for (std::size_t i = 0; i < model.num_cracks(); ++i)
+  {
+    const interface::Interface& crack = model.crack(i);
+    double largest[2] = {-std::numeric_limits<double>::infinity(), 0.0}; // opening, damage
+    for (std::size_t p = 0; p < crack.num_pairs(); ++p)
+      for (std::size_t q = 0; q < crack.points_per_pair(); ++q)
+      {
+        const interface::PointOutput o =
+            crack.point_output(model.displacement().x()->array(), p, q);
+        largest[0] = std::max(largest[0], o.w[0]);
+        largest[1] = std::max(largest[1], o.damage[0]);
+      }
+    MPI_Allreduce(MPI_IN_PLACE, largest, 2, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+    summary.cracks.push_back({_directions.angles[i] * 180 / std::numbers::pi,
+                              bool(_directions.snapped[i]), mouth[i], largest[0], largest[1]});
+  }
 }
 
 double mean_pressure(const interface::Interface& itf)

@@ -8,14 +8,18 @@
 // shear-free) the normal compliance beta x / B_ox, in series with the
 // joint's penalty: the inputs of the law oxide_friction (laws/Oxide.h).
 // Each converged step writes a row of corrosion.csv (rank 0):
-//   step, penetration_mm, p_MPa, crack_width_mm, newton_iterations, cuts, wall_s
+//   step, penetration_mm, p_MPa, crack_width_mm[, w_crack_I_mm...],
+//   newton_iterations, cuts, wall_s
 // p the mean interface pressure (as in curve.csv), crack_width_mm the
-// largest crack-mouth opening (0 without crack planes).
+// largest crack-mouth opening (0 without crack planes), w_crack_I_mm that of
+// crack plane I (Model::crack_mouth_openings).
 #pragma once
 
 #include "../laws/Oxide.h"
+#include "../mesh/cracks.h"
 #include "../model/Model.h"
 #include "../output/CurveWriter.h"
+#include "../output/Summary.h"
 #include "../scene/Scene.h"
 #include "RunReport.h"
 #include <filesystem>
@@ -42,10 +46,15 @@ public:
   /// corrosion): a corrosion.csv row and the progress line. Collective.
   void record(double s, const model::Model& model, int iterations, int cuts, int step);
 
+  /// The crack planes' state now (their direction, mouth and largest
+  /// opening, largest damage) into the summary. Collective.
+  void describe_cracks(const model::Model& model, output::Summary& summary) const;
+
 private:
   double _x_final = 0; ///< [mm]
   int _steps = 1;
   laws::OxideLayer _oxide;
+  mesh::CrackDirections _directions;
   RunReport& _report;
   std::optional<output::CurveWriter> _csv; ///< rank 0
 };

@@ -1,4 +1,5 @@
 #include "PushOut.h"
+#include "../mesh/cracks.h"
 #include "../scene/SceneError.h"
 #include "../solver/Vector.h"
 #include <algorithm>
@@ -96,13 +97,28 @@ PushOut::PushOut(const Scene& scene, const mesh::MeshData& m, const model::Model
       if (model.owned(model.node_block(node)))
         _fixed.push_back(3 * model.node_block(node) + comp);
     };
-    const std::int64_t a = nearest(m, support, {c[0] + Rs, c[1], 0});
-    const std::int64_t b = nearest(m, support, {c[0] - Rs, c[1], 0});
-    const std::int64_t t = nearest(m, top, {c[0] + Ri, c[1], _L});
-    add(a, 0);
-    add(a, 1);
-    add(b, 1);
-    add(t, 1);
+    if (m.cracks.empty())
+    {
+      const std::int64_t a = nearest(m, support, {c[0] + Rs, c[1], 0});
+      const std::int64_t b = nearest(m, support, {c[0] - Rs, c[1], 0});
+      const std::int64_t t = nearest(m, top, {c[0] + Ri, c[1], _L});
+      add(a, 0);
+      add(a, 1);
+      add(b, 1);
+      add(t, 1);
+    }
+    else
+    {
+      // Crack planes may cut the concrete into pieces held by the joints
+      // alone: a fixing on one piece would carry the pieces' forces. The
+      // tube is never cut: its top holds the in-plane rigid modes of the
+      // whole specimen (statically determinate: no reaction at equilibrium).
+      const std::int64_t a = nearest(m, top, {c[0] + Ri, c[1], _L});
+      const std::int64_t b = nearest(m, top, {c[0] - Ri, c[1], _L});
+      add(a, 0);
+      add(a, 1);
+      add(b, 1);
+    }
   }
   _top_start.assign(_top_z.size(), 0.0);
   const solver::Vector slip(model.mean_axial_slip_functional());
@@ -236,6 +252,8 @@ void PushOut::check_scene(const Scene& scene)
   if (scene.number("loading.push_displacement") >= scene.number("geometry.thickness"))
     throw SceneError("'loading.push_displacement' must be smaller than "
                      "'geometry.thickness'");
+  // Crack planes that cannot be meshed (e.g. two within one element).
+  mesh::crack_directions(scene);
   // The oxide presses on the concrete only through a law that models it.
   const auto& layers = scene.layers();
   if (scene.number("corrosion.penetration") > 0 &&

@@ -49,7 +49,9 @@ void describe_model(const Scene& scene, const mesh::MeshData& data, const model:
   s.dofs = model.num_dofs();
   s.cells = std::int64_t(data.num_cells());
   s.symmetry = data.copies == 4 ? "quarter" : "full";
-  const std::int64_t local_pairs = std::int64_t(model.interface().num_pairs());
+  std::int64_t local_pairs = 0; // joint elements: interface and crack planes
+  for (const interface::Interface* joints : model.joints())
+    local_pairs += std::int64_t(joints->num_pairs());
   MPI_Allreduce(&local_pairs, &s.interface_pairs, 1, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
   if (!report.talk())
     return;

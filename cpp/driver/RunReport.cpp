@@ -73,6 +73,9 @@ output::Summary RunReport::finish(const Scene& scene)
     std::string why;
     if (!output::plot_curve(_out / "curve.csv", _out / "curve.png", _summary.model_type, why))
       std::cerr << "pushout: warning: no curve.png: " << why << std::endl;
+    if (_summary.corrosion_steps > 0 &&
+        !output::plot_curve(_out / "corrosion.csv", _out / "corrosion.png", "corrosion", why))
+      std::cerr << "pushout: warning: no corrosion.png: " << why << std::endl;
   }
   _summary.wall_s = seconds();
   double peak_mb = peak_memory_here_mb();

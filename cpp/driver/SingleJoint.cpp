@@ -20,7 +20,7 @@ SingleJoint::SingleJoint(const Scene& scene, const mesh::MeshData& m, const mode
       (m.material[c] == mesh::steel ? in_steel : in_concrete)[m.cells[8 * c + i]] = 1;
   std::vector<std::uint8_t> on_joint(m.num_nodes(), 0);
   for (const auto& p : m.pairs)
-    for (std::int64_t n : p.concrete)
+    for (std::int64_t n : p.plus)
       on_joint[n] = 1;
   for (std::size_t n = 0; n < m.num_nodes(); ++n)
   {

@@ -102,14 +102,16 @@ bool StepLoop::stop_requested()
 
 void StepLoop::commit()
 {
-  _equilibrium.model().interface().state().commit();
+  for (interface::Interface* joints : _equilibrium.model().joints())
+    joints->state().commit();
   _x_committed.copy_from(_x);
   _report.publish();
 }
 
 void StepLoop::revert()
 {
-  _equilibrium.model().interface().state().revert();
+  for (interface::Interface* joints : _equilibrium.model().joints())
+    joints->state().revert();
   _x.copy_from(_x_committed);
 }
 
@@ -137,6 +139,12 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
 /// the pseudo-time of one nominal load step, so that a viscous damage layer
 /// damages in it as it would in one step of the push (with dt = 0 its
 /// damage would freeze).
+void StepLoop::set_time_increment(double dt)
+{
+  for (interface::Interface* joints : _equilibrium.model().joints())
+    joints->set_time_increment(dt);
+}
+
 bool StepLoop::initial_step()
 {
   _scenario.apply_load(0.0, _equilibrium);
@@ -145,8 +153,7 @@ bool StepLoop::initial_step()
   {
     if (stop_requested())
       return false;
-    _equilibrium.model().interface().set_time_increment(_scenario.time_at(1.0) -
-                                                        _scenario.time_at(0.0));
+    set_time_increment(_scenario.time_at(1.0) - _scenario.time_at(0.0));
     _equilibrium.apply_constraints(_x);
     const solver::SolveReport rep = _solver.solve(_x);
     iterations = rep.iterations;
@@ -168,6 +175,7 @@ bool StepLoop::initial_step()
 
 void StepLoop::start_push(int iterations)
 {
+  _corrosion.describe_cracks(_equilibrium.model(), _summary);
   _solver.set_bulk_needed(_recorder.bulk_needed());
   {
     const solver::ReadView x(_x);
@@ -238,7 +246,7 @@ bool StepLoop::nominal_steps(const Stage& stage)
         return false;
       const double s_try = stepper.next(s, double(k));
       stage.apply(s_try);
-      _equilibrium.model().interface().set_time_increment(stage.duration(s, s_try));
+      set_time_increment(stage.duration(s, s_try));
       _equilibrium.apply_constraints(_x);
       const solver::SolveReport rep = _solver.solve(_x);
       _summary.newton_iterations += rep.iterations;
@@ -275,7 +283,6 @@ bool StepLoop::path_following()
     _summary.message = "path following needs a positive final push displacement";
     return false;
   }
-  interface::Interface& itf = _equilibrium.model().interface();
   // The constraints of the push (their dofs stay; only values move) before
   // the solver's problem is taken.
   _scenario.apply_load_factor(0.0, _equilibrium);
@@ -296,7 +303,7 @@ bool StepLoop::path_following()
   const auto displacement_step = [&](double lambda_from, double lambda_to)
   {
     set_load(lambda_to);
-    itf.set_time_increment(lambda_to - lambda_from);
+    set_time_increment(lambda_to - lambda_from);
     _equilibrium.apply_constraints(_x);
     return _solver.solve(_x);
   };
@@ -332,7 +339,7 @@ bool StepLoop::path_following()
     else
     {
       const double d_slip = d_slip_prev * h / std::hypot(d_lambda_prev, d_slip_prev);
-      itf.set_time_increment(h);
+      set_time_increment(h);
       rep = path.step(_x, lambda_new, d_slip, set_load);
       if (rep.converged && lambda_new > lambda_final)
       {

@@ -64,6 +64,8 @@ private:
   bool push_by_displacement();
   bool path_following();
 
+  /// The pseudo-time increment of the step, for every set of joints.
+  void set_time_increment(double dt);
   /// Commits the converged state of a step (recorded before).
   void commit();
   /// Back to the committed state.

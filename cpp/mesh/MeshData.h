@@ -15,16 +15,32 @@ enum Material : std::int32_t
   concrete = 2
 };
 
-/// A joint element: a steel facet and its concrete partner facet. Nodes are
-/// in tensor order (0:(0,0) 1:(1,0) 2:(0,1) 3:(1,1) of the facet's (xi,eta))
-/// and oriented so that dx/dxi x dx/deta points from steel to concrete.
-/// Node i of the steel side sits where node i of the concrete side sits.
+/// Local vertices of the 6 facets of a DOLFINx hexahedron, tensor order.
+inline constexpr std::array<std::array<int, 4>, 6> hex_facets = {
+    {{0, 1, 2, 3}, {0, 1, 4, 5}, {0, 2, 4, 6}, {1, 3, 5, 7}, {2, 3, 6, 7}, {4, 5, 6, 7}}};
+
+/// A joint element: a facet on the minus side and its partner facet on the
+/// plus side; the jump is w = u_plus - u_minus. On the steel-concrete
+/// interface minus is steel and plus is concrete; on a crack plane they are
+/// its two faces. Nodes are in tensor order (0:(0,0) 1:(1,0) 2:(0,1) 3:(1,1)
+/// of the facet's (xi,eta)) and oriented so that dx/dxi x dx/deta points
+/// from minus to plus. Node i of one side sits where node i of the other
+/// sits.
 struct InterfacePair
 {
-  std::array<std::int64_t, 4> steel;
-  std::array<std::int64_t, 4> concrete;
-  std::int64_t steel_cell;    ///< the cell of the steel facet
-  std::int64_t concrete_cell; ///< the cell of the concrete facet
+  std::array<std::int64_t, 4> minus;
+  std::array<std::int64_t, 4> plus;
+  std::int64_t minus_cell; ///< the cell of the minus facet
+  std::int64_t plus_cell;  ///< the cell of the plus facet
+};
+
+/// A crack plane in the concrete (mesh/cracks.h): its joint elements and
+/// the node pairs of its mouth on the slice's outer boundary.
+struct CrackPlane
+{
+  double angle = 0;                               ///< direction from the tube axis [rad]
+  std::vector<InterfacePair> pairs;               ///< minus side: clockwise of the ray
+  std::vector<std::array<std::int64_t, 2>> mouth; ///< (minus, plus) nodes at the outer face
 };
 
 /// Hexahedral mesh with duplicated nodes on the steel-concrete surface.
@@ -33,7 +49,8 @@ struct MeshData
   std::vector<double> x;              ///< [node][3] coordinates, mm
   std::vector<std::int64_t> cells;    ///< [cell][8] nodes, DOLFINx order
   std::vector<std::int32_t> material; ///< [cell] Material
-  std::vector<InterfacePair> pairs;   ///< joint elements
+  std::vector<InterfacePair> pairs;   ///< steel-concrete joint elements
+  std::vector<CrackPlane> cracks;     ///< crack planes (push-out with [[crack]])
   /// The specimen is `copies` mirror images of this mesh: 1, or 4 for a
   /// quarter model in x >= symmetry_center[0], y >= symmetry_center[1]
   /// (mesh/symmetry.h).
@@ -43,6 +60,13 @@ struct MeshData
   std::size_t num_nodes() const { return x.size() / 3; }
   std::size_t num_cells() const { return material.size(); }
 };
+
+/// Orients a pair: if the bilinear normal at the facet centre points
+/// towards `minus_centroid` (the minus cell's centroid), swaps xi and eta.
+void orient(InterfacePair& pair, const MeshData& mesh, const std::array<double, 3>& minus_centroid);
+
+/// Centroid of cell c [mm].
+std::array<double, 3> centroid(const MeshData& mesh, std::size_t c);
 
 /// Splits the nodes shared by steel and concrete cells: steel cells get new
 /// copies of them, and every steel facet lying on them becomes a joint

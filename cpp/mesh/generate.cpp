@@ -1,4 +1,5 @@
 #include "generate.h"
+#include "cracks.h"
 #include "symmetry.h"
 #include <algorithm>
 #include <chrono>
@@ -27,19 +28,37 @@ geo_for(const Scene& scene)
   if (scene.string("model.type") == "single_joint")
     return {dir / "single_joint.geo", {{"a", std::sqrt(scene.number("geometry.area"))}}};
   const auto& c = scene.numbers("geometry.tube_center");
-  return {dir / "slice.geo",
-          {{"shape", scene.string("geometry.outer_shape") == "circle" ? 1.0 : 0.0},
-           {"W", scene.number("geometry.width")},
-           {"L", scene.number("geometry.thickness")},
-           {"D", scene.number("geometry.tube_outer_diameter")},
-           {"Di", scene.number("geometry.tube_inner_diameter")},
-           {"cx", c[0]},
-           {"cy", c[1]},
-           {"Ds", scene.number("geometry.support_inner_diameter")},
-           {"nq", double(scene.integer("mesh.elements_per_quarter"))},
-           {"nz", double(scene.integer("mesh.elements_through_thickness"))},
-           {"ns", double(scene.integer("mesh.steel_layers"))},
-           {"ratio", scene.number("mesh.outer_size_ratio")}}};
+  std::vector<std::pair<std::string, double>> sectors; // slice_cracked.geo's (cracks.h)
+  if (!scene.cracks().empty())
+  {
+    const SliceSectors sec = slice_sectors(scene);
+    sectors.push_back({"nb", double(sec.angles.size())});
+    for (std::size_t i = 0; i < sec.angles.size(); ++i)
+    {
+      const std::string k = std::to_string(i);
+      sectors.insert(sectors.end(), {{"a_" + k, sec.angles[i]},
+                                     {"ox_" + k, sec.outer[i][0]},
+                                     {"oy_" + k, sec.outer[i][1]},
+                                     {"n_" + k, double(sec.elements[i])}});
+    }
+  }
+  std::vector<std::pair<std::string, double>> constants = {
+      {"shape", scene.string("geometry.outer_shape") == "circle" ? 1.0 : 0.0},
+      {"W", scene.number("geometry.width")},
+      {"L", scene.number("geometry.thickness")},
+      {"D", scene.number("geometry.tube_outer_diameter")},
+      {"Di", scene.number("geometry.tube_inner_diameter")},
+      {"cx", c[0]},
+      {"cy", c[1]},
+      {"Ds", scene.number("geometry.support_inner_diameter")},
+      {"nq", double(scene.integer("mesh.elements_per_quarter"))},
+      {"nz", double(scene.integer("mesh.elements_through_thickness"))},
+      {"ns", double(scene.integer("mesh.steel_layers"))},
+      {"ratio", scene.number("mesh.outer_size_ratio")}};
+  if (sectors.empty())
+    return {dir / "slice.geo", constants};
+  constants.insert(constants.end(), sectors.begin(), sectors.end());
+  return {dir / "slice_cracked.geo", constants};
 }
 
 std::string read_file(const std::filesystem::path& p)
@@ -227,6 +246,12 @@ MeshData generate_here(const Scene& scene, const std::filesystem::path& cache_di
   }
   gmsh::finalize();
   insert_interface(m);
+  if (!scene.cracks().empty())
+  {
+    const auto& c = scene.numbers("geometry.tube_center");
+    insert_cracks(m, {c[0], c[1]}, scene.number("geometry.tube_outer_diameter") / 2,
+                  crack_directions(scene).angles);
+  }
   return m;
 }
 } // namespace

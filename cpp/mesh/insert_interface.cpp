@@ -8,15 +8,41 @@ namespace pushout::mesh
 {
 namespace
 {
-// Local vertices of the 6 facets of a DOLFINx hexahedron, tensor order.
-constexpr std::array<std::array<int, 4>, 6> hex_facets = {
-    {{0, 1, 2, 3}, {0, 1, 4, 5}, {0, 2, 4, 6}, {1, 3, 5, 7}, {2, 3, 6, 7}, {4, 5, 6, 7}}};
-
 std::array<double, 3> node(const MeshData& m, std::int64_t i)
 {
   return {m.x[3 * i], m.x[3 * i + 1], m.x[3 * i + 2]};
 }
 } // namespace
+
+std::array<double, 3> centroid(const MeshData& mesh, std::size_t c)
+{
+  std::array<double, 3> x{0, 0, 0};
+  for (int i = 0; i < 8; ++i)
+    for (int d = 0; d < 3; ++d)
+      x[d] += mesh.x[3 * mesh.cells[8 * c + i] + d] / 8;
+  return x;
+}
+
+void orient(InterfacePair& pair, const MeshData& mesh, const std::array<double, 3>& minus_centroid)
+{
+  const auto x0 = node(mesh, pair.plus[0]), x1 = node(mesh, pair.plus[1]),
+             x2 = node(mesh, pair.plus[2]), x3 = node(mesh, pair.plus[3]);
+  std::array<double, 3> dxi, deta, mid;
+  for (int d = 0; d < 3; ++d)
+  {
+    dxi[d] = 0.5 * (x1[d] - x0[d] + x3[d] - x2[d]);
+    deta[d] = 0.5 * (x2[d] - x0[d] + x3[d] - x1[d]);
+    mid[d] = 0.25 * (x0[d] + x1[d] + x2[d] + x3[d]) - minus_centroid[d];
+  }
+  const std::array<double, 3> n = {dxi[1] * deta[2] - dxi[2] * deta[1],
+                                   dxi[2] * deta[0] - dxi[0] * deta[2],
+                                   dxi[0] * deta[1] - dxi[1] * deta[0]};
+  if (n[0] * mid[0] + n[1] * mid[1] + n[2] * mid[2] < 0)
+  {
+    std::swap(pair.minus[1], pair.minus[2]);
+    std::swap(pair.plus[1], pair.plus[2]);
+  }
+}
 
 void insert_interface(MeshData& mesh)
 {
@@ -67,10 +93,7 @@ void insert_interface(MeshData& mesh)
     if (mesh.material[c] != steel)
       continue;
     std::int64_t* cell = mesh.cells.data() + 8 * c;
-    std::array<double, 3> centroid{0, 0, 0};
-    for (int i = 0; i < 8; ++i)
-      for (int d = 0; d < 3; ++d)
-        centroid[d] += mesh.x[3 * cell[i] + d] / 8;
+    const std::array<double, 3> cell_centroid = centroid(mesh, c);
 
     for (const auto& f : hex_facets)
     {
@@ -82,35 +105,17 @@ void insert_interface(MeshData& mesh)
       InterfacePair pair;
       for (int i = 0; i < 4; ++i)
       {
-        pair.concrete[i] = cell[f[i]];
-        pair.steel[i] = copy[cell[f[i]]];
+        pair.plus[i] = cell[f[i]];
+        pair.minus[i] = copy[cell[f[i]]];
       }
-      std::array<std::int64_t, 4> key = pair.concrete;
+      std::array<std::int64_t, 4> key = pair.plus;
       std::sort(key.begin(), key.end());
       const auto partner = concrete_facet.find(key);
       if (partner == concrete_facet.end())
         throw std::runtime_error("interface facet without a concrete partner");
-      pair.steel_cell = std::int64_t(c);
-      pair.concrete_cell = partner->second;
-      // Orientation: the bilinear normal at the facet centre must point away
-      // from the steel cell; otherwise swap xi and eta.
-      const auto x0 = node(mesh, pair.concrete[0]), x1 = node(mesh, pair.concrete[1]),
-                 x2 = node(mesh, pair.concrete[2]), x3 = node(mesh, pair.concrete[3]);
-      std::array<double, 3> dxi, deta, mid;
-      for (int d = 0; d < 3; ++d)
-      {
-        dxi[d] = 0.5 * (x1[d] - x0[d] + x3[d] - x2[d]);
-        deta[d] = 0.5 * (x2[d] - x0[d] + x3[d] - x1[d]);
-        mid[d] = 0.25 * (x0[d] + x1[d] + x2[d] + x3[d]) - centroid[d];
-      }
-      const std::array<double, 3> n = {dxi[1] * deta[2] - dxi[2] * deta[1],
-                                       dxi[2] * deta[0] - dxi[0] * deta[2],
-                                       dxi[0] * deta[1] - dxi[1] * deta[0]};
-      if (n[0] * mid[0] + n[1] * mid[1] + n[2] * mid[2] < 0)
-      {
-        std::swap(pair.steel[1], pair.steel[2]);
-        std::swap(pair.concrete[1], pair.concrete[2]);
-      }
+      pair.minus_cell = std::int64_t(c);
+      pair.plus_cell = partner->second;
+      orient(pair, mesh, cell_centroid);
       mesh.pairs.push_back(pair);
     }
     for (int i = 0; i < 8; ++i)
@@ -141,5 +146,14 @@ void broadcast(MeshData& mesh, MPI_Comm comm, int root)
   broadcast_vector(mesh.cells, comm, root);
   broadcast_vector(mesh.material, comm, root);
   broadcast_vector(mesh.pairs, comm, root);
+  std::uint64_t n = mesh.cracks.size();
+  MPI_Bcast(&n, 1, MPI_UINT64_T, root, comm);
+  mesh.cracks.resize(n);
+  for (CrackPlane& crack : mesh.cracks)
+  {
+    MPI_Bcast(&crack.angle, 1, MPI_DOUBLE, root, comm);
+    broadcast_vector(crack.pairs, comm, root);
+    broadcast_vector(crack.mouth, comm, root);
+  }
 }
 } // namespace pushout::mesh

@@ -1,4 +1,5 @@
 #include "size.h"
+#include "cracks.h"
 #include "symmetry.h"
 #include <algorithm>
 #include <cmath>
@@ -54,8 +55,11 @@ MeshSize predict_size(const Scene& scene)
   const std::int64_t radial = d.steel + d.ring + d.graded; // elements along a radius
   std::string why;
   s.quarter = use_quarter_model(scene, why);
-  const std::int64_t around = s.quarter ? d.circumferential : 4 * d.circumferential;
-  s.cells_generated = 4 * d.circumferential * radial * d.thickness;
+  // With crack planes the circumference is cut into sectors (cracks.h).
+  const bool cracked = !scene.cracks().empty();
+  const std::int64_t full_around = cracked ? slice_sectors(scene).around() : 4 * d.circumferential;
+  const std::int64_t around = s.quarter ? d.circumferential : full_around;
+  s.cells_generated = full_around * radial * d.thickness;
   s.cells = around * radial * d.thickness;
   s.joint_elements = around * d.thickness;
   // Node positions of the degree: around the tube (a closed ring for the
@@ -65,8 +69,16 @@ MeshSize predict_size(const Scene& scene)
   const std::int64_t n_radial = p * radial + 2;
   const std::int64_t n_thick = p * d.thickness + 1;
   s.nodes = n_around * n_radial * n_thick;
-  s.dofs = 3 * s.nodes;
   s.interface_dofs = 6 * n_around * n_thick;
+  // Each crack plane duplicates its concrete nodes (from the interface to
+  // the boundary) and adds its joint elements; its column of nodes on the
+  // interface is the interface's too.
+  const std::int64_t planes = std::int64_t(scene.cracks().size());
+  const std::int64_t crack_nodes = (p * (d.ring + d.graded) + 1) * n_thick;
+  s.nodes += planes * crack_nodes;
+  s.joint_elements += planes * (d.ring + d.graded) * d.thickness;
+  s.interface_dofs += planes * 3 * (n_thick + 2 * (crack_nodes - n_thick));
+  s.dofs = 3 * s.nodes;
   return s;
 }
 } // namespace pushout::mesh

@@ -16,8 +16,8 @@ struct MeshSize
   std::int64_t cells_generated = 0; ///< hexahedra gmsh generates (always the full slice)
   std::int64_t nodes = 0;           ///< mesh nodes, interface nodes counted twice
   std::int64_t dofs = 0;            ///< displacement dofs (3 per node of the degree)
-  std::int64_t joint_elements = 0;  ///< interface pairs of the model
-  std::int64_t interface_dofs = 0;  ///< dofs on both sides of the interface
+  std::int64_t joint_elements = 0;  ///< joint elements (interface and crack planes)
+  std::int64_t interface_dofs = 0;  ///< dofs on both sides of all joint elements
   bool quarter = false;             ///< the model is a quarter by symmetry
 };
 

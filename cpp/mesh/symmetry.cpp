@@ -17,6 +17,11 @@ bool use_quarter_model(const Scene& scene, std::string& why)
     why = "output.xdmf asks for fields of the whole specimen";
     return false;
   }
+  if (!scene.cracks().empty())
+  {
+    why = "crack planes (the quarter model has none)";
+    return false;
+  }
   if (scene.integer("mesh.elements_per_quarter") % 2 != 0)
   {
     why = "mesh.elements_per_quarter is odd (the symmetry planes are not mesh surfaces)";
@@ -67,16 +72,16 @@ void keep_quarter(MeshData& m, double xc, double yc)
         q.x[3 * new_node[n] + d] = m.x[3 * n + d];
   for (const InterfacePair& p : m.pairs)
   {
-    if (new_cell[p.steel_cell] < 0 || new_cell[p.concrete_cell] < 0)
+    if (new_cell[p.minus_cell] < 0 || new_cell[p.plus_cell] < 0)
       continue;
     InterfacePair r = p;
     for (int i = 0; i < 4; ++i)
     {
-      r.steel[i] = new_node[p.steel[i]];
-      r.concrete[i] = new_node[p.concrete[i]];
+      r.minus[i] = new_node[p.minus[i]];
+      r.plus[i] = new_node[p.plus[i]];
     }
-    r.steel_cell = new_cell[p.steel_cell];
-    r.concrete_cell = new_cell[p.concrete_cell];
+    r.minus_cell = new_cell[p.minus_cell];
+    r.plus_cell = new_cell[p.plus_cell];
     q.pairs.push_back(r);
   }
   q.copies = 4;

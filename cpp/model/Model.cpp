@@ -25,13 +25,39 @@ namespace
 {
 using dolfinx::fem::Function;
 
-/// The default graph partitioner decides the owners; then each pair's
-/// concrete cell follows its steel cell, so that one process owns both sides
-/// of every joint element (each interface cell has one interface facet: the
-/// pairs are a matching). Every cell is also ghosted on the processes that
-/// own a cell sharing a vertex with it (GhostMode::shared_vertex): DOLFINx
-/// 0.5 finds shared vertices only through ghosts or shared facets, and the
-/// partition may touch along edges only.
+/// The cells that joint elements tie together (a steel-concrete pair, a
+/// crack pair, and chains of them where a crack meets the interface), as a
+/// representative cell per cell (union-find).
+std::vector<std::int64_t> joined_cells(const mesh::MeshData& data)
+{
+  std::vector<std::int64_t> root(data.num_cells());
+  for (std::size_t c = 0; c < root.size(); ++c)
+    root[c] = std::int64_t(c);
+  const auto find = [&root](std::int64_t c)
+  {
+    while (root[c] != c)
+      c = root[c] = root[root[c]];
+    return c;
+  };
+  const auto join = [&](const mesh::InterfacePair& p)
+  { root[find(p.plus_cell)] = find(p.minus_cell); };
+  for (const mesh::InterfacePair& p : data.pairs)
+    join(p);
+  for (const mesh::CrackPlane& crack : data.cracks)
+    for (const mesh::InterfacePair& p : crack.pairs)
+      join(p);
+  for (std::size_t c = 0; c < root.size(); ++c)
+    root[c] = find(std::int64_t(c));
+  return root;
+}
+
+/// The default graph partitioner decides the owners; then the cells tied by
+/// joint elements follow one of them (joined_cells), so that one process
+/// owns both sides of every joint element. Every cell is also ghosted on the
+/// processes that own a cell sharing a vertex with it
+/// (GhostMode::shared_vertex): DOLFINx 0.5 finds shared vertices only
+/// through ghosts or shared facets, and the partition may touch along edges
+/// only.
 dolfinx::mesh::CellPartitionFunction pair_keeping_partitioner(const mesh::MeshData& data)
 {
   return [&data](MPI_Comm comm, int nparts, int tdim,
@@ -46,10 +72,9 @@ dolfinx::mesh::CellPartitionFunction pair_keeping_partitioner(const mesh::MeshDa
     // owner.
     const std::int32_t n = cells.num_nodes();
     std::vector<std::int32_t> owner(n);
+    const std::vector<std::int64_t> root = joined_cells(data);
     for (std::int32_t c = 0; c < n; ++c)
-      owner[c] = dest.links(c)[0];
-    for (const mesh::InterfacePair& p : data.pairs)
-      owner[p.concrete_cell] = owner[p.steel_cell];
+      owner[c] = dest.links(std::int32_t(root[c]))[0];
 
     // Owners of the cells around each vertex.
     std::int64_t n_vertices = 0;
@@ -225,13 +250,25 @@ std::vector<std::unique_ptr<laws::InterfaceLaw>> make_layers(const Scene& scene)
   return layers;
 }
 
-/// Step 6: the interface of this process: the pairs of its cells (the
-/// partitioner keeps both cells of a pair together), their dof blocks and
-/// steel-side coordinates, and the layers' laws.
+/// The law of [[crack]] i, as its one layer.
+std::vector<std::unique_ptr<laws::InterfaceLaw>> crack_layers(const Scene& scene, std::size_t i)
+{
+  const LayerSpec& spec = scene.cracks()[i].layer;
+  std::vector<std::unique_ptr<laws::InterfaceLaw>> layers;
+  layers.push_back(laws::find_law(spec.law)->make(spec.params, "crack." + std::to_string(i) + "."));
+  return layers;
+}
+
+/// Step 6: joint elements of this process (the steel-concrete interface or
+/// a crack plane): the pairs of its cells (the partitioner keeps both cells
+/// of a pair together), their dof blocks and minus-side coordinates, and
+/// the layers' laws.
 std::unique_ptr<interface::Interface>
-build_interface(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene,
-                const dolfinx::mesh::Mesh& mesh, const dolfinx::fem::FunctionSpace& V, int degree,
-                const std::vector<std::int32_t>& node_block)
+build_joints(MPI_Comm comm, const mesh::MeshData& data,
+             const std::vector<mesh::InterfacePair>& pairs,
+             std::vector<std::unique_ptr<laws::InterfaceLaw>> layers, const Scene& scene,
+             const dolfinx::mesh::Mesh& mesh, const dolfinx::fem::FunctionSpace& V, int degree,
+             const std::vector<std::int32_t>& node_block)
 {
   const bool q2 = degree == 2;
   const auto& original = mesh.topology().original_cell_index;
@@ -240,7 +277,6 @@ build_interface(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene,
   for (std::int32_t c = 0; c < n_owned_cells; ++c)
     local_cell[original[c]] = c;
   const std::vector<double> dof_x = q2 ? V.tabulate_dof_coordinates(false) : std::vector<double>{};
-  std::vector<std::unique_ptr<laws::InterfaceLaw>> layers = make_layers(scene);
   // A pair split across processes is found on one process: the same error
   // on all of them (common/mpi_errors.h), not one leaving the others in the
   // next collective.
@@ -250,23 +286,23 @@ build_interface(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene,
       {
         std::vector<std::int32_t> pair_blocks;
         std::vector<double> pair_x;
-        for (const mesh::InterfacePair& p : data.pairs)
+        for (const mesh::InterfacePair& p : pairs)
         {
-          if (local_cell[p.steel_cell] < 0)
+          if (local_cell[p.minus_cell] < 0)
             continue;
-          if (local_cell[p.concrete_cell] < 0)
-            throw std::logic_error("interface pair split across processes");
+          if (local_cell[p.plus_cell] < 0)
+            throw std::logic_error("joint element split across processes");
           const std::size_t first_x = pair_x.size();
-          for (std::int64_t n : p.steel)
+          for (std::int64_t n : p.minus)
             pair_x.insert(pair_x.end(), data.x.begin() + 3 * n, data.x.begin() + 3 * n + 3);
           if (!q2)
           {
-            for (const auto& side : {p.steel, p.concrete})
+            for (const auto& side : {p.minus, p.plus})
               for (std::int64_t n : side)
                 pair_blocks.push_back(node_block[n]);
             continue;
           }
-          for (std::int64_t cell : {p.steel_cell, p.concrete_cell})
+          for (std::int64_t cell : {p.minus_cell, p.plus_cell})
             append_facet_blocks_p2(V.dofmap()->cell_dofs(local_cell[cell]), dof_x,
                                    pair_x.data() + first_x, pair_blocks);
         }
@@ -277,30 +313,69 @@ build_interface(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene,
       });
 }
 
-/// Step 7: K with the bulk pattern plus the interface couplings, the bulk
-/// assembled into it.
+/// Step 6b: the joint elements of each crack plane.
+std::vector<std::unique_ptr<interface::Interface>>
+build_cracks(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene,
+             const dolfinx::mesh::Mesh& mesh, const dolfinx::fem::FunctionSpace& V, int degree,
+             const std::vector<std::int32_t>& node_block)
+{
+  std::vector<std::unique_ptr<interface::Interface>> cracks;
+  for (std::size_t i = 0; i < data.cracks.size(); ++i)
+    cracks.push_back(build_joints(comm, data, data.cracks[i].pairs, crack_layers(scene, i), scene,
+                                  mesh, V, degree, node_block));
+  return cracks;
+}
+
+/// Step 6c: the mouth of each crack plane: its node pairs on the slice's
+/// outer face, as local dof blocks (-1: not on this process).
+std::vector<Model::CrackMouth> crack_mouths(const mesh::MeshData& data,
+                                            const std::vector<std::int32_t>& node_block)
+{
+  std::vector<Model::CrackMouth> mouths;
+  for (const mesh::CrackPlane& crack : data.cracks)
+  {
+    Model::CrackMouth m;
+    m.normal = {-std::sin(crack.angle), std::cos(crack.angle), 0.0};
+    m.global_pairs = std::int64_t(crack.mouth.size());
+    for (const auto& [minus, plus] : crack.mouth)
+      m.blocks.push_back({node_block[minus], node_block[plus]});
+    mouths.push_back(std::move(m));
+  }
+  return mouths;
+}
+
+/// Step 7: K with the bulk pattern plus the couplings of the joint
+/// elements, the bulk assembled into it.
 Mat assemble_stiffness(MPI_Comm comm, const dolfinx::fem::Form<double>& a,
-                       const interface::Interface& itf)
+                       const std::vector<interface::Interface*>& joints)
 {
   dolfinx::la::SparsityPattern pattern = dolfinx::fem::create_sparsity_pattern(a);
-  const auto blocks = itf.pair_blocks();
-  const int nb = 2 * itf.nodes_per_side(); // blocks per joint element
-  for (std::size_t p = 0; p < itf.num_pairs(); ++p)
+  for (const interface::Interface* itf : joints)
   {
-    std::span<const std::int32_t> b = blocks.subspan(nb * p, nb);
-    pattern.insert(b, b);
+    const auto blocks = itf->pair_blocks();
+    const int nb = 2 * itf->nodes_per_side(); // blocks per joint element
+    for (std::size_t p = 0; p < itf->num_pairs(); ++p)
+    {
+      std::span<const std::int32_t> b = blocks.subspan(nb * p, nb);
+      pattern.insert(b, b);
+    }
   }
   pattern.assemble();
   Mat K = dolfinx::la::petsc::create_matrix(comm, pattern);
   check(MatSetOption(K, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE), "MatSetOption");
   check(MatZeroEntries(K), "MatZeroEntries");
-  // Explicit zeros keep the interface couplings in the assembled pattern
+  // Explicit zeros keep the joint couplings in the assembled pattern
   // (PETSc squeezes out preallocated entries that were never set).
-  const std::vector<double> zeros(9 * nb * nb, 0.0);
-  for (std::size_t p = 0; p < itf.num_pairs(); ++p)
-    check(MatSetValuesBlockedLocal(K, nb, blocks.data() + nb * p, nb, blocks.data() + nb * p,
-                                   zeros.data(), ADD_VALUES),
-          "MatSetValuesBlockedLocal");
+  for (const interface::Interface* itf : joints)
+  {
+    const auto blocks = itf->pair_blocks();
+    const int nb = 2 * itf->nodes_per_side();
+    const std::vector<double> zeros(9 * nb * nb, 0.0);
+    for (std::size_t p = 0; p < itf->num_pairs(); ++p)
+      check(MatSetValuesBlockedLocal(K, nb, blocks.data() + nb * p, nb, blocks.data() + nb * p,
+                                     zeros.data(), ADD_VALUES),
+            "MatSetValuesBlockedLocal");
+  }
   dolfinx::fem::assemble_matrix(dolfinx::la::petsc::Matrix::set_block_fn(K, ADD_VALUES), a, {});
   check(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   check(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
@@ -315,8 +390,10 @@ Model::Model(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene)
       _materials(assign_materials(_mesh, data.material, scene)),
       _a(bulk_form(_V, _degree, _materials)), _L_thermal(thermal_form(_V, _degree, _materials)),
       _node_block(node_blocks(*_mesh, *_V, data.num_nodes())),
-      _interface(build_interface(comm, data, scene, *_mesh, *_V, _degree, _node_block)),
-      _K(assemble_stiffness(comm, *_a, *_interface))
+      _interface(build_joints(comm, data, data.pairs, make_layers(scene), scene, *_mesh, *_V,
+                              _degree, _node_block)),
+      _cracks(build_cracks(comm, data, scene, *_mesh, *_V, _degree, _node_block)),
+      _mouths(crack_mouths(data, _node_block)), _K(assemble_stiffness(comm, *_a, joints()))
 {
   _u->name = "displacement"; // in fields.xdmf
 }
@@ -325,6 +402,43 @@ Model::~Model()
 {
   if (_K)
     petsc::check_nothrow(MatDestroy(&_K), "MatDestroy");
+}
+
+std::vector<interface::Interface*> Model::joints()
+{
+  std::vector<interface::Interface*> all = {_interface.get()};
+  for (const auto& c : _cracks)
+    all.push_back(c.get());
+  return all;
+}
+
+std::vector<const interface::Interface*> Model::joints() const
+{
+  std::vector<const interface::Interface*> all = {_interface.get()};
+  for (const auto& c : _cracks)
+    all.push_back(c.get());
+  return all;
+}
+
+std::vector<double> Model::crack_mouth_openings() const
+{
+  // Sums over the owned plus-side nodes of each mouth, then over processes.
+  std::vector<double> sum(_mouths.size(), 0.0);
+  const std::span<const double> u = _u->x()->array();
+  const int bs = block_size();
+  for (std::size_t i = 0; i < _mouths.size(); ++i)
+    for (const auto& [minus, plus] : _mouths[i].blocks)
+      if (owned(plus))
+      {
+        if (minus < 0)
+          throw std::logic_error("crack mouth split across processes");
+        for (int d = 0; d < 3; ++d)
+          sum[i] += (u[bs * plus + d] - u[bs * minus + d]) * _mouths[i].normal[d];
+      }
+  MPI_Allreduce(MPI_IN_PLACE, sum.data(), int(sum.size()), MPI_DOUBLE, MPI_SUM, comm());
+  for (std::size_t i = 0; i < _mouths.size(); ++i)
+    sum[i] /= double(_mouths[i].global_pairs);
+  return sum;
 }
 
 std::int64_t Model::num_dofs() const

@@ -60,8 +60,28 @@ public:
   std::shared_ptr<dolfinx::fem::Function<double>> displacement_ptr() const { return _u; }
   const Materials& materials() const { return _materials; }
 
+  /// The steel-concrete interface.
   interface::Interface& interface() { return *_interface; }
   const interface::Interface& interface() const { return *_interface; }
+  /// The joint elements of crack plane i ([[crack]] i).
+  const interface::Interface& crack(std::size_t i) const { return *_cracks[i]; }
+  std::size_t num_cracks() const { return _cracks.size(); }
+  /// Every set of joint elements: the interface, then the crack planes. What
+  /// assembles, commits or reverts joints does it for all of these.
+  std::vector<interface::Interface*> joints();
+  std::vector<const interface::Interface*> joints() const;
+
+  /// The mouth of a crack plane: node pairs on the slice's outer face.
+  struct CrackMouth
+  {
+    std::array<double, 3> normal;                    ///< of the plane, minus to plus
+    std::vector<std::array<std::int32_t, 2>> blocks; ///< (minus, plus) local dof blocks
+    std::int64_t global_pairs = 0;                   ///< node pairs on all processes
+  };
+  /// Crack-mouth opening of each crack plane [mm]: the opening (u_plus -
+  /// u_minus) . n averaged over the plane's nodes on the slice's outer face,
+  /// where experiments measure the crack width. Collective.
+  std::vector<double> crack_mouth_openings() const;
 
   /// Bulk stiffness K [N/mm], with room for the interface couplings.
   Mat stiffness() const { return _K; }
@@ -89,6 +109,8 @@ private:
   std::shared_ptr<dolfinx::fem::Form<double>> _a, _L_thermal;
   std::vector<std::int32_t> _node_block;
   std::unique_ptr<interface::Interface> _interface;
+  std::vector<std::unique_ptr<interface::Interface>> _cracks;
+  std::vector<CrackMouth> _mouths;
   Mat _K = nullptr;
 };
 } // namespace pushout::model

@@ -3,10 +3,14 @@
 // joint element, the average over its quadrature points: normal traction t_n, axial and
 // circumferential shear tractions t_s1, t_s2 [MPa], jump w_n, w_s1 [mm],
 // and per layer L the inelastic slip slip_L_s1, slip_L_s2 [mm] and damage_L),
-// one time step per converged load step.
+// and with crack planes cracks.xdmf (per joint element of the cracks: t_n
+// (opening traction), t_s1 (axial), t_s2 (radial) [MPa], w_n (opening),
+// w_s1, w_s2 [mm], damage, and the crack's index), one time step per
+// converged load step.
 #pragma once
 
 #include "../model/Model.h"
+#include "JointWriter.h"
 #include "StressProjection.h"
 #include <dolfinx/io/XDMFFile.h>
 #include <filesystem>
@@ -23,13 +27,11 @@ public:
 
 private:
   const model::Model& _model;
-  std::unique_ptr<dolfinx::io::XDMFFile> _fields, _interface;
+  std::unique_ptr<dolfinx::io::XDMFFile> _fields;
+  std::unique_ptr<JointWriter> _interface, _cracks;
   StressProjection _stress;
   /// mesh.degree = 2: the displacement interpolated to the trilinear space
   /// of the mesh for XDMF (which stores fields at the mesh's nodes).
   std::shared_ptr<dolfinx::fem::Function<double>> _u1;
-  std::shared_ptr<dolfinx::mesh::Mesh> _imesh;
-  std::vector<std::shared_ptr<dolfinx::fem::Function<double>>> _ifields;
-  std::vector<std::int32_t> _pair_of_dof; ///< DG0 dof -> interface pair
 };
 } // namespace pushout::output

@@ -6,6 +6,13 @@ namespace pushout::output
 {
 void Summary::write(const std::filesystem::path& file) const
 {
+  nlohmann::json crack_list = nlohmann::json::array();
+  for (const Crack& c : cracks)
+    crack_list.push_back({{"angle_deg", c.angle_deg},
+                          {"snapped", c.snapped},
+                          {"mouth_opening_mm", c.mouth_opening_mm},
+                          {"max_opening_mm", c.max_opening_mm},
+                          {"max_damage", c.max_damage}});
   const nlohmann::json j = {
       {"converged", converged},
       {"interrupted", interrupted},
@@ -17,6 +24,7 @@ void Summary::write(const std::filesystem::path& file) const
       {"steps", steps},
       {"corrosion_steps", corrosion_steps},
       {"penetration_mm", penetration_mm},
+      {"cracks", crack_list},
       {"newton_iterations", newton_iterations},
       {"cuts", cuts},
       {"factorizations", factorizations},

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace pushout::output
 {
@@ -40,6 +41,17 @@ struct Summary
   std::string symmetry = "full"; ///< quarter: the model is a quarter of the specimen
   /// Size of the condensed system Newton ran on (0: the whole model).
   std::int64_t condensed_dofs = 0;
+  /// A crack plane ([[crack]]) at the start of the push (after the thermal
+  /// step and the corrosion stage).
+  struct Crack
+  {
+    double angle_deg = 0;        ///< direction used (after "nearest_face" or snapping)
+    bool snapped = false;        ///< moved onto a block corner of the mesh
+    double mouth_opening_mm = 0; ///< mean opening at the slice's outer face
+    double max_opening_mm = 0;   ///< largest opening w_n at a quadrature point
+    double max_damage = 0;       ///< largest damage at a quadrature point
+  };
+  std::vector<Crack> cracks;
 
   void write(const std::filesystem::path& file) const;
 };

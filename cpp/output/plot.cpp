@@ -11,7 +11,7 @@
 namespace pushout::output
 {
 bool plot_curve(const std::filesystem::path& csv, const std::filesystem::path& png,
-                const std::string& model_type, std::string& why)
+                const std::string& kind, std::string& why)
 {
   const std::filesystem::path script = std::filesystem::path(PUSHOUT_SCRIPTS_DIR) / "plot_curve.py";
   const auto quote = [](const std::string& s)
@@ -23,7 +23,7 @@ bool plot_curve(const std::filesystem::path& csv, const std::filesystem::path& p
   };
   const std::string cmd = quote(PUSHOUT_PYTHON) + " " + quote(script.string()) + " " +
                           quote(csv.string()) + " " + quote(png.string()) + " --kind " +
-                          quote(model_type) + " 2>&1";
+                          quote(kind) + " 2>&1";
   const int rc = std::system(cmd.c_str());
   if (rc != 0)
   {

@@ -1,4 +1,5 @@
-// curve.png from curve.csv, drawn by scripts/plot_curve.py (matplotlib).
+// curve.png from curve.csv (and corrosion.png from corrosion.csv), drawn by
+// scripts/plot_curve.py (matplotlib).
 #pragma once
 
 #include <filesystem>
@@ -6,8 +7,8 @@
 
 namespace pushout::output
 {
-/// Draws the curve; returns false (and says why in `why`) if python3 or
-/// matplotlib is missing or the script failed. Never throws.
+/// Draws the curve (`kind`: the model type, or "corrosion"); returns false (and says why in `why`)
+/// if python3 or matplotlib is missing or the script failed. Never throws.
 bool plot_curve(const std::filesystem::path& csv, const std::filesystem::path& png,
-                const std::string& model_type, std::string& why);
+                const std::string& kind, std::string& why);
 } // namespace pushout::output

@@ -1,6 +1,7 @@
 #include "Scene.h"
 #include "../laws/ParameterError.h"
 #include "SceneError.h"
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -58,8 +59,8 @@ void apply_override(toml::table& root, const Override& o)
     {
       if (!tbl->contains(seg))
       {
-        if (seg == "interface")
-          throw SceneError(what + ": the scene has no [[interface]] layers");
+        if (seg == "interface" || seg == "crack")
+          throw SceneError(what + ": the scene has no [[" + seg + "]] tables");
         tbl->insert(seg, toml::table{});
       }
       node = tbl->get(seg);
@@ -196,14 +197,19 @@ std::string known_keys_in(const std::string& section)
   return list;
 }
 
-LayerSpec read_layer(const toml::node& node, std::size_t index)
+/// Reads a law and its parameters from one table of an array of tables
+/// (`section` "interface" or "crack"; `skip` names keys of the table that
+/// are not the law's).
+LayerSpec read_layer(const toml::node& node, std::size_t index, const std::string& section,
+                     const std::string& default_law, const std::vector<std::string>& skip = {})
 {
-  const std::string prefix = "interface." + std::to_string(index) + ".";
+  const std::string prefix = section + "." + std::to_string(index) + ".";
   const auto* tbl = node.as_table();
   if (!tbl)
-    throw SceneError("'interface." + std::to_string(index) + "' must be a table ([[interface]])");
+    throw SceneError("'" + section + "." + std::to_string(index) + "' must be a table ([[" +
+                     section + "]])");
   LayerSpec layer;
-  layer.law = "friction";
+  layer.law = default_law;
   if (const toml::node* law = tbl->get("law"))
   {
     if (!law->is_string())
@@ -223,7 +229,7 @@ LayerSpec read_layer(const toml::node& node, std::size_t index)
   for (const auto& [key, value] : *tbl)
   {
     const std::string name(key.str());
-    if (name == "law")
+    if (name == "law" || std::find(skip.begin(), skip.end(), name) != skip.end())
       continue;
     const laws::ParamDef* def = nullptr;
     for (const auto& p : info->params)
@@ -266,6 +272,25 @@ LayerSpec read_layer(const toml::node& node, std::size_t index)
     throw SceneError(e.what());
   }
   return layer;
+}
+
+/// One [[crack]] table: `angle` (degrees or "nearest_face") and a law.
+CrackSpec read_crack(const toml::node& node, std::size_t index)
+{
+  const std::string path = "crack." + std::to_string(index) + ".angle";
+  CrackSpec crack;
+  crack.layer = read_layer(node, index, "crack", "exponential_softening", {"angle"});
+  const toml::node* angle = node.as_table()->get("angle");
+  if (!angle)
+    throw SceneError("'" + path + "' is required: degrees from +x towards +y, or \"nearest_face\"");
+  if (angle->is_string() && *angle->value<std::string>() == "nearest_face")
+    return crack;
+  if (!(angle->is_floating_point() || angle->is_integer()))
+    throw SceneError("'" + path + "'" + where(*angle) +
+                     " must be a number (degrees) or \"nearest_face\"");
+  crack.angle_deg = *angle->value<double>();
+  check_range(*crack.angle_deg, -360, 360, false, path, "deg");
+  return crack;
 }
 
 bool applies(const KeyDef& def, const std::string& model)
@@ -327,7 +352,18 @@ Scene Scene::parse(const std::string& toml_text, const std::vector<Override>& ov
       if (!arr)
         throw SceneError("'interface' must be written as [[interface]] tables");
       for (std::size_t i = 0; i < arr->size(); ++i)
-        scene._layers.push_back(read_layer(*arr->get(i), i));
+        scene._layers.push_back(read_layer(*arr->get(i), i, "interface", "friction"));
+      continue;
+    }
+    if (sname == "crack")
+    {
+      const auto* arr = section.as_array();
+      if (!arr)
+        throw SceneError("'crack' must be written as [[crack]] tables");
+      if (model != "pushout")
+        throw SceneError("[[crack]] does not apply to model.type = \"" + model + "\"");
+      for (std::size_t i = 0; i < arr->size(); ++i)
+        scene._cracks.push_back(read_crack(*arr->get(i), i));
       continue;
     }
     const auto* tbl = section.as_table();
@@ -362,7 +398,7 @@ Scene Scene::parse(const std::string& toml_text, const std::vector<Override>& ov
   if (scene._layers.empty())
   {
     toml::table t{{"law", "friction"}};
-    scene._layers.push_back(read_layer(t, 0));
+    scene._layers.push_back(read_layer(t, 0, "interface", "friction"));
   }
 
   // Relations between keys of one model type are its scenario's
@@ -424,13 +460,25 @@ std::string Scene::to_toml() const
       out << "  # " << def.unit;
     out << "\n";
   }
-  for (const LayerSpec& layer : _layers)
+  const auto write_law = [&out](const LayerSpec& layer)
   {
-    out << "\n[[interface]]\nlaw = \"" << layer.law << "\"\n";
+    out << "law = \"" << layer.law << "\"\n";
     for (const auto& p : laws::find_law(layer.law)->params)
       if (layer.params.count(p.name))
         out << p.name << " = " << pushout::to_toml(layer.params.at(p.name)) << "  # " << p.unit
             << "\n";
+  };
+  for (const LayerSpec& layer : _layers)
+  {
+    out << "\n[[interface]]\n";
+    write_law(layer);
+  }
+  for (const CrackSpec& crack : _cracks)
+  {
+    out << "\n[[crack]]\nangle = "
+        << (crack.angle_deg ? pushout::to_toml(*crack.angle_deg) + "  # deg" : "\"nearest_face\"")
+        << "\n";
+    write_law(crack.layer);
   }
   return out.str();
 }

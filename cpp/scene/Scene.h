@@ -7,6 +7,7 @@
 #include "Value.h"
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,17 @@ struct LayerSpec
 {
   std::string law;
   laws::Params params;
+};
+
+/// One [[crack]] plane of a push-out (docs/corrosion.md): a plane through
+/// the whole thickness of the concrete, from the interface to the slice's
+/// outer boundary, with a cohesive law.
+struct CrackSpec
+{
+  /// Direction from the tube axis in the x-y plane [deg, from +x towards
+  /// +y]; unset: "nearest_face" (the cover side, resolved with the geometry).
+  std::optional<double> angle_deg;
+  LayerSpec layer; ///< the crack's law (one layer)
 };
 
 /// A `--set key=value` override, as typed by the user.
@@ -47,6 +59,7 @@ public:
   const std::vector<double>& numbers(const std::string& path) const;
 
   const std::vector<LayerSpec>& layers() const { return _layers; }
+  const std::vector<CrackSpec>& cracks() const { return _cracks; }
 
   /// The fully resolved scene as TOML (every key, defaults included).
   std::string to_toml() const;
@@ -55,5 +68,6 @@ private:
   const Value& get(const std::string& path, KeyType type) const;
   std::map<std::string, Value> _values;
   std::vector<LayerSpec> _layers;
+  std::vector<CrackSpec> _cracks;
 };
 } // namespace pushout

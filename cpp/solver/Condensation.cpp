@@ -60,10 +60,11 @@ bool Condensation::possible(const Equilibrium& eq, std::string& why)
 {
   int size = 1;
   MPI_Comm_size(PetscObjectComm(reinterpret_cast<PetscObject>(eq.model().stiffness())), &size);
-  return possible(size, interface_dofs(eq.model()), why);
+  return possible(size, interface_dofs(eq.model()), eq.model().num_cracks() > 0, why);
 }
 
-bool Condensation::possible(int processes, std::int64_t n_interface, std::string& why)
+bool Condensation::possible(int processes, std::int64_t n_interface, bool crack_planes,
+                            std::string& why)
 {
   char pc_type[64] = "";
   PetscBool pc_set = PETSC_FALSE;
@@ -71,6 +72,9 @@ bool Condensation::possible(int processes, std::int64_t n_interface, std::string
         "PetscOptionsGetString");
   if (processes > 1)
     why = "more than one process";
+  else if (crack_planes)
+    why = "crack planes (the condensation pairs each concrete interface node with one steel "
+          "node; crack nodes pair concrete with concrete)";
   else if (pc_set && std::string(pc_type) != "lu")
     why = std::string("-pc_type ") + pc_type + " (condensed systems are solved by dense LU)";
   else if (n_interface == 0)
@@ -81,11 +85,11 @@ bool Condensation::possible(int processes, std::int64_t n_interface, std::string
 }
 
 bool Condensation::chosen(const std::string& mode, int processes, std::int64_t n_interface,
-                          std::string& why)
+                          bool crack_planes, std::string& why)
 {
   if (mode == "off")
     return false;
-  if (!possible(processes, n_interface, why))
+  if (!possible(processes, n_interface, crack_planes, why))
     return false;
   if (mode == "auto" && n_interface > default_max_dofs)
   {

@@ -51,18 +51,19 @@ public:
   static constexpr std::int64_t default_max_dofs = 6000;
 
   /// Whether the model can be condensed (its interface has node pairs, one
-  /// process, an LU preconditioner); `why` says why not.
+  /// process, an LU preconditioner, no crack planes); `why` says why not.
   static bool possible(const Equilibrium& eq, std::string& why);
   /// The same from the numbers alone (the run's processes and interface
   /// dofs), so that it can be decided before the model exists.
-  static bool possible(int processes, std::int64_t interface_dofs, std::string& why);
+  static bool possible(int processes, std::int64_t interface_dofs, bool crack_planes,
+                       std::string& why);
 
   /// Whether Newton runs on the condensed system for solver.condensation =
   /// `mode` (auto | on | off): "auto" condenses what is possible up to
   /// default_max_dofs. `why` says why not ("" when "off" was asked for);
   /// "on" when it is not possible is the caller's error to report.
   static bool chosen(const std::string& mode, int processes, std::int64_t interface_dofs,
-                     std::string& why);
+                     bool crack_planes, std::string& why);
 
   /// Number of interface dofs (both sides).
   static std::int64_t interface_dofs(const model::Model& model);

@@ -66,12 +66,20 @@ void Equilibrium::update_displacement(Vec x)
   _model.displacement().x()->scatter_fwd();
 }
 
+bool Equilibrium::assemble_joints(std::span<double> f, Mat A)
+{
+  bool ok = true;
+  for (interface::Interface* joints : _model.joints())
+    ok = joints->assemble(_model.displacement().x()->array(), f, A) && ok;
+  return ok;
+}
+
 bool Equilibrium::internal_forces(Vec x, Vec F)
 {
   update_displacement(x);
   std::span<double> fi = _f_interface.mutable_array();
   std::fill(fi.begin(), fi.end(), 0.0);
-  const bool ok = _model.interface().assemble(_model.displacement().x()->array(), fi, nullptr);
+  const bool ok = assemble_joints(fi, nullptr);
   _f_interface.scatter_rev(std::plus<double>());
 
   check(MatMult(_model.stiffness(), x, F), "MatMult");
@@ -185,7 +193,7 @@ bool Equilibrium::jacobian(Vec x, Mat J)
   check(MatCopy(_model.stiffness(), J, SAME_NONZERO_PATTERN), "MatCopy");
   std::span<double> fi = _f_interface.mutable_array();
   std::fill(fi.begin(), fi.end(), 0.0);
-  const bool ok = _model.interface().assemble(_model.displacement().x()->array(), fi, J);
+  const bool ok = assemble_joints(fi, J);
   check(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   check(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
   static_assert(sizeof(PetscInt) == sizeof(std::int32_t), "PETSc with 32-bit indices expected");

@@ -67,13 +67,22 @@ public:
   bool residual(Vec x, Vec F, double& reaction_norm) override;
   bool jacobian(Vec x, Mat J) override;
   double residual_floor(Vec x) override;
-  void forget_trial_state() override { _model.interface().state().revert(); }
+  void forget_trial_state() override
+  {
+    for (interface::Interface* joints : _model.joints())
+      joints->state().revert();
+  }
   int constraint_version() const override { return _constraint_version; }
 
   /// Copies x into the model's displacement (ghosts updated).
   void update_displacement(Vec x);
 
 private:
+  /// Adds the forces of every set of joint elements (interface, crack
+  /// planes) at the model's displacement to f, and their tangents to A if
+  /// given. False if a law failed.
+  bool assemble_joints(std::span<double> f, Mat A);
+
   model::Model& _model;
   Vec _f_thermal = nullptr, _f_external = nullptr;
   double _dT = 0; ///< temperature change of _f_thermal [degC]

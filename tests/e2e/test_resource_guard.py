@@ -39,6 +39,22 @@ for name, sets in cases.items():
     e = s["estimate"]
     for key in ("dofs", "cells", "interface_pairs"):
         check(e[key] == s[key], f"{name}: predicted {key} {e[key]} = meshed {s[key]}")
+# With crack planes the circumference is cut at the cracks (mesh/cracks.h).
+CORRODED = os.path.join(os.environ.get("PUSHOUT_SOURCE_DIR", "."), "demo", "pushout_corroded.toml")
+for name, sets in {"one_crack": [], "odd_crack": ["mesh.elements_per_quarter=5"]}.items():
+    out = out_dir(f"guard_{name}")
+    run(CORRODED, out, sets=sets + ["mesh.elements_through_thickness=2", "corrosion.steps=1",
+                                    "corrosion.penetration=0.001"] + SHORT)
+    s = summary(out)
+    for key in ("dofs", "cells", "interface_pairs"):
+        check(s["estimate"][key] == s[key], f"{name}: predicted {key} {s['estimate'][key]} = meshed {s[key]}")
+four = open(CORRODED).read() + "".join(f"\n[[crack]]\nangle = {a}\n" for a in (0.0, 135.0, 180.0))
+out = out_dir("guard_four_cracks")
+run(four, out, sets=["mesh.elements_through_thickness=2", "corrosion.steps=1",
+                     "corrosion.penetration=0.001"] + SHORT)
+s = summary(out)
+check(all(s["estimate"][k] == s[k] for k in ("dofs", "cells", "interface_pairs")),
+      f"four cracks: predicted size = meshed ({s['dofs']} dofs, {s['interface_pairs']} joint elements)")
 single = os.path.join(os.environ.get("PUSHOUT_SOURCE_DIR", "."), "demo", "single_joint_fig6.toml")
 out = out_dir("guard_single_joint")
 run(single, out, sets=["output.plot=false"])

@@ -1,0 +1,282 @@
+#include "cracks.h"
+#include "../scene/SceneError.h"
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+namespace pushout::mesh
+{
+namespace
+{
+constexpr double pi = std::numbers::pi;
+
+/// a reduced to [0, 2 pi).
+double turn(double a)
+{
+  a = std::fmod(a, 2 * pi);
+  return a < 0 ? a + 2 * pi : a;
+}
+
+/// Smallest angle between two directions [rad].
+double angle_between(double a, double b)
+{
+  const double d = turn(a - b);
+  return std::min(d, 2 * pi - d);
+}
+
+double degrees(double a)
+{
+  return a * 180 / pi;
+}
+
+struct SliceShape
+{
+  bool square;
+  double W;                ///< side or diameter [mm]
+  std::array<double, 2> c; ///< tube centre [mm]
+  std::int64_t nq;         ///< elements per quarter circumference
+};
+
+SliceShape shape_of(const Scene& scene)
+{
+  const auto& c = scene.numbers("geometry.tube_center");
+  return {scene.string("geometry.outer_shape") == "square",
+          scene.number("geometry.width"),
+          {c[0], c[1]},
+          scene.integer("mesh.elements_per_quarter")};
+}
+
+/// The block corner directions: towards the square's corners from the tube
+/// centre (so that every ray between two of them meets one side), or 45 +
+/// 90 k degrees in a circle (slice.geo's, for a centred tube).
+std::array<double, 4> corner_angles(const SliceShape& s)
+{
+  if (!s.square)
+    return {pi / 4, 3 * pi / 4, 5 * pi / 4, 7 * pi / 4};
+  const double W = s.W, x = s.c[0], y = s.c[1];
+  return {turn(std::atan2(W - y, W - x)), turn(std::atan2(W - y, -x)), turn(std::atan2(-y, -x)),
+          turn(std::atan2(-y, W - x))};
+}
+
+/// Where the ray from the tube centre at angle a meets the slice boundary.
+std::array<double, 2> boundary_point(const SliceShape& s, double a)
+{
+  const double dx = std::cos(a), dy = std::sin(a);
+  if (!s.square)
+    return {s.c[0] + s.W / 2 * dx, s.c[1] + s.W / 2 * dy};
+  const double inf = std::numeric_limits<double>::infinity();
+  const double tx = dx > 1e-14 ? (s.W - s.c[0]) / dx : dx < -1e-14 ? -s.c[0] / dx : inf;
+  const double ty = dy > 1e-14 ? (s.W - s.c[1]) / dy : dy < -1e-14 ? -s.c[1] / dy : inf;
+  const double t = std::min(tx, ty);
+  return {s.c[0] + t * dx, s.c[1] + t * dy};
+}
+} // namespace
+
+CrackDirections crack_directions(const Scene& scene)
+{
+  CrackDirections d;
+  const auto& cracks = scene.cracks();
+  if (cracks.empty())
+    return d;
+  const SliceShape s = shape_of(scene);
+  const std::array<double, 4> corners = corner_angles(s);
+  const double element = pi / 2 / double(s.nq); // angle of one interface element
+  for (std::size_t i = 0; i < cracks.size(); ++i)
+  {
+    const std::string key = "crack." + std::to_string(i) + ".angle";
+    double a;
+    if (cracks[i].angle_deg)
+      a = turn(*cracks[i].angle_deg * pi / 180);
+    else
+    {
+      if (!s.square)
+        throw SceneError("'" + key +
+                         "' = \"nearest_face\" needs a square slice: every face of a "
+                         "circular slice is equally near; give the angle in degrees");
+      // Distances to the sides -y, +x, +y, -x (ties: the first).
+      const std::array<double, 4> cover = {s.c[1], s.W - s.c[0], s.W - s.c[1], s.c[0]};
+      const std::array<double, 4> towards = {3 * pi / 2, 0, pi / 2, pi};
+      a = towards[std::min_element(cover.begin(), cover.end()) - cover.begin()];
+    }
+    d.asked.push_back(a);
+    bool snapped = false;
+    for (double corner : corners)
+      if (angle_between(a, corner) < element / 2)
+      {
+        snapped = angle_between(a, corner) > 1e-9;
+        a = corner; // exactly, so that the sectors do not get a sliver
+      }
+    for (std::size_t j = 0; j < d.angles.size(); ++j)
+      if (angle_between(a, d.angles[j]) < element)
+      {
+        std::ostringstream m;
+        m << "'" << key << "' (" << degrees(a) << " deg) is within one interface element ("
+          << degrees(element) << " deg) of 'crack." << j << ".angle' (" << degrees(d.angles[j])
+          << " deg): two crack planes need at least one element between them";
+        throw SceneError(m.str());
+      }
+    d.angles.push_back(a);
+    d.snapped.push_back(snapped);
+  }
+  return d;
+}
+
+std::int64_t SliceSectors::around() const
+{
+  std::int64_t n = 0;
+  for (std::int64_t e : elements)
+    n += e;
+  return n;
+}
+
+SliceSectors slice_sectors(const Scene& scene)
+{
+  const SliceShape s = shape_of(scene);
+  const std::array<double, 4> corners = corner_angles(s);
+  std::vector<std::pair<double, bool>> b; // (angle, is a corner)
+  for (double a : corners)
+    b.push_back({a, true});
+  for (double a : crack_directions(scene).angles)
+    if (std::find(corners.begin(), corners.end(), a) == corners.end())
+      b.push_back({a, false});
+  std::sort(b.begin(), b.end());
+  SliceSectors sec;
+  for (std::size_t i = 0; i < b.size(); ++i)
+  {
+    const auto [a, corner] = b[i];
+    sec.angles.push_back(a);
+    if (corner && s.square)
+    {
+      const std::size_t k =
+          std::size_t(std::find(corners.begin(), corners.end(), a) - corners.begin());
+      const std::array<std::array<double, 2>, 4> square = {
+          {{s.W, s.W}, {0, s.W}, {0, 0}, {s.W, 0}}};
+      sec.outer.push_back(square[k]);
+    }
+    else
+      sec.outer.push_back(boundary_point(s, a));
+    const double next = i + 1 < b.size() ? b[i + 1].first : b[0].first + 2 * pi;
+    const double share = (next - a) / (pi / 2); // of a quarter circumference
+    sec.elements.push_back(std::max<std::int64_t>(std::llround(double(s.nq) * share), 1));
+  }
+  return sec;
+}
+
+void insert_cracks(MeshData& mesh, std::array<double, 2> centre, double R,
+                   const std::vector<double>& angles)
+{
+  const double tol = 1e-7 * R; // nodes lie on the rays to round-off [mm]
+  for (double angle : angles)
+  {
+    const double dx = std::cos(angle), dy = std::sin(angle);
+    const double nx = -dy, ny = dx; // normal: from minus to plus
+    const auto along = [&](std::int64_t i)
+    { return (mesh.x[3 * i] - centre[0]) * dx + (mesh.x[3 * i + 1] - centre[1]) * dy; };
+    const auto across = [&](std::int64_t i)
+    { return (mesh.x[3 * i] - centre[0]) * nx + (mesh.x[3 * i + 1] - centre[1]) * ny; };
+
+    // The concrete nodes on the plane, and the side of each concrete cell.
+    const std::size_t n_nodes = mesh.num_nodes();
+    std::vector<bool> in_concrete(n_nodes, false);
+    for (std::size_t c = 0; c < mesh.num_cells(); ++c)
+      if (mesh.material[c] == concrete)
+        for (int i = 0; i < 8; ++i)
+          in_concrete[mesh.cells[8 * c + i]] = true;
+    std::vector<std::int64_t> copy(n_nodes, -1);
+    double r_mouth = 0;
+    for (std::size_t i = 0; i < n_nodes; ++i)
+      if (in_concrete[i] && std::abs(across(i)) < tol && along(i) > R - tol)
+      {
+        copy[i] = std::int64_t(mesh.num_nodes());
+        for (int d = 0; d < 3; ++d)
+          mesh.x.push_back(mesh.x[3 * i + d]);
+        r_mouth = std::max(r_mouth, along(i));
+      }
+    const auto on_plane = [&](const std::array<std::int64_t, 4>& f)
+    { return std::all_of(f.begin(), f.end(), [&](std::int64_t n) { return copy[n] >= 0; }); };
+
+    // Facets of the plane on the minus side (original nodes), and the plus
+    // side cells that take the copies.
+    std::map<std::array<std::int64_t, 4>, std::int64_t> minus_facet; // sorted nodes -> cell
+    std::vector<std::size_t> plus_cells;
+    for (std::size_t c = 0; c < mesh.num_cells(); ++c)
+    {
+      if (mesh.material[c] != concrete)
+        continue;
+      const std::int64_t* cell = mesh.cells.data() + 8 * c;
+      if (std::none_of(cell, cell + 8, [&](std::int64_t n) { return copy[n] >= 0; }))
+        continue;
+      const std::array<double, 3> x = centroid(mesh, c);
+      const bool plus = (x[0] - centre[0]) * nx + (x[1] - centre[1]) * ny > 0;
+      if (plus)
+      {
+        plus_cells.push_back(c);
+        continue;
+      }
+      for (const auto& f : hex_facets)
+      {
+        std::array<std::int64_t, 4> key = {cell[f[0]], cell[f[1]], cell[f[2]], cell[f[3]]};
+        if (!on_plane(key))
+          continue;
+        std::sort(key.begin(), key.end());
+        minus_facet[key] = std::int64_t(c);
+      }
+    }
+
+    CrackPlane plane;
+    plane.angle = angle;
+    for (std::size_t c : plus_cells)
+    {
+      std::int64_t* cell = mesh.cells.data() + 8 * c;
+      for (const auto& f : hex_facets)
+      {
+        const std::array<std::int64_t, 4> nodes = {cell[f[0]], cell[f[1]], cell[f[2]], cell[f[3]]};
+        if (!on_plane(nodes))
+          continue;
+        std::array<std::int64_t, 4> key = nodes;
+        std::sort(key.begin(), key.end());
+        const auto partner = minus_facet.find(key);
+        if (partner == minus_facet.end())
+          throw std::runtime_error("crack plane facet without a partner on the other side");
+        InterfacePair pair;
+        pair.minus = nodes;
+        for (int i = 0; i < 4; ++i)
+          pair.plus[i] = copy[nodes[i]];
+        pair.minus_cell = partner->second;
+        pair.plus_cell = std::int64_t(c);
+        orient(pair, mesh, centroid(mesh, std::size_t(partner->second)));
+        plane.pairs.push_back(pair);
+      }
+    }
+    // The plus side takes the copies: its cells, and the steel-concrete
+    // pairs whose concrete facet is on it.
+    std::vector<bool> is_plus(mesh.num_cells(), false);
+    for (std::size_t c : plus_cells)
+    {
+      is_plus[c] = true;
+      for (int i = 0; i < 8; ++i)
+      {
+        std::int64_t& n = mesh.cells[8 * c + i];
+        if (copy[n] >= 0)
+          n = copy[n];
+      }
+    }
+    for (InterfacePair& p : mesh.pairs)
+      if (is_plus[std::size_t(p.plus_cell)])
+        for (std::int64_t& n : p.plus)
+          if (copy[n] >= 0)
+            n = copy[n];
+    for (std::size_t i = 0; i < n_nodes; ++i)
+      if (copy[i] >= 0 && along(std::int64_t(i)) > r_mouth - tol)
+        plane.mouth.push_back({std::int64_t(i), copy[i]});
+    if (plane.pairs.empty() || plane.mouth.empty())
+      throw std::runtime_error("crack plane at " + std::to_string(degrees(angle)) +
+                               " deg: no mesh facets lie on it");
+    mesh.cracks.push_back(std::move(plane));
+  }
+}
+} // namespace pushout::mesh

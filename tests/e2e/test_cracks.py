@@ -1,0 +1,136 @@
+"""Crack planes in the concrete ([[crack]], mesh/cracks.h) under the oxide's
+expansion, on the circular slice of test_corrosion (outer diameter 2b = 100
+mm, tube radii a = 8, R = 10 mm), oxide_friction k 1000, crack law
+exponential_softening with a stiff penalty (k 1e6 N/mm^3: the elastic
+planes add no compliance to the uncracked ring), f_t 3 MPa, c 20 1/mm.
+
+1. Onset: the ring cracks at its inner surface when p reaches
+   p_cr = f_t (b^2 - R^2) / (b^2 + R^2)  (plane stress, scripts/analytic.py).
+   With one crack and with four, at x giving 0.95 p_cr (by the ring formula)
+   no crack point is damaged and the largest opening is within the elastic
+   f_t / k; at 1.05 p_cr the root is damaged.
+2. Rigid segments: four cracks, no friction, x = 60 um: the cracks run
+   through, the four mouths open alike, and the mean pressure follows the
+   rigid-segment limit p = ((b - R) / R) sigma(w), w the mouth opening,
+   within 25 %: the segments translate along their bisectors, so the oxide
+   presses harder near the cracks than between them, and the mean pressure
+   exceeds the resultant's (the resultant balances the cracks to round-off;
+   measured +17 %).
+3. Directions and outputs: "nearest_face" of an off-centre tube in a square is the
+   cover side (-y here); an angle within half an element of a block corner
+   is moved onto it (summary.json says so); the model is the full one;
+   cracks.xdmf and corrosion.png are written."""
+import math
+import os
+
+from common import check, corrosion, out_dir, run, summary
+import analytic
+
+a, R, b = 8.0, 10.0, 50.0
+Ec, nuc, Es, nus, k, beta, B_ox = 30000.0, 0.2, 200000.0, 0.3, 1000.0, 2.0, 2000.0
+f_t, k_crack, c = 3.0, 1e6, 20.0
+MESH = "[mesh]\nelements_per_quarter = 16\nelements_through_thickness = 1\n"
+
+
+def crack(angle):
+    return (f"[[crack]]\nangle = {angle}\nlaw = \"exponential_softening\"\nk = {k_crack}\n"
+            f"f_t = {f_t}\nc = {c}\n")
+
+
+def scene(x, steps, angles, mu=0.4, extra=""):
+    return MESH + f"""
+[geometry]
+outer_shape = "circle"
+width = {2 * b}
+[[interface]]
+law = "oxide_friction"
+k = {k}
+mu = {mu}
+[loading]
+temperature_change = 0.0
+push_displacement = 0.001
+steps = 1
+[corrosion]
+penetration = {x}
+steps = {steps}
+beta = {beta}
+oxide_bulk = {B_ox}
+""" + extra + "".join(crack(t) for t in angles)
+
+
+# 1. Onset.
+p_cr = analytic.cracking_onset_pressure(f_t, R, b)
+C = sum(analytic.ring_compliances(R, a, b, Ec, nuc, Es, nus)) + 1 / k
+for angles in ([90.0], [0.0, 90.0, 180.0, 270.0]):
+    for factor in (0.95, 1.05):
+        p = factor * p_cr
+        x = p * C / ((beta - 1) - p * beta / B_ox)  # p = (beta-1)x / (C + beta x / B_ox)
+        out = out_dir(f"cracks_onset_{len(angles)}_{factor}")
+        run(scene(x, 2, angles), out)
+        cracks = summary(out)["cracks"]
+        p_run = corrosion(out)[-1]["p_MPa"]
+        damaged = max(cr["max_damage"] for cr in cracks)
+        opening = max(cr["max_opening_mm"] for cr in cracks)
+        what = f"{len(angles)} crack(s) at p = {p_run:.3f} MPa = {p_run / p_cr:.3f} p_cr"
+        if factor < 1:
+            check(damaged == 0 and opening <= f_t / k_crack,
+                  f"{what}: no damage, largest opening {opening:.3e} mm <= f_t/k {f_t / k_crack:.1e}")
+            # Elastic until then: the opening grows as p, so it reaches f_t/k at
+            p_onset = p_run * (f_t / k_crack) / opening
+            check(abs(p_onset / p_cr - 1) < 0.05,
+                  f"{len(angles)} crack(s): onset at p = {p_onset:.3f} MPa vs p_cr {p_cr:.3f} MPa "
+                  f"({100 * (p_onset / p_cr - 1):+.1f} %)")
+        else:
+            check(damaged > 0, f"{what}: the root is damaged (largest damage {damaged:.3f})")
+
+# 2. Rigid segments.
+out = out_dir("cracks_rigid_segments")
+run(scene(0.06, 30, [0.0, 90.0, 180.0, 270.0], mu=0.0), out)
+rows = corrosion(out)
+last = rows[-1]
+widths = [last[f"w_crack_{i}_mm"] for i in range(4)]
+w = sum(widths) / 4
+check(max(widths) - min(widths) < 1e-6 * w, f"the four mouths open alike: {widths}")
+check(abs(last["crack_width_mm"] - max(widths)) < 1e-15, "crack_width_mm is the largest mouth")
+check(w > 10 * f_t / k_crack and all(cr["max_damage"] > 0.99 for cr in summary(out)["cracks"]),
+      f"the cracks run through: mouth opening {1e3 * w:.1f} um")
+w0 = f_t / k_crack
+p_limit = analytic.rigid_segments_pressure(lambda w: f_t * math.exp(-c * (w - w0)), w, R, b)
+err = last["p_MPa"] / p_limit - 1
+check(0 < err < 0.25, f"p {last['p_MPa']:.3f} MPa vs rigid segments ((b-R)/R) sigma(w) "
+                      f"{p_limit:.3f} MPa ({100 * err:+.1f} %)")
+check(all(r1["p_MPa"] < r0["p_MPa"] for r0, r1 in zip(rows[-5:], rows[-4:])),
+      "after the peak the pressure falls as the cracks open")
+
+# 3. Directions.
+out = out_dir("cracks_directions")
+square = MESH.replace("16", "8") + """
+[geometry]
+outer_shape = "square"
+width = 100.0
+tube_center = [50.0, 25.0]
+[[interface]]
+law = "oxide_friction"
+[loading]
+push_displacement = 0.002
+steps = 1
+[corrosion]
+penetration = 0.002
+steps = 1
+[[crack]]
+angle = "nearest_face"
+[[crack]]
+angle = 58.0
+"""
+run(square, out, sets=["output.xdmf=true"])
+s = summary(out)
+xdmf = open(os.path.join(out, "cracks.xdmf")).read()
+check(all(f'Name="{f}"' in xdmf for f in ("t_n", "w_n", "damage", "crack")),
+      "cracks.xdmf has the crack planes' tractions, openings, damage and index")
+check(os.path.exists(os.path.join(out, "corrosion.png")), "corrosion.png drawn")
+corner = math.degrees(math.atan2(100 - 25, 100 - 50))  # the block corner towards (100, 100)
+check(abs(s["cracks"][0]["angle_deg"] - 270) < 1e-9 and not s["cracks"][0]["snapped"],
+      f"nearest_face of a tube 15 mm from y = 0: {s['cracks'][0]['angle_deg']} deg")
+check(s["cracks"][1]["snapped"] and abs(s["cracks"][1]["angle_deg"] - corner) < 1e-9,
+      f"58 deg is moved onto the block corner at {corner:.2f} deg")
+check(s["symmetry"] == "full", "crack planes: the full model")
