@@ -35,7 +35,8 @@ other keys are its parameters.
 crack plane through the concrete from the interface to the slice's outer
 boundary, with `angle` (degrees from +x towards +y, or `"nearest_face"`: the
 square's side nearest the tube) and a law of this list in one layer (`law`,
-default `exponential_softening`, and its parameters). `--set crack.0.f_t=2.5`
+default `exponential_softening`, and its parameters; a crack's `k` defaults
+to 1e5 N/mm^3, stiff enough that the uncracked plane adds no compliance). `--set crack.0.f_t=2.5`
 changes a crack's parameter.
 
 ```

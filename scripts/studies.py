@@ -43,6 +43,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DEMO = os.path.join(ROOT, "demo")
 DTS = [-5.0, -10.0, -25.0, -50.0]
 CORROSION_DEPTHS_UM = [0.0, 12.5, 25.0, 50.0]
+CRACK_ETA = 1e-3  # mm of pseudo-time (a push step is 0.01)
 # The corroded demo with four crack planes instead of one (written to OUT).
 FOUR_CRACKS = "pushout_corroded_four_cracks.toml"
 COLORS = {-5.0: "tab:blue", -10.0: "tab:green", -25.0: "tab:orange", -50.0: "tab:red"}
@@ -51,6 +52,8 @@ COLORS = {-5.0: "tab:blue", -10.0: "tab:green", -25.0: "tab:orange", -50.0: "tab
 def mesh_sets(study, quick):
     if quick:
         return ["mesh.elements_per_quarter=4", "mesh.elements_through_thickness=2"]
+    if study == "corroded":  # 32 runs of the full model (no symmetry, no condensation)
+        return ["mesh.elements_per_quarter=12", "mesh.elements_through_thickness=4"]
     return []  # the paper's mesh: 16 per quarter, 8 through the thickness
 
 
@@ -91,6 +94,9 @@ def cases(study, quick):
                                 f"corrosion.penetration={x_um / 1e3}",
                                 f"corrosion.steps={max(1, round(x_um / 2.5))}",
                                 f"loading.steps={steps}"]
+                        # A small damage viscosity passes the cracks' snap-backs under
+                        # control of x (docs/corrosion.md: 0.6 % on p at 12.5 um).
+                        sets += [f"crack.{i}.eta={CRACK_ETA}" for i in range(1 if cracks == "one" else 4)]
                         scene = "pushout_corroded.toml" if cracks == "one" else FOUR_CRACKS
                         out.append((f"{where}_{cracks}_beta{beta:g}_x{x_um:g}", scene, sets))
     elif study == "retraction":
@@ -121,9 +127,10 @@ def run_case(pushout, study, folder, scene, sets, quick, reuse):
     path = os.path.join(DEMO, scene)
     if scene == FOUR_CRACKS:
         path = os.path.join(os.path.dirname(os.path.dirname(folder)), FOUR_CRACKS)
-    # One core per run: the runs go side by side.
-    pushout_runs.run(pushout, path, folder,
-                     ["output.plot=false"] + sets + mesh_sets(study, quick), one_thread=True, check=True)
+    # One core per run: the runs go side by side. A corroded case that does
+    # not converge is reported, not fatal.
+    pushout_runs.run(pushout, path, folder, ["output.plot=false"] + sets + mesh_sets(study, quick),
+                     one_thread=True, check=study != "corroded")
     return time.time() - t0
 
 
@@ -240,6 +247,9 @@ def plot_corroded(out, runs):
     for name in sorted({n for (study, n) in runs if study == "corroded"}):
         folder = os.path.join(out, "corroded", name)
         rows = runs[("corroded", name)]
+        if not pushout_runs.summary(folder)["converged"]:
+            print(f"corroded {name}: did not converge: {pushout_runs.summary(folder)['message']}")
+            continue
         where, cracks, beta, x = name.split("_")
         corr = pushout_runs.corrosion(folder) if os.path.exists(os.path.join(folder, "corrosion.csv")) else []
         table.append({"case": name, "tube": where, "cracks": cracks, "beta": float(beta[4:]),

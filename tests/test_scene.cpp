@@ -65,3 +65,23 @@ TEST(Scene, ErrorsNameTheKey)
   EXPECT_NE(error_of("", {{"interface.2.k", "1"}}).find("interface.2.k"), std::string::npos);
   EXPECT_NE(error_of("[[interface]]\nlaw = 3\n").find("interface.0.law"), std::string::npos);
 }
+
+TEST(Scene, CrackTablesTakeAnAngleAndALaw)
+{
+  const Scene s = Scene::parse("[[crack]]\nangle = \"nearest_face\"\n"
+                               "[[crack]]\nangle = 90\nlaw = \"linear_softening\"\nw_c2 = 0.1\n",
+                               {{"crack.1.f_t", "2.5"}});
+  ASSERT_EQ(s.cracks().size(), 2u);
+  EXPECT_FALSE(s.cracks()[0].angle_deg.has_value());
+  EXPECT_EQ(s.cracks()[0].layer.law, "exponential_softening");
+  EXPECT_DOUBLE_EQ(s.cracks()[0].layer.params.at("k"), 1e5); // a crack's stiff default
+  EXPECT_DOUBLE_EQ(*s.cracks()[1].angle_deg, 90.0);
+  EXPECT_DOUBLE_EQ(s.cracks()[1].layer.params.at("f_t"), 2.5);
+  // The resolved scene reads back to the same cracks.
+  const Scene again = Scene::parse(s.to_toml());
+  ASSERT_EQ(again.cracks().size(), 2u);
+  EXPECT_FALSE(again.cracks()[0].angle_deg.has_value());
+  EXPECT_DOUBLE_EQ(*again.cracks()[1].angle_deg, 90.0);
+  EXPECT_EQ(again.cracks()[1].layer.params, s.cracks()[1].layer.params);
+  EXPECT_NE(error_of("[[crack]]\nangle = 400.0\n").find("crack.0.angle"), std::string::npos);
+}

@@ -201,7 +201,8 @@ std::string known_keys_in(const std::string& section)
 /// (`section` "interface" or "crack"; `skip` names keys of the table that
 /// are not the law's).
 LayerSpec read_layer(const toml::node& node, std::size_t index, const std::string& section,
-                     const std::string& default_law, const std::vector<std::string>& skip = {})
+                     const std::string& default_law, const std::vector<std::string>& skip = {},
+                     const laws::Params& defaults = {})
 {
   const std::string prefix = section + "." + std::to_string(index) + ".";
   const auto* tbl = node.as_table();
@@ -245,7 +246,11 @@ LayerSpec read_layer(const toml::node& node, std::size_t index, const std::strin
     }
     layer.params[name] = std::get<double>(convert(value, KeyType::number, prefix + name));
   }
-  // Defaults: first fixed ones, then those copied from another parameter.
+  // Defaults: the section's own, then the law's fixed ones, then those
+  // copied from another parameter.
+  for (const auto& p : info->params)
+    if (!layer.params.count(p.name) && defaults.count(p.name))
+      layer.params[p.name] = defaults.at(p.name);
   for (const auto& p : info->params)
     if (!layer.params.count(p.name) && p.default_value)
       layer.params[p.name] = *p.default_value;
@@ -274,12 +279,18 @@ LayerSpec read_layer(const toml::node& node, std::size_t index, const std::strin
   return layer;
 }
 
+/// Default penalty stiffness of a crack plane's law [N/mm^3].
+constexpr double crack_penalty_default = 1e5;
+
 /// One [[crack]] table: `angle` (degrees or "nearest_face") and a law.
 CrackSpec read_crack(const toml::node& node, std::size_t index)
 {
   const std::string path = "crack." + std::to_string(index) + ".angle";
   CrackSpec crack;
-  crack.layer = read_layer(node, index, "crack", "exponential_softening", {"angle"});
+  // A crack plane's penalty must be stiff (an uncracked plane adds 1/k to the
+  // ring's compliance: docs/corrosion.md), whatever the law's own default.
+  crack.layer = read_layer(node, index, "crack", "exponential_softening", {"angle"},
+                           {{"k", crack_penalty_default}});
   const toml::node* angle = node.as_table()->get("angle");
   if (!angle)
     throw SceneError("'" + path + "' is required: degrees from +x towards +y, or \"nearest_face\"");

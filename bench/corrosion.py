@@ -1,0 +1,81 @@
+#!/usr/bin/python3
+"""The cost of a corroded push-out against the uncorroded Fig. 10 curve.
+
+Cases (the paper's mesh 16/8, one thread each, one after the other):
+
+  fig10           demo/pushout_friction_adhesion.toml pushed to 1 mm in 80
+                  steps (growth 1.07, as scripts/studies.py): quarter model,
+                  bulk condensed onto the interface jumps (the defaults);
+  fig10_whole     the same on the full model without condensation (what a
+                  model with crack planes has to use);
+  corroded_nocrack demo/pushout_corroded.toml without its crack plane: 20
+                  corrosion steps to x = 50 um, then a 100-step push (full
+                  model: the tube is off-centre; condensed);
+  corroded_crack  the demo as it is (one crack plane to the nearest face),
+                  20 corrosion steps + a 100-step push: full model, not
+                  condensed (crack planes pair concrete with concrete).
+
+Writes bench/results/corrosion.csv and corrosion.md.
+
+  bench/corrosion.py [--reuse]
+"""
+import argparse
+import os
+
+from common import PUSHOUT, ROOT, curve, markdown_table, run, summary, write_csv
+
+DEMO = os.path.join(ROOT, "demo")
+FIG10 = ["loading.push_displacement=1.0", "loading.steps=80", "loading.step_growth=1.07"]
+CORRODED = ["corrosion.steps=20", "loading.steps=100"]
+
+
+def without_crack(out):
+    """demo/pushout_corroded.toml without its [[crack]] table."""
+    text = open(os.path.join(DEMO, "pushout_corroded.toml")).read()
+    head, rest = text.split("[[crack]]", 1)
+    tail = rest.split("\n\n", 1)[1]
+    path = os.path.join(out, "pushout_corroded_nocrack.toml")
+    os.makedirs(out, exist_ok=True)
+    with open(path, "w") as f:
+        f.write(head + tail)
+    return path
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--pushout", default=PUSHOUT)
+    ap.add_argument("--out", default=os.path.join(ROOT, "results", "bench_corrosion"))
+    ap.add_argument("--reuse", action="store_true")
+    args = ap.parse_args()
+    cases = {
+        "fig10": (os.path.join(DEMO, "pushout_friction_adhesion.toml"), FIG10),
+        "fig10_whole": (os.path.join(DEMO, "pushout_friction_adhesion.toml"),
+                        FIG10 + ["model.symmetry=full", "solver.condensation=off"]),
+        "corroded_nocrack": (without_crack(args.out), CORRODED),
+        "corroded_crack": (os.path.join(DEMO, "pushout_corroded.toml"), CORRODED),
+    }
+    rows = []
+    for name, (scene, sets) in cases.items():
+        out = os.path.join(args.out, name)
+        run(args.pushout, scene, out, ["output.plot=false"] + sets, reuse=args.reuse)
+        s = summary(out)
+        rows.append({"case": name, "wall_s": round(s["wall_s"], 2),
+                     "solve_s": round(s["time_s"]["solve"], 2), "symmetry": s["symmetry"],
+                     "dofs": s["dofs"], "condensed_dofs": s["condensed_dofs"],
+                     "corrosion_steps": s["corrosion_steps"], "push_steps": s["steps"],
+                     "newton_iterations": s["newton_iterations"], "cuts": s["cuts"],
+                     "tau_last_MPa": round(curve(out)[-1]["tau_MPa"], 4)})
+        print(rows[-1], flush=True)
+    ref = rows[0]["wall_s"]
+    for r in rows:
+        r["ratio_to_fig10"] = round(r["wall_s"] / ref, 1)
+    results = os.path.join(ROOT, "bench", "results")
+    write_csv(os.path.join(results, "corrosion.csv"), rows)
+    with open(os.path.join(results, "corrosion.md"), "w") as f:
+        f.write("# Corroded push-out: cost against the Fig. 10 curve\n\n"
+                "Made by `bench/corrosion.py` (one thread per run, this machine).\n\n")
+        f.write(markdown_table(list(rows[0]), rows))
+
+
+if __name__ == "__main__":
+    main()
