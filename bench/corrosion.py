@@ -6,14 +6,14 @@ Cases (the paper's mesh 16/8, one thread each, one after the other):
   fig10           demo/pushout_friction_adhesion.toml pushed to 1 mm in 80
                   steps (growth 1.07, as scripts/studies.py): quarter model,
                   bulk condensed onto the interface jumps (the defaults);
-  fig10_whole     the same on the full model without condensation (what a
-                  model with crack planes has to use);
+  fig10_whole     the same on the full model without condensation;
   corroded_nocrack demo/pushout_corroded.toml without its crack plane: 20
                   corrosion steps to x = 50 um, then a 100-step push (full
                   model: the tube is off-centre; condensed);
   corroded_crack  the demo as it is (one crack plane to the nearest face),
-                  20 corrosion steps + a 100-step push: full model, not
-                  condensed (crack planes pair concrete with concrete).
+                  20 corrosion steps + a 100-step push: full model (cracks),
+                  the bulk condensed onto the interface's and the crack's
+                  node pairs.
 
 Writes bench/results/corrosion.csv and corrosion.md.
 

@@ -42,8 +42,11 @@ void Corrosion::apply(double s, interface::Interface& itf) const
   itf.set_oxide(in.gap, in.compliance);
 }
 
-void Corrosion::record(double s, const model::Model& model, int iterations, int cuts, int step)
+void Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iterations, int cuts,
+                       int step)
 {
+  eq.update_displacement(state); // the crack mouths read the model's displacement
+  const model::Model& model = eq.model();
   const double x = penetration_at(s);
   const double p = mean_pressure(model.interface());
   const std::vector<double> widths = model.crack_mouth_openings();
@@ -70,8 +73,10 @@ void Corrosion::record(double s, const model::Model& model, int iterations, int 
   std::cout << line.str() << std::endl;
 }
 
-void Corrosion::describe_cracks(const model::Model& model, output::Summary& summary) const
+void Corrosion::describe_cracks(solver::Equilibrium& eq, Vec state, output::Summary& summary) const
 {
+  eq.update_displacement(state);
+  const model::Model& model = eq.model();
   const std::vector<double> mouth = model.crack_mouth_openings();
   summary.cracks.clear();
   for (std::size_t i = 0; i < model.num_cracks(); ++i)

@@ -21,6 +21,7 @@
 #include "../output/CurveWriter.h"
 #include "../output/Summary.h"
 #include "../scene/Scene.h"
+#include "../solver/Equilibrium.h"
 #include "RunReport.h"
 #include <filesystem>
 #include <optional>
@@ -42,13 +43,14 @@ public:
   /// Sets the interface's oxide inputs for depth x(s).
   void apply(double s, interface::Interface& itf) const;
 
-  /// Records the converged state at s of corrosion step `step` (0: before
+  /// Records the converged `state` (whole model; with the condensed bulk,
+  /// right on the joints) at s of corrosion step `step` (0: before
   /// corrosion): a corrosion.csv row and the progress line. Collective.
-  void record(double s, const model::Model& model, int iterations, int cuts, int step);
+  void record(double s, solver::Equilibrium& eq, Vec state, int iterations, int cuts, int step);
 
   /// The crack planes' state now (their direction, mouth and largest
   /// opening, largest damage) into the summary. Collective.
-  void describe_cracks(const model::Model& model, output::Summary& summary) const;
+  void describe_cracks(solver::Equilibrium& eq, Vec state, output::Summary& summary) const;
 
 private:
   double _x_final = 0; ///< [mm]

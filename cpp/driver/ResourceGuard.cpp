@@ -104,7 +104,7 @@ ResourceEstimate estimate_resources(const Scene& scene, MPI_Comm comm)
 
   std::string why;
   e.condensed = solver::Condensation::chosen(scene.string("solver.condensation"), e.processes,
-                                             e.size.interface_dofs, !scene.cracks().empty(), why);
+                                             e.size.interface_dofs, why);
   e.direct = solver::NewtonSolver::direct_factorization();
   const double n = double(e.size.dofs), P = double(e.processes);
   const double c = scene.integer("mesh.degree") == 2 ? lu_mb_degree2 : lu_mb_degree1;

@@ -166,7 +166,7 @@ bool StepLoop::initial_step()
     }
   }
   if (_corrosion.active())
-    _corrosion.record(0.0, _equilibrium.model(), iterations, 0, 0);
+    _corrosion.record(0.0, _equilibrium, _x, iterations, 0, 0);
   else
     start_push(iterations);
   commit();
@@ -175,7 +175,7 @@ bool StepLoop::initial_step()
 
 void StepLoop::start_push(int iterations)
 {
-  _corrosion.describe_cracks(_equilibrium.model(), _summary);
+  _corrosion.describe_cracks(_equilibrium, _x, _summary);
   _solver.set_bulk_needed(_recorder.bulk_needed());
   {
     const solver::ReadView x(_x);
@@ -201,7 +201,7 @@ bool StepLoop::corrode()
                         [&](double s0, double s1) { return (s1 - s0) * step_time; },
                         [&](int iterations, int cuts, int k, double s)
                         {
-                          _corrosion.record(s, _equilibrium.model(), iterations, cuts, k);
+                          _corrosion.record(s, _equilibrium, _x, iterations, cuts, k);
                           ++_summary.corrosion_steps;
                           _summary.penetration_mm = _corrosion.penetration_at(s);
                           if (s >= steps - step_tolerance)

@@ -71,13 +71,14 @@ MeshSize predict_size(const Scene& scene)
   s.nodes = n_around * n_radial * n_thick;
   s.interface_dofs = 6 * n_around * n_thick;
   // Each crack plane duplicates its concrete nodes (from the interface to
-  // the boundary) and adds its joint elements; its column of nodes on the
-  // interface is the interface's too.
+  // the boundary) and adds its joint elements.
   const std::int64_t planes = std::int64_t(scene.cracks().size());
   const std::int64_t crack_nodes = (p * (d.ring + d.graded) + 1) * n_thick;
   s.nodes += planes * crack_nodes;
   s.joint_elements += planes * (d.ring + d.graded) * d.thickness;
-  s.interface_dofs += planes * 3 * (n_thick + 2 * (crack_nodes - n_thick));
+  // Node pairs: each concrete node of the interface (one more column per
+  // plane) and each node of a plane's plus face; 6 dofs per pair.
+  s.interface_dofs += 6 * planes * (n_thick + crack_nodes);
   s.dofs = 3 * s.nodes;
   return s;
 }

@@ -17,7 +17,7 @@ struct MeshSize
   std::int64_t nodes = 0;           ///< mesh nodes, interface nodes counted twice
   std::int64_t dofs = 0;            ///< displacement dofs (3 per node of the degree)
   std::int64_t joint_elements = 0;  ///< joint elements (interface and crack planes)
-  std::int64_t interface_dofs = 0;  ///< dofs on both sides of all joint elements
+  std::int64_t interface_dofs = 0;  ///< 6 per node pair of the joints (both sides)
   bool quarter = false;             ///< the model is a quarter by symmetry
 };
 

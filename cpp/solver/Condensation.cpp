@@ -15,24 +15,33 @@ namespace
 /// Load directions kept before the basis starts again.
 constexpr std::size_t max_basis = 6;
 
-/// Interface node pairs of this process: (steel block, concrete block),
-/// sorted by concrete block.
-std::vector<std::pair<std::int32_t, std::int32_t>> node_pairs(const model::Model& model)
+/// Node pairs of this process, per set of joint elements (the interface,
+/// then the crack planes): (minus block, plus block), sorted by plus block.
+/// Within a set every plus node has one partner; a node may be in pairs of
+/// two sets (a crack's root node: concrete in the interface, a face of the
+/// crack).
+std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>>
+node_pairs(const model::Model& model)
 {
-  const auto b = model.interface().pair_blocks();
-  const int n = model.interface().nodes_per_side();
-  std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
-  for (std::size_t p = 0; p < model.interface().num_pairs(); ++p)
-    for (int a = 0; a < n; ++a)
-      pairs.emplace_back(b[2 * n * p + n + a], b[2 * n * p + a]);
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  for (std::size_t k = 1; k < pairs.size(); ++k)
-    if (pairs[k].first == pairs[k - 1].first)
-      throw std::logic_error("condensation: a concrete interface node has two steel partners");
-  for (auto& [concrete, steel] : pairs)
-    std::swap(concrete, steel);
-  return pairs;
+  std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>> sets;
+  for (const interface::Interface* joints : model.joints())
+  {
+    const auto b = joints->pair_blocks();
+    const int n = joints->nodes_per_side();
+    std::vector<std::pair<std::int32_t, std::int32_t>> pairs; // (plus, minus) to sort
+    for (std::size_t p = 0; p < joints->num_pairs(); ++p)
+      for (int a = 0; a < n; ++a)
+        pairs.emplace_back(b[2 * n * p + n + a], b[2 * n * p + a]);
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    for (std::size_t k = 1; k < pairs.size(); ++k)
+      if (pairs[k].first == pairs[k - 1].first)
+        throw std::logic_error("condensation: a plus-side joint node has two partners");
+    for (auto& [plus, minus] : pairs)
+      std::swap(plus, minus);
+    sets.push_back(std::move(pairs));
+  }
+  return sets;
 }
 
 /// Column-major dense array of a SEQDENSE matrix and its leading dimension.
@@ -53,18 +62,20 @@ struct Dense
 
 std::int64_t Condensation::interface_dofs(const model::Model& model)
 {
-  return 6 * std::int64_t(node_pairs(model).size());
+  std::int64_t pairs = 0;
+  for (const auto& set : node_pairs(model))
+    pairs += std::int64_t(set.size());
+  return 6 * pairs;
 }
 
 bool Condensation::possible(const Equilibrium& eq, std::string& why)
 {
   int size = 1;
   MPI_Comm_size(PetscObjectComm(reinterpret_cast<PetscObject>(eq.model().stiffness())), &size);
-  return possible(size, interface_dofs(eq.model()), eq.model().num_cracks() > 0, why);
+  return possible(size, interface_dofs(eq.model()), why);
 }
 
-bool Condensation::possible(int processes, std::int64_t n_interface, bool crack_planes,
-                            std::string& why)
+bool Condensation::possible(int processes, std::int64_t n_interface, std::string& why)
 {
   char pc_type[64] = "";
   PetscBool pc_set = PETSC_FALSE;
@@ -72,9 +83,6 @@ bool Condensation::possible(int processes, std::int64_t n_interface, bool crack_
         "PetscOptionsGetString");
   if (processes > 1)
     why = "more than one process";
-  else if (crack_planes)
-    why = "crack planes (the condensation pairs each concrete interface node with one steel "
-          "node; crack nodes pair concrete with concrete)";
   else if (pc_set && std::string(pc_type) != "lu")
     why = std::string("-pc_type ") + pc_type + " (condensed systems are solved by dense LU)";
   else if (n_interface == 0)
@@ -85,11 +93,11 @@ bool Condensation::possible(int processes, std::int64_t n_interface, bool crack_
 }
 
 bool Condensation::chosen(const std::string& mode, int processes, std::int64_t n_interface,
-                          bool crack_planes, std::string& why)
+                          std::string& why)
 {
   if (mode == "off")
     return false;
-  if (!possible(processes, n_interface, crack_planes, why))
+  if (!possible(processes, n_interface, why))
     return false;
   if (mode == "auto" && n_interface > default_max_dofs)
   {
@@ -108,18 +116,38 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
   const model::Model& model = eq.model();
   const auto& map = model.index_map();
   const std::int32_t n_blocks = map.size_local() + map.num_ghosts();
-  const auto pairs = node_pairs(model);
-  std::vector<std::int32_t> pair_of_block(n_blocks, -1); // concrete block -> node pair
-  for (std::size_t k = 0; k < pairs.size(); ++k)
+  // The jumps: 3 per node pair, set by set; the l2g of each set maps its
+  // plus blocks to their pairs (its minus blocks to nothing).
+  std::vector<std::vector<std::int32_t>> pair_of_block;
+  std::int32_t n_pairs = 0;
+  for (const auto& set : node_pairs(model))
   {
-    pair_of_block[pairs[k].second] = std::int32_t(k);
-    for (int c = 0; c < 3; ++c)
+    pair_of_block.emplace_back(n_blocks, -1);
+    for (const auto& [minus, plus] : set)
     {
-      _steel.push_back(3 * pairs[k].first + c);
-      _concrete.push_back(3 * pairs[k].second + c);
+      pair_of_block.back()[plus] = n_pairs++;
+      for (int c = 0; c < 3; ++c)
+      {
+        _minus.push_back(3 * minus + c);
+        _plus.push_back(3 * plus + c);
+      }
     }
+    _set_end.push_back(_minus.size());
   }
-  const PetscInt n = PetscInt(_steel.size());
+  const PetscInt n = PetscInt(_minus.size());
+  // The interface dofs: every dof of a pair, once.
+  _gamma.assign(_minus.begin(), _minus.end());
+  _gamma.insert(_gamma.end(), _plus.begin(), _plus.end());
+  std::sort(_gamma.begin(), _gamma.end());
+  _gamma.erase(std::unique(_gamma.begin(), _gamma.end()), _gamma.end());
+  const auto position = [this](std::int32_t dof)
+  { return PetscInt(std::lower_bound(_gamma.begin(), _gamma.end(), dof) - _gamma.begin()); };
+  for (PetscInt j = 0; j < n; ++j)
+  {
+    _pos_minus.push_back(position(_minus[j]));
+    _pos_plus.push_back(position(_plus[j]));
+  }
+  const PetscInt n_gamma = PetscInt(_gamma.size());
 
   const Constraints& bc = eq.constraints();
   _constraint_version = eq.constraint_version();
@@ -128,8 +156,8 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
     constrained[d] = 1;
   for (PetscInt j = 0; j < n; ++j)
   {
-    _steel_free.push_back(!constrained[_steel[j]]);
-    _concrete_free.push_back(!constrained[_concrete[j]]);
+    _minus_free.push_back(!constrained[_minus[j]]);
+    _plus_free.push_back(!constrained[_plus[j]]);
   }
 
   // J0: K with unit constrained rows, plus eps G^T G on the free interface
@@ -145,32 +173,31 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
     check(VecGetArrayRead(diag, &dg), "VecGetArrayRead");
     double sum = 0;
     for (PetscInt j = 0; j < n; ++j)
-      sum += std::abs(dg[_steel[j]]) + std::abs(dg[_concrete[j]]);
+      sum += std::abs(dg[_minus[j]]) + std::abs(dg[_plus[j]]);
     check(VecRestoreArrayRead(diag, &dg), "VecRestoreArrayRead");
     check(VecDestroy(&diag), "VecDestroy");
     _eps = 1e-2 * sum / double(2 * n);
   }
   for (PetscInt j = 0; j < n; ++j)
   {
-    const PetscInt s = _steel[j], c = _concrete[j];
-    if (_steel_free[j])
+    const PetscInt m = _minus[j], p = _plus[j];
+    if (_minus_free[j])
     {
-      check(MatSetValueLocal(_J0, s, s, _eps, ADD_VALUES), "MatSetValueLocal");
-      check(MatSetValueLocal(_J0, s, c, -_eps, ADD_VALUES), "MatSetValueLocal");
+      check(MatSetValueLocal(_J0, m, m, _eps, ADD_VALUES), "MatSetValueLocal");
+      check(MatSetValueLocal(_J0, m, p, -_eps, ADD_VALUES), "MatSetValueLocal");
     }
-    if (_concrete_free[j])
+    if (_plus_free[j])
     {
-      check(MatSetValueLocal(_J0, c, c, _eps, ADD_VALUES), "MatSetValueLocal");
-      check(MatSetValueLocal(_J0, c, s, -_eps, ADD_VALUES), "MatSetValueLocal");
+      check(MatSetValueLocal(_J0, p, p, _eps, ADD_VALUES), "MatSetValueLocal");
+      check(MatSetValueLocal(_J0, p, m, -_eps, ADD_VALUES), "MatSetValueLocal");
     }
   }
   check(MatAssemblyBegin(_J0, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   check(MatAssemblyEnd(_J0, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
 
-  // One MUMPS factorisation with the interface dofs (steel, then concrete)
-  // last; their Schur complement S comes out of it. MUMPS records a failure
-  // (a zero pivot: a body held by nothing) instead of raising an error: it
-  // is a clear error here.
+  // One MUMPS factorisation with the interface dofs (gamma) last; their Schur complement S comes
+  // out of it. MUMPS records a failure (a zero pivot: a body held by nothing) instead of raising an
+  // error: it is a clear error here.
   const auto factored = [&](const std::string& phase)
   {
     MatFactorError error;
@@ -194,11 +221,8 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
   };
   check(MatGetFactor(_J0, MATSOLVERMUMPS, MAT_FACTOR_LU, &_factor), "MatGetFactor");
   {
-    std::vector<PetscInt> gamma(_steel.begin(), _steel.end());
-    gamma.insert(gamma.end(), _concrete.begin(), _concrete.end());
     IS is;
-    check(ISCreateGeneral(PETSC_COMM_SELF, PetscInt(gamma.size()), gamma.data(), PETSC_COPY_VALUES,
-                          &is),
+    check(ISCreateGeneral(PETSC_COMM_SELF, n_gamma, _gamma.data(), PETSC_COPY_VALUES, &is),
           "ISCreateGeneral");
     check(MatFactorSetSchurIS(_factor, is), "MatFactorSetSchurIS");
     check(ISDestroy(&is), "ISDestroy");
@@ -212,23 +236,23 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
   check(MatFactorFactorizeSchurComplement(_factor),
         "MatFactorFactorizeSchurComplement"); // dense LU of S, kept in the factor
 
-  // Z on the interface = S^-1 E_I G_I^T; column j: -1 at the steel dof of
-  // jump j, +1 at its concrete dof (free ones only).
+  // Z on the interface = S^-1 E_I G_I^T; column j: -1 at the minus dof of
+  // jump j, +1 at its plus dof (free ones only).
   Mat B;
-  check(MatCreateSeqDense(PETSC_COMM_SELF, 2 * n, n, nullptr, &B), "MatCreateSeqDense");
+  check(MatCreateSeqDense(PETSC_COMM_SELF, n_gamma, n, nullptr, &B), "MatCreateSeqDense");
   {
     Dense Bd(B);
     for (PetscInt j = 0; j < n; ++j)
     {
-      Bd(j, j) = _steel_free[j] ? -1.0 : 0.0;
-      Bd(n + j, j) = _concrete_free[j] ? 1.0 : 0.0;
+      Bd(_pos_minus[j], j) = _minus_free[j] ? -1.0 : 0.0;
+      Bd(_pos_plus[j], j) = _plus_free[j] ? 1.0 : 0.0;
     }
   }
   Mat S;
   MatFactorSchurStatus status;
   check(MatFactorGetSchurComplement(_factor, &S, &status),
         "MatFactorGetSchurComplement"); // factored; the factor owns it
-  check(MatCreateSeqDense(PETSC_COMM_SELF, 2 * n, n, nullptr, &_Z), "MatCreateSeqDense");
+  check(MatCreateSeqDense(PETSC_COMM_SELF, n_gamma, n, nullptr, &_Z), "MatCreateSeqDense");
   check(MatMatSolve(S, B, _Z), "MatMatSolve");
   check(MatFactorRestoreSchurComplement(_factor, &S, status), "MatFactorRestoreSchurComplement");
   check(MatDestroy(&B), "MatDestroy");
@@ -243,7 +267,7 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
     for (PetscInt col = 0; col < n; ++col)
       for (PetscInt j = 0; j < n; ++j)
       {
-        C(j, col) = Z(n + j, col) - Z(j, col);
+        C(j, col) = Z(_pos_plus[j], col) - Z(_pos_minus[j], col);
         E(j, col) = (j == col ? 1.0 : 0.0) - _eps * C(j, col);
       }
     for (PetscInt j = 0; j < n; ++j)
@@ -255,22 +279,30 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
     _k = counted > 0 ? double(counted) / trace : 1.0;
   }
 
-  // dF/dd: 3 x 3 blocks of node pairs; the steel blocks map to nothing.
-  check(ISLocalToGlobalMappingCreate(PETSC_COMM_SELF, 3, n_blocks, pair_of_block.data(),
-                                     PETSC_COPY_VALUES, &_l2g),
-        "ISLocalToGlobalMappingCreate");
-  check(MatCreate(PETSC_COMM_SELF, &_T), "MatCreate");
-  check(MatSetSizes(_T, n, n, n, n), "MatSetSizes");
-  check(MatSetType(_T, MATSEQBAIJ), "MatSetType");
-  check(MatSetBlockSize(_T, 3), "MatSetBlockSize");
-  check(MatSeqBAIJSetPreallocation(_T, 3, 9, nullptr), "MatSeqBAIJSetPreallocation");
-  check(MatSetOption(_T, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE), "MatSetOption");
-  check(MatSetLocalToGlobalMapping(_T, _l2g, _l2g), "MatSetLocalToGlobalMapping");
+  // dF/dd: 3 x 3 blocks of node pairs, one matrix per set of joints (its
+  // plus blocks map to their pairs, its minus blocks to nothing).
+  for (const std::vector<std::int32_t>& map_of_set : pair_of_block)
+  {
+    ISLocalToGlobalMapping l2g;
+    check(ISLocalToGlobalMappingCreate(PETSC_COMM_SELF, 3, n_blocks, map_of_set.data(),
+                                       PETSC_COPY_VALUES, &l2g),
+          "ISLocalToGlobalMappingCreate");
+    _l2g.push_back(l2g);
+    Mat T;
+    check(MatCreate(PETSC_COMM_SELF, &T), "MatCreate");
+    _T.push_back(T);
+    check(MatSetSizes(T, n, n, n, n), "MatSetSizes");
+    check(MatSetType(T, MATSEQBAIJ), "MatSetType");
+    check(MatSetBlockSize(T, 3), "MatSetBlockSize");
+    check(MatSeqBAIJSetPreallocation(T, 3, 9, nullptr), "MatSeqBAIJSetPreallocation");
+    check(MatSetOption(T, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE), "MatSetOption");
+    check(MatSetLocalToGlobalMapping(T, l2g, l2g), "MatSetLocalToGlobalMapping");
+  }
 
   check(MatCreateVecs(_J0, &_b, nullptr), "MatCreateVecs");
   _r = create_vector();
   _d_b = create_vector();
-  check(VecCreateSeq(PETSC_COMM_SELF, 2 * n, &_g), "VecCreateSeq");
+  check(VecCreateSeq(PETSC_COMM_SELF, n_gamma, &_g), "VecCreateSeq");
   check(VecDuplicate(_b, &_rest), "VecDuplicate");
   _Tv = create_vector();
   check(VecDuplicate(_g, &_Zr), "VecDuplicate");
@@ -285,9 +317,12 @@ Condensation::~Condensation()
   for (auto* list : {&_basis, &_basis_g, &_basis_d})
     for (Vec& v : *list)
       petsc::check_nothrow(VecDestroy(&v), "VecDestroy");
-  for (Mat* m : {&_Z, &_C, &_E, &_T, &_factor, &_J0})
+  for (Mat* m : {&_Z, &_C, &_E, &_factor, &_J0})
     petsc::check_nothrow(MatDestroy(m), "MatDestroy");
-  petsc::check_nothrow(ISLocalToGlobalMappingDestroy(&_l2g), "ISLocalToGlobalMappingDestroy");
+  for (Mat& T : _T)
+    petsc::check_nothrow(MatDestroy(&T), "MatDestroy");
+  for (ISLocalToGlobalMapping& l2g : _l2g)
+    petsc::check_nothrow(ISLocalToGlobalMappingDestroy(&l2g), "ISLocalToGlobalMappingDestroy");
 }
 
 Mat Condensation::create_matrix() const
@@ -319,8 +354,8 @@ void Condensation::restrict_to(Vec x, Vec d) const
   double* g;
   check(VecGetArrayRead(x, &a), "VecGetArrayRead");
   check(VecGetArray(d, &g), "VecGetArray");
-  for (std::size_t j = 0; j < _steel.size(); ++j)
-    g[j] = a[_concrete[j]] - a[_steel[j]];
+  for (std::size_t j = 0; j < _minus.size(); ++j)
+    g[j] = a[_plus[j]] - a[_minus[j]];
   check(VecRestoreArray(d, &g), "VecRestoreArray");
   check(VecRestoreArrayRead(x, &a), "VecRestoreArrayRead");
 }
@@ -331,17 +366,26 @@ void Condensation::restrict_functional(Vec a, Vec a_d) const
   double* g;
   check(VecGetArrayRead(a, &aa), "VecGetArrayRead");
   check(VecGetArray(a_d, &g), "VecGetArray");
-  double scale = 0, mismatch = 0;
-  for (std::size_t j = 0; j < _steel.size(); ++j)
+  // a_d on the first set's pairs (the interface): the functionals of the
+  // jumps the solvers use (the mean axial slip) are the interface's. Then
+  // a must equal G^T a_d on every interface dof.
+  const std::size_t n = _minus.size();
+  std::vector<double> Gt(_gamma.size(), 0.0);
+  double scale = 0;
+  for (std::size_t j = 0; j < n; ++j)
   {
-    g[j] = aa[_concrete[j]];
+    g[j] = j < _set_end[0] ? aa[_plus[j]] : 0.0;
+    Gt[std::size_t(_pos_plus[j])] += g[j];
+    Gt[std::size_t(_pos_minus[j])] -= g[j];
     scale = std::max(scale, std::abs(g[j]));
-    mismatch = std::max(mismatch, std::abs(aa[_steel[j]] + aa[_concrete[j]]));
   }
+  double mismatch = 0;
+  for (std::size_t i = 0; i < _gamma.size(); ++i)
+    mismatch = std::max(mismatch, std::abs(Gt[i] - aa[_gamma[i]]));
   check(VecRestoreArray(a_d, &g), "VecRestoreArray");
   check(VecRestoreArrayRead(a, &aa), "VecRestoreArrayRead");
   if (mismatch > 1e-12 * scale)
-    throw std::logic_error("condensation: the functional is not one of the jumps");
+    throw std::logic_error("condensation: the functional is not one of the interface's jumps");
 }
 
 void Condensation::combine(const std::vector<double>& c, const std::vector<Vec>& v, Vec y)
@@ -405,13 +449,10 @@ const std::vector<double>& Condensation::load_coefficients()
     check(VecGetArrayRead(y, &ya), "VecGetArrayRead");
     check(VecGetArray(g, &ga), "VecGetArray");
     check(VecGetArray(d, &da), "VecGetArray");
-    const std::size_t n = _steel.size();
-    for (std::size_t j = 0; j < n; ++j)
-    {
-      ga[j] = ya[_steel[j]];
-      ga[n + j] = ya[_concrete[j]];
-      da[j] = ga[n + j] - ga[j];
-    }
+    for (std::size_t i = 0; i < _gamma.size(); ++i)
+      ga[i] = ya[_gamma[i]];
+    for (std::size_t j = 0; j < _minus.size(); ++j)
+      da[j] = ga[_pos_plus[j]] - ga[_pos_minus[j]];
     check(VecRestoreArray(d, &da), "VecRestoreArray");
     check(VecRestoreArray(g, &ga), "VecRestoreArray");
     check(VecRestoreArrayRead(y, &ya), "VecRestoreArrayRead");
@@ -426,30 +467,38 @@ const std::vector<double>& Condensation::load_coefficients()
 
 bool Condensation::interface_forces(Vec d, bool tangent, double* force_norm)
 {
+  // Set by set: the set's minus nodes at 0 and plus nodes at the jumps (its
+  // joints see only their jumps), its forces F at the plus nodes.
   const double* da;
   check(VecGetArrayRead(d, &da), "VecGetArrayRead");
-  for (std::size_t j = 0; j < _steel.size(); ++j)
-  {
-    _u[_steel[j]] = 0.0;
-    _u[_concrete[j]] = da[j];
-    _f[_steel[j]] = _f[_concrete[j]] = 0.0;
-  }
-  if (tangent)
-    check(MatZeroEntries(_T), "MatZeroEntries");
-  const bool ok = _eq.model().interface().assemble(_u, _f, tangent ? _T : nullptr);
-  if (tangent)
-  {
-    check(MatAssemblyBegin(_T, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-    check(MatAssemblyEnd(_T, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-  }
   double* r;
   check(VecGetArray(_r, &r), "VecGetArray");
   double f2 = 0;
-  for (std::size_t j = 0; j < _steel.size(); ++j)
+  bool ok = true;
+  const std::vector<interface::Interface*> sets = _eq.model().joints();
+  for (std::size_t s = 0; s < sets.size(); ++s)
   {
-    const double F = _f[_concrete[j]];
-    f2 += F * F;
-    r[j] = F - _eps * da[j];
+    const std::size_t first = s == 0 ? 0 : _set_end[s - 1], end = _set_end[s];
+    for (std::size_t j = first; j < end; ++j)
+    {
+      _u[_minus[j]] = 0.0;
+      _u[_plus[j]] = da[j];
+      _f[_minus[j]] = _f[_plus[j]] = 0.0;
+    }
+    if (tangent)
+      check(MatZeroEntries(_T[s]), "MatZeroEntries");
+    ok = sets[s]->assemble(_u, _f, tangent ? _T[s] : nullptr) && ok;
+    if (tangent)
+    {
+      check(MatAssemblyBegin(_T[s], MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+      check(MatAssemblyEnd(_T[s], MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+    }
+    for (std::size_t j = first; j < end; ++j)
+    {
+      const double F = _f[_plus[j]];
+      f2 += F * F;
+      r[j] = F - _eps * da[j];
+    }
   }
   check(VecRestoreArray(_r, &r), "VecRestoreArray");
   check(VecRestoreArrayRead(d, &da), "VecRestoreArrayRead");
@@ -499,7 +548,7 @@ double Condensation::residual_floor(Vec d)
 
 bool Condensation::jacobian(Vec d, Mat J)
 {
-  const bool ok = interface_forces(d, true); // dF/dd into _T
+  const bool ok = interface_forces(d, true); // dF/dd into _T (per set)
   PetscBool shell;
   check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(J), MATSHELL, &shell),
         "PetscObjectTypeCompare");
@@ -515,24 +564,25 @@ void Condensation::form_jacobian(Mat J) const
     // J += C dF/dd, column by column: J(:, j) += T(i, j) C(:, i).
     Dense Jd(J), C(_C);
     const PetscInt n = size();
-    for (PetscInt i = 0; i < n; ++i)
-    {
-      PetscInt ncols;
-      const PetscInt* cols;
-      const double* vals;
-      check(MatGetRow(_T, i, &ncols, &cols, &vals), "MatGetRow");
-      for (PetscInt c = 0; c < ncols; ++c)
+    for (Mat T : _T)
+      for (PetscInt i = 0; i < n; ++i)
       {
-        const double t = vals[c];
-        if (t == 0.0)
-          continue;
-        double* Jj = &Jd(0, cols[c]);
-        const double* Ci = &C(0, i);
-        for (PetscInt r = 0; r < n; ++r)
-          Jj[r] += t * Ci[r];
+        PetscInt ncols;
+        const PetscInt* cols;
+        const double* vals;
+        check(MatGetRow(T, i, &ncols, &cols, &vals), "MatGetRow");
+        for (PetscInt c = 0; c < ncols; ++c)
+        {
+          const double t = vals[c];
+          if (t == 0.0)
+            continue;
+          double* Jj = &Jd(0, cols[c]);
+          const double* Ci = &C(0, i);
+          for (PetscInt r = 0; r < n; ++r)
+            Jj[r] += t * Ci[r];
+        }
+        check(MatRestoreRow(T, i, &ncols, &cols, &vals), "MatRestoreRow");
       }
-      check(MatRestoreRow(_T, i, &ncols, &cols, &vals), "MatRestoreRow");
-    }
   }
   check(MatScale(J, _k), "MatScale");
 }
@@ -556,7 +606,9 @@ PetscErrorCode Condensation::operator_mult(Mat J, Vec v, Vec y)
         // y = k (v + C (dF/dd - eps) v).
         Condensation* self;
         check(MatShellGetContext(J, &self), "MatShellGetContext");
-        check(MatMult(self->_T, v, self->_Tv), "MatMult");
+        check(MatMult(self->_T[0], v, self->_Tv), "MatMult");
+        for (std::size_t s = 1; s < self->_T.size(); ++s)
+          check(MatMultAdd(self->_T[s], v, self->_Tv, self->_Tv), "MatMultAdd");
         check(VecAXPY(self->_Tv, -self->_eps, v), "VecAXPY");
         check(MatMult(self->_C, self->_Tv, y), "MatMult");
         check(VecAXPY(y, 1.0, v), "VecAXPY");
@@ -585,12 +637,8 @@ void Condensation::expand_interface(Vec d, Vec x)
   double* xa;
   check(VecGetArrayRead(_g, &g), "VecGetArrayRead");
   check(VecGetArray(x, &xa), "VecGetArray");
-  const std::size_t n = _steel.size();
-  for (std::size_t j = 0; j < n; ++j)
-  {
-    xa[_steel[j]] = g[j];
-    xa[_concrete[j]] = g[n + j];
-  }
+  for (std::size_t i = 0; i < _gamma.size(); ++i)
+    xa[_gamma[i]] = g[i];
   check(VecRestoreArray(x, &xa), "VecRestoreArray");
   check(VecRestoreArrayRead(_g, &g), "VecRestoreArrayRead");
   _eq.apply_constraints(x);
@@ -607,12 +655,12 @@ void Condensation::expand(Vec d, Vec x)
   const double* r;
   check(VecGetArray(rhs, &ra), "VecGetArray");
   check(VecGetArrayRead(_r, &r), "VecGetArrayRead");
-  for (std::size_t j = 0; j < _steel.size(); ++j)
+  for (std::size_t j = 0; j < _minus.size(); ++j)
   {
-    if (_steel_free[j])
-      ra[_steel[j]] += r[j];
-    if (_concrete_free[j])
-      ra[_concrete[j]] -= r[j];
+    if (_minus_free[j])
+      ra[_minus[j]] += r[j];
+    if (_plus_free[j])
+      ra[_plus[j]] -= r[j];
   }
   check(VecRestoreArrayRead(_r, &r), "VecRestoreArrayRead");
   check(VecRestoreArray(rhs, &ra), "VecRestoreArray");

@@ -1,9 +1,15 @@
-// Condensation of the linear bulk onto the interface jumps.
+// Condensation of the linear bulk onto the jumps of the joint elements.
 //
 // Only the joint elements are nonlinear, and they see the displacement
-// only through the jumps d = u_concrete - u_steel of the interface node
-// pairs (3 per pair): their nodal forces are f_int = G^T F(d), with G the
-// difference operator (d = G x) and F the forces on the concrete nodes.
+// only through the jumps d = u_plus - u_minus of their node pairs (3 per
+// pair; the steel-concrete interface's pairs are (steel, concrete), a crack
+// plane's its two faces): their nodal forces are f_int = G^T F(d), with G
+// the difference operator (d = G x) and F the forces on the plus nodes. A
+// node may belong to pairs of two sets (a crack's root node is concrete in
+// the interface and a face of the crack): G then has dependent rows, and
+// Newton's iterates stay in its range (R below maps it to itself), so each
+// set's forces are evaluated with its own minus nodes at zero.
+//
 // Everything else is linear. With
 //   J0 = K with unit constrained rows, plus eps G^T G on the free rows of
 //        the interface nodes (a linear joint of stiffness eps [N/mm] per
@@ -51,21 +57,20 @@ public:
   static constexpr std::int64_t default_max_dofs = 6000;
 
   /// Whether the model can be condensed (its interface has node pairs, one
-  /// process, an LU preconditioner, no crack planes); `why` says why not.
+  /// process, an LU preconditioner); `why` says why not.
   static bool possible(const Equilibrium& eq, std::string& why);
   /// The same from the numbers alone (the run's processes and interface
   /// dofs), so that it can be decided before the model exists.
-  static bool possible(int processes, std::int64_t interface_dofs, bool crack_planes,
-                       std::string& why);
+  static bool possible(int processes, std::int64_t interface_dofs, std::string& why);
 
   /// Whether Newton runs on the condensed system for solver.condensation =
   /// `mode` (auto | on | off): "auto" condenses what is possible up to
   /// default_max_dofs. `why` says why not ("" when "off" was asked for);
   /// "on" when it is not possible is the caller's error to report.
   static bool chosen(const std::string& mode, int processes, std::int64_t interface_dofs,
-                     bool crack_planes, std::string& why);
+                     std::string& why);
 
-  /// Number of interface dofs (both sides).
+  /// Number of joint dofs, both sides of every node pair (6 per pair).
   static std::int64_t interface_dofs(const model::Model& model);
 
   /// Factors J0 and computes C. The constrained dofs of `eq` (set by the
@@ -76,7 +81,7 @@ public:
   Condensation& operator=(const Condensation&) = delete;
 
   /// Unknowns of the condensed system (3 per node pair).
-  std::int64_t size() const { return std::int64_t(_steel.size()); }
+  std::int64_t size() const { return std::int64_t(_minus.size()); }
 
   /// d = the jumps of the whole-model x.
   void restrict_to(Vec x, Vec d) const;
@@ -114,19 +119,22 @@ private:
   static void combine(const std::vector<double>& c, const std::vector<Vec>& v, Vec y);
 
   Equilibrium& _eq;
-  std::vector<std::int32_t> _steel, _concrete; ///< whole-model dof of each jump
-  std::vector<std::uint8_t> _steel_free, _concrete_free;
-  int _constraint_version;     ///< of the constraints it was built for
-  int _load_version = -1;      ///< of the loads of _load_c
-  std::vector<double> _load_c; ///< coefficients of the current b on the basis
-  double _eps = 0;             ///< J0's joint stiffness [N/mm]
-  double _k = 1;               ///< residual scale [N/mm]
-  double _C_norm = -1;         ///< a bound of ||C||_2, once needed [mm/N]
+  std::vector<std::int32_t> _minus, _plus; ///< whole-model dof of each jump (plus - minus)
+  std::vector<std::uint8_t> _minus_free, _plus_free;
+  std::vector<std::size_t> _set_end;           ///< end of each set's jumps (interface, cracks)
+  std::vector<PetscInt> _gamma;                ///< the joint dofs, each once (sorted)
+  std::vector<PetscInt> _pos_minus, _pos_plus; ///< positions of a jump's dofs in _gamma
+  int _constraint_version;                     ///< of the constraints it was built for
+  int _load_version = -1;                      ///< of the loads of _load_c
+  std::vector<double> _load_c;                 ///< coefficients of the current b on the basis
+  double _eps = 0;                             ///< J0's joint stiffness [N/mm]
+  double _k = 1;                               ///< residual scale [N/mm]
+  double _C_norm = -1;                         ///< a bound of ||C||_2, once needed [mm/N]
   Mat _J0 = nullptr, _factor = nullptr;
-  Mat _Z = nullptr;           ///< Z on the interface dofs (steel jumps, then concrete), dense
+  Mat _Z = nullptr;           ///< Z on the joint dofs (_gamma), dense
   Mat _C = nullptr;           ///< C = G Z, dense
   Mat _E = nullptr;           ///< I - eps C, dense
-  Mat _T = nullptr;           ///< dF/dd, sparse (node-pair blocks)
+  std::vector<Mat> _T;        ///< dF/dd of each set, sparse (node-pair blocks)
   Vec _b = nullptr;           ///< whole model: right-hand side
   Vec _r = nullptr;           ///< jumps: F(d) - eps d
   Vec _d_b = nullptr;         ///< jumps: d_b of the current loads
@@ -138,6 +146,6 @@ private:
   /// Orthonormal load directions, their J0^-1 on the interface dofs, and
   /// their jumps d_b.
   std::vector<Vec> _basis, _basis_g, _basis_d;
-  ISLocalToGlobalMapping _l2g = nullptr; ///< model blocks -> node pairs (concrete side)
+  std::vector<ISLocalToGlobalMapping> _l2g; ///< per set: its plus blocks -> node pairs
 };
 } // namespace pushout::solver

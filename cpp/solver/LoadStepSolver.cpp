@@ -25,8 +25,7 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::from_scene(Equilibrium& eq, cons
   MPI_Comm_size(eq.model().comm(), &processes);
   const std::int64_t interface_dofs = Condensation::interface_dofs(eq.model());
   std::string why;
-  const bool condense =
-      Condensation::chosen(mode, processes, interface_dofs, eq.model().num_cracks() > 0, why);
+  const bool condense = Condensation::chosen(mode, processes, interface_dofs, why);
   if (!condense && mode == "on")
     throw SceneError("solver.condensation = \"on\" is not possible here: " + why);
   const std::string description =

@@ -48,9 +48,8 @@ for name, (scene, sets) in cases.items():
                            env=dict(os.environ, OMPI_MCA_btl_vader_single_copy_mechanism="none"))
         check(p.returncode == 0, f"{name} on {n} processes: exit {p.returncode} {p.stderr[-500:]}")
         check(summary(out)["processes"] == n, f"{name}: summary says {n} processes")
-        # One process condenses the bulk (solver.condensation auto); more do
-        # not, nor any with crack planes.
-        check((summary(out)["condensed_dofs"] > 0) == (n == 1 and name != "cracks"),
+        # One process condenses the bulk (solver.condensation auto); more do not.
+        check((summary(out)["condensed_dofs"] > 0) == (n == 1),
               f"{name}: {summary(out)['condensed_dofs']} condensed dofs on {n} processes")
         # The push, and the corrosion stage before it (if any), as one table.
         curves[n] = curve(out) + (corrosion(out) if name in ("corrosion", "cracks") else [])
