@@ -10,6 +10,12 @@
 //                    compression (always elastic, never damaged)
 //   damage           D = 1 - g / k (unloading and reloading run secant to the
 //                    origin)
+//   dissipation      1/2 k |w_open|^2 (D_new - D_old) per update: the free
+//                    energy 1/2 (1 - D) k |w_open|^2 released by the damage
+//                    (w_open = (<w_n>, w_s); on the envelope |w_open|^2 is
+//                    the step's trapezoidal mean of kappa^2); summed to full
+//                    separation it is G_F = f_t^2 / (2 k) + the area under
+//                    sigma beyond w0
 // Consistent tangent on loading (delta > kappa_old, delta > w0):
 //   dt_a/dw_b = g I_ab + g'(delta) w_a w_b / delta over the opening
 //   components, g' = (sigma' delta - sigma) / delta^2; secant otherwise.
@@ -84,6 +90,19 @@ public:
     return (v.dsigma * delta - v.sigma) / (delta * delta);
   }
 
+  /// |w_open|^2 for the dissipation 1/2 k |w_open|^2 dD of a step [mm^2]:
+  /// on the envelope the trapezoidal mean of kappa^2 over the step (from
+  /// kappa_old, or w0 where damage starts), exact to second order in the
+  /// step; off it (unloading, viscous lag) the end of the step's.
+  double released_square(double kappa_old, const Vec3& w, bool on_envelope) const
+  {
+    const double delta = equivalent(w);
+    if (!on_envelope)
+      return delta * delta;
+    const double from = std::max(kappa_old, _w0);
+    return 0.5 * (from * from + delta * delta);
+  }
+
   /// Weight theta of the new damage in the implicit viscous update.
   double theta(double dt) const { return _eta > 0 ? (dt / _eta) / (1 + dt / _eta) : 1.0; }
 
@@ -107,10 +126,11 @@ public:
     const bool open = w[0] > 0;
     r.t = {(open ? g : _k) * w[0], g * w[1], g * w[2]};
     r.D = {open ? g : _k, 0, 0, 0, g, 0, 0, 0, g};
+    r.dissipation =
+        0.5 * _k * released_square(old.kappa(), w, on_envelope) * (now.damage() - old.damage());
     if (on_envelope)
     {
-      const double delta = now.kappa();
-      const double c = theta(dt) * dsecant(delta) / delta;
+      const double c = theta(dt) * dsecant(now.kappa()) / now.kappa();
       const Vec3 we = {open ? w[0] : 0.0, w[1], w[2]};
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b)

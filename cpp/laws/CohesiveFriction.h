@@ -15,6 +15,8 @@
 // In compression t_n = k w_n whatever D; in opening t_n = (1 - D) k w_n.
 // Consistent tangent: (1 - D) k I + D dt_d/dw + (t_d - k w) (x) dD/dw, with
 // dD/dw = -(g'(delta)/k) w_open/delta on loading (0 otherwise).
+// Dissipation: (1/2 k |w|^2 - psi_d) dD + D mu p |dw^p|, psi_d the damaged
+// part's elastic energy (contact and stick).
 //
 // Envelope: linear (give w_c2) or exponential (give c), both to zero: the
 // residual stress comes from friction. Optional damage viscosity eta as in
@@ -115,6 +117,14 @@ public:
         for (int b = 0; b < 3; ++b)
           r.D[3 * a + b] += (td[a] - k * w[a]) * dD * we[b];
     }
+    // Dissipation: the free energy (1 - D) 1/2 k |w|^2 + D psi_d released by
+    // the damage, and the damaged part's frictional slip.
+    const double wn_c = std::min(w[0], 0.0);
+    const double ws1 = w[1] - now.plastic_slip().s1(), ws2 = w[2] - now.plastic_slip().s2();
+    const double psi_d = 0.5 * k * (wn_c * wn_c + ws1 * ws1 + ws2 * ws2);
+    const double psi_0 =
+        0.5 * k * (_cd.released_square(history_old.kappa(), w, on_envelope) + wn_c * wn_c);
+    r.dissipation = (psi_0 - psi_d) * (D - history_old.damage()) + D * fr.dissipation;
     r.status = fr.status;
     if (!std::isfinite(r.t[0] + r.t[1] + r.t[2]))
       r.status = LawStatus::failed;

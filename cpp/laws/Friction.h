@@ -42,8 +42,9 @@ private:
 /// The shear part of eq. (6) on a given contact pressure p [MPa] (with
 /// dp/dw_n [N/mm^3] for the tangent): trial t_s = k (w_s - w^p_old), limit
 /// mu p, radial return. Writes r.t[1], r.t[2], the shear rows of r.D (the
-/// caller has set r.D to its elastic tangent) and the new slip; marks r
-/// failed if the traction is not finite.
+/// caller has set r.D to its elastic tangent) and the new slip; adds the
+/// slip's dissipation mu p |dw^p| to r.dissipation; marks r failed if the
+/// traction is not finite.
 inline void coulomb_return(double k, double mu, double p, double dp_dwn, const Vec3& w,
                            PlasticSlip<const double> old, PlasticSlip<double> now, LawResult& r)
 {
@@ -61,6 +62,7 @@ inline void coulomb_return(double k, double mu, double p, double dp_dwn, const V
     r.t[2] = mu * p * m2;
     now.s1() += f / k * m1;
     now.s2() += f / k * m2;
+    r.dissipation += mu * p * f / k; // |t_s| |dw^p|, t_s parallel to dw^p
     r.D[4] = scale * k * (1 - m1 * m1);
     r.D[5] = -scale * k * m1 * m2;
     r.D[7] = -scale * k * m2 * m1;
