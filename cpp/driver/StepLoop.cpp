@@ -135,16 +135,16 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
   return true;
 }
 
-/// Step 0: the thermal step or preload, if the scenario has one; it takes
-/// the pseudo-time of one nominal load step, so that a viscous damage layer
-/// damages in it as it would in one step of the push (with dt = 0 its
-/// damage would freeze).
 void StepLoop::set_time_increment(double dt)
 {
   for (interface::Interface* joints : _equilibrium.model().joints())
     joints->set_time_increment(dt);
 }
 
+/// Step 0: the thermal step or preload, if the scenario has one; it takes
+/// the pseudo-time of one nominal load step, so that a viscous damage layer
+/// damages in it as it would in one step of the push (with dt = 0 its
+/// damage would freeze). With a corrosion stage, the push starts after it.
 bool StepLoop::initial_step()
 {
   _scenario.apply_load(0.0, _equilibrium);
