@@ -20,6 +20,12 @@ Corrosion::Corrosion(const Scene& scene, const std::filesystem::path& out, RunRe
   _oxide = {scene.number("corrosion.beta"), scene.number("corrosion.porous_zone"),
             scene.number("corrosion.oxide_bulk")};
   _directions = mesh::crack_directions(scene);
+  for (std::size_t i = 0; i < _directions.angles.size(); ++i)
+    if (_directions.snapped[i] && _report.talk())
+      std::cout << "pushout: crack." << i << ".angle "
+                << _directions.asked[i] * 180 / std::numbers::pi
+                << " deg is within half an element of a block corner of the mesh: the plane is at "
+                << _directions.angles[i] * 180 / std::numbers::pi << " deg" << std::endl;
   if (!active())
     return;
   std::vector<std::string> columns = {"penetration_mm", "p_MPa", "crack_width_mm"};
