@@ -91,35 +91,11 @@ TEST(Friction, ZeroFrictionSlidesFreely)
 
 TEST(Friction, TangentMatchesFiniteDifferencesAtRandomStates)
 {
-  std::mt19937 gen(42);
-  std::uniform_real_distribution<double> U(-1, 1);
-  const double h = 1e-9, scale = 1e-3; // FD step and jump scale [mm]
-  int sliding = 0, sticking = 0, open = 0;
-  double worst = 0;
-  while (sliding + sticking + open < 300)
-  {
-    const double k = std::pow(10.0, 2 + 2 * (U(gen) + 1)); // 1e2 .. 1e6 N/mm^3
-    const double mu = 0.1 + 0.5 * (U(gen) + 1);
-    const Friction law(k, mu);
-    const Vec3 w = {scale * U(gen), scale * U(gen), scale * U(gen)};
-    // A third of the states start near the jump, so that many stick.
-    const bool near = U(gen) < -1.0 / 3;
-    const double p1 = near ? w[1] + 1e-2 * scale * U(gen) : scale * U(gen),
-                 p2 = near ? w[2] + 1e-2 * scale * U(gen) : scale * U(gen);
-    const std::vector<double> s0 = with_slip(p1, p2);
-    // Trial yield function (eq. 6): keep away from the kinks (the yield
-    // surface and w_n = 0), where central differences straddle two branches.
-    const double f = k * std::hypot(w[1] - p1, w[2] - p2) - mu * std::max(-k * w[0], 0.0);
-    if (std::abs(w[0]) < 1e3 * h || std::abs(f) < 1e3 * k * h)
-      continue;
-    const double err = pushout::testing::tangent_error(law, s0, w, h, k);
-    worst = std::max(worst, err);
-    EXPECT_LT(err, 1e-6) << "k " << k << " mu " << mu << " w " << w[0] << " " << w[1] << " "
-                         << w[2];
-    (w[0] > 0 ? open : f > 0 ? sliding : sticking)++;
-  }
-  std::cout << "friction: max FD tangent error " << worst << " over 300 states\n";
-  EXPECT_GT(sliding, 50);
-  EXPECT_GT(sticking, 20);
-  EXPECT_GT(open, 50);
+  const auto states = pushout::testing::check_friction_tangent(
+      42, [](double k, double mu) { return Friction(k, mu); },
+      [](std::mt19937&) { return pushout::laws::StepInputs{}; });
+  std::cout << "friction: max FD tangent error " << states.worst << " over 300 states\n";
+  EXPECT_GT(states.sliding, 50);
+  EXPECT_GT(states.sticking, 20);
+  EXPECT_GT(states.open, 50);
 }

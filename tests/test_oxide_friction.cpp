@@ -100,34 +100,15 @@ TEST(OxideFriction, WithoutCorrosionItIsFriction)
 
 TEST(OxideFriction, TangentMatchesFiniteDifferencesAtRandomStates)
 {
-  std::mt19937 gen(11);
-  std::uniform_real_distribution<double> U(-1, 1);
-  const double h = 1e-9, scale = 1e-3; // FD step and jump scale [mm]
-  int sliding = 0, sticking = 0, open = 0;
-  double worst = 0;
-  while (sliding + sticking + open < 300)
-  {
-    const double k = std::pow(10.0, 2 + 2 * (U(gen) + 1)); // 1e2 .. 1e6 N/mm^3
-    const double mu = 0.1 + 0.5 * (U(gen) + 1);
-    const StepInputs in{0, scale * (U(gen) + 1) / 2, 1e-4 * (U(gen) + 1)};
-    const OxideFriction law(k, mu);
-    const Vec3 w = {scale * U(gen), scale * U(gen), scale * U(gen)};
-    const bool near = U(gen) < -1.0 / 3; // a third start near the jump, to stick
-    const std::vector<double> s0 = {near ? w[1] + 1e-2 * scale * U(gen) : scale * U(gen),
-                                    near ? w[2] + 1e-2 * scale * U(gen) : scale * U(gen)};
-    const double opening = w[0] - in.oxide_gap;
-    const double p = std::max(-opening, 0.0) / (1 / k + in.oxide_compliance);
-    const double f = k * std::hypot(w[1] - s0[0], w[2] - s0[1]) - mu * p;
-    if (std::abs(opening) < 1e3 * h || std::abs(f) < 1e3 * k * h) // away from the kinks
-      continue;
-    const double err = pushout::testing::tangent_error(law, s0, w, h, k, in);
-    worst = std::max(worst, err);
-    EXPECT_LT(err, 1e-6) << "k " << k << " mu " << mu << " w " << w[0] << " " << w[1] << " " << w[2]
-                         << " g0 " << in.oxide_gap;
-    (opening > 0 ? open : f > 0 ? sliding : sticking)++;
-  }
-  std::cout << "oxide_friction: max FD tangent error " << worst << " over 300 states\n";
-  EXPECT_GT(sliding, 50);
-  EXPECT_GT(sticking, 20);
-  EXPECT_GT(open, 30);
+  const auto states = pushout::testing::check_friction_tangent(
+      11, [](double k, double mu) { return OxideFriction(k, mu); },
+      [](std::mt19937& gen)
+      {
+        std::uniform_real_distribution<double> U(-1, 1);
+        return StepInputs{0, 1e-3 * (U(gen) + 1) / 2, 1e-4 * (U(gen) + 1)};
+      });
+  std::cout << "oxide_friction: max FD tangent error " << states.worst << " over 300 states\n";
+  EXPECT_GT(states.sliding, 50);
+  EXPECT_GT(states.sticking, 20);
+  EXPECT_GT(states.open, 30);
 }

@@ -98,15 +98,7 @@ public:
   LawResult update(std::span<const double> state_old, const Vec3& w, std::span<double> state_new,
                    const StepInputs& /*in*/ = {}) const
   {
-    LawResult r;
-    const double k = _k;
-    const double tn = k * w[0];
-    r.t[0] = tn;
-    r.D = {k, 0, 0, 0, k, 0, 0, 0, k};
-    const double p = tn < 0 ? -tn : 0.0;
-    const double dp_dwn = tn < 0 ? -k : 0.0;
-    coulomb_return(k, _mu, p, dp_dwn, w, PlasticSlip(state_old), PlasticSlip(state_new), r);
-    return r;
+    return update_with_gap(state_old, w, state_new, 0.0, 0.0);
   }
 
   std::array<double, 2> slip(std::span<const double> state) const
@@ -114,6 +106,26 @@ public:
     return PlasticSlip(state).vector();
   }
   double damage(std::span<const double>) const { return 0; }
+
+protected:
+  /// The update when the joint has a free normal opening `gap` [mm] and a
+  /// normal compliance [mm^3/N] in series with k in contact (OxideFriction.h);
+  /// with both 0 it is eqs. (4)-(6) as above, to the bit.
+  LawResult update_with_gap(std::span<const double> state_old, const Vec3& w,
+                            std::span<double> state_new, double gap, double compliance) const
+  {
+    LawResult r;
+    const double k = _k;
+    const double opening = w[0] - gap; // [mm]
+    const bool contact = opening < 0;
+    const double kn = contact && compliance > 0 ? 1 / (1 / k + compliance) : k;
+    r.t[0] = kn * opening;
+    r.D = {kn, 0, 0, 0, k, 0, 0, 0, k};
+    const double p = contact ? -r.t[0] : 0.0;
+    const double dp_dwn = contact ? -kn : 0.0;
+    coulomb_return(k, _mu, p, dp_dwn, w, PlasticSlip(state_old), PlasticSlip(state_new), r);
+    return r;
+  }
 
 private:
   double _k;  // penalty stiffness [N/mm^3]

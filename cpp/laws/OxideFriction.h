@@ -25,13 +25,15 @@
 
 namespace pushout::laws
 {
-class OxideFriction
+/// Friction (Friction.h) whose normal part is the oxide's: the same state,
+/// slip and return mapping, the step's oxide inputs as the gap and the
+/// compliance.
+class OxideFriction : public Friction
 {
 public:
   static constexpr const char* name = "oxide_friction";
   static constexpr const char* doc =
       "Coulomb friction on the pressure of the corrosion oxide (k, mu); friction without corrosion";
-  static constexpr int state_size = PlasticSlip<double>::size;
 
   static std::vector<ParamDef> params()
   {
@@ -39,34 +41,12 @@ public:
             {"mu", 0.4, "-", "friction coefficient", 0, false}};
   }
 
-  OxideFriction(double k, double mu) : _k(k), _mu(mu) {}
-  OxideFriction(const Params& p, const std::string&) : OxideFriction(p.at("k"), p.at("mu")) {}
+  using Friction::Friction;
 
   LawResult update(std::span<const double> state_old, const Vec3& w, std::span<double> state_new,
                    const StepInputs& in = {}) const
   {
-    LawResult r;
-    const double k = _k;
-    const double opening = w[0] - in.oxide_gap; // beyond the oxide's free opening [mm]
-    const double k_contact = 1 / (1 / k + in.oxide_compliance);
-    const bool contact = opening < 0;
-    const double kn = contact ? k_contact : k;
-    r.t[0] = kn * opening;
-    r.D = {kn, 0, 0, 0, k, 0, 0, 0, k};
-    const double p = contact ? -r.t[0] : 0.0;
-    const double dp_dwn = contact ? -k_contact : 0.0;
-    coulomb_return(k, _mu, p, dp_dwn, w, PlasticSlip(state_old), PlasticSlip(state_new), r);
-    return r;
+    return update_with_gap(state_old, w, state_new, in.oxide_gap, in.oxide_compliance);
   }
-
-  std::array<double, 2> slip(std::span<const double> state) const
-  {
-    return PlasticSlip(state).vector();
-  }
-  double damage(std::span<const double>) const { return 0; }
-
-private:
-  double _k;  // penalty stiffness [N/mm^3]
-  double _mu; // friction coefficient [-]
 };
 } // namespace pushout::laws

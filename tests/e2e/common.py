@@ -36,6 +36,32 @@ steps = 4
 """
 
 
+
+def corroded_ring(mesh, x, steps, mu=0.4, push=0.01, push_steps=4, beta=2.0, oxide_bulk=2000.0):
+    """The circular slice of LAME (outer diameter 100 mm) without the thermal
+    step, an oxide_friction interface (k 1000 N/mm^3), corroded to x [mm] in
+    `steps`, then pushed by `push` [mm] (TOML text; test_corrosion,
+    test_cracks)."""
+    return mesh + f"""
+[geometry]
+outer_shape = "circle"
+width = 100.0
+[[interface]]
+law = "oxide_friction"
+k = 1000.0
+mu = {mu}
+[loading]
+temperature_change = 0.0
+push_displacement = {push}
+steps = {push_steps}
+[corrosion]
+penetration = {x}
+steps = {steps}
+beta = {beta}
+oxide_bulk = {oxide_bulk}
+"""
+
+
 def out_dir(name):
     d = os.path.join(OUT_ROOT, name)
     shutil.rmtree(d, ignore_errors=True)

@@ -26,7 +26,7 @@ law oxide_friction and no temperature change:
 import math
 import os
 
-from common import LAME, check, corrosion, curve, out_dir, run, summary
+from common import LAME, check, corroded_ring, corrosion, curve, out_dir, run, summary
 import analytic
 
 a, R, b = 8.0, 10.0, 50.0
@@ -35,24 +35,7 @@ beta, B_ox = 2.0, 2000.0
 x = -alpha * dT * R / (beta - 1)  # the shrink fit's interference, as corrosion [mm]
 MESH = "[mesh]\nelements_per_quarter = 8\nelements_through_thickness = 4\n"
 steps = 5
-scene = MESH + f"""
-[geometry]
-outer_shape = "circle"
-width = 100.0
-[[interface]]
-law = "oxide_friction"
-k = {k}
-mu = {mu}
-[loading]
-temperature_change = 0.0
-push_displacement = 0.01
-steps = 4
-[corrosion]
-penetration = {x}
-steps = {steps}
-beta = {beta}
-oxide_bulk = {B_ox}
-"""
+scene = corroded_ring(MESH, x, steps, mu=mu, beta=beta, oxide_bulk=B_ox)
 
 out = out_dir("corrosion_ring")
 run(scene, out)

@@ -25,7 +25,7 @@ planes add no compliance to the uncracked ring), f_t 3 MPa, c 20 1/mm.
 import math
 import os
 
-from common import check, corrosion, out_dir, run, summary
+from common import check, corroded_ring, corrosion, out_dir, run, summary
 import analytic
 
 a, R, b = 8.0, 10.0, 50.0
@@ -39,25 +39,9 @@ def crack(angle):
             f"f_t = {f_t}\nc = {c}\n")
 
 
-def scene(x, steps, angles, mu=0.4, extra=""):
-    return MESH + f"""
-[geometry]
-outer_shape = "circle"
-width = {2 * b}
-[[interface]]
-law = "oxide_friction"
-k = {k}
-mu = {mu}
-[loading]
-temperature_change = 0.0
-push_displacement = 0.001
-steps = 1
-[corrosion]
-penetration = {x}
-steps = {steps}
-beta = {beta}
-oxide_bulk = {B_ox}
-""" + extra + "".join(crack(t) for t in angles)
+def scene(x, steps, angles, mu=0.4):
+    return (corroded_ring(MESH, x, steps, mu=mu, push=0.001, push_steps=1, beta=beta, oxide_bulk=B_ox)
+            + "".join(crack(t) for t in angles))
 
 
 # 1. Onset.
