@@ -22,23 +22,11 @@ Writes bench/results/corrosion.csv and corrosion.md.
 import argparse
 import os
 
-from common import PUSHOUT, ROOT, curve, markdown_table, run, summary, write_csv
+from common import PUSHOUT, ROOT, curve, markdown_table, pushout_runs, run, summary, write_csv
 
 DEMO = os.path.join(ROOT, "demo")
 FIG10 = ["loading.push_displacement=1.0", "loading.steps=80", "loading.step_growth=1.07"]
 CORRODED = ["corrosion.steps=20", "loading.steps=100"]
-
-
-def without_crack(out):
-    """demo/pushout_corroded.toml without its [[crack]] table."""
-    text = open(os.path.join(DEMO, "pushout_corroded.toml")).read()
-    head, rest = text.split("[[crack]]", 1)
-    tail = rest.split("\n\n", 1)[1]
-    path = os.path.join(out, "pushout_corroded_nocrack.toml")
-    os.makedirs(out, exist_ok=True)
-    with open(path, "w") as f:
-        f.write(head + tail)
-    return path
 
 
 def main():
@@ -51,7 +39,8 @@ def main():
         "fig10": (os.path.join(DEMO, "pushout_friction_adhesion.toml"), FIG10),
         "fig10_whole": (os.path.join(DEMO, "pushout_friction_adhesion.toml"),
                         FIG10 + ["model.symmetry=full", "solver.condensation=off"]),
-        "corroded_nocrack": (without_crack(args.out), CORRODED),
+        "corroded_nocrack": (pushout_runs.corroded_demo(
+            os.path.join(args.out, "pushout_corroded_nocrack.toml"), ()), CORRODED),
         "corroded_crack": (os.path.join(DEMO, "pushout_corroded.toml"), CORRODED),
     }
     rows = []

@@ -19,6 +19,20 @@ class RunError(RuntimeError):
     """A run that exited non-zero; the message has the command, its exit code and stderr."""
 
 
+def corroded_demo(path, angles):
+    """Writes demo/pushout_corroded.toml to `path` with its [[crack]] table
+    copied to each of `angles` [deg] (none: no crack plane); returns path."""
+    text = open(os.path.join(ROOT, "demo", "pushout_corroded.toml")).read()
+    head, rest = text.split("[[crack]]", 1)
+    crack, tail = rest.split("\n\n", 1)  # the table ends at the first blank line
+    tables = "".join("[[crack]]" + crack.replace('"nearest_face"', f"{a:.1f}") + "\n\n"
+                     for a in angles)
+    os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
+    with open(path, "w") as f:
+        f.write(head + tables + tail)
+    return path
+
+
 def command(pushout, scene, out, sets=(), petsc=(), quiet=True):
     """The command line of `pushout run`: --set overrides, then PETSc options."""
     cmd = [pushout, "run", scene, "--out", out] + (["--quiet"] if quiet else [])

@@ -109,15 +109,7 @@ def cases(study, quick):
 
 def four_cracks_scene(out):
     """demo/pushout_corroded.toml with four crack planes at 0, 90, 180, 270 deg."""
-    text = open(os.path.join(DEMO, "pushout_corroded.toml")).read()
-    head, crack = text.split("[[crack]]", 1)
-    crack, tail = crack.split("\n\n", 1)
-    tables = "".join("[[crack]]" + crack.replace('"nearest_face"', f"{a:.1f}") + "\n\n"
-                     for a in (0.0, 90.0, 180.0, 270.0))
-    path = os.path.join(out, FOUR_CRACKS)
-    with open(path, "w") as f:
-        f.write(head + tables + tail)
-    return path
+    return pushout_runs.corroded_demo(os.path.join(out, FOUR_CRACKS), (0.0, 90.0, 180.0, 270.0))
 
 
 def run_case(pushout, study, folder, scene, sets, quick, reuse):
