@@ -47,6 +47,7 @@ TEST(Dissipation, ExponentialSofteningReleasesItsFractureEnergy)
   // G_F = f_t^2 / (2 k) + f_t / c (f_fr = 0): 0.0045 + 0.12 N/mm.
   const auto law = make("exponential_softening", {{"k", 1000.0}, {"f_t", 3.0}, {"c", 25.0}});
   const double G_F = 3.0 * 3.0 / 2000 + 3.0 / 25;
+  EXPECT_NEAR(law->fracture_energy(), G_F, 1e-15);
   for (const Vec3 dir : {Vec3{1, 0, 0}, Vec3{0, 0.6, 0.8}, Vec3{0.6, 0.8, 0}})
   {
     const double total = dissipated(*law, dir, 1.5, 20000); // exp(-25 * 1.5): separated
@@ -61,6 +62,7 @@ TEST(Dissipation, LinearSofteningReleasesItsFractureEnergy)
   // G_F = f_t^2 / (2 k) + f_t w_c2 / 2 = 0.005 + 0.15 N/mm.
   const auto law = make("linear_softening", {{"k", 100.0}, {"f_t", 1.0}, {"w_c2", 0.3}});
   const double G_F = 1.0 / 200 + 0.3 / 2;
+  EXPECT_NEAR(law->fracture_energy(), G_F, 1e-15);
   const double ratio = dissipated(*law, {1, 0, 0}, 0.4, 20000) / G_F;
   std::cout << "linear_softening: dissipated / G_F = " << ratio << "\n";
   EXPECT_NEAR(ratio, 1.0, 1e-4);
@@ -94,7 +96,26 @@ TEST(Dissipation, CohesiveFrictionInOpeningIsItsEnvelopesFractureEnergy)
 {
   const auto law = make("cohesive_friction", {{"k", 1000.0}, {"f_t", 3.0}, {"c", 25.0}});
   const double G_F = 3.0 * 3.0 / 2000 + 3.0 / 25;
+  EXPECT_NEAR(law->fracture_energy(), G_F, 1e-15);
   const double ratio = dissipated(*law, {1, 0, 0}, 1.5, 20000) / G_F;
   std::cout << "cohesive_friction: dissipated / G_F = " << ratio << "\n";
   EXPECT_NEAR(ratio, 1.0, 1e-4);
+}
+
+TEST(Dissipation, FractureEnergyOfAResidualLawCountsOnlyTheSofteningAndNonSofteningLawsHaveNone)
+{
+  // linear_softening_friction: f_t 2, f_fr 0.5, w_c2 0.4, k 100: the linear
+  // branch meets f_fr at w0 + 0.3; released f_t^2/(2k) + (f_t - f_fr) 0.3 / 2.
+  const auto law =
+      make("linear_softening_friction", {{"k", 100.0}, {"f_t", 2.0}, {"f_fr", 0.5}, {"w_c2", 0.4}});
+  EXPECT_NEAR(law->fracture_energy(), 4.0 / 200 + 1.5 * 0.3 / 2, 1e-15);
+  // Opened to w_end on the plateau, the work int sigma dw = G + f_fr (w_end -
+  // w0) is dissipated but for the free energy f_fr w_end / 2 the secant
+  // stores: dissipated = G + f_fr (w_end / 2 - w0).
+  const double w_end = 1.0, w0 = 0.02, f_fr = 0.5;
+  const double plateau = f_fr * (w_end / 2 - w0);
+  EXPECT_NEAR((dissipated(*law, {1, 0, 0}, w_end, 20000) - plateau) / law->fracture_energy(), 1.0,
+              1e-4);
+  for (const char* name : {"elastic", "friction"})
+    EXPECT_EQ(make(name, {{"k_n", 1000.0}, {"k_s", 1000.0}})->fracture_energy(), 0.0) << name;
 }

@@ -178,6 +178,13 @@ void PushOut::constrain(bool top_held, double delta, solver::Equilibrium& eq) co
   eq.set_temperature_change(_dT);
 }
 
+double PushOut::load_force(const model::Model& model) const
+{
+  double local = model.interface().resultant()[2], P = 0; // as in row()
+  MPI_Allreduce(&local, &P, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  return P;
+}
+
 std::vector<double> PushOut::row(std::span<const double> /*reactions*/, std::span<const double> x,
                                  const model::Model& model) const
 {

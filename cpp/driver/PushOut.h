@@ -55,6 +55,8 @@ public:
   bool has_load_factor() const override { return true; }
   double final_load_factor() const override { return _delta_final; }
   void apply_load_factor(double delta, solver::Equilibrium& eq) const override;
+  /// The push force on the model as meshed (a quarter's on a quarter model).
+  double load_force(const model::Model& model) const override;
   bool uses_bulk() const override { return false; }
   std::vector<double> row(std::span<const double> reactions, std::span<const double> x,
                           const model::Model& model) const override;

@@ -100,16 +100,24 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   StepRecorder recorder(scene, opt.out, *scenario, equilibrium, report);
   Corrosion corrosion(scene, opt.out, report);
   StepLoop loop(*scenario, corrosion, equilibrium, *solver, recorder, report,
-                int(scene.integer("loading.max_cuts")));
+                int(scene.integer("loading.max_cuts")),
+                scenario->has_load_factor() ? int(scene.integer("loading.dissipation_steps")) : 1);
   if (scene.boolean("solver.time_linear_solve"))
     loop.time_linear_solve();
   report.publish();
   phase.emplace("load steps", stop_grace_s);
   t0 = report.seconds();
-  const auto control =
-      scenario->has_load_factor() && scene.string("loading.control") == "arc_length"
-          ? StepLoop::Control::arc_length
-          : StepLoop::Control::displacement;
+  const auto control = [&]
+  {
+    if (!scenario->has_load_factor())
+      return StepLoop::Control::displacement;
+    const std::string c = scene.string("loading.control");
+    if (c == "displacement")
+      return StepLoop::Control::displacement;
+    if (c == "arc_length")
+      return StepLoop::Control::arc_length;
+    return StepLoop::Control::dissipation; // "dissipation" or "auto"
+  }();
   // An error on one process is agreed on here, where the solvers still
   // live: destroying a MUMPS factor is collective, so a process must not
   // leave with it while the others go on (common/mpi_errors.h).

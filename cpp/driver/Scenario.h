@@ -42,6 +42,11 @@ public:
   virtual double final_load_factor() const { return 0.0; }
   /// Sets constraints and loads for load factor lambda (after step 0).
   virtual void apply_load_factor(double /*lambda*/, solver::Equilibrium& /*eq*/) const {}
+  /// The force that works on the load factor, on the model as meshed (a
+  /// quarter model's quarter: the work of a step is its product with
+  /// d lambda, in the units of Interface::energy_release), from the laws'
+  /// last evaluation [N]. Collective.
+  virtual double load_force(const model::Model& /*model*/) const { return 0.0; }
 
   /// Called once with the converged state of step 0 (owned dofs), before
   /// the load steps.

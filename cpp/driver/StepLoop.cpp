@@ -1,6 +1,7 @@
 #include "StepLoop.h"
 #include "../common/Interrupt.h"
 #include "../common/mpi_errors.h"
+#include "../common/petsc_check.h"
 #include "../solver/PathFollower.h"
 #include <cmath>
 #include <cstdlib>
@@ -21,6 +22,14 @@ constexpr double step_tolerance = 1e-12;
 /// nominal steps + path_steps_extra.
 constexpr int path_steps_per_step = 20;
 constexpr int path_steps_extra = 100;
+/// Dissipation control: a step of delta that dissipates too much is halved
+/// down to this fraction of a step before energy steps take over.
+constexpr double min_probe_increment = 1.0 / 16;
+/// Dissipation control: steps of delta again after an energy step in which
+/// the softening layers released less than this fraction of the increment
+/// (the slip term of the control did the rest), once the energy steps have
+/// released more than one increment (the event is over, not beginning).
+constexpr double released_to_return = 0.25;
 
 /// Test hook, not a scene key (tests/e2e/test_mpi_errors.py): with the
 /// environment variables PUSHOUT_TEST_FAIL_RANK=r and PUSHOUT_TEST_FAIL_AT=
@@ -50,10 +59,10 @@ void test_failure_at_setup()
 
 StepLoop::StepLoop(Scenario& scenario, Corrosion& corrosion, solver::Equilibrium& equilibrium,
                    solver::LoadStepSolver& solver, StepRecorder& recorder, RunReport& report,
-                   int max_cuts)
+                   int max_cuts, int dissipation_steps)
     : _scenario(scenario), _corrosion(corrosion), _equilibrium(equilibrium), _solver(solver),
       _recorder(recorder), _report(report), _summary(report.summary()), _max_cuts(max_cuts),
-      _x(equilibrium.model().create_vector())
+      _dissipation_steps(dissipation_steps), _x(equilibrium.model().create_vector())
 {
   _x.set(0.0);
   _x_committed = _x.duplicate();
@@ -76,9 +85,15 @@ bool StepLoop::run(Control control)
   // (curve.csv row 0) before their last commit.
   if (!initial_step() || (_corrosion.active() && !corrode()))
     return false;
-  if (control == Control::arc_length)
+  switch (control)
+  {
+  case Control::arc_length:
     return path_following();
-  return push_by_displacement();
+  case Control::dissipation:
+    return push_by_dissipation();
+  default:
+    return push_by_displacement();
+  }
 }
 
 bool StepLoop::stop_requested()
@@ -103,7 +118,7 @@ bool StepLoop::stop_requested()
 void StepLoop::commit()
 {
   for (interface::Interface* joints : _equilibrium.model().joints())
-    joints->state().commit();
+    joints->commit();
   _x_committed.copy_from(_x);
   _report.publish();
 }
@@ -375,6 +390,222 @@ bool StepLoop::path_following()
     revert();
     if (!cut_back(stepper, cuts, "path-following step " + std::to_string(k), rep.reason, length))
       return false;
+  }
+  return true;
+}
+
+std::array<double, 2> StepLoop::dissipation()
+{
+  std::array<double, 2> local = {0, 0}, total;
+  for (const interface::Interface* joints : _equilibrium.model().joints())
+  {
+    local[0] += joints->dissipation();
+    local[1] += joints->dissipation(true);
+  }
+  MPI_Allreduce(local.data(), total.data(), 2, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  return total;
+}
+
+double StepLoop::fracture_energy()
+{
+  double local = 0, total = 0;
+  for (const interface::Interface* joints : _equilibrium.model().joints())
+    local += joints->fracture_energy();
+  MPI_Allreduce(&local, &total, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  return total;
+}
+
+/// Dissipation control of the push (Verhoosel, Remmers & Gutierrez 2009):
+/// steps of the push delta as under displacement control while the joints
+/// dissipate little; steps of the energy they release (path following,
+/// solver/PathFollower.h: the softening layers' Interface::energy_release
+/// plus beta times the mean slip, beta set so that where nothing softens an
+/// energy step moves delta by about a step of delta) through a brittle
+/// event. A step of delta hands over to energy steps when it fails, or when
+/// it dissipates D (the laws' own account, Interface::dissipation) more
+/// than the dissipation increment dG = fracture energy / dissipation_steps
+/// and more than dG beyond the push's work W = 1/2 (P0 + P1) d delta: a
+/// brittle event that fed on the elastic energy stored, where displacement
+/// control jumps (snap-through) or stalls. Such a step is first halved, down
+/// to min_probe_increment: before a peak a shorter step dissipates less,
+/// through a snap-back it does not. Energy steps hand back to steps of
+/// delta once the event is over (released_to_return), or when one would
+/// move delta by more than a step of delta. Failed steps are halved (each
+/// kind its own Stepper.h). Without softening layers (dG = 0) the push is
+/// displacement-controlled.
+bool StepLoop::push_by_dissipation()
+{
+  const double lambda_final = _scenario.final_load_factor();
+  if (!(lambda_final > 0))
+  {
+    _summary.message = "dissipation control needs a positive final push displacement";
+    return false;
+  }
+  const double dG_nominal = fracture_energy() / _dissipation_steps; // [N mm]
+  if (!(dG_nominal > 0))
+  {
+    if (_report.talk())
+      std::cout << "dissipation control: no joint layer softens (no fracture energy); the push "
+                   "runs under displacement control"
+                << std::endl;
+    return push_by_displacement();
+  }
+  _scenario.apply_load_factor(0.0, _equilibrium); // the push's constraints (PathFollower.h)
+  const solver::Vector a(_equilibrium.model().mean_axial_slip_functional());
+  // control: the energy released + beta times the mean slip
+  solver::PathFollower path = solver::PathFollower::by_energy(_solver, a);
+  const auto mean_slip = [&]
+  {
+    double s;
+    petsc::check(VecDot(a, _x, &s), "VecDot");
+    return s;
+  };
+  double slip = mean_slip(), slip_rate = 0; // [mm], d slip / d delta of the last step
+  struct Count
+  {
+    output::Summary& s;
+    const solver::PathFollower& path;
+    ~Count() { s.factorizations += path.factorizations(); }
+  } count{_summary, path};
+
+  const double h_nominal = lambda_final / _scenario.steps(); // [mm]
+  const int max_steps = path_steps_per_step * _scenario.steps() + path_steps_extra;
+  const auto set_load = [&](double lambda) { _scenario.apply_load_factor(lambda, _equilibrium); };
+  const std::function<std::string(double)> push_words =
+                                               [h_nominal](double increment)
+  {
+    std::ostringstream s;
+    s << "a push of " << increment * h_nominal << " mm";
+    return s.str();
+  },
+                                           energy_words = [dG_nominal](double increment)
+  {
+    std::ostringstream s;
+    s << "a release of " << increment * dG_nominal << " N mm";
+    return s.str();
+  };
+  const auto say = [&](const std::string& what)
+  {
+    if (_report.talk())
+      std::cout << what << std::endl;
+  };
+  Stepper push(_max_cuts, easy_iterations), energy(_max_cuts, easy_iterations);
+  bool by_energy = false;       // the kind of the next step
+  double released_in_event = 0; // by the softening layers in the energy steps so far [N mm]
+  double lambda = 0.0, P = _scenario.load_force(_equilibrium.model());
+  int cuts = 0;
+  for (int k = 1; lambda < lambda_final - step_tolerance * lambda_final;)
+  {
+    if (stop_requested())
+      return false;
+    if (k > max_steps)
+    {
+      _summary.message = "dissipation control did not reach the final push displacement in " +
+                         std::to_string(max_steps) + " steps (delta = " + std::to_string(lambda) +
+                         " mm); stopped";
+      return false;
+    }
+    const std::string name = "step " + std::to_string(k);
+    double lambda_new = lambda;
+    solver::SolveReport rep;
+    bool energy_step = by_energy, overshot = false;
+    if (by_energy)
+    {
+      // beta such that an elastic energy step (G = 0) moves delta by about a
+      // nominal step of delta: dG_nominal = beta slip_rate h_nominal; no
+      // Newton iteration moves delta by more than that.
+      path.set_slip_weight(slip_rate > 0 ? dG_nominal / (slip_rate * h_nominal) : 0.0);
+      set_time_increment(h_nominal);
+      rep = path.step(_x, lambda_new, energy.increment() * dG_nominal, set_load, h_nominal);
+      _summary.newton_iterations += rep.iterations;
+      if (rep.converged && (lambda_new > lambda + h_nominal || lambda_new > lambda_final))
+      {
+        // Past a nominal step of delta (the joints have little left to
+        // release) or the final delta: a step of delta instead, taken
+        // whatever it dissipates, and steps of delta again.
+        revert();
+        energy_step = by_energy = false;
+        overshot = true;
+        say(name + ": a step of energy would move delta by more than a step of delta; "
+                   "displacement control");
+      }
+    }
+    if (!energy_step)
+    {
+      lambda_new = lambda + push.increment() * h_nominal;
+      if (lambda_new > lambda_final * (1 - step_tolerance))
+        lambda_new = lambda_final;
+      set_load(lambda_new);
+      set_time_increment(lambda_new - lambda);
+      _equilibrium.apply_constraints(_x);
+      rep = _solver.solve(_x);
+      _summary.newton_iterations += rep.iterations;
+      if (rep.converged && !overshot)
+      {
+        const auto [D, D_softening] = dissipation();
+        const double P_new = _scenario.load_force(_equilibrium.model());
+        const double work = 0.5 * (P + P_new) * (lambda_new - lambda);
+        if (D_softening > dG_nominal && D > work + dG_nominal)
+        {
+          // Shorter steps of delta first: before a peak the dissipation
+          // shrinks with the step; through a snap-back it does not.
+          revert();
+          std::ostringstream s;
+          s << name << ": a push of " << lambda_new - lambda << " mm dissipated " << D << " N mm, "
+            << D - work << " N mm more than its work; ";
+          by_energy = push.increment() <= min_probe_increment || !push.failed();
+          s << (by_energy ? "dissipation control" : "a shorter push");
+          say(s.str());
+          continue;
+        }
+      }
+    }
+    if (!rep.converged)
+    {
+      revert();
+      Stepper& stepper = energy_step ? energy : push;
+      if (!cut_back(stepper, cuts, (energy_step ? "dissipation-controlled " : "load ") + name,
+                    rep.reason, energy_step ? energy_words : push_words))
+        return false;
+      // A step of delta that failed short (below min_probe_increment) is
+      // retried under dissipation control; a step of energy that nothing
+      // along the path dissipates (singular control) under displacement
+      // control.
+      if (energy_step)
+        by_energy = rep.reason.find("singular") == std::string::npos;
+      else if (push.increment() < min_probe_increment)
+      {
+        by_energy = true;
+        say(name + ": dissipation control");
+      }
+      continue;
+    }
+    _recorder.record(_x, rep.iterations, cuts, k, 0); // before the commit: StepRecorder.h
+    ++_summary.steps;
+    if (energy_step)
+      ++_summary.dissipation_steps;
+    commit();
+    (energy_step ? energy : push).converged(rep.iterations);
+    if (energy_step)
+    {
+      const double released = dissipation()[1];
+      released_in_event += released;
+      if (released_in_event > dG_nominal && released < released_to_return * dG_nominal)
+      {
+        by_energy = false;
+        say(name + ": the softening layers released little in the step; displacement control");
+      }
+    }
+    else
+      released_in_event = 0;
+    P = _scenario.load_force(_equilibrium.model());
+    const double slip_new = mean_slip();
+    if (lambda_new > lambda && slip_new > slip)
+      slip_rate = (slip_new - slip) / (lambda_new - lambda);
+    slip = slip_new;
+    lambda = lambda_new;
+    cuts = 0;
+    ++k;
   }
   return true;
 }

@@ -1,7 +1,9 @@
 // The load steps of a run: step 0 (the thermal step or preload), the
 // corrosion stage if the scene has one (Corrosion.h), then the push under
-// displacement control (nominal steps, cut and grown back by Stepper.h) or
-// path following (solver/PathFollower.h); each converged step recorded and
+// displacement control (nominal steps, cut and grown back by Stepper.h),
+// path following on the mean slip, or dissipation control (steps of the
+// push or of the energy released, solver/PathFollower.h); each converged
+// step recorded and
 // committed, a failed one reverted and cut, a signal agreed on between
 // tries (common/Interrupt.h).
 #pragma once
@@ -14,6 +16,7 @@
 #include "Scenario.h"
 #include "StepRecorder.h"
 #include "Stepper.h"
+#include <array>
 #include <functional>
 #include <string>
 
@@ -26,12 +29,16 @@ public:
   enum class Control
   {
     displacement, ///< nominal steps of the load parameter
-    arc_length    ///< path following by the mean axial slip (Scenario::has_load_factor)
+    arc_length,   ///< path following by the mean axial slip (Scenario::has_load_factor)
+    dissipation   ///< steps of delta or of the energy released, as the step needs
   };
 
-  /// `max_cuts`: halvings of a step before the run stops (loading.max_cuts).
+  /// `max_cuts`: halvings of a step before the run stops (loading.max_cuts);
+  /// `dissipation_steps`: steps in which dissipation control releases the
+  /// joints' fracture energy (loading.dissipation_steps).
   StepLoop(Scenario& scenario, Corrosion& corrosion, solver::Equilibrium& equilibrium,
-           solver::LoadStepSolver& solver, StepRecorder& recorder, RunReport& report, int max_cuts);
+           solver::LoadStepSolver& solver, StepRecorder& recorder, RunReport& report, int max_cuts,
+           int dissipation_steps);
 
   /// Times one linear solve of the first load step (the thermal load
   /// included) from the unloaded state, into the summary.
@@ -63,6 +70,15 @@ private:
   bool nominal_steps(const Stage& stage);
   bool push_by_displacement();
   bool path_following();
+  /// Dissipation control (loading.control = "dissipation" or "auto").
+  bool push_by_dissipation();
+  /// The energy released by the joints to full softening, summed over the
+  /// processes [N mm].
+  double fracture_energy();
+  /// The energy the joints dissipated from the committed state to the last
+  /// evaluation, summed over the processes [N mm]: all layers, softening
+  /// layers.
+  std::array<double, 2> dissipation();
 
   /// The pseudo-time increment of the step, for every set of joints.
   void set_time_increment(double dt);
@@ -89,6 +105,7 @@ private:
   RunReport& _report;
   output::Summary& _summary;
   int _max_cuts;
+  int _dissipation_steps;
   solver::Vector _x, _x_committed; ///< whole-model displacement [mm]: trial and committed
 };
 

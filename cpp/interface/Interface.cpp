@@ -1,7 +1,9 @@
 #include "Interface.h"
 #include "../common/petsc_check.h"
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace pushout::interface
 {
@@ -82,12 +84,17 @@ Interface::Interface(std::vector<std::int32_t> pair_blocks, const std::vector<do
   std::vector<int> sizes;
   for (const auto& law : _layers)
   {
-    if (law->state_size() > 16)
-      throw std::invalid_argument("Interface: a law with more than 16 state variables");
+    if (law->state_size() > max_state_size)
+      throw std::invalid_argument("Interface: a law with more than " +
+                                  std::to_string(max_state_size) + " state variables");
     sizes.push_back(law->state_size());
+    _softens.push_back(law->fracture_energy() > 0);
   }
   _state = InterfaceState(num_points(), sizes);
   _t_layer.assign(3 * num_points() * _layers.size(), 0.0);
+  _w_last.assign(3 * num_points(), 0.0);
+  _t0 = _w0 = _w_last;
+  _dissipation_last.assign(2 * num_points(), 0.0);
 }
 
 laws::Vec3 Interface::jump(std::span<const double> u, std::size_t p, std::size_t q) const
@@ -101,6 +108,57 @@ laws::Vec3 Interface::jump(std::span<const double> u, std::size_t p, std::size_t
       w[d] += N[a] * (u[3 * b[_n + a] + d] - u[3 * b[a] + d]);
   return {R[0] * w[0] + R[1] * w[1] + R[2] * w[2], R[3] * w[0] + R[4] * w[1] + R[5] * w[2],
           R[6] * w[0] + R[7] * w[1] + R[8] * w[2]};
+}
+
+bool Interface::evaluate(std::size_t i, const laws::Vec3& w, laws::Vec3& t, laws::Mat3& D,
+                         laws::Mat3* D_softening)
+{
+  bool ok = true;
+  t = {0, 0, 0};
+  D = {};
+  std::array<double, 2> dissipated = {0, 0}; // all layers, softening layers
+  for (std::size_t l = 0; l < _layers.size(); ++l)
+  {
+    const laws::LawResult r =
+        _layers[l]->update(_state.committed(i, l), w, _state.trial(i, l), _inputs);
+    ok = ok && r.status == laws::LawStatus::ok;
+    std::copy(r.t.begin(), r.t.end(), _t_layer.begin() + 3 * (i * _layers.size() + l));
+    for (int c = 0; c < 3; ++c)
+      t[c] += r.t[c];
+    for (int c = 0; c < 9; ++c)
+      D[c] += r.D[c];
+    if (D_softening && _softens[l])
+      for (int c = 0; c < 9; ++c)
+        (*D_softening)[c] += r.D[c];
+    dissipated[0] += r.dissipation;
+    if (_softens[l])
+      dissipated[1] += r.dissipation;
+  }
+  std::copy(w.begin(), w.end(), _w_last.begin() + 3 * i);
+  _dissipation_last[2 * i] = dissipated[0];
+  _dissipation_last[2 * i + 1] = dissipated[1];
+  return ok;
+}
+
+void Interface::scatter(std::size_t p, std::size_t q, const laws::Vec3& v,
+                        std::span<double> f) const
+{
+  const std::size_t i = p * _q.weights.size() + q;
+  const std::int32_t* b = _blocks.data() + 2 * _n * p;
+  const double* R = _frame.data() + 9 * i;
+  const double* N = _N.data() + _n * q;
+  // To the global frame: v_g = R^T v.
+  Vec vg{0, 0, 0};
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      vg[c] += R[3 * r + c] * v[r];
+  for (int a = 0; a < _n; ++a)
+    for (int d = 0; d < 3; ++d)
+    {
+      const double fa = N[a] * vg[d] * _dA[i];
+      f[3 * b[a] + d] -= fa;      // steel side
+      f[3 * b[_n + a] + d] += fa; // concrete side
+    }
 }
 
 bool Interface::assemble(std::span<const double> u, std::span<double> f, Mat A)
@@ -117,36 +175,15 @@ bool Interface::assemble(std::span<const double> u, std::span<double> f, Mat A)
     for (std::size_t q = 0; q < nq; ++q)
     {
       const std::size_t i = p * nq + q;
-      const laws::Vec3 w = jump(u, p, q);
-      laws::Vec3 t{0, 0, 0};
-      laws::Mat3 D{};
-      for (std::size_t l = 0; l < _layers.size(); ++l)
-      {
-        const laws::LawResult r =
-            _layers[l]->update(_state.committed(i, l), w, _state.trial(i, l), _inputs);
-        ok = ok && r.status == laws::LawStatus::ok;
-        std::copy(r.t.begin(), r.t.end(), _t_layer.begin() + 3 * (i * _layers.size() + l));
-        for (int c = 0; c < 3; ++c)
-          t[c] += r.t[c];
-        for (int c = 0; c < 9; ++c)
-          D[c] += r.D[c];
-      }
-      // To the global frame: t_g = R^T t, D_g = R^T D R.
-      const double* R = _frame.data() + 9 * i;
-      Vec tg{0, 0, 0};
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c)
-          tg[c] += R[3 * r + c] * t[r];
-      const double* N = _N.data() + n * q;
-      for (int a = 0; a < n; ++a)
-        for (int d = 0; d < 3; ++d)
-        {
-          const double fa = N[a] * tg[d] * _dA[i];
-          f[3 * b[a] + d] -= fa;     // steel side
-          f[3 * b[n + a] + d] += fa; // concrete side
-        }
+      laws::Vec3 t;
+      laws::Mat3 D;
+      ok = evaluate(i, jump(u, p, q), t, D) && ok;
+      scatter(p, q, t, f);
       if (!A)
         continue;
+      // To the global frame: D_g = R^T D R.
+      const double* R = _frame.data() + 9 * i;
+      const double* N = _N.data() + n * q;
       std::array<double, 9> Dg{};
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c)
@@ -178,6 +215,94 @@ bool Interface::assemble(std::span<const double> u, std::span<double> f, Mat A)
   }
   petsc::check(inserted, "MatSetValuesBlockedLocal");
   return ok;
+}
+
+void Interface::commit()
+{
+  _state.commit();
+  _w0 = _w_last;
+  for (std::size_t i = 0; i < num_points(); ++i)
+    softening_traction(i, _t0.data() + 3 * i);
+}
+
+void Interface::softening_traction(std::size_t i, double* t) const
+{
+  for (int c = 0; c < 3; ++c)
+  {
+    t[c] = 0;
+    for (std::size_t l = 0; l < _layers.size(); ++l)
+      if (_softens[l])
+        t[c] += layer_traction(i, l)[c];
+  }
+}
+
+bool Interface::energy_release(std::span<const double> u, std::span<double> gradient, double& G)
+{
+  const std::size_t nq = _q.weights.size();
+  bool ok = true;
+  G = 0;
+  for (std::size_t p = 0; p < num_pairs(); ++p)
+    for (std::size_t q = 0; q < nq; ++q)
+    {
+      const std::size_t i = p * nq + q;
+      const laws::Vec3 w = jump(u, p, q);
+      laws::Vec3 t_all, t;
+      laws::Mat3 D_all, D{};
+      ok = evaluate(i, w, t_all, D_all, &D) && ok;
+      softening_traction(i, t.data());
+      const double* t0 = _t0.data() + 3 * i;
+      const double* w0 = _w0.data() + 3 * i;
+      double change = 0, size = 0;
+      for (int c = 0; c < 3; ++c)
+      {
+        G += 0.5 * (t0[c] * w[c] - t[c] * w0[c]) * _dA[i];
+        change = std::max(change, std::abs(w[c] - w0[c]));
+        size = std::max(size, std::abs(w0[c]));
+      }
+      // Where the jump is still the committed one, a damage law's tangent is
+      // the secant (no loading yet) and dG/dw would vanish: take the loading
+      // tangent, from the laws just beyond w0 along w0 (the trial state of
+      // this probe is thrown away).
+      if (change <= loading_probe * size && size > 0)
+      {
+        const laws::Vec3 w_probe = {w[0] * (1 + loading_probe), w[1] * (1 + loading_probe),
+                                    w[2] * (1 + loading_probe)};
+        std::array<double, max_state_size> scratch;
+        D = {};
+        for (std::size_t l = 0; l < _layers.size(); ++l)
+        {
+          if (!_softens[l])
+            continue;
+          const laws::LawResult r = _layers[l]->update(
+              _state.committed(i, l), w_probe,
+              std::span<double>(scratch.data(), std::size_t(_state.size(l))), _inputs);
+          for (int c = 0; c < 9; ++c)
+            D[c] += r.D[c];
+        }
+      }
+      // dG/dw = 1/2 (t0 - D^T w0)
+      laws::Vec3 g;
+      for (int c = 0; c < 3; ++c)
+        g[c] = 0.5 * (t0[c] - (D[c] * w0[0] + D[3 + c] * w0[1] + D[6 + c] * w0[2]));
+      scatter(p, q, g, gradient);
+    }
+  return ok;
+}
+
+double Interface::dissipation(bool softening_only) const
+{
+  double d = 0;
+  for (std::size_t i = 0; i < num_points(); ++i)
+    d += _dissipation_last[2 * i + (softening_only ? 1 : 0)] * _dA[i];
+  return d;
+}
+
+double Interface::fracture_energy() const
+{
+  double per_area = 0;
+  for (const auto& law : _layers)
+    per_area += law->fracture_energy();
+  return per_area * area();
 }
 
 PointOutput Interface::point_output(std::span<const double> u, std::size_t p, std::size_t q) const
@@ -224,23 +349,9 @@ laws::Vec3 Interface::resultant() const
 
 void Interface::add_axial_jump_functional(std::span<double> a) const
 {
-  const std::size_t nq = _q.weights.size();
   for (std::size_t p = 0; p < num_pairs(); ++p)
-  {
-    const std::int32_t* b = _blocks.data() + 2 * _n * p;
-    for (std::size_t q = 0; q < nq; ++q)
-    {
-      const std::size_t i = p * nq + q;
-      const double* s1 = _frame.data() + 9 * i + 3;
-      for (int n = 0; n < _n; ++n)
-        for (int d = 0; d < 3; ++d)
-        {
-          const double c = _N[_n * q + n] * s1[d] * _dA[i];
-          a[3 * b[n] + d] -= c;      // steel side
-          a[3 * b[_n + n] + d] += c; // concrete side
-        }
-    }
-  }
+    for (std::size_t q = 0; q < _q.weights.size(); ++q)
+      scatter(p, q, {0, 1, 0}, a); // w . s1
 }
 
 double Interface::area() const

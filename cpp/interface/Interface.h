@@ -74,6 +74,37 @@ public:
   /// any law failed.
   bool assemble(std::span<const double> u, std::span<double> f, Mat A);
 
+  /// Commits the trial state of the last evaluation (assemble(), at the
+  /// converged displacement of a step) and keeps its softening tractions and
+  /// jumps as the start of the next step, t0 and w0 of energy_release().
+  void commit();
+
+  /// The energy the softening layers (InterfaceLaw::fracture_energy > 0)
+  /// release from the committed state to the jumps of `u` [N mm], in the
+  /// form of Gutierrez (2004) at each point:
+  ///   G = int_Gamma 1/2 (t0 . w - t(w) . w0) dA,
+  /// t the softening layers' traction, t0 and w0 the committed ones. For a
+  /// damage law with secant unloading it is 1/2 k (D - D0) w0 . w, the
+  /// damage's dissipation to second order in the step, and 0 for elastic
+  /// loading or unloading. Friction layers are left out: their dissipation
+  /// grows whichever way the tube slips, and would let a step slip back.
+  /// (cohesive_friction is one law: its friction counts, half its work.)
+  /// Evaluates every layer at `u` as assemble() does (trial state,
+  /// tractions); adds dG/du to `gradient` (the layout of f in assemble();
+  /// the caller sums ghosts to owners) and sets G (this process's pairs).
+  /// Returns false if a law failed.
+  bool energy_release(std::span<const double> u, std::span<double> gradient, double& G);
+
+  /// The energy dissipated from the committed state to the last evaluation
+  /// over this process's pairs, as the laws report it
+  /// (laws::LawResult::dissipation) [N mm]; by the softening layers only if
+  /// `softening_only`.
+  double dissipation(bool softening_only = false) const;
+
+  /// The energy the layers release to full softening over this process's
+  /// pairs, sum of InterfaceLaw::fracture_energy times the area [N mm].
+  double fracture_energy() const;
+
   /// Output quantities of quadrature point q of pair p: the tractions of
   /// the last evaluation (assemble()), the jump of `u`, the trial state's
   /// slips and damage. After a converged step all are the converged state's.
@@ -107,8 +138,25 @@ public:
     return {_frame.data() + 9 * (p * _q.weights.size() + q), 9};
   }
 
+  /// Largest number of history variables of a law per point.
+  static constexpr int max_state_size = 16;
+
 private:
   laws::Vec3 jump(std::span<const double> u, std::size_t p, std::size_t q) const;
+  /// Evaluates every layer at point i with jump w (local frame): the trial
+  /// state, the layer tractions and the jump are kept; t, D the totals.
+  /// False if a law failed.
+  /// `D_softening`, if given: the tangent of the softening layers only.
+  bool evaluate(std::size_t i, const laws::Vec3& w, laws::Vec3& t, laws::Mat3& D,
+                laws::Mat3* D_softening = nullptr);
+  /// The traction of the softening layers at point i, last evaluation, into t[3].
+  void softening_traction(std::size_t i, double* t) const;
+  /// Adds int N^T R^T v dA of point (p, q) to f: +v on the concrete (plus)
+  /// side, -v on the steel (minus) side (local-frame v, global f).
+  void scatter(std::size_t p, std::size_t q, const laws::Vec3& v, std::span<double> f) const;
+  /// Relative size of the step beyond w0 at which energy_release() takes
+  /// the loading tangent where the jump has not moved.
+  static constexpr double loading_probe = 1e-9;
 
   std::vector<std::int32_t> _blocks;
   std::size_t _num_pairs;
@@ -125,6 +173,11 @@ private:
   {
     return _t_layer.data() + 3 * (i * _layers.size() + l);
   }
+  std::vector<double> _w_last;  ///< jump per point, local frame, last evaluation [mm]
+  std::vector<bool> _softens;   ///< per layer: fracture_energy() > 0
+  std::vector<double> _t0, _w0; ///< softening traction, jump per point at the last commit
+  /// per point: all layers, softening layers; last evaluation [N/mm]
+  std::vector<double> _dissipation_last;
   laws::StepInputs _inputs; ///< inputs of the current step
 };
 } // namespace pushout::interface

@@ -141,6 +141,9 @@ public:
   {
     return CohesiveFrictionState(state).damage_history().damage();
   }
+  /// Energy the cohesion releases to full damage [N/mm] (its friction's
+  /// dissipation is not counted: CamanhoDavila::fracture_energy).
+  double fracture_energy() const { return _cd.fracture_energy(); }
 
 private:
   static Envelope envelope(const Params& p, const std::string& prefix)

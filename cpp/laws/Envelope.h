@@ -49,5 +49,18 @@ struct Envelope
       return {floor, 0.0};
     return {sigma, -f_t / w_c2};
   }
+
+  /// The area between the envelope and its residual f_fr beyond the peak
+  /// [N/mm]: the energy the softening releases (the residual's part is the
+  /// plateau's, not brittle). Exponential (f_t - f_fr) / c; linear
+  /// f_t w_c2 / 2; linear with residual (f_t - f_fr)^2 w_c2 / (2 f_t).
+  double softening_energy() const
+  {
+    if (kind == Kind::exponential)
+      return (f_t - f_fr) / c;
+    if (kind == Kind::linear)
+      return 0.5 * f_t * w_c2;
+    return 0.5 * (f_t - f_fr) * (f_t - f_fr) * w_c2 / f_t;
+  }
 };
 } // namespace pushout::laws

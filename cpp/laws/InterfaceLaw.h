@@ -69,10 +69,16 @@ public:
 
   /// Scalar damage in [0, 1], for output (0 for laws without damage).
   virtual double damage(std::span<const double> state) const = 0;
+
+  /// The energy per unit area a softening law releases from the unloaded
+  /// state to full softening [N/mm] (its G_F without the residual's
+  /// plateau); 0 for laws that do not soften (elastic, friction). Sets the
+  /// scale of dissipation-controlled steps (driver/StepLoop.cpp).
+  virtual double fracture_energy() const = 0;
 };
 
 /// Wraps a law value type `L` (with `state_size`, `update`, `slip`,
-/// `damage`) as an InterfaceLaw.
+/// `damage`, and `fracture_energy` if it softens) as an InterfaceLaw.
 template <typename L> class LawAdapter final : public InterfaceLaw
 {
 public:
@@ -88,6 +94,13 @@ public:
     return _law.slip(state);
   }
   double damage(std::span<const double> state) const override { return _law.damage(state); }
+  double fracture_energy() const override
+  {
+    if constexpr (requires(const L& l) { l.fracture_energy(); })
+      return _law.fracture_energy();
+    else
+      return 0.0;
+  }
 
 private:
   L _law;

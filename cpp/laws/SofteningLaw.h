@@ -57,6 +57,8 @@ public:
   }
   std::array<double, 2> slip(std::span<const double>) const { return {0, 0}; }
   double damage(std::span<const double> state) const { return DamageHistory(state).damage(); }
+  /// Energy released to full softening [N/mm] (CamanhoDavila::fracture_energy).
+  double fracture_energy() const { return _cd.fracture_energy(); }
 
 private:
   CamanhoDavila _cd;

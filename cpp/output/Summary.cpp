@@ -23,6 +23,7 @@ void Summary::write(const std::filesystem::path& file) const
       {"condensed_dofs", condensed_dofs},
       {"steps", steps},
       {"corrosion_steps", corrosion_steps},
+      {"dissipation_steps", dissipation_steps},
       {"penetration_mm", penetration_mm},
       {"cracks", crack_list},
       {"newton_iterations", newton_iterations},

@@ -246,11 +246,27 @@ std::vector<KeyDef> make_keys()
        "displacement: steps of the push delta; arc_length: path following on the mean "
        "axial slip of the interface, steps of length push_displacement/steps in the "
        "(delta, slip) plane, through snap-back (delta may decrease) until delta reaches "
-       "push_displacement",
+       "push_displacement; dissipation: steps of delta while the joints dissipate little, "
+       "steps of the energy they release where a step of delta fails or jumps over a brittle "
+       "event (snap-back), back to delta after it (docs/numerics.md); auto: the control we "
+       "recommend for a push whose laws may be brittle, today the same as dissipation",
        -inf,
        inf,
        false,
-       {"displacement", "arc_length"},
+       {"displacement", "arc_length", "dissipation", "auto"},
+       A::pushout},
+      {"loading.dissipation_steps",
+       K::integer,
+       std::int64_t(20),
+       "",
+       "dissipation control: the energy released per step is the fracture energy of the "
+       "softening joint layers (InterfaceLaw G_F x area) over this many steps; a step of "
+       "delta releasing more than that and more than the push's work is redone under "
+       "dissipation control",
+       1,
+       1e9,
+       false,
+       {},
        A::pushout},
       {"loading.max_cuts", K::integer, std::int64_t(10), "",
        "a step whose Newton solve fails is retried with half the increment, at most down to "

@@ -4,14 +4,56 @@
 #include "../common/petsc_check.h"
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace pushout::solver
 {
 using petsc::check;
 
-ArcLengthSolver::ArcLengthSolver(NonlinearProblem& problem, Vec control,
+LinearConstraint::LinearConstraint(Vec a)
+{
+  check(VecDuplicate(a, &_a), "VecDuplicate");
+  check(VecCopy(a, _a), "VecCopy");
+}
+
+LinearConstraint::~LinearConstraint()
+{
+  petsc::check_nothrow(VecDestroy(&_a), "VecDestroy");
+}
+
+bool LinearConstraint::evaluate(Vec x, double& value, Vec gradient)
+{
+  check(VecDot(_a, x, &value), "VecDot");
+  check(VecCopy(_a, gradient), "VecCopy");
+  return true;
+}
+
+EnergyReleaseConstraint::EnergyReleaseConstraint(NonlinearProblem& problem, Vec slip)
+    : _problem(problem)
+{
+  check(VecDuplicate(slip, &_slip), "VecDuplicate");
+  check(VecCopy(slip, _slip), "VecCopy");
+}
+
+EnergyReleaseConstraint::~EnergyReleaseConstraint()
+{
+  petsc::check_nothrow(VecDestroy(&_slip), "VecDestroy");
+}
+
+bool EnergyReleaseConstraint::evaluate(Vec x, double& value, Vec gradient)
+{
+  const bool ok = _problem.energy_release(x, value, gradient);
+  double s;
+  check(VecDot(_slip, x, &s), "VecDot");
+  value += _beta * s;
+  check(VecAXPY(gradient, _beta, _slip), "VecAXPY");
+  return ok;
+}
+
+ArcLengthSolver::ArcLengthSolver(NonlinearProblem& problem, PathConstraint& control,
                                  NewtonSolver::Preconditioner pc, int refactor_iterations)
-    : _problem(problem), _policy(pc == NewtonSolver::Preconditioner::lagged, refactor_iterations)
+    : _problem(problem), _control(control),
+      _policy(pc == NewtonSolver::Preconditioner::lagged, refactor_iterations)
 {
   if (_policy.lagged())
   {
@@ -20,11 +62,10 @@ ArcLengthSolver::ArcLengthSolver(NonlinearProblem& problem, Vec control,
   }
   else
     _J = problem.create_matrix();
-  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(control));
-  check(VecDuplicate(control, &_a), "VecDuplicate");
-  check(VecCopy(control, _a), "VecCopy");
+  _a = problem.create_vector();
+  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(_a));
   for (Vec* v : {&_e, &_F, &_v1, &_v2})
-    check(VecDuplicate(control, v), "VecDuplicate");
+    check(VecDuplicate(_a, v), "VecDuplicate");
   check(KSPCreate(comm, &_ksp), "KSPCreate");
   check(KSPSetFromOptions(_ksp), "KSPSetFromOptions");
   problem.configure(_ksp);
@@ -49,13 +90,6 @@ ArcLengthSolver::~ArcLengthSolver()
     petsc::check_nothrow(VecDestroy(v), "VecDestroy");
 }
 
-double ArcLengthSolver::control(Vec x) const
-{
-  double s;
-  check(VecDot(_a, x, &s), "VecDot");
-  return s;
-}
-
 namespace
 {
 MPI_Comm comm_of(Vec v)
@@ -63,6 +97,20 @@ MPI_Comm comm_of(Vec v)
   return PetscObjectComm(reinterpret_cast<PetscObject>(v));
 }
 } // namespace
+
+bool ArcLengthSolver::constraint(Vec x, double& value)
+{
+  return mpi::all(comm_of(x),
+                  mpi::collectively(comm_of(x), [&] { return _control.evaluate(x, value, _a); }));
+}
+
+double ArcLengthSolver::control(Vec x)
+{
+  double c;
+  if (!constraint(x, c))
+    throw std::runtime_error("path following: an interface law failed evaluating the control");
+  return c;
+}
 
 // A law may fail on one process only, and so may an exception: both are
 // agreed on by all (common/mpi_errors.h).
@@ -117,7 +165,7 @@ std::string ArcLengthSolver::solve(Vec b, Vec y)
 }
 
 SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
-                                  const std::function<void(double)>& set_load)
+                                  const std::function<void(double)>& set_load, double max_dlambda)
 {
   SolveReport rep;
   _policy.check_constraints(_problem);
@@ -129,7 +177,14 @@ SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
   set_load(lambda);
   residual(x, reactions);
   check(VecAYPX(_e, -1.0, _F), "VecAYPX");
-  const double eta0 = control(x), eta = eta0 + d_eta;
+  double eta0;
+  if (!constraint(x, eta0))
+  {
+    rep.converged = false;
+    rep.reason = "an interface law failed";
+    return rep;
+  }
+  const double eta = eta0 + d_eta;
   double lam = lambda;
   const auto fail = [&](std::string why)
   {
@@ -143,20 +198,22 @@ SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
     set_load(lam);
     if (!residual(x, reactions))
       return fail("an interface law failed");
-    double fnorm;
+    double fnorm, c;
     check(VecNorm(_F, NORM_2, &fnorm), "VecNorm");
     if (!std::isfinite(fnorm))
       return fail("residual not finite");
+    if (!constraint(x, c)) // c(x) and its gradient _a
+      return fail("an interface law failed");
     if (_monitor)
       check(PetscPrintf(PetscObjectComm(reinterpret_cast<PetscObject>(x)),
-                        "  arc %d: |F| %.6e N (tol %.3e), lambda %.9e mm, slip - target %.3e mm\n",
-                        int(it), fnorm, std::max(_atol, _rtol * reactions), lam, control(x) - eta),
+                        "  arc %d: |F| %.6e N (tol %.3e), lambda %.9e mm, control - target %.3e\n",
+                        int(it), fnorm, std::max(_atol, _rtol * reactions), lam, c - eta),
             "PetscPrintf");
     // PETSc's tolerances, or the round-off floor of the residual below which
     // they cannot be met (NewtonSolver.h).
     const bool small = fnorm <= std::max(_atol, _rtol * reactions) ||
                        fnorm <= _problem.residual_floor(x); // the same on every process
-    if (it > 0 && small && std::abs(control(x) - eta) <= 1e-8 * std::abs(d_eta))
+    if (it > 0 && small && std::abs(c - eta) <= 1e-8 * std::abs(d_eta))
     {
       rep.converged = true;
       rep.reason = "CONVERGED_FNORM";
@@ -173,10 +230,14 @@ SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
       return fail(why);
     if (std::string why = solve(_e, _v2); !why.empty())
       return fail(why);
-    const double r = control(_v2); // d(control)/d(lambda) along the tangent
+    double r, a_v1; // d(control)/d(lambda) along the tangent; a . v1
+    check(VecDot(_a, _v2, &r), "VecDot");
+    check(VecDot(_a, _v1, &a_v1), "VecDot");
     if (!std::isfinite(r) || r == 0.0)
       return fail("singular bordered system (d control / d lambda = 0)");
-    const double dlambda = -(control(x) - eta + control(_v1)) / r;
+    double dlambda = -(c - eta + a_v1) / r;
+    if (max_dlambda > 0 && std::abs(dlambda) > max_dlambda)
+      dlambda = std::copysign(max_dlambda, dlambda);
     check(VecAXPY(_v1, dlambda, _v2), "VecAXPY"); // dx
     lam += dlambda;
     check(VecAXPY(x, 1.0, _v1), "VecAXPY");
@@ -189,6 +250,9 @@ SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
     if (it > 0 && dx <= _stol * xn && std::abs(dlambda) <= _stol * std::abs(lam))
     {
       set_load(lam);
+      // The laws' last evaluation at the converged x (outputs, commit).
+      if (!residual(x, reactions))
+        return fail("an interface law failed");
       rep.converged = true;
       rep.reason = "CONVERGED_SNORM_RELATIVE";
       break;

@@ -1,6 +1,9 @@
 // Path following through limit points of the prescribed displacement
-// (the snap-back after the adhesion peak, paper §2.2): indirect
-// displacement control on the interface jump, a form of arc length.
+// (the snap-back after the adhesion peak, paper §2.2): indirect control by
+// a function c(x) of the unknowns (PathConstraint below), a form of arc
+// length: the mean axial slip of the interface (linear, a . x) or the energy
+// the joints release in the step (NonlinearProblem::energy_release:
+// dissipation control, Gutierrez 2004; Verhoosel, Remmers & Gutierrez 2009).
 //
 // Unknowns: the displacement x and a load factor lambda that moves the
 // prescribed dofs, u_c = g(lambda), affine in lambda (push-out: lambda is
@@ -9,24 +12,26 @@
 // dlambda at the constrained rows, 0 elsewhere; on the condensed interface
 // system the bulk carries the load to every row). Equations:
 //   F(x, lambda) = 0        equilibrium (constrained rows: x_c - g(lambda))
-//   a . x = eta             control: a . x is the mean axial slip s [mm]
+//   c(x) = eta              control, a = dc/dx at the iterate
 // Newton on the bordered system
-//   [ J    -e ] [ dx      ]     [ F         ]
-//   [ a^T   0 ] [ dlambda ] = - [ a . x - eta ]
+//   [ J    -e ] [ dx      ]     [ F        ]
+//   [ a^T   0 ] [ dlambda ] = - [ c(x) - eta ]
 // by block elimination, two solves with the same J:
 //   J v1 = -F,   J v2 = e,
-//   dlambda = -(a . x - eta + a . v1) / (a . v2),   dx = v1 + dlambda v2.
+//   dlambda = -(c(x) - eta + a . v1) / (a . v2),   dx = v1 + dlambda v2.
 // The caller chooses the control increment of each step (driver/StepLoop.cpp:
 // from the previous step, scaled to a path length in the (lambda, s) plane).
 // The slip of a push-out only grows (damage and friction never pull the
-// tube back), so a positive increment fixes the direction through a limit
-// point in lambda, without the sign tests of the classical arc-length
-// methods (Crisfield).
+// tube back), and so does the energy released, so a positive increment fixes
+// the direction through a limit point in lambda, without the sign tests of
+// the classical arc-length methods (Crisfield).
 //
 // Limits: the control must increase monotonically (no unloading); J is
 // singular exactly at a limit point in lambda, where the elimination fails
 // (the step is then cut and usually lands past it); the mean slip hides a
-// localised event whose slip is small compared with the whole interface.
+// localised event whose slip is small compared with the whole interface
+// (the energy released does not); the energy released is zero where the
+// step is elastic, where a . v2 = 0 and the step cannot be controlled by it.
 #pragma once
 
 #include "NewtonSolver.h"
@@ -37,31 +42,84 @@
 
 namespace pushout::solver
 {
+/// The control function c(x) of path following.
+class PathConstraint
+{
+public:
+  virtual ~PathConstraint() = default;
+  /// c(x) and dc/dx into `gradient` (the problem's space); false if an
+  /// interface law failed. Collective.
+  virtual bool evaluate(Vec x, double& value, Vec gradient) = 0;
+};
+
+/// c(x) = a . x, a constant functional (the mean axial slip [mm]).
+class LinearConstraint : public PathConstraint
+{
+public:
+  /// Keeps a copy of `a`.
+  explicit LinearConstraint(Vec a);
+  ~LinearConstraint();
+  LinearConstraint(const LinearConstraint&) = delete;
+  LinearConstraint& operator=(const LinearConstraint&) = delete;
+  bool evaluate(Vec x, double& value, Vec gradient) override;
+
+private:
+  Vec _a = nullptr;
+};
+
+/// c(x) = G(x) + beta a . x: the energy the joints release from the
+/// committed state [N mm] (NonlinearProblem::energy_release) plus beta
+/// times a linear functional, the mean axial slip [mm] with beta [N]. Where
+/// nothing dissipates yet (elastic loading before a peak) G and its
+/// gradient vanish and the slip term keeps the step controllable; where the
+/// joints soften G dominates.
+class EnergyReleaseConstraint : public PathConstraint
+{
+public:
+  /// Keeps a copy of `slip`.
+  EnergyReleaseConstraint(NonlinearProblem& problem, Vec slip);
+  ~EnergyReleaseConstraint();
+  EnergyReleaseConstraint(const EnergyReleaseConstraint&) = delete;
+  EnergyReleaseConstraint& operator=(const EnergyReleaseConstraint&) = delete;
+  bool evaluate(Vec x, double& value, Vec gradient) override;
+  /// beta [N].
+  void set_slip_weight(double beta) { _beta = beta; }
+
+private:
+  NonlinearProblem& _problem;
+  Vec _slip = nullptr;
+  double _beta = 0;
+};
+
 class ArcLengthSolver
 {
 public:
-  /// `control`: the coefficients a of the control functional (owned dofs).
-  /// Tolerances and the iteration limit are SNES's (-snes_rtol, -snes_atol,
-  /// -snes_stol, -snes_max_it; -arc_monitor prints each iteration); the linear solver is configured
-  /// like SNES's KSP (-ksp_type, -pc_type, ...), with the same preconditioner policy as
-  /// NewtonSolver.
-  ArcLengthSolver(NonlinearProblem& problem, Vec control, NewtonSolver::Preconditioner pc,
-                  int refactor_iterations);
+  /// `control`: the control function c, a vector `like` of the problem's
+  /// space to copy the layout from. Tolerances and the iteration limit are SNES's (-snes_rtol,
+  /// -snes_atol, -snes_stol, -snes_max_it; -arc_monitor prints each iteration); the linear solver
+  /// is configured like SNES's KSP (-ksp_type, -pc_type, ...), with the same preconditioner policy
+  /// as NewtonSolver.
+  ArcLengthSolver(NonlinearProblem& problem, PathConstraint& control,
+                  NewtonSolver::Preconditioner pc, int refactor_iterations);
   ~ArcLengthSolver();
   ArcLengthSolver(const ArcLengthSolver&) = delete;
   ArcLengthSolver& operator=(const ArcLengthSolver&) = delete;
 
   /// One step from the equilibrium (x, lambda) to the equilibrium with
-  /// control value a . x + d_eta [mm]. On success
+  /// control value c(x) + d_eta. On success
   /// x and lambda hold the next equilibrium; on failure x is left at the
   /// last iterate (the caller restores it) and lambda is unchanged.
   /// `set_load(lambda)` puts the constraints of load factor lambda into the
-  /// problem; they must be affine in lambda.
-  SolveReport step(Vec x, double& lambda, double d_eta,
-                   const std::function<void(double)>& set_load);
+  /// problem; they must be affine in lambda. `max_dlambda` (> 0) bounds the
+  /// change of lambda of each Newton iteration (a trust region for a control
+  /// whose linearisation at the start sees few of the points that will
+  /// dissipate; 0: none).
+  SolveReport step(Vec x, double& lambda, double d_eta, const std::function<void(double)>& set_load,
+                   double max_dlambda = 0);
 
-  /// The control value a . x [mm].
-  double control(Vec x) const;
+  /// The control value c(x) (evaluates the laws at x if c does); throws if
+  /// a law failed.
+  double control(Vec x);
 
   /// Numeric factorisations so far (for the summary).
   int factorizations() const { return _policy.factorizations(); }
@@ -76,7 +134,11 @@ private:
   /// refreshing P.
   std::string solve(Vec b, Vec y);
 
+  /// c(x) into `value`, dc/dx into _a, agreed on by every process.
+  bool constraint(Vec x, double& value);
+
   NonlinearProblem& _problem;
+  PathConstraint& _control;
   PreconditionerPolicy _policy;
   KSP _ksp = nullptr;
   Mat _J = nullptr, _P = nullptr;

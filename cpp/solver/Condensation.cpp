@@ -465,6 +465,18 @@ const std::vector<double>& Condensation::load_coefficients()
   return c;
 }
 
+std::pair<std::size_t, std::size_t> Condensation::load_set(std::size_t s, const double* d)
+{
+  const std::size_t first = s == 0 ? 0 : _set_end[s - 1], end = _set_end[s];
+  for (std::size_t j = first; j < end; ++j)
+  {
+    _u[_minus[j]] = 0.0;
+    _u[_plus[j]] = d[j];
+    _f[_minus[j]] = _f[_plus[j]] = 0.0;
+  }
+  return {first, end};
+}
+
 bool Condensation::interface_forces(Vec d, bool tangent, double* force_norm)
 {
   // Set by set: the set's minus nodes at 0 and plus nodes at the jumps (its
@@ -478,13 +490,7 @@ bool Condensation::interface_forces(Vec d, bool tangent, double* force_norm)
   const std::vector<interface::Interface*> sets = _eq.model().joints();
   for (std::size_t s = 0; s < sets.size(); ++s)
   {
-    const std::size_t first = s == 0 ? 0 : _set_end[s - 1], end = _set_end[s];
-    for (std::size_t j = first; j < end; ++j)
-    {
-      _u[_minus[j]] = 0.0;
-      _u[_plus[j]] = da[j];
-      _f[_minus[j]] = _f[_plus[j]] = 0.0;
-    }
+    const auto [first, end] = load_set(s, da);
     if (tangent)
       check(MatZeroEntries(_T[s]), "MatZeroEntries");
     ok = sets[s]->assemble(_u, _f, tangent ? _T[s] : nullptr) && ok;
@@ -504,6 +510,31 @@ bool Condensation::interface_forces(Vec d, bool tangent, double* force_norm)
   check(VecRestoreArrayRead(d, &da), "VecRestoreArrayRead");
   if (force_norm)
     *force_norm = std::sqrt(f2);
+  return ok;
+}
+
+// As interface_forces(): each set with its minus nodes at 0 and plus nodes
+// at the jumps, so that dG/du at the plus nodes is dG/dd.
+bool Condensation::energy_release(Vec d, double& G, Vec gradient)
+{
+  const double* da;
+  check(VecGetArrayRead(d, &da), "VecGetArrayRead");
+  double* g;
+  check(VecGetArray(gradient, &g), "VecGetArray");
+  bool ok = true;
+  G = 0;
+  const std::vector<interface::Interface*> sets = _eq.model().joints();
+  for (std::size_t s = 0; s < sets.size(); ++s)
+  {
+    const auto [first, end] = load_set(s, da);
+    double G_set;
+    ok = sets[s]->energy_release(_u, _f, G_set) && ok;
+    G += G_set;
+    for (std::size_t j = first; j < end; ++j)
+      g[j] = _f[_plus[j]];
+  }
+  check(VecRestoreArray(gradient, &g), "VecRestoreArray");
+  check(VecRestoreArrayRead(d, &da), "VecRestoreArrayRead");
   return ok;
 }
 

@@ -45,6 +45,7 @@
 #include "Equilibrium.h"
 #include "NonlinearProblem.h"
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pushout::solver
@@ -103,6 +104,7 @@ public:
   bool residual(Vec d, Vec R, double& reaction_norm) override;
   bool jacobian(Vec d, Mat J) override;
   double residual_floor(Vec d) override;
+  bool energy_release(Vec d, double& G, Vec gradient) override;
   void configure(KSP ksp) const override;
   void forget_trial_state() override { _eq.forget_trial_state(); }
 
@@ -110,6 +112,10 @@ private:
   /// F(d) and r = F - eps d into _r (and dF/dd into _T if asked); false if
   /// a law failed.
   bool interface_forces(Vec d, bool tangent, double* force_norm = nullptr);
+  /// Puts the jumps d (array) of set s into _u (its minus nodes at 0, plus
+  /// nodes at d) and zeroes its nodes in _f; the set's range [first, end)
+  /// of the jumps.
+  std::pair<std::size_t, std::size_t> load_set(std::size_t s, const double* d);
   /// The Jacobian at the last jacobian() call, explicitly, into J.
   void form_jacobian(Mat J) const;
   static PetscErrorCode operator_mult(Mat J, Vec v, Vec y);

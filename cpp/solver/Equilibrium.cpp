@@ -11,7 +11,8 @@ namespace pushout::solver
 using petsc::check;
 
 Equilibrium::Equilibrium(model::Model& model)
-    : _model(model), _f_interface(model.space()->dofmap()->index_map, model.block_size())
+    : _model(model), _f_interface(model.space()->dofmap()->index_map, model.block_size()),
+      _g_energy(model.space()->dofmap()->index_map, model.block_size())
 {
   _f_external = model.create_vector();
   check(VecSet(_f_external, 0.0), "VecSet");
@@ -93,6 +94,31 @@ bool Equilibrium::internal_forces(Vec x, Vec F)
   for (PetscInt i = 0; i < n_owned; ++i)
     f[i] += fi[i];
   check(VecRestoreArray(F, &f), "VecRestoreArray");
+  return ok;
+}
+
+bool Equilibrium::energy_release(Vec x, double& G, Vec gradient)
+{
+  update_displacement(x);
+  std::span<double> g = _g_energy.mutable_array();
+  std::fill(g.begin(), g.end(), 0.0);
+  bool ok = true;
+  G = 0;
+  for (interface::Interface* joints : _model.joints())
+  {
+    double G_set;
+    ok = joints->energy_release(_model.displacement().x()->array(), g, G_set) && ok;
+    G += G_set;
+  }
+  _g_energy.scatter_rev(std::plus<double>());
+  double* a;
+  check(VecGetArray(gradient, &a), "VecGetArray");
+  PetscInt n_owned;
+  check(VecGetLocalSize(gradient, &n_owned), "VecGetLocalSize");
+  std::copy_n(g.begin(), n_owned, a);
+  check(VecRestoreArray(gradient, &a), "VecRestoreArray");
+  MPI_Allreduce(MPI_IN_PLACE, &G, 1, MPI_DOUBLE, MPI_SUM,
+                PetscObjectComm(reinterpret_cast<PetscObject>(x)));
   return ok;
 }
 

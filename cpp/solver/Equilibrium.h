@@ -67,6 +67,7 @@ public:
   bool residual(Vec x, Vec F, double& reaction_norm) override;
   bool jacobian(Vec x, Mat J) override;
   double residual_floor(Vec x) override;
+  bool energy_release(Vec x, double& G, Vec gradient) override;
   void forget_trial_state() override
   {
     for (interface::Interface* joints : _model.joints())
@@ -90,6 +91,7 @@ private:
   int _constraint_version = 0;
   int _load_version = 0;
   dolfinx::la::Vector<double> _f_interface;
-  double _K_norm = -1; ///< ||K||_inf, once needed [N/mm]
+  dolfinx::la::Vector<double> _g_energy; ///< dG/du of energy_release(), local with ghosts
+  double _K_norm = -1;                   ///< ||K||_inf, once needed [N/mm]
 };
 } // namespace pushout::solver

@@ -49,6 +49,14 @@ public:
   /// The Jacobian dF/dx into J (a matrix from create_matrix()).
   virtual bool jacobian(Vec x, Mat J) = 0;
 
+  /// The energy the joint elements release from the committed state to x
+  /// (interface::Interface::energy_release, summed over the sets of joints
+  /// and the processes) [N mm], and its gradient dG/dx in this problem's
+  /// space into `gradient` (a create_vector() vector): the constraint of
+  /// dissipation-controlled path following. Evaluates the laws at x (trial
+  /// state). Returns false if a law failed. Collective.
+  virtual bool energy_release(Vec x, double& G, Vec gradient) = 0;
+
   /// The round-off floor of ||F|| (2-norm) near x, after residual() at x:
   /// the level below which ||F|| is the noise of evaluating F in floating
   /// point and no Newton step lowers it. Collective. A safe bound, e.g.

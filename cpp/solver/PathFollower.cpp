@@ -1,25 +1,49 @@
 #include "PathFollower.h"
 #include "Vector.h"
+#include <stdexcept>
 
 namespace pushout::solver
 {
-PathFollower::PathFollower(LoadStepSolver& solver, Vec control) : _solver(solver)
+PathFollower::PathFollower(LoadStepSolver& solver, std::unique_ptr<PathConstraint> control)
+    : _solver(solver), _control(std::move(control))
 {
-  const Vector a(solver.functional(control)); // in the problem's space
-  _arc = std::make_unique<ArcLengthSolver>(solver.problem(), a, solver.preconditioner(),
+  _arc = std::make_unique<ArcLengthSolver>(solver.problem(), *_control, solver.preconditioner(),
                                            solver.refactor_iterations());
 }
 
-SolveReport PathFollower::step(Vec x, double& lambda, double d_control,
-                               const std::function<void(double)>& set_load)
+PathFollower::PathFollower(LoadStepSolver& solver, Vec control)
+    : PathFollower(solver, std::make_unique<LinearConstraint>(Vector(solver.functional(control))))
 {
-  const SolveReport report = _arc->step(_solver.to_problem(x), lambda, d_control, set_load);
+}
+
+PathFollower PathFollower::by_energy(LoadStepSolver& solver, Vec slip)
+{
+  auto control =
+      std::make_unique<EnergyReleaseConstraint>(solver.problem(), Vector(solver.functional(slip)));
+  EnergyReleaseConstraint* energy = control.get();
+  PathFollower path(solver, std::move(control));
+  path._energy = energy;
+  return path;
+}
+
+void PathFollower::set_slip_weight(double beta)
+{
+  if (!_energy)
+    throw std::logic_error("PathFollower::set_slip_weight: not a by_energy() follower");
+  _energy->set_slip_weight(beta);
+}
+
+SolveReport PathFollower::step(Vec x, double& lambda, double d_control,
+                               const std::function<void(double)>& set_load, double max_dlambda)
+{
+  const SolveReport report =
+      _arc->step(_solver.to_problem(x), lambda, d_control, set_load, max_dlambda);
   if (report.converged)
     _solver.from_problem(x);
   return report;
 }
 
-double PathFollower::control(Vec x) const
+double PathFollower::control(Vec x)
 {
   return _arc->control(_solver.to_problem(x));
 }

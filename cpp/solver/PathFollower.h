@@ -2,6 +2,10 @@
 // in whichever space the load step solver runs Newton (the whole model, or
 // the interface jumps with the bulk condensed): the conversions between the
 // two stay here, so the step loop only sees whole-model vectors.
+//
+// The condensed problem is built for the constraints of the moment
+// (LoadStepSolver::problem); a PathFollower is made after the push's
+// constraints are set, and lives while they keep their dofs.
 #pragma once
 
 #include "ArcLengthSolver.h"
@@ -14,26 +18,39 @@ namespace pushout::solver
 class PathFollower
 {
 public:
-  /// `control`: the whole model's control functional a (owned entries;
-  /// e.g. Model::mean_axial_slip_functional). The solver's constraints must
-  /// be those of the path (their values move with the load factor).
+  /// Control by a linear functional of the whole model, a . x (owned
+  /// entries; e.g. Model::mean_axial_slip_functional, [mm]). The solver's
+  /// constraints must be those of the path (their values move with the load
+  /// factor).
   PathFollower(LoadStepSolver& solver, Vec control);
+  /// Control by the energy the joints release in the step [N mm]
+  /// (NonlinearProblem::energy_release: dissipation control) plus beta
+  /// times the whole model's functional `slip` (EnergyReleaseConstraint).
+  static PathFollower by_energy(LoadStepSolver& solver, Vec slip);
+  /// beta [N] of by_energy().
+  void set_slip_weight(double beta);
 
-  /// One step of control increment `d_control` [mm] from the equilibrium
+  /// One step of control increment `d_control` from the equilibrium
   /// (x, lambda); on success x (whole model) and lambda hold the next
   /// equilibrium; on failure x is left at an iterate (the caller restores
-  /// it). `set_load(lambda)` puts the constraints of load factor lambda.
+  /// it). `set_load(lambda)` puts the constraints of load factor lambda;
+  /// `max_dlambda`: ArcLengthSolver::step.
   SolveReport step(Vec x, double& lambda, double d_control,
-                   const std::function<void(double)>& set_load);
+                   const std::function<void(double)>& set_load, double max_dlambda = 0);
 
-  /// The control value a . x of the whole model's x [mm].
-  double control(Vec x) const;
+  /// The control value at the whole model's x (a . x; the energy released
+  /// since the last commit).
+  double control(Vec x);
 
   /// Numeric factorisations so far.
   int factorizations() const { return _arc->factorizations(); }
 
 private:
+  PathFollower(LoadStepSolver& solver, std::unique_ptr<PathConstraint> control);
+
   LoadStepSolver& _solver;
+  std::unique_ptr<PathConstraint> _control;
+  EnergyReleaseConstraint* _energy = nullptr; ///< _control, if by_energy()
   std::unique_ptr<ArcLengthSolver> _arc;
 };
 } // namespace pushout::solver

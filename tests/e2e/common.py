@@ -19,6 +19,16 @@ FRICTION_2 = '[[interface]]\nlaw = "friction"\nk = 1000.0\nmu = 0.4\n'  # Table 
 EXP_SOFT = '[[interface]]\nlaw = "exponential_softening"\nk = 1000.0\nf_t = 3.0\nc = 25.0\n'
 # Thermal step, then through the adhesion peak (with FRICTION_2 + EXP_SOFT).
 THROUGH_PEAK = "[loading]\ntemperature_change = -25.0\npush_displacement = 0.05\nsteps = 10\n"
+# Snap-back after the adhesion peak: an 80 mm slice (with FRICTION_2 and an
+# exponential softening layer of c = 100 1/mm) pushed 0.04 mm in 20 steps.
+SNAP_BACK_LOADING = """
+[geometry]
+thickness = 80.0
+[loading]
+temperature_change = -25.0
+push_displacement = 0.04
+steps = 20
+"""
 # Lame shrink fit: a circular slice (outer diameter 100 mm) shrinks onto the
 # tube through a friction interface; its plateau is tau = mu p (test_lame).
 LAME = """

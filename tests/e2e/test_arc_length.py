@@ -8,7 +8,7 @@
    grows, and the path reaches the final delta on the friction plateau.
 3. The plain Newton (LU every iteration) traces the same path as the default
    lagged preconditioner."""
-from common import COARSE_MESH, FRICTION_2, THROUGH_PEAK, check, curve, out_dir, run, summary
+from common import COARSE_MESH, FRICTION_2, SNAP_BACK_LOADING, THROUGH_PEAK, check, curve, out_dir, run, summary
 
 EXP = '[[interface]]\nlaw = "exponential_softening"\nk = 1000.0\nf_t = 3.0\nc = {c}\n'
 
@@ -29,14 +29,7 @@ slips = [r["slip_mm"] for r in a]
 check(all(y > x for x, y in zip(slips, slips[1:])), "mean slip grows in every arc-length step")
 
 # 2. Snap-back: an 80 mm slice with brittle adhesion (c = 100 1/mm).
-brittle = COARSE_MESH + FRICTION_2 + EXP.format(c=100.0) + """
-[geometry]
-thickness = 80.0
-[loading]
-temperature_change = -25.0
-push_displacement = 0.04
-steps = 20
-"""
+brittle = COARSE_MESH + FRICTION_2 + EXP.format(c=100.0) + SNAP_BACK_LOADING
 disp, arc = out_dir("arc_snap_displacement"), out_dir("arc_snap_arc_length")
 p = run(brittle, disp, check=False)
 check(p.returncode == 3 and "did not converge" in p.stderr,
