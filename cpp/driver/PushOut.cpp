@@ -151,15 +151,20 @@ void PushOut::start_loading(std::span<const double> x)
 
 void PushOut::apply_load(double s, solver::Equilibrium& eq) const
 {
-  constrain(s > 0 || _hold_top_in_thermal_step, delta_at(s), eq);
+  constrain(s > 0 || _hold_top_in_thermal_step, delta_at(s), _dT, eq);
+}
+
+void PushOut::apply_initial_load(double fraction, solver::Equilibrium& eq) const
+{
+  constrain(_hold_top_in_thermal_step, 0.0, fraction * _dT, eq);
 }
 
 void PushOut::apply_load_factor(double delta, solver::Equilibrium& eq) const
 {
-  constrain(true, delta, eq);
+  constrain(true, delta, _dT, eq);
 }
 
-void PushOut::constrain(bool top_held, double delta, solver::Equilibrium& eq) const
+void PushOut::constrain(bool top_held, double delta, double dT, solver::Equilibrium& eq) const
 {
   solver::Constraints bc;
   if (top_held)
@@ -175,7 +180,7 @@ void PushOut::constrain(bool top_held, double delta, solver::Equilibrium& eq) co
       bc.values.push_back(0.0);
     }
   eq.set_constraints(std::move(bc));
-  eq.set_temperature_change(_dT);
+  eq.set_temperature_change(dT);
 }
 
 double PushOut::load_force(const model::Model& model) const

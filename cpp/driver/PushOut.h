@@ -50,6 +50,7 @@ public:
   bool initial_solve() const override { return _dT != 0.0; }
   double time_at(double s) const override { return delta_at(s); }
   void apply_load(double s, solver::Equilibrium& eq) const override;
+  void apply_initial_load(double fraction, solver::Equilibrium& eq) const override;
   void start_loading(std::span<const double> x) override;
   /// The load factor of path following is the push delta [mm].
   bool has_load_factor() const override { return true; }
@@ -66,8 +67,9 @@ public:
   double delta_at(double s) const;
 
 private:
-  /// Constraints of the push (top held at start - delta if `top_held`).
-  void constrain(bool top_held, double delta, solver::Equilibrium& eq) const;
+  /// Constraints of the push (top held at start - delta if `top_held`) and
+  /// the temperature change dT [degC].
+  void constrain(bool top_held, double delta, double dT, solver::Equilibrium& eq) const;
 
   double _D, _L, _delta_final, _dT, _growth;
   int _steps;

@@ -35,6 +35,11 @@ public:
   /// Sets constraints and loads for load parameter s.
   virtual void apply_load(double s, solver::Equilibrium& eq) const = 0;
 
+  /// The constraints of s = 0 with its loads (temperature change, preload)
+  /// scaled by `fraction` in [0, 1]: step 0 in parts, when it does not
+  /// converge whole (fraction 1 is apply_load(0)).
+  virtual void apply_initial_load(double fraction, solver::Equilibrium& eq) const = 0;
+
   /// Path following (loading.control = "arc_length"): whether the scenario
   /// has a load factor lambda that moves its prescribed displacements
   /// affinely, and lambda's final value.

@@ -58,7 +58,7 @@ double SingleJoint::time_at(double s) const
   return length + std::abs(shear_at(s) - _path[i]);
 }
 
-void SingleJoint::apply_load(double s, solver::Equilibrium& eq) const
+void SingleJoint::apply(double s, double preload, solver::Equilibrium& eq) const
 {
   solver::Constraints bc;
   for (std::int32_t d : _lower)
@@ -79,7 +79,7 @@ void SingleJoint::apply_load(double s, solver::Equilibrium& eq) const
   eq.set_constraints(std::move(bc));
   std::vector<std::pair<std::int32_t, double>> forces;
   for (std::int32_t d : _joint_z)
-    forces.emplace_back(d, _force_per_node);
+    forces.emplace_back(d, preload * _force_per_node);
   eq.set_external_forces(forces);
 }
 

@@ -30,7 +30,11 @@ public:
   int steps() const override { return int(_path.size() - 1) * _per_segment; }
   bool initial_solve() const override { return true; }
   double time_at(double s) const override;
-  void apply_load(double s, solver::Equilibrium& eq) const override;
+  void apply_load(double s, solver::Equilibrium& eq) const override { apply(s, 1.0, eq); }
+  void apply_initial_load(double fraction, solver::Equilibrium& eq) const override
+  {
+    apply(0.0, fraction, eq);
+  }
   std::vector<double> row(std::span<const double> reactions, std::span<const double> x,
                           const model::Model& model) const override;
   std::string progress(const std::vector<double>& row) const override;
@@ -39,6 +43,9 @@ public:
   double shear_at(double s) const;
 
 private:
+  /// Constraints at shear parameter s, the normal preload times `preload`.
+  void apply(double s, double preload, solver::Equilibrium& eq) const;
+
   std::vector<double> _path;
   int _per_segment;
   double _force_per_node;

@@ -26,7 +26,7 @@ constexpr int path_steps_extra = 100;
 /// down to this fraction of a step before energy steps take over.
 constexpr double min_probe_increment = 1.0 / 16;
 /// Dissipation control: steps of delta again after an energy step in which
-/// the softening layers released less than this fraction of the increment
+/// the softening layers released less than this fraction of its increment
 /// (the slip term of the control did the rest), once the energy steps have
 /// released more than one increment (the event is over, not beginning).
 constexpr double released_to_return = 0.25;
@@ -38,6 +38,15 @@ constexpr double released_to_return = 0.25;
 /// after two load steps, "collective" there too but where the others next
 /// wait in a collective that is no agreement (common/mpi_errors.h: the run
 /// ends with MPI_Abort after abandon_after_s).
+/// Adds a path follower's factorisations to the summary on every way out of
+/// a loop that uses it.
+struct FactorizationCount
+{
+  output::Summary& summary;
+  const solver::PathFollower& path;
+  ~FactorizationCount() { summary.factorizations += path.factorizations(); }
+};
+
 void test_failure(const char* at)
 {
   static const char* fail_rank = std::getenv("PUSHOUT_TEST_FAIL_RANK");
@@ -156,36 +165,40 @@ void StepLoop::set_time_increment(double dt)
     joints->set_time_increment(dt);
 }
 
-/// Step 0: the thermal step or preload, if the scenario has one; it takes
-/// the pseudo-time of one nominal load step, so that a viscous damage layer
-/// damages in it as it would in one step of the push (with dt = 0 its
-/// damage would freeze). With a corrosion stage, the push starts after it.
+/// Step 0: the thermal step or preload, if the scenario has one, in parts
+/// (its load scaled, cut in halves like a load step) when it does not
+/// converge whole. It takes the pseudo-time of one nominal load step, so
+/// that a viscous damage layer damages in it as it would in one step of the
+/// push (with dt = 0 its damage would freeze). With a corrosion stage, the
+/// push starts after it.
 bool StepLoop::initial_step()
 {
   _scenario.apply_load(0.0, _equilibrium);
-  int iterations = 0;
-  if (_scenario.initial_solve())
+  const auto started = [&](int iterations)
   {
-    if (stop_requested())
-      return false;
-    set_time_increment(_scenario.time_at(1.0) - _scenario.time_at(0.0));
-    _equilibrium.apply_constraints(_x);
-    const solver::SolveReport rep = _solver.solve(_x);
-    iterations = rep.iterations;
-    _summary.newton_iterations += rep.iterations;
-    if (!rep.converged)
-    {
-      if (!stop_requested())
-        _summary.message = "step 0 (initial/thermal step) did not converge: " + rep.reason;
-      return false;
-    }
+    if (_corrosion.active())
+      _corrosion.record(0.0, _equilibrium, _x, iterations, 0, 0);
+    else
+      start_push(iterations);
+  };
+  if (!_scenario.initial_solve())
+  {
+    started(0);
+    commit();
+    return true;
   }
-  if (_corrosion.active())
-    _corrosion.record(0.0, _equilibrium, _x, iterations, 0, 0);
-  else
-    start_push(iterations);
-  commit();
-  return true;
+  const double step_time = _scenario.time_at(1.0) - _scenario.time_at(0.0);
+  int iterations = 0; // of all its parts
+  return nominal_steps({"step 0 (initial/thermal step)", 1,
+                        [&](double fraction)
+                        { _scenario.apply_initial_load(fraction, _equilibrium); },
+                        [&](double s0, double s1) { return (s1 - s0) * step_time; },
+                        [&](int its, int, int, double fraction)
+                        {
+                          iterations += its;
+                          if (fraction >= 1.0 - step_tolerance)
+                            started(iterations);
+                        }});
 }
 
 void StepLoop::start_push(int iterations)
@@ -274,11 +287,48 @@ bool StepLoop::nominal_steps(const Stage& stage)
         continue;
       }
       revert();
-      if (!cut_back(stepper, cuts, stage.step_name + " " + std::to_string(k), rep.reason, fraction))
+      const std::string what =
+          steps == 1 ? stage.step_name : stage.step_name + " " + std::to_string(k);
+      if (!cut_back(stepper, cuts, what, rep.reason, fraction))
         return false;
     }
   }
   return true;
+}
+
+bool StepLoop::begin_load_factor_path(const std::string& control, LoadFactorPath& p)
+{
+  p.lambda_final = _scenario.final_load_factor();
+  if (!(p.lambda_final > 0))
+  {
+    _summary.message = control + " needs a positive final push displacement";
+    return false;
+  }
+  // The constraints of the push (their dofs stay; only values move) before
+  // a PathFollower takes the solver's problem.
+  _scenario.apply_load_factor(0.0, _equilibrium);
+  p.h_nominal = p.lambda_final / _scenario.steps();
+  p.max_steps = path_steps_per_step * _scenario.steps() + path_steps_extra;
+  return true;
+}
+
+bool StepLoop::within_step_limit(const LoadFactorPath& p, int k, double lambda,
+                                 const std::string& control)
+{
+  if (k <= p.max_steps)
+    return true;
+  _summary.message = control + " did not reach the final push displacement in " +
+                     std::to_string(p.max_steps) + " steps (delta = " + std::to_string(lambda) +
+                     " mm); stopped";
+  return false;
+}
+
+solver::SolveReport StepLoop::load_factor_step(double lambda_from, double lambda_to)
+{
+  _scenario.apply_load_factor(lambda_to, _equilibrium);
+  set_time_increment(lambda_to - lambda_from);
+  _equilibrium.apply_constraints(_x);
+  return _solver.solve(_x);
 }
 
 /// Path following (solver/PathFollower.h) in steps of length
@@ -292,36 +342,14 @@ bool StepLoop::nominal_steps(const Stage& stage)
 /// to exactly lambda_final.
 bool StepLoop::path_following()
 {
-  const double lambda_final = _scenario.final_load_factor();
-  if (!(lambda_final > 0))
-  {
-    _summary.message = "path following needs a positive final push displacement";
+  LoadFactorPath p;
+  if (!begin_load_factor_path("path following", p))
     return false;
-  }
-  // The constraints of the push (their dofs stay; only values move) before
-  // the solver's problem is taken.
-  _scenario.apply_load_factor(0.0, _equilibrium);
   const solver::Vector a(_equilibrium.model().mean_axial_slip_functional());
   solver::PathFollower path(_solver, a);
-  // Counts the path's factorisations on every way out.
-  struct Count
-  {
-    output::Summary& s;
-    const solver::PathFollower& path;
-    ~Count() { s.factorizations += path.factorizations(); }
-  } count{_summary, path};
-
-  const double h_nominal = lambda_final / _scenario.steps(); // [mm]
-  const int max_steps = path_steps_per_step * _scenario.steps() + path_steps_extra;
+  const FactorizationCount count{_summary, path};
+  const double lambda_final = p.lambda_final, h_nominal = p.h_nominal; // [mm]
   const auto set_load = [&](double lambda) { _scenario.apply_load_factor(lambda, _equilibrium); };
-  // Displacement-controlled step to lambda (first and last steps).
-  const auto displacement_step = [&](double lambda_from, double lambda_to)
-  {
-    set_load(lambda_to);
-    set_time_increment(lambda_to - lambda_from);
-    _equilibrium.apply_constraints(_x);
-    return _solver.solve(_x);
-  };
   const auto length = [h_nominal](double increment)
   {
     std::ostringstream s;
@@ -334,22 +362,15 @@ bool StepLoop::path_following()
   int cuts = 0;
   for (int k = 1; lambda < lambda_final;)
   {
-    if (stop_requested())
+    if (stop_requested() || !within_step_limit(p, k, lambda, "path following"))
       return false;
-    if (k > max_steps)
-    {
-      _summary.message = "path following did not reach the final push displacement in " +
-                         std::to_string(max_steps) + " steps (delta = " + std::to_string(lambda) +
-                         " mm); stopped";
-      return false;
-    }
     const double h = stepper.increment() * h_nominal;
     double lambda_new = lambda;
     solver::SolveReport rep;
     if (k == 1)
     {
       lambda_new = std::min(h, lambda_final);
-      rep = displacement_step(lambda, lambda_new);
+      rep = load_factor_step(lambda, lambda_new);
     }
     else
     {
@@ -361,7 +382,7 @@ bool StepLoop::path_following()
         _summary.newton_iterations += rep.iterations;
         revert();
         lambda_new = lambda_final;
-        rep = displacement_step(lambda, lambda_new);
+        rep = load_factor_step(lambda, lambda_new);
       }
     }
     _summary.newton_iterations += rep.iterations;
@@ -435,12 +456,9 @@ double StepLoop::fracture_energy()
 /// displacement-controlled.
 bool StepLoop::push_by_dissipation()
 {
-  const double lambda_final = _scenario.final_load_factor();
-  if (!(lambda_final > 0))
-  {
-    _summary.message = "dissipation control needs a positive final push displacement";
+  LoadFactorPath p;
+  if (!begin_load_factor_path("dissipation control", p))
     return false;
-  }
   const double dG_nominal = fracture_energy() / _dissipation_steps; // [N mm]
   if (!(dG_nominal > 0))
   {
@@ -450,10 +468,10 @@ bool StepLoop::push_by_dissipation()
                 << std::endl;
     return push_by_displacement();
   }
-  _scenario.apply_load_factor(0.0, _equilibrium); // the push's constraints (PathFollower.h)
   const solver::Vector a(_equilibrium.model().mean_axial_slip_functional());
   // control: the energy released + beta times the mean slip
   solver::PathFollower path = solver::PathFollower::by_energy(_solver, a);
+  const FactorizationCount count{_summary, path};
   const auto mean_slip = [&]
   {
     double s;
@@ -461,15 +479,7 @@ bool StepLoop::push_by_dissipation()
     return s;
   };
   double slip = mean_slip(), slip_rate = 0; // [mm], d slip / d delta of the last step
-  struct Count
-  {
-    output::Summary& s;
-    const solver::PathFollower& path;
-    ~Count() { s.factorizations += path.factorizations(); }
-  } count{_summary, path};
-
-  const double h_nominal = lambda_final / _scenario.steps(); // [mm]
-  const int max_steps = path_steps_per_step * _scenario.steps() + path_steps_extra;
+  const double lambda_final = p.lambda_final, h_nominal = p.h_nominal; // [mm]
   const auto set_load = [&](double lambda) { _scenario.apply_load_factor(lambda, _equilibrium); };
   const std::function<std::string(double)> push_words =
                                                [h_nominal](double increment)
@@ -496,27 +506,23 @@ bool StepLoop::push_by_dissipation()
   int cuts = 0;
   for (int k = 1; lambda < lambda_final - step_tolerance * lambda_final;)
   {
-    if (stop_requested())
+    if (stop_requested() || !within_step_limit(p, k, lambda, "dissipation control"))
       return false;
-    if (k > max_steps)
-    {
-      _summary.message = "dissipation control did not reach the final push displacement in " +
-                         std::to_string(max_steps) + " steps (delta = " + std::to_string(lambda) +
-                         " mm); stopped";
-      return false;
-    }
     const std::string name = "step " + std::to_string(k);
     double lambda_new = lambda;
     solver::SolveReport rep;
     bool energy_step = by_energy, overshot = false;
+    const double dG_step = energy.increment() * dG_nominal; // if energy_step [N mm]
     if (by_energy)
     {
       // beta such that an elastic energy step (G = 0) moves delta by about a
-      // nominal step of delta: dG_nominal = beta slip_rate h_nominal; no
-      // Newton iteration moves delta by more than that.
+      // nominal step of delta: dG_nominal = beta slip_rate h_nominal. No
+      // Newton iteration moves delta by more than the shortest probe of a
+      // step of delta: at the start of an event the control's linearisation
+      // sees few of the points that will soften, and would overshoot.
       path.set_slip_weight(slip_rate > 0 ? dG_nominal / (slip_rate * h_nominal) : 0.0);
       set_time_increment(h_nominal);
-      rep = path.step(_x, lambda_new, energy.increment() * dG_nominal, set_load, h_nominal);
+      rep = path.step(_x, lambda_new, dG_step, set_load, min_probe_increment * h_nominal);
       _summary.newton_iterations += rep.iterations;
       if (rep.converged && (lambda_new > lambda + h_nominal || lambda_new > lambda_final))
       {
@@ -535,10 +541,7 @@ bool StepLoop::push_by_dissipation()
       lambda_new = lambda + push.increment() * h_nominal;
       if (lambda_new > lambda_final * (1 - step_tolerance))
         lambda_new = lambda_final;
-      set_load(lambda_new);
-      set_time_increment(lambda_new - lambda);
-      _equilibrium.apply_constraints(_x);
-      rep = _solver.solve(_x);
+      rep = load_factor_step(lambda, lambda_new);
       _summary.newton_iterations += rep.iterations;
       if (rep.converged && !overshot)
       {
@@ -590,7 +593,7 @@ bool StepLoop::push_by_dissipation()
     {
       const double released = dissipation()[1];
       released_in_event += released;
-      if (released_in_event > dG_nominal && released < released_to_return * dG_nominal)
+      if (released_in_event > dG_nominal && released < released_to_return * dG_step)
       {
         by_energy = false;
         say(name + ": the softening layers released little in the step; displacement control");

@@ -69,6 +69,24 @@ private:
   /// Nominal steps, each tried whole and cut in halves when Newton fails.
   bool nominal_steps(const Stage& stage);
   bool push_by_displacement();
+
+  /// What path following and dissipation control share: the push by its
+  /// load factor lambda = delta [mm].
+  struct LoadFactorPath
+  {
+    double lambda_final = 0; ///< the final push [mm]
+    double h_nominal = 0;    ///< a nominal step of it [mm]
+    int max_steps = 0;       ///< steps before the run gives up
+  };
+  /// Sets the push's constraints (before a PathFollower takes the solver's
+  /// problem) and `p`; false, with the summary's message naming `control`,
+  /// if the final push is not positive.
+  bool begin_load_factor_path(const std::string& control, LoadFactorPath& p);
+  /// False, with the summary's message, once step k is past the limit.
+  bool within_step_limit(const LoadFactorPath& p, int k, double lambda, const std::string& control);
+  /// A displacement-controlled step of the load factor (pseudo-time: its
+  /// change).
+  solver::SolveReport load_factor_step(double lambda_from, double lambda_to);
   bool path_following();
   /// Dissipation control (loading.control = "dissipation" or "auto").
   bool push_by_dissipation();

@@ -236,7 +236,7 @@ SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
     if (!std::isfinite(r) || r == 0.0)
       return fail("singular bordered system (d control / d lambda = 0)");
     double dlambda = -(c - eta + a_v1) / r;
-    if (max_dlambda > 0 && std::abs(dlambda) > max_dlambda)
+    if (it == 0 && max_dlambda > 0 && std::abs(dlambda) > max_dlambda)
       dlambda = std::copysign(max_dlambda, dlambda);
     check(VecAXPY(_v1, dlambda, _v2), "VecAXPY"); // dx
     lam += dlambda;
