@@ -185,7 +185,9 @@ void PushOut::constrain(bool top_held, double delta, double dT, solver::Equilibr
 
 double PushOut::load_force(const model::Model& model) const
 {
-  double local = model.interface().resultant()[2], P = 0; // as in row()
+  // The interface forces are internal forces (f = +int N t on the concrete
+  // side): the tube pushes the concrete with -t, downwards when P > 0.
+  double local = model.interface().resultant()[2], P = 0;
   MPI_Allreduce(&local, &P, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
   return P;
 }
@@ -194,13 +196,10 @@ std::vector<double> PushOut::row(std::span<const double> /*reactions*/, std::spa
                                  const model::Model& model) const
 {
   const interface::Interface& itf = model.interface();
-  // Local sums: P, delta, number of top dofs, area, mean slip, normal force
-  // per layer.
+  // Local sums: -, delta, number of top dofs, area, mean slip, normal force
+  // per layer (sums over owned dofs and local pairs, reduced over
+  // processes); P from load_force().
   std::vector<double> local = {0, 0, double(_top_z.size()), itf.area(), 0};
-  // (sums over owned dofs and local pairs, reduced over processes)
-  // The interface forces are internal forces (f = +int N t on the concrete
-  // side): the tube pushes the concrete with -t, downwards when P > 0.
-  local[0] = itf.resultant()[2];
   for (std::size_t i = 0; i < _top_z.size(); ++i)
     local[1] += _top_start[i] - x[_top_z[i]];
   for (std::size_t i = 0; i < _slip.size(); ++i)
@@ -209,7 +208,7 @@ std::vector<double> PushOut::row(std::span<const double> /*reactions*/, std::spa
   local.insert(local.end(), normal.begin(), normal.end());
   std::vector<double> g(local.size());
   MPI_Allreduce(local.data(), g.data(), int(local.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-  const double P = _copies * g[0], delta = g[1] / g[2], area = g[3];
+  const double P = _copies * load_force(model), delta = g[1] / g[2], area = g[3];
   const double tau = P / (std::numbers::pi * _D * (_L - delta)); // eq. (1)
   double p_total = 0;
   std::vector<double> p_layer;

@@ -38,6 +38,18 @@ constexpr double released_to_return = 0.25;
 /// after two load steps, "collective" there too but where the others next
 /// wait in a collective that is no agreement (common/mpi_errors.h: the run
 /// ends with MPI_Abort after abandon_after_s).
+/// Words for an increment of a step in `scale` units (cut_back's messages):
+/// "a push of 0.025 mm".
+std::function<std::string(double)> sized(std::string what, double scale, std::string unit)
+{
+  return [=](double increment)
+  {
+    std::ostringstream s;
+    s << what << " " << increment * scale << " " << unit;
+    return s.str();
+  };
+}
+
 /// Adds a path follower's factorisations to the summary on every way out of
 /// a loop that uses it.
 struct FactorizationCount
@@ -350,12 +362,7 @@ bool StepLoop::path_following()
   const FactorizationCount count{_summary, path};
   const double lambda_final = p.lambda_final, h_nominal = p.h_nominal; // [mm]
   const auto set_load = [&](double lambda) { _scenario.apply_load_factor(lambda, _equilibrium); };
-  const auto length = [h_nominal](double increment)
-  {
-    std::ostringstream s;
-    s << "a length of " << increment * h_nominal << " mm";
-    return s.str();
-  };
+  const auto length = sized("a length of", h_nominal, "mm");
   Stepper stepper(_max_cuts, easy_iterations);
   double lambda = 0.0, slip = path.control(_x);
   double d_lambda_prev = 0.0, d_slip_prev = 0.0; // the last converged step
@@ -481,19 +488,8 @@ bool StepLoop::push_by_dissipation()
   double slip = mean_slip(), slip_rate = 0; // [mm], d slip / d delta of the last step
   const double lambda_final = p.lambda_final, h_nominal = p.h_nominal; // [mm]
   const auto set_load = [&](double lambda) { _scenario.apply_load_factor(lambda, _equilibrium); };
-  const std::function<std::string(double)> push_words =
-                                               [h_nominal](double increment)
-  {
-    std::ostringstream s;
-    s << "a push of " << increment * h_nominal << " mm";
-    return s.str();
-  },
-                                           energy_words = [dG_nominal](double increment)
-  {
-    std::ostringstream s;
-    s << "a release of " << increment * dG_nominal << " N mm";
-    return s.str();
-  };
+  const auto push_words = sized("a push of", h_nominal, "mm");
+  const auto energy_words = sized("a release of", dG_nominal, "N mm");
   const auto say = [&](const std::string& what)
   {
     if (_report.talk())

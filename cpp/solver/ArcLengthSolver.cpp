@@ -23,30 +23,28 @@ LinearConstraint::~LinearConstraint()
 
 bool LinearConstraint::evaluate(Vec x, double& value, Vec gradient)
 {
-  check(VecDot(_a, x, &value), "VecDot");
+  value = this->value(x);
   check(VecCopy(_a, gradient), "VecCopy");
   return true;
 }
 
-EnergyReleaseConstraint::EnergyReleaseConstraint(NonlinearProblem& problem, Vec slip)
-    : _problem(problem)
+double LinearConstraint::value(Vec x) const
 {
-  check(VecDuplicate(slip, &_slip), "VecDuplicate");
-  check(VecCopy(slip, _slip), "VecCopy");
+  double v;
+  check(VecDot(_a, x, &v), "VecDot");
+  return v;
 }
 
-EnergyReleaseConstraint::~EnergyReleaseConstraint()
+void LinearConstraint::add_to(Vec y, double beta) const
 {
-  petsc::check_nothrow(VecDestroy(&_slip), "VecDestroy");
+  check(VecAXPY(y, beta, _a), "VecAXPY");
 }
 
 bool EnergyReleaseConstraint::evaluate(Vec x, double& value, Vec gradient)
 {
   const bool ok = _problem.energy_release(x, value, gradient);
-  double s;
-  check(VecDot(_slip, x, &s), "VecDot");
-  value += _beta * s;
-  check(VecAXPY(gradient, _beta, _slip), "VecAXPY");
+  value += _beta * _slip.value(x);
+  _slip.add_to(gradient, _beta);
   return ok;
 }
 

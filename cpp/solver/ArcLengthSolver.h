@@ -62,6 +62,10 @@ public:
   LinearConstraint(const LinearConstraint&) = delete;
   LinearConstraint& operator=(const LinearConstraint&) = delete;
   bool evaluate(Vec x, double& value, Vec gradient) override;
+  /// a . x
+  double value(Vec x) const;
+  /// Adds beta a to y.
+  void add_to(Vec y, double beta) const;
 
 private:
   Vec _a = nullptr;
@@ -77,17 +81,14 @@ class EnergyReleaseConstraint : public PathConstraint
 {
 public:
   /// Keeps a copy of `slip`.
-  EnergyReleaseConstraint(NonlinearProblem& problem, Vec slip);
-  ~EnergyReleaseConstraint();
-  EnergyReleaseConstraint(const EnergyReleaseConstraint&) = delete;
-  EnergyReleaseConstraint& operator=(const EnergyReleaseConstraint&) = delete;
+  EnergyReleaseConstraint(NonlinearProblem& problem, Vec slip) : _problem(problem), _slip(slip) {}
   bool evaluate(Vec x, double& value, Vec gradient) override;
   /// beta [N].
   void set_slip_weight(double beta) { _beta = beta; }
 
 private:
   NonlinearProblem& _problem;
-  Vec _slip = nullptr;
+  LinearConstraint _slip;
   double _beta = 0;
 };
 

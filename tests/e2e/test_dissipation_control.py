@@ -11,9 +11,10 @@
 2. Brittle adhesion on the demo slice (pushout_friction_adhesion, c = 400
    1/mm, f_t = 6 MPa, k = 1e5 N/mm^3 for both layers, 0.5 mm in 10 steps):
    displacement control converges across the peak (its curve never rises
-   above the friction plateau); dissipation control traces the peak (more
-   than 3x the plateau) and the softening in fewer than 500 Newton
-   iterations (the ordinary Fig. 10 curve takes about 50).
+   above the friction plateau) or stops at it, as the round-off goes;
+   dissipation control traces the peak (more than 3x the plateau) and the
+   softening in fewer than 800 Newton iterations (431 with threaded BLAS,
+   687 with one thread; the ordinary Fig. 10 curve takes about 50).
 3. Without a softening layer there is nothing to control by: the push runs
    under displacement control."""
 import os
@@ -67,19 +68,24 @@ brittle = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "
 BRITTLE = ["interface.1.c=400", "interface.1.f_t=6", "interface.0.k=1e5", "interface.1.k=1e5",
            "loading.push_displacement=0.5", "loading.steps=10"]
 disp, diss = out_dir("dissipation_brittle_displacement"), out_dir("dissipation_brittle_dissipation")
-run(brittle, disp, sets=BRITTLE)
-c = curve(disp)
-plateau = c[-1]["tau_MPa"]
-check(max(r["tau_MPa"] for r in c) < 1.1 * plateau,
-      f"displacement control jumps over the peak: its largest tau "
-      f"{max(r['tau_MPa'] for r in c):.3f} MPa, plateau {plateau:.3f} MPa")
+# Which of the two displacement control does depends on the round-off of
+# the Newton iterates near the peak (BLAS threads).
+p = run(brittle, disp, sets=BRITTLE, check=False)
+if p.returncode == 0:
+    c = curve(disp)
+    check(max(r["tau_MPa"] for r in c) < 1.1 * c[-1]["tau_MPa"],
+          f"displacement control jumps over the peak: its largest tau "
+          f"{max(r['tau_MPa'] for r in c):.3f} MPa, plateau {c[-1]['tau_MPa']:.3f} MPa")
+else:
+    check(p.returncode == 3, f"displacement control stops at the peak: exit {p.returncode}")
 run(brittle, diss, sets=BRITTLE + ["loading.control=auto"])
 d, s = curve(diss), summary(diss)
+plateau = d[-1]["tau_MPa"]
 check(s["converged"] and abs(d[-1]["delta_mm"] - 0.5) < 1e-12,
       f"dissipation control reaches delta = {d[-1]['delta_mm']} mm")
 check(max(r["tau_MPa"] for r in d) > 3 * plateau,
       f"the peak is traced: tau {max(r['tau_MPa'] for r in d):.3f} MPa, plateau {plateau:.3f} MPa")
-check(s["newton_iterations"] < 500,
+check(s["newton_iterations"] < 800,
       f"{s['newton_iterations']} Newton iterations, {s['steps']} steps "
       f"({s['dissipation_steps']} by energy), {s['cuts']} cuts")
 
