@@ -49,7 +49,7 @@ void Corrosion::apply(double s, interface::Interface& itf) const
 }
 
 void Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iterations, int cuts,
-                       int step)
+                       int step, bool numbered)
 {
   eq.update_displacement(state); // the crack mouths read the model's displacement
   const model::Model& model = eq.model();
@@ -70,8 +70,10 @@ void Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iterati
     return;
   std::ostringstream line;
   line.precision(4);
-  line << "corrosion " << step << "/" << _steps << "  x = " << x * 1e3 << " um  p = " << p
-       << " MPa";
+  line << "corrosion " << step;
+  if (numbered)
+    line << "/" << _steps;
+  line << "  x = " << x * 1e3 << " um  p = " << p << " MPa";
   if (!widths.empty())
     line << "  crack width = " << crack_width * 1e3 << " um";
   line << "  (newton " << iterations << (cuts ? ", cuts " + std::to_string(cuts) : "") << ", "
@@ -103,12 +105,24 @@ void Corrosion::describe_cracks(solver::Equilibrium& eq, Vec state, output::Summ
   }
 }
 
-double mean_pressure(const interface::Interface& itf)
+double Corrosion::expansion_force(const interface::Interface& itf, double s) const
+{
+  const double N = pressure_force(itf)[0]; // [N]
+  return laws::oxide_inputs(_oxide, penetration_at(s)).gap > 0 ? (_oxide.beta - 1) * N : 0.0;
+}
+
+std::array<double, 2> pressure_force(const interface::Interface& itf)
 {
   const std::vector<double> normal = itf.normal_force();
-  double local[2] = {std::accumulate(normal.begin(), normal.end(), 0.0), itf.area()};
-  MPI_Allreduce(MPI_IN_PLACE, local, 2, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-  const double p = local[1] > 0 ? -local[0] / local[1] : 0.0;
+  std::array<double, 2> total = {-std::accumulate(normal.begin(), normal.end(), 0.0), itf.area()};
+  MPI_Allreduce(MPI_IN_PLACE, total.data(), 2, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  return total;
+}
+
+double mean_pressure(const interface::Interface& itf)
+{
+  const auto [N, area] = pressure_force(itf);
+  const double p = area > 0 ? N / area : 0.0;
   return p == 0 ? 0.0 : p; // never -0 in the progress line
 }
 } // namespace pushout::driver

@@ -23,6 +23,7 @@
 #include "../scene/Scene.h"
 #include "../solver/Equilibrium.h"
 #include "RunReport.h"
+#include <array>
 #include <filesystem>
 #include <optional>
 
@@ -45,8 +46,17 @@ public:
 
   /// Records the converged `state` (whole model; with the condensed bulk,
   /// right on the joints) at s of corrosion step `step` (0: before
-  /// corrosion): a corrosion.csv row and the progress line. Collective.
-  void record(double s, solver::Equilibrium& eq, Vec state, int iterations, int cuts, int step);
+  /// corrosion): a corrosion.csv row and the progress line, which shows
+  /// `step` of the nominal steps if `numbered` (not under dissipation
+  /// control, whose steps are not those). Collective.
+  void record(double s, solver::Equilibrium& eq, Vec state, int iterations, int cuts, int step,
+              bool numbered = true);
+
+  /// The force that works on the corrosion depth x [N]: the oxide's
+  /// expansion does the work  int p dg0 dA = (beta - 1) N dx  on the
+  /// interface, N = int p dA its normal force (0 while the porous zone
+  /// takes the expansion), from the laws' last evaluation. Collective.
+  double expansion_force(const interface::Interface& itf, double s) const;
 
   /// The crack planes' state now (their direction, mouth and largest
   /// opening, largest damage) into the summary. Collective.
@@ -60,6 +70,10 @@ private:
   RunReport& _report;
   std::optional<output::CurveWriter> _csv; ///< rank 0
 };
+
+/// The normal force N = -int t_n dA [N] and the area A [mm^2] of the whole
+/// interface, from the last evaluation of the laws. Collective.
+std::array<double, 2> pressure_force(const interface::Interface& itf);
 
 /// The mean pressure p = -int t_n dA / A over the whole interface [MPa],
 /// from the last evaluation of the laws. Collective.

@@ -30,6 +30,11 @@ constexpr double min_probe_increment = 1.0 / 16;
 /// (the slip term of the control did the rest), once the energy steps have
 /// released more than one increment (the event is over, not beginning).
 constexpr double released_to_return = 0.25;
+/// Dissipation control of the corrosion stage: the step of the numerical
+/// derivative of the residual by x, as a fraction of a step of x (a
+/// relative perturbation near the square root of the round-off: the
+/// derivative to about 1e-7).
+constexpr double load_difference_fraction = 1e-7;
 
 /// Test hook, not a scene key (tests/e2e/test_mpi_errors.py): with the
 /// environment variables PUSHOUT_TEST_FAIL_RANK=r and PUSHOUT_TEST_FAIL_AT=
@@ -104,7 +109,10 @@ bool StepLoop::run(Control control)
 {
   // Step 0 and the corrosion stage end with the push's start recorded
   // (curve.csv row 0) before their last commit.
-  if (!initial_step() || (_corrosion.active() && !corrode()))
+  if (!initial_step())
+    return false;
+  if (_corrosion.active() &&
+      !(control == Control::dissipation ? corrode_by_dissipation() : corrode()))
     return false;
   switch (control)
   {
@@ -231,8 +239,7 @@ bool StepLoop::corrode()
 {
   const double step_time = _scenario.time_at(1.0) - _scenario.time_at(0.0);
   interface::Interface& itf = _equilibrium.model().interface();
-  const int steps = _corrosion.steps();
-  return nominal_steps({"corrosion step", steps,
+  return nominal_steps({"corrosion step", _corrosion.steps(),
                         [&](double s)
                         {
                           _scenario.apply_load(0.0, _equilibrium);
@@ -240,13 +247,16 @@ bool StepLoop::corrode()
                         },
                         [&](double s0, double s1) { return (s1 - s0) * step_time; },
                         [&](int iterations, int cuts, int k, double s)
-                        {
-                          _corrosion.record(s, _equilibrium, _x, iterations, cuts, k);
-                          ++_summary.corrosion_steps;
-                          _summary.penetration_mm = _corrosion.penetration_at(s);
-                          if (s >= steps - step_tolerance)
-                            start_push(0);
-                        }});
+                        { record_corrosion(iterations, cuts, k, s, true); }});
+}
+
+void StepLoop::record_corrosion(int iterations, int cuts, int k, double s, bool numbered)
+{
+  _corrosion.record(s, _equilibrium, _x, iterations, cuts, k, numbered);
+  ++_summary.corrosion_steps;
+  _summary.penetration_mm = _corrosion.penetration_at(s);
+  if (s >= _corrosion.steps() - step_tolerance)
+    start_push(0);
 }
 
 /// Displacement control of the push.
@@ -329,9 +339,9 @@ bool StepLoop::within_step_limit(const LoadFactorPath& p, int k, double lambda,
 {
   if (k <= p.max_steps)
     return true;
-  _summary.message = control + " did not reach the final push displacement in " +
-                     std::to_string(p.max_steps) + " steps (delta = " + std::to_string(lambda) +
-                     " mm); stopped";
+  _summary.message = control + " did not reach the end of the " + p.target + " in " +
+                     std::to_string(p.max_steps) + " steps (" + p.symbol + " = " +
+                     std::to_string(lambda) + " mm); stopped";
   return false;
 }
 
@@ -443,117 +453,174 @@ double StepLoop::fracture_energy()
   return total;
 }
 
-/// Dissipation control of the push (Verhoosel, Remmers & Gutierrez 2009):
-/// steps of the push delta as under displacement control while the joints
-/// dissipate little; steps of the energy they release (path following,
-/// solver/PathFollower.h: the softening layers' Interface::energy_release
-/// plus beta times the mean slip, beta set so that where nothing softens an
-/// energy step moves delta by about a step of delta) through a brittle
-/// event. A step of delta hands over to energy steps when it fails, or when
-/// it dissipates D (the laws' own account, Interface::dissipation) more
-/// than the dissipation increment dG = fracture energy / dissipation_steps
-/// and more than dG beyond the push's work W = 1/2 (P0 + P1) d delta: a
-/// brittle event that fed on the elastic energy stored, where displacement
-/// control jumps (snap-through) or stalls. Such a step is first halved, down
-/// to min_probe_increment: before a peak a shorter step dissipates less,
-/// through a snap-back it does not. Energy steps hand back to steps of
-/// delta once the event is over (released_to_return), or when one would
-/// move delta by more than a step of delta. Failed steps are halved (each
-/// kind its own Stepper.h). Without softening layers (dG = 0) the push is
-/// displacement-controlled.
+/// Dissipation control of the push: the push delta is the load factor, the
+/// mean axial slip keeps an elastic energy step controllable, P works on it.
 bool StepLoop::push_by_dissipation()
 {
   LoadFactorPath p;
   if (!begin_load_factor_path("dissipation control", p))
     return false;
+  const solver::Vector slip(_equilibrium.model().mean_axial_slip_functional());
+  return by_dissipation({"load step", "a push of", p,
+                         [&](double lambda) { _scenario.apply_load_factor(lambda, _equilibrium); },
+                         0.0, 1.0, slip, [&] { return _scenario.load_force(_equilibrium.model()); },
+                         [&](int iterations, int cuts, int k, double)
+                         {
+                           _recorder.record(_x, iterations, cuts, k, 0);
+                           ++_summary.steps;
+                         },
+                         [&] { return push_by_displacement(); }});
+}
+
+/// Dissipation control of the corrosion stage: the corrosion depth x [mm]
+/// is the load factor. It enters the oxide's law (its free opening and
+/// compliance), not the constraints, so the solver differentiates the
+/// residual by x numerically (ArcLengthSolver::set_load_difference). The
+/// mean normal opening of the interface grows with x while nothing softens
+/// (the oxide pushes the concrete out) and keeps an elastic energy step
+/// controllable; the oxide's expansion force (Corrosion::expansion_force)
+/// works on x.
+bool StepLoop::corrode_by_dissipation()
+{
+  const int steps = _corrosion.steps();
+  const double h = _corrosion.penetration_at(1.0); // a nominal step of x [mm]
+  LoadFactorPath p{_corrosion.penetration_at(steps), h,
+                   path_steps_per_step * steps + path_steps_extra, "corrosion stage", "x"};
+  _scenario.apply_load(0.0, _equilibrium); // the constraints and loads of step 0
+  interface::Interface& itf = _equilibrium.model().interface();
+  const solver::Vector opening(
+      _equilibrium.model().mean_jump_functional(model::Model::Jump::normal_opening));
+  const double step_time = _scenario.time_at(1.0) - _scenario.time_at(0.0);
+  double s = 0; // the stage parameter of the last set_load
+  return by_dissipation({"corrosion step", "corrosion of", p,
+                         [&](double x)
+                         {
+                           s = x / h;
+                           _corrosion.apply(s, itf);
+                         },
+                         load_difference_fraction * h, step_time / h, opening,
+                         [&] { return _corrosion.expansion_force(itf, s); },
+                         [&](int iterations, int cuts, int k, double x)
+                         { record_corrosion(iterations, cuts, k, x / h, false); },
+                         [&] { return corrode(); }});
+}
+
+/// Dissipation control of a stage (Verhoosel, Remmers & Gutierrez 2009):
+/// steps of the load factor lambda as under displacement control while the
+/// joints dissipate little; steps of the energy they release (path
+/// following, solver/PathFollower.h: the softening layers'
+/// Interface::energy_release plus beta times the stage's mean jump, beta
+/// set so that where nothing softens an energy step moves lambda by about a
+/// step of lambda) through a brittle event. A step of lambda hands over to
+/// energy steps when it fails, or when it dissipates D (the laws' own
+/// account, Interface::dissipation) more than the dissipation increment
+/// dG = fracture energy / dissipation_steps and more than dG beyond the
+/// work W = 1/2 (P0 + P1) d lambda of the force P on lambda: a brittle
+/// event that fed on the elastic energy stored, where displacement control
+/// jumps (snap-through) or stalls. Such a step is first halved, down to
+/// min_probe_increment: before a peak a shorter step dissipates less,
+/// through a snap-back it does not. Energy steps hand back to steps of
+/// lambda once the event is over (released_to_return), or when one would
+/// move lambda by more than a step of lambda. Failed steps are halved (each
+/// kind its own Stepper.h). Without softening layers (dG = 0) the stage
+/// runs as without dissipation control.
+bool StepLoop::by_dissipation(const DissipationStage& stage)
+{
+  const LoadFactorPath& p = stage.path;
   const double dG_nominal = fracture_energy() / _dissipation_steps; // [N mm]
   if (!(dG_nominal > 0))
   {
     if (_report.talk())
-      std::cout << "dissipation control: no joint layer softens (no fracture energy); the push "
-                   "runs under displacement control"
-                << std::endl;
-    return push_by_displacement();
+      std::cout << "dissipation control: no joint layer softens (no fracture energy); the "
+                << p.target << " runs under displacement control" << std::endl;
+    return stage.without_softening();
   }
-  const solver::Vector a(_equilibrium.model().mean_axial_slip_functional());
-  // control: the energy released + beta times the mean slip
-  solver::PathFollower path = solver::PathFollower::by_energy(_solver, a);
+  // control: the energy released + beta times the mean jump
+  solver::PathFollower path = solver::PathFollower::by_energy(_solver, stage.control);
+  path.set_load_difference(stage.load_difference);
   const FactorizationCount count{_summary, path};
-  const auto mean_slip = [&]
+  const auto mean_jump = [&]
   {
     double s;
-    petsc::check(VecDot(a, _x, &s), "VecDot");
+    petsc::check(VecDot(stage.control, _x, &s), "VecDot");
     return s;
   };
-  double slip = mean_slip(), slip_rate = 0; // [mm], d slip / d delta of the last step
+  double jump = mean_jump(), jump_rate = 0; // [mm], d jump / d lambda of the last step
   const double lambda_final = p.lambda_final, h_nominal = p.h_nominal; // [mm]
-  const auto set_load = [&](double lambda) { _scenario.apply_load_factor(lambda, _equilibrium); };
-  const auto push_words = sized("a push of", h_nominal, "mm");
+  const auto step_words = sized(stage.increment_words, h_nominal, "mm");
   const auto energy_words = sized("a release of", dG_nominal, "N mm");
   const auto say = [&](const std::string& what)
   {
     if (_report.talk())
       std::cout << what << std::endl;
   };
-  Stepper push(_max_cuts, easy_iterations), energy(_max_cuts, easy_iterations);
+  const auto lambda_step = [&](double lambda_from, double lambda_to)
+  {
+    stage.set_load(lambda_to);
+    set_time_increment((lambda_to - lambda_from) * stage.time_per_lambda);
+    _equilibrium.apply_constraints(_x);
+    return _solver.solve(_x);
+  };
+  Stepper by_lambda(_max_cuts, easy_iterations), energy(_max_cuts, easy_iterations);
   bool by_energy = false;       // the kind of the next step
   double released_in_event = 0; // by the softening layers in the energy steps so far [N mm]
-  double lambda = 0.0, P = _scenario.load_force(_equilibrium.model());
+  double lambda = 0.0, P = stage.force();
   int cuts = 0;
   for (int k = 1; lambda < lambda_final - step_tolerance * lambda_final;)
   {
     if (stop_requested() || !within_step_limit(p, k, lambda, "dissipation control"))
       return false;
-    const std::string name = "step " + std::to_string(k);
+    const std::string name = stage.step_name + " " + std::to_string(k);
     double lambda_new = lambda;
     solver::SolveReport rep;
     bool energy_step = by_energy, overshot = false;
     const double dG_step = energy.increment() * dG_nominal; // if energy_step [N mm]
     if (by_energy)
     {
-      // beta such that an elastic energy step (G = 0) moves delta by about a
-      // nominal step of delta: dG_nominal = beta slip_rate h_nominal. No
-      // Newton iteration moves delta by more than the shortest probe of a
-      // step of delta: at the start of an event the control's linearisation
-      // sees few of the points that will soften, and would overshoot.
-      path.set_slip_weight(slip_rate > 0 ? dG_nominal / (slip_rate * h_nominal) : 0.0);
-      set_time_increment(h_nominal);
-      rep = path.step(_x, lambda_new, dG_step, set_load, min_probe_increment * h_nominal);
+      // beta such that an elastic energy step (G = 0) moves lambda by about
+      // a nominal step: dG_nominal = beta jump_rate h_nominal. No Newton
+      // iteration moves lambda by more than the shortest probe of a step of
+      // lambda: at the start of an event the control's linearisation sees
+      // few of the points that will soften, and would overshoot.
+      path.set_slip_weight(jump_rate > 0 ? dG_nominal / (jump_rate * h_nominal) : 0.0);
+      set_time_increment(h_nominal * stage.time_per_lambda);
+      rep = path.step(_x, lambda_new, dG_step, stage.set_load, min_probe_increment * h_nominal);
       _summary.newton_iterations += rep.iterations;
       if (rep.converged && (lambda_new > lambda + h_nominal || lambda_new > lambda_final))
       {
-        // Past a nominal step of delta (the joints have little left to
-        // release) or the final delta: a step of delta instead, taken
-        // whatever it dissipates, and steps of delta again.
+        // Past a nominal step of lambda (the joints have little left to
+        // release) or its final value: a step of lambda instead, taken
+        // whatever it dissipates, and steps of lambda again.
         revert();
         energy_step = by_energy = false;
         overshot = true;
-        say(name + ": a step of energy would move delta by more than a step of delta; "
-                   "displacement control");
+        by_lambda = Stepper(_max_cuts, easy_iterations); // a whole step
+        say(name + ": a step of energy would move " + p.symbol + " by more than a step of " +
+            p.symbol + "; displacement control");
       }
     }
     if (!energy_step)
     {
-      lambda_new = lambda + push.increment() * h_nominal;
+      lambda_new = lambda + by_lambda.increment() * h_nominal;
       if (lambda_new > lambda_final * (1 - step_tolerance))
         lambda_new = lambda_final;
-      rep = load_factor_step(lambda, lambda_new);
+      rep = lambda_step(lambda, lambda_new);
       _summary.newton_iterations += rep.iterations;
       if (rep.converged && !overshot)
       {
         const auto [D, D_softening] = dissipation();
-        const double P_new = _scenario.load_force(_equilibrium.model());
+        const double P_new = stage.force();
         const double work = 0.5 * (P + P_new) * (lambda_new - lambda);
         if (D_softening > dG_nominal && D > work + dG_nominal)
         {
-          // Shorter steps of delta first: before a peak the dissipation
-          // shrinks with the step; through a snap-back it does not.
+          // Shorter steps first: before a peak the dissipation shrinks with
+          // the step; through a snap-back it does not.
           revert();
           std::ostringstream s;
-          s << name << ": a push of " << lambda_new - lambda << " mm dissipated " << D << " N mm, "
-            << D - work << " N mm more than its work; ";
-          by_energy = push.increment() <= min_probe_increment || !push.failed();
-          s << (by_energy ? "dissipation control" : "a shorter push");
+          s << name << ": " << stage.increment_words << " " << lambda_new - lambda
+            << " mm dissipated " << D << " N mm, " << D - work << " N mm more than its work; ";
+          by_energy = by_lambda.increment() <= min_probe_increment || !by_lambda.failed();
+          s << (by_energy ? "dissipation control" : "a shorter step");
           say(s.str());
           continue;
         }
@@ -562,46 +629,47 @@ bool StepLoop::push_by_dissipation()
     if (!rep.converged)
     {
       revert();
-      Stepper& stepper = energy_step ? energy : push;
-      if (!cut_back(stepper, cuts, (energy_step ? "dissipation-controlled " : "load ") + name,
-                    rep.reason, energy_step ? energy_words : push_words))
+      Stepper& stepper = energy_step ? energy : by_lambda;
+      if (!cut_back(stepper, cuts, (energy_step ? "dissipation-controlled " : "") + name,
+                    rep.reason, energy_step ? energy_words : step_words))
         return false;
-      // A step of delta that failed short (below min_probe_increment) is
+      // A step of lambda that failed short (below min_probe_increment) is
       // retried under dissipation control; a step of energy that nothing
       // along the path dissipates (singular control) under displacement
       // control.
       if (energy_step)
         by_energy = rep.reason.find("singular") == std::string::npos;
-      else if (push.increment() < min_probe_increment)
+      else if (by_lambda.increment() < min_probe_increment)
       {
         by_energy = true;
         say(name + ": dissipation control");
       }
       continue;
     }
-    _recorder.record(_x, rep.iterations, cuts, k, 0); // before the commit: StepRecorder.h
-    ++_summary.steps;
+    stage.record(rep.iterations, cuts, k, lambda_new); // before the commit: StepRecorder.h
     if (energy_step)
       ++_summary.dissipation_steps;
     commit();
-    (energy_step ? energy : push).converged(rep.iterations);
+    (energy_step ? energy : by_lambda).converged(rep.iterations);
     if (energy_step)
     {
       const double released = dissipation()[1];
       released_in_event += released;
       if (released_in_event > dG_nominal && released < released_to_return * dG_step)
       {
+        // The event is over: whole steps of lambda again (cut if they fail).
         by_energy = false;
+        by_lambda = Stepper(_max_cuts, easy_iterations);
         say(name + ": the softening layers released little in the step; displacement control");
       }
     }
     else
       released_in_event = 0;
-    P = _scenario.load_force(_equilibrium.model());
-    const double slip_new = mean_slip();
-    if (lambda_new > lambda && slip_new > slip)
-      slip_rate = (slip_new - slip) / (lambda_new - lambda);
-    slip = slip_new;
+    P = stage.force();
+    const double jump_new = mean_jump();
+    if (lambda_new > lambda && jump_new > jump)
+      jump_rate = (jump_new - jump) / (lambda_new - lambda);
+    jump = jump_new;
     lambda = lambda_new;
     cuts = 0;
     ++k;

@@ -64,6 +64,11 @@ private:
   bool initial_step();
   /// The corrosion stage: steps of the corrosion depth, constraints of step 0.
   bool corrode();
+  /// Records converged corrosion step k at stage parameter s (before its
+  /// commit): corrosion.csv, the summary, and at the end of the stage the
+  /// push's start. `numbered`: the progress line shows k of the stage's
+  /// nominal steps.
+  void record_corrosion(int iterations, int cuts, int k, double s, bool numbered);
   /// The push's start: the scenario's reference state and curve row 0.
   void start_push(int iterations);
   /// Nominal steps, each tried whole and cut in halves when Newton fails.
@@ -74,9 +79,27 @@ private:
   /// load factor lambda = delta [mm].
   struct LoadFactorPath
   {
-    double lambda_final = 0; ///< the final push [mm]
-    double h_nominal = 0;    ///< a nominal step of it [mm]
-    int max_steps = 0;       ///< steps before the run gives up
+    double lambda_final = 0;      ///< the final push [mm]
+    double h_nominal = 0;         ///< a nominal step of it [mm]
+    int max_steps = 0;            ///< steps before the run gives up
+    std::string target = "push";  ///< the stage lambda runs (messages)
+    std::string symbol = "delta"; ///< lambda's name (messages)
+  };
+  /// What dissipation control needs of a stage: its load factor lambda
+  /// [mm] (the push delta, the corrosion depth x), how it is set and what
+  /// works on it.
+  struct DissipationStage
+  {
+    std::string step_name;                ///< "load step", "corrosion step" (messages)
+    std::string increment_words;          ///< "a push of" (messages, in mm)
+    LoadFactorPath path;                  ///< from 0 to path.lambda_final
+    std::function<void(double)> set_load; ///< constraints, loads, inputs at lambda
+    double load_difference = 0;           ///< PathFollower::set_load_difference [mm]
+    double time_per_lambda = 1;           ///< pseudo-time of a unit of lambda
+    Vec control = nullptr;                ///< a mean jump that grows with lambda [mm]
+    std::function<double()> force;        ///< that works on lambda [N]
+    std::function<void(int iterations, int cuts, int k, double lambda)> record;
+    std::function<bool()> without_softening; ///< the stage's run if nothing softens
   };
   /// Sets the push's constraints (before a PathFollower takes the solver's
   /// problem) and `p`; false, with the summary's message naming `control`,
@@ -88,8 +111,11 @@ private:
   /// change).
   solver::SolveReport load_factor_step(double lambda_from, double lambda_to);
   bool path_following();
-  /// Dissipation control (loading.control = "dissipation" or "auto").
+  /// Dissipation control (loading.control = "dissipation" or "auto") of
+  /// the push and of the corrosion stage.
   bool push_by_dissipation();
+  bool corrode_by_dissipation();
+  bool by_dissipation(const DissipationStage& stage);
   /// The energy released by the joints to full softening, summed over the
   /// processes [N mm].
   double fracture_energy();

@@ -347,11 +347,11 @@ laws::Vec3 Interface::resultant() const
   return force;
 }
 
-void Interface::add_axial_jump_functional(std::span<double> a) const
+void Interface::add_jump_functional(const laws::Vec3& v, std::span<double> a) const
 {
   for (std::size_t p = 0; p < num_pairs(); ++p)
     for (std::size_t q = 0; q < _q.weights.size(); ++q)
-      scatter(p, q, {0, 1, 0}, a); // w . s1
+      scatter(p, q, v, a); // w . v
 }
 
 double Interface::area() const

@@ -111,12 +111,13 @@ public:
   PointOutput point_output(std::span<const double> u, std::size_t p, std::size_t q) const;
 
   /// Adds the coefficients of the linear functional
-  ///   u -> int_Gamma w . s1 dA   [mm^3]
-  /// (the axial jump integrated over this process's pairs) to `a` (local
-  /// blocked layout, ghosts included; the caller sums ghosts to owners).
-  /// Divided by the area it is the mean axial slip, the control variable of
-  /// path following.
-  void add_axial_jump_functional(std::span<double> a) const;
+  ///   u -> int_Gamma w . v dA   [mm^3]
+  /// for `v` in the local frame (n, s1, s2): {0, 1, 0} the axial jump,
+  /// {1, 0, 0} the normal opening, integrated over this process's pairs, to
+  /// `a` (local blocked layout, ghosts included; the caller sums ghosts to
+  /// owners). Divided by the area it is a mean jump, the control variable
+  /// of path following (Model::mean_jump_functional).
+  void add_jump_functional(const laws::Vec3& v, std::span<double> a) const;
 
   /// Area of the interface on this process [mm^2].
   double area() const;

@@ -462,11 +462,12 @@ Vec Model::thermal_load(double dT_value) const
   return b;
 }
 
-Vec Model::mean_axial_slip_functional() const
+Vec Model::mean_jump_functional(Jump jump) const
 {
   dolfinx::la::Vector<double> a(_V->dofmap()->index_map, block_size());
   std::fill(a.mutable_array().begin(), a.mutable_array().end(), 0.0);
-  _interface->add_axial_jump_functional(a.mutable_array());
+  _interface->add_jump_functional(
+      jump == Jump::axial_slip ? laws::Vec3{0, 1, 0} : laws::Vec3{1, 0, 0}, a.mutable_array());
   a.scatter_rev(std::plus<double>());
   double area = _interface->area();
   MPI_Allreduce(MPI_IN_PLACE, &area, 1, MPI_DOUBLE, MPI_SUM, comm());

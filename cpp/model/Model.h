@@ -92,10 +92,16 @@ public:
   /// Whether a local dof block is owned by this process (not a ghost).
   bool owned(std::int32_t block) const { return block >= 0 && block < index_map().size_local(); }
 
-  /// Coefficients a of the mean axial slip s = a . u [mm] (the axial jump
-  /// averaged over the whole interface), owned part: the control variable
-  /// of path following.
-  Vec mean_axial_slip_functional() const;
+  /// A jump of the steel-concrete interface averaged over it, as a linear
+  /// functional s = a . u [mm].
+  enum class Jump
+  {
+    axial_slip,    ///< w . s1: the control variable of path following
+    normal_opening ///< w . n: that of the corrosion stage
+  };
+  /// Coefficients a of the mean jump (owned part; the caller destroys it).
+  Vec mean_jump_functional(Jump jump) const;
+  Vec mean_axial_slip_functional() const { return mean_jump_functional(Jump::axial_slip); }
 
   /// Equivalent nodal forces of the thermal strain for `dT` [N], owned part.
   Vec thermal_load(double dT_value) const;

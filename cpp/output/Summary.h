@@ -15,7 +15,7 @@ struct Summary
   std::string message;       ///< why it stopped, if it did not finish
   int steps = 0;             ///< converged load steps (rows after step 0)
   int corrosion_steps = 0;   ///< converged corrosion steps (corrosion.csv rows after step 0)
-  int dissipation_steps = 0; ///< push steps controlled by the energy released
+  int dissipation_steps = 0; ///< corrosion and push steps controlled by the energy released
   double penetration_mm = 0; ///< corrosion depth x reached [mm]
   int newton_iterations = 0;
   int cuts = 0;           ///< step cut-backs

@@ -248,8 +248,9 @@ std::vector<KeyDef> make_keys()
        "(delta, slip) plane, through snap-back (delta may decrease) until delta reaches "
        "push_displacement; dissipation: steps of delta while the joints dissipate little, "
        "steps of the energy they release where a step of delta fails or jumps over a brittle "
-       "event (snap-back), back to delta after it (docs/numerics.md); auto: the control we "
-       "recommend for a push whose laws may be brittle, today the same as dissipation",
+       "event (snap-back), back to delta after it, and likewise steps of the corrosion depth x "
+       "or of the energy released in the corrosion stage (docs/numerics.md); auto: the control "
+       "we recommend for laws or cracks that may be brittle, today the same as dissipation",
        -inf,
        inf,
        false,
@@ -260,9 +261,9 @@ std::vector<KeyDef> make_keys()
        std::int64_t(20),
        "",
        "dissipation control: the energy released per step is the fracture energy of the "
-       "softening joint layers (InterfaceLaw G_F x area) over this many steps; a step of "
-       "delta releasing more than that and more than the push's work is redone under "
-       "dissipation control",
+       "softening joint layers and crack planes (InterfaceLaw G_F x area) over this many "
+       "steps; a step of delta (or x) releasing more than that and more than the work of the "
+       "push (or of the oxide's expansion) is redone under dissipation control",
        1,
        1e9,
        false,

@@ -162,19 +162,34 @@ std::string ArcLengthSolver::solve(Vec b, Vec y)
   return why;
 }
 
+bool ArcLengthSolver::load_direction(Vec x, double lambda,
+                                     const std::function<void(double)>& set_load, double& reactions)
+{
+  // Affine: e = F(x, lambda) - F(x, lambda + 1), exact. Otherwise
+  // e = -(F(x, lambda + h) - F(x, lambda)) / h.
+  const double h = _fd_step > 0 ? _fd_step : 1.0;
+  set_load(lambda + h);
+  bool ok = residual(x, reactions);
+  check(VecCopy(_F, _e), "VecCopy");
+  set_load(lambda);
+  ok = residual(x, reactions) && ok;
+  check(VecAYPX(_e, -1.0, _F), "VecAYPX");
+  check(VecScale(_e, 1.0 / h), "VecScale");
+  return ok;
+}
+
 SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
                                   const std::function<void(double)>& set_load, double max_dlambda)
 {
   SolveReport rep;
   _policy.check_constraints(_problem);
-  // e = -dF/dlambda = F(x, lambda) - F(x, lambda + 1): F is affine in lambda.
   double reactions = 0;
-  set_load(lambda + 1.0);
-  residual(x, reactions);
-  check(VecCopy(_F, _e), "VecCopy");
-  set_load(lambda);
-  residual(x, reactions);
-  check(VecAYPX(_e, -1.0, _F), "VecAYPX");
+  if (_fd_step == 0 && !load_direction(x, lambda, set_load, reactions))
+  {
+    rep.converged = false;
+    rep.reason = "an interface law failed";
+    return rep;
+  }
   double eta0;
   if (!constraint(x, eta0))
   {
@@ -193,8 +208,16 @@ SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
   };
   for (PetscInt it = 0;; ++it)
   {
-    set_load(lam);
-    if (!residual(x, reactions))
+    // F at (x, lam), and e where it moves with the iterate.
+    bool evaluated;
+    if (_fd_step > 0)
+      evaluated = load_direction(x, lam, set_load, reactions);
+    else
+    {
+      set_load(lam);
+      evaluated = residual(x, reactions);
+    }
+    if (!evaluated)
       return fail("an interface law failed");
     double fnorm, c;
     check(VecNorm(_F, NORM_2, &fnorm), "VecNorm");

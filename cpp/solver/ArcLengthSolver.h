@@ -10,7 +10,11 @@
 // the push delta [mm], dg/dlambda = -1 at the tube's top z dofs), so that
 // F is affine in lambda with e = -dF/dlambda (on the whole model: e = dg/
 // dlambda at the constrained rows, 0 elsewhere; on the condensed interface
-// system the bulk carries the load to every row). Equations:
+// system the bulk carries the load to every row). A load factor that enters
+// the laws instead (the corrosion depth x of the oxide's expansion,
+// driver/Corrosion.h) makes F nonlinear in lambda: e is then the forward
+// difference -(F(x, lambda + h) - F(x, lambda)) / h at every iterate
+// (set_load_difference). Equations:
 //   F(x, lambda) = 0        equilibrium (constrained rows: x_c - g(lambda))
 //   c(x) = eta              control, a = dc/dx at the iterate
 // Newton on the bordered system
@@ -118,6 +122,12 @@ public:
   SolveReport step(Vec x, double& lambda, double d_eta, const std::function<void(double)>& set_load,
                    double max_dlambda = 0);
 
+  /// The load factor enters F nonlinearly (through the laws, not only the
+  /// constraints): e by a forward difference of step `h` (> 0, in lambda's
+  /// units) at every iterate, one more evaluation of F each. 0: affine (e
+  /// once per step, exact).
+  void set_load_difference(double h) { _fd_step = h; }
+
   /// The control value c(x) (evaluates the laws at x if c does); throws if
   /// a law failed.
   double control(Vec x);
@@ -137,6 +147,10 @@ private:
 
   /// c(x) into `value`, dc/dx into _a, agreed on by every process.
   bool constraint(Vec x, double& value);
+  /// e = -dF/dlambda at (x, lambda) into _e, and F(x, lambda) into _F, with
+  /// the load of lambda set; false if a law failed.
+  bool load_direction(Vec x, double lambda, const std::function<void(double)>& set_load,
+                      double& reactions);
 
   NonlinearProblem& _problem;
   PathConstraint& _control;
@@ -144,6 +158,7 @@ private:
   KSP _ksp = nullptr;
   Mat _J = nullptr, _P = nullptr;
   Vec _a = nullptr, _e = nullptr, _F = nullptr, _v1 = nullptr, _v2 = nullptr;
+  double _fd_step = 0; ///< set_load_difference [lambda's unit]
   double _rtol = 1e-10, _atol = 1e-10, _stol = 1e-14;
   PetscInt _max_it = 50;
   PetscBool _monitor = PETSC_FALSE; ///< -arc_monitor: print each iteration

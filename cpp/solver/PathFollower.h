@@ -29,6 +29,8 @@ public:
   static PathFollower by_energy(LoadStepSolver& solver, Vec slip);
   /// beta [N] of by_energy().
   void set_slip_weight(double beta);
+  /// The load factor enters the laws (ArcLengthSolver::set_load_difference).
+  void set_load_difference(double h) { _arc->set_load_difference(h); }
 
   /// One step of control increment `d_control` from the equilibrium
   /// (x, lambda); on success x (whole model) and lambda hold the next

@@ -78,8 +78,9 @@ def out_dir(name):
     return d
 
 
-def run(scene, out, sets=(), extra=(), check=True):
-    """Runs a scene (a path, or TOML text written to out/../NAME.toml)."""
+def run(scene, out, sets=(), extra=(), check=True, mpirun=None):
+    """Runs a scene (a path, or TOML text written to out/../NAME.toml);
+    `mpirun`: on that many processes."""
     if "\n" in scene or "=" in scene:
         os.makedirs(OUT_ROOT, exist_ok=True)
         path = os.path.join(OUT_ROOT, os.path.basename(out.rstrip("/")) + ".toml")
@@ -87,7 +88,8 @@ def run(scene, out, sets=(), extra=(), check=True):
             f.write(scene)
         scene = path
     try:
-        p = pushout_runs.run(PUSHOUT, scene, out, sets, extra, timeout=1200, check=check)
+        p = pushout_runs.run(PUSHOUT, scene, out, sets, extra, timeout=1200, check=check,
+                             mpirun=mpirun)
     except pushout_runs.RunError as e:
         raise SystemExit(f"FAILED: {e}")
     if p is None:
