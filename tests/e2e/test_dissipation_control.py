@@ -13,8 +13,8 @@
    displacement control converges across the peak (its curve never rises
    above the friction plateau) or stops at it, as the round-off goes;
    dissipation control traces the peak (more than 3x the plateau) and the
-   softening in fewer than 800 Newton iterations (431 with threaded BLAS,
-   687 with one thread; the ordinary Fig. 10 curve takes about 50).
+   softening in fewer than 800 Newton iterations (347 with threaded BLAS,
+   589 with one thread; the ordinary Fig. 10 curve takes about 50).
 3. Without a softening layer there is nothing to control by: the push runs
    under displacement control.
 4. The corrosion stage (the corroded demo, coarse, with a brittle crack
