@@ -13,6 +13,11 @@ Studies (each run keeps its resolved scene.toml next to its curve.csv):
               parameters; dT = -5 ... -50; pushed to 1 mm.
   retraction  the tube's top nodes held (paper) or free during the thermal
               step, mu 0.4, dT -25.
+  unload_reload  the Fig. 10 demo (c 25, dT -25) pushed along [0, 6, 0, 40, 0,
+              200] um, each unloading ending at zero force (the device cannot
+              pull; loading.unload_to), against the monotonic push to 200 um:
+              the loops, one before and one after the peak, and the
+              permanent displacements.
   corroded    demo/pushout_corroded.toml (oxide_friction k 1000, mu 0.4; crack
               k 1e5, f_t 3, c 30: G_F 0.1 N/mm; dT -25): the tube centred or
               15 mm from a face, one crack to the nearest face or four (0, 90,
@@ -99,6 +104,13 @@ def cases(study, quick):
                         sets += [f"crack.{i}.eta={CRACK_ETA}" for i in range(1 if cracks == "one" else 4)]
                         scene = "pushout_corroded.toml" if cracks == "one" else FOUR_CRACKS
                         out.append((f"{where}_{cracks}_beta{beta:g}_x{x_um:g}", scene, sets))
+    elif study == "unload_reload":
+        per = 6 if quick else 20
+        out.append(("loops", "pushout_friction_adhesion.toml",
+                    ["loading.push_path=[0.0,0.006,0.0,0.04,0.0,0.2]",
+                     f"loading.steps_per_segment={per}", "loading.unload_to=zero_force"]))
+        out.append(("monotonic", "pushout_friction_adhesion.toml",
+                    ["loading.push_displacement=0.2", f"loading.steps={3 * per}"]))
     elif study == "retraction":
         for top in ("held", "free"):
             out.append((top, "pushout_friction.toml",
@@ -276,13 +288,42 @@ def plot_corroded(out, runs):
     return table
 
 
+def plot_unload_reload(out, runs):
+    """The loops against the monotonic curve, whole and the first 50 um;
+    returns the permanent displacements [mm]."""
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.5), dpi=120, sharey=True)
+    mono, loops = runs[("unload_reload", "monotonic")], runs[("unload_reload", "loops")]
+    permanent = pushout_runs.summary(os.path.join(out, "unload_reload", "loops"))[
+        "permanent_displacements_mm"]
+    for ax, x_max in zip(axes, (None, 50)):
+        ax.plot([r["delta_mm"] * 1e3 for r in mono], [r["tau_MPa"] for r in mono], "-",
+                color="0.6", lw=2.5, label="monotonic push")
+        ax.plot([r["delta_mm"] * 1e3 for r in loops], [r["tau_MPa"] for r in loops], "o-", ms=2.5,
+                lw=1, color="C3", label="unloaded to zero force and reloaded")
+        ax.plot([d * 1e3 for d in permanent], [0.0] * len(permanent), "kv", ms=6,
+                label="permanent displacements " +
+                      ", ".join(f"{d * 1e3:.1f}" for d in permanent) + " µm")
+        ax.axhline(0, color="0.6", lw=0.5)
+        ax.set(xlabel="tube displacement $\\delta$ [µm]")
+        if x_max:
+            ax.set_xlim(0, x_max)
+        ax.grid(alpha=0.3)
+    axes[0].set_ylabel("nominal bond stress $\\tau$ [MPa]")
+    axes[1].legend(fontsize=8)
+    fig.suptitle("Unload and reload: friction 2 + exp. soft. (c 25), $\\Delta T$ -25 °C")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "unload_reload.png"))
+    return permanent
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", default=os.path.join(ROOT, "results", "studies"))
     ap.add_argument("--pushout", default=os.path.join(ROOT, "build", "pushout"))
     ap.add_argument("--quick", action="store_true", help="coarse mesh, few steps")
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
-    ap.add_argument("--only", nargs="+", default=["fig7", "fig8", "fig10", "retraction"])
+    ap.add_argument("--only", nargs="+",
+                    default=["fig7", "fig8", "fig10", "retraction", "unload_reload"])
     ap.add_argument("--no-render", action="store_true",
                     help="run the fig8 case but do not render its maps (ParaView)")
     ap.add_argument("--reuse", action="store_true",
@@ -311,6 +352,10 @@ def main():
         plot_fig10(args.out, runs)
     if "retraction" in args.only:
         plot_retraction(args.out, runs)
+    if "unload_reload" in args.only:
+        permanent = plot_unload_reload(args.out, runs)
+        print("unload_reload: permanent displacements " +
+              ", ".join(f"{d * 1e3:.3f} um" for d in permanent))
     if "corroded" in args.only:
         for r in plot_corroded(args.out, runs):
             print(f"corroded {r['case']}: p {r['p_after_corrosion_MPa']:.2f} MPa, crack "

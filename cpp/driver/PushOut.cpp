@@ -40,6 +40,8 @@ PushOut::PushOut(const Scene& scene, const mesh::MeshData& m, const model::Model
       _delta_final(scene.number("loading.push_displacement")),
       _dT(scene.number("loading.temperature_change")), _growth(scene.number("loading.step_growth")),
       _steps(int(scene.integer("loading.steps"))),
+      _path(scene.numbers("loading.push_path"), int(scene.integer("loading.steps_per_segment"))),
+      _zero_force_unloading(scene.string("loading.unload_to") == "zero_force"),
       _hold_top_in_thermal_step(scene.string("loading.thermal_tube_top") == "held"),
       _layers(scene.layers().size()), _copies(m.copies)
 {
@@ -138,6 +140,8 @@ std::vector<std::string> PushOut::columns() const
 
 double PushOut::delta_at(double s) const
 {
+  if (!_path.empty())
+    return _path.value(s);
   if (_growth == 1.0)
     return _delta_final * s / _steps;
   return _delta_final * (std::pow(_growth, s) - 1) / (std::pow(_growth, _steps) - 1);
@@ -263,6 +267,22 @@ void PushOut::check_scene(const Scene& scene)
   if (scene.number("loading.push_displacement") >= scene.number("geometry.thickness"))
     throw SceneError("'loading.push_displacement' must be smaller than "
                      "'geometry.thickness'");
+  if (const auto& path = scene.numbers("loading.push_path"); !path.empty())
+  {
+    if (path[0] != 0.0)
+      throw SceneError("'loading.push_path' must start at 0: the push starts from the state "
+                       "after the thermal step (and the corrosion stage)");
+    if (std::any_of(path.begin(), path.end(),
+                    [&](double d) { return std::abs(d) >= scene.number("geometry.thickness"); }))
+      throw SceneError("'loading.push_path' values must be smaller than 'geometry.thickness'");
+    if (scene.number("loading.step_growth") != 1.0)
+      throw SceneError("'loading.step_growth' applies to the monotonic push "
+                       "(push_displacement, steps), not to 'loading.push_path': leave it at 1");
+    if (scene.string("loading.control") != "displacement")
+      throw SceneError("'loading.push_path' is followed under 'loading.control' = "
+                       "\"displacement\" (path following and dissipation control run a "
+                       "monotonic push)");
+  }
   // Crack planes that cannot be meshed (e.g. two within one element).
   mesh::crack_directions(scene);
   // The oxide presses on the concrete only through a law that models it.

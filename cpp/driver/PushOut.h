@@ -19,7 +19,10 @@
 // and u_y = 0 on y = yc replace the in-plane fixings, and P counts the
 // four quarters.
 // Push steps: delta(s) = delta_final (r^s - 1) / (r^N - 1) for step growth
-// r (delta_final s / N for r = 1).
+// r (delta_final s / N for r = 1); or, with loading.push_path, piecewise
+// linear through its values with loading.steps_per_segment steps each
+// (LoadPath.h), unloading segments ending where P falls to zero with
+// loading.unload_to = "zero_force" (the device cannot pull).
 // Measured: delta, P = the push force, from the interface: the axial
 // resultant of the interface tractions (the tube's equilibrium: the top
 // reactions carry it; equal to the sum of the support reactions, the
@@ -30,6 +33,7 @@
 #pragma once
 
 #include "../scene/Scene.h"
+#include "LoadPath.h"
 #include "Scenario.h"
 
 namespace pushout::driver
@@ -46,9 +50,13 @@ public:
   static void check_scene(const Scene& scene);
 
   std::vector<std::string> columns() const override;
-  int steps() const override { return _steps; }
+  int steps() const override { return _path.empty() ? _steps : _path.steps(); }
   bool initial_solve() const override { return _dT != 0.0; }
-  double time_at(double s) const override { return delta_at(s); }
+  /// The push's path length: delta, or the length travelled along push_path.
+  double time_at(double s) const override
+  {
+    return _path.empty() ? delta_at(s) : _path.length_to(s);
+  }
   void apply_load(double s, solver::Equilibrium& eq) const override;
   void apply_initial_load(double fraction, solver::Equilibrium& eq) const override;
   void start_loading(std::span<const double> x) override;
@@ -62,6 +70,15 @@ public:
   std::vector<double> row(std::span<const double> reactions, std::span<const double> x,
                           const model::Model& model) const override;
   std::string progress(const std::vector<double>& row) const override;
+  double prescribed_at(double s) const override { return delta_at(s); }
+  bool ends_at_zero_force(int k) const override
+  {
+    return _zero_force_unloading && !_path.empty() && _path.decreasing(_path.segment_of_step(k));
+  }
+  double end_segment_at(int k, double s) override
+  {
+    return _path.end_segment(_path.segment_of_step(k), s);
+  }
 
   /// Push displacement at load parameter s [mm].
   double delta_at(double s) const;
@@ -73,6 +90,8 @@ private:
 
   double _D, _L, _delta_final, _dT, _growth;
   int _steps;
+  LoadPath _path;                     ///< loading.push_path (empty: monotonic) [mm]
+  bool _zero_force_unloading = false; ///< loading.unload_to = "zero_force"
   bool _hold_top_in_thermal_step;
   std::size_t _layers;
   int _copies; ///< mirror copies of the mesh in the specimen (4: quarter model)

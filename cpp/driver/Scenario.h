@@ -53,6 +53,20 @@ public:
   /// last evaluation [N]. Collective.
   virtual double load_force(const model::Model& /*model*/) const { return 0.0; }
 
+  /// The prescribed displacement at load parameter s (push-out: delta;
+  /// single joint: the shear) [mm].
+  virtual double prescribed_at(double s) const = 0;
+
+  /// Unloading that ends where the load force (load_force) falls to zero,
+  /// as a push-out device that cannot pull (loading.unload_to =
+  /// "zero_force"): whether nominal step k (1-based) is on such a segment.
+  virtual bool ends_at_zero_force(int /*k*/) const { return false; }
+  /// Ends the segment of nominal step k at load parameter s (converged
+  /// there with zero force), so that the next segment starts from that
+  /// state; returns the load parameter the steps go on from (the segment's
+  /// nominal end).
+  virtual double end_segment_at(int /*k*/, double s) { return s; }
+
   /// Called once with the converged state of step 0 (owned dofs), before
   /// the load steps.
   virtual void start_loading(std::span<const double> /*x*/) {}

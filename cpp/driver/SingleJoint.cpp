@@ -8,12 +8,9 @@
 namespace pushout::driver
 {
 SingleJoint::SingleJoint(const Scene& scene, const mesh::MeshData& m, const model::Model& model)
-    : _path(scene.numbers("loading.shear_path")),
-      _per_segment(int(scene.integer("loading.steps_per_segment"))),
+    : _path(scene.numbers("loading.shear_path"), int(scene.integer("loading.steps_per_segment"))),
       _force_per_node(scene.number("loading.normal_force_per_node"))
 {
-  if (_path.size() == 1)
-    _path.push_back(_path[0]);
   std::vector<std::uint8_t> in_steel(m.num_nodes(), 0), in_concrete(m.num_nodes(), 0);
   for (std::size_t c = 0; c < m.num_cells(); ++c)
     for (int i = 0; i < 8; ++i)
@@ -40,24 +37,6 @@ SingleJoint::SingleJoint(const Scene& scene, const mesh::MeshData& m, const mode
   }
 }
 
-double SingleJoint::shear_at(double s) const
-{
-  const double t = s / _per_segment;
-  const std::size_t i = std::min(std::size_t(t), _path.size() - 2);
-  const double f = t - double(i);
-  return _path[i] + f * (_path[i + 1] - _path[i]);
-}
-
-double SingleJoint::time_at(double s) const
-{
-  // Path length: the full segments before s, then the part of s's segment.
-  double length = 0;
-  const std::size_t i = std::min(std::size_t(s / _per_segment), _path.size() - 2);
-  for (std::size_t j = 0; j < i; ++j)
-    length += std::abs(_path[j + 1] - _path[j]);
-  return length + std::abs(shear_at(s) - _path[i]);
-}
-
 void SingleJoint::apply(double s, double preload, solver::Equilibrium& eq) const
 {
   solver::Constraints bc;
@@ -69,7 +48,7 @@ void SingleJoint::apply(double s, double preload, solver::Equilibrium& eq) const
   for (std::int32_t d : _upper_x)
   {
     bc.dofs.push_back(d);
-    bc.values.push_back(shear_at(s));
+    bc.values.push_back(_path.value(s));
   }
   for (std::int32_t d : _upper_y)
   {

@@ -9,6 +9,7 @@
 #pragma once
 
 #include "../scene/Scene.h"
+#include "LoadPath.h"
 #include "Scenario.h"
 
 namespace pushout::driver
@@ -27,9 +28,10 @@ public:
   {
     return {"u_s_mm", "F_s_N", "u_n_mm", "F_n_N"};
   }
-  int steps() const override { return int(_path.size() - 1) * _per_segment; }
+  int steps() const override { return _path.steps(); }
   bool initial_solve() const override { return true; }
-  double time_at(double s) const override;
+  double time_at(double s) const override { return _path.length_to(s); }
+  double prescribed_at(double s) const override { return _path.value(s); }
   void apply_load(double s, solver::Equilibrium& eq) const override { apply(s, 1.0, eq); }
   void apply_initial_load(double fraction, solver::Equilibrium& eq) const override
   {
@@ -40,14 +42,12 @@ public:
   std::string progress(const std::vector<double>& row) const override;
 
   /// Shear displacement u_s at load parameter s [mm].
-  double shear_at(double s) const;
 
 private:
   /// Constraints at shear parameter s, the normal preload times `preload`.
   void apply(double s, double preload, solver::Equilibrium& eq) const;
 
-  std::vector<double> _path;
-  int _per_segment;
+  LoadPath _path; ///< of the shear displacement [mm]
   double _force_per_node;
   std::vector<std::int32_t> _lower;   ///< all dofs of the steel cube
   std::vector<std::int32_t> _upper_x; ///< x dofs of the concrete cube

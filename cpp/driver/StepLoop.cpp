@@ -30,6 +30,11 @@ constexpr double min_probe_increment = 1.0 / 16;
 /// (the slip term of the control did the rest), once the energy steps have
 /// released more than one increment (the event is over, not beginning).
 constexpr double released_to_return = 0.25;
+/// Unloading at zero force (loading.unload_to): the force's zero is found
+/// to this fraction of the largest push force so far, in at most this many
+/// tries.
+constexpr double zero_force_tolerance = 1e-6;
+constexpr int zero_force_max_tries = 50;
 /// Dissipation control of the corrosion stage: the step of the numerical
 /// derivative of the residual by x, as a fraction of a step of x (a
 /// relative perturbation near the square root of the round-off: the
@@ -270,7 +275,8 @@ bool StepLoop::push_by_displacement()
        {
          _recorder.record(_x, iterations, cuts, k, steps);
          ++_summary.steps;
-       }});
+       },
+       true});
 }
 
 /// Each nominal step is tried whole and cut in halves (from the committed
@@ -286,6 +292,10 @@ bool StepLoop::nominal_steps(const Stage& stage)
     s << increment << " of a step";
     return s.str();
   };
+  // The load force of the committed state and its largest magnitude so far
+  // [N], for unloading that ends at zero force.
+  const model::Model& model = _equilibrium.model();
+  double P = stage.zero_force_ends ? _scenario.load_force(model) : 0.0, P_peak = std::abs(P);
   double s = 0.0;
   for (int k = 1; k <= steps; ++k)
   {
@@ -300,6 +310,31 @@ bool StepLoop::nominal_steps(const Stage& stage)
       _equilibrium.apply_constraints(_x);
       const solver::SolveReport rep = _solver.solve(_x);
       _summary.newton_iterations += rep.iterations;
+      if (rep.converged && stage.zero_force_ends)
+      {
+        const double P_try = _scenario.load_force(model);
+        if (_scenario.ends_at_zero_force(k) && P >= 0 && P_try < 0)
+        {
+          // The device cannot pull: the unloading ends where P = 0, and
+          // the next segment starts there.
+          revert();
+          double s_zero;
+          if (!zero_force_step(stage, k, cuts, s, P, s_try, P_try,
+                               zero_force_tolerance * std::max(P_peak, 1e-300), s_zero))
+            return false;
+          const double delta = _scenario.prescribed_at(s_zero);
+          _summary.permanent_displacements_mm.push_back(delta);
+          if (_report.talk())
+            std::cout << "step " << k << ": the push force fell to zero at delta = " << delta * 1e3
+                      << " um (permanent displacement); the unloading ends there" << std::endl;
+          s = _scenario.end_segment_at(k, s_zero);
+          k = int(std::lround(s));
+          P = _scenario.load_force(model);
+          break;
+        }
+        P = P_try;
+        P_peak = std::max(P_peak, std::abs(P));
+      }
       if (rep.converged)
       {
         stage.record(rep.iterations, cuts, k, s_try); // before the commit: StepRecorder.h
@@ -316,6 +351,62 @@ bool StepLoop::nominal_steps(const Stage& stage)
     }
   }
   return true;
+}
+
+bool StepLoop::zero_force_step(const Stage& stage, int k, int cuts, double s0, double P0, double s1,
+                               double P1, double tol, double& s)
+{
+  // Illinois false position on [s0, s1], P0 >= 0 > P1; every try one step
+  // from the committed state at s0 (a path-dependent law sees one
+  // increment, as in the try that overshot).
+  const double s_committed = s0;
+  int replaced = 0; // the end the last try replaced: -1 (s0) or +1 (s1)
+  for (int tries = 0; tries < zero_force_max_tries; ++tries)
+  {
+    if (stop_requested())
+      return false;
+    s = s1 - P1 * (s1 - s0) / (P1 - P0);
+    stage.apply(s);
+    set_time_increment(stage.duration(s_committed, s));
+    _equilibrium.apply_constraints(_x);
+    const solver::SolveReport rep = _solver.solve(_x);
+    _summary.newton_iterations += rep.iterations;
+    if (!rep.converged)
+    {
+      revert();
+      _summary.message = "load step " + std::to_string(k) +
+                         ": a try at the zero force of the unloading did not converge (" +
+                         rep.reason + "); stopped";
+      return false;
+    }
+    const double P = _scenario.load_force(_equilibrium.model());
+    if (std::abs(P) <= tol)
+    {
+      stage.record(rep.iterations, cuts, k, s); // before the commit: StepRecorder.h
+      commit();
+      return true;
+    }
+    revert();
+    if (P < 0)
+    {
+      s1 = s;
+      P1 = P;
+      if (replaced == +1) // s0 kept twice: halve its weight
+        P0 /= 2;
+      replaced = +1;
+    }
+    else
+    {
+      s0 = s;
+      P0 = P;
+      if (replaced == -1)
+        P1 /= 2;
+      replaced = -1;
+    }
+  }
+  _summary.message = "load step " + std::to_string(k) + ": the zero force of the unloading was " +
+                     "not found in " + std::to_string(zero_force_max_tries) + " tries; stopped";
+  return false;
 }
 
 bool StepLoop::begin_load_factor_path(const std::string& control, LoadFactorPath& p)

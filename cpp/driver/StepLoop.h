@@ -59,6 +59,9 @@ private:
     /// Records a converged try of nominal step k that reached s (before its
     /// commit; a cut step has several).
     std::function<void(int iterations, int cuts, int k, double s)> record;
+    /// Whether unloading segments may end where the scenario's load force
+    /// falls to zero (Scenario::ends_at_zero_force): the push's stage.
+    bool zero_force_ends = false;
   };
 
   bool initial_step();
@@ -73,6 +76,13 @@ private:
   void start_push(int iterations);
   /// Nominal steps, each tried whole and cut in halves when Newton fails.
   bool nominal_steps(const Stage& stage);
+  /// After a converged try of step k from the committed state at s0 (force
+  /// P0 >= 0) to s1 (P1 < 0), reverted: the load parameter s where the
+  /// force is zero (within `tol` [N]), into s, its state recorded and
+  /// committed. Each try is one step from s0. False (with the summary's
+  /// message) if a try did not converge or the search did not end.
+  bool zero_force_step(const Stage& stage, int k, int cuts, double s0, double P0, double s1,
+                       double P1, double tol, double& s);
   bool push_by_displacement();
 
   /// What path following and dissipation control share: the push by its

@@ -25,6 +25,7 @@ void Summary::write(const std::filesystem::path& file) const
       {"corrosion_steps", corrosion_steps},
       {"dissipation_steps", dissipation_steps},
       {"penetration_mm", penetration_mm},
+      {"permanent_displacements_mm", permanent_displacements_mm},
       {"cracks", crack_list},
       {"newton_iterations", newton_iterations},
       {"cuts", cuts},

@@ -17,6 +17,9 @@ struct Summary
   int corrosion_steps = 0;   ///< converged corrosion steps (corrosion.csv rows after step 0)
   int dissipation_steps = 0; ///< corrosion and push steps controlled by the energy released
   double penetration_mm = 0; ///< corrosion depth x reached [mm]
+  /// Where each unloading of the push ended at zero force
+  /// (loading.unload_to = "zero_force"): the tube's permanent displacement.
+  std::vector<double> permanent_displacements_mm;
   int newton_iterations = 0;
   int cuts = 0;           ///< step cut-backs
   int factorizations = 0; ///< LU factorisations of the Newton systems

@@ -239,6 +239,31 @@ std::vector<KeyDef> make_keys()
        false,
        {},
        A::pushout},
+      {"loading.push_path",
+       K::number_array,
+       std::vector<double>{},
+       "mm",
+       "push delta along a piecewise-linear path through these values, starting at 0, "
+       "loading.steps_per_segment steps each (unload and reload, e.g. [0, 0.05, 0.03, 0.2]); "
+       "empty: the monotonic push to push_displacement in steps",
+       -inf,
+       inf,
+       false,
+       {},
+       A::pushout},
+      {"loading.unload_to",
+       K::string,
+       std::string("path"),
+       "",
+       "path: an unloading segment of push_path goes to its value (the tube pulled back if "
+       "need be); zero_force: it ends where the push force P falls to zero, as a push-out "
+       "device that cannot pull (summary.json permanent_displacements_mm), and the next "
+       "segment starts there",
+       -inf,
+       inf,
+       false,
+       {"path", "zero_force"},
+       A::pushout},
       {"loading.control",
        K::string,
        std::string("displacement"),
@@ -298,12 +323,12 @@ std::vector<KeyDef> make_keys()
        K::integer,
        std::int64_t(20),
        "",
-       "load steps on each segment of shear_path",
+       "load steps on each segment of shear_path (single joint) or push_path (push-out)",
        1,
        1e9,
        false,
        {},
-       A::single_joint},
+       A::all},
 
       // Corrosion (docs/corrosion.md): a load stage between the thermal step
       // and the push, in which the steel turns to oxide to depth x and the

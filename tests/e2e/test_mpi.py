@@ -3,7 +3,8 @@ processes (3: an uneven split; 1 process condenses the bulk, more do not) to
 1e-8 relative, for a friction push-out, a friction + exponential-softening
 push-out (quarter model), the same with path following (arc length), the
 same with the triquadratic bulk, a corrosion stage before the push (its
-corrosion.csv too), the corroded demo with a crack plane, and a single joint; the interface pressure
+corrosion.csv too), the corroded demo with a crack plane, a push path that
+unloads to zero force and reloads, and a single joint; the interface pressure
 columns (global integrals of the interface traction field) agree too, and
 the XDMF output is written once."""
 import os
@@ -34,6 +35,9 @@ cases = {
                             "corrosion.penetration=0.002", "corrosion.steps=4"]),
     "cracks": ("pushout_corroded.toml",
                coarse + ["loading.steps=3", "corrosion.steps=6", "corrosion.penetration=0.03"]),
+    "push_path": ("pushout_friction.toml",
+                  coarse + ["loading.push_path=[0.0,0.01,0.0,0.02]", "loading.steps_per_segment=4",
+                            "loading.unload_to=zero_force"]),
     "single_joint": ("single_joint_fig9.toml", []),
 }
 for name, (scene, sets) in cases.items():
