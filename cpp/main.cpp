@@ -2,6 +2,8 @@
 // frictional interface elements (Sanz, Planas, Sancho).
 //
 //   pushout run SCENE.toml --out DIR [--set key=value]... [PETSc options]
+//   pushout sweep SCENE.toml --vary key=v1,v2,... [--vary ...] --out DIR
+//                [--set key=value]... [--ranks-per-case N] [PETSc options]
 //   pushout keys        # the scene keys, with defaults, units and docs
 //   pushout laws        # the interface laws and their parameters
 #include "common/Interrupt.h"
@@ -9,6 +11,7 @@
 #include "common/petsc_check.h"
 #include "driver/ResourceGuard.h"
 #include "driver/Run.h"
+#include "driver/Sweep.h"
 #include "mesh/generate.h"
 #include "scene/SceneError.h"
 #include <CLI/CLI.hpp>
@@ -165,6 +168,21 @@ int main(int argc, char* argv[])
   run->add_flag("--quiet", quiet, "no progress lines");
   run->add_flag("--force", force, "run even if the size guard estimates it cannot fit in memory");
   run->allow_extras();
+  pushout::driver::SweepOptions sweep_options;
+  CLI::App* sweep = app.add_subcommand(
+      "sweep", "run the Cartesian product of scene values, each case in DIR/case_NNN; under "
+               "mpirun the processes share the cases (docs/sweeps.md)");
+  sweep->add_option("scene", scene_file, "scene file (TOML)")->required();
+  sweep
+      ->add_option("--vary", sweep_options.vary, "a key and its values: key=v1,v2,... (repeatable)")
+      ->required();
+  sweep->add_option("--out", out, "output folder")->required();
+  sweep->add_option("--set", sets, "override a scene key of every case: key=value (repeatable)");
+  sweep->add_option("--ranks-per-case", sweep_options.ranks_per_case,
+                    "processes that run each case together (default 1)");
+  sweep->add_flag("--quiet", quiet, "no progress lines");
+  sweep->add_flag("--force", force, "run even if the size guard estimates a case cannot fit");
+  sweep->allow_extras();
   app.add_subcommand("keys", "print the scene keys (Markdown table)");
   app.add_subcommand("laws", "print the interface laws and their parameters");
   try
@@ -187,7 +205,8 @@ int main(int argc, char* argv[])
   }
 
   // PETSc sees only the options CLI11 did not consume.
-  std::vector<std::string> extras = run->remaining();
+  std::vector<std::string> extras =
+      app.got_subcommand("sweep") ? sweep->remaining() : run->remaining();
   std::vector<char*> petsc_argv = {argv[0]};
   for (std::string& e : extras)
     petsc_argv.push_back(e.data());
@@ -212,7 +231,19 @@ int main(int argc, char* argv[])
   pushout::interrupt::install();
   dolfinx::init_logging(1, argv);
   loguru::g_stderr_verbosity = loguru::Verbosity_WARNING;
-  const int rc = run_scene(scene_file, out, sets, quiet, force);
+  int rc = 0;
+  if (app.got_subcommand("sweep"))
+  {
+    sweep_options.scene_file = scene_file;
+    sweep_options.sets = sets;
+    sweep_options.out = out;
+    sweep_options.mesh_cache = pushout::mesh::default_cache_dir();
+    sweep_options.quiet = quiet;
+    sweep_options.force = force;
+    rc = pushout::driver::sweep(sweep_options);
+  }
+  else
+    rc = run_scene(scene_file, out, sets, quiet, force);
   pushout::petsc::check_nothrow(PetscFinalize(), "PetscFinalize");
   return rc;
 }

@@ -4,7 +4,8 @@
 // alone prints it.
 //
 // Every agreement is the same two steps on a channel of its own (a
-// duplicate of MPI_COMM_WORLD, made once): MPI_Iallreduce of the lowest
+// duplicate of the run's processes, MPI_COMM_WORLD unless `pushout sweep`
+// split them into groups: set_run_processes): MPI_Iallreduce of the lowest
 // failing rank, then, if one failed, MPI_Bcast of its message and kind from
 // it. An agreement therefore never matches another collective of the
 // program, and a process that failed meets the others at their next
@@ -77,17 +78,24 @@ constexpr double abandon_after_s = 10;
 
 namespace detail
 {
-/// The agreement channel: a duplicate of MPI_COMM_WORLD, made at the first
-/// call (collective then: main() makes it before the run).
+/// The run's processes and the agreement channel, a duplicate of them
+/// (made at the first agreement: main() makes it before the run).
+struct Channel
+{
+  MPI_Comm processes = MPI_COMM_WORLD;
+  MPI_Comm dup = MPI_COMM_NULL;
+};
+inline Channel& channel_state()
+{
+  static Channel c;
+  return c;
+}
 inline MPI_Comm channel()
 {
-  static MPI_Comm c = []
-  {
-    MPI_Comm dup;
-    MPI_Comm_dup(MPI_COMM_WORLD, &dup);
-    return dup;
-  }();
-  return c;
+  Channel& c = channel_state();
+  if (c.dup == MPI_COMM_NULL)
+    MPI_Comm_dup(c.processes, &c.dup);
+  return c.dup;
 }
 
 /// Whether `comm` has one process.
@@ -116,7 +124,7 @@ inline int agree(MPI_Comm comm, bool failed_here, int kind, std::string& message
   if (alone(comm))
     return failed_here ? kind : -1;
   int result = MPI_UNEQUAL;
-  MPI_Comm_compare(comm, MPI_COMM_WORLD, &result);
+  MPI_Comm_compare(comm, channel_state().processes, &result);
   if (result != MPI_IDENT && result != MPI_CONGRUENT)
     throw std::logic_error("error agreement on a communicator of other processes than the run's");
   const MPI_Comm ch = channel();
@@ -208,6 +216,18 @@ template <class... Known> [[noreturn]] void throw_agreed(int kind, const std::st
   throw AgreedError(message, kind);
 }
 } // namespace detail
+
+/// The processes the runs of this process agree with from now on (a group
+/// of `pushout sweep`; collective on them): agreements on communicators of
+/// other processes are a logic error. `processes` must outlive them.
+inline void set_run_processes(MPI_Comm processes)
+{
+  detail::Channel& c = detail::channel_state();
+  if (c.dup != MPI_COMM_NULL)
+    MPI_Comm_free(&c.dup);
+  c.processes = processes;
+  MPI_Comm_dup(processes, &c.dup);
+}
 
 /// Collective on comm: if `failed_here` on any process, every process
 /// throws AgreedError with the message of the lowest failing rank.

@@ -10,8 +10,9 @@
 
 namespace pushout::driver
 {
-Corrosion::Corrosion(const Scene& scene, const std::filesystem::path& out, RunReport& report)
-    : _report(report)
+Corrosion::Corrosion(const Scene& scene, const std::filesystem::path& out, RunReport& report,
+                     MPI_Comm comm)
+    : _report(report), _comm(comm)
 {
   if (scene.string("model.type") != "pushout")
     return;
@@ -33,8 +34,8 @@ Corrosion::Corrosion(const Scene& scene, const std::filesystem::path& out, RunRe
     columns.push_back("w_crack_" + std::to_string(i) + "_mm");
   columns.insert(columns.end(), {"newton_iterations", "cuts", "wall_s"});
   int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  mpi::collectively(MPI_COMM_WORLD,
+  MPI_Comm_rank(_comm, &rank);
+  mpi::collectively(_comm,
                     [&]
                     {
                       if (rank == 0)
@@ -54,13 +55,13 @@ void Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iterati
   eq.update_displacement(state); // the crack mouths read the model's displacement
   const model::Model& model = eq.model();
   const double x = penetration_at(s);
-  const double p = mean_pressure(model.interface());
+  const double p = mean_pressure(model.interface(), _comm);
   const std::vector<double> widths = model.crack_mouth_openings();
   const double crack_width = widths.empty() ? 0.0 : *std::max_element(widths.begin(), widths.end());
   std::vector<double> values = {x, p, crack_width};
   values.insert(values.end(), widths.begin(), widths.end());
   values.insert(values.end(), {double(iterations), double(cuts), _report.seconds()});
-  mpi::collectively(MPI_COMM_WORLD,
+  mpi::collectively(_comm,
                     [&]
                     {
                       if (_csv)
@@ -99,7 +100,7 @@ void Corrosion::describe_cracks(solver::Equilibrium& eq, Vec state, output::Summ
         largest[0] = std::max(largest[0], o.w[0]);
         largest[1] = std::max(largest[1], o.damage[0]);
       }
-    MPI_Allreduce(MPI_IN_PLACE, largest, 2, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+    MPI_Allreduce(MPI_IN_PLACE, largest, 2, MPI_DOUBLE, MPI_MAX, _comm);
     summary.cracks.push_back({_directions.angles[i] * 180 / std::numbers::pi,
                               bool(_directions.snapped[i]), mouth[i], largest[0], largest[1]});
   }
@@ -107,21 +108,21 @@ void Corrosion::describe_cracks(solver::Equilibrium& eq, Vec state, output::Summ
 
 double Corrosion::expansion_force(const interface::Interface& itf, double s) const
 {
-  const double N = pressure_force(itf)[0]; // [N]
+  const double N = pressure_force(itf, _comm)[0]; // [N]
   return laws::oxide_inputs(_oxide, penetration_at(s)).gap > 0 ? (_oxide.beta - 1) * N : 0.0;
 }
 
-std::array<double, 2> pressure_force(const interface::Interface& itf)
+std::array<double, 2> pressure_force(const interface::Interface& itf, MPI_Comm comm)
 {
   const std::vector<double> normal = itf.normal_force();
   std::array<double, 2> total = {-std::accumulate(normal.begin(), normal.end(), 0.0), itf.area()};
-  MPI_Allreduce(MPI_IN_PLACE, total.data(), 2, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  MPI_Allreduce(MPI_IN_PLACE, total.data(), 2, MPI_DOUBLE, MPI_SUM, comm);
   return total;
 }
 
-double mean_pressure(const interface::Interface& itf)
+double mean_pressure(const interface::Interface& itf, MPI_Comm comm)
 {
-  const auto [N, area] = pressure_force(itf);
+  const auto [N, area] = pressure_force(itf, comm);
   const double p = area > 0 ? N / area : 0.0;
   return p == 0 ? 0.0 : p; // never -0 in the progress line
 }

@@ -32,8 +32,9 @@ namespace pushout::driver
 class Corrosion
 {
 public:
-  /// Opens corrosion.csv in `out` if the scene has a corrosion stage.
-  Corrosion(const Scene& scene, const std::filesystem::path& out, RunReport& report);
+  /// Opens corrosion.csv in `out` if the scene has a corrosion stage;
+  /// `comm`: the run's processes.
+  Corrosion(const Scene& scene, const std::filesystem::path& out, RunReport& report, MPI_Comm comm);
 
   /// Whether the scene has a corrosion stage (penetration > 0).
   bool active() const { return _x_final > 0; }
@@ -68,14 +69,15 @@ private:
   laws::OxideLayer _oxide;
   mesh::CrackDirections _directions;
   RunReport& _report;
+  MPI_Comm _comm;
   std::optional<output::CurveWriter> _csv; ///< rank 0
 };
 
 /// The normal force N = -int t_n dA [N] and the area A [mm^2] of the whole
 /// interface, from the last evaluation of the laws. Collective.
-std::array<double, 2> pressure_force(const interface::Interface& itf);
+std::array<double, 2> pressure_force(const interface::Interface& itf, MPI_Comm comm);
 
 /// The mean pressure p = -int t_n dA / A over the whole interface [MPa],
 /// from the last evaluation of the laws. Collective.
-double mean_pressure(const interface::Interface& itf);
+double mean_pressure(const interface::Interface& itf, MPI_Comm comm);
 } // namespace pushout::driver

@@ -192,7 +192,7 @@ double PushOut::load_force(const model::Model& model) const
   // The interface forces are internal forces (f = +int N t on the concrete
   // side): the tube pushes the concrete with -t, downwards when P > 0.
   double local = model.interface().resultant()[2], P = 0;
-  MPI_Allreduce(&local, &P, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  MPI_Allreduce(&local, &P, 1, MPI_DOUBLE, MPI_SUM, model.comm());
   return P;
 }
 
@@ -211,7 +211,7 @@ std::vector<double> PushOut::row(std::span<const double> /*reactions*/, std::spa
   const std::vector<double> normal = itf.normal_force();
   local.insert(local.end(), normal.begin(), normal.end());
   std::vector<double> g(local.size());
-  MPI_Allreduce(local.data(), g.data(), int(local.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  MPI_Allreduce(local.data(), g.data(), int(local.size()), MPI_DOUBLE, MPI_SUM, model.comm());
   const double P = _copies * load_force(model), delta = g[1] / g[2], area = g[3];
   const double tau = P / (std::numbers::pi * _D * (_L - delta)); // eq. (1)
   double p_total = 0;

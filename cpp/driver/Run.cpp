@@ -27,7 +27,7 @@ constexpr double stop_grace_s = 5;
 /// --force), its estimate into the summary and the first progress line.
 void guard_size(const Scene& scene, const RunOptions& opt, RunReport& report)
 {
-  const ResourceEstimate estimate = estimate_resources(scene, MPI_COMM_WORLD);
+  const ResourceEstimate estimate = estimate_resources(scene, opt.comm);
   check_fits(estimate, scene, opt.force);
   output::Summary& s = report.summary();
   s.estimate = {estimate.size.dofs, estimate.size.cells, estimate.size.joint_elements,
@@ -52,7 +52,7 @@ void describe_model(const Scene& scene, const mesh::MeshData& data, const model:
   std::int64_t local_pairs = 0; // joint elements: interface and crack planes
   for (const interface::Interface* joints : model.joints())
     local_pairs += std::int64_t(joints->num_pairs());
-  MPI_Allreduce(&local_pairs, &s.interface_pairs, 1, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
+  MPI_Allreduce(&local_pairs, &s.interface_pairs, 1, MPI_INT64_T, MPI_SUM, model.comm());
   if (!report.talk())
     return;
   std::string symmetry;
@@ -71,20 +71,20 @@ void describe_model(const Scene& scene, const mesh::MeshData& data, const model:
 output::Summary run(const Scene& scene, const RunOptions& opt)
 {
   check_scene(scene);
-  RunReport report(scene, opt.out, opt.quiet);
+  RunReport report(scene, opt.out, opt.quiet, opt.comm);
   output::Summary& summary = report.summary();
   guard_size(scene, opt, report);
 
   // Mesh.
   std::optional<interrupt::Phase> phase(std::in_place, "meshing", 0);
   double t0 = report.seconds();
-  const mesh::MeshData data = mesh::generate(scene, opt.mesh_cache, summary.mesh_reused);
+  const mesh::MeshData data = mesh::generate(scene, opt.mesh_cache, summary.mesh_reused, opt.comm);
   summary.mesh_s = report.seconds() - t0;
 
   // Model, scenario and the solver of a load step.
   phase.emplace("set-up", 0);
   t0 = report.seconds();
-  model::Model model(MPI_COMM_WORLD, data, scene);
+  model::Model model(opt.comm, data, scene);
   const std::unique_ptr<Scenario> scenario = make_scenario(scene, data, model);
   solver::Equilibrium equilibrium(model);
   const auto solver = solver::LoadStepSolver::from_scene(equilibrium, scene);
@@ -93,12 +93,12 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   solver->prepare();                      // the condensation, if any
   summary.condensed_dofs = solver->condensed_size();
   summary.setup_s = report.seconds() - t0;
-  test_failure_at_setup();
-  mpi::checkpoint(MPI_COMM_WORLD); // an error of the set-up on any process
+  test_failure_at_setup(opt.comm);
+  mpi::checkpoint(opt.comm); // an error of the set-up on any process
 
   // Outputs and load steps.
   StepRecorder recorder(scene, opt.out, *scenario, equilibrium, report);
-  Corrosion corrosion(scene, opt.out, report);
+  Corrosion corrosion(scene, opt.out, report, opt.comm);
   StepLoop loop(*scenario, corrosion, equilibrium, *solver, recorder, report,
                 int(scene.integer("loading.max_cuts")),
                 scenario->has_load_factor() ? int(scene.integer("loading.dissipation_steps")) : 1);
@@ -121,12 +121,12 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   // An error on one process is agreed on here, where the solvers still
   // live: destroying a MUMPS factor is collective, so a process must not
   // leave with it while the others go on (common/mpi_errors.h).
-  summary.converged = mpi::collectively(MPI_COMM_WORLD, [&] { return loop.run(control); });
+  summary.converged = mpi::collectively(opt.comm, [&] { return loop.run(control); });
 
   phase.emplace("writing outputs", -1);
   summary.solve_s = report.seconds() - t0 - summary.output_s;
   summary.factorizations += solver->factorizations();
   recorder.close();
-  return report.finish(scene);
+  return report.finish(scene, opt.plot);
 }
 } // namespace pushout::driver

@@ -16,16 +16,17 @@ double peak_memory_here_mb()
 
 namespace
 {
-int rank_in_world()
+int rank_in(MPI_Comm comm)
 {
   int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_rank(comm, &rank);
   return rank;
 }
 } // namespace
 
-RunReport::RunReport(const Scene& scene, const std::filesystem::path& out, bool quiet)
-    : _out(out), _rank(rank_in_world()), _talk(_rank == 0 && !quiet),
+RunReport::RunReport(const Scene& scene, const std::filesystem::path& out, bool quiet,
+                     MPI_Comm comm)
+    : _out(out), _comm(comm), _rank(rank_in(comm)), _talk(_rank == 0 && !quiet),
       _on_stop(
           [this](int sig, const std::string& phase)
           {
@@ -47,7 +48,7 @@ RunReport::RunReport(const Scene& scene, const std::filesystem::path& out, bool 
           })
 {
   int size = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  MPI_Comm_size(comm, &size);
   _summary.model_type = scene.string("model.type");
   _summary.processes = size;
   if (_rank == 0)
@@ -66,9 +67,9 @@ double RunReport::seconds() const
   return std::chrono::duration<double>(Clock::now() - _start).count();
 }
 
-output::Summary RunReport::finish(const Scene& scene)
+output::Summary RunReport::finish(const Scene& scene, bool plot)
 {
-  if (_rank == 0 && scene.boolean("output.plot"))
+  if (_rank == 0 && plot && scene.boolean("output.plot"))
   {
     std::string why;
     if (!output::plot_curve(_out / "curve.csv", _out / "curve.png", _summary.model_type, why))
@@ -79,7 +80,7 @@ output::Summary RunReport::finish(const Scene& scene)
   }
   _summary.wall_s = seconds();
   double peak_mb = peak_memory_here_mb();
-  MPI_Allreduce(MPI_IN_PLACE, &peak_mb, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  MPI_Allreduce(MPI_IN_PLACE, &peak_mb, 1, MPI_DOUBLE, MPI_MAX, _comm);
   _summary.peak_memory_mb = peak_mb;
   if (_rank == 0)
     _summary.write(_out / "summary.json");

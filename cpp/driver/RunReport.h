@@ -10,6 +10,7 @@
 #include "../scene/Scene.h"
 #include <chrono>
 #include <filesystem>
+#include <mpi.h>
 #include <mutex>
 #include <string>
 
@@ -18,9 +19,10 @@ namespace pushout::driver
 class RunReport
 {
 public:
-  /// Writes the resolved scene (scene.toml) into `out` (rank 0) and sets
-  /// the stop report. `quiet`: no progress lines.
-  RunReport(const Scene& scene, const std::filesystem::path& out, bool quiet);
+  /// Writes the resolved scene (scene.toml) into `out` (rank 0 of the
+  /// run's processes `comm`) and sets the stop report. `quiet`: no progress
+  /// lines.
+  RunReport(const Scene& scene, const std::filesystem::path& out, bool quiet, MPI_Comm comm);
   RunReport(const RunReport&) = delete;
   RunReport& operator=(const RunReport&) = delete;
 
@@ -33,15 +35,16 @@ public:
   /// Seconds since the run started.
   double seconds() const;
 
-  /// The end of the run: curve.png (output.plot), the wall time and the
-  /// largest peak memory of the processes, summary.json (rank 0).
-  /// Collective. Returns the summary.
-  output::Summary finish(const Scene& scene);
+  /// The end of the run: curve.png (output.plot, unless not `plot`), the
+  /// wall time and the largest peak memory of the processes, summary.json
+  /// (rank 0). Collective. Returns the summary.
+  output::Summary finish(const Scene& scene, bool plot = true);
 
 private:
   using Clock = std::chrono::steady_clock;
   Clock::time_point _start = Clock::now();
   std::filesystem::path _out;
+  MPI_Comm _comm;
   int _rank = 0;
   bool _talk = false;
   output::Summary _summary;

@@ -63,7 +63,7 @@ void SingleJoint::apply(double s, double preload, solver::Equilibrium& eq) const
 }
 
 std::vector<double> SingleJoint::row(std::span<const double> reactions, std::span<const double> x,
-                                     const model::Model&) const
+                                     const model::Model& model) const
 {
   // Sums over owned dofs: u_s, F_s, count of x dofs, u_n, F_n, count of
   // joint nodes; reduced over processes.
@@ -79,7 +79,7 @@ std::vector<double> SingleJoint::row(std::span<const double> reactions, std::spa
     local[4] += _force_per_node;
   }
   double g[6];
-  MPI_Allreduce(local, g, 6, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  MPI_Allreduce(local, g, 6, MPI_DOUBLE, MPI_SUM, model.comm());
   return {g[0] / g[2], g[1], g[3] / g[5], g[4]};
 }
 

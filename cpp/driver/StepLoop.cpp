@@ -69,23 +69,23 @@ struct FactorizationCount
   ~FactorizationCount() { summary.factorizations += path.factorizations(); }
 };
 
-void test_failure(const char* at)
+void test_failure(const char* at, MPI_Comm comm)
 {
   static const char* fail_rank = std::getenv("PUSHOUT_TEST_FAIL_RANK");
   static const char* fail_at = std::getenv("PUSHOUT_TEST_FAIL_AT");
   if (!fail_rank || !fail_at || std::string(fail_at) != at)
     return;
   int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_rank(comm, &rank);
   if (rank == std::atoi(fail_rank))
     throw std::runtime_error(std::string("test failure on process ") + fail_rank + " at " + at +
                              " (PUSHOUT_TEST_FAIL_AT)");
 }
 } // namespace
 
-void test_failure_at_setup()
+void test_failure_at_setup(MPI_Comm comm)
 {
-  test_failure("setup");
+  test_failure("setup", comm);
 }
 
 StepLoop::StepLoop(Scenario& scenario, Corrosion& corrosion, solver::Equilibrium& equilibrium,
@@ -93,7 +93,8 @@ StepLoop::StepLoop(Scenario& scenario, Corrosion& corrosion, solver::Equilibrium
                    int max_cuts, int dissipation_steps)
     : _scenario(scenario), _corrosion(corrosion), _equilibrium(equilibrium), _solver(solver),
       _recorder(recorder), _report(report), _summary(report.summary()), _max_cuts(max_cuts),
-      _dissipation_steps(dissipation_steps), _x(equilibrium.model().create_vector())
+      _dissipation_steps(dissipation_steps), _comm(equilibrium.model().comm()),
+      _x(equilibrium.model().create_vector())
 {
   _x.set(0.0);
   _x_committed = _x.duplicate();
@@ -133,12 +134,12 @@ bool StepLoop::run(Control control)
 bool StepLoop::stop_requested()
 {
   if (_summary.steps == 2)
-    test_failure("step");
-  mpi::checkpoint(MPI_COMM_WORLD);
+    test_failure("step", _comm);
+  mpi::checkpoint(_comm);
   if (_summary.steps == 2)
-    test_failure("collective");
+    test_failure("collective", _comm);
   int local = interrupt::received(), global = 0;
-  MPI_Allreduce(&local, &global, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  MPI_Allreduce(&local, &global, 1, MPI_INT, MPI_MAX, _comm);
   if (global == 0)
     return false;
   _summary.interrupted = true;
@@ -531,7 +532,7 @@ std::array<double, 2> StepLoop::dissipation()
     local[0] += joints->dissipation();
     local[1] += joints->dissipation(true);
   }
-  MPI_Allreduce(local.data(), total.data(), 2, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  MPI_Allreduce(local.data(), total.data(), 2, MPI_DOUBLE, MPI_SUM, _comm);
   return total;
 }
 
@@ -540,7 +541,7 @@ double StepLoop::fracture_energy()
   double local = 0, total = 0;
   for (const interface::Interface* joints : _equilibrium.model().joints())
     local += joints->fracture_energy();
-  MPI_Allreduce(&local, &total, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  MPI_Allreduce(&local, &total, 1, MPI_DOUBLE, MPI_SUM, _comm);
   return total;
 }
 

@@ -160,11 +160,12 @@ private:
   output::Summary& _summary;
   int _max_cuts;
   int _dissipation_steps;
+  MPI_Comm _comm;                  ///< the run's processes
   solver::Vector _x, _x_committed; ///< whole-model displacement [mm]: trial and committed
 };
 
 /// Test hook (tests/e2e/test_mpi_errors.py, StepLoop.cpp): with
 /// PUSHOUT_TEST_FAIL_AT=setup, process PUSHOUT_TEST_FAIL_RANK alone throws
 /// at the end of the set-up.
-void test_failure_at_setup();
+void test_failure_at_setup(MPI_Comm comm);
 } // namespace pushout::driver

@@ -13,8 +13,9 @@ StepRecorder::StepRecorder(const Scene& scene, const std::filesystem::path& out,
       _reactions(equilibrium.model().create_vector())
 {
   int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  mpi::collectively(MPI_COMM_WORLD,
+  const MPI_Comm comm = equilibrium.model().comm();
+  MPI_Comm_rank(comm, &rank);
+  mpi::collectively(comm,
                     [&]
                     {
                       if (rank != 0)
@@ -42,7 +43,7 @@ void StepRecorder::record(Vec x, int iterations, int cuts, int step, int steps)
   }
   const std::string line = _scenario.progress(values);
   values.insert(values.end(), {double(iterations), double(cuts), _report.seconds()});
-  mpi::collectively(MPI_COMM_WORLD,
+  mpi::collectively(_equilibrium.model().comm(),
                     [&]
                     {
                       if (_curve)

@@ -1,5 +1,6 @@
 #include "plot.h"
 #include <cstdlib>
+#include <vector>
 
 #ifndef PUSHOUT_PYTHON
 #error "PUSHOUT_PYTHON must name the python interpreter with matplotlib"
@@ -10,10 +11,12 @@
 
 namespace pushout::output
 {
-bool plot_curve(const std::filesystem::path& csv, const std::filesystem::path& png,
-                const std::string& kind, std::string& why)
+namespace
 {
-  const std::filesystem::path script = std::filesystem::path(PUSHOUT_SCRIPTS_DIR) / "plot_curve.py";
+/// Runs scripts/`script` with `args` (each shell-quoted); false with `why`
+/// if it failed.
+bool run_script(const std::string& script, const std::vector<std::string>& args, std::string& why)
+{
   const auto quote = [](const std::string& s)
   {
     std::string q = "'";
@@ -21,9 +24,11 @@ bool plot_curve(const std::filesystem::path& csv, const std::filesystem::path& p
       q += c == '\'' ? std::string("'\\''") : std::string(1, c);
     return q + "'";
   };
-  const std::string cmd = quote(PUSHOUT_PYTHON) + " " + quote(script.string()) + " " +
-                          quote(csv.string()) + " " + quote(png.string()) + " --kind " +
-                          quote(kind) + " 2>&1";
+  std::string cmd = quote(PUSHOUT_PYTHON) + " " +
+                    quote((std::filesystem::path(PUSHOUT_SCRIPTS_DIR) / script).string());
+  for (const std::string& a : args)
+    cmd += " " + quote(a);
+  cmd += " 2>&1";
   const int rc = std::system(cmd.c_str());
   if (rc != 0)
   {
@@ -31,5 +36,18 @@ bool plot_curve(const std::filesystem::path& csv, const std::filesystem::path& p
     return false;
   }
   return true;
+}
+} // namespace
+
+bool plot_curve(const std::filesystem::path& csv, const std::filesystem::path& png,
+                const std::string& kind, std::string& why)
+{
+  return run_script("plot_curve.py", {csv.string(), png.string(), "--kind", kind}, why);
+}
+
+bool plot_sweep(const std::filesystem::path& folder, const std::filesystem::path& png,
+                std::string& why)
+{
+  return run_script("plot_sweep.py", {folder.string(), png.string()}, why);
 }
 } // namespace pushout::output

@@ -1,0 +1,438 @@
+#include "Sweep.h"
+#include "../common/Interrupt.h"
+#include "../common/mpi_errors.h"
+#include "../output/plot.h"
+#include "../scene/SceneError.h"
+#include "ResourceGuard.h"
+#include "Run.h"
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <mpi.h>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace pushout::driver
+{
+namespace
+{
+/// The outcome of one case, as its group's first process knows it.
+struct CaseResult
+{
+  int index = -1;
+  int exit_code = 1; ///< as `pushout run`'s
+  double wall_s = 0;
+  std::string message; ///< why it did not converge ("": it did)
+};
+
+/// The curve's abscissa and ordinate of a model type, for sweep.csv: name,
+/// unit.
+struct Axes
+{
+  std::string x, x_unit, y, y_unit;
+};
+Axes axes_of(const std::string& model_type)
+{
+  if (model_type == "single_joint")
+    return {"u_s", "mm", "F_s", "N"};
+  return {"delta", "mm", "tau", "MPa"};
+}
+
+std::vector<Override> overrides_of(const std::vector<std::string>& sets)
+{
+  std::vector<Override> o;
+  for (const std::string& s : sets)
+    o.push_back(parse_override(s));
+  return o;
+}
+
+std::string case_name(std::size_t i)
+{
+  std::ostringstream s;
+  s << "case_" << std::setw(3) << std::setfill('0') << i;
+  return s.str();
+}
+
+/// Runs one case on `group`; the exit code as `pushout run` gives it.
+CaseResult run_case(const SweepOptions& opt, const std::vector<std::string>& sets, int index,
+                    MPI_Comm group)
+{
+  CaseResult r;
+  r.index = index;
+  const auto t0 = std::chrono::steady_clock::now();
+  try
+  {
+    const output::Summary s = mpi::collectively<SceneError, TooLarge>(
+        group,
+        [&]
+        {
+          const Scene scene = Scene::load(opt.scene_file, overrides_of(sets));
+          std::filesystem::create_directories(opt.out / case_name(std::size_t(index)));
+          // Quiet, and no curve.png per case: sweep.png overlays them.
+          const RunOptions run_options{opt.out / case_name(std::size_t(index)),
+                                       opt.mesh_cache,
+                                       true,
+                                       opt.force,
+                                       group,
+                                       false};
+          return run(scene, run_options);
+        });
+    r.exit_code = s.interrupted ? 128 + s.signal : s.converged ? 0 : 3;
+    r.message = s.message;
+  }
+  catch (const SceneError& e)
+  {
+    r.exit_code = 2;
+    r.message = std::string("error in scene: ") + e.what();
+  }
+  catch (const TooLarge& e)
+  {
+    r.exit_code = 2;
+    r.message = e.what();
+  }
+  catch (const std::exception& e)
+  {
+    r.exit_code = 1;
+    r.message = e.what();
+  }
+  catch (const std::string& e)
+  {
+    r.exit_code = 1;
+    r.message = e;
+  }
+  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+/// The results of every process's cases on rank 0 (others: empty).
+std::vector<CaseResult> gather(const std::vector<CaseResult>& mine)
+{
+  nlohmann::json j = nlohmann::json::array();
+  for (const CaseResult& r : mine)
+    j.push_back({{"index", r.index},
+                 {"exit_code", r.exit_code},
+                 {"wall_s", r.wall_s},
+                 {"message", r.message}});
+  const std::string text = j.dump();
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  const int length = int(text.size());
+  const auto n = std::size_t(size);
+  std::vector<int> lengths(n, 0), offsets(n + 1, 0);
+  MPI_Gather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  for (int p = 0; p < size; ++p)
+    offsets[std::size_t(p) + 1] = offsets[std::size_t(p)] + lengths[std::size_t(p)];
+  std::string all(std::size_t(rank == 0 ? offsets.back() : 0), ' ');
+  MPI_Gatherv(text.data(), length, MPI_CHAR, all.data(), lengths.data(), offsets.data(), MPI_CHAR,
+              0, MPI_COMM_WORLD);
+  std::vector<CaseResult> results;
+  if (rank != 0)
+    return results;
+  for (int p = 0; p < size; ++p)
+    for (const auto& e : nlohmann::json::parse(all.substr(std::size_t(offsets[std::size_t(p)]),
+                                                          std::size_t(lengths[std::size_t(p)]))))
+      results.push_back({e["index"].get<int>(), e["exit_code"].get<int>(),
+                         e["wall_s"].get<double>(), e["message"].get<std::string>()});
+  std::sort(results.begin(), results.end(),
+            [](const CaseResult& a, const CaseResult& b) { return a.index < b.index; });
+  return results;
+}
+
+/// Columns of a CSV file of numbers (curve.csv): name -> values.
+std::vector<std::pair<std::string, std::vector<double>>> read_csv(const std::filesystem::path& file)
+{
+  std::vector<std::pair<std::string, std::vector<double>>> columns;
+  std::ifstream in(file);
+  std::string line;
+  if (!std::getline(in, line))
+    return columns;
+  std::stringstream header(line);
+  for (std::string name; std::getline(header, name, ',');)
+    columns.push_back({name, {}});
+  while (std::getline(in, line))
+  {
+    std::stringstream row(line);
+    std::string cell;
+    for (std::size_t c = 0; c < columns.size() && std::getline(row, cell, ','); ++c)
+      columns[c].second.push_back(std::stod(cell));
+  }
+  return columns;
+}
+
+std::string csv_cell(const std::string& s)
+{
+  if (s.find_first_of(",\"\n") == std::string::npos)
+    return s;
+  std::string q = "\"";
+  for (char c : s)
+    q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+/// sweep.csv (rank 0): one row per case.
+void write_table(const SweepOptions& opt, const std::vector<Variation>& vary,
+                 const std::vector<std::vector<std::string>>& cases,
+                 const std::vector<CaseResult>& results, const Axes& ax)
+{
+  std::ofstream out(opt.out / "sweep.csv");
+  out << "case";
+  for (const Variation& v : vary)
+    out << "," << csv_cell(v.key);
+  out << ",peak_" << ax.y << "_" << ax.y_unit << "," << ax.x << "_at_peak_" << ax.x_unit << ","
+      << ax.y << "_last_" << ax.y_unit << "," << ax.x << "_last_" << ax.x_unit
+      << ",steps,converged,exit_code,wall_s,message\n";
+  out << std::setprecision(12);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const CaseResult& r : results)
+  {
+    const std::string name = case_name(std::size_t(r.index));
+    out << name;
+    for (const std::string& set : cases[std::size_t(r.index)])
+      out << "," << csv_cell(set.substr(set.find('=') + 1));
+    double peak = nan, x_peak = nan, y_last = nan, x_last = nan;
+    std::size_t rows = 0;
+    const auto curve = read_csv(opt.out / name / "curve.csv");
+    const auto column = [&](const std::string& c) -> const std::vector<double>*
+    {
+      for (const auto& [n, values] : curve)
+        if (n == c)
+          return &values;
+      return nullptr;
+    };
+    const auto* x = column(ax.x + "_" + ax.x_unit);
+    const auto* y = column(ax.y + "_" + ax.y_unit);
+    if (x && y && !y->empty())
+    {
+      const auto it = std::max_element(y->begin(), y->end());
+      peak = *it;
+      x_peak = (*x)[std::size_t(it - y->begin())];
+      y_last = y->back();
+      x_last = x->back();
+      rows = y->size() - 1;
+    }
+    out << "," << peak << "," << x_peak << "," << y_last << "," << x_last << "," << rows << ","
+        << (r.exit_code == 0 ? 1 : 0) << "," << r.exit_code << "," << r.wall_s << ","
+        << csv_cell(r.message) << "\n";
+  }
+  if (!out)
+    throw std::runtime_error("cannot write " + (opt.out / "sweep.csv").string());
+}
+} // namespace
+
+Variation parse_variation(const std::string& text)
+{
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
+    throw SceneError("--vary '" + text + "': expected key=value,value,...");
+  Variation v{text.substr(0, eq), {}};
+  std::string value;
+  int depth = 0;
+  for (char c : text.substr(eq + 1))
+  {
+    depth += c == '[' ? 1 : c == ']' ? -1 : 0;
+    if (c == ',' && depth == 0)
+    {
+      v.values.push_back(value);
+      value.clear();
+    }
+    else
+      value += c;
+  }
+  v.values.push_back(value);
+  if (depth != 0 ||
+      std::any_of(v.values.begin(), v.values.end(), [](const std::string& s) { return s.empty(); }))
+    throw SceneError("--vary '" + text + "': an empty value or unbalanced [ ]");
+  return v;
+}
+
+std::vector<std::vector<std::string>> cartesian_cases(const std::vector<Variation>& vary)
+{
+  std::vector<std::vector<std::string>> cases = {{}};
+  for (const Variation& v : vary)
+  {
+    std::vector<std::vector<std::string>> next;
+    for (const auto& c : cases)
+      for (const std::string& value : v.values)
+      {
+        next.push_back(c);
+        next.back().push_back(v.key + "=" + value);
+      }
+    cases = std::move(next);
+  }
+  return cases;
+}
+
+int sweep(const SweepOptions& opt)
+{
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<Variation> vary;
+  std::vector<std::vector<std::string>> cases;
+  std::string model_type, plot;
+  try
+  {
+    // Every case's scene is read here, so that a bad value stops the sweep
+    // before any case runs (the same on every process).
+    mpi::collectively<SceneError>(
+        MPI_COMM_WORLD,
+        [&]
+        {
+          if (opt.vary.empty())
+            throw SceneError("pushout sweep needs at least one --vary key=value,value,...");
+          if (opt.ranks_per_case < 1 || size % opt.ranks_per_case != 0)
+            throw SceneError("--ranks-per-case " + std::to_string(opt.ranks_per_case) +
+                             " must divide the " + std::to_string(size) + " processes");
+          for (const std::string& v : opt.vary)
+            vary.push_back(parse_variation(v));
+          cases = cartesian_cases(vary);
+          for (std::size_t i = 0; i < cases.size(); ++i)
+          {
+            std::vector<std::string> sets = opt.sets;
+            sets.insert(sets.end(), cases[i].begin(), cases[i].end());
+            try
+            {
+              const Scene scene = Scene::load(opt.scene_file, overrides_of(sets));
+              model_type = scene.string("model.type");
+              plot = scene.boolean("output.plot") ? "yes" : "";
+            }
+            catch (const SceneError& e)
+            {
+              std::string what;
+              for (const std::string& s : cases[i])
+                what += (what.empty() ? "" : " ") + s;
+              throw SceneError(case_name(i) + " (" + what + "): " + e.what());
+            }
+          }
+          if (rank == 0)
+          {
+            std::error_code ec;
+            std::filesystem::create_directories(opt.out, ec);
+            if (ec || !std::ofstream(opt.out / ".pushout-write-test"))
+              throw SceneError("--out '" + opt.out.string() + "': cannot create or write it");
+            std::filesystem::remove(opt.out / ".pushout-write-test");
+          }
+        });
+  }
+  catch (const SceneError& e)
+  {
+    if (rank == 0)
+      std::cerr << "pushout: error in scene: " << e.what() << std::endl;
+    return 2;
+  }
+
+  // Groups of ranks_per_case processes, each with its own agreement channel.
+  const int groups = size / opt.ranks_per_case;
+  MPI_Comm group;
+  MPI_Comm_split(MPI_COMM_WORLD, rank / opt.ranks_per_case, rank, &group);
+  int group_rank = 0;
+  MPI_Comm_rank(group, &group_rank);
+  const bool leader = group_rank == 0;
+  if (rank == 0 && !opt.quiet)
+    std::cout << "pushout sweep: " << cases.size() << " cases, " << groups
+              << (groups == 1 ? " group" : " groups") << " of " << opt.ranks_per_case
+              << (opt.ranks_per_case == 1 ? " process" : " processes") << std::endl;
+  mpi::set_run_processes(group);
+
+  // The shared counter of the next case (rank 0's window).
+  int* next = nullptr;
+  MPI_Win window;
+  MPI_Win_allocate(rank == 0 ? MPI_Aint(sizeof(int)) : 0, sizeof(int), MPI_INFO_NULL,
+                   MPI_COMM_WORLD, &next, &window);
+  if (rank == 0)
+  {
+    MPI_Win_lock(MPI_LOCK_EXCLUSIVE, 0, 0, window);
+    *next = 0;
+    MPI_Win_unlock(0, window);
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+
+  std::vector<CaseResult> mine;
+  int stop_signal = 0;
+  for (;;)
+  {
+    int index = 0;
+    if (leader)
+    {
+      const int one = 1;
+      MPI_Win_lock(MPI_LOCK_SHARED, 0, 0, window);
+      MPI_Fetch_and_op(&one, &index, MPI_INT, 0, 0, MPI_SUM, window);
+      MPI_Win_unlock(0, window);
+    }
+    MPI_Bcast(&index, 1, MPI_INT, 0, group);
+    int signal = interrupt::received();
+    MPI_Allreduce(MPI_IN_PLACE, &signal, 1, MPI_INT, MPI_MAX, group);
+    if (signal != 0)
+      stop_signal = signal;
+    if (index >= int(cases.size()) || stop_signal != 0)
+      break;
+    std::vector<std::string> sets = opt.sets;
+    sets.insert(sets.end(), cases[std::size_t(index)].begin(), cases[std::size_t(index)].end());
+    const CaseResult r = run_case(opt, sets, index, group);
+    if (r.exit_code > 128)
+      stop_signal = r.exit_code - 128;
+    if (!leader)
+      continue;
+    mine.push_back(r);
+    if (!opt.quiet)
+    {
+      std::string what;
+      for (const std::string& s : cases[std::size_t(index)])
+        what += (what.empty() ? "" : " ") + s;
+      std::ostringstream line;
+      line << "sweep: " << case_name(std::size_t(index)) << " (" << what << "): "
+           << (r.exit_code == 0 ? "done" : "failed (exit " + std::to_string(r.exit_code) + ")")
+           << " in " << std::fixed << std::setprecision(2) << r.wall_s << " s"
+           << (r.message.empty() ? "" : ": " + r.message) << " [process " << rank << "]\n";
+      std::cout << line.str() << std::flush;
+    }
+  }
+  MPI_Win_free(&window);
+  mpi::set_run_processes(MPI_COMM_WORLD);
+  MPI_Comm_free(&group);
+  MPI_Allreduce(MPI_IN_PLACE, &stop_signal, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+
+  const std::vector<CaseResult> results = gather(mine);
+  int code = 0;
+  if (rank == 0)
+  {
+    try
+    {
+      write_table(opt, vary, cases, results, axes_of(model_type));
+    }
+    catch (const std::exception& e)
+    {
+      std::cerr << "pushout: error: " << e.what() << std::endl;
+      code = 1;
+    }
+    std::string why;
+    if (!plot.empty() && !output::plot_sweep(opt.out, opt.out / "sweep.png", why))
+      std::cerr << "pushout: warning: no sweep.png: " << why << std::endl;
+    const auto converged = std::count_if(results.begin(), results.end(),
+                                         [](const CaseResult& r) { return r.exit_code == 0; });
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (!opt.quiet || converged < std::ptrdiff_t(cases.size()))
+      (converged < std::ptrdiff_t(cases.size()) ? std::cerr : std::cout)
+          << "pushout sweep: " << converged << " of " << cases.size() << " cases converged"
+          << (results.size() < cases.size()
+                  ? " (" + std::to_string(cases.size() - results.size()) + " not run)"
+                  : "")
+          << " in " << std::fixed << std::setprecision(2) << wall
+          << " s; table: " << (opt.out / "sweep.csv").string()
+          << (plot.empty() ? "" : ", plot: " + (opt.out / "sweep.png").string()) << std::endl;
+    if (code == 0 && stop_signal != 0)
+      code = 128 + stop_signal;
+    else if (code == 0 && converged < std::ptrdiff_t(cases.size()))
+      code = 3;
+  }
+  MPI_Bcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return code;
+}
+} // namespace pushout::driver

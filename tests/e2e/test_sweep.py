@@ -1,0 +1,119 @@
+"""pushout sweep (the Cartesian product of scene values, driver/Sweep.h):
+
+1. Serial: 2 x 2 cases of the friction push-out (mu x dT, coarse mesh):
+   sweep.csv has one row per case with the varied values, the peak and last
+   tau; every case folder has its resolved scene.toml, curve.csv and
+   summary.json; each case's curve equals that of `pushout run` with the
+   same --set values to 1e-10; the plateau tau grows with mu and |dT|.
+2. MPI: the same sweep on 2 processes (two groups of one: the cases spread
+   over them) gives the serial curves to 1e-10; with --ranks-per-case 2
+   (one group: each case on 2 processes, the whole model) a case equals
+   `pushout run` on 2 processes to 1e-10, and the serial (condensed) sweep
+   to Newton's tolerance, 1e-8.
+3. A case refused by the size guard (a 4000-per-quarter mesh) is a row with
+   its exit code and message while the other case runs; the sweep exits 3.
+4. Bad input exits 2 with one message: --vary without values, an unknown
+   key (naming the case), a value that is not a number, --ranks-per-case
+   that does not divide the processes."""
+import csv
+import os
+import shutil
+import subprocess
+
+from common import PUSHOUT, SOURCE, check, curve, out_dir, run
+
+SCENE = os.path.join(SOURCE, "demo", "pushout_friction.toml")
+COARSE = ["--set", "mesh.elements_per_quarter=4", "--set", "mesh.elements_through_thickness=2"]
+VARY = ["--vary", "interface.0.mu=0.2,0.4", "--vary", "loading.temperature_change=-5,-25"]
+MPIRUN = shutil.which("mpirun")
+MPI = [MPIRUN, "--allow-run-as-root", "--oversubscribe"] if MPIRUN else None
+ENV = dict(os.environ, OMPI_MCA_btl_vader_single_copy_mechanism="none")
+
+
+def sweep(out, extra=(), processes=None, vary=VARY):
+    cmd = [PUSHOUT, "sweep", SCENE, "--out", out, "--quiet"] + COARSE + list(vary) + list(extra)
+    if processes:
+        cmd = MPI + ["-n", str(processes)] + cmd
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=600, env=ENV)
+
+
+def table(out):
+    with open(os.path.join(out, "sweep.csv"), newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def same_curves(a, b):
+    """Largest relative difference of the curve columns (not wall_s)."""
+    worst = 0.0
+    for ra, rb in zip(a, b):
+        for k in ra:
+            if k in ("wall_s", "newton_iterations", "cuts"):
+                continue
+            worst = max(worst, abs(ra[k] - rb[k]) / max(1.0, abs(ra[k])))
+    return worst if len(a) == len(b) else float("inf")
+
+
+# 1. Serial.
+serial = out_dir("sweep_serial")
+p = sweep(serial)
+check(p.returncode == 0, f"serial sweep: exit {p.returncode} {p.stderr[-500:]}")
+rows = table(serial)
+check([(r["interface.0.mu"], r["loading.temperature_change"]) for r in rows] ==
+      [("0.2", "-5"), ("0.2", "-25"), ("0.4", "-5"), ("0.4", "-25")]
+      and all(r["converged"] == "1" for r in rows),
+      "sweep.csv: 4 rows, mu varying slowest, all converged")
+for r in rows:
+    for f in ("scene.toml", "curve.csv", "summary.json"):
+        check(os.path.exists(os.path.join(serial, r["case"], f)), f"{r['case']}/{f} written")
+tau = {(r["interface.0.mu"], r["loading.temperature_change"]): float(r["tau_last_MPa"]) for r in rows}
+check(tau[("0.4", "-25")] > tau[("0.2", "-25")] > tau[("0.2", "-5")] > 0
+      and abs(tau[("0.4", "-25")] / tau[("0.2", "-25")] - 2) < 0.05,
+      f"plateau tau grows with mu (x{tau[('0.4', '-25')] / tau[('0.2', '-25')]:.3f} for mu x2) and |dT|")
+direct = out_dir("sweep_direct_case_002")
+run(SCENE, direct, sets=["mesh.elements_per_quarter=4", "mesh.elements_through_thickness=2",
+                         "interface.0.mu=0.4", "loading.temperature_change=-5"])
+d = same_curves(curve(direct), curve(os.path.join(serial, "case_002")))
+check(d < 1e-10, f"case_002 equals pushout run with its values (largest difference {d:.1e})")
+
+# 2. MPI. Two groups of one process run what the serial sweep runs; a group
+# of two runs the whole model (no condensation on 2 processes), which equals
+# `pushout run` on 2 processes, and the condensed serial run to Newton's
+# tolerance (1e-8, as tests/e2e/test_mpi.py).
+if MPI:
+    two = out_dir("sweep_direct_case_003_2_processes")
+    run(SCENE, two, sets=["mesh.elements_per_quarter=4", "mesh.elements_through_thickness=2",
+                          "interface.0.mu=0.4", "loading.temperature_change=-25"], mpirun=2)
+    for name, extra, tol in (("two_groups", [], 1e-10), ("ranks_per_case_2", ["--ranks-per-case", "2"], 1e-8)):
+        out = out_dir(f"sweep_{name}")
+        p = sweep(out, extra, processes=2)
+        check(p.returncode == 0, f"{name}: exit {p.returncode} {p.stderr[-500:]}")
+        worst = max(same_curves(curve(os.path.join(serial, r["case"])), curve(os.path.join(out, r["case"])))
+                    for r in rows)
+        check(worst < tol, f"{name}: the serial sweep's curves to {worst:.1e}")
+        if name == "ranks_per_case_2":
+            d = same_curves(curve(two), curve(os.path.join(out, "case_003")))
+            check(d < 1e-10, f"{name}: case_003 equals pushout run on 2 processes to {d:.1e}")
+else:
+    print("SKIPPED (MPI part): mpirun not found")
+
+# 3. A case refused by the size guard.
+out = out_dir("sweep_refused")
+p = sweep(out, vary=["--vary", "mesh.elements_per_quarter=4,4000"])
+rows = table(out)
+check(p.returncode == 3 and rows[0]["converged"] == "1" and rows[1]["exit_code"] == "2"
+      and "memory" in rows[1]["message"],
+      f"the refused case is a row (exit {rows[1]['exit_code']}: {rows[1]['message'][:80]}...), "
+      f"the other ran; the sweep exits {p.returncode}")
+
+# 4. Bad input.
+for what, vary, extra, n in (
+        ("no values", ["--vary", "interface.0.mu="], [], None),
+        ("unknown key", ["--vary", "interface.0.muu=0.2"], [], None),
+        ("not a number", ["--vary", "interface.0.mu=0.2,abc"], [], None),
+        ("ranks per case", VARY, ["--ranks-per-case", "2"], 3 if MPI else None)):
+    if what == "ranks per case" and not MPI:
+        continue
+    p = sweep(out_dir("sweep_bad"), extra, processes=n, vary=vary)
+    message = [line for line in p.stderr.splitlines() if line.startswith("pushout")]
+    check(p.returncode == 2 and len(message) == 1,
+          f"{what}: exit {p.returncode}, {message[0] if message else p.stderr[-300:]}")
