@@ -102,7 +102,7 @@ int run_scene(const std::string& scene_file, const std::string& out,
                                     if (rank == 0)
                                       probe_output_folder(out);
                                   });
-    const driver::RunOptions options{out, mesh::default_cache_dir(), quiet, force};
+    const driver::RunOptions options{out, pushout::mesh::default_cache_dir(), quiet, force};
     const output::Summary s = mpi::collectively<SceneError, driver::TooLarge>(
         MPI_COMM_WORLD, [&] { return driver::run(scene, options); });
     if (s.interrupted)

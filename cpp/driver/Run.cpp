@@ -11,8 +11,10 @@
 #include "Scenario.h"
 #include "StepLoop.h"
 #include "StepRecorder.h"
+#include <iomanip>
 #include <iostream>
 #include <optional>
+#include <sstream>
 
 namespace pushout::driver
 {
@@ -68,45 +70,83 @@ void describe_model(const Scene& scene, const mesh::MeshData& data, const model:
 }
 } // namespace
 
-output::Summary run(const Scene& scene, const RunOptions& opt)
+Simulation::Simulation(const Scene& scene, const RunOptions& opt, RunReport& report)
+    : _fingerprint(set_up_fingerprint(scene))
 {
-  check_scene(scene);
-  RunReport report(scene, opt.out, opt.quiet, opt.comm);
   output::Summary& summary = report.summary();
   guard_size(scene, opt, report);
 
   // Mesh.
   std::optional<interrupt::Phase> phase(std::in_place, "meshing", 0);
   double t0 = report.seconds();
-  const mesh::MeshData data = mesh::generate(scene, opt.mesh_cache, summary.mesh_reused, opt.comm);
+  _data = mesh::generate(scene, opt.mesh_cache, summary.mesh_reused, opt.comm);
   summary.mesh_s = report.seconds() - t0;
 
-  // Model, scenario and the solver of a load step.
+  // Model and the solver of a load step.
   phase.emplace("set-up", 0);
   t0 = report.seconds();
-  model::Model model(opt.comm, data, scene);
-  const std::unique_ptr<Scenario> scenario = make_scenario(scene, data, model);
-  solver::Equilibrium equilibrium(model);
-  const auto solver = solver::LoadStepSolver::from_scene(equilibrium, scene);
-  describe_model(scene, data, model, *solver, report);
-  scenario->apply_load(0.0, equilibrium); // the constraints of step 0
-  solver->prepare();                      // the condensation, if any
-  summary.condensed_dofs = solver->condensed_size();
+  _model = std::make_unique<model::Model>(opt.comm, _data, scene);
+  _equilibrium = std::make_unique<solver::Equilibrium>(*_model);
+  _solver = solver::LoadStepSolver::from_scene(*_equilibrium, scene);
+  describe_model(scene, _data, *_model, *_solver, report);
+  make_scenario(scene, _data, *_model)->apply_load(0.0, *_equilibrium); // step 0's constraints
+  _solver->prepare();                                                   // the condensation, if any
+  summary.condensed_dofs = _solver->condensed_size();
   summary.setup_s = report.seconds() - t0;
+  _set_up = summary;
   test_failure_at_setup(opt.comm);
   mpi::checkpoint(opt.comm); // an error of the set-up on any process
+}
+
+Simulation::~Simulation() = default;
+
+std::string Simulation::set_up_fingerprint(const Scene& scene)
+{
+  std::ostringstream s;
+  s << std::setprecision(17);
+  for (const KeyDef& k : scene_keys())
+    for (const char* prefix : {"model.", "geometry.", "mesh.", "concrete.", "steel.", "solver."})
+      if (const Value* v = scene.find(k.path); v && k.path.starts_with(prefix))
+        s << k.path << "=" << to_toml(*v) << "\n";
+  if (scene.string("model.type") == "pushout")
+    s << "loading.thermal_tube_top=" << scene.string("loading.thermal_tube_top") << "\n";
+  for (const CrackSpec& c : scene.cracks())
+    s << "crack.angle=" << (c.angle_deg ? std::to_string(*c.angle_deg) : "nearest_face") << "\n";
+  return s.str();
+}
+
+void Simulation::load_steps(const Scene& scene, const RunOptions& opt, RunReport& report)
+{
+  output::Summary& summary = report.summary();
+  if (_runs++ > 0)
+  {
+    // The set-up of an earlier scene: its sizes, no time.
+    summary.estimate = _set_up.estimate;
+    summary.symmetry = _set_up.symmetry;
+    summary.mesh_reused = true;
+    summary.dofs = _set_up.dofs;
+    summary.cells = _set_up.cells;
+    summary.interface_pairs = _set_up.interface_pairs;
+    summary.condensed_dofs = _set_up.condensed_dofs;
+    summary.setup_reused = true;
+    _model->set_laws(scene);
+    _solver->restart();
+  }
+  const std::unique_ptr<Scenario> scenario = make_scenario(scene, _data, *_model);
+  scenario->apply_load(0.0, *_equilibrium);
+  const int factorizations_before = _solver->factorizations();
 
   // Outputs and load steps.
-  StepRecorder recorder(scene, opt.out, *scenario, equilibrium, report);
+  StepRecorder recorder(scene, opt.out, *scenario, *_equilibrium, report);
   Corrosion corrosion(scene, opt.out, report, opt.comm);
-  StepLoop loop(*scenario, corrosion, equilibrium, *solver, recorder, report,
+  StepLoop loop(*scenario, corrosion, *_equilibrium, *_solver, recorder, report,
                 int(scene.integer("loading.max_cuts")),
                 scenario->has_load_factor() ? int(scene.integer("loading.dissipation_steps")) : 1);
   if (scene.boolean("solver.time_linear_solve"))
     loop.time_linear_solve();
   report.publish();
-  phase.emplace("load steps", stop_grace_s);
-  t0 = report.seconds();
+  std::optional<interrupt::Phase> phase(std::in_place, "load steps", stop_grace_s);
+  const double t0 = report.seconds();
   const auto control = [&]
   {
     if (!scenario->has_load_factor())
@@ -125,8 +165,16 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
 
   phase.emplace("writing outputs", -1);
   summary.solve_s = report.seconds() - t0 - summary.output_s;
-  summary.factorizations += solver->factorizations();
+  summary.factorizations += _solver->factorizations() - factorizations_before;
   recorder.close();
+}
+
+output::Summary run(const Scene& scene, const RunOptions& opt)
+{
+  check_scene(scene);
+  RunReport report(scene, opt.out, opt.quiet, opt.comm);
+  Simulation simulation(scene, opt, report);
+  simulation.load_steps(scene, opt, report);
   return report.finish(scene, opt.plot);
 }
 } // namespace pushout::driver

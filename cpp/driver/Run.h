@@ -1,10 +1,23 @@
 // One simulation: scene -> mesh -> model -> step loop -> outputs.
+//
+// What depends on the bulk alone (the mesh, the model, the solver of a load
+// step with its factorisation and condensed flexibility) is a Simulation,
+// kept by `pushout sweep` (and `pushout fit`) for the next evaluation of a
+// scene that differs only in what that does not depend on: the interface
+// and crack laws, the loads, the corrosion stage, the outputs.
 #pragma once
 
+#include "../mesh/MeshData.h"
+#include "../model/Model.h"
 #include "../output/Summary.h"
 #include "../scene/Scene.h"
+#include "../solver/Equilibrium.h"
+#include "../solver/LoadStepSolver.h"
+#include "RunReport.h"
 #include <filesystem>
+#include <memory>
 #include <mpi.h>
+#include <string>
 
 namespace pushout::driver
 {
@@ -18,8 +31,43 @@ struct RunOptions
   bool plot = true;                 ///< curve.png if output.plot (a sweep draws sweep.png)
 };
 
-/// Runs the scene on options.comm; writes curve.csv, summary.json,
-/// scene.toml (and curve.png, XDMF) into options.out. Returns the summary; a step that
+class Simulation
+{
+public:
+  /// The size guard, the mesh and the set-up of `scene` on options.comm,
+  /// their sizes and times into the report's summary. Collective.
+  Simulation(const Scene& scene, const RunOptions& options, RunReport& report);
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  /// Whether `scene` can run on this set-up: the same set-up keys
+  /// (set_up_fingerprint).
+  bool fits(const Scene& scene) const { return set_up_fingerprint(scene) == _fingerprint; }
+
+  /// The load steps of `scene` (its laws made anew, the state zero) with
+  /// their outputs in options.out, into the report's summary (the set-up's
+  /// sizes copied, its times zero if it was built for another scene).
+  /// Collective.
+  void load_steps(const Scene& scene, const RunOptions& options, RunReport& report);
+
+  /// The scene keys the set-up depends on, as text: model, geometry, mesh,
+  /// materials, solver keys, the thermal tube-top condition and the crack
+  /// planes' directions.
+  static std::string set_up_fingerprint(const Scene& scene);
+
+private:
+  std::string _fingerprint;
+  mesh::MeshData _data;
+  std::unique_ptr<model::Model> _model;
+  std::unique_ptr<solver::Equilibrium> _equilibrium;
+  std::unique_ptr<solver::LoadStepSolver> _solver;
+  output::Summary _set_up; ///< the summary's set-up fields
+  int _runs = 0;           ///< load_steps() so far
+};
+
+/// Runs the scene; writes curve.csv, summary.json, scene.toml (and
+/// curve.png, XDMF) into options.out. Returns the summary; a step that
 /// cannot converge ends the run with summary.converged = false.
 output::Summary run(const Scene& scene, const RunOptions& options);
 } // namespace pushout::driver

@@ -5,6 +5,8 @@
 #include "../scene/SceneError.h"
 #include "ResourceGuard.h"
 #include "Run.h"
+#include "RunReport.h"
+#include "Scenario.h"
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -57,9 +59,11 @@ std::string case_name(std::size_t i)
   return s.str();
 }
 
-/// Runs one case on `group`; the exit code as `pushout run` gives it.
+/// Runs one case on `group`, on the set-up `simulation` holds if the case
+/// fits it (else a new one, kept for the next); the exit code as `pushout
+/// run` gives it.
 CaseResult run_case(const SweepOptions& opt, const std::vector<std::string>& sets, int index,
-                    MPI_Comm group)
+                    MPI_Comm group, std::unique_ptr<Simulation>& simulation)
 {
   CaseResult r;
   r.index = index;
@@ -79,7 +83,15 @@ CaseResult run_case(const SweepOptions& opt, const std::vector<std::string>& set
                                        opt.force,
                                        group,
                                        false};
-          return run(scene, run_options);
+          check_scene(scene);
+          RunReport report(scene, run_options.out, true, group);
+          if (!simulation || !simulation->fits(scene))
+          {
+            simulation.reset(); // its memory first
+            simulation = std::make_unique<Simulation>(scene, run_options, report);
+          }
+          simulation->load_steps(scene, run_options, report);
+          return report.finish(scene, false);
         });
     r.exit_code = s.interrupted ? 128 + s.signal : s.converged ? 0 : 3;
     r.message = s.message;
@@ -104,6 +116,8 @@ CaseResult run_case(const SweepOptions& opt, const std::vector<std::string>& set
     r.exit_code = 1;
     r.message = e;
   }
+  if (r.exit_code == 1 || r.exit_code == 2)
+    simulation.reset(); // an error may have left it half built: not reused
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }
@@ -354,6 +368,7 @@ int sweep(const SweepOptions& opt)
   MPI_Barrier(MPI_COMM_WORLD);
 
   std::vector<CaseResult> mine;
+  std::unique_ptr<Simulation> simulation; // the group's last set-up
   int stop_signal = 0;
   for (;;)
   {
@@ -374,7 +389,7 @@ int sweep(const SweepOptions& opt)
       break;
     std::vector<std::string> sets = opt.sets;
     sets.insert(sets.end(), cases[std::size_t(index)].begin(), cases[std::size_t(index)].end());
-    const CaseResult r = run_case(opt, sets, index, group);
+    const CaseResult r = run_case(opt, sets, index, group, simulation);
     if (r.exit_code > 128)
       stop_signal = r.exit_code - 128;
     if (!leader)
@@ -393,6 +408,7 @@ int sweep(const SweepOptions& opt)
       std::cout << line.str() << std::flush;
     }
   }
+  simulation.reset(); // on the group, before it goes
   MPI_Win_free(&window);
   mpi::set_run_processes(MPI_COMM_WORLD);
   MPI_Comm_free(&group);

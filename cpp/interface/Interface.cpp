@@ -81,7 +81,19 @@ Interface::Interface(std::vector<std::int32_t> pair_blocks, const std::vector<do
       }
     }
   }
+  reset();
+}
+
+void Interface::set_layers(std::vector<std::unique_ptr<laws::InterfaceLaw>> layers)
+{
+  _layers = std::move(layers);
+  reset();
+}
+
+void Interface::reset()
+{
   std::vector<int> sizes;
+  _softens.clear();
   for (const auto& law : _layers)
   {
     if (law->state_size() > max_state_size)
@@ -95,6 +107,7 @@ Interface::Interface(std::vector<std::int32_t> pair_blocks, const std::vector<do
   _w_last.assign(3 * num_points(), 0.0);
   _t0 = _w0 = _w_last;
   _dissipation_last.assign(2 * num_points(), 0.0);
+  _inputs = {};
 }
 
 laws::Vec3 Interface::jump(std::span<const double> u, std::size_t p, std::size_t q) const

@@ -59,6 +59,10 @@ public:
   /// scenario's time unit; 0: none).
   void set_time_increment(double dt) { _inputs.dt = dt; }
 
+  /// New laws for the layers (a fit's or a sweep's next evaluation on the
+  /// same mesh): the state back to zero, as after construction.
+  void set_layers(std::vector<std::unique_ptr<laws::InterfaceLaw>> layers);
+
   /// The oxide layer of the corrosion stage: free normal opening g0 [mm] and
   /// normal compliance [mm^3/N], read by laws that model it (oxide_friction).
   void set_oxide(double gap, double compliance)
@@ -174,8 +178,10 @@ private:
   {
     return _t_layer.data() + 3 * (i * _layers.size() + l);
   }
-  std::vector<double> _w_last;  ///< jump per point, local frame, last evaluation [mm]
-  std::vector<bool> _softens;   ///< per layer: fracture_energy() > 0
+  std::vector<double> _w_last; ///< jump per point, local frame, last evaluation [mm]
+  std::vector<bool> _softens;  ///< per layer: fracture_energy() > 0
+  /// The state, tractions and step inputs of the layers as before any step.
+  void reset();
   std::vector<double> _t0, _w0; ///< softening traction, jump per point at the last commit
   /// per point: all layers, softening layers; last evaluation [N/mm]
   std::vector<double> _dissipation_last;

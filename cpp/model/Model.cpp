@@ -462,6 +462,16 @@ Vec Model::thermal_load(double dT_value) const
   return b;
 }
 
+void Model::set_laws(const Scene& scene)
+{
+  if (scene.cracks().size() != _cracks.size())
+    throw std::logic_error("Model::set_laws: another number of crack planes");
+  _interface->set_layers(make_layers(scene));
+  for (std::size_t i = 0; i < _cracks.size(); ++i)
+    _cracks[i]->set_layers(crack_layers(scene, i));
+  std::fill(_u->x()->mutable_array().begin(), _u->x()->mutable_array().end(), 0.0);
+}
+
 Vec Model::mean_jump_functional(Jump jump) const
 {
   dolfinx::la::Vector<double> a(_V->dofmap()->index_map, block_size());

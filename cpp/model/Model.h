@@ -70,6 +70,12 @@ public:
   /// assembles, commits or reverts joints does it for all of these.
   std::vector<interface::Interface*> joints();
   std::vector<const interface::Interface*> joints() const;
+  /// The laws of `scene`'s [[interface]] layers and [[crack]] planes in
+  /// place of the present ones, every joint's state and the displacement
+  /// back to zero: the model as built for `scene`, if `scene` has the mesh,
+  /// materials and crack planes this one was built for (driver/Run.h:
+  /// Simulation).
+  void set_laws(const Scene& scene);
 
   /// The mouth of a crack plane: node pairs on the slice's outer face.
   struct CrackMouth

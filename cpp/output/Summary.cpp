@@ -34,6 +34,7 @@ void Summary::write(const std::filesystem::path& file) const
       {"time_s", {{"mesh", mesh_s}, {"setup", setup_s}, {"solve", solve_s}, {"output", output_s}}},
       {"linear_solve_s", linear_solve_s},
       {"mesh_reused", mesh_reused},
+      {"setup_reused", setup_reused},
       {"dofs", dofs},
       {"cells", cells},
       {"interface_pairs", interface_pairs},

@@ -29,6 +29,9 @@ struct Summary
   /// (solver.time_linear_solve; < 0: not measured) [s]: the floor of a curve.
   double linear_solve_s = -1;
   bool mesh_reused = false;
+  /// The set-up (factorisation, condensed flexibility) of an earlier case
+  /// of the same process was reused (pushout sweep, fit).
+  bool setup_reused = false;
   std::int64_t dofs = 0;
   std::int64_t cells = 0;
   std::int64_t interface_pairs = 0;

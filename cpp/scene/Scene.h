@@ -57,6 +57,13 @@ public:
   bool boolean(const std::string& path) const;
   const std::string& string(const std::string& path) const;
   const std::vector<double>& numbers(const std::string& path) const;
+  /// The value of a key, or nullptr if the scene has none (a key of another
+  /// model type).
+  const Value* find(const std::string& path) const
+  {
+    const auto it = _values.find(path);
+    return it == _values.end() ? nullptr : &it->second;
+  }
 
   const std::vector<LayerSpec>& layers() const { return _layers; }
   const std::vector<CrackSpec>& cracks() const { return _cracks; }

@@ -310,6 +310,17 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
   _f.assign(_u.size(), 0.0);
 }
 
+void Condensation::forget_loads()
+{
+  for (auto* list : {&_basis, &_basis_g, &_basis_d})
+  {
+    for (Vec& v : *list)
+      check(VecDestroy(&v), "VecDestroy");
+    list->clear();
+  }
+  _load_version = -1;
+}
+
 Condensation::~Condensation()
 {
   for (Vec* v : {&_b, &_r, &_d_b, &_g, &_rest, &_Tv, &_Zr})
@@ -424,12 +435,7 @@ const std::vector<double>& Condensation::load_coefficients()
   {
     if (_basis.size() == max_basis) // start again from b
     {
-      for (auto* list : {&_basis, &_basis_g, &_basis_d})
-      {
-        for (Vec& v : *list)
-          check(VecDestroy(&v), "VecDestroy");
-        list->clear();
-      }
+      forget_loads();
       c.clear();
       check(VecCopy(_b, rest), "VecCopy");
       r_norm = b_norm;

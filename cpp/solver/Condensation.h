@@ -94,6 +94,9 @@ public:
   /// Only the interface and constrained entries of x from d (no solve);
   /// the other entries are left alone.
   void expand_interface(Vec d, Vec x);
+  /// Forgets the load directions solved so far: the next loads are solved
+  /// afresh, as in a first run (bit for bit).
+  void forget_loads();
 
   // NonlinearProblem on the jumps.
   Mat create_matrix() const override;

@@ -76,6 +76,18 @@ public:
   std::int64_t condensed_size() const { return _condensation ? _condensation->size() : 0; }
   /// Numeric factorisations so far (whole, condensed and J0 factors).
   int factorizations() const;
+  /// The next solve starts as the first solve of a run: its preconditioner
+  /// and load directions afresh (a new run on the same set-up:
+  /// driver/Run.h Simulation).
+  void restart()
+  {
+    _bulk_needed = true;
+    _whole.restart();
+    if (_newton)
+      _newton->restart();
+    if (_condensation)
+      _condensation->forget_loads();
+  }
 
 private:
   /// Builds the condensation again if the constrained dofs changed.

@@ -74,6 +74,9 @@ private:
 public:
   /// Numeric factorisations so far (for the summary).
   int factorizations() const { return _policy.factorizations(); }
+  /// The next solve starts as the first solve of a run (a new run on the
+  /// same set-up: the same iterates, bit for bit).
+  void restart() { _policy.restart(); }
 
 private:
   static PetscErrorCode jacobian_callback(SNES snes, Vec x, Mat J, Mat P, void* ctx);

@@ -56,6 +56,13 @@ public:
 
   /// Refresh P at the next update (after a failed solve).
   void refresh() { _refresh = _lagged; }
+  /// As before the first solve of a run: no P yet (a new run on the same
+  /// set-up; the counters stay).
+  void restart()
+  {
+    _has_P = false;
+    _refresh = false;
+  }
 
   /// Before a solve: refresh P if the problem's constrained rows changed
   /// since P was built (its unit rows would be the wrong ones).

@@ -3,8 +3,10 @@
 1. Serial: 2 x 2 cases of the friction push-out (mu x dT, coarse mesh):
    sweep.csv has one row per case with the varied values, the peak and last
    tau; every case folder has its resolved scene.toml, curve.csv and
-   summary.json; each case's curve equals that of `pushout run` with the
-   same --set values to 1e-10; the plateau tau grows with mu and |dT|.
+   summary.json; the set-up is built for the first case and reused by the
+   others (they change laws and loads only), and a reused case's curve
+   equals that of `pushout run` with the same --set values bit for bit
+   (to 1e-10 asked); the plateau tau grows with mu and |dT|.
 2. MPI: the same sweep on 2 processes (two groups of one: the cases spread
    over them) gives the serial curves to 1e-10; with --ranks-per-case 2
    (one group: each case on 2 processes, the whole model) a case equals
@@ -20,7 +22,7 @@ import os
 import shutil
 import subprocess
 
-from common import PUSHOUT, SOURCE, check, curve, out_dir, run
+from common import PUSHOUT, SOURCE, check, curve, out_dir, run, summary
 
 SCENE = os.path.join(SOURCE, "demo", "pushout_friction.toml")
 COARSE = ["--set", "mesh.elements_per_quarter=4", "--set", "mesh.elements_through_thickness=2"]
@@ -69,6 +71,9 @@ tau = {(r["interface.0.mu"], r["loading.temperature_change"]): float(r["tau_last
 check(tau[("0.4", "-25")] > tau[("0.2", "-25")] > tau[("0.2", "-5")] > 0
       and abs(tau[("0.4", "-25")] / tau[("0.2", "-25")] - 2) < 0.05,
       f"plateau tau grows with mu (x{tau[('0.4', '-25')] / tau[('0.2', '-25')]:.3f} for mu x2) and |dT|")
+reused = [summary(os.path.join(serial, r["case"]))["setup_reused"] for r in rows]
+check(reused == [False, True, True, True],
+      f"the set-up (mesh, factorisation, condensed flexibility) built once, reused: {reused}")
 direct = out_dir("sweep_direct_case_002")
 run(SCENE, direct, sets=["mesh.elements_per_quarter=4", "mesh.elements_through_thickness=2",
                          "interface.0.mu=0.4", "loading.temperature_change=-5"])
