@@ -65,10 +65,7 @@ void print_laws()
 /// The scene file with the --set overrides applied.
 pushout::Scene load_scene(const std::string& scene_file, const std::vector<std::string>& sets)
 {
-  std::vector<pushout::Override> overrides;
-  for (const std::string& s : sets)
-    overrides.push_back(pushout::parse_override(s));
-  return pushout::Scene::load(scene_file, overrides);
+  return pushout::Scene::load(scene_file, pushout::parse_overrides(sets));
 }
 
 /// Creates the output folder and writes a file there (rank 0 only: the

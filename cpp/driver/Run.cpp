@@ -4,6 +4,7 @@
 #include "../mesh/generate.h"
 #include "../mesh/symmetry.h"
 #include "../model/Model.h"
+#include "../scene/SceneError.h"
 #include "../solver/LoadStepSolver.h"
 #include "Corrosion.h"
 #include "ResourceGuard.h"
@@ -11,6 +12,7 @@
 #include "Scenario.h"
 #include "StepLoop.h"
 #include "StepRecorder.h"
+#include <chrono>
 #include <iomanip>
 #include <iostream>
 #include <optional>
@@ -176,5 +178,57 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   Simulation simulation(scene, opt, report);
   simulation.load_steps(scene, opt, report);
   return report.finish(scene, opt.plot);
+}
+
+RunOutcome run_case(const std::filesystem::path& scene_file, const std::vector<std::string>& sets,
+                    const RunOptions& opt, std::unique_ptr<Simulation>& simulation)
+{
+  RunOutcome r;
+  const auto t0 = std::chrono::steady_clock::now();
+  try
+  {
+    const output::Summary s = mpi::collectively<SceneError, TooLarge>(
+        opt.comm,
+        [&]
+        {
+          const Scene scene = Scene::load(scene_file, parse_overrides(sets));
+          std::filesystem::create_directories(opt.out);
+          check_scene(scene);
+          RunReport report(scene, opt.out, opt.quiet, opt.comm);
+          if (!simulation || !simulation->fits(scene))
+          {
+            simulation.reset(); // its memory first
+            simulation = std::make_unique<Simulation>(scene, opt, report);
+          }
+          simulation->load_steps(scene, opt, report);
+          return report.finish(scene, opt.plot);
+        });
+    r.exit_code = s.interrupted ? 128 + s.signal : s.converged ? 0 : 3;
+    r.message = s.message;
+  }
+  catch (const SceneError& e)
+  {
+    r.exit_code = 2;
+    r.message = std::string("error in scene: ") + e.what();
+  }
+  catch (const TooLarge& e)
+  {
+    r.exit_code = 2;
+    r.message = e.what();
+  }
+  catch (const std::exception& e)
+  {
+    r.exit_code = 1;
+    r.message = e.what();
+  }
+  catch (const std::string& e) // gmsh reports errors this way
+  {
+    r.exit_code = 1;
+    r.message = e;
+  }
+  if (r.exit_code == 1 || r.exit_code == 2)
+    simulation.reset(); // an error may have left it half built: not reused
+  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
 }
 } // namespace pushout::driver

@@ -70,4 +70,22 @@ private:
 /// curve.png, XDMF) into options.out. Returns the summary; a step that
 /// cannot converge ends the run with summary.converged = false.
 output::Summary run(const Scene& scene, const RunOptions& options);
+
+/// How a run ended, as `pushout run` would exit: 0 converged, 2 a bad
+/// scene or refused by the size guard, 3 a step did not converge, 1 another
+/// error, 128 + signal if a signal stopped it.
+struct RunOutcome
+{
+  int exit_code = 1;
+  double wall_s = 0;
+  std::string message; ///< why it did not converge ("" if it did)
+};
+
+/// One run of many (pushout sweep, fit): the scene file with `sets`, run
+/// on options.comm on the set-up `simulation` holds if the scene fits it
+/// (else on a new one, kept for the next run; dropped after an error).
+/// Never throws: an error, agreed on by the run's processes, is the
+/// outcome. Collective on options.comm.
+RunOutcome run_case(const std::filesystem::path& scene_file, const std::vector<std::string>& sets,
+                    const RunOptions& options, std::unique_ptr<Simulation>& simulation);
 } // namespace pushout::driver

@@ -3,10 +3,7 @@
 #include "../common/mpi_errors.h"
 #include "../output/plot.h"
 #include "../scene/SceneError.h"
-#include "ResourceGuard.h"
 #include "Run.h"
-#include "RunReport.h"
-#include "Scenario.h"
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -23,12 +20,9 @@ namespace pushout::driver
 namespace
 {
 /// The outcome of one case, as its group's first process knows it.
-struct CaseResult
+struct CaseResult : RunOutcome
 {
   int index = -1;
-  int exit_code = 1; ///< as `pushout run`'s
-  double wall_s = 0;
-  std::string message; ///< why it did not converge ("": it did)
 };
 
 /// The curve's abscissa and ordinate of a model type, for sweep.csv: name,
@@ -44,82 +38,11 @@ Axes axes_of(const std::string& model_type)
   return {"delta", "mm", "tau", "MPa"};
 }
 
-std::vector<Override> overrides_of(const std::vector<std::string>& sets)
-{
-  std::vector<Override> o;
-  for (const std::string& s : sets)
-    o.push_back(parse_override(s));
-  return o;
-}
-
 std::string case_name(std::size_t i)
 {
   std::ostringstream s;
   s << "case_" << std::setw(3) << std::setfill('0') << i;
   return s.str();
-}
-
-/// Runs one case on `group`, on the set-up `simulation` holds if the case
-/// fits it (else a new one, kept for the next); the exit code as `pushout
-/// run` gives it.
-CaseResult run_case(const SweepOptions& opt, const std::vector<std::string>& sets, int index,
-                    MPI_Comm group, std::unique_ptr<Simulation>& simulation)
-{
-  CaseResult r;
-  r.index = index;
-  const auto t0 = std::chrono::steady_clock::now();
-  try
-  {
-    const output::Summary s = mpi::collectively<SceneError, TooLarge>(
-        group,
-        [&]
-        {
-          const Scene scene = Scene::load(opt.scene_file, overrides_of(sets));
-          std::filesystem::create_directories(opt.out / case_name(std::size_t(index)));
-          // Quiet, and no curve.png per case: sweep.png overlays them.
-          const RunOptions run_options{opt.out / case_name(std::size_t(index)),
-                                       opt.mesh_cache,
-                                       true,
-                                       opt.force,
-                                       group,
-                                       false};
-          check_scene(scene);
-          RunReport report(scene, run_options.out, true, group);
-          if (!simulation || !simulation->fits(scene))
-          {
-            simulation.reset(); // its memory first
-            simulation = std::make_unique<Simulation>(scene, run_options, report);
-          }
-          simulation->load_steps(scene, run_options, report);
-          return report.finish(scene, false);
-        });
-    r.exit_code = s.interrupted ? 128 + s.signal : s.converged ? 0 : 3;
-    r.message = s.message;
-  }
-  catch (const SceneError& e)
-  {
-    r.exit_code = 2;
-    r.message = std::string("error in scene: ") + e.what();
-  }
-  catch (const TooLarge& e)
-  {
-    r.exit_code = 2;
-    r.message = e.what();
-  }
-  catch (const std::exception& e)
-  {
-    r.exit_code = 1;
-    r.message = e.what();
-  }
-  catch (const std::string& e)
-  {
-    r.exit_code = 1;
-    r.message = e;
-  }
-  if (r.exit_code == 1 || r.exit_code == 2)
-    simulation.reset(); // an error may have left it half built: not reused
-  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return r;
 }
 
 /// The results of every process's cases on rank 0 (others: empty).
@@ -150,8 +73,14 @@ std::vector<CaseResult> gather(const std::vector<CaseResult>& mine)
   for (int p = 0; p < size; ++p)
     for (const auto& e : nlohmann::json::parse(all.substr(std::size_t(offsets[std::size_t(p)]),
                                                           std::size_t(lengths[std::size_t(p)]))))
-      results.push_back({e["index"].get<int>(), e["exit_code"].get<int>(),
-                         e["wall_s"].get<double>(), e["message"].get<std::string>()});
+    {
+      CaseResult r;
+      r.index = e["index"].get<int>();
+      r.exit_code = e["exit_code"].get<int>();
+      r.wall_s = e["wall_s"].get<double>();
+      r.message = e["message"].get<std::string>();
+      results.push_back(r);
+    }
   std::sort(results.begin(), results.end(),
             [](const CaseResult& a, const CaseResult& b) { return a.index < b.index; });
   return results;
@@ -312,7 +241,7 @@ int sweep(const SweepOptions& opt)
             sets.insert(sets.end(), cases[i].begin(), cases[i].end());
             try
             {
-              const Scene scene = Scene::load(opt.scene_file, overrides_of(sets));
+              const Scene scene = Scene::load(opt.scene_file, parse_overrides(sets));
               model_type = scene.string("model.type");
               plot = scene.boolean("output.plot") ? "yes" : "";
             }
@@ -389,7 +318,13 @@ int sweep(const SweepOptions& opt)
       break;
     std::vector<std::string> sets = opt.sets;
     sets.insert(sets.end(), cases[std::size_t(index)].begin(), cases[std::size_t(index)].end());
-    const CaseResult r = run_case(opt, sets, index, group, simulation);
+    // Quiet, and no curve.png per case: sweep.png overlays them.
+    CaseResult r;
+    static_cast<RunOutcome&>(r) = run_case(
+        opt.scene_file, sets,
+        {opt.out / case_name(std::size_t(index)), opt.mesh_cache, true, opt.force, group, false},
+        simulation);
+    r.index = index;
     if (r.exit_code > 128)
       stop_signal = r.exit_code - 128;
     if (!leader)

@@ -319,6 +319,14 @@ Override parse_override(const std::string& text)
   return {text.substr(0, eq), text.substr(eq + 1)};
 }
 
+std::vector<Override> parse_overrides(const std::vector<std::string>& texts)
+{
+  std::vector<Override> o;
+  for (const std::string& t : texts)
+    o.push_back(parse_override(t));
+  return o;
+}
+
 Scene Scene::load(const std::filesystem::path& file, const std::vector<Override>& overrides)
 {
   std::ifstream in(file);

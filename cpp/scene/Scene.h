@@ -40,6 +40,8 @@ struct Override
 
 /// Parses "key=value"; throws SceneError on a malformed override.
 Override parse_override(const std::string& text);
+/// Each of `texts` parsed.
+std::vector<Override> parse_overrides(const std::vector<std::string>& texts);
 
 class Scene
 {
