@@ -2,6 +2,8 @@
 // frictional interface elements (Sanz, Planas, Sancho).
 //
 //   pushout run SCENE.toml --out DIR [--set key=value]... [PETSc options]
+//   pushout fit SCENE.toml --data measured.csv --free key [--free ...] --out DIR
+//              [--bounds key=lo:hi]... [--set key=value]... [--ranks-per-case N]
 //   pushout sweep SCENE.toml --vary key=v1,v2,... [--vary ...] --out DIR
 //                [--set key=value]... [--ranks-per-case N] [PETSc options]
 //   pushout keys        # the scene keys, with defaults, units and docs
@@ -9,6 +11,7 @@
 #include "common/Interrupt.h"
 #include "common/mpi_errors.h"
 #include "common/petsc_check.h"
+#include "driver/Fit.h"
 #include "driver/ResourceGuard.h"
 #include "driver/Run.h"
 #include "driver/Sweep.h"
@@ -180,6 +183,24 @@ int main(int argc, char* argv[])
   sweep->add_flag("--quiet", quiet, "no progress lines");
   sweep->add_flag("--force", force, "run even if the size guard estimates a case cannot fit");
   sweep->allow_extras();
+  pushout::driver::FitOptions fit_options;
+  CLI::App* fit = app.add_subcommand(
+      "fit", "fit scene values (law parameters, loads) to a measured push-out curve by least "
+             "squares (PETSc TAO); DIR/fit.json has them with their standard errors "
+             "(docs/fitting.md)");
+  fit->add_option("scene", scene_file, "scene file (TOML): the start values")->required();
+  fit->add_option("--data", fit_options.data, "measured curve: CSV with delta_mm, tau_MPa")
+      ->required();
+  fit->add_option("--free", fit_options.free, "a scene key to fit (repeatable)")->required();
+  fit->add_option("--bounds", fit_options.bounds,
+                  "bounds of a free key: key=lo:hi (either may be empty; repeatable)");
+  fit->add_option("--out", out, "output folder")->required();
+  fit->add_option("--set", sets, "override a scene key: key=value (repeatable)");
+  fit->add_option("--ranks-per-case", fit_options.ranks_per_case,
+                  "processes that run each model run together (default 1)");
+  fit->add_flag("--quiet", quiet, "no progress lines");
+  fit->add_flag("--force", force, "run even if the size guard estimates a run cannot fit");
+  fit->allow_extras();
   app.add_subcommand("keys", "print the scene keys (Markdown table)");
   app.add_subcommand("laws", "print the interface laws and their parameters");
   try
@@ -202,8 +223,9 @@ int main(int argc, char* argv[])
   }
 
   // PETSc sees only the options CLI11 did not consume.
-  std::vector<std::string> extras =
-      app.got_subcommand("sweep") ? sweep->remaining() : run->remaining();
+  std::vector<std::string> extras = app.got_subcommand("sweep") ? sweep->remaining()
+                                    : app.got_subcommand("fit") ? fit->remaining()
+                                                                : run->remaining();
   std::vector<char*> petsc_argv = {argv[0]};
   for (std::string& e : extras)
     petsc_argv.push_back(e.data());
@@ -229,7 +251,17 @@ int main(int argc, char* argv[])
   dolfinx::init_logging(1, argv);
   loguru::g_stderr_verbosity = loguru::Verbosity_WARNING;
   int rc = 0;
-  if (app.got_subcommand("sweep"))
+  if (app.got_subcommand("fit"))
+  {
+    fit_options.scene_file = scene_file;
+    fit_options.sets = sets;
+    fit_options.out = out;
+    fit_options.mesh_cache = pushout::mesh::default_cache_dir();
+    fit_options.quiet = quiet;
+    fit_options.force = force;
+    rc = pushout::driver::fit(fit_options);
+  }
+  else if (app.got_subcommand("sweep"))
   {
     sweep_options.scene_file = scene_file;
     sweep_options.sets = sets;

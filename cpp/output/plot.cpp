@@ -13,9 +13,14 @@ namespace pushout::output
 {
 namespace
 {
-/// Runs scripts/`script` with `args` (each shell-quoted); false with `why`
-/// if it failed.
-bool run_script(const std::string& script, const std::vector<std::string>& args, std::string& why)
+std::string script_path(const char* script)
+{
+  return (std::filesystem::path(PUSHOUT_SCRIPTS_DIR) / script).string();
+}
+
+/// Runs the python interpreter with `args` (a script of scripts/ and its
+/// arguments, each shell-quoted); false with `why` if it failed.
+bool run_script(const std::vector<std::string>& args, std::string& why)
 {
   const auto quote = [](const std::string& s)
   {
@@ -24,10 +29,9 @@ bool run_script(const std::string& script, const std::vector<std::string>& args,
       q += c == '\'' ? std::string("'\\''") : std::string(1, c);
     return q + "'";
   };
-  std::string cmd = quote(PUSHOUT_PYTHON) + " " +
-                    quote((std::filesystem::path(PUSHOUT_SCRIPTS_DIR) / script).string());
+  std::string cmd = quote(PUSHOUT_PYTHON);
   for (const std::string& a : args)
-    cmd += " " + quote(a);
+    (cmd += ' ') += quote(a);
   cmd += " 2>&1";
   const int rc = std::system(cmd.c_str());
   if (rc != 0)
@@ -42,12 +46,19 @@ bool run_script(const std::string& script, const std::vector<std::string>& args,
 bool plot_curve(const std::filesystem::path& csv, const std::filesystem::path& png,
                 const std::string& kind, std::string& why)
 {
-  return run_script("plot_curve.py", {csv.string(), png.string(), "--kind", kind}, why);
+  return run_script({script_path("plot_curve.py"), csv.string(), png.string(), "--kind", kind},
+                    why);
+}
+
+bool plot_fit(const std::filesystem::path& folder, const std::filesystem::path& png,
+              std::string& why)
+{
+  return run_script({script_path("plot_fit.py"), folder.string(), png.string()}, why);
 }
 
 bool plot_sweep(const std::filesystem::path& folder, const std::filesystem::path& png,
                 std::string& why)
 {
-  return run_script("plot_sweep.py", {folder.string(), png.string()}, why);
+  return run_script({script_path("plot_sweep.py"), folder.string(), png.string()}, why);
 }
 } // namespace pushout::output
