@@ -18,6 +18,15 @@ Studies (each run keeps its resolved scene.toml next to its curve.csv):
               pull; loading.unload_to), against the monotonic push to 200 um:
               the loops, one before and one after the peak, and the
               permanent displacements.
+  laws        §2.3 rerun: the adhesion layer of the Fig. 10 demo as linear
+              softening, linear softening with a residual (0.5 MPa),
+              exponential, exponential with a residual (all k 1000, f_t 3,
+              softening energy 0.12 N/mm: c 25, w_c2 0.08 mm), alone (the
+              friction layer at mu 0: normal contact only) or with friction
+              (mu 0.4); dT -25, pushed to 1 mm: peaks, residuals, and the
+              spread of t_s1 over the interface after the peak; and the
+              adhesion's damage after the thermal step, tube top held or
+              free, dT -25 and -50.
   corroded    demo/pushout_corroded.toml (oxide_friction k 1000, mu 0.4; crack
               k 1e5, f_t 3, c 30: G_F 0.1 N/mm; dT -25): the tube centred or
               15 mm from a face, one crack to the nearest face or four (0, 90,
@@ -51,6 +60,16 @@ CORROSION_DEPTHS_UM = [0.0, 12.5, 25.0, 50.0]
 CRACK_ETA = 1e-3  # mm of pseudo-time (a push step is 0.01)
 # The corroded demo with four crack planes instead of one (written to OUT).
 FOUR_CRACKS = "pushout_corroded_four_cracks.toml"
+# §2.3: the adhesion laws compared (the second [[interface]] table of
+# demo/pushout_friction_adhesion.toml; scenes written to OUT/laws/).
+ADHESION_LAWS = {
+    "linear": 'law = "linear_softening"\nk = 1000.0\nf_t = 3.0\nw_c2 = 0.08\n',
+    "linear_residual": 'law = "linear_softening_friction"\nk = 1000.0\nf_t = 3.0\nw_c2 = 0.08\nf_fr = 0.5\n',
+    "exponential": 'law = "exponential_softening"\nk = 1000.0\nf_t = 3.0\nc = 25.0\nf_fr = 0.0\n',
+    "exponential_residual": 'law = "exponential_softening"\nk = 1000.0\nf_t = 3.0\nc = 25.0\nf_fr = 0.5\n',
+}
+# delta after the peak where the spread of t_s1 is reported [mm].
+SPREAD_AT_MM = (0.05, 0.2, 1.0)
 COLORS = {-5.0: "tab:blue", -10.0: "tab:green", -25.0: "tab:orange", -50.0: "tab:red"}
 
 
@@ -111,12 +130,37 @@ def cases(study, quick):
                      f"loading.steps_per_segment={per}", "loading.unload_to=zero_force"]))
         out.append(("monotonic", "pushout_friction_adhesion.toml",
                     ["loading.push_displacement=0.2", f"loading.steps={3 * per}"]))
+    elif study == "laws":
+        steps = 30 if quick else 80
+        push = ["loading.push_displacement=1.0", f"loading.steps={steps}",
+                f"loading.step_growth={1.2 if quick else 1.07}", "loading.temperature_change=-25"]
+        for law in ADHESION_LAWS:
+            for mu in (0.0, 0.4):
+                out.append((f"{law}_mu{mu:g}", f"laws/{law}.toml", push + [f"interface.0.mu={mu}"]))
+        for top in ("held", "free"):
+            for dT in (-25.0, -50.0):
+                out.append((f"damage_{top}_dT{dT:g}", "pushout_friction_adhesion.toml",
+                            [f"loading.thermal_tube_top={top}", f"loading.temperature_change={dT}",
+                             "loading.push_displacement=0.1", "loading.steps=50"]))
     elif study == "retraction":
         for top in ("held", "free"):
             out.append((top, "pushout_friction.toml",
                         ["interface.0.mu=0.4", "loading.temperature_change=-25",
                          f"loading.thermal_tube_top={top}"]))
     return out
+
+
+def law_scenes(out):
+    """demo/pushout_friction_adhesion.toml with each of ADHESION_LAWS as its
+    adhesion layer, into OUT/laws/<law>.toml."""
+    text = open(os.path.join(DEMO, "pushout_friction_adhesion.toml")).read()
+    head, rest = text.split("[[interface]]", 1)
+    first, rest = rest.split("[[interface]]", 1)
+    _, tail = rest.split("\n\n", 1)  # the table ends at the first blank line
+    os.makedirs(os.path.join(out, "laws"), exist_ok=True)
+    for law, table in ADHESION_LAWS.items():
+        with open(os.path.join(out, "laws", law + ".toml"), "w") as f:
+            f.write(head + "[[interface]]" + first + "[[interface]]\n" + table + "\n" + tail)
 
 
 def four_cracks_scene(out):
@@ -129,8 +173,8 @@ def run_case(pushout, study, folder, scene, sets, quick, reuse):
         return 0.0
     t0 = time.time()
     path = os.path.join(DEMO, scene)
-    if scene == FOUR_CRACKS:
-        path = os.path.join(os.path.dirname(os.path.dirname(folder)), FOUR_CRACKS)
+    if scene == FOUR_CRACKS or scene.startswith("laws/"):
+        path = os.path.join(os.path.dirname(os.path.dirname(folder)), scene)
     # One core per run: the runs go side by side. A corroded case that does
     # not converge is reported, not fatal.
     pushout_runs.run(pushout, path, folder, ["output.plot=false"] + sets + mesh_sets(study, quick),
@@ -288,6 +332,63 @@ def plot_corroded(out, runs):
     return table
 
 
+def at_delta(rows, d, key):
+    """`key` of a curve at delta d [mm], linear between its rows."""
+    for a, b in zip(rows, rows[1:]):
+        if a["delta_mm"] <= d <= b["delta_mm"]:
+            t = (d - a["delta_mm"]) / (b["delta_mm"] - a["delta_mm"])
+            return a[key] + t * (b[key] - a[key])
+    return float("nan")
+
+
+def plot_laws(out, runs):
+    """§2.3 rerun: the curves of each adhesion law alone and with friction
+    (OUT/laws_comparison.png), and OUT/laws.csv: peak, residuals, the spread
+    of t_s1 after the peak, the initial damage (held or free tube top)."""
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.5), dpi=120, sharey=True)
+    table = []
+    for ax, mu in zip(axes, (0.0, 0.4)):
+        for i, law in enumerate(ADHESION_LAWS):
+            rows = runs[("laws", f"{law}_mu{mu:g}")]
+            ax.plot([r["delta_mm"] * 1e3 for r in rows], [r["tau_MPa"] for r in rows], "-",
+                    color=f"C{i}", lw=1.3, label=law.replace("_", " "))
+            peak = max(rows, key=lambda r: r["tau_MPa"])
+            row = {"case": f"{law}_mu{mu:g}", "peak_tau_MPa": round(peak["tau_MPa"], 4),
+                   "delta_peak_um": round(peak["delta_mm"] * 1e3, 2)}
+            for d in SPREAD_AT_MM:
+                row[f"tau_{d:g}mm_MPa"] = round(at_delta(rows, d, "tau_MPa"), 4)
+                row[f"t_s1_cv_{d:g}mm"] = round(at_delta(rows, d, "t_s1_cv"), 4)
+                row[f"t_s1_range_{d:g}mm_MPa"] = (
+                    f"{at_delta(rows, d, 't_s1_min_MPa'):.3f}..{at_delta(rows, d, 't_s1_max_MPa'):.3f}")
+            table.append(row)
+        ax.set(xlabel="tube displacement $\\delta$ [µm]", xlim=(0, 200),
+               title="adhesion alone (friction layer at $\\mu$ 0)" if mu == 0 else
+               "adhesion with friction ($\\mu$ 0.4)")
+        ax.grid(alpha=0.3)
+    axes[0].set_ylabel("nominal bond stress $\\tau$ [MPa]")
+    axes[1].legend(fontsize=8)
+    fig.suptitle("§2.3 rerun: adhesion laws (f_t 3 MPa, softening energy 0.12 N/mm), $\\Delta T$ -25 °C")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "laws_comparison.png"))
+    for top in ("held", "free"):
+        for dT in (-25.0, -50.0):
+            rows = runs[("laws", f"damage_{top}_dT{dT:g}")]
+            peak = max(rows, key=lambda r: r["tau_MPa"])
+            table.append({"case": f"damage_{top}_dT{dT:g}", "peak_tau_MPa": round(peak["tau_MPa"], 4),
+                          "delta_peak_um": round(peak["delta_mm"] * 1e3, 2),
+                          "d_1_mean_step0": round(rows[0]["d_1_mean"], 4),
+                          "d_1_max_step0": round(rows[0]["d_1_max"], 4),
+                          "tau_step0_MPa": round(rows[0]["tau_MPa"], 4)})
+    keys = []
+    for r in table:
+        keys += [k for k in r if k not in keys]
+    with open(os.path.join(out, "laws.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=keys)
+        w.writeheader()
+        w.writerows(table)
+    return table
+
+
 def plot_unload_reload(out, runs):
     """The loops against the monotonic curve, whole and the first 50 um;
     returns the permanent displacements [mm]."""
@@ -323,7 +424,7 @@ def main():
     ap.add_argument("--quick", action="store_true", help="coarse mesh, few steps")
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
     ap.add_argument("--only", nargs="+",
-                    default=["fig7", "fig8", "fig10", "retraction", "unload_reload"])
+                    default=["fig7", "fig8", "fig10", "retraction", "unload_reload", "laws"])
     ap.add_argument("--no-render", action="store_true",
                     help="run the fig8 case but do not render its maps (ParaView)")
     ap.add_argument("--reuse", action="store_true",
@@ -332,6 +433,8 @@ def main():
     os.makedirs(args.out, exist_ok=True)
     if "corroded" in args.only:
         four_cracks_scene(args.out)
+    if "laws" in args.only:
+        law_scenes(args.out)
 
     t0 = time.time()
     todo = [(study, name, scene, sets) for study in args.only for name, scene, sets in cases(study, args.quick)]
@@ -352,6 +455,9 @@ def main():
         plot_fig10(args.out, runs)
     if "retraction" in args.only:
         plot_retraction(args.out, runs)
+    if "laws" in args.only:
+        for r in plot_laws(args.out, runs):
+            print("laws " + ", ".join(f"{k} {v}" for k, v in r.items()))
     if "unload_reload" in args.only:
         permanent = plot_unload_reload(args.out, runs)
         print("unload_reload: permanent displacements " +

@@ -122,6 +122,9 @@ PushOut::PushOut(const Scene& scene, const mesh::MeshData& m, const model::Model
       add(b, 1);
     }
   }
+  for (std::size_t l = 0; l < _layers; ++l)
+    if (model.interface().softens(l))
+      _damage_layers.push_back(l);
   _top_start.assign(_top_z.size(), 0.0);
   const solver::Vector slip(model.mean_axial_slip_functional());
   const solver::ReadView slip_view(slip);
@@ -134,7 +137,9 @@ std::vector<std::string> PushOut::columns() const
   if (_layers > 1)
     for (std::size_t l = 0; l < _layers; ++l)
       c.push_back("p_" + std::to_string(l) + "_MPa");
-  c.push_back("slip_mm");
+  c.insert(c.end(), {"slip_mm", "t_s1_min_MPa", "t_s1_max_MPa", "t_s1_cv"});
+  for (std::size_t l : _damage_layers)
+    c.insert(c.end(), {"d_" + std::to_string(l) + "_mean", "d_" + std::to_string(l) + "_max"});
   return c;
 }
 
@@ -225,6 +230,29 @@ std::vector<double> PushOut::row(std::span<const double> /*reactions*/, std::spa
   if (_layers > 1)
     out.insert(out.end(), p_layer.begin(), p_layer.end());
   out.push_back(g[4]);
+
+  // The spread of t_s1 and the damage of each damage layer: sums, minima
+  // and maxima over the processes.
+  const interface::Interface::ShearSpread spread = itf.shear_spread();
+  std::vector<double> sums = {spread.integral, spread.integral_of_square,
+                              spread.integral_of_magnitude};
+  std::vector<double> maxima = {-spread.min, spread.max};
+  for (std::size_t l : _damage_layers)
+  {
+    const auto [integral, largest] = itf.damage_of(l);
+    sums.push_back(integral);
+    maxima.push_back(largest);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, sums.data(), int(sums.size()), MPI_DOUBLE, MPI_SUM, model.comm());
+  MPI_Allreduce(MPI_IN_PLACE, maxima.data(), int(maxima.size()), MPI_DOUBLE, MPI_MAX, model.comm());
+  // The spread relative to the mean magnitude (the mean itself vanishes
+  // where the push force does: unloaded to zero force).
+  const double mean = sums[0] / area, magnitude = sums[2] / area;
+  const double variance = std::max(sums[1] / area - mean * mean, 0.0);
+  out.insert(out.end(),
+             {-maxima[0], maxima[1], magnitude > 0 ? std::sqrt(variance) / magnitude : 0.0});
+  for (std::size_t k = 0; k < _damage_layers.size(); ++k)
+    out.insert(out.end(), {sums[3 + k] / area, maxima[2 + k]});
   return out;
 }
 

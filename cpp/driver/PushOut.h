@@ -28,8 +28,14 @@
 // reactions carry it; equal to the sum of the support reactions, the
 // thermal loads being self-equilibrated), tau = P / (pi D (L -
 // delta)) (paper eq. 1), the mean interface pressure p = -int t_n dA / A,
-// with several layers each layer's share p_L, and the mean axial slip s
-// over the interface (the control variable of path following).
+// with several layers each layer's share p_L, the mean axial slip s
+// over the interface (the control variable of path following), the spread
+// of the axial shear traction t_s1 over the interface (its smallest and
+// largest value at a quadrature point, and its standard deviation over its
+// mean magnitude, std/mean(|t_s1|), area-weighted: 0 where the shear is
+// uniform, paper §2.3; the coefficient of variation where t_s1 keeps its
+// sign), and
+// for each damage layer L its mean (area-weighted) and largest damage.
 #pragma once
 
 #include "../scene/Scene.h"
@@ -95,10 +101,11 @@ private:
   bool _hold_top_in_thermal_step;
   std::size_t _layers;
   int _copies; ///< mirror copies of the mesh in the specimen (4: quarter model)
-  std::vector<std::int32_t> _top_z;     ///< tube top z dofs
-  std::vector<double> _top_start;       ///< their u_z when the push starts
-  std::vector<std::int32_t> _support_z; ///< support z dofs
-  std::vector<std::int32_t> _fixed;     ///< in-plane fixings (value 0)
-  std::vector<double> _slip;            ///< mean axial slip functional, owned dofs
+  std::vector<std::int32_t> _top_z;        ///< tube top z dofs
+  std::vector<double> _top_start;          ///< their u_z when the push starts
+  std::vector<std::int32_t> _support_z;    ///< support z dofs
+  std::vector<std::int32_t> _fixed;        ///< in-plane fixings (value 0)
+  std::vector<double> _slip;               ///< mean axial slip functional, owned dofs
+  std::vector<std::size_t> _damage_layers; ///< the layers that soften (damage columns)
 };
 } // namespace pushout::driver

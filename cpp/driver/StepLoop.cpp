@@ -230,6 +230,18 @@ bool StepLoop::initial_step()
 void StepLoop::start_push(int iterations)
 {
   _corrosion.describe_cracks(_equilibrium, _x, _summary);
+  // The damage the thermal step and the corrosion stage left.
+  const interface::Interface& itf = _equilibrium.model().interface();
+  _summary.initial_damage.clear();
+  for (std::size_t l = 0; l < itf.num_layers(); ++l)
+    if (itf.softens(l))
+    {
+      std::array<double, 2> sum = {itf.damage_of(l)[0], itf.area()};
+      double largest = itf.damage_of(l)[1];
+      MPI_Allreduce(MPI_IN_PLACE, sum.data(), 2, MPI_DOUBLE, MPI_SUM, _comm);
+      MPI_Allreduce(MPI_IN_PLACE, &largest, 1, MPI_DOUBLE, MPI_MAX, _comm);
+      _summary.initial_damage.push_back({int(l), sum[0] / sum[1], largest});
+    }
   _solver.set_bulk_needed(_recorder.bulk_needed());
   {
     const solver::ReadView x(_x);

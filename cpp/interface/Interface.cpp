@@ -343,6 +343,35 @@ std::vector<double> Interface::normal_force() const
   return force;
 }
 
+Interface::ShearSpread Interface::shear_spread() const
+{
+  ShearSpread s;
+  for (std::size_t i = 0; i < num_points(); ++i)
+  {
+    double t = 0;
+    for (std::size_t l = 0; l < _layers.size(); ++l)
+      t += layer_traction(i, l)[1];
+    s.integral += t * _dA[i];
+    s.integral_of_magnitude += std::abs(t) * _dA[i];
+    s.integral_of_square += t * t * _dA[i];
+    s.min = std::min(s.min, t);
+    s.max = std::max(s.max, t);
+  }
+  return s;
+}
+
+std::array<double, 2> Interface::damage_of(std::size_t layer) const
+{
+  std::array<double, 2> d = {0, 0};
+  for (std::size_t i = 0; i < num_points(); ++i)
+  {
+    const double D = _layers[layer]->damage(_state.trial(i, layer));
+    d[0] += D * _dA[i];
+    d[1] = std::max(d[1], D);
+  }
+  return d;
+}
+
 laws::Vec3 Interface::resultant() const
 {
   laws::Vec3 force{0, 0, 0};

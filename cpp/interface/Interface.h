@@ -18,6 +18,8 @@
 #include "../mesh/MeshData.h"
 #include "InterfaceState.h"
 #include "Quadrature.h"
+#include <array>
+#include <cmath>
 #include <memory>
 #include <petscmat.h>
 #include <span>
@@ -131,6 +133,24 @@ public:
   /// state; stored, not re-evaluated, since a viscous law's update from the
   /// new committed state would advance it again).
   std::vector<double> normal_force() const;
+
+  /// This process's share of the spread of the axial shear traction t_s1
+  /// (all layers) over the interface, from the last evaluation as above:
+  /// int t_s1 dA [N], int |t_s1| dA [N], int t_s1^2 dA [N MPa], its
+  /// smallest and largest value at a quadrature point [MPa].
+  struct ShearSpread
+  {
+    double integral = 0, integral_of_magnitude = 0, integral_of_square = 0;
+    double min = INFINITY, max = -INFINITY;
+  };
+  ShearSpread shear_spread() const;
+
+  /// Whether layer l softens (its law has a fracture energy: a damage law).
+  bool softens(std::size_t layer) const { return _softens[layer]; }
+
+  /// Of layer l over this process's pairs: int D dA [mm^2] and the largest
+  /// D of its damage (the trial state: after a converged step, its state).
+  std::array<double, 2> damage_of(std::size_t layer) const;
 
   /// Resultant int t dA of the tractions over this process's pairs, global
   /// frame [N] (the internal force on the concrete side; the tube acts on

@@ -13,6 +13,9 @@ void Summary::write(const std::filesystem::path& file) const
                           {"mouth_opening_mm", c.mouth_opening_mm},
                           {"max_opening_mm", c.max_opening_mm},
                           {"max_damage", c.max_damage}});
+  nlohmann::json damage_list = nlohmann::json::array();
+  for (const LayerDamage& d : initial_damage)
+    damage_list.push_back({{"layer", d.layer}, {"mean", d.mean}, {"max", d.max}});
   const nlohmann::json j = {
       {"converged", converged},
       {"interrupted", interrupted},
@@ -27,6 +30,7 @@ void Summary::write(const std::filesystem::path& file) const
       {"penetration_mm", penetration_mm},
       {"permanent_displacements_mm", permanent_displacements_mm},
       {"cracks", crack_list},
+      {"initial_damage", damage_list},
       {"newton_iterations", newton_iterations},
       {"cuts", cuts},
       {"factorizations", factorizations},

@@ -59,6 +59,15 @@ struct Summary
     double max_damage = 0;       ///< largest damage at a quadrature point
   };
   std::vector<Crack> cracks;
+  /// The damage of a damage layer of the interface at the start of the push
+  /// (what the thermal step and the corrosion stage left).
+  struct LayerDamage
+  {
+    int layer = 0;
+    double mean = 0; ///< area-weighted
+    double max = 0;
+  };
+  std::vector<LayerDamage> initial_damage;
 
   void write(const std::filesystem::path& file) const;
 };
