@@ -6,10 +6,14 @@ push-out: nominal bond stress tau [MPa] against tube displacement delta [um]
 u_s [mm]; corrosion (corrosion.csv): interface pressure p [MPa] and crack
 widths [um] against the corrosion depth x [um].
 Usage: plot_curve.py CSV OUT.png --kind pushout|single_joint|corrosion
+       plot_curve.py --serve   (plots named on stdin: what pushout runs)
 """
 import argparse
 import csv
+import json
 import os
+import signal
+import sys
 
 import matplotlib
 
@@ -25,18 +29,43 @@ def read(path):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__)
-    ap.add_argument("csv")
-    ap.add_argument("png")
+    ap.add_argument("csv", nargs="?")
+    ap.add_argument("png", nargs="?")
     ap.add_argument("--kind", default="pushout", choices=["pushout", "single_joint", "corrosion"])
     ap.add_argument("--title", default=None)
+    ap.add_argument("--serve", action="store_true",
+                    help="draw the plots named on stdin, one JSON list [csv, png, kind] per line, "
+                         "until its end (pushout starts this when a run starts, so that importing "
+                         "matplotlib overlaps the run)")
     args = ap.parse_args()
-    data = read(args.csv)
+    if args.serve:
+        # The run's signals are the run's: this process ends when its stdin does.
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+        signal.signal(signal.SIGTERM, signal.SIG_IGN)
+        failed = False
+        for line in sys.stdin:
+            if not line.strip():
+                continue
+            csv_path, png, kind = json.loads(line)
+            try:
+                draw(csv_path, png, kind, None)
+            except Exception as e:  # noqa: BLE001  (reported, the next plot still drawn)
+                print(f"plot_curve.py: {png}: {e}", file=sys.stderr)
+                failed = True
+        sys.exit(1 if failed else 0)
+    if not args.csv or not args.png:
+        ap.error("CSV and OUT.png are needed (or --serve)")
+    draw(args.csv, args.png, args.kind, args.title)
+
+
+def draw(csv_path, png, kind, title):
+    data = read(csv_path)
     fig, ax = plt.subplots(figsize=(6, 4), dpi=120)
-    if args.kind == "pushout":
+    if kind == "pushout":
         ax.plot([d * 1e3 for d in data.get("delta_mm", [])], data.get("tau_MPa", []), "o-", ms=3)
         ax.set_xlabel("tube displacement $\\delta$ [µm]")
         ax.set_ylabel("nominal bond stress $\\tau$ [MPa]")
-    elif args.kind == "corrosion":
+    elif kind == "corrosion":
         x_um = [x * 1e3 for x in data.get("penetration_mm", [])]
         ax.plot(x_um, data.get("p_MPa", []), "o-", ms=3, color="C0")
         ax.set_xlabel("corrosion depth $x$ [µm]")
@@ -55,9 +84,10 @@ def main():
         ax.set_ylabel("shear force $F_s$ [N]")
     ax.axhline(0, color="0.6", lw=0.5)
     ax.grid(alpha=0.3)
-    ax.set_title(args.title or os.path.basename(os.path.dirname(os.path.abspath(args.csv))))
+    ax.set_title(title or os.path.basename(os.path.dirname(os.path.abspath(csv_path))))
     fig.tight_layout()
-    fig.savefig(args.png)
+    fig.savefig(png)
+    plt.close(fig)
 
 
 if __name__ == "__main__":

@@ -174,10 +174,10 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, RunReport
 output::Summary run(const Scene& scene, const RunOptions& opt)
 {
   check_scene(scene);
-  RunReport report(scene, opt.out, opt.quiet, opt.comm);
+  RunReport report(scene, opt.out, opt.quiet, opt.comm, opt.plot);
   Simulation simulation(scene, opt, report);
   simulation.load_steps(scene, opt, report);
-  return report.finish(scene, opt.plot);
+  return report.finish();
 }
 
 RunOutcome run_case(const std::filesystem::path& scene_file, const std::vector<std::string>& sets,
@@ -194,14 +194,14 @@ RunOutcome run_case(const std::filesystem::path& scene_file, const std::vector<s
           const Scene scene = Scene::load(scene_file, parse_overrides(sets));
           std::filesystem::create_directories(opt.out);
           check_scene(scene);
-          RunReport report(scene, opt.out, opt.quiet, opt.comm);
+          RunReport report(scene, opt.out, opt.quiet, opt.comm, opt.plot);
           if (!simulation || !simulation->fits(scene))
           {
             simulation.reset(); // its memory first
             simulation = std::make_unique<Simulation>(scene, opt, report);
           }
           simulation->load_steps(scene, opt, report);
-          return report.finish(scene, opt.plot);
+          return report.finish();
         });
     r.exit_code = s.interrupted ? 128 + s.signal : s.converged ? 0 : 3;
     r.message = s.message;

@@ -25,7 +25,7 @@ int rank_in(MPI_Comm comm)
 } // namespace
 
 RunReport::RunReport(const Scene& scene, const std::filesystem::path& out, bool quiet,
-                     MPI_Comm comm)
+                     MPI_Comm comm, bool plot)
     : _out(out), _comm(comm), _rank(rank_in(comm)), _talk(_rank == 0 && !quiet),
       _on_stop(
           [this](int sig, const std::string& phase)
@@ -53,6 +53,8 @@ RunReport::RunReport(const Scene& scene, const std::filesystem::path& out, bool 
   _summary.processes = size;
   if (_rank == 0)
     std::ofstream(_out / "scene.toml") << scene.to_toml();
+  if (_rank == 0 && plot && scene.boolean("output.plot"))
+    _plotter.emplace();
   publish();
 }
 
@@ -67,16 +69,19 @@ double RunReport::seconds() const
   return std::chrono::duration<double>(Clock::now() - _start).count();
 }
 
-output::Summary RunReport::finish(const Scene& scene, bool plot)
+output::Summary RunReport::finish()
 {
-  if (_rank == 0 && plot && scene.boolean("output.plot"))
+  if (_plotter)
   {
+    _plotter->draw(_out / "curve.csv", _out / "curve.png", _summary.model_type);
+    if (_summary.corrosion_steps > 0)
+      _plotter->draw(_out / "corrosion.csv", _out / "corrosion.png", "corrosion");
     std::string why;
-    if (!output::plot_curve(_out / "curve.csv", _out / "curve.png", _summary.model_type, why))
-      std::cerr << "pushout: warning: no curve.png: " << why << std::endl;
-    if (_summary.corrosion_steps > 0 &&
-        !output::plot_curve(_out / "corrosion.csv", _out / "corrosion.png", "corrosion", why))
-      std::cerr << "pushout: warning: no corrosion.png: " << why << std::endl;
+    if (!_plotter->finish(why))
+      std::cerr << "pushout: warning: no curve.png"
+                << (_summary.corrosion_steps > 0 ? " or corrosion.png" : "") << ": " << why
+                << std::endl;
+    _plotter.reset();
   }
   _summary.wall_s = seconds();
   double peak_mb = peak_memory_here_mb();

@@ -7,11 +7,13 @@
 
 #include "../common/Interrupt.h"
 #include "../output/Summary.h"
+#include "../output/plot.h"
 #include "../scene/Scene.h"
 #include <chrono>
 #include <filesystem>
 #include <mpi.h>
 #include <mutex>
+#include <optional>
 #include <string>
 
 namespace pushout::driver
@@ -20,9 +22,11 @@ class RunReport
 {
 public:
   /// Writes the resolved scene (scene.toml) into `out` (rank 0 of the
-  /// run's processes `comm`) and sets the stop report. `quiet`: no progress
-  /// lines.
-  RunReport(const Scene& scene, const std::filesystem::path& out, bool quiet, MPI_Comm comm);
+  /// run's processes `comm`) and sets the stop report; starts the plotting
+  /// process if the run draws its curve (output.plot and `plot`). `quiet`:
+  /// no progress lines.
+  RunReport(const Scene& scene, const std::filesystem::path& out, bool quiet, MPI_Comm comm,
+            bool plot = true);
   RunReport(const RunReport&) = delete;
   RunReport& operator=(const RunReport&) = delete;
 
@@ -35,10 +39,10 @@ public:
   /// Seconds since the run started.
   double seconds() const;
 
-  /// The end of the run: curve.png (output.plot, unless not `plot`), the
-  /// wall time and the largest peak memory of the processes, summary.json
-  /// (rank 0). Collective. Returns the summary.
-  output::Summary finish(const Scene& scene, bool plot = true);
+  /// The end of the run: curve.png (and corrosion.png) if it draws them,
+  /// the wall time and the largest peak memory of the processes,
+  /// summary.json (rank 0). Collective. Returns the summary.
+  output::Summary finish();
 
 private:
   using Clock = std::chrono::steady_clock;
@@ -51,6 +55,7 @@ private:
   std::mutex _published_mutex;
   output::Summary _published; ///< guarded by _published_mutex
   interrupt::ReportOnStop _on_stop;
+  std::optional<output::CurvePlotter> _plotter; ///< rank 0, if the run draws its curve
 };
 
 /// Peak resident memory of this process so far [MB].

@@ -3,6 +3,7 @@
 // fit.png of a fit (scripts/plot_fit.py), with matplotlib.
 #pragma once
 
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -12,6 +13,31 @@ namespace pushout::output
 /// if python3 or matplotlib is missing or the script failed. Never throws.
 bool plot_curve(const std::filesystem::path& csv, const std::filesystem::path& png,
                 const std::string& kind, std::string& why);
+
+/// The plots of a run, drawn by one python process started with the run:
+/// importing matplotlib (most of a plot's 0.7 s) overlaps the run, and the
+/// plots are drawn when it ends (scripts/plot_curve.py --serve). One
+/// process (rank 0) makes it.
+class CurvePlotter
+{
+public:
+  /// Starts the plotting process.
+  CurvePlotter();
+  /// Ends it if finish() was not called (the run failed before).
+  ~CurvePlotter();
+  CurvePlotter(const CurvePlotter&) = delete;
+  CurvePlotter& operator=(const CurvePlotter&) = delete;
+
+  /// Asks for a plot (as plot_curve); drawn by finish().
+  void draw(const std::filesystem::path& csv, const std::filesystem::path& png,
+            const std::string& kind);
+  /// Waits for the plots; false (and why) if the process could not start or
+  /// a plot failed. Never throws.
+  bool finish(std::string& why);
+
+private:
+  std::FILE* _pipe = nullptr;
+};
 
 /// The measured and fitted curves of a fit (`folder`/fit.csv and
 /// `folder`/best/curve.csv) into `png`; as plot_curve.
