@@ -250,25 +250,25 @@ int main(int argc, char* argv[])
   pushout::interrupt::install();
   dolfinx::init_logging(1, argv);
   loguru::g_stderr_verbosity = loguru::Verbosity_WARNING;
+  // What sweep and fit share, from the command line.
+  const auto common = [&](pushout::driver::ManyRunsOptions& o)
+  {
+    o.scene_file = scene_file;
+    o.sets = sets;
+    o.out = out;
+    o.mesh_cache = pushout::mesh::default_cache_dir();
+    o.quiet = quiet;
+    o.force = force;
+  };
   int rc = 0;
   if (app.got_subcommand("fit"))
   {
-    fit_options.scene_file = scene_file;
-    fit_options.sets = sets;
-    fit_options.out = out;
-    fit_options.mesh_cache = pushout::mesh::default_cache_dir();
-    fit_options.quiet = quiet;
-    fit_options.force = force;
+    common(fit_options);
     rc = pushout::driver::fit(fit_options);
   }
   else if (app.got_subcommand("sweep"))
   {
-    sweep_options.scene_file = scene_file;
-    sweep_options.sets = sets;
-    sweep_options.out = out;
-    sweep_options.mesh_cache = pushout::mesh::default_cache_dir();
-    sweep_options.quiet = quiet;
-    sweep_options.force = force;
+    common(sweep_options);
     rc = pushout::driver::sweep(sweep_options);
   }
   else

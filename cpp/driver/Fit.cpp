@@ -483,9 +483,8 @@ double interpolate(const std::vector<double>& delta, const std::vector<double>& 
 
 int fit(const FitOptions& opt)
 {
-  int rank = 0, size = 1;
+  int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
   const bool talk = rank == 0 && !opt.quiet;
   const auto t0 = std::chrono::steady_clock::now();
   MeasuredCurve data;
@@ -496,9 +495,7 @@ int fit(const FitOptions& opt)
         MPI_COMM_WORLD,
         [&]
         {
-          if (opt.ranks_per_case < 1 || size % opt.ranks_per_case != 0)
-            throw SceneError("--ranks-per-case " + std::to_string(opt.ranks_per_case) +
-                             " must divide the " + std::to_string(size) + " processes");
+          ProcessGroups::check(opt.ranks_per_case);
           data = read_measured(opt.data);
           const Scene scene = Scene::load(opt.scene_file, parse_overrides(opt.sets));
           if (scene.string("model.type") != "pushout")
@@ -525,16 +522,13 @@ int fit(const FitOptions& opt)
     return 2;
   }
 
-  const int groups = size / opt.ranks_per_case;
-  MPI_Comm group;
-  MPI_Comm_split(MPI_COMM_WORLD, rank / opt.ranks_per_case, rank, &group);
-  mpi::set_run_processes(group);
-  Evaluator evaluator(opt, free, data, group, groups, rank / opt.ranks_per_case);
+  ProcessGroups groups(opt.ranks_per_case);
+  Evaluator evaluator(opt, free, data, groups.comm(), groups.count(), groups.index());
   Problem problem{evaluator, free, talk, {}, {}, {}, {}, 0, t0};
   if (talk)
     std::cout << "pushout fit: " << free.size() << " values to " << data.delta.size()
-              << " points of " << opt.data.string() << "; " << groups
-              << (groups == 1 ? " group" : " groups") << " of " << opt.ranks_per_case
+              << " points of " << opt.data.string() << "; " << groups.count()
+              << (groups.count() == 1 ? " group" : " groups") << " of " << opt.ranks_per_case
               << (opt.ranks_per_case == 1 ? " process" : " processes") << std::endl;
 
   // TAO on each process alike (PETSC_COMM_SELF), on the scaled values.
@@ -619,11 +613,10 @@ int fit(const FitOptions& opt)
     warnings.push_back("J^T J is singular at the optimum: some values do not change the curve");
 
   // The fitted run, with its outputs, in DIR/best (group 0).
-  if (rank / opt.ranks_per_case == 0)
+  if (groups.index() == 0)
     evaluator.run(x, opt.out / "best", true);
   evaluator.release();
-  mpi::set_run_processes(MPI_COMM_WORLD);
-  MPI_Comm_free(&group);
+  groups.close();
   const bool converged = reason > 0 && evaluator.failed() == 0;
   int code = converged ? 0 : 3;
   if (rank == 0)

@@ -24,25 +24,18 @@
 // (its run), DIR/fit.png.
 #pragma once
 
+#include "Run.h"
 #include <filesystem>
 #include <string>
 #include <vector>
 
 namespace pushout::driver
 {
-struct FitOptions
+struct FitOptions : ManyRunsOptions
 {
-  std::filesystem::path scene_file;
-  std::vector<std::string> sets;   ///< --set overrides
   std::filesystem::path data;      ///< measured.csv: delta_mm, tau_MPa
   std::vector<std::string> free;   ///< --free keys
   std::vector<std::string> bounds; ///< --bounds key=lo:hi
-  std::filesystem::path out;
-  std::filesystem::path mesh_cache;
-  int ranks_per_case = 1;
-  int max_evaluations = 400; ///< model runs before the fit stops
-  bool quiet = false;
-  bool force = false;
 };
 
 /// A measured curve: delta [mm] increasing, tau [MPa].

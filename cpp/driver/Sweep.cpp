@@ -212,9 +212,8 @@ std::vector<std::vector<std::string>> cartesian_cases(const std::vector<Variatio
 
 int sweep(const SweepOptions& opt)
 {
-  int rank = 0, size = 1;
+  int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<Variation> vary;
   std::vector<std::vector<std::string>> cases;
@@ -229,9 +228,7 @@ int sweep(const SweepOptions& opt)
         {
           if (opt.vary.empty())
             throw SceneError("pushout sweep needs at least one --vary key=value,value,...");
-          if (opt.ranks_per_case < 1 || size % opt.ranks_per_case != 0)
-            throw SceneError("--ranks-per-case " + std::to_string(opt.ranks_per_case) +
-                             " must divide the " + std::to_string(size) + " processes");
+          ProcessGroups::check(opt.ranks_per_case);
           for (const std::string& v : opt.vary)
             vary.push_back(parse_variation(v));
           cases = cartesian_cases(vary);
@@ -270,18 +267,13 @@ int sweep(const SweepOptions& opt)
     return 2;
   }
 
-  // Groups of ranks_per_case processes, each with its own agreement channel.
-  const int groups = size / opt.ranks_per_case;
-  MPI_Comm group;
-  MPI_Comm_split(MPI_COMM_WORLD, rank / opt.ranks_per_case, rank, &group);
-  int group_rank = 0;
-  MPI_Comm_rank(group, &group_rank);
-  const bool leader = group_rank == 0;
+  ProcessGroups groups(opt.ranks_per_case);
+  const MPI_Comm group = groups.comm();
+  const bool leader = groups.leader();
   if (rank == 0 && !opt.quiet)
-    std::cout << "pushout sweep: " << cases.size() << " cases, " << groups
-              << (groups == 1 ? " group" : " groups") << " of " << opt.ranks_per_case
+    std::cout << "pushout sweep: " << cases.size() << " cases, " << groups.count()
+              << (groups.count() == 1 ? " group" : " groups") << " of " << opt.ranks_per_case
               << (opt.ranks_per_case == 1 ? " process" : " processes") << std::endl;
-  mpi::set_run_processes(group);
 
   // The shared counter of the next case (rank 0's window).
   int* next = nullptr;
@@ -345,8 +337,7 @@ int sweep(const SweepOptions& opt)
   }
   simulation.reset(); // on the group, before it goes
   MPI_Win_free(&window);
-  mpi::set_run_processes(MPI_COMM_WORLD);
-  MPI_Comm_free(&group);
+  groups.close();
   MPI_Allreduce(MPI_IN_PLACE, &stop_signal, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
 
   const std::vector<CaseResult> results = gather(mine);

@@ -16,22 +16,16 @@
 // curves overlaid.
 #pragma once
 
+#include "Run.h"
 #include <filesystem>
 #include <string>
 #include <vector>
 
 namespace pushout::driver
 {
-struct SweepOptions
+struct SweepOptions : ManyRunsOptions
 {
-  std::filesystem::path scene_file;
-  std::vector<std::string> sets; ///< --set overrides of every case
   std::vector<std::string> vary; ///< --vary key=v1,v2,...
-  std::filesystem::path out;     ///< the sweep's folder
-  std::filesystem::path mesh_cache;
-  int ranks_per_case = 1;
-  bool quiet = false;
-  bool force = false;
 };
 
 /// One varied key and its values, from "key=v1,v2,..." (commas inside
