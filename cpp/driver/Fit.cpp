@@ -200,7 +200,7 @@ public:
         run_case(_opt.scene_file, sets_at(x),
                  {out, _opt.mesh_cache, true, _opt.force, _group, plot}, _simulation);
     std::vector<double> r(_data.delta.size(), 0.0);
-    if (o.exit_code != 0)
+    if (o.exit_code != 0 && _leader) // once per group: the count is summed over processes
     {
       ++_failed;
       _last_failure = o.message;
