@@ -261,18 +261,29 @@ int main(int argc, char* argv[])
     o.force = force;
   };
   int rc = 0;
-  if (app.got_subcommand("fit"))
+  try
   {
-    common(fit_options);
-    rc = pushout::driver::fit(fit_options);
+    if (app.got_subcommand("fit"))
+    {
+      common(fit_options);
+      rc = pushout::driver::fit(fit_options);
+    }
+    else if (app.got_subcommand("sweep"))
+    {
+      common(sweep_options);
+      rc = pushout::driver::sweep(sweep_options);
+    }
+    else
+      rc = run_scene(scene_file, out, sets, quiet, force);
   }
-  else if (app.got_subcommand("sweep"))
+  catch (const std::exception& e) // an error outside the runs of a sweep or fit
   {
-    common(sweep_options);
-    rc = pushout::driver::sweep(sweep_options);
+    std::cerr << "pushout: error: " << e.what() << std::endl;
+    MPI_Abort(MPI_COMM_WORLD, 1); // the other processes may wait in a collective
   }
-  else
-    rc = run_scene(scene_file, out, sets, quiet, force);
+  // The command has said how it ended: a signal that came meanwhile ends
+  // nothing more.
+  const pushout::interrupt::Phase ending("ending", -1);
   pushout::petsc::check_nothrow(PetscFinalize(), "PetscFinalize");
   return rc;
 }

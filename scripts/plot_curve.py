@@ -15,6 +15,12 @@ import os
 import signal
 import sys
 
+if "--serve" in sys.argv:
+    # The run's signals are the run's, from the start (the import below
+    # takes most of a second): this process ends when its stdin does.
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_IGN)
+
 import matplotlib
 
 matplotlib.use("Agg")
@@ -39,9 +45,6 @@ def main():
                          "matplotlib overlaps the run)")
     args = ap.parse_args()
     if args.serve:
-        # The run's signals are the run's: this process ends when its stdin does.
-        signal.signal(signal.SIGINT, signal.SIG_IGN)
-        signal.signal(signal.SIGTERM, signal.SIG_IGN)
         failed = False
         for line in sys.stdin:
             if not line.strip():

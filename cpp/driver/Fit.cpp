@@ -1,4 +1,5 @@
 #include "Fit.h"
+#include "../common/Interrupt.h"
 #include "../common/mpi_errors.h"
 #include "../common/petsc_check.h"
 #include "../laws/LawRegistry.h"
@@ -9,6 +10,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -30,6 +32,20 @@ constexpr double difference_step = 1e-4;
 /// Two values whose correlation exceeds this are not separately
 /// identifiable from the data.
 constexpr double identifiable_correlation = 0.95;
+
+/// A signal stopped the fit (thrown on every process at once).
+class Interrupted : public std::runtime_error
+{
+public:
+  explicit Interrupted(int signal)
+      : std::runtime_error("interrupted by " + interrupt::signal_name(signal)), signal(signal)
+  {
+  }
+  int signal;
+};
+
+/// How long a signal between runs may wait for the fit to see it [s].
+constexpr double stop_grace_s = 5;
 
 /// A free value: its key, start, bounds and the scale TAO divides it by.
 struct Free
@@ -171,6 +187,10 @@ public:
           std::copy(r.begin(), r.end(), all.begin() + std::ptrdiff_t(k * m));
       }
     MPI_Allreduce(MPI_IN_PLACE, all.data(), int(all.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    int signal = std::max(interrupt::received(), _signal);
+    MPI_Allreduce(MPI_IN_PLACE, &signal, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    if (signal != 0) // on every process alike: TaoSolve ends with it
+      throw Interrupted(signal);
     int failed = _failed;
     MPI_Allreduce(&failed, &_failed_total, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
     _evaluations += int(points.size());
@@ -200,6 +220,8 @@ public:
         run_case(_opt.scene_file, sets_at(x),
                  {out, _opt.mesh_cache, true, _opt.force, _group, plot}, _simulation);
     std::vector<double> r(_data.delta.size(), 0.0);
+    if (o.exit_code > 128)
+      _signal = o.exit_code - 128;
     if (o.exit_code != 0 && _leader) // once per group: the count is summed over processes
     {
       ++_failed;
@@ -215,14 +237,18 @@ public:
     const auto column = [&](const std::string& name)
     { return std::size_t(std::find(header.begin(), header.end(), name) - header.begin()); };
     const std::size_t cd = column("delta_mm"), ct = column("tau_MPa");
-    while (std::getline(in, line))
+    while (std::getline(in, line)) // our own file: a row that does not parse ends it
     {
       const std::vector<std::string> cells = split(line, ',');
-      if (cd < cells.size() && ct < cells.size())
-      {
-        delta.push_back(std::stod(cells[cd]));
-        tau.push_back(std::stod(cells[ct]));
-      }
+      if (cd >= cells.size() || ct >= cells.size())
+        break;
+      char *end_d = nullptr, *end_t = nullptr;
+      const double d = std::strtod(cells[cd].c_str(), &end_d);
+      const double t = std::strtod(cells[ct].c_str(), &end_t);
+      if (end_d == cells[cd].c_str() || end_t == cells[ct].c_str())
+        break;
+      delta.push_back(d);
+      tau.push_back(t);
     }
     for (std::size_t i = 0; i < r.size(); ++i)
       r[i] = (delta.empty() ? 0.0 : interpolate(delta, tau, _data.delta[i])) - _data.tau[i];
@@ -243,6 +269,7 @@ private:
   bool _leader = false;
   std::unique_ptr<Simulation> _simulation; ///< the group's set-up, reused
   int _evaluations = 0, _failed = 0, _failed_total = 0;
+  int _signal = 0; ///< a run stopped by this signal
   std::string _last_failure;
 };
 
@@ -567,13 +594,35 @@ int fit(const FitOptions& opt)
   check(TaoSetTolerances(tao, 1e-12, 0.0, 1e-6), "TaoSetTolerances");
   check(TaoSetMaximumIterations(tao, 50), "TaoSetMaximumIterations");
   check(TaoSetFromOptions(tao), "TaoSetFromOptions");
-  check(TaoSolve(tao), "TaoSolve");
+  const auto destroy = [&]
+  {
+    check(TaoDestroy(&tao), "TaoDestroy");
+    for (Vec* v : {&X, &F, &lo, &hi})
+      check(VecDestroy(v), "VecDestroy");
+    check(MatDestroy(&J), "MatDestroy");
+  };
+  std::vector<double> x;
+  try
+  {
+    const interrupt::Phase phase("fit", stop_grace_s);
+    check(TaoSolve(tao), "TaoSolve");
+    // At the optimum: residuals and the Jacobian (in the keys' units below).
+    x = problem.values(X);
+    problem.evaluate(x, J);
+  }
+  catch (const Interrupted& e)
+  {
+    destroy();
+    evaluator.release();
+    groups.close();
+    if (rank == 0)
+      std::cerr << "pushout: " << e.what() << " after " << evaluator.evaluations()
+                << " runs; no fit written" << std::endl;
+    return 128 + e.signal;
+  }
   TaoConvergedReason reason;
   check(TaoGetConvergedReason(tao, &reason), "TaoGetConvergedReason");
 
-  // At the optimum: residuals and the Jacobian in the keys' units.
-  std::vector<double> x = problem.values(X);
-  problem.evaluate(x, J);
   const std::vector<double> r = problem.r_last;
   std::vector<std::vector<double>> JtJ(free.size(), std::vector<double>(free.size(), 0.0));
   {
@@ -691,10 +740,7 @@ int fit(const FitOptions& opt)
                 << (opt.out / "scene.toml").string() << std::endl;
     }
   }
-  check(TaoDestroy(&tao), "TaoDestroy");
-  for (Vec* v : {&X, &F, &lo, &hi})
-    check(VecDestroy(v), "VecDestroy");
-  check(MatDestroy(&J), "MatDestroy");
+  destroy();
   MPI_Bcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD);
   return code;
 }

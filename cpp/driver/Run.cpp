@@ -112,6 +112,8 @@ std::string Simulation::set_up_fingerprint(const Scene& scene)
         s << k.path << "=" << to_toml(*v) << "\n";
   if (scene.string("model.type") == "pushout")
     s << "loading.thermal_tube_top=" << scene.string("loading.thermal_tube_top") << "\n";
+  // The quarter model is only for runs without fields (mesh/symmetry.h).
+  s << "output.xdmf=" << scene.boolean("output.xdmf") << "\n";
   for (const CrackSpec& c : scene.cracks())
     s << "crack.angle=" << (c.angle_deg ? std::to_string(*c.angle_deg) : "nearest_face") << "\n";
   return s.str();
@@ -177,6 +179,7 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
   RunReport report(scene, opt.out, opt.quiet, opt.comm, opt.plot);
   Simulation simulation(scene, opt, report);
   simulation.load_steps(scene, opt, report);
+  const interrupt::Phase writing("writing outputs", -1); // never forced
   return report.finish();
 }
 
@@ -192,7 +195,16 @@ RunOutcome run_case(const std::filesystem::path& scene_file, const std::vector<s
         [&]
         {
           const Scene scene = Scene::load(scene_file, parse_overrides(sets));
-          std::filesystem::create_directories(opt.out);
+          // A run that fails before its outputs must not leave an earlier
+          // run's in the folder (a fit reads curve.csv back).
+          int rank = 0;
+          MPI_Comm_rank(opt.comm, &rank);
+          if (rank == 0)
+          {
+            std::filesystem::create_directories(opt.out);
+            for (const char* f : {"curve.csv", "summary.json", "corrosion.csv"})
+              std::filesystem::remove(opt.out / f);
+          }
           check_scene(scene);
           RunReport report(scene, opt.out, opt.quiet, opt.comm, opt.plot);
           if (!simulation || !simulation->fits(scene))
@@ -201,6 +213,7 @@ RunOutcome run_case(const std::filesystem::path& scene_file, const std::vector<s
             simulation = std::make_unique<Simulation>(scene, opt, report);
           }
           simulation->load_steps(scene, opt, report);
+          const interrupt::Phase writing("writing outputs", -1); // never forced
           return report.finish();
         });
     r.exit_code = s.interrupted ? 128 + s.signal : s.converged ? 0 : 3;

@@ -53,8 +53,8 @@ public:
   void load_steps(const Scene& scene, const RunOptions& options, RunReport& report);
 
   /// The scene keys the set-up depends on, as text: model, geometry, mesh,
-  /// materials, solver keys, the thermal tube-top condition and the crack
-  /// planes' directions.
+  /// materials, solver keys, the thermal tube-top condition, the crack
+  /// planes' directions and output.xdmf (no quarter model with fields).
   static std::string set_up_fingerprint(const Scene& scene);
 
 private:

@@ -35,6 +35,7 @@ constexpr double released_to_return = 0.25;
 /// tries.
 constexpr double zero_force_tolerance = 1e-6;
 constexpr int zero_force_max_tries = 50;
+constexpr double zero_force_bracket = 1e-12; ///< of the load parameter
 /// Dissipation control of the corrosion stage: the step of the numerical
 /// derivative of the residual by x, as a fraction of a step of x (a
 /// relative perturbation near the square root of the round-off: the
@@ -393,7 +394,9 @@ bool StepLoop::zero_force_step(const Stage& stage, int k, int cuts, double s0, d
       return false;
     }
     const double P = _scenario.load_force(_equilibrium.model());
-    if (std::abs(P) <= tol)
+    // Found, or the bracket is down to round-off of the load parameter
+    // (the force's own noise above tol).
+    if (std::abs(P) <= tol || std::abs(s1 - s0) <= zero_force_bracket * std::max(1.0, s))
     {
       stage.record(rep.iterations, cuts, k, s); // before the commit: StepRecorder.h
       commit();

@@ -13,12 +13,16 @@
 #include <limits>
 #include <mpi.h>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 namespace pushout::driver
 {
 namespace
 {
+/// How long a signal between cases may wait for the loop to see it [s].
+constexpr double stop_grace_s = 5;
+
 /// The outcome of one case, as its group's first process knows it.
 struct CaseResult : RunOutcome
 {
@@ -54,7 +58,8 @@ std::vector<CaseResult> gather(const std::vector<CaseResult>& mine)
                  {"exit_code", r.exit_code},
                  {"wall_s", r.wall_s},
                  {"message", r.message}});
-  const std::string text = j.dump();
+  // (a message that is not UTF-8 is replaced, not thrown on one process)
+  const std::string text = j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
@@ -232,6 +237,11 @@ int sweep(const SweepOptions& opt)
           for (const std::string& v : opt.vary)
             vary.push_back(parse_variation(v));
           cases = cartesian_cases(vary);
+          // The model type and the plot of the sweep: the scene's with the
+          // --set values (a case may not change them).
+          const Scene base = Scene::load(opt.scene_file, parse_overrides(opt.sets));
+          model_type = base.string("model.type");
+          plot = base.boolean("output.plot") ? "yes" : "";
           for (std::size_t i = 0; i < cases.size(); ++i)
           {
             std::vector<std::string> sets = opt.sets;
@@ -239,8 +249,8 @@ int sweep(const SweepOptions& opt)
             try
             {
               const Scene scene = Scene::load(opt.scene_file, parse_overrides(sets));
-              model_type = scene.string("model.type");
-              plot = scene.boolean("output.plot") ? "yes" : "";
+              if (scene.string("model.type") != model_type)
+                throw SceneError("a sweep runs one model type: vary other keys");
             }
             catch (const SceneError& e)
             {
@@ -288,6 +298,10 @@ int sweep(const SweepOptions& opt)
   }
   MPI_Barrier(MPI_COMM_WORLD);
 
+  // Between cases a signal waits for the loop to see it (at most a case's
+  // set-up: the run's own phases apply inside a case), then the table of
+  // what ran is written.
+  std::optional<interrupt::Phase> phase(std::in_place, "sweep", stop_grace_s);
   std::vector<CaseResult> mine;
   std::unique_ptr<Simulation> simulation; // the group's last set-up
   int stop_signal = 0;
@@ -340,6 +354,7 @@ int sweep(const SweepOptions& opt)
   groups.close();
   MPI_Allreduce(MPI_IN_PLACE, &stop_signal, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
 
+  phase.emplace("writing outputs", -1);
   const std::vector<CaseResult> results = gather(mine);
   int code = 0;
   if (rank == 0)

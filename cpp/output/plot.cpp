@@ -1,4 +1,5 @@
 #include "plot.h"
+#include <csignal>
 #include <cstdlib>
 #include <utility>
 #include <vector>
@@ -14,6 +15,20 @@ namespace pushout::output
 {
 namespace
 {
+/// Ignores SIGPIPE while it lives: a plotting process that died (python or
+/// matplotlib missing, a signal) makes a write fail, not end the run.
+class NoSigpipe
+{
+public:
+  NoSigpipe() : _previous(std::signal(SIGPIPE, SIG_IGN)) {}
+  ~NoSigpipe() { std::signal(SIGPIPE, _previous); }
+  NoSigpipe(const NoSigpipe&) = delete;
+  NoSigpipe& operator=(const NoSigpipe&) = delete;
+
+private:
+  void (*_previous)(int);
+};
+
 std::string quote(const std::string& s)
 {
   std::string q = "'";
@@ -57,7 +72,10 @@ CurvePlotter::CurvePlotter()
 CurvePlotter::~CurvePlotter()
 {
   if (_pipe)
+  {
+    const NoSigpipe guard;
     pclose(_pipe);
+  }
 }
 
 void CurvePlotter::draw(const std::filesystem::path& csv, const std::filesystem::path& png,
@@ -65,6 +83,7 @@ void CurvePlotter::draw(const std::filesystem::path& csv, const std::filesystem:
 {
   if (!_pipe)
     return;
+  const NoSigpipe guard;
   // One JSON list per line: ["csv", "png", "kind"].
   const auto json = [](const std::string& s)
   {
@@ -85,7 +104,8 @@ void CurvePlotter::draw(const std::filesystem::path& csv, const std::filesystem:
   line += ',';
   line += json(kind);
   line += "]\n";
-  std::fputs(line.c_str(), _pipe);
+  if (std::fputs(line.c_str(), _pipe) < 0 || std::fflush(_pipe) != 0)
+    _failed = true;
 }
 
 bool CurvePlotter::finish(std::string& why)
@@ -95,8 +115,9 @@ bool CurvePlotter::finish(std::string& why)
     why = "could not start " + std::string(PUSHOUT_PYTHON);
     return false;
   }
+  const NoSigpipe guard;
   const int rc = pclose(std::exchange(_pipe, nullptr));
-  if (rc != 0)
+  if (rc != 0 || _failed)
   {
     why = "plot script failed (exit " + std::to_string(rc) + ")";
     return false;

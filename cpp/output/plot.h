@@ -37,6 +37,7 @@ public:
 
 private:
   std::FILE* _pipe = nullptr;
+  bool _failed = false; ///< a request could not be written
 };
 
 /// The measured and fitted curves of a fit (`folder`/fit.csv and
