@@ -16,11 +16,16 @@
    its exit code and message while the other case runs; the sweep exits 3.
 4. Bad input exits 2 with one message: --vary without values, an unknown
    key (naming the case), a value that is not a number, --ranks-per-case
-   that does not divide the processes."""
+   that does not divide the processes.
+5. SIGINT during a sweep (paper's mesh, 8 cases of 100 steps, the signal
+   after the first cases): exit 130, and sweep.csv lists the cases that ran,
+   the interrupted one with exit 130."""
 import csv
 import os
 import shutil
+import signal
 import subprocess
+import time
 
 from common import PUSHOUT, SOURCE, check, curve, out_dir, run, summary
 
@@ -122,3 +127,18 @@ for what, vary, extra, n in (
     message = [line for line in p.stderr.splitlines() if line.startswith("pushout")]
     check(p.returncode == 2 and len(message) == 1,
           f"{what}: exit {p.returncode}, {message[0] if message else p.stderr[-300:]}")
+
+# 5. A signal stops the sweep cleanly.
+out = out_dir("sweep_interrupted")
+cmd = [PUSHOUT, "sweep", os.path.join(SOURCE, "demo", "pushout_friction_adhesion.toml"), "--out", out,
+       "--quiet", "--vary", "interface.1.c=10,15,20,25,30,35,40,45",
+       "--set", "loading.push_displacement=0.5", "--set", "loading.steps=100"]
+p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+while not os.path.exists(os.path.join(out, "case_001", "summary.json")) and p.poll() is None:
+    time.sleep(0.05)
+p.send_signal(signal.SIGINT)
+_, err = p.communicate(timeout=120)
+rows = table(out)
+check(p.returncode == 130 and 1 <= len(rows) < 8 and rows[-1]["exit_code"] in ("0", "130"),
+      f"SIGINT: exit {p.returncode}, sweep.csv with {len(rows)} of 8 cases "
+      f"(last: exit {rows[-1]['exit_code']} {rows[-1]['message']})")
