@@ -10,7 +10,8 @@
 2. MPI: the same sweep on 2 processes (two groups of one: the cases spread
    over them) gives the serial curves to 1e-10; with --ranks-per-case 2
    (one group: each case on 2 processes, the whole model) a case equals
-   `pushout run` on 2 processes to 1e-10, and the serial (condensed) sweep
+   `pushout run` on 2 processes to 1e-9 (parallel MUMPS is not bitwise
+   reproducible: 1e-11 to 1e-10 measured), and the serial (condensed) sweep
    to Newton's tolerance, 1e-8.
 3. A case refused by the size guard (a 4000-per-quarter mesh) is a row with
    its exit code and message while the other case runs; the sweep exits 3.
@@ -101,8 +102,10 @@ if MPI:
                     for r in rows)
         check(worst < tol, f"{name}: the serial sweep's curves to {worst:.1e}")
         if name == "ranks_per_case_2":
+            # Two processes (MUMPS in parallel) are not bitwise reproducible:
+            # measured 1.3e-11 here, 1.0e-10 on a fresh Debian root.
             d = same_curves(curve(two), curve(os.path.join(out, "case_003")))
-            check(d < 1e-10, f"{name}: case_003 equals pushout run on 2 processes to {d:.1e}")
+            check(d < 1e-9, f"{name}: case_003 equals pushout run on 2 processes to {d:.1e}")
 else:
     print("SKIPPED (MPI part): mpirun not found")
 
