@@ -161,46 +161,42 @@ int main(int argc, char* argv[])
   std::string scene_file, out;
   std::vector<std::string> sets;
   bool quiet = false, force = false;
+  // The scene, the output folder, the overrides and the flags every command
+  // that runs takes; `ranks`: --ranks-per-case, for those that make many runs.
+  const auto common = [&](CLI::App* cmd, const std::string& scene_doc, int* ranks)
+  {
+    cmd->add_option("scene", scene_file, scene_doc)->required();
+    cmd->add_option("--out", out, "output folder")->required();
+    cmd->add_option("--set", sets, "override a scene key: key=value (repeatable)");
+    if (ranks)
+      cmd->add_option("--ranks-per-case", *ranks,
+                      "processes that run each model run together (default 1)");
+    cmd->add_flag("--quiet", quiet, "no progress lines");
+    cmd->add_flag("--force", force,
+                  "run even if the size guard estimates a run cannot fit in memory");
+    cmd->allow_extras();
+  };
   CLI::App* run = app.add_subcommand("run", "run a scene");
-  run->add_option("scene", scene_file, "scene file (TOML)")->required();
-  run->add_option("--out", out, "output folder")->required();
-  run->add_option("--set", sets, "override a scene key: key=value (repeatable)");
-  run->add_flag("--quiet", quiet, "no progress lines");
-  run->add_flag("--force", force, "run even if the size guard estimates it cannot fit in memory");
-  run->allow_extras();
+  common(run, "scene file (TOML)", nullptr);
   pushout::driver::SweepOptions sweep_options;
   CLI::App* sweep = app.add_subcommand(
       "sweep", "run the Cartesian product of scene values, each case in DIR/case_NNN; under "
                "mpirun the processes share the cases (docs/sweeps.md)");
-  sweep->add_option("scene", scene_file, "scene file (TOML)")->required();
+  common(sweep, "scene file (TOML)", &sweep_options.ranks_per_case);
   sweep
       ->add_option("--vary", sweep_options.vary, "a key and its values: key=v1,v2,... (repeatable)")
       ->required();
-  sweep->add_option("--out", out, "output folder")->required();
-  sweep->add_option("--set", sets, "override a scene key of every case: key=value (repeatable)");
-  sweep->add_option("--ranks-per-case", sweep_options.ranks_per_case,
-                    "processes that run each case together (default 1)");
-  sweep->add_flag("--quiet", quiet, "no progress lines");
-  sweep->add_flag("--force", force, "run even if the size guard estimates a case cannot fit");
-  sweep->allow_extras();
   pushout::driver::FitOptions fit_options;
   CLI::App* fit = app.add_subcommand(
       "fit", "fit scene values (law parameters, loads) to a measured push-out curve by least "
              "squares (PETSc TAO); DIR/fit.json has them with their standard errors "
              "(docs/fitting.md)");
-  fit->add_option("scene", scene_file, "scene file (TOML): the start values")->required();
+  common(fit, "scene file (TOML): the start values", &fit_options.ranks_per_case);
   fit->add_option("--data", fit_options.data, "measured curve: CSV with delta_mm, tau_MPa")
       ->required();
   fit->add_option("--free", fit_options.free, "a scene key to fit (repeatable)")->required();
   fit->add_option("--bounds", fit_options.bounds,
                   "bounds of a free key: key=lo:hi (either may be empty; repeatable)");
-  fit->add_option("--out", out, "output folder")->required();
-  fit->add_option("--set", sets, "override a scene key: key=value (repeatable)");
-  fit->add_option("--ranks-per-case", fit_options.ranks_per_case,
-                  "processes that run each model run together (default 1)");
-  fit->add_flag("--quiet", quiet, "no progress lines");
-  fit->add_flag("--force", force, "run even if the size guard estimates a run cannot fit");
-  fit->allow_extras();
   app.add_subcommand("keys", "print the scene keys (Markdown table)");
   app.add_subcommand("laws", "print the interface laws and their parameters");
   try
@@ -251,7 +247,7 @@ int main(int argc, char* argv[])
   dolfinx::init_logging(1, argv);
   loguru::g_stderr_verbosity = loguru::Verbosity_WARNING;
   // What sweep and fit share, from the command line.
-  const auto common = [&](pushout::driver::ManyRunsOptions& o)
+  const auto fill = [&](pushout::driver::ManyRunsOptions& o)
   {
     o.scene_file = scene_file;
     o.sets = sets;
@@ -265,12 +261,12 @@ int main(int argc, char* argv[])
   {
     if (app.got_subcommand("fit"))
     {
-      common(fit_options);
+      fill(fit_options);
       rc = pushout::driver::fit(fit_options);
     }
     else if (app.got_subcommand("sweep"))
     {
-      common(sweep_options);
+      fill(sweep_options);
       rc = pushout::driver::sweep(sweep_options);
     }
     else
