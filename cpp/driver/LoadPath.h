@@ -31,7 +31,6 @@ public:
   bool empty() const { return _v.empty(); }
   std::size_t segments() const { return _v.empty() ? 0 : _v.size() - 1; }
   int steps() const { return int(segments()) * _per_segment; }
-  const std::vector<double>& vertices() const { return _v; }
 
   /// The segment of load parameter s (the segment it ends, at a vertex).
   std::size_t segment_at(double s) const

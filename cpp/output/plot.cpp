@@ -125,13 +125,6 @@ bool CurvePlotter::finish(std::string& why)
   return true;
 }
 
-bool plot_curve(const std::filesystem::path& csv, const std::filesystem::path& png,
-                const std::string& kind, std::string& why)
-{
-  return run_script({script_path("plot_curve.py"), csv.string(), png.string(), "--kind", kind},
-                    why);
-}
-
 bool plot_fit(const std::filesystem::path& folder, const std::filesystem::path& png,
               std::string& why)
 {

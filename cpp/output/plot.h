@@ -9,11 +9,6 @@
 
 namespace pushout::output
 {
-/// Draws the curve (`kind`: the model type, or "corrosion"); returns false (and says why in `why`)
-/// if python3 or matplotlib is missing or the script failed. Never throws.
-bool plot_curve(const std::filesystem::path& csv, const std::filesystem::path& png,
-                const std::string& kind, std::string& why);
-
 /// The plots of a run, drawn by one python process started with the run:
 /// importing matplotlib (most of a plot's 0.7 s) overlaps the run, and the
 /// plots are drawn when it ends (scripts/plot_curve.py --serve). One
@@ -28,7 +23,8 @@ public:
   CurvePlotter(const CurvePlotter&) = delete;
   CurvePlotter& operator=(const CurvePlotter&) = delete;
 
-  /// Asks for a plot (as plot_curve); drawn by finish().
+  /// Asks for a plot (`kind`: the model type, or "corrosion"); drawn by
+  /// finish().
   void draw(const std::filesystem::path& csv, const std::filesystem::path& png,
             const std::string& kind);
   /// Waits for the plots; false (and why) if the process could not start or
@@ -41,12 +37,13 @@ private:
 };
 
 /// The measured and fitted curves of a fit (`folder`/fit.csv and
-/// `folder`/best/curve.csv) into `png`; as plot_curve.
+/// `folder`/best/curve.csv) into `png`; false (and why) if python3 or
+/// matplotlib is missing or the script failed. Never throws.
 bool plot_fit(const std::filesystem::path& folder, const std::filesystem::path& png,
               std::string& why);
 
 /// Overlays the curves of the cases of a sweep (`folder`/sweep.csv and each
-/// case's curve.csv) into `png`; as plot_curve.
+/// case's curve.csv) into `png`; as plot_fit.
 bool plot_sweep(const std::filesystem::path& folder, const std::filesystem::path& png,
                 std::string& why);
 } // namespace pushout::output
