@@ -631,6 +631,21 @@ bool StepLoop::corrode_by_dissipation()
 /// move lambda by more than a step of lambda. Failed steps are halved (each
 /// kind its own Stepper.h). Without softening layers (dG = 0) the stage
 /// runs as without dissipation control.
+namespace
+{
+/// While it lives, each Newton solve starts from the tangent at its initial
+/// guess (solver.first_tangent = "current").
+struct StartTangent
+{
+  solver::LoadStepSolver& solver;
+  const bool converged = solver.first_tangent_converged();
+  explicit StartTangent(solver::LoadStepSolver& s) : solver(s) { solver.set_first_tangent(false); }
+  ~StartTangent() { solver.set_first_tangent(converged); }
+  StartTangent(const StartTangent&) = delete;
+  StartTangent& operator=(const StartTangent&) = delete;
+};
+} // namespace
+
 bool StepLoop::by_dissipation(const DissipationStage& stage)
 {
   const LoadFactorPath& p = stage.path;
@@ -642,6 +657,11 @@ bool StepLoop::by_dissipation(const DissipationStage& stage)
                 << p.target << " runs under displacement control" << std::endl;
     return stage.without_softening();
   }
+  // Steps of lambda here must stay on the branch of the committed state:
+  // the loop, not Newton, passes the brittle events. They start from the
+  // committed state's tangent whatever solver.first_tangent says (the last
+  // converged tangent may carry Newton to another branch).
+  const StartTangent start_tangent{_solver};
   // control: the energy released + beta times the mean jump
   solver::PathFollower path = solver::PathFollower::by_energy(_solver, stage.control);
   path.set_load_difference(stage.load_difference);

@@ -417,6 +417,19 @@ std::vector<KeyDef> make_keys()
        "lagged: refactor from the current Jacobian when the last linear solve took more "
        "GMRES iterations than this",
        1, 1e9, false},
+      {"solver.first_tangent",
+       K::string,
+       std::string("converged"),
+       "",
+       "the Jacobian of each load step's first Newton iteration. converged: the last "
+       "converged step's (a predictor along the path; a sliding joint keeps its sliding "
+       "tangent); current: the tangent at the step's start, where the laws are at their "
+       "committed state (always under dissipation control, whose steps must stay on the "
+       "committed state's branch). The converged solution is the same",
+       -inf,
+       inf,
+       false,
+       {"converged", "current"}},
       {"solver.time_linear_solve", K::boolean, false, "",
        "before the run, time one linear solve of the first load step of the whole model with "
        "the PETSc options' solver, MUMPS LU by default (summary.json linear_solve_s: the floor "

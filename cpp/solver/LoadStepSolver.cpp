@@ -31,8 +31,18 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::from_scene(Equilibrium& eq, cons
   const std::string description =
       condense ? "the " + std::to_string(interface_dofs / 2) + " interface jumps (bulk condensed)"
                : "the whole model" + (why.empty() ? "" : " (not condensed: " + why + ")");
-  return std::make_unique<LoadStepSolver>(
+  auto solver = std::make_unique<LoadStepSolver>(
       eq, condense, pc, int(scene.integer("solver.refactor_iterations")), description);
+  solver->set_first_tangent(scene.string("solver.first_tangent") == "converged");
+  return solver;
+}
+
+void LoadStepSolver::set_first_tangent(bool converged)
+{
+  _first_tangent_converged = converged;
+  _whole.set_first_tangent(converged);
+  if (_newton)
+    _newton->set_first_tangent(converged);
 }
 
 LoadStepSolver::~LoadStepSolver()
@@ -53,6 +63,7 @@ void LoadStepSolver::update()
     check(VecDestroy(&_x), "VecDestroy");
   _condensation = std::make_unique<Condensation>(_eq);
   _newton = std::make_unique<NewtonSolver>(*_condensation, _pc, _refactor_iterations);
+  _newton->set_first_tangent(_first_tangent_converged);
   _constraint_version = _eq.constraint_version();
   _x = _condensation->create_vector();
 }

@@ -38,6 +38,12 @@ public:
   /// user's).
   const std::string& description() const { return _description; }
 
+  /// Whether each step's first Newton iteration takes the last converged
+  /// step's tangent (solver.first_tangent = "converged", the default; see
+  /// NewtonSolver::set_first_tangent).
+  void set_first_tangent(bool converged);
+  bool first_tangent_converged() const { return _first_tangent_converged; }
+
   /// Builds what the current constraints need before the first solve (the
   /// condensation, which takes a while on a large interface).
   void prepare() { update(); }
@@ -97,6 +103,7 @@ private:
   bool _condense;
   NewtonSolver::Preconditioner _pc;
   int _refactor_iterations;
+  bool _first_tangent_converged = true;
   std::string _description;
   bool _bulk_needed = true;
   NewtonSolver _whole;

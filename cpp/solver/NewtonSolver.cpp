@@ -134,10 +134,19 @@ PetscErrorCode NewtonSolver::jacobian_callback(SNES snes, Vec x, Mat J, Mat P, v
       [&]
       {
         auto* self = static_cast<NewtonSolver*>(ctx);
-        if (!mpi::collectively(comm_of(snes), [&] { return self->_problem.jacobian(x, J); }))
-          check(SNESSetJacobianDomainError(snes), "SNESSetJacobianDomainError");
         KSP ksp;
         check(SNESGetKSP(snes, &ksp), "SNESGetKSP");
+        PetscInt iteration = 0;
+        check(SNESGetIterationNumber(snes, &iteration), "SNESGetIterationNumber");
+        if (iteration == 0 && self->_previous_tangent && self->_tangent_converged)
+        {
+          // The step's first iteration: the tangent (and preconditioner) of the
+          // last converged step, as they are.
+          check(KSPSetReusePreconditioner(ksp, PETSC_TRUE), "KSPSetReusePreconditioner");
+          return;
+        }
+        if (!mpi::collectively(comm_of(snes), [&] { return self->_problem.jacobian(x, J); }))
+          check(SNESSetJacobianDomainError(snes), "SNESSetJacobianDomainError");
         PetscInt its = 0;
         check(KSPGetIterationNumber(ksp, &its), "KSPGetIterationNumber"); // the previous solve's
         self->_policy.solved(its);
@@ -227,6 +236,8 @@ SolveReport NewtonSolver::solve(Vec x)
     _policy.P_filled();
   }
   SolveReport r;
+  _tangent_converged = _tangent_converged && !_policy.refresh_due() &&
+                       _tangent_constraints == _problem.constraint_version();
   // A factorisation that fails in a Newton iteration fails the solve, and
   // the step loop cuts the step back, as for any diverged solve: MUMPS and
   // PETSc's sparse LU record a failed reason (DIVERGED_LINEAR_SOLVE), a
@@ -235,6 +246,7 @@ SolveReport NewtonSolver::solve(Vec x)
   if (zero_pivot_error(code) && !petsc::callback_failed())
   {
     r.reason = "DIVERGED_LINEAR_SOLVE (zero pivot)";
+    _tangent_converged = false;
     _policy.refresh();
     return r;
   }
@@ -244,6 +256,8 @@ SolveReport NewtonSolver::solve(Vec x)
   PetscInt its;
   check(SNESGetIterationNumber(_snes, &its), "SNESGetIterationNumber");
   r.converged = reason > 0;
+  _tangent_converged = r.converged;
+  _tangent_constraints = _problem.constraint_version();
   r.iterations = int(its);
   r.reason = SNESConvergedReasons[reason];
   if (reason == SNES_DIVERGED_LINEAR_SOLVE)

@@ -17,6 +17,15 @@
 //    iteration, only when the previous linear solve needed more than
 //    `refactor_iterations` GMRES iterations or failed. A MUMPS solve costs
 //    about 1/20 of a factorisation here, so this saves most of them.
+//
+// The first iteration of a load step takes, by default, the tangent and the
+// preconditioner of the last converged step as they are (the continuation
+// of the path: an Euler predictor), not the tangent at the step's start.
+// There the laws are at their committed state, where a sliding friction
+// joint or an opening crack looks elastic (no increment yet): that tangent
+// is a poor predictor, and so unlike the converged one that the lagged
+// preconditioner is refactored in every step. Only the iterates change;
+// the converged solution is the same (set_first_tangent).
 #pragma once
 
 #include "NonlinearProblem.h"
@@ -47,6 +56,12 @@ public:
   NewtonSolver(const NewtonSolver&) = delete;
   NewtonSolver& operator=(const NewtonSolver&) = delete;
 
+  /// Whether a solve's first iteration takes the last converged solve's
+  /// tangent (true, the default) or the tangent at the initial guess. It
+  /// takes the initial guess's after a failed solve, a restart or a change
+  /// of the constrained dofs.
+  void set_first_tangent(bool converged) { _previous_tangent = converged; }
+
   /// Solves F(x) = 0 from the initial guess x (constraints already in x).
   SolveReport solve(Vec x);
 
@@ -70,13 +85,20 @@ private:
   PreconditionerPolicy _policy;
   Mat _J = nullptr, _P = nullptr;
   Vec _F = nullptr;
+  bool _previous_tangent = true;   ///< a step's first iteration takes the last converged tangent
+  bool _tangent_converged = false; ///< the last solve converged (its tangent is at hand)
+  int _tangent_constraints = -1;   ///< the constraint version of that solve
 
 public:
   /// Numeric factorisations so far (for the summary).
   int factorizations() const { return _policy.factorizations(); }
   /// The next solve starts as the first solve of a run (a new run on the
   /// same set-up: the same iterates, bit for bit).
-  void restart() { _policy.restart(); }
+  void restart()
+  {
+    _policy.restart();
+    _tangent_converged = false;
+  }
 
 private:
   static PetscErrorCode jacobian_callback(SNES snes, Vec x, Mat J, Mat P, void* ctx);

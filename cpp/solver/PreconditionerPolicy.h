@@ -54,6 +54,9 @@ public:
       _refresh = true;
   }
 
+  /// Whether P will be refreshed at the next update.
+  bool refresh_due() const { return _refresh; }
+
   /// Refresh P at the next update (after a failed solve).
   void refresh() { _refresh = _lagged; }
   /// As before the first solve of a run: no P yet (a new run on the same
