@@ -104,6 +104,12 @@ void Corrosion::describe_cracks(solver::Equilibrium& eq, Vec state, output::Summ
     summary.cracks.push_back({_directions.angles[i] * 180 / std::numbers::pi,
                               bool(_directions.snapped[i]), mouth[i], largest[0], largest[1]});
   }
+  for (std::size_t i = 0; i < model.num_cracks(); ++i)
+    if (const int image = model.crack_image(i); image >= 0) // cut away by symmetry
+    {
+      summary.cracks[i].max_opening_mm = summary.cracks[std::size_t(image)].max_opening_mm;
+      summary.cracks[i].max_damage = summary.cracks[std::size_t(image)].max_damage;
+    }
 }
 
 double Corrosion::expansion_force(const interface::Interface& itf, double s) const

@@ -76,6 +76,14 @@ PushOut::PushOut(const Scene& scene, const mesh::MeshData& m, const model::Model
     for (std::int32_t b : dofmap->cell_dofs(std::int32_t(cell)))
       (m.material[original[cell]] == mesh::steel ? block_steel : block_concrete)[b] = 1;
   const auto [xc, yc] = m.symmetry_center;
+  const auto [x_plane, y_plane] = m.symmetry_planes;
+  // The faces of the crack planes on a symmetry plane are held by their
+  // joints (mirror cracks), not by the symmetry condition.
+  std::vector<std::uint8_t> crack_face(X.size() / 3, 0);
+  for (std::size_t i = 0; i < model.num_cracks(); ++i)
+    if (model.crack(i).mirrored())
+      for (std::int32_t b : model.crack(i).pair_blocks())
+        crack_face[b] = 1;
   const std::int32_t n_owned = dofmap->index_map->size_local();
   for (std::int32_t b = 0; b < n_owned; ++b)
   {
@@ -84,21 +92,33 @@ PushOut::PushOut(const Scene& scene, const mesh::MeshData& m, const model::Model
       _top_z.push_back(3 * b + 2);
     if (block_concrete[b] && std::abs(z) < tol && std::hypot(x - c[0], y - c[1]) > Rs - tol)
       _support_z.push_back(3 * b + 2);
-    // Quarter model: u_x = 0 on x = xc, u_y = 0 on y = yc (both sides of
-    // the interface); they also remove the in-plane rigid modes and the
-    // tube's rotation.
-    if (_copies == 4 && std::abs(x - xc) < tol)
+    // Symmetry: u_x = 0 on x = xc, u_y = 0 on y = yc (both sides of the
+    // interface); they also remove the in-plane rigid modes across them and
+    // the tube's rotation.
+    if (x_plane && std::abs(x - xc) < tol && !crack_face[b])
       _fixed.push_back(3 * b);
-    if (_copies == 4 && std::abs(y - yc) < tol)
+    if (y_plane && std::abs(y - yc) < tol && !crack_face[b])
       _fixed.push_back(3 * b + 1);
   }
-  if (_copies != 4)
+  const auto add = [&](std::int64_t node, int comp)
   {
-    const auto add = [&](std::int64_t node, int comp)
-    {
-      if (model.owned(model.node_block(node)))
-        _fixed.push_back(3 * model.node_block(node) + comp);
-    };
+    if (model.owned(model.node_block(node)))
+      _fixed.push_back(3 * model.node_block(node) + comp);
+  };
+  if (_copies == 2)
+  {
+    // Half model: the plane holds the translations across it and the
+    // rotations; along it, one fixing of the full model that lies in the
+    // half, in that direction: the concrete's (or, with cracks, the tube
+    // top's) at (xc + R, yc). Its reaction is zero, as in the full model.
+    const int along = x_plane ? 1 : 0;
+    if (m.cracks.empty())
+      add(nearest(m, support, {c[0] + Rs, c[1], 0}), along);
+    else
+      add(nearest(m, top, {c[0] + Ri, c[1], _L}), along);
+  }
+  if (_copies == 1)
+  {
     if (m.cracks.empty())
     {
       const std::int64_t a = nearest(m, support, {c[0] + Rs, c[1], 0});

@@ -17,7 +17,9 @@
 //    zero in every scene with the tube centred.
 // Quarter model (mesh/symmetry.h): symmetry conditions u_x = 0 on x = xc
 // and u_y = 0 on y = yc replace the in-plane fixings, and P counts the
-// four quarters.
+// four quarters. Half model: the condition on its plane, the full model's
+// fixings in the direction along it, and P counts two halves. The faces of
+// crack planes on a symmetry plane are held by their joints instead.
 // Push steps: delta(s) = delta_final (r^s - 1) / (r^N - 1) for step growth
 // r (delta_final s / N for r = 1); or, with loading.push_path, piecewise
 // linear through its values with loading.steps_per_segment steps each
@@ -70,7 +72,8 @@ public:
   bool has_load_factor() const override { return true; }
   double final_load_factor() const override { return _delta_final; }
   void apply_load_factor(double delta, solver::Equilibrium& eq) const override;
-  /// The push force on the model as meshed (a quarter's on a quarter model).
+  /// The push force on the model as meshed (a quarter's on a quarter model,
+  /// a half's on a half).
   double load_force(const model::Model& model) const override;
   bool uses_bulk() const override { return false; }
   std::vector<double> row(std::span<const double> reactions, std::span<const double> x,
@@ -100,7 +103,7 @@ private:
   bool _zero_force_unloading = false; ///< loading.unload_to = "zero_force"
   bool _hold_top_in_thermal_step;
   std::size_t _layers;
-  int _copies; ///< mirror copies of the mesh in the specimen (4: quarter model)
+  int _copies; ///< mirror copies of the mesh in the specimen (2: half, 4: quarter model)
   std::vector<std::int32_t> _top_z;        ///< tube top z dofs
   std::vector<double> _top_start;          ///< their u_z when the push starts
   std::vector<std::int32_t> _support_z;    ///< support z dofs

@@ -32,7 +32,7 @@ double separator_dofs(const Scene& scene, const mesh::MeshSize& size)
   const std::int64_t p = scene.integer("mesh.degree");
   const double section =
       3.0 * double(p * (d.steel + d.ring + d.graded) + 2) * double(p * d.thickness + 1);
-  return size.quarter ? section : 2 * section;
+  return size.copies > 1 ? section : 2 * section; // an arc, or a ring cut twice
 }
 
 std::string gigabytes(double mb)
@@ -78,8 +78,10 @@ std::string ResourceEstimate::describe() const
 {
   std::ostringstream s;
   s << size.dofs << " dofs, " << size.joint_elements << " joint elements"
-    << (size.quarter ? " of a quarter model" : "") << ", Newton on "
-    << (condensed ? "the condensed interface" : "the whole model")
+    << (size.copies == 4   ? " of a quarter model"
+        : size.copies == 2 ? " of a half model"
+                           : "")
+    << ", Newton on " << (condensed ? "the condensed interface" : "the whole model")
     << (condensed || direct ? "" : " (iterative)");
   return s.str();
 }

@@ -36,7 +36,7 @@ void guard_size(const Scene& scene, const RunOptions& opt, RunReport& report)
   output::Summary& s = report.summary();
   s.estimate = {estimate.size.dofs, estimate.size.cells, estimate.size.joint_elements,
                 estimate.peak_mb()};
-  s.symmetry = estimate.size.quarter ? "quarter" : "full";
+  s.symmetry = mesh::Symmetry{estimate.size.copies > 1, estimate.size.copies == 4}.name();
   report.publish();
   if (report.talk())
     std::cout << "pushout: meshing " << estimate.size.cells << " cells (" << estimate.memory()
@@ -52,21 +52,30 @@ void describe_model(const Scene& scene, const mesh::MeshData& data, const model:
   output::Summary& s = report.summary();
   s.dofs = model.num_dofs();
   s.cells = std::int64_t(data.num_cells());
-  s.symmetry = data.copies == 4 ? "quarter" : "full";
+  const mesh::Symmetry symmetry{data.symmetry_planes[0], data.symmetry_planes[1]};
+  s.symmetry = symmetry.name();
   std::int64_t local_pairs = 0; // joint elements: interface and crack planes
   for (const interface::Interface* joints : model.joints())
     local_pairs += std::int64_t(joints->num_pairs());
   MPI_Allreduce(&local_pairs, &s.interface_pairs, 1, MPI_INT64_T, MPI_SUM, model.comm());
   if (!report.talk())
     return;
-  std::string symmetry;
+  std::string cut;
   std::string why;
-  if (data.copies == 4)
-    symmetry = " (quarter model by symmetry)";
-  else if (s.model_type == "pushout" && !mesh::use_quarter_model(scene, why) && !why.empty())
-    symmetry = " (full model: " + why + ")";
+  mesh::model_symmetry(scene, why);
+  if (symmetry.copies() == 4)
+    cut = " (quarter model by symmetry)";
+  else if (symmetry.copies() == 2)
+  {
+    std::ostringstream plane;
+    plane << (symmetry.x_plane ? "x = " : "y = ") << data.symmetry_center[symmetry.x_plane ? 0 : 1]
+          << " mm";
+    cut = " (half model by symmetry about " + plane.str() + "; " + why + ")";
+  }
+  else if (s.model_type == "pushout" && !why.empty())
+    cut = " (full model: " + why + ")";
   std::cout << "pushout: " << s.model_type << ", " << s.cells << " cells, " << s.dofs << " dofs, "
-            << s.interface_pairs << " joint elements" << symmetry
+            << s.interface_pairs << " joint elements" << cut
             << (s.mesh_reused ? " (mesh from cache)" : "") << "; Newton on " << solver.description()
             << std::endl;
 }
@@ -112,7 +121,7 @@ std::string Simulation::set_up_fingerprint(const Scene& scene)
         s << k.path << "=" << to_toml(*v) << "\n";
   if (scene.string("model.type") == "pushout")
     s << "loading.thermal_tube_top=" << scene.string("loading.thermal_tube_top") << "\n";
-  // The quarter model is only for runs without fields (mesh/symmetry.h).
+  // A model cut by symmetry is only for runs without fields (mesh/symmetry.h).
   s << "output.xdmf=" << scene.boolean("output.xdmf") << "\n";
   for (const CrackSpec& c : scene.cracks())
     s << "crack.angle=" << (c.angle_deg ? std::to_string(*c.angle_deg) : "nearest_face") << "\n";

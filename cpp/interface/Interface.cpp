@@ -27,11 +27,15 @@ Vec normalized(const Vec& a)
 } // namespace
 
 Interface::Interface(std::vector<std::int32_t> pair_blocks, const std::vector<double>& x,
-                     Quadrature quadrature, std::vector<std::unique_ptr<laws::InterfaceLaw>> layers)
-    : _blocks(std::move(pair_blocks)), _num_pairs(x.size() / 12),
+                     Quadrature quadrature, std::vector<std::unique_ptr<laws::InterfaceLaw>> layers,
+                     std::array<double, 3> mirror)
+    : _blocks(std::move(pair_blocks)), _num_pairs(x.size() / 12), _mirror(mirror),
+      _mirrored(mirror != std::array<double, 3>{0, 0, 0}),
       _n(_num_pairs > 0 ? int(_blocks.size() / (2 * _num_pairs)) : 4), _q(std::move(quadrature)),
       _layers(std::move(layers))
 {
+  if (_mirrored && std::abs(dot(_mirror, _mirror) - 1) > 1e-12)
+    throw std::invalid_argument("Interface: the mirror normal is not a unit vector");
   if (x.size() % 12 != 0 || (_n != 4 && _n != 9) || _blocks.size() != 2 * _n * _num_pairs)
     throw std::invalid_argument("Interface: inconsistent pair arrays");
   const std::size_t nq = _q.weights.size();
@@ -72,7 +76,7 @@ Interface::Interface(std::vector<std::int32_t> pair_blocks, const std::vector<do
       const Vec s1 = normalized(s);
       const Vec s2 = cross(n, s1);
       const std::size_t i = p * nq + q;
-      _dA[i] = _q.weights[q] * jac;
+      _dA[i] = _q.weights[q] * jac * (_mirrored ? 0.5 : 1.0);
       for (int d = 0; d < 3; ++d)
       {
         _frame[9 * i + d] = n[d];
@@ -110,6 +114,14 @@ void Interface::reset()
   _inputs = {};
 }
 
+laws::Vec3 Interface::minus_side(const laws::Vec3& v) const
+{
+  if (!_mirrored)
+    return v;
+  const double c = 2 * dot(_mirror, v);
+  return {v[0] - c * _mirror[0], v[1] - c * _mirror[1], v[2] - c * _mirror[2]};
+}
+
 laws::Vec3 Interface::jump(std::span<const double> u, std::size_t p, std::size_t q) const
 {
   const std::int32_t* b = _blocks.data() + 2 * _n * p;
@@ -117,8 +129,12 @@ laws::Vec3 Interface::jump(std::span<const double> u, std::size_t p, std::size_t
   const double* N = _N.data() + _n * q;
   Vec w{0, 0, 0};
   for (int a = 0; a < _n; ++a)
+  {
+    const double* up = &u[3 * b[_n + a]];
+    const Vec um = minus_side({u[3 * b[a]], u[3 * b[a] + 1], u[3 * b[a] + 2]});
     for (int d = 0; d < 3; ++d)
-      w[d] += N[a] * (u[3 * b[_n + a] + d] - u[3 * b[a] + d]);
+      w[d] += N[a] * (up[d] - um[d]);
+  }
   return {R[0] * w[0] + R[1] * w[1] + R[2] * w[2], R[3] * w[0] + R[4] * w[1] + R[5] * w[2],
           R[6] * w[0] + R[7] * w[1] + R[8] * w[2]};
 }
@@ -165,12 +181,12 @@ void Interface::scatter(std::size_t p, std::size_t q, const laws::Vec3& v,
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c)
       vg[c] += R[3 * r + c] * v[r];
+  const Vec vm = minus_side(vg);
   for (int a = 0; a < _n; ++a)
     for (int d = 0; d < 3; ++d)
     {
-      const double fa = N[a] * vg[d] * _dA[i];
-      f[3 * b[a] + d] -= fa;      // steel side
-      f[3 * b[_n + a] + d] += fa; // concrete side
+      f[3 * b[a] + d] -= N[a] * vm[d] * _dA[i];      // steel (minus) side
+      f[3 * b[_n + a] + d] += N[a] * vg[d] * _dA[i]; // concrete (plus) side
     }
 }
 
@@ -207,8 +223,31 @@ bool Interface::assemble(std::span<const double> u, std::span<double> f, Mat A)
               s += R[3 * k + r] * D[3 * k + m] * R[3 * m + c];
           Dg[3 * r + c] = s;
         }
-      // Node a of side sa (0 steel, 1 concrete) against node b of side sb:
-      // sign + on the same side, - across.
+      // Blocks of the sides (0 steel or minus, 1 concrete or plus): M D_g M,
+      // M D_g, D_g M, D_g, with M the mirror of a mirror set (else I).
+      std::array<std::array<std::array<double, 9>, 2>, 2> Dside;
+      for (int c = 0; c < 3; ++c)
+      {
+        const Vec col = minus_side({Dg[c], Dg[3 + c], Dg[6 + c]}); // M D_g, column c
+        for (int r = 0; r < 3; ++r)
+        {
+          Dside[1][1][3 * r + c] = Dg[3 * r + c];
+          Dside[0][1][3 * r + c] = col[r];
+        }
+      }
+      for (int r = 0; r < 3; ++r)
+      {
+        const Vec row = minus_side({Dg[3 * r], Dg[3 * r + 1], Dg[3 * r + 2]}); // D_g M (M = M^T)
+        const Vec row_m = minus_side(
+            {Dside[0][1][3 * r], Dside[0][1][3 * r + 1], Dside[0][1][3 * r + 2]}); // M D_g M
+        for (int c = 0; c < 3; ++c)
+        {
+          Dside[1][0][3 * r + c] = row[c];
+          Dside[0][0][3 * r + c] = row_m[c];
+        }
+      }
+      // Node a of side sa against node b of side sb: sign + on the same
+      // side, - across.
       for (int sa = 0; sa < 2; ++sa)
         for (int a = 0; a < n; ++a)
           for (int sb = 0; sb < 2; ++sb)
@@ -218,9 +257,10 @@ bool Interface::assemble(std::span<const double> u, std::span<double> f, Mat A)
               if (c == 0.0)
                 continue; // nodal quadrature: other nodes
               const int row = 3 * (n * sa + a), col = 3 * (n * sb + bb);
+              const std::array<double, 9>& Db = Dside[sa][sb];
               for (int r = 0; r < 3; ++r)
                 for (int k = 0; k < 3; ++k)
-                  _Ke[rows * (row + r) + col + k] += c * Dg[3 * r + k];
+                  _Ke[rows * (row + r) + col + k] += c * Db[3 * r + k];
             }
     }
     if (A && inserted == 0)

@@ -12,6 +12,14 @@
 // (axial for the slice), s2 = n x s1. The frame is fixed at the reference
 // geometry (small displacements). Layers superpose (paper §4.3): tractions
 // and tangents add.
+//
+// A mirror set (a crack plane on a symmetry plane of a half or quarter
+// model, mesh/symmetry.h) has one face meshed: its minus nodes are its plus
+// nodes, standing for their mirror images about the plane (unit normal m):
+// u_minus = M u_plus, M = I - 2 m m^T, and their forces act back through
+// M (f_plus += M f_minus). So w = 2 (m . u) m, a pure opening, and the
+// weights are halved: the model holds half the plane's energy, as it holds
+// half (a quarter) of the bulk's.
 #pragma once
 
 #include "../laws/InterfaceLaw.h"
@@ -44,8 +52,14 @@ public:
   /// n-1, then concrete). `x` are the corner coordinates of the pairs'
   /// steel side, [pair][4][3] (the facets are bilinear). `quadrature` is for
   /// n nodes.
+  /// `mirror`: nonzero for a mirror set, the symmetry plane's unit normal
+  /// (then the minus blocks are the plus blocks).
   Interface(std::vector<std::int32_t> pair_blocks, const std::vector<double>& x,
-            Quadrature quadrature, std::vector<std::unique_ptr<laws::InterfaceLaw>> layers);
+            Quadrature quadrature, std::vector<std::unique_ptr<laws::InterfaceLaw>> layers,
+            std::array<double, 3> mirror = {0, 0, 0});
+
+  /// A mirror set (its minus nodes are the plus nodes' mirror images).
+  bool mirrored() const { return _mirrored; }
 
   std::size_t num_pairs() const { return _num_pairs; }
   /// Nodes per side of a joint element (4, or 9 for mesh.degree = 2).
@@ -183,8 +197,13 @@ private:
   /// the loading tangent where the jump has not moved.
   static constexpr double loading_probe = 1e-9;
 
+  /// The minus side's value of a plus-side vector v: M v (mirror set) or v.
+  laws::Vec3 minus_side(const laws::Vec3& v) const;
+
   std::vector<std::int32_t> _blocks;
   std::size_t _num_pairs;
+  std::array<double, 3> _mirror; ///< the symmetry plane's unit normal (mirror set)
+  bool _mirrored;
   int _n; ///< nodes per side
   Quadrature _q;
   std::vector<double> _N;     ///< shape values [quad point][node]

@@ -36,11 +36,22 @@ struct InterfacePair
 
 /// A crack plane in the concrete (mesh/cracks.h): its joint elements and
 /// the node pairs of its mouth on the slice's outer boundary.
+///
+/// On a model cut by symmetry (mesh/symmetry.h) a plane may lie on a
+/// symmetry plane: then only one face is meshed, and each pair's minus
+/// nodes are its plus nodes, standing for their mirror images (`mirror`,
+/// the symmetry plane's unit normal into the kept part: the minus side is
+/// x - 2 (x . mirror) mirror of the plus side). A plane outside the kept
+/// part has no pairs; `image_of` is the plane that is its mirror image.
 struct CrackPlane
 {
   double angle = 0;                               ///< direction from the tube axis [rad]
   std::vector<InterfacePair> pairs;               ///< minus side: clockwise of the ray
   std::vector<std::array<std::int64_t, 2>> mouth; ///< (minus, plus) nodes at the outer face
+  std::array<double, 3> mirror = {0, 0, 0};       ///< nonzero: a plane on a symmetry plane
+  int image_of = -1;                              ///< >= 0: cut away, the image of that plane
+
+  bool mirrored() const { return mirror != std::array<double, 3>{0, 0, 0}; }
 };
 
 /// Hexahedral mesh with duplicated nodes on the steel-concrete surface.
@@ -51,11 +62,13 @@ struct MeshData
   std::vector<std::int32_t> material; ///< [cell] Material
   std::vector<InterfacePair> pairs;   ///< steel-concrete joint elements
   std::vector<CrackPlane> cracks;     ///< crack planes (push-out with [[crack]])
-  /// The specimen is `copies` mirror images of this mesh: 1, or 4 for a
-  /// quarter model in x >= symmetry_center[0], y >= symmetry_center[1]
+  /// The specimen is `copies` mirror images of this mesh: 1; 2 for a half
+  /// model in x >= symmetry_center[0] (symmetry_planes[0]) or in y >=
+  /// symmetry_center[1] (symmetry_planes[1]); 4 for a quarter model in both
   /// (mesh/symmetry.h).
   int copies = 1;
   std::array<double, 2> symmetry_center = {0, 0};
+  std::array<bool, 2> symmetry_planes = {false, false}; ///< x = xc, y = yc
 
   std::size_t num_nodes() const { return x.size() / 3; }
   std::size_t num_cells() const { return material.size(); }

@@ -1,5 +1,6 @@
 #include "cracks.h"
 #include "../scene/SceneError.h"
+#include "symmetry.h"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -140,8 +141,17 @@ SliceSectors slice_sectors(const Scene& scene)
   std::vector<std::pair<double, bool>> b; // (angle, is a corner)
   for (double a : corners)
     b.push_back({a, true});
-  for (double a : crack_directions(scene).angles)
-    if (std::find(corners.begin(), corners.end(), a) == corners.end())
+  // The cracks, and a boundary on each symmetry plane (mesh/symmetry.h), so
+  // that a half or a quarter of this mesh is a model of its own.
+  std::vector<double> rays = crack_directions(scene).angles;
+  const Symmetry symmetry = geometric_symmetry(scene);
+  if (symmetry.x_plane)
+    rays.insert(rays.end(), {pi / 2, 3 * pi / 2});
+  if (symmetry.y_plane)
+    rays.insert(rays.end(), {0.0, pi});
+  for (double a : rays)
+    if (std::none_of(b.begin(), b.end(),
+                     [&](const auto& boundary) { return angle_between(a, boundary.first) < 1e-9; }))
       b.push_back({a, false});
   std::sort(b.begin(), b.end());
   SliceSectors sec;

@@ -35,7 +35,8 @@ struct CrackDirections
 CrackDirections crack_directions(const Scene& scene);
 
 /// The sectors of meshes/slice_cracked.geo: boundaries at increasing angles
-/// from the tube centre (the block corners and the cracks), each with its
+/// from the tube centre (the block corners, the cracks and the symmetry
+/// planes of mesh/symmetry.h geometric_symmetry), each with its
 /// outer point on the slice boundary; sector i runs from boundary i to
 /// boundary i + 1 (cyclically) with elements[i] elements around.
 struct SliceSectors

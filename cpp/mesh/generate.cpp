@@ -296,10 +296,10 @@ MeshData generate(const Scene& scene, const std::filesystem::path& cache_dir, bo
   reused = flags[1];
   broadcast(m, comm, 0);
   std::string why;
-  if (use_quarter_model(scene, why))
+  if (const Symmetry symmetry = model_symmetry(scene, why); symmetry.copies() > 1)
   {
     const auto& c = scene.numbers("geometry.tube_center");
-    keep_quarter(m, c[0], c[1]);
+    keep_symmetric_part(m, symmetry, {c[0], c[1]});
   }
   return m;
 }

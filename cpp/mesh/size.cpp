@@ -54,31 +54,56 @@ MeshSize predict_size(const Scene& scene)
   const SliceDivisions d = slice_divisions(scene);
   const std::int64_t radial = d.steel + d.ring + d.graded; // elements along a radius
   std::string why;
-  s.quarter = use_quarter_model(scene, why);
-  // With crack planes the circumference is cut into sectors (cracks.h).
+  const Symmetry symmetry = model_symmetry(scene, why);
+  s.copies = symmetry.copies();
+  // Elements around the circumference: of the whole slice, and of the part
+  // the model keeps (with crack planes the circumference is cut into
+  // sectors, cracks.h, with a boundary on each symmetry plane).
   const bool cracked = !scene.cracks().empty();
-  const std::int64_t full_around = cracked ? slice_sectors(scene).around() : 4 * d.circumferential;
-  const std::int64_t around = s.quarter ? d.circumferential : full_around;
+  std::int64_t full_around = 4 * d.circumferential, around = full_around / s.copies;
+  if (cracked)
+  {
+    const SliceSectors sec = slice_sectors(scene);
+    full_around = sec.around();
+    around = 0;
+    for (std::size_t i = 0; i < sec.angles.size(); ++i)
+    {
+      const double next =
+          i + 1 < sec.angles.size() ? sec.angles[i + 1] : sec.angles[0] + 2 * std::numbers::pi;
+      if (side_of(symmetry, (sec.angles[i] + next) / 2) == Side::inside)
+        around += sec.elements[i];
+    }
+  }
   s.cells_generated = full_around * radial * d.thickness;
   s.cells = around * radial * d.thickness;
   s.joint_elements = around * d.thickness;
   // Node positions of the degree: around the tube (a closed ring for the
-  // full model), along a radius (the interface position twice) and through
-  // the thickness.
-  const std::int64_t n_around = s.quarter ? p * around + 1 : p * around;
+  // full model, an arc for a part), along a radius (the interface position
+  // twice) and through the thickness.
+  const std::int64_t n_around = s.copies > 1 ? p * around + 1 : p * around;
   const std::int64_t n_radial = p * radial + 2;
   const std::int64_t n_thick = p * d.thickness + 1;
   s.nodes = n_around * n_radial * n_thick;
   s.interface_dofs = 6 * n_around * n_thick;
-  // Each crack plane duplicates its concrete nodes (from the interface to
-  // the boundary) and adds its joint elements.
-  const std::int64_t planes = std::int64_t(scene.cracks().size());
+  // A crack plane inside the part duplicates its concrete nodes (from the
+  // interface to the boundary: one more interface node column, and its plus
+  // face's node pairs); one on a symmetry plane keeps one face (its node
+  // pairs only); one outside is cut away. Each kept plane adds its joint
+  // elements; 6 dofs per node pair.
   const std::int64_t crack_nodes = (p * (d.ring + d.graded) + 1) * n_thick;
-  s.nodes += planes * crack_nodes;
-  s.joint_elements += planes * (d.ring + d.graded) * d.thickness;
-  // Node pairs: each concrete node of the interface (one more column per
-  // plane) and each node of a plane's plus face; 6 dofs per pair.
-  s.interface_dofs += 6 * planes * (n_thick + crack_nodes);
+  for (double angle : crack_directions(scene).angles)
+  {
+    const Side side = side_of(symmetry, angle);
+    if (side == Side::outside)
+      continue;
+    s.joint_elements += (d.ring + d.graded) * d.thickness;
+    s.interface_dofs += 6 * crack_nodes;
+    if (side == Side::inside)
+    {
+      s.nodes += crack_nodes;
+      s.interface_dofs += 6 * n_thick;
+    }
+  }
   s.dofs = 3 * s.nodes;
   return s;
 }

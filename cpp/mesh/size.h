@@ -12,13 +12,13 @@ namespace pushout::mesh
 {
 struct MeshSize
 {
-  std::int64_t cells = 0;           ///< hexahedra of the model (quarter or full)
+  std::int64_t cells = 0;           ///< hexahedra of the model (a part or the full slice)
   std::int64_t cells_generated = 0; ///< hexahedra gmsh generates (always the full slice)
   std::int64_t nodes = 0;           ///< mesh nodes, interface nodes counted twice
   std::int64_t dofs = 0;            ///< displacement dofs (3 per node of the degree)
   std::int64_t joint_elements = 0;  ///< joint elements (interface and crack planes)
   std::int64_t interface_dofs = 0;  ///< 6 per node pair of the joints (both sides)
-  bool quarter = false;             ///< the model is a quarter by symmetry
+  int copies = 1;                   ///< mirror copies of the model in the slice (symmetry.h)
 };
 
 /// The block divisions of meshes/slice.geo for a push-out scene. These

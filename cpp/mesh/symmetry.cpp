@@ -1,60 +1,166 @@
 #include "symmetry.h"
+#include "cracks.h"
+#include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <stdexcept>
 
 namespace pushout::mesh
 {
-bool use_quarter_model(const Scene& scene, std::string& why)
+namespace
+{
+constexpr double pi = std::numbers::pi;
+/// Directions closer than this are the same [rad].
+constexpr double same_direction = 1e-9;
+
+double angle_between(double a, double b)
+{
+  double d = std::fmod(std::abs(a - b), 2 * pi);
+  return std::min(d, 2 * pi - d);
+}
+
+/// The mirror image of direction a about x = xc (x_plane) or y = yc.
+double reflected(double a, bool x_plane)
+{
+  return x_plane ? pi - a : -a;
+}
+
+/// Whether the set of directions is its own mirror image.
+bool invariant(const std::vector<double>& angles, bool x_plane)
+{
+  return std::all_of(angles.begin(), angles.end(),
+                     [&](double a)
+                     {
+                       return std::any_of(
+                           angles.begin(), angles.end(),
+                           [&](double b)
+                           { return angle_between(reflected(a, x_plane), b) < same_direction; });
+                     });
+}
+
+/// Why the slice is not symmetric about one plane ("" if it is).
+std::string asymmetry(const Scene& scene, bool x_plane)
+{
+  const char* axis = x_plane ? "x" : "y";
+  if (scene.string("geometry.outer_shape") == "square")
+  {
+    const double W = scene.number("geometry.width");
+    const double c = scene.numbers("geometry.tube_center")[x_plane ? 0 : 1];
+    if (std::abs(c - W / 2) > 1e-12 * W)
+      return std::string("the tube is not centred in ") + axis;
+  }
+  if (!invariant(crack_directions(scene).angles, x_plane))
+    return std::string("the crack planes are not symmetric about ") + axis + " = " +
+           (x_plane ? "xc" : "yc");
+  return "";
+}
+} // namespace
+
+std::string Symmetry::name() const
+{
+  switch (copies())
+  {
+  case 4:
+    return "quarter";
+  case 2:
+    return "half";
+  default:
+    return "full";
+  }
+}
+
+Side side_of(Symmetry s, double angle)
+{
+  const double c = std::cos(angle), sn = std::sin(angle);
+  if ((s.x_plane && c < -same_direction) || (s.y_plane && sn < -same_direction))
+    return Side::outside;
+  if ((s.x_plane && std::abs(c) <= same_direction) || (s.y_plane && std::abs(sn) <= same_direction))
+    return Side::on_plane;
+  return Side::inside;
+}
+
+Symmetry geometric_symmetry(const Scene& scene)
 {
   if (scene.string("model.type") != "pushout")
-    return false;
-  if (scene.string("model.symmetry") != "auto")
+    return {};
+  return {asymmetry(scene, true).empty(), asymmetry(scene, false).empty()};
+}
+
+Symmetry model_symmetry(const Scene& scene, std::string& why)
+{
+  why.clear();
+  if (scene.string("model.type") != "pushout")
+    return {};
+  const std::string mode = scene.string("model.symmetry");
+  if (mode == "full")
   {
     why = "model.symmetry = \"full\"";
-    return false;
+    return {};
   }
   if (scene.boolean("output.xdmf"))
   {
     why = "output.xdmf asks for fields of the whole specimen";
-    return false;
+    return {};
   }
-  if (!scene.cracks().empty())
-  {
-    why = "crack planes (the quarter model has none)";
-    return false;
-  }
-  if (scene.integer("mesh.elements_per_quarter") % 2 != 0)
+  // slice_cracked.geo has a sector boundary on each symmetry plane; slice.geo
+  // has a mesh line there only with an even number of elements per quarter.
+  if (scene.cracks().empty() && scene.integer("mesh.elements_per_quarter") % 2 != 0)
   {
     why = "mesh.elements_per_quarter is odd (the symmetry planes are not mesh surfaces)";
-    return false;
+    return {};
   }
-  if (scene.string("geometry.outer_shape") == "square")
+  std::string x_why = asymmetry(scene, true), y_why = asymmetry(scene, false);
+  // Crack planes that are each other's mirror images (not on the plane):
+  // the cut model makes them open alike; the whole slice may localise in
+  // one. Only model.symmetry = "symmetric" cuts there.
+  if (mode == "auto")
   {
-    const double W = scene.number("geometry.width");
-    const auto& c = scene.numbers("geometry.tube_center");
-    if (std::abs(c[0] - W / 2) > 1e-12 * W || std::abs(c[1] - W / 2) > 1e-12 * W)
+    const Symmetry x_only{true, false}, y_only{false, true};
+    for (double a : crack_directions(scene).angles)
     {
-      why = "the tube is not centred in the square";
-      return false;
+      const char* paired = "crack planes that are mirror images of each other could open "
+                           "unalike (model.symmetry = \"symmetric\" cuts there)";
+      if (x_why.empty() && side_of(x_only, a) != Side::on_plane)
+        x_why = paired;
+      if (y_why.empty() && side_of(y_only, a) != Side::on_plane)
+        y_why = paired;
     }
   }
-  return true;
+  const Symmetry s{x_why.empty(), y_why.empty()};
+  if (s.copies() == 1)
+    why = x_why == y_why ? x_why : x_why + "; " + y_why;
+  else if (s.copies() == 2)
+    why = "not a quarter: " + x_why + y_why;
+  return s;
 }
 
-void keep_quarter(MeshData& m, double xc, double yc)
+void keep_symmetric_part(MeshData& m, Symmetry s, std::array<double, 2> centre)
 {
+  const auto [xc, yc] = centre;
+  double extent = 0;
+  for (double v : m.x)
+    extent = std::max(extent, std::abs(v));
+  // gmsh places the nodes of an arc to ~1e-9 of the slice (a circle's
+  // outer nodes on the planes are off them by 1e-7 mm); the push-out's
+  // symmetry conditions take nodes within 1e-6 of the tube's size.
+  const double tol = 1e-7 * extent; // [mm]
+  const auto in_part = [&](double x, double y, double margin)
+  { return (!s.x_plane || x >= xc + margin) && (!s.y_plane || y >= yc + margin); };
+
   std::vector<std::int64_t> new_cell(m.num_cells(), -1), new_node(m.num_nodes(), -1);
   MeshData q;
   std::int64_t nodes = 0;
   for (std::size_t c = 0; c < m.num_cells(); ++c)
   {
-    double x = 0, y = 0;
+    const std::array<double, 3> x = centroid(m, c);
+    if (!in_part(x[0], x[1], 0.0))
+      continue;
     for (int i = 0; i < 8; ++i)
     {
-      x += m.x[3 * m.cells[8 * c + i]] / 8;
-      y += m.x[3 * m.cells[8 * c + i] + 1] / 8;
+      const std::int64_t n = m.cells[8 * c + i];
+      if (!in_part(m.x[3 * n], m.x[3 * n + 1], -tol))
+        throw std::logic_error("symmetry: a cell straddles a symmetry plane (not a mesh surface)");
     }
-    if (x < xc || y < yc)
-      continue;
     new_cell[c] = std::int64_t(q.num_cells());
     q.material.push_back(m.material[c]);
     for (int i = 0; i < 8; ++i)
@@ -70,22 +176,91 @@ void keep_quarter(MeshData& m, double xc, double yc)
     if (new_node[n] >= 0)
       for (int d = 0; d < 3; ++d)
         q.x[3 * new_node[n] + d] = m.x[3 * n + d];
+  const auto renumbered = [&](const std::array<std::int64_t, 4>& side)
+  {
+    std::array<std::int64_t, 4> r;
+    for (int i = 0; i < 4; ++i)
+      r[i] = new_node[side[i]];
+    return r;
+  };
   for (const InterfacePair& p : m.pairs)
   {
     if (new_cell[p.minus_cell] < 0 || new_cell[p.plus_cell] < 0)
       continue;
-    InterfacePair r = p;
-    for (int i = 0; i < 4; ++i)
-    {
-      r.minus[i] = new_node[p.minus[i]];
-      r.plus[i] = new_node[p.plus[i]];
-    }
-    r.minus_cell = new_cell[p.minus_cell];
-    r.plus_cell = new_cell[p.plus_cell];
-    q.pairs.push_back(r);
+    q.pairs.push_back(
+        {renumbered(p.minus), renumbered(p.plus), new_cell[p.minus_cell], new_cell[p.plus_cell]});
   }
-  q.copies = 4;
-  q.symmetry_center = {xc, yc};
+
+  // Crack planes: inside the part, on a symmetry plane (one face kept: a
+  // mirror crack), or outside it (the image of one inside).
+  for (const CrackPlane& crack : m.cracks)
+  {
+    CrackPlane r;
+    r.angle = crack.angle;
+    const bool on_x = s.x_plane && std::abs(std::cos(crack.angle)) <= same_direction;
+    const bool on_y = s.y_plane && std::abs(std::sin(crack.angle)) <= same_direction;
+    for (const InterfacePair& p : crack.pairs)
+    {
+      const bool minus = new_cell[p.minus_cell] >= 0, plus = new_cell[p.plus_cell] >= 0;
+      if (minus && plus)
+      {
+        r.pairs.push_back({renumbered(p.minus), renumbered(p.plus), new_cell[p.minus_cell],
+                           new_cell[p.plus_cell]});
+        continue;
+      }
+      if (!minus && !plus)
+        continue;
+      if (!on_x && !on_y)
+        throw std::logic_error("symmetry: a crack plane off the symmetry planes is cut");
+      const std::int64_t cell = new_cell[minus ? p.minus_cell : p.plus_cell];
+      const std::array<std::int64_t, 4> face = renumbered(minus ? p.minus : p.plus);
+      InterfacePair mirrored = {face, face, cell, cell};
+      // Oriented from the mirror image of the kept cell into it.
+      std::array<double, 3> image = centroid(q, std::size_t(cell));
+      if (on_x)
+        image[0] = 2 * xc - image[0];
+      else
+        image[1] = 2 * yc - image[1];
+      orient(mirrored, q, image);
+      r.pairs.push_back(mirrored);
+      r.mirror = on_x ? std::array<double, 3>{1, 0, 0} : std::array<double, 3>{0, 1, 0};
+    }
+    for (const auto& [minus, plus] : crack.mouth)
+    {
+      if (r.mirrored())
+      {
+        const std::int64_t kept = new_node[minus] >= 0 ? new_node[minus] : new_node[plus];
+        r.mouth.push_back({kept, kept});
+      }
+      else if (new_node[minus] >= 0 && new_node[plus] >= 0)
+        r.mouth.push_back({new_node[minus], new_node[plus]});
+    }
+    q.cracks.push_back(std::move(r));
+  }
+  for (std::size_t i = 0; i < q.cracks.size(); ++i)
+  {
+    CrackPlane& crack = q.cracks[i];
+    if (!crack.pairs.empty())
+      continue;
+    // Its image by one plane or by both.
+    std::vector<double> images;
+    if (s.x_plane)
+      images.push_back(reflected(crack.angle, true));
+    if (s.y_plane)
+      images.push_back(reflected(crack.angle, false));
+    if (s.x_plane && s.y_plane)
+      images.push_back(crack.angle + pi);
+    for (std::size_t j = 0; j < q.cracks.size() && crack.image_of < 0; ++j)
+      if (!q.cracks[j].pairs.empty())
+        for (double a : images)
+          if (angle_between(a, q.cracks[j].angle) < same_direction)
+            crack.image_of = int(j);
+    if (crack.image_of < 0)
+      throw std::logic_error("symmetry: a crack plane cut away has no image in the part");
+  }
+  q.copies = s.copies();
+  q.symmetry_center = centre;
+  q.symmetry_planes = {s.x_plane, s.y_plane};
   m = std::move(q);
 }
 } // namespace pushout::mesh

@@ -268,7 +268,7 @@ build_joints(MPI_Comm comm, const mesh::MeshData& data,
              const std::vector<mesh::InterfacePair>& pairs,
              std::vector<std::unique_ptr<laws::InterfaceLaw>> layers, const Scene& scene,
              const dolfinx::mesh::Mesh& mesh, const dolfinx::fem::FunctionSpace& V, int degree,
-             const std::vector<std::int32_t>& node_block)
+             const std::vector<std::int32_t>& node_block, std::array<double, 3> mirror = {0, 0, 0})
 {
   const bool q2 = degree == 2;
   const auto& original = mesh.topology().original_cell_index;
@@ -309,7 +309,7 @@ build_joints(MPI_Comm comm, const mesh::MeshData& data,
         return std::make_unique<interface::Interface>(
             std::move(pair_blocks), pair_x,
             interface::make_quadrature(scene.string("mesh.interface_quadrature"), q2 ? 9 : 4),
-            std::move(layers));
+            std::move(layers), mirror);
       });
 }
 
@@ -322,7 +322,7 @@ build_cracks(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene,
   std::vector<std::unique_ptr<interface::Interface>> cracks;
   for (std::size_t i = 0; i < data.cracks.size(); ++i)
     cracks.push_back(build_joints(comm, data, data.cracks[i].pairs, crack_layers(scene, i), scene,
-                                  mesh, V, degree, node_block));
+                                  mesh, V, degree, node_block, data.cracks[i].mirror));
   return cracks;
 }
 
@@ -335,7 +335,11 @@ std::vector<Model::CrackMouth> crack_mouths(const mesh::MeshData& data,
   for (const mesh::CrackPlane& crack : data.cracks)
   {
     Model::CrackMouth m;
-    m.normal = {-std::sin(crack.angle), std::cos(crack.angle), 0.0};
+    m.normal = crack.mirrored()
+                   ? crack.mirror
+                   : std::array<double, 3>{-std::sin(crack.angle), std::cos(crack.angle), 0.0};
+    m.mirrored = crack.mirrored();
+    m.image_of = crack.image_of;
     m.global_pairs = std::int64_t(crack.mouth.size());
     for (const auto& [minus, plus] : crack.mouth)
       m.blocks.push_back({node_block[minus], node_block[plus]});
@@ -433,11 +437,17 @@ std::vector<double> Model::crack_mouth_openings() const
         if (minus < 0)
           throw std::logic_error("crack mouth split across processes");
         for (int d = 0; d < 3; ++d)
-          sum[i] += (u[bs * plus + d] - u[bs * minus + d]) * _mouths[i].normal[d];
+          sum[i] +=
+              (_mouths[i].mirrored ? 2 * u[bs * plus + d] : u[bs * plus + d] - u[bs * minus + d]) *
+              _mouths[i].normal[d];
       }
   MPI_Allreduce(MPI_IN_PLACE, sum.data(), int(sum.size()), MPI_DOUBLE, MPI_SUM, comm());
   for (std::size_t i = 0; i < _mouths.size(); ++i)
-    sum[i] /= double(_mouths[i].global_pairs);
+    if (_mouths[i].image_of < 0)
+      sum[i] /= double(_mouths[i].global_pairs);
+  for (std::size_t i = 0; i < _mouths.size(); ++i)
+    if (_mouths[i].image_of >= 0)
+      sum[i] = sum[std::size_t(_mouths[i].image_of)];
   return sum;
 }
 

@@ -66,6 +66,10 @@ public:
   /// The joint elements of crack plane i ([[crack]] i).
   const interface::Interface& crack(std::size_t i) const { return *_cracks[i]; }
   std::size_t num_cracks() const { return _cracks.size(); }
+  /// The crack plane that crack plane i is the mirror image of, if a
+  /// symmetric model cut it away (it has no joint elements; its openings
+  /// are that plane's); else -1.
+  int crack_image(std::size_t i) const { return _mouths[i].image_of; }
   /// Every set of joint elements: the interface, then the crack planes. What
   /// assembles, commits or reverts joints does it for all of these.
   std::vector<interface::Interface*> joints();
@@ -83,10 +87,13 @@ public:
     std::array<double, 3> normal;                    ///< of the plane, minus to plus
     std::vector<std::array<std::int32_t, 2>> blocks; ///< (minus, plus) local dof blocks
     std::int64_t global_pairs = 0;                   ///< node pairs on all processes
+    bool mirrored = false; ///< on a symmetry plane: minus = the plus side's mirror image
+    int image_of = -1;     ///< cut away by symmetry: the opening is that plane's
   };
   /// Crack-mouth opening of each crack plane [mm]: the opening (u_plus -
   /// u_minus) . n averaged over the plane's nodes on the slice's outer face,
-  /// where experiments measure the crack width. Collective.
+  /// where experiments measure the crack width (on a symmetry plane: 2 u . n,
+  /// n into the model; a plane cut away: its image's). Collective.
   std::vector<double> crack_mouth_openings() const;
 
   /// Bulk stiffness K [N/mm], with room for the interface couplings.

@@ -27,13 +27,17 @@ std::vector<KeyDef> make_keys()
        K::string,
        std::string("auto"),
        "",
-       "auto: a push-out symmetric about x = xc and y = yc (tube centred, even "
-       "elements_per_quarter, no output.xdmf) runs on a quarter of the mesh with symmetry "
-       "conditions, 1/4 of the dofs, the same curve; full: always the whole slice",
+       "auto: a push-out symmetric about x = xc and y = yc (tube centred, crack planes "
+       "symmetric, even elements_per_quarter, no output.xdmf) runs on a quarter of the mesh "
+       "with symmetry conditions (about one of them: a half), the same curve at a fraction of "
+       "the dofs; a crack plane on a symmetry plane keeps one face. It does not cut where two "
+       "crack planes are mirror images of each other: the cut would make them open alike, and "
+       "the whole slice may open one. symmetric: cuts there too (the symmetric solution); "
+       "full: always the whole slice",
        -inf,
        inf,
        false,
-       {"auto", "full"},
+       {"auto", "symmetric", "full"},
        A::pushout},
 
       // Geometry of the slice (paper §2.1, Fig. 1; the defaults the paper does

@@ -156,7 +156,11 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
     constrained[d] = 1;
   for (PetscInt j = 0; j < n; ++j)
   {
-    _minus_free.push_back(!constrained[_minus[j]]);
+    // A pair of a mirror set (its minus node is the plus node's mirror
+    // image): its jump is the plus node's displacement, as if the minus
+    // node were fixed; the set's forces (Interface) depend on it alone.
+    _mirror.push_back(_minus[j] == _plus[j]);
+    _minus_free.push_back(!constrained[_minus[j]] && !_mirror[j]);
     _plus_free.push_back(!constrained[_plus[j]]);
   }
 
@@ -189,7 +193,8 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
     if (_plus_free[j])
     {
       check(MatSetValueLocal(_J0, p, p, _eps, ADD_VALUES), "MatSetValueLocal");
-      check(MatSetValueLocal(_J0, p, m, -_eps, ADD_VALUES), "MatSetValueLocal");
+      if (!_mirror[j])
+        check(MatSetValueLocal(_J0, p, m, -_eps, ADD_VALUES), "MatSetValueLocal");
     }
   }
   check(MatAssemblyBegin(_J0, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
@@ -267,7 +272,7 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
     for (PetscInt col = 0; col < n; ++col)
       for (PetscInt j = 0; j < n; ++j)
       {
-        C(j, col) = Z(_pos_plus[j], col) - Z(_pos_minus[j], col);
+        C(j, col) = Z(_pos_plus[j], col) - (_mirror[j] ? 0.0 : Z(_pos_minus[j], col));
         E(j, col) = (j == col ? 1.0 : 0.0) - _eps * C(j, col);
       }
     for (PetscInt j = 0; j < n; ++j)
@@ -366,7 +371,7 @@ void Condensation::restrict_to(Vec x, Vec d) const
   check(VecGetArrayRead(x, &a), "VecGetArrayRead");
   check(VecGetArray(d, &g), "VecGetArray");
   for (std::size_t j = 0; j < _minus.size(); ++j)
-    g[j] = a[_plus[j]] - a[_minus[j]];
+    g[j] = a[_plus[j]] - (_mirror[j] ? 0.0 : a[_minus[j]]);
   check(VecRestoreArray(d, &g), "VecRestoreArray");
   check(VecRestoreArrayRead(x, &a), "VecRestoreArrayRead");
 }
@@ -387,7 +392,8 @@ void Condensation::restrict_functional(Vec a, Vec a_d) const
   {
     g[j] = j < _set_end[0] ? aa[_plus[j]] : 0.0;
     Gt[std::size_t(_pos_plus[j])] += g[j];
-    Gt[std::size_t(_pos_minus[j])] -= g[j];
+    if (!_mirror[j])
+      Gt[std::size_t(_pos_minus[j])] -= g[j];
     scale = std::max(scale, std::abs(g[j]));
   }
   double mismatch = 0;
@@ -458,7 +464,7 @@ const std::vector<double>& Condensation::load_coefficients()
     for (std::size_t i = 0; i < _gamma.size(); ++i)
       ga[i] = ya[_gamma[i]];
     for (std::size_t j = 0; j < _minus.size(); ++j)
-      da[j] = ga[_pos_plus[j]] - ga[_pos_minus[j]];
+      da[j] = ga[_pos_plus[j]] - (_mirror[j] ? 0.0 : ga[_pos_minus[j]]);
     check(VecRestoreArray(d, &da), "VecRestoreArray");
     check(VecRestoreArray(g, &ga), "VecRestoreArray");
     check(VecRestoreArrayRead(y, &ya), "VecRestoreArrayRead");

@@ -37,6 +37,11 @@
 // displacements from the basis and Z (cheap), or the whole x by one solve
 // with J0 (expand(), when outputs need the bulk).
 //
+// A mirror set's pair (a crack on a symmetry plane: its minus node is the
+// plus node's mirror image, interface/Interface.h) has the plus node's
+// displacement as its "jump", as if its minus node were fixed; the set's
+// forces depend on it alone and G is the identity there.
+//
 // One process only (PETSc 3.18 has no parallel MUMPS Schur complements);
 // the Newton systems are dense LU (PETSc's, LAPACK), lagged as on the whole
 // model.
@@ -130,6 +135,7 @@ private:
   Equilibrium& _eq;
   std::vector<std::int32_t> _minus, _plus; ///< whole-model dof of each jump (plus - minus)
   std::vector<std::uint8_t> _minus_free, _plus_free;
+  std::vector<std::uint8_t> _mirror;           ///< a mirror set's pair: the jump is the plus node's
   std::vector<std::size_t> _set_end;           ///< end of each set's jumps (interface, cracks)
   std::vector<PetscInt> _gamma;                ///< the joint dofs, each once (sorted)
   std::vector<PetscInt> _pos_minus, _pos_plus; ///< positions of a jump's dofs in _gamma
