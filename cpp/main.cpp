@@ -10,6 +10,7 @@
 //   pushout laws        # the interface laws and their parameters
 #include "common/Interrupt.h"
 #include "common/mpi_errors.h"
+#include "common/mpi_start.h"
 #include "common/petsc_check.h"
 #include "driver/Fit.h"
 #include "driver/ResourceGuard.h"
@@ -228,6 +229,7 @@ int main(int argc, char* argv[])
   petsc_argv.push_back(nullptr);
   int petsc_argc = int(petsc_argv.size()) - 1;
   char** petsc_args = petsc_argv.data();
+  pushout::mpi::prepare_singleton_start();
   try
   {
     pushout::petsc::check(PetscInitialize(&petsc_argc, &petsc_args, nullptr, nullptr),

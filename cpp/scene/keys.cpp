@@ -434,6 +434,18 @@ std::vector<KeyDef> make_keys()
        inf,
        false,
        {"converged", "current"}},
+      {"solver.precision",
+       K::string,
+       std::string("mixed"),
+       "",
+       "condensed bulk: mixed: flexible GMRES applies C and the lagged preconditioner's LU in "
+       "single precision, to a relative tolerance of at least 1e-7 (half the memory traffic; "
+       "the residual, and so the solution and the Newton tolerances, stay in double); double: "
+       "everything in double, GMRES to -ksp_rtol",
+       -inf,
+       inf,
+       false,
+       {"mixed", "double"}},
       {"solver.time_linear_solve", K::boolean, false, "",
        "before the run, time one linear solve of the first load step of the whole model with "
        "the PETSc options' solver, MUMPS LU by default (summary.json linear_solve_s: the floor "

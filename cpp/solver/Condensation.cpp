@@ -341,6 +341,12 @@ Condensation::~Condensation()
     petsc::check_nothrow(ISLocalToGlobalMappingDestroy(&l2g), "ISLocalToGlobalMappingDestroy");
 }
 
+void Condensation::set_single_precision(bool single)
+{
+  _single = single;
+  _C_single = single ? SingleMatrix(_C) : SingleMatrix();
+}
+
 Mat Condensation::create_matrix() const
 {
   Mat J;
@@ -360,6 +366,34 @@ void Condensation::configure(KSP ksp) const
 {
   PC pc;
   check(KSPGetPC(ksp, &pc), "KSPGetPC");
+  KSPType type;
+  check(KSPGetType(ksp, &type), "KSPGetType");
+  if (_single && std::string(type) != KSPPREONLY)
+  {
+    // A preconditioner of GMRES: its LU in single precision is as good a
+    // guide at half the memory traffic (SinglePrecision.h). Flexible GMRES
+    // (right preconditioning): its residual is the operator's, whatever the
+    // rounding of the preconditioner. The operator is applied in single
+    // precision too, so a relative tolerance below its rounding would only
+    // iterate on noise: Newton's next residual, in double, corrects the
+    // step.
+    use_single_precision_lu(pc);
+    if (std::string(type) == KSPGMRES)
+    {
+      PetscInt restart;
+      check(KSPGMRESGetRestart(ksp, &restart), "KSPGMRESGetRestart");
+      check(KSPSetType(ksp, KSPFGMRES), "KSPSetType");
+      check(KSPGMRESSetRestart(ksp, restart), "KSPGMRESSetRestart");
+    }
+    PetscReal rtol, abstol, dtol;
+    PetscInt max_it;
+    check(KSPGetTolerances(ksp, &rtol, &abstol, &dtol, &max_it), "KSPGetTolerances");
+    check(KSPSetTolerances(ksp, std::max(rtol, single_precision_rtol), abstol, dtol, max_it),
+          "KSPSetTolerances");
+    return;
+  }
+  // The LU in double; with KSP preonly it is the solver
+  // (solver.preconditioner = "jacobian").
   check(PCFactorSetMatSolverType(pc, MATSOLVERPETSC), "PCFactorSetMatSolverType");
   check(PCFactorSetMatOrderingType(pc, MATORDERINGNATURAL), "PCFactorSetMatOrderingType");
 }
@@ -653,7 +687,18 @@ PetscErrorCode Condensation::operator_mult(Mat J, Vec v, Vec y)
         for (std::size_t s = 1; s < self->_T.size(); ++s)
           check(MatMultAdd(self->_T[s], v, self->_Tv, self->_Tv), "MatMultAdd");
         check(VecAXPY(self->_Tv, -self->_eps, v), "VecAXPY");
-        check(MatMult(self->_C, self->_Tv, y), "MatMult");
+        if (self->_single)
+        {
+          const double* Tv;
+          double* ya;
+          check(VecGetArrayRead(self->_Tv, &Tv), "VecGetArrayRead");
+          check(VecGetArray(y, &ya), "VecGetArray");
+          self->_C_single.multiply(Tv, ya);
+          check(VecRestoreArray(y, &ya), "VecRestoreArray");
+          check(VecRestoreArrayRead(self->_Tv, &Tv), "VecRestoreArrayRead");
+        }
+        else
+          check(MatMult(self->_C, self->_Tv, y), "MatMult");
         check(VecAXPY(y, 1.0, v), "VecAXPY");
         check(VecScale(y, self->_k), "VecScale");
       });

@@ -49,6 +49,7 @@
 
 #include "Equilibrium.h"
 #include "NonlinearProblem.h"
+#include "SinglePrecision.h"
 #include <string>
 #include <utility>
 #include <vector>
@@ -85,6 +86,11 @@ public:
   ~Condensation();
   Condensation(const Condensation&) = delete;
   Condensation& operator=(const Condensation&) = delete;
+
+  /// Whether GMRES applies C and the lagged preconditioner's LU in single
+  /// precision (SinglePrecision.h; the default) or in double. Set before
+  /// the first solve.
+  void set_single_precision(bool single);
 
   /// Unknowns of the condensed system (3 per node pair).
   std::int64_t size() const { return std::int64_t(_minus.size()); }
@@ -148,6 +154,8 @@ private:
   Mat _J0 = nullptr, _factor = nullptr;
   Mat _Z = nullptr;           ///< Z on the joint dofs (_gamma), dense
   Mat _C = nullptr;           ///< C = G Z, dense
+  bool _single = false;       ///< GMRES in single precision (set_single_precision)
+  SingleMatrix _C_single;     ///< C in single precision, for the Jacobian's action
   Mat _E = nullptr;           ///< I - eps C, dense
   std::vector<Mat> _T;        ///< dF/dd of each set, sparse (node-pair blocks)
   Vec _b = nullptr;           ///< whole model: right-hand side

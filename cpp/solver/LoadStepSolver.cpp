@@ -34,6 +34,7 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::from_scene(Equilibrium& eq, cons
   auto solver = std::make_unique<LoadStepSolver>(
       eq, condense, pc, int(scene.integer("solver.refactor_iterations")), description);
   solver->set_first_tangent(scene.string("solver.first_tangent") == "converged");
+  solver->_single_precision = scene.string("solver.precision") == "mixed";
   return solver;
 }
 
@@ -62,6 +63,7 @@ void LoadStepSolver::update()
   if (_x)
     check(VecDestroy(&_x), "VecDestroy");
   _condensation = std::make_unique<Condensation>(_eq);
+  _condensation->set_single_precision(_single_precision);
   _newton = std::make_unique<NewtonSolver>(*_condensation, _pc, _refactor_iterations);
   _newton->set_first_tangent(_first_tangent_converged);
   _constraint_version = _eq.constraint_version();

@@ -104,6 +104,7 @@ private:
   NewtonSolver::Preconditioner _pc;
   int _refactor_iterations;
   bool _first_tangent_converged = true;
+  bool _single_precision = true; ///< solver.precision = "mixed" (Condensation)
   std::string _description;
   bool _bulk_needed = true;
   NewtonSolver _whole;

@@ -1,0 +1,180 @@
+#include "SinglePrecision.h"
+#include "../common/petsc_check.h"
+#include <algorithm>
+#include <petscblaslapack.h>
+#include <petscmat.h>
+#include <utility>
+#include <vector>
+
+namespace pushout::solver
+{
+using petsc::check;
+
+namespace
+{
+// The kernels, cloned for AVX2 + FMA and chosen at run time (GCC's ifunc).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define PUSHOUT_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define PUSHOUT_VECTOR_CLONES
+#endif
+
+/// y = A x, A column-major n x n.
+PUSHOUT_VECTOR_CLONES
+void multiply_kernel(const float* __restrict a, std::size_t n, const float* __restrict x,
+                     float* __restrict y)
+{
+  std::fill(y, y + n, 0.0f);
+  for (std::size_t j = 0; j < n; ++j)
+  {
+    const float xj = x[j];
+    const float* __restrict col = a + j * n;
+    for (std::size_t i = 0; i < n; ++i)
+      y[i] += col[i] * xj;
+  }
+}
+
+/// b = (L U)^-1 b: L (unit diagonal) forwards, then U backwards, column by
+/// column (the factors are column-major, n x n).
+PUSHOUT_VECTOR_CLONES
+void lu_solve_kernel(const float* __restrict lu, std::size_t n, float* __restrict b)
+{
+  for (std::size_t j = 0; j < n; ++j)
+  {
+    const float bj = b[j];
+    const float* __restrict col = lu + j * n;
+    for (std::size_t i = j + 1; i < n; ++i)
+      b[i] -= col[i] * bj;
+  }
+  for (std::size_t j = n; j-- > 0;)
+  {
+    const float* __restrict col = lu + j * n;
+    b[j] /= col[j];
+    const float bj = b[j];
+    for (std::size_t i = 0; i < j; ++i)
+      b[i] -= col[i] * bj;
+  }
+}
+
+struct Factors
+{
+  PetscBLASInt n = 0;
+  std::vector<float> lu;            ///< L (unit diagonal) and U, column-major, n x n
+  std::vector<PetscBLASInt> pivots; ///< getrf's: row i was swapped with row pivots[i] - 1
+  std::vector<float> b;             ///< the right-hand side, then the solution
+  std::vector<double> work;         ///< the double-precision factorisation
+};
+
+PetscErrorCode set_up(PC pc)
+{
+  return petsc::callback(
+      [&]
+      {
+        Factors* f;
+        check(PCShellGetContext(pc, &f), "PCShellGetContext");
+        Mat P;
+        check(PCGetOperators(pc, nullptr, &P), "PCGetOperators");
+        PetscInt rows, cols, lda;
+        check(MatGetSize(P, &rows, &cols), "MatGetSize");
+        check(MatDenseGetLDA(P, &lda), "MatDenseGetLDA");
+        const PetscInt n = rows;
+        f->n = PetscBLASInt(n);
+        f->work.resize(std::size_t(n) * std::size_t(n));
+        const double* a;
+        check(MatDenseGetArrayRead(P, &a), "MatDenseGetArrayRead");
+        for (PetscInt j = 0; j < n; ++j)
+          std::copy(a + j * lda, a + j * lda + n, f->work.begin() + j * n);
+        check(MatDenseRestoreArrayRead(P, &a), "MatDenseRestoreArrayRead");
+        f->pivots.resize(std::size_t(n));
+        PetscBLASInt info = 0;
+        LAPACKgetrf_(&f->n, &f->n, f->work.data(), &f->n, f->pivots.data(), &info);
+        if (info != 0)
+        {
+          // A zero pivot (info > 0): reported as PETSc's factorisations do.
+          check(PCSetFailedReason(pc, PC_FACTOR_NUMERIC_ZEROPIVOT), "PCSetFailedReason");
+          f->lu.clear();
+          return;
+        }
+        f->lu.assign(f->work.begin(), f->work.end());
+        f->b.resize(std::size_t(n));
+      });
+}
+
+PetscErrorCode apply(PC pc, Vec x, Vec y)
+{
+  return petsc::callback(
+      [&]
+      {
+        Factors* f;
+        check(PCShellGetContext(pc, &f), "PCShellGetContext");
+        const std::size_t n = std::size_t(f->n);
+        if (f->lu.size() != n * n) // the factorisation failed
+        {
+          check(VecSetInf(y), "VecSetInf");
+          return;
+        }
+        float* b = f->b.data();
+        const float* lu = f->lu.data();
+        const double* xa;
+        check(VecGetArrayRead(x, &xa), "VecGetArrayRead");
+        for (std::size_t i = 0; i < n; ++i)
+          b[i] = float(xa[i]);
+        check(VecRestoreArrayRead(x, &xa), "VecRestoreArrayRead");
+        // P = Pi L U: the row swaps, then the triangular solves.
+        for (std::size_t i = 0; i < n; ++i)
+          std::swap(b[i], b[std::size_t(f->pivots[i] - 1)]);
+        lu_solve_kernel(lu, n, b);
+        double* ya;
+        check(VecGetArray(y, &ya), "VecGetArray");
+        for (std::size_t i = 0; i < n; ++i)
+          ya[i] = double(b[i]);
+        check(VecRestoreArray(y, &ya), "VecRestoreArray");
+      });
+}
+
+PetscErrorCode destroy(PC pc)
+{
+  Factors* f = nullptr;
+  const PetscErrorCode code = PCShellGetContext(pc, &f);
+  delete f;
+  return code;
+}
+} // namespace
+
+SingleMatrix::SingleMatrix(Mat A)
+{
+  PetscInt rows, cols, lda;
+  check(MatGetSize(A, &rows, &cols), "MatGetSize");
+  check(MatDenseGetLDA(A, &lda), "MatDenseGetLDA");
+  _n = std::size_t(rows);
+  _a.resize(_n * _n);
+  const double* a;
+  check(MatDenseGetArrayRead(A, &a), "MatDenseGetArrayRead");
+  for (std::size_t j = 0; j < _n; ++j)
+    for (std::size_t i = 0; i < _n; ++i)
+      _a[i + j * _n] = float(a[i + j * std::size_t(lda)]);
+  check(MatDenseRestoreArrayRead(A, &a), "MatDenseRestoreArrayRead");
+  _x.resize(_n);
+  _y.resize(_n);
+}
+
+void SingleMatrix::multiply(const double* x, double* y) const
+{
+  for (std::size_t i = 0; i < _n; ++i)
+    _x[i] = float(x[i]);
+  multiply_kernel(_a.data(), _n, _x.data(), _y.data());
+  for (std::size_t i = 0; i < _n; ++i)
+    y[i] = double(_y[i]);
+}
+
+void use_single_precision_lu(PC pc)
+{
+  check(PCSetType(pc, PCSHELL), "PCSetType");
+  check(PCShellSetContext(pc, new Factors), "PCShellSetContext");
+  check(PCShellSetSetUp(pc, set_up), "PCShellSetSetUp");
+  check(PCShellSetApply(pc, apply), "PCShellSetApply");
+  check(PCShellSetDestroy(pc, destroy), "PCShellSetDestroy");
+  check(PCShellSetName(pc, "LU factored in double, applied in single precision (pushout)"),
+        "PCShellSetName");
+}
+} // namespace pushout::solver
