@@ -1,5 +1,6 @@
 #include "PushOut.h"
 #include "../mesh/cracks.h"
+#include "../mesh/symmetry.h"
 #include "../scene/SceneError.h"
 #include "../solver/Vector.h"
 #include <algorithm>
@@ -121,13 +122,33 @@ PushOut::PushOut(const Scene& scene, const mesh::MeshData& m, const model::Model
   {
     if (m.cracks.empty())
     {
+      // Every fixing on a symmetry plane of the slice, or in mirror pairs,
+      // so that none carries a force: the symmetric solution moves nothing
+      // across the plane there. With the plane y = yc (the tube centred in
+      // y, or in both): the support nodes at (xc +- Rs, yc) in y, the first
+      // in x too, and the tube top at (xc + Ri, yc) in y (its rotation).
+      // With only x = xc (the tube off-centre in y), the same turned: the
+      // support at (xc, yc + Rs) in x, the pair (xc +- Rs, yc) in y, the
+      // tube top at (xc, yc + Ri) in x. (Before, the tube top was held in y
+      // there too, which held its shift in y against the slice: tau 3.5e-5
+      // off on the corroded specimen without its crack.) A slice without
+      // symmetry keeps the first set; its tube-top fixing may then carry a
+      // little.
+      const mesh::Symmetry symmetry = mesh::geometric_symmetry(scene);
       const std::int64_t a = nearest(m, support, {c[0] + Rs, c[1], 0});
       const std::int64_t b = nearest(m, support, {c[0] - Rs, c[1], 0});
-      const std::int64_t t = nearest(m, top, {c[0] + Ri, c[1], _L});
-      add(a, 0);
       add(a, 1);
       add(b, 1);
-      add(t, 1);
+      if (symmetry.x_plane && !symmetry.y_plane)
+      {
+        add(nearest(m, support, {c[0], c[1] + Rs, 0}), 0);
+        add(nearest(m, top, {c[0], c[1] + Ri, _L}), 0);
+      }
+      else
+      {
+        add(a, 0);
+        add(nearest(m, top, {c[0] + Ri, c[1], _L}), 1);
+      }
     }
     else
     {

@@ -14,7 +14,11 @@
 //  - the tube's rotation about its axis, which only friction resists and
 //    nothing resists when the interface carries no pressure: the top steel
 //    node nearest to (xc + Ri, yc) fixed in y. By symmetry its reaction is
-//    zero in every scene with the tube centred.
+//    zero when the tube is centred in y. A tube centred in x only has the
+//    same fixings turned by 90 degrees (on the plane x = xc: the support
+//    at (xc, yc + Rs) and the tube top at (xc, yc + Ri) in x), so that
+//    none carries a force there either; off-centre both ways, the tube-top
+//    fixing may carry a little.
 // Quarter model (mesh/symmetry.h): symmetry conditions u_x = 0 on x = xc
 // and u_y = 0 on y = yc replace the in-plane fixings, and P counts the
 // four quarters. Half model: the condition on its plane, the full model's
