@@ -2,18 +2,23 @@
 #include "cracks.h"
 #include "symmetry.h"
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
-#include <dolfinx/io/cells.h>
+#include <dlfcn.h>
 #include <fstream>
 #include <functional>
-#include <gmsh.h>
+#include <iomanip>
 #include <map>
 #include <sstream>
 #include <unistd.h>
 
 #ifndef PUSHOUT_MESH_DIR
 #error "PUSHOUT_MESH_DIR must point to the meshes/ folder"
+#endif
+#ifndef PUSHOUT_GMSH_MESHER
+#error "PUSHOUT_GMSH_MESHER must be the path of the gmsh mesher module"
 #endif
 
 namespace pushout::mesh
@@ -71,47 +76,86 @@ std::string read_file(const std::filesystem::path& p)
   return s.str();
 }
 
-/// Reads hexahedra and nodes of the current gmsh model.
-MeshData read_gmsh_model()
+/// The mesher module (gmsh_mesher.cpp), loaded at its first use.
+using MeshFunction = int (*)(const char*, const char* const*, const double*, std::size_t, MeshData*,
+                             char*, std::size_t);
+MeshFunction mesher()
 {
-  MeshData m;
-  std::vector<std::size_t> tags;
-  std::vector<double> coords, param;
-  gmsh::model::mesh::getNodes(tags, coords, param, -1, -1, false, false);
-  std::map<std::size_t, std::size_t> gmsh_node; // gmsh tag -> coords index
-  for (std::size_t i = 0; i < tags.size(); ++i)
-    gmsh_node[tags[i]] = i;
-
-  const std::vector<std::uint8_t> perm =
-      dolfinx::io::cells::perm_gmsh(dolfinx::mesh::CellType::hexahedron, 8);
-  std::vector<std::int64_t> index(tags.size(), -1); // coords index -> node id
-  for (const Material mat : {steel, concrete})
+  static const MeshFunction f = []
   {
-    std::vector<int> entities;
-    gmsh::model::getEntitiesForPhysicalGroup(3, mat, entities);
-    for (int e : entities)
-    {
-      std::vector<std::size_t> elements, nodes;
-      gmsh::model::mesh::getElementsByType(5, elements, nodes, e);
-      for (std::size_t c = 0; c < elements.size(); ++c)
-      {
-        for (int i = 0; i < 8; ++i)
-        {
-          const std::size_t k = gmsh_node.at(nodes[8 * c + perm[i]]);
-          if (index[k] < 0)
-          {
-            index[k] = std::int64_t(m.x.size() / 3);
-            m.x.insert(m.x.end(), coords.begin() + 3 * k, coords.begin() + 3 * k + 3);
-          }
-          m.cells.push_back(index[k]);
-        }
-        m.material.push_back(mat);
-      }
-    }
+    void* module = dlopen(PUSHOUT_GMSH_MESHER, RTLD_NOW | RTLD_LOCAL);
+    if (!module)
+      throw std::runtime_error(std::string("cannot load the gmsh mesher: ") + dlerror());
+    void* entry = dlsym(module, "pushout_gmsh_mesh");
+    if (!entry)
+      throw std::runtime_error(std::string("the gmsh mesher has no entry point: ") + dlerror());
+    return reinterpret_cast<MeshFunction>(entry);
+  }();
+  return f;
+}
+
+/// gmsh's mesh of `geo` with its constants.
+MeshData mesh_with_gmsh(const std::filesystem::path& geo,
+                        const std::vector<std::pair<std::string, double>>& constants)
+{
+  std::vector<const char*> names;
+  std::vector<double> values;
+  for (const auto& [name, value] : constants)
+  {
+    names.push_back(name.c_str());
+    values.push_back(value);
   }
-  if (m.material.empty())
-    throw std::runtime_error("gmsh produced no hexahedra");
+  MeshData m;
+  std::array<char, 1024> error{};
+  if (mesher()(geo.c_str(), names.data(), values.data(), names.size(), &m, error.data(),
+               error.size()) != 0)
+    throw std::runtime_error(error.data());
   return m;
+}
+
+/// The cache file: a header line, the counts, then the arrays as they are
+/// in memory (the cache is this machine's).
+constexpr std::string_view cache_header = "pushout mesh cache 1\n";
+
+void write_cached(const std::filesystem::path& path, const MeshData& m)
+{
+  std::ofstream out(path, std::ios::binary);
+  const std::uint64_t counts[2] = {m.num_nodes(), m.num_cells()};
+  out.write(cache_header.data(), std::streamsize(cache_header.size()));
+  out.write(reinterpret_cast<const char*>(counts), sizeof(counts));
+  out.write(reinterpret_cast<const char*>(m.x.data()),
+            std::streamsize(m.x.size() * sizeof(double)));
+  out.write(reinterpret_cast<const char*>(m.cells.data()),
+            std::streamsize(m.cells.size() * sizeof(std::int64_t)));
+  out.write(reinterpret_cast<const char*>(m.material.data()),
+            std::streamsize(m.material.size() * sizeof(std::int32_t)));
+  if (!out)
+    throw std::runtime_error("cannot write the mesh cache file " + path.string());
+}
+
+/// The cached mesh, or false if the file is not one (then it is meshed again).
+bool read_cached(const std::filesystem::path& path, MeshData& m)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::string header(cache_header.size(), '\0');
+  std::uint64_t counts[2] = {0, 0};
+  in.read(header.data(), std::streamsize(header.size()));
+  in.read(reinterpret_cast<char*>(counts), sizeof(counts));
+  if (!in || header != cache_header || counts[0] > (1ull << 32) || counts[1] > (1ull << 32))
+    return false;
+  m.x.resize(3 * counts[0]);
+  m.cells.resize(8 * counts[1]);
+  m.material.resize(counts[1]);
+  in.read(reinterpret_cast<char*>(m.x.data()), std::streamsize(m.x.size() * sizeof(double)));
+  in.read(reinterpret_cast<char*>(m.cells.data()),
+          std::streamsize(m.cells.size() * sizeof(std::int64_t)));
+  in.read(reinterpret_cast<char*>(m.material.data()),
+          std::streamsize(m.material.size() * sizeof(std::int32_t)));
+  if (!in || in.peek() != std::ifstream::traits_type::eof())
+    return false;
+  const std::int64_t n = std::int64_t(counts[0]);
+  return std::all_of(m.cells.begin(), m.cells.end(),
+                     [n](std::int64_t v) { return v >= 0 && v < n; });
 }
 } // namespace
 
@@ -154,7 +198,7 @@ void prune_cache(const std::filesystem::path& cache_dir, double limit_mb,
   std::error_code ec;
   for (const fs::directory_entry& e : fs::directory_iterator(cache_dir, ec))
   {
-    if (e.path().extension() != ".msh" || e.path() == keep)
+    if (e.path().extension() != cache_extension || e.path() == keep)
       continue;
     std::error_code ec_entry;
     const auto used = fs::last_write_time(e.path(), ec_entry);
@@ -191,60 +235,33 @@ MeshData generate_here(const Scene& scene, const std::filesystem::path& cache_di
     key << name << "=" << std::setprecision(17) << value << ";";
   std::ostringstream hex;
   hex << std::hex << std::hash<std::string>{}(key.str());
-  const std::filesystem::path cached = cache_dir / (geo.stem().string() + "-" + hex.str() + ".msh");
+  const std::filesystem::path cached =
+      cache_dir / (geo.stem().string() + "-" + hex.str() + std::string(cache_extension));
 
-  std::vector<std::string> args = {"pushout"};
-  for (const auto& [name, value] : constants)
-  {
-    std::ostringstream v;
-    v << std::setprecision(17) << value;
-    args.insert(args.end(), {"-setnumber", name, v.str()});
-  }
-  std::vector<char*> argv;
-  for (auto& a : args)
-    argv.push_back(a.data());
-
-  gmsh::initialize(int(argv.size()), argv.data(), false);
-  gmsh::option::setNumber("General.Terminal", 0);
   MeshData m;
-  try
+  const double limit_mb = cache_limit_mb();
+  reused = limit_mb > 0 && std::filesystem::exists(cached) && read_cached(cached, m);
+  if (reused)
   {
-    const double limit_mb = cache_limit_mb();
-    reused = limit_mb > 0 && std::filesystem::exists(cached);
-    if (reused)
+    // Marks it used: the cache forgets the least recently used first.
+    std::error_code ec;
+    std::filesystem::last_write_time(cached, std::filesystem::file_time_type::clock::now(), ec);
+  }
+  else
+  {
+    m = mesh_with_gmsh(geo, constants);
+    if (limit_mb > 0)
     {
-      gmsh::open(cached.string());
-      // Marks it used: the cache forgets the least recently used first.
-      std::error_code ec;
-      std::filesystem::last_write_time(cached, std::filesystem::file_time_type::clock::now(), ec);
-    }
-    else if (limit_mb == 0) // no cache
-    {
-      gmsh::open(geo.string());
-      gmsh::model::mesh::generate(3);
-    }
-    else
-    {
-      gmsh::open(geo.string());
-      gmsh::model::mesh::generate(3);
       std::filesystem::create_directories(cache_dir);
       // Write to a private name, then rename: concurrent runs never read a
       // half-written file.
       std::filesystem::path tmp = cached;
-      tmp.replace_extension(".tmp" + std::to_string(::getpid()) + ".msh");
-      gmsh::option::setNumber("Mesh.Binary", 1);
-      gmsh::write(tmp.string());
+      tmp.replace_extension(".tmp" + std::to_string(::getpid()) + std::string(cache_extension));
+      write_cached(tmp, m);
       std::filesystem::rename(tmp, cached);
       prune_cache(cache_dir, limit_mb, cached);
     }
-    m = read_gmsh_model();
   }
-  catch (...)
-  {
-    gmsh::finalize();
-    throw;
-  }
-  gmsh::finalize();
   insert_interface(m);
   if (!scene.cracks().empty())
   {
@@ -274,11 +291,6 @@ MeshData generate(const Scene& scene, const std::filesystem::path& cache_dir, bo
     catch (const std::exception& e)
     {
       error = e.what();
-      flags[0] = 1;
-    }
-    catch (const std::string& e) // gmsh's errors
-    {
-      error = e;
       flags[0] = 1;
     }
   }

@@ -55,5 +55,5 @@ for sig in (signal.SIGTERM, signal.SIGINT):
     s = summary(out)
     check(s["interrupted"] and not s["converged"] and s["stopped_in"] == "meshing"
           and s["signal"] == int(sig), f"{sig.name}: summary.json says it stopped in meshing")
-    check(not any(f.endswith(".msh") for f in os.listdir(cache)) if os.path.isdir(cache) else True,
+    check(not any(f.endswith(".mesh") for f in os.listdir(cache)) if os.path.isdir(cache) else True,
           f"{sig.name}: no half-made mesh in the cache")

@@ -28,10 +28,10 @@ check(summary(c)["dofs"] != summary(a)["dofs"], "the new mesh differs")
 
 # The cache is bounded ($PUSHOUT_CACHE_MAX_MB): past the bound the least
 # recently used meshes go; a reused mesh counts as used. Each coarse mesh
-# here is 40-100 kB.
+# here is 35-55 kB: 0.12 MB holds two or three.
 shutil.rmtree(cache, ignore_errors=True)
-meshes = lambda: sorted(f for f in os.listdir(cache) if f.endswith(".msh"))  # noqa: E731
-os.environ["PUSHOUT_CACHE_MAX_MB"] = "0.25"
+meshes = lambda: sorted(f for f in os.listdir(cache) if f.endswith(".mesh"))  # noqa: E731
+os.environ["PUSHOUT_CACHE_MAX_MB"] = "0.12"
 layers = {n: ["mesh.steel_layers=" + str(n)] for n in (1, 2, 3, 4, 5)}
 run(scene, out_dir("cache_l1"), sets=layers[1])
 first = meshes()
@@ -42,13 +42,26 @@ check(summary(os.path.join(os.path.dirname(a), "cache_l1_again"))["mesh_reused"]
 for n in (3, 4, 5):
     run(scene, out_dir(f"cache_l{n}"), sets=layers[n])
 size_mb = sum(os.path.getsize(os.path.join(cache, f)) for f in meshes()) / 2 ** 20
-check(size_mb <= 0.25, f"the cache holds {size_mb:.3f} MB <= 0.25 MB ({len(meshes())} meshes)")
+check(size_mb <= 0.12, f"the cache holds {size_mb:.3f} MB <= 0.12 MB ({len(meshes())} meshes)")
 check(len(meshes()) >= 2, "it still holds the newest meshes")
 run(scene, out_dir("cache_l5_again"), sets=layers[5])
 check(summary(os.path.join(os.path.dirname(a), "cache_l5_again"))["mesh_reused"], "the newest stays")
 run(scene, out_dir("cache_l2_again"), sets=layers[2])
 check(not summary(os.path.join(os.path.dirname(a), "cache_l2_again"))["mesh_reused"],
       "the least recently used went first")
+
+# A damaged cache file (cut short, or not one of ours) is meshed again.
+for name, damage in (("cut", lambda data: data[: len(data) // 2]), ("foreign", lambda data: b"$MeshFormat" + data)):
+    for f in meshes():
+        path = os.path.join(cache, f)
+        with open(path, "rb") as fh:
+            data = fh.read()
+        with open(path, "wb") as fh:
+            fh.write(damage(data))
+    out = out_dir(f"cache_damaged_{name}")
+    run(scene, out, sets=layers[5])
+    check(not summary(out)["mesh_reused"] and strip(curve(out)) == strip(curve(os.path.join(
+        os.path.dirname(a), "cache_l5"))), f"a {name} cache file is meshed again, the same curve")
 
 # PUSHOUT_CACHE_MAX_MB = 0: no cache at all.
 shutil.rmtree(cache, ignore_errors=True)
