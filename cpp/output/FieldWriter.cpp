@@ -18,28 +18,43 @@ FieldWriter::FieldWriter(const model::Model& model, const std::filesystem::path&
     _u1->name = "displacement";
   }
 
-  // The joint elements: the interface, and the crack planes if any.
+  // The joint elements: interface.xdmf has the interface and the crack
+  // planes (the issue 14 contract: one file of every joint element, `crack`
+  // -1 on the interface, the plane's index on a plane); cracks.xdmf has the
+  // planes alone, with their own fields.
   const std::vector<double> dof_x = model.space()->tabulate_dof_coordinates(false);
   const auto& itf = model.interface();
+  const std::size_t layers = itf.num_layers();
   std::vector<std::string> names = {"t_n", "t_s1", "t_s2", "w_n", "w_s1"};
-  for (std::size_t l = 0; l < itf.num_layers(); ++l)
+  for (std::size_t l = 0; l < layers; ++l)
     for (const char* n : {"slip_s1_", "slip_s2_", "damage_"})
       names.push_back(n + std::to_string(l));
+  std::vector<const interface::Interface*> sets = {&itf}, cracks;
+  for (std::size_t i = 0; i < model.num_cracks(); ++i)
+    cracks.push_back(&model.crack(i));
+  if (!cracks.empty())
+  {
+    sets.insert(sets.end(), cracks.begin(), cracks.end());
+    names.insert(names.end(), {"w_s2", "crack", "crack_damage"});
+  }
+  const bool with_cracks = !cracks.empty();
   _interface = std::make_unique<JointWriter>(
-      comm, std::vector<const interface::Interface*>{&itf}, dof_x, names,
-      [](const interface::PointOutput& o, std::size_t)
+      comm, sets, dof_x, names,
+      [layers, with_cracks](const interface::PointOutput& o, std::size_t set)
       {
         std::vector<double> v = {o.t[0], o.t[1], o.t[2], o.w[0], o.w[1]};
-        for (std::size_t l = 0; l < o.slip.size(); ++l)
-          v.insert(v.end(), {o.slip[l][0], o.slip[l][1], o.damage[l]});
+        for (std::size_t l = 0; l < layers; ++l)
+          if (set == 0)
+            v.insert(v.end(), {o.slip[l][0], o.slip[l][1], o.damage[l]});
+          else // a crack plane: no interface layers
+            v.insert(v.end(), {0.0, 0.0, 0.0});
+        if (with_cracks)
+          v.insert(v.end(), {o.w[2], double(set) - 1, set == 0 ? 0.0 : o.damage[0]});
         return v;
       },
       dir / "interface.xdmf");
-  if (model.num_cracks() == 0)
+  if (cracks.empty())
     return;
-  std::vector<const interface::Interface*> cracks;
-  for (std::size_t i = 0; i < model.num_cracks(); ++i)
-    cracks.push_back(&model.crack(i));
   // n is the crack's normal (opening), s1 axial, s2 radial.
   _cracks = std::make_unique<JointWriter>(
       comm, cracks, dof_x,

@@ -23,6 +23,7 @@ planes add no compliance to the uncracked ring), f_t 3 MPa, c 20 1/mm.
    is moved onto it (summary.json says so); the model is the full one;
    cracks.xdmf and corrosion.png are written."""
 import math
+import re
 import os
 
 from common import check, corroded_ring, corrosion, out_dir, run, summary
@@ -129,6 +130,12 @@ s = summary(out)
 xdmf = open(os.path.join(out, "cracks.xdmf")).read()
 check(all(f'Name="{f}"' in xdmf for f in ("t_n", "w_n", "damage", "crack")),
       "cracks.xdmf has the crack planes' tractions, openings, damage and index")
+itf_xdmf = open(os.path.join(out, "interface.xdmf")).read()
+cells = [int(n) for n in re.findall(r'<Topology[^>]*NumberOfElements="(\d+)"', itf_xdmf)]
+check(all(f'Name="{f}"' in itf_xdmf for f in ("t_n", "w_n", "slip_s1_0", "crack", "crack_damage"))
+      and cells and cells[0] == s["interface_pairs"],
+      f"interface.xdmf has every joint element, the interface's and the planes' "
+      f"({cells[:1]} cells, {s['interface_pairs']} joint elements), with their index and damage")
 check(os.path.exists(os.path.join(out, "corrosion.png")), "corrosion.png drawn")
 corner = math.degrees(math.atan2(100 - 25, 100 - 50))  # the block corner towards (100, 100)
 check(abs(s["cracks"][0]["angle_deg"] - 270) < 1e-9 and not s["cracks"][0]["snapped"],
