@@ -48,7 +48,10 @@ def main():
         # While the run computes: draw a figure like the ones to come, to
         # nowhere, so that fonts, mathtext and the renderer are ready when
         # the first plot is asked for.
-        draw_example()
+        try:
+            draw_example()
+        except Exception as e:  # noqa: BLE001  (the plots asked for may still work)
+            print(f"plot_curve.py: warming up: {e}", file=sys.stderr)
         failed = False
         for line in sys.stdin:
             if not line.strip():
@@ -61,6 +64,7 @@ def main():
                 failed = True
         # pushout waits for this process to end: skip the interpreter's
         # teardown of matplotlib (a fifth of a second); the files are closed.
+        sys.stdout.flush()
         sys.stderr.flush()
         os._exit(1 if failed else 0)
     if not args.csv or not args.png:

@@ -79,12 +79,22 @@ PushOut::PushOut(const Scene& scene, const mesh::MeshData& m, const model::Model
   const auto [xc, yc] = m.symmetry_center;
   const auto [x_plane, y_plane] = m.symmetry_planes;
   // The faces of the crack planes on a symmetry plane are held by their
-  // joints (mirror cracks), not by the symmetry condition.
-  std::vector<std::uint8_t> crack_face(X.size() / 3, 0);
-  for (std::size_t i = 0; i < model.num_cracks(); ++i)
-    if (model.crack(i).mirrored())
-      for (std::int32_t b : model.crack(i).pair_blocks())
-        crack_face[b] = 1;
+  // joints (mirror cracks), not by the symmetry condition: the concrete
+  // blocks on the plane along such a crack's ray (found by position, so
+  // that a process knows its blocks whoever holds the joint elements).
+  const double R = _D / 2;
+  const auto on_mirror_crack = [&](std::int32_t b)
+  {
+    if (!block_concrete[b])
+      return false;
+    const double dx = X[3 * b] - c[0], dy = X[3 * b + 1] - c[1];
+    for (const mesh::CrackPlane& crack : m.cracks)
+      if (crack.mirrored() && std::hypot(dx, dy) > R - tol &&
+          dx * std::cos(crack.angle) + dy * std::sin(crack.angle) > 0 &&
+          std::abs(dx * std::sin(crack.angle) - dy * std::cos(crack.angle)) < tol)
+        return true;
+    return false;
+  };
   const std::int32_t n_owned = dofmap->index_map->size_local();
   for (std::int32_t b = 0; b < n_owned; ++b)
   {
@@ -96,9 +106,9 @@ PushOut::PushOut(const Scene& scene, const mesh::MeshData& m, const model::Model
     // Symmetry: u_x = 0 on x = xc, u_y = 0 on y = yc (both sides of the
     // interface); they also remove the in-plane rigid modes across them and
     // the tube's rotation.
-    if (x_plane && std::abs(x - xc) < tol && !crack_face[b])
+    if (x_plane && std::abs(x - xc) < tol && !on_mirror_crack(b))
       _fixed.push_back(3 * b);
-    if (y_plane && std::abs(y - yc) < tol && !crack_face[b])
+    if (y_plane && std::abs(y - yc) < tol && !on_mirror_crack(b))
       _fixed.push_back(3 * b + 1);
   }
   const auto add = [&](std::int64_t node, int comp)
@@ -131,7 +141,7 @@ PushOut::PushOut(const Scene& scene, const mesh::MeshData& m, const model::Model
       // support at (xc, yc + Rs) in x, the pair (xc +- Rs, yc) in y, the
       // tube top at (xc, yc + Ri) in x. (Before, the tube top was held in y
       // there too, which held its shift in y against the slice: tau 3.5e-5
-      // off on the corroded specimen without its crack.) A slice without
+      // off, relative, on the corroded specimen without its crack.) A slice without
       // symmetry keeps the first set; its tube-top fixing may then carry a
       // little.
       const mesh::Symmetry symmetry = mesh::geometric_symmetry(scene);
@@ -139,7 +149,10 @@ PushOut::PushOut(const Scene& scene, const mesh::MeshData& m, const model::Model
       const std::int64_t b = nearest(m, support, {c[0] - Rs, c[1], 0});
       add(a, 1);
       add(b, 1);
-      if (symmetry.x_plane && !symmetry.y_plane)
+      // (On the plane only where it is a mesh line: an even number of
+      // elements per quarter.)
+      if (symmetry.x_plane && !symmetry.y_plane &&
+          scene.integer("mesh.elements_per_quarter") % 2 == 0)
       {
         add(nearest(m, support, {c[0], c[1] + Rs, 0}), 0);
         add(nearest(m, top, {c[0], c[1] + Ri, _L}), 0);

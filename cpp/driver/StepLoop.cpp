@@ -164,6 +164,7 @@ void StepLoop::revert()
   for (interface::Interface* joints : _equilibrium.model().joints())
     joints->state().revert();
   _x.copy_from(_x_committed);
+  _solver.forget_tangent(); // it was the reverted state's
 }
 
 template <class Words>

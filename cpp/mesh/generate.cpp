@@ -10,6 +10,7 @@
 #include <fstream>
 #include <functional>
 #include <iomanip>
+#include <iostream>
 #include <map>
 #include <sstream>
 #include <unistd.h>
@@ -88,7 +89,11 @@ MeshFunction mesher()
       throw std::runtime_error(std::string("cannot load the gmsh mesher: ") + dlerror());
     void* entry = dlsym(module, "pushout_gmsh_mesh");
     if (!entry)
-      throw std::runtime_error(std::string("the gmsh mesher has no entry point: ") + dlerror());
+    {
+      const std::string why = dlerror();
+      dlclose(module);
+      throw std::runtime_error("the gmsh mesher has no entry point: " + why);
+    }
     return reinterpret_cast<MeshFunction>(entry);
   }();
   return f;
@@ -141,7 +146,16 @@ bool read_cached(const std::filesystem::path& path, MeshData& m)
   std::uint64_t counts[2] = {0, 0};
   in.read(header.data(), std::streamsize(header.size()));
   in.read(reinterpret_cast<char*>(counts), sizeof(counts));
-  if (!in || header != cache_header || counts[0] > (1ull << 32) || counts[1] > (1ull << 32))
+  if (!in || header != cache_header)
+    return false;
+  // The counts must account for the file's size exactly (a damaged header
+  // is not an allocation of 100 GB).
+  std::error_code ec;
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  const double expected = double(cache_header.size() + sizeof(counts)) +
+                          double(counts[0]) * 3 * sizeof(double) +
+                          double(counts[1]) * (8 * sizeof(std::int64_t) + sizeof(std::int32_t));
+  if (ec || double(bytes) != expected)
     return false;
   m.x.resize(3 * counts[0]);
   m.cells.resize(8 * counts[1]);
@@ -198,7 +212,9 @@ void prune_cache(const std::filesystem::path& cache_dir, double limit_mb,
   std::error_code ec;
   for (const fs::directory_entry& e : fs::directory_iterator(cache_dir, ec))
   {
-    if (e.path().extension() != cache_extension || e.path() == keep)
+    // (*.msh: meshes of pushout before its own format, which nothing reads.)
+    if ((e.path().extension() != cache_extension && e.path().extension() != ".msh") ||
+        e.path() == keep)
       continue;
     std::error_code ec_entry;
     const auto used = fs::last_write_time(e.path(), ec_entry);
@@ -252,14 +268,25 @@ MeshData generate_here(const Scene& scene, const std::filesystem::path& cache_di
     m = mesh_with_gmsh(geo, constants);
     if (limit_mb > 0)
     {
-      std::filesystem::create_directories(cache_dir);
       // Write to a private name, then rename: concurrent runs never read a
-      // half-written file.
+      // half-written file (and prune_cache leaves *.tmpPID.* alone).
       std::filesystem::path tmp = cached;
       tmp.replace_extension(".tmp" + std::to_string(::getpid()) + std::string(cache_extension));
-      write_cached(tmp, m);
-      std::filesystem::rename(tmp, cached);
-      prune_cache(cache_dir, limit_mb, cached);
+      // A cache that cannot be written costs the next run a meshing, not
+      // this run its mesh.
+      try
+      {
+        std::filesystem::create_directories(cache_dir);
+        write_cached(tmp, m);
+        std::filesystem::rename(tmp, cached);
+        prune_cache(cache_dir, limit_mb, cached);
+      }
+      catch (const std::exception& e)
+      {
+        std::error_code ec;
+        std::filesystem::remove(tmp, ec);
+        std::cerr << "pushout: warning: the mesh was not cached: " << e.what() << std::endl;
+      }
     }
   }
   insert_interface(m);

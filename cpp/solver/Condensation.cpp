@@ -625,6 +625,7 @@ double Condensation::residual_floor(Vec d)
 
 bool Condensation::jacobian(Vec d, Mat J)
 {
+  count_tangent();
   const bool ok = interface_forces(d, true); // dF/dd into _T (per set)
   PetscBool shell;
   check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(J), MATSHELL, &shell),

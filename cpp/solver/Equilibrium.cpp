@@ -215,6 +215,7 @@ Vec Equilibrium::create_vector() const
 
 bool Equilibrium::jacobian(Vec x, Mat J)
 {
+  count_tangent();
   update_displacement(x);
   check(MatCopy(_model.stiffness(), J, SAME_NONZERO_PATTERN), "MatCopy");
   std::span<double> fi = _f_interface.mutable_array();

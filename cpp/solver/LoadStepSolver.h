@@ -43,6 +43,14 @@ public:
   /// NewtonSolver::set_first_tangent).
   void set_first_tangent(bool converged);
   bool first_tangent_converged() const { return _first_tangent_converged; }
+  /// The next step starts from the tangent at its initial guess (the state
+  /// of the last converged solve was reverted).
+  void forget_tangent()
+  {
+    _whole.forget_tangent();
+    if (_newton)
+      _newton->forget_tangent();
+  }
 
   /// Builds what the current constraints need before the first solve (the
   /// condensation, which takes a while on a large interface).

@@ -236,8 +236,11 @@ SolveReport NewtonSolver::solve(Vec x)
     _policy.P_filled();
   }
   SolveReport r;
+  // The last converged tangent, if nothing evaluated another since (path
+  // following on the same problem does) and the constraints are the same.
   _tangent_converged = _tangent_converged && !_policy.refresh_due() &&
-                       _tangent_constraints == _problem.constraint_version();
+                       _tangent_constraints == _problem.constraint_version() &&
+                       _tangent_evaluation == _problem.tangent_evaluations();
   // A factorisation that fails in a Newton iteration fails the solve, and
   // the step loop cuts the step back, as for any diverged solve: MUMPS and
   // PETSc's sparse LU record a failed reason (DIVERGED_LINEAR_SOLVE), a
@@ -258,6 +261,17 @@ SolveReport NewtonSolver::solve(Vec x)
   r.converged = reason > 0;
   _tangent_converged = r.converged;
   _tangent_constraints = _problem.constraint_version();
+  _tangent_evaluation = _problem.tangent_evaluations();
+  {
+    // The last linear solve's iterations: the lagged preconditioner is
+    // refreshed before the next solve if it slowed down (the Jacobian
+    // callback counts the others).
+    KSP ksp;
+    check(SNESGetKSP(_snes, &ksp), "SNESGetKSP");
+    PetscInt its = 0;
+    check(KSPGetIterationNumber(ksp, &its), "KSPGetIterationNumber");
+    _policy.solved(its);
+  }
   r.iterations = int(its);
   r.reason = SNESConvergedReasons[reason];
   if (reason == SNES_DIVERGED_LINEAR_SOLVE)

@@ -88,6 +88,7 @@ private:
   bool _previous_tangent = true;   ///< a step's first iteration takes the last converged tangent
   bool _tangent_converged = false; ///< the last solve converged (its tangent is at hand)
   int _tangent_constraints = -1;   ///< the constraint version of that solve
+  int _tangent_evaluation = -1;    ///< the problem's tangent count after it
 
 public:
   /// Numeric factorisations so far (for the summary).
@@ -99,6 +100,9 @@ public:
     _policy.restart();
     _tangent_converged = false;
   }
+  /// The next solve starts from the tangent at its initial guess (its
+  /// committed state was reverted).
+  void forget_tangent() { _tangent_converged = false; }
 
 private:
   static PetscErrorCode jacobian_callback(SNES snes, Vec x, Mat J, Mat P, void* ctx);

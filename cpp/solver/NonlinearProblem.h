@@ -78,5 +78,16 @@ public:
   /// Forgets the interface state the last evaluation wrote (trial state
   /// back to the committed one).
   virtual void forget_trial_state() = 0;
+
+  /// Tangents evaluated so far (jacobian(), by any solver): a solver that
+  /// keeps a tangent to reuse knows whether another evaluation replaced it.
+  int tangent_evaluations() const { return _tangent_evaluations; }
+
+protected:
+  /// Called by jacobian().
+  void count_tangent() { ++_tangent_evaluations; }
+
+private:
+  int _tangent_evaluations = 0;
 };
 } // namespace pushout::solver

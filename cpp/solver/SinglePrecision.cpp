@@ -96,7 +96,10 @@ PetscErrorCode set_up(PC pc)
           return;
         }
         f->lu.assign(f->work.begin(), f->work.end());
+        f->work = std::vector<double>(); // only the single-precision factors stay
         f->b.resize(std::size_t(n));
+        // A zero pivot of an earlier factorisation is over.
+        check(PCSetFailedReason(pc, PC_NOERROR), "PCSetFailedReason");
       });
 }
 
@@ -170,10 +173,10 @@ void SingleMatrix::multiply(const double* x, double* y) const
 void use_single_precision_lu(PC pc)
 {
   check(PCSetType(pc, PCSHELL), "PCSetType");
+  check(PCShellSetDestroy(pc, destroy), "PCShellSetDestroy"); // first: it owns the context
   check(PCShellSetContext(pc, new Factors), "PCShellSetContext");
   check(PCShellSetSetUp(pc, set_up), "PCShellSetSetUp");
   check(PCShellSetApply(pc, apply), "PCShellSetApply");
-  check(PCShellSetDestroy(pc, destroy), "PCShellSetDestroy");
   check(PCShellSetName(pc, "LU factored in double, applied in single precision (pushout)"),
         "PCShellSetName");
 }

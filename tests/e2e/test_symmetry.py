@@ -65,9 +65,14 @@ centred = corroded.replace("tube_center = [50.0, 25.0]", "tube_center = [50.0, 5
 assert centred != corroded
 without_crack = corroded[:corroded.index("[[crack]]")] + corroded[corroded.index("[loading]"):]
 crack = corroded[corroded.index("[[crack]]"):corroded.index("[loading]")]
+# Four cracks soften ductile here (c = 5 1/mm): with the demo's c = 30 the
+# whole slice may localise into two of the four planes (which branch depends
+# on round-off), the branch a cut model cannot take, and the reason
+# model.symmetry = "auto" keeps the whole slice when cracks pair up.
 centred_cracks = lambda angles: without_crack.replace(  # noqa: E731
     "tube_center = [50.0, 25.0]", "tube_center = [50.0, 50.0]") + "".join(
-    crack.replace('angle = "nearest_face"', f"angle = {a}") for a in angles)
+    crack.replace('angle = "nearest_face"', f"angle = {a}").replace("c = 30.0", "c = 5.0")
+    for a in angles)
 short = ["mesh.elements_per_quarter=6", "mesh.elements_through_thickness=3", "corrosion.steps=8",
          "corrosion.penetration=0.03", "loading.steps=6", "loading.push_displacement=0.03"]
 # Cracks that are mirror images of each other: "auto" keeps the whole slice
@@ -95,8 +100,8 @@ for name, text, part, mirrored in (
             a, b = sc["cracks"][i][key], sw["cracks"][i][key]
             check(abs(a - b) <= 1e-8 * max(abs(b), 1e-12),
                   f"{name}: crack {i} {key} {a:.6g} = full model's {b:.6g}")
-    check(max(c["mouth_opening_mm"] for c in sw["cracks"]) > 1e-3,
-          f"{name}: the cracks open ({max(c['mouth_opening_mm'] for c in sw['cracks']) * 1e3:.1f} um)")
+    check(max(c["max_opening_mm"] for c in sw["cracks"]) > 1e-3,
+          f"{name}: the cracks open ({max(c['max_opening_mm'] for c in sw['cracks']) * 1e3:.1f} um)")
     print(f"{name}: {sc['condensed_dofs']} condensed dofs against {sw['condensed_dofs']}, "
           f"wall {sc['wall_s']:.2f} s against {sw['wall_s']:.2f} s ({mirrored} mirror cracks)")
 
