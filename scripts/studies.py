@@ -73,6 +73,15 @@ SPREAD_AT_MM = (0.05, 0.2, 1.0)
 COLORS = {-5.0: "tab:blue", -10.0: "tab:green", -25.0: "tab:orange", -50.0: "tab:red"}
 
 
+
+def finish_pair(fig, axes, title, png):
+    """Labels, legend and title of a figure of two τ(δ) panels side by side; saves it."""
+    axes[0].set_ylabel("nominal bond stress $\\tau$ [MPa]")
+    axes[1].legend(fontsize=8)
+    fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(png)
+
 def mesh_sets(study, quick):
     if quick:
         return ["mesh.elements_per_quarter=4", "mesh.elements_through_thickness=2"]
@@ -365,11 +374,8 @@ def plot_laws(out, runs):
                title="adhesion alone (friction layer at $\\mu$ 0)" if mu == 0 else
                "adhesion with friction ($\\mu$ 0.4)")
         ax.grid(alpha=0.3)
-    axes[0].set_ylabel("nominal bond stress $\\tau$ [MPa]")
-    axes[1].legend(fontsize=8)
-    fig.suptitle("§2.3 rerun: adhesion laws (f_t 3 MPa, softening energy 0.12 N/mm), $\\Delta T$ -25 °C")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "laws_comparison.png"))
+    finish_pair(fig, axes, "§2.3 rerun: adhesion laws (f_t 3 MPa, softening energy 0.12 N/mm), "
+                "$\\Delta T$ -25 °C", os.path.join(out, "laws_comparison.png"))
     for top in ("held", "free"):
         for dT in (-25.0, -50.0):
             rows = runs[("laws", f"damage_{top}_dT{dT:g}")]
@@ -409,11 +415,8 @@ def plot_unload_reload(out, runs):
         if x_max:
             ax.set_xlim(0, x_max)
         ax.grid(alpha=0.3)
-    axes[0].set_ylabel("nominal bond stress $\\tau$ [MPa]")
-    axes[1].legend(fontsize=8)
-    fig.suptitle("Unload and reload: friction 2 + exp. soft. (c 25), $\\Delta T$ -25 °C")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "unload_reload.png"))
+    finish_pair(fig, axes, "Unload and reload: friction 2 + exp. soft. (c 25), $\\Delta T$ -25 °C",
+                os.path.join(out, "unload_reload.png"))
     return permanent
 
 

@@ -32,7 +32,7 @@ double separator_dofs(const Scene& scene, const mesh::MeshSize& size)
   const std::int64_t p = scene.integer("mesh.degree");
   const double section =
       3.0 * double(p * (d.steel + d.ring + d.graded) + 2) * double(p * d.thickness + 1);
-  return size.copies > 1 ? section : 2 * section; // an arc, or a ring cut twice
+  return size.symmetry.copies() > 1 ? section : 2 * section; // an arc, or a ring cut twice
 }
 
 std::string gigabytes(double mb)
@@ -78,9 +78,7 @@ std::string ResourceEstimate::describe() const
 {
   std::ostringstream s;
   s << size.dofs << " dofs, " << size.joint_elements << " joint elements"
-    << (size.copies == 4   ? " of a quarter model"
-        : size.copies == 2 ? " of a half model"
-                           : "")
+    << (size.symmetry.copies() > 1 ? " of a " + size.symmetry.name() + " model" : std::string())
     << ", Newton on " << (condensed ? "the condensed interface" : "the whole model")
     << (condensed || direct ? "" : " (iterative)");
   return s.str();
@@ -139,7 +137,7 @@ void check_fits(const ResourceEstimate& e, const Scene& scene, bool force)
     m << "; lower mesh.elements_per_quarter (" << scene.integer("mesh.elements_per_quarter")
       << ") or mesh.elements_through_thickness ("
       << scene.integer("mesh.elements_through_thickness") << ")"
-      << (scene.integer("mesh.degree") == 2 ? ", or use mesh.degree = 1" : "");
+      << (scene.integer("mesh.degree") == 2 ? ", or use mesh.degree = 1" : std::string());
   m << "; --force runs it anyway";
   throw TooLarge(m.str());
 }

@@ -36,7 +36,7 @@ void guard_size(const Scene& scene, const RunOptions& opt, RunReport& report)
   output::Summary& s = report.summary();
   s.estimate = {estimate.size.dofs, estimate.size.cells, estimate.size.joint_elements,
                 estimate.peak_mb()};
-  s.symmetry = mesh::Symmetry{estimate.size.copies > 1, estimate.size.copies == 4}.name();
+  s.symmetry = estimate.size.symmetry.name();
   report.publish();
   if (report.talk())
     std::cout << "pushout: meshing " << estimate.size.cells << " cells (" << estimate.memory()

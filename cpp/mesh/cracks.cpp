@@ -22,13 +22,6 @@ double turn(double a)
   return a < 0 ? a + 2 * pi : a;
 }
 
-/// Smallest angle between two directions [rad].
-double angle_between(double a, double b)
-{
-  const double d = turn(a - b);
-  return std::min(d, 2 * pi - d);
-}
-
 double degrees(double a)
 {
   return a * 180 / pi;
@@ -76,6 +69,12 @@ std::array<double, 2> boundary_point(const SliceShape& s, double a)
   return {s.c[0] + t * dx, s.c[1] + t * dy};
 }
 } // namespace
+
+double angle_between(double a, double b)
+{
+  const double d = turn(a - b);
+  return std::min(d, 2 * pi - d);
+}
 
 CrackDirections crack_directions(const Scene& scene)
 {

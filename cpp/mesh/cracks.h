@@ -20,6 +20,9 @@
 
 namespace pushout::mesh
 {
+/// Smallest angle between two directions [rad].
+double angle_between(double a, double b);
+
 /// The directions of the scene's crack planes [rad, in [0, 2 pi)], in the
 /// order of its [[crack]] tables. "nearest_face" is the direction of the
 /// square's side nearest the tube axis (ties: -y, +x, +y, -x). A crack

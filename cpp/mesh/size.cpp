@@ -55,12 +55,13 @@ MeshSize predict_size(const Scene& scene)
   const std::int64_t radial = d.steel + d.ring + d.graded; // elements along a radius
   std::string why;
   const Symmetry symmetry = model_symmetry(scene, why);
-  s.copies = symmetry.copies();
+  s.symmetry = symmetry;
+  const int copies = symmetry.copies();
   // Elements around the circumference: of the whole slice, and of the part
   // the model keeps (with crack planes the circumference is cut into
   // sectors, cracks.h, with a boundary on each symmetry plane).
   const bool cracked = !scene.cracks().empty();
-  std::int64_t full_around = 4 * d.circumferential, around = full_around / s.copies;
+  std::int64_t full_around = 4 * d.circumferential, around = full_around / copies;
   if (cracked)
   {
     const SliceSectors sec = slice_sectors(scene);
@@ -80,7 +81,7 @@ MeshSize predict_size(const Scene& scene)
   // Node positions of the degree: around the tube (a closed ring for the
   // full model, an arc for a part), along a radius (the interface position
   // twice) and through the thickness.
-  const std::int64_t n_around = s.copies > 1 ? p * around + 1 : p * around;
+  const std::int64_t n_around = copies > 1 ? p * around + 1 : p * around;
   const std::int64_t n_radial = p * radial + 2;
   const std::int64_t n_thick = p * d.thickness + 1;
   s.nodes = n_around * n_radial * n_thick;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "../scene/Scene.h"
+#include "symmetry.h"
 #include <cstdint>
 
 namespace pushout::mesh
@@ -18,7 +19,7 @@ struct MeshSize
   std::int64_t dofs = 0;            ///< displacement dofs (3 per node of the degree)
   std::int64_t joint_elements = 0;  ///< joint elements (interface and crack planes)
   std::int64_t interface_dofs = 0;  ///< 6 per node pair of the joints (both sides)
-  int copies = 1;                   ///< mirror copies of the model in the slice (symmetry.h)
+  Symmetry symmetry;                ///< the planes the model is cut along (symmetry.h)
 };
 
 /// The block divisions of meshes/slice.geo for a push-out scene. These

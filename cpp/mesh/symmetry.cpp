@@ -13,12 +13,6 @@ constexpr double pi = std::numbers::pi;
 /// Directions closer than this are the same [rad].
 constexpr double same_direction = 1e-9;
 
-double angle_between(double a, double b)
-{
-  double d = std::fmod(std::abs(a - b), 2 * pi);
-  return std::min(d, 2 * pi - d);
-}
-
 /// The mirror image of direction a about x = xc (x_plane) or y = yc.
 double reflected(double a, bool x_plane)
 {

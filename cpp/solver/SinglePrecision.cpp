@@ -56,6 +56,24 @@ void lu_solve_kernel(const float* __restrict lu, std::size_t n, float* __restric
   }
 }
 
+/// The entries of a square sequential dense matrix, column-major without
+/// padding (n x n, lda = n), as T; returns n.
+template <class T> std::size_t copy_dense(Mat A, std::vector<T>& out)
+{
+  PetscInt rows, cols, lda;
+  check(MatGetSize(A, &rows, &cols), "MatGetSize");
+  check(MatDenseGetLDA(A, &lda), "MatDenseGetLDA");
+  const std::size_t n = std::size_t(rows);
+  out.resize(n * n);
+  const double* a;
+  check(MatDenseGetArrayRead(A, &a), "MatDenseGetArrayRead");
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t i = 0; i < n; ++i)
+      out[i + j * n] = T(a[i + j * std::size_t(lda)]);
+  check(MatDenseRestoreArrayRead(A, &a), "MatDenseRestoreArrayRead");
+  return n;
+}
+
 struct Factors
 {
   PetscBLASInt n = 0;
@@ -74,18 +92,9 @@ PetscErrorCode set_up(PC pc)
         check(PCShellGetContext(pc, &f), "PCShellGetContext");
         Mat P;
         check(PCGetOperators(pc, nullptr, &P), "PCGetOperators");
-        PetscInt rows, cols, lda;
-        check(MatGetSize(P, &rows, &cols), "MatGetSize");
-        check(MatDenseGetLDA(P, &lda), "MatDenseGetLDA");
-        const PetscInt n = rows;
+        const std::size_t n = copy_dense(P, f->work);
         f->n = PetscBLASInt(n);
-        f->work.resize(std::size_t(n) * std::size_t(n));
-        const double* a;
-        check(MatDenseGetArrayRead(P, &a), "MatDenseGetArrayRead");
-        for (PetscInt j = 0; j < n; ++j)
-          std::copy(a + j * lda, a + j * lda + n, f->work.begin() + j * n);
-        check(MatDenseRestoreArrayRead(P, &a), "MatDenseRestoreArrayRead");
-        f->pivots.resize(std::size_t(n));
+        f->pivots.resize(n);
         PetscBLASInt info = 0;
         LAPACKgetrf_(&f->n, &f->n, f->work.data(), &f->n, f->pivots.data(), &info);
         if (info != 0)
@@ -97,7 +106,7 @@ PetscErrorCode set_up(PC pc)
         }
         f->lu.assign(f->work.begin(), f->work.end());
         f->work = std::vector<double>(); // only the single-precision factors stay
-        f->b.resize(std::size_t(n));
+        f->b.resize(n);
         // A zero pivot of an earlier factorisation is over.
         check(PCSetFailedReason(pc, PC_NOERROR), "PCSetFailedReason");
       });
@@ -146,17 +155,7 @@ PetscErrorCode destroy(PC pc)
 
 SingleMatrix::SingleMatrix(Mat A)
 {
-  PetscInt rows, cols, lda;
-  check(MatGetSize(A, &rows, &cols), "MatGetSize");
-  check(MatDenseGetLDA(A, &lda), "MatDenseGetLDA");
-  _n = std::size_t(rows);
-  _a.resize(_n * _n);
-  const double* a;
-  check(MatDenseGetArrayRead(A, &a), "MatDenseGetArrayRead");
-  for (std::size_t j = 0; j < _n; ++j)
-    for (std::size_t i = 0; i < _n; ++i)
-      _a[i + j * _n] = float(a[i + j * std::size_t(lda)]);
-  check(MatDenseRestoreArrayRead(A, &a), "MatDenseRestoreArrayRead");
+  _n = copy_dense(A, _a);
   _x.resize(_n);
   _y.resize(_n);
 }
