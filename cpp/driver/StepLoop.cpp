@@ -15,6 +15,10 @@ namespace
 /// A try that converged in at most this many Newton iterations is easy;
 /// two easy tries in a row double the increment again (Stepper.h).
 constexpr int easy_iterations = 4;
+/// The same for the energy steps of dissipation control: their Newton
+/// iterations start from the committed state's tangent (StartTangent) and
+/// close the control equation too, so an easy one takes a few more.
+constexpr int easy_energy_iterations = 6;
 /// The load parameter reaches a nominal step within this tolerance.
 constexpr double step_tolerance = 1e-12;
 /// Path following: snap-back makes the path longer than the final push, so
@@ -689,7 +693,7 @@ bool StepLoop::by_dissipation(const DissipationStage& stage)
     _equilibrium.apply_constraints(_x);
     return _solver.solve(_x);
   };
-  Stepper by_lambda(_max_cuts, easy_iterations), energy(_max_cuts, easy_iterations);
+  Stepper by_lambda(_max_cuts, easy_iterations), energy(_max_cuts, easy_energy_iterations);
   bool by_energy = false;       // the kind of the next step
   double released_in_event = 0; // by the softening layers in the energy steps so far [N mm]
   double lambda = 0.0, P = stage.force();

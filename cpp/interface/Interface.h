@@ -60,6 +60,9 @@ public:
 
   /// A mirror set (its minus nodes are the plus nodes' mirror images).
   bool mirrored() const { return _mirrored; }
+  /// A mirror set's symmetry-plane unit normal m (zero otherwise): its
+  /// joints see only the plus nodes' displacement along m (jump 2 (u.m) m).
+  const std::array<double, 3>& mirror_normal() const { return _mirror; }
 
   std::size_t num_pairs() const { return _num_pairs; }
   /// Nodes per side of a joint element (4, or 9 for mesh.degree = 2).

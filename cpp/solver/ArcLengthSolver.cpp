@@ -5,9 +5,17 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 namespace pushout::solver
 {
+namespace
+{
+/// A step whose Newton iterations do not make |F| ten times smaller in this
+/// many iterations fails (DIVERGED_NO_PROGRESS).
+constexpr std::ptrdiff_t stall_iterations = 10;
+} // namespace
+
 using petsc::check;
 
 LinearConstraint::LinearConstraint(Vec a)
@@ -206,6 +214,7 @@ SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
     _policy.refresh(); // a retry starts from a fresh factorisation
     return rep;
   };
+  std::vector<double> fnorms; // |F| of the iterates so far
   for (PetscInt it = 0;; ++it)
   {
     // F at (x, lam), and e where it moves with the iterate.
@@ -242,6 +251,19 @@ SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
     }
     if (it == _max_it)
       return fail("DIVERGED_MAX_IT");
+    // A Newton iteration that has not made |F| ten times smaller in
+    // stall_iterations iterations has lost its way (near a brittle event the
+    // bordered iterates can wander for all of -snes_max_it): the step is cut
+    // now rather than after the last iteration.
+    fnorms.push_back(fnorm);
+    if (it > stall_iterations)
+    {
+      const auto recent = fnorms.end() - stall_iterations;
+      if (*std::min_element(recent, fnorms.end()) >
+          0.1 * *std::min_element(fnorms.begin() + 1, recent))
+        return fail("DIVERGED_NO_PROGRESS (|F| not 10x smaller in " +
+                    std::to_string(stall_iterations) + " iterations)");
+    }
     if (!mpi::all(comm_of(x), !interrupt::received())) // a signal on any process
       return fail("interrupted");
     if (!setup_operators(x))

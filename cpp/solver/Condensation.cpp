@@ -1,6 +1,8 @@
 #include "Condensation.h"
 #include "../common/petsc_check.h"
+#include "Vector.h"
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <dolfinx/common/IndexMap.h>
 #include <limits>
@@ -44,6 +46,17 @@ node_pairs(const model::Model& model)
   return sets;
 }
 
+/// The components of a set's node pairs that are jumps: all 3, or a mirror
+/// set's normal axis when its normal is a coordinate axis.
+std::array<bool, 3> jump_components(const interface::Interface& joints)
+{
+  const std::array<double, 3>& m = joints.mirror_normal();
+  for (int a = 0; a < 3; ++a)
+    if (joints.mirrored() && std::abs(std::abs(m[a]) - 1.0) < 1e-12)
+      return {a == 0, a == 1, a == 2};
+  return {true, true, true};
+}
+
 /// Column-major dense array of a SEQDENSE matrix and its leading dimension.
 struct Dense
 {
@@ -66,6 +79,19 @@ std::int64_t Condensation::interface_dofs(const model::Model& model)
   for (const auto& set : node_pairs(model))
     pairs += std::int64_t(set.size());
   return 6 * pairs;
+}
+
+std::int64_t Condensation::unknowns(const model::Model& model)
+{
+  const auto joints = model.joints();
+  const auto sets = node_pairs(model);
+  std::int64_t n = 0;
+  for (std::size_t s = 0; s < sets.size(); ++s)
+  {
+    const std::array<bool, 3> kept = jump_components(*joints[s]);
+    n += std::int64_t(sets[s].size()) * std::count(kept.begin(), kept.end(), true);
+  }
+  return n;
 }
 
 bool Condensation::possible(const Equilibrium& eq, std::string& why)
@@ -116,24 +142,37 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
   const model::Model& model = eq.model();
   const auto& map = model.index_map();
   const std::int32_t n_blocks = map.size_local() + map.num_ghosts();
-  // The jumps: 3 per node pair, set by set; the l2g of each set maps its
-  // plus blocks to their pairs (its minus blocks to nothing).
+  // The jumps: 3 per node pair (1 for a mirror set on a coordinate plane),
+  // set by set; the l2g of each set maps its plus blocks to their pairs
+  // (its minus blocks to nothing).
   std::vector<std::vector<std::int32_t>> pair_of_block;
   std::int32_t n_pairs = 0;
-  for (const auto& set : node_pairs(model))
+  const auto joints = model.joints();
+  const auto sets = node_pairs(model);
+  for (std::size_t s = 0; s < sets.size(); ++s)
   {
+    const std::array<bool, 3> kept = jump_components(*joints[s]);
     pair_of_block.emplace_back(n_blocks, -1);
-    for (const auto& [minus, plus] : set)
+    for (const auto& [minus, plus] : sets[s])
     {
-      pair_of_block.back()[plus] = n_pairs++;
+      pair_of_block.back()[plus] = n_pairs;
       for (int c = 0; c < 3; ++c)
       {
+        if (!kept[c])
+        {
+          _jump_of_ext.push_back(-1);
+          continue;
+        }
+        _jump_of_ext.push_back(PetscInt(_minus.size()));
+        _ext_of_jump.push_back(3 * n_pairs + c);
         _minus.push_back(3 * minus + c);
         _plus.push_back(3 * plus + c);
       }
+      ++n_pairs;
     }
     _set_end.push_back(_minus.size());
   }
+  const PetscInt n_ext = 3 * n_pairs;
   const PetscInt n = PetscInt(_minus.size());
   // The interface dofs: every dof of a pair, once.
   _gamma.assign(_minus.begin(), _minus.end());
@@ -273,7 +312,6 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
       for (PetscInt j = 0; j < n; ++j)
       {
         C(j, col) = Z(_pos_plus[j], col) - (_mirror[j] ? 0.0 : Z(_pos_minus[j], col));
-        E(j, col) = (j == col ? 1.0 : 0.0) - _eps * C(j, col);
       }
     for (PetscInt j = 0; j < n; ++j)
       if (C(j, j) > 0)
@@ -282,6 +320,21 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
         ++counted;
       }
     _k = counted > 0 ? double(counted) / trace : 1.0;
+  }
+  // C = G_f K_ff^-1 G_f^T on the free dofs (Z is zero on the constrained
+  // ones) is symmetric; what the factorisation left of asymmetry is
+  // averaged away, and its products stream the upper triangle only
+  // (SymmetricMatrix.h).
+  if (const double asymmetry = relative_asymmetry(_C); asymmetry > symmetry_tolerance)
+    throw std::logic_error("condensation: the flexibility C is not symmetric (max|C - C^T| = " +
+                           std::to_string(asymmetry) + " max|C|)");
+  symmetrize(_C);
+  _C_packed = SymmetricMatrix<double>(_C);
+  {
+    Dense C(_C), E(_E);
+    for (PetscInt col = 0; col < n; ++col)
+      for (PetscInt j = 0; j < n; ++j)
+        E(j, col) = (j == col ? 1.0 : 0.0) - _eps * C(j, col);
   }
 
   // dF/dd: 3 x 3 blocks of node pairs, one matrix per set of joints (its
@@ -296,7 +349,7 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
     Mat T;
     check(MatCreate(PETSC_COMM_SELF, &T), "MatCreate");
     _T.push_back(T);
-    check(MatSetSizes(T, n, n, n, n), "MatSetSizes");
+    check(MatSetSizes(T, n_ext, n_ext, n_ext, n_ext), "MatSetSizes");
     check(MatSetType(T, MATSEQBAIJ), "MatSetType");
     check(MatSetBlockSize(T, 3), "MatSetBlockSize");
     check(MatSeqBAIJSetPreallocation(T, 3, 9, nullptr), "MatSeqBAIJSetPreallocation");
@@ -310,6 +363,8 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
   check(VecCreateSeq(PETSC_COMM_SELF, n_gamma, &_g), "VecCreateSeq");
   check(VecDuplicate(_b, &_rest), "VecDuplicate");
   _Tv = create_vector();
+  check(VecCreateSeq(PETSC_COMM_SELF, n_ext, &_v_ext), "VecCreateSeq");
+  check(VecDuplicate(_v_ext, &_Tv_ext), "VecDuplicate");
   check(VecDuplicate(_g, &_Zr), "VecDuplicate");
   _u.assign(std::size_t(3) * n_blocks, 0.0);
   _f.assign(_u.size(), 0.0);
@@ -328,7 +383,7 @@ void Condensation::forget_loads()
 
 Condensation::~Condensation()
 {
-  for (Vec* v : {&_b, &_r, &_d_b, &_g, &_rest, &_Tv, &_Zr})
+  for (Vec* v : {&_b, &_r, &_d_b, &_g, &_rest, &_Tv, &_Zr, &_v_ext, &_Tv_ext})
     petsc::check_nothrow(VecDestroy(v), "VecDestroy");
   for (auto* list : {&_basis, &_basis_g, &_basis_d})
     for (Vec& v : *list)
@@ -344,7 +399,7 @@ Condensation::~Condensation()
 void Condensation::set_single_precision(bool single)
 {
   _single = single;
-  _C_single = single ? SingleMatrix(_C) : SingleMatrix();
+  _C_single = single ? SymmetricMatrix<float>(_C) : SymmetricMatrix<float>();
 }
 
 Mat Condensation::create_matrix() const
@@ -594,7 +649,11 @@ bool Condensation::residual(Vec d, Vec R, double& reaction_norm)
 {
   combine(load_coefficients(), _basis_d, _d_b);
   const bool ok = interface_forces(d, false, &reaction_norm);
-  check(MatMult(_C, _r, R), "MatMult");
+  {
+    const ReadView r(_r);
+    WriteView Ra(R);
+    _C_packed.multiply(r.data(), Ra.data());
+  }
   check(VecAXPY(R, 1.0, d), "VecAXPY");
   check(VecAXPY(R, -1.0, _d_b), "VecAXPY");
   check(VecScale(R, _k), "VecScale");
@@ -639,7 +698,8 @@ void Condensation::form_jacobian(Mat J) const
 {
   check(MatCopy(_E, J, SAME_NONZERO_PATTERN), "MatCopy");
   {
-    // J += C dF/dd, column by column: J(:, j) += T(i, j) C(:, i).
+    // J += C dF/dd, column by column: J(:, j) += T(i, j) C(:, i), T read
+    // at the extended components that are jumps.
     Dense Jd(J), C(_C);
     const PetscInt n = size();
     for (Mat T : _T)
@@ -648,18 +708,19 @@ void Condensation::form_jacobian(Mat J) const
         PetscInt ncols;
         const PetscInt* cols;
         const double* vals;
-        check(MatGetRow(T, i, &ncols, &cols, &vals), "MatGetRow");
+        check(MatGetRow(T, _ext_of_jump[i], &ncols, &cols, &vals), "MatGetRow");
         for (PetscInt c = 0; c < ncols; ++c)
         {
           const double t = vals[c];
-          if (t == 0.0)
+          const PetscInt j = _jump_of_ext[cols[c]];
+          if (t == 0.0 || j < 0)
             continue;
-          double* Jj = &Jd(0, cols[c]);
+          double* Jj = &Jd(0, j);
           const double* Ci = &C(0, i);
           for (PetscInt r = 0; r < n; ++r)
             Jj[r] += t * Ci[r];
         }
-        check(MatRestoreRow(T, i, &ncols, &cols, &vals), "MatRestoreRow");
+        check(MatRestoreRow(T, _ext_of_jump[i], &ncols, &cols, &vals), "MatRestoreRow");
       }
   }
   check(MatScale(J, _k), "MatScale");
@@ -684,22 +745,32 @@ PetscErrorCode Condensation::operator_mult(Mat J, Vec v, Vec y)
         // y = k (v + C (dF/dd - eps) v).
         Condensation* self;
         check(MatShellGetContext(J, &self), "MatShellGetContext");
-        check(MatMult(self->_T[0], v, self->_Tv), "MatMult");
-        for (std::size_t s = 1; s < self->_T.size(); ++s)
-          check(MatMultAdd(self->_T[s], v, self->_Tv, self->_Tv), "MatMultAdd");
-        check(VecAXPY(self->_Tv, -self->_eps, v), "VecAXPY");
-        if (self->_single)
         {
-          const double* Tv;
-          double* ya;
-          check(VecGetArrayRead(self->_Tv, &Tv), "VecGetArrayRead");
-          check(VecGetArray(y, &ya), "VecGetArray");
-          self->_C_single.multiply(Tv, ya);
-          check(VecRestoreArray(y, &ya), "VecRestoreArray");
-          check(VecRestoreArrayRead(self->_Tv, &Tv), "VecRestoreArrayRead");
+          // v onto the extended components (the others zero).
+          const ReadView va(v);
+          WriteView ve(self->_v_ext);
+          std::fill(ve.span().begin(), ve.span().end(), 0.0);
+          for (std::size_t j = 0; j < self->_ext_of_jump.size(); ++j)
+            ve.data()[self->_ext_of_jump[j]] = va.data()[j];
         }
-        else
-          check(MatMult(self->_C, self->_Tv, y), "MatMult");
+        check(MatMult(self->_T[0], self->_v_ext, self->_Tv_ext), "MatMult");
+        for (std::size_t s = 1; s < self->_T.size(); ++s)
+          check(MatMultAdd(self->_T[s], self->_v_ext, self->_Tv_ext, self->_Tv_ext), "MatMultAdd");
+        {
+          const ReadView Te(self->_Tv_ext);
+          WriteView Tv(self->_Tv);
+          for (std::size_t j = 0; j < self->_ext_of_jump.size(); ++j)
+            Tv.data()[j] = Te.data()[self->_ext_of_jump[j]];
+        }
+        check(VecAXPY(self->_Tv, -self->_eps, v), "VecAXPY");
+        {
+          const ReadView Tv(self->_Tv);
+          WriteView ya(y);
+          if (self->_single)
+            self->_C_single.multiply(Tv.data(), ya.data());
+          else
+            self->_C_packed.multiply(Tv.data(), ya.data());
+        }
         check(VecAXPY(y, 1.0, v), "VecAXPY");
         check(VecScale(y, self->_k), "VecScale");
       });

@@ -40,7 +40,13 @@
 // A mirror set's pair (a crack on a symmetry plane: its minus node is the
 // plus node's mirror image, interface/Interface.h) has the plus node's
 // displacement as its "jump", as if its minus node were fixed; the set's
-// forces depend on it alone and G is the identity there.
+// forces depend on it alone and G is the identity there. Its joints see only
+// the component along the plane's normal m (the opening 2 u.m), and when m
+// is a coordinate axis (symmetry planes are) only that component is a jump:
+// the two others carry no joint force, so they stay bulk dofs of J0 (no eps
+// spring), and the system has 1 unknown for such a pair instead of 3. The
+// tangents dF/dd are assembled per node pair (3 x 3 blocks, "extended"
+// components) and read at the kept ones.
 //
 // One process only (PETSc 3.18 has no parallel MUMPS Schur complements);
 // the Newton systems are dense LU (PETSc's, LAPACK), lagged as on the whole
@@ -50,6 +56,7 @@
 #include "Equilibrium.h"
 #include "NonlinearProblem.h"
 #include "SinglePrecision.h"
+#include "SymmetricMatrix.h"
 #include <string>
 #include <utility>
 #include <vector>
@@ -79,6 +86,8 @@ public:
 
   /// Number of joint dofs, both sides of every node pair (6 per pair).
   static std::int64_t interface_dofs(const model::Model& model);
+  /// Unknowns of the condensed system of `model` (size() once built).
+  static std::int64_t unknowns(const model::Model& model);
 
   /// Factors J0 and computes C. The constrained dofs of `eq` (set by the
   /// scenario, values not needed) must stay the same while it is used.
@@ -92,7 +101,8 @@ public:
   /// the first solve.
   void set_single_precision(bool single);
 
-  /// Unknowns of the condensed system (3 per node pair).
+  /// Unknowns of the condensed system (3 per node pair, 1 per pair of a
+  /// mirror set on a coordinate plane).
   std::int64_t size() const { return std::int64_t(_minus.size()); }
 
   /// d = the jumps of the whole-model x.
@@ -140,6 +150,8 @@ private:
 
   Equilibrium& _eq;
   std::vector<std::int32_t> _minus, _plus; ///< whole-model dof of each jump (plus - minus)
+  std::vector<PetscInt> _ext_of_jump;      ///< each jump's extended component (3 per pair)
+  std::vector<PetscInt> _jump_of_ext;      ///< each extended component's jump, or -1
   std::vector<std::uint8_t> _minus_free, _plus_free;
   std::vector<std::uint8_t> _mirror;           ///< a mirror set's pair: the jump is the plus node's
   std::vector<std::size_t> _set_end;           ///< end of each set's jumps (interface, cracks)
@@ -152,20 +164,22 @@ private:
   double _k = 1;                               ///< residual scale [N/mm]
   double _C_norm = -1;                         ///< a bound of ||C||_2, once needed [mm/N]
   Mat _J0 = nullptr, _factor = nullptr;
-  Mat _Z = nullptr;           ///< Z on the joint dofs (_gamma), dense
-  Mat _C = nullptr;           ///< C = G Z, dense
-  bool _single = false;       ///< GMRES in single precision (set_single_precision)
-  SingleMatrix _C_single;     ///< C in single precision, for the Jacobian's action
-  Mat _E = nullptr;           ///< I - eps C, dense
-  std::vector<Mat> _T;        ///< dF/dd of each set, sparse (node-pair blocks)
-  Vec _b = nullptr;           ///< whole model: right-hand side
-  Vec _r = nullptr;           ///< jumps: F(d) - eps d
-  Vec _d_b = nullptr;         ///< jumps: d_b of the current loads
-  Vec _g = nullptr;           ///< interface dofs: scratch
-  Vec _rest = nullptr;        ///< whole model: scratch
-  Vec _Tv = nullptr;          ///< jumps: scratch
-  Vec _Zr = nullptr;          ///< interface dofs: scratch
-  std::vector<double> _u, _f; ///< whole-model local arrays for the interface kernel
+  Mat _Z = nullptr;                  ///< Z on the joint dofs (_gamma), dense
+  Mat _C = nullptr;                  ///< C = G Z, dense (symmetric)
+  SymmetricMatrix<double> _C_packed; ///< C's upper triangle, for its products
+  bool _single = false;              ///< GMRES in single precision (set_single_precision)
+  SymmetricMatrix<float> _C_single;  ///< the same in single precision, for the Jacobian's action
+  Mat _E = nullptr;                  ///< I - eps C, dense
+  std::vector<Mat> _T;               ///< dF/dd of each set, sparse (node-pair blocks, extended)
+  Vec _b = nullptr;                  ///< whole model: right-hand side
+  Vec _r = nullptr;                  ///< jumps: F(d) - eps d
+  Vec _d_b = nullptr;                ///< jumps: d_b of the current loads
+  Vec _g = nullptr;                  ///< interface dofs: scratch
+  Vec _rest = nullptr;               ///< whole model: scratch
+  Vec _Tv = nullptr;                 ///< jumps: scratch
+  Vec _v_ext = nullptr, _Tv_ext = nullptr; ///< extended components: scratch
+  Vec _Zr = nullptr;                       ///< interface dofs: scratch
+  std::vector<double> _u, _f;              ///< whole-model local arrays for the interface kernel
   /// Orthonormal load directions, their J0^-1 on the interface dofs, and
   /// their jumps d_b.
   std::vector<Vec> _basis, _basis_g, _basis_d;

@@ -29,7 +29,8 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::from_scene(Equilibrium& eq, cons
   if (!condense && mode == "on")
     throw SceneError("solver.condensation = \"on\" is not possible here: " + why);
   const std::string description =
-      condense ? "the " + std::to_string(interface_dofs / 2) + " interface jumps (bulk condensed)"
+      condense ? "the " + std::to_string(Condensation::unknowns(eq.model())) +
+                     " interface jumps (bulk condensed)"
                : "the whole model" + (why.empty() ? "" : " (not condensed: " + why + ")");
   auto solver = std::make_unique<LoadStepSolver>(
       eq, condense, pc, int(scene.integer("solver.refactor_iterations")), description);

@@ -1,5 +1,6 @@
 #include "SinglePrecision.h"
 #include "../common/petsc_check.h"
+#include "../common/vector_clones.h"
 #include <algorithm>
 #include <petscblaslapack.h>
 #include <petscmat.h>
@@ -12,28 +13,6 @@ using petsc::check;
 
 namespace
 {
-// The kernels, cloned for AVX2 + FMA and chosen at run time (GCC's ifunc).
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define PUSHOUT_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
-#else
-#define PUSHOUT_VECTOR_CLONES
-#endif
-
-/// y = A x, A column-major n x n.
-PUSHOUT_VECTOR_CLONES
-void multiply_kernel(const float* __restrict a, std::size_t n, const float* __restrict x,
-                     float* __restrict y)
-{
-  std::fill(y, y + n, 0.0f);
-  for (std::size_t j = 0; j < n; ++j)
-  {
-    const float xj = x[j];
-    const float* __restrict col = a + j * n;
-    for (std::size_t i = 0; i < n; ++i)
-      y[i] += col[i] * xj;
-  }
-}
-
 /// b = (L U)^-1 b: L (unit diagonal) forwards, then U backwards, column by
 /// column (the factors are column-major, n x n).
 PUSHOUT_VECTOR_CLONES
@@ -152,22 +131,6 @@ PetscErrorCode destroy(PC pc)
   return code;
 }
 } // namespace
-
-SingleMatrix::SingleMatrix(Mat A)
-{
-  _n = copy_dense(A, _a);
-  _x.resize(_n);
-  _y.resize(_n);
-}
-
-void SingleMatrix::multiply(const double* x, double* y) const
-{
-  for (std::size_t i = 0; i < _n; ++i)
-    _x[i] = float(x[i]);
-  multiply_kernel(_a.data(), _n, _x.data(), _y.data());
-  for (std::size_t i = 0; i < _n; ++i)
-    y[i] = double(_y[i]);
-}
 
 void use_single_precision_lu(PC pc)
 {

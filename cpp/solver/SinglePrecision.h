@@ -1,13 +1,12 @@
-// Single-precision copies of the condensed Newton systems' dense matrices
-// (Condensation.h), for GMRES: the flexibility C in the Jacobian's action,
-// and the LU factors of the lagged preconditioner.
+// Single precision for GMRES on the condensed Newton systems
+// (Condensation.h): the LU factors of the lagged preconditioner here, the
+// flexibility C in the Jacobian's action as a SymmetricMatrix<float>.
 //
 // Why: GMRES on the condensed system is bound by memory traffic, not by
 // arithmetic. Each iteration streams C (the operator) and the LU factors
-// (the preconditioner) once; on the half model of the paper's mesh (1 107
-// jumps) each is 9.8 MB in double, together more than the cache holds, so
-// every iteration reads them from memory. In single precision both fit in
-// the cache together, and each is half the bytes.
+// (the preconditioner) once; on the half model of the paper's mesh with one
+// crack plane (1 107 jumps) the LU factors are 9.8 MB in double. In single
+// precision each is half the bytes.
 //
 // What it changes: the preconditioner only steers GMRES, and the rounding
 // of its factors (~1e-7 relative) changes the path of the iterates, not the
@@ -22,32 +21,13 @@
 // elsewhere).
 #pragma once
 
-#include <petscmat.h>
 #include <petscpc.h>
-#include <vector>
 
 namespace pushout::solver
 {
 /// The smallest relative tolerance of a Krylov solve whose operator is
 /// applied in single precision (a few roundings of 6e-8).
 constexpr double single_precision_rtol = 1e-7;
-
-/// A dense square matrix in single precision, column-major.
-class SingleMatrix
-{
-public:
-  SingleMatrix() = default;
-  /// A copy of the sequential dense matrix A.
-  explicit SingleMatrix(Mat A);
-  /// y = A x (x, y of size n, not overlapping).
-  void multiply(const double* x, double* y) const;
-  std::size_t size() const { return _n; }
-
-private:
-  std::size_t _n = 0;
-  std::vector<float> _a;
-  mutable std::vector<float> _x, _y;
-};
 
 /// Makes `pc` (of a sequential KSP whose preconditioning matrix is dense) a
 /// PCSHELL that applies the LU factors of that matrix, computed in double

@@ -1,5 +1,5 @@
-// An owned PETSc vector (destroyed with its owner) and a scoped read view of
-// its owned entries, so that code outside solver/ holds no raw Vec
+// An owned PETSc vector (destroyed with its owner) and scoped read and write
+// views of its owned entries, so that code outside solver/ holds no raw Vec
 // lifetimes or arrays.
 #pragma once
 
@@ -68,9 +68,38 @@ public:
   ReadView& operator=(const ReadView&) = delete;
 
   std::span<const double> span() const { return _a; }
+  const double* data() const { return _a.data(); }
 
 private:
   Vec _v;
   std::span<const double> _a;
+};
+
+/// The owned entries of a vector, writable while this object lives.
+class WriteView
+{
+public:
+  explicit WriteView(Vec v) : _v(v)
+  {
+    PetscInt n;
+    petsc::check(VecGetLocalSize(_v, &n), "VecGetLocalSize");
+    double* a;
+    petsc::check(VecGetArray(_v, &a), "VecGetArray");
+    _a = std::span<double>(a, std::size_t(n));
+  }
+  ~WriteView()
+  {
+    double* a = _a.data();
+    petsc::check_nothrow(VecRestoreArray(_v, &a), "VecRestoreArray");
+  }
+  WriteView(const WriteView&) = delete;
+  WriteView& operator=(const WriteView&) = delete;
+
+  std::span<double> span() const { return _a; }
+  double* data() const { return _a.data(); }
+
+private:
+  Vec _v;
+  std::span<double> _a;
 };
 } // namespace pushout::solver
