@@ -52,6 +52,9 @@ struct Free
 {
   std::string key;
   double start = 0, lo = -INFINITY, hi = INFINITY, scale = 1;
+  bool lo_exclusive = false; ///< lo itself is not allowed (a law's positive parameter)
+  /// The lower bound given to TAO: lo, or the next number above it.
+  double tao_lo() const { return lo_exclusive ? std::nextafter(lo, INFINITY) : lo; }
 };
 
 std::vector<std::string> split(const std::string& s, char by)
@@ -71,11 +74,12 @@ std::string number_text(double v)
 }
 
 /// The value of `key` in `scene` and the lower bound of its range (from the
-/// law's parameter declaration; -inf for other keys); throws SceneError if
-/// the key is not a number of the scene.
-double value_of(const Scene& scene, const std::string& key, double& minimum)
+/// law's parameter declaration, and whether it is exclusive; -inf for other
+/// keys); throws SceneError if the key is not a number of the scene.
+double value_of(const Scene& scene, const std::string& key, double& minimum, bool& exclusive)
 {
   minimum = -INFINITY;
+  exclusive = false;
   const std::vector<std::string> parts = split(key, '.');
   if (parts.size() == 3 && (parts[0] == "interface" || parts[0] == "crack") && !parts[1].empty() &&
       std::all_of(parts[1].begin(), parts[1].end(), ::isdigit))
@@ -101,8 +105,7 @@ double value_of(const Scene& scene, const std::string& key, double& minimum)
       throw SceneError("--free '" + key + "' has no value in the scene (an optional parameter): " +
                        "give it a start with --set " + key + "=...");
     minimum = def->min;
-    if (def->min_exclusive)
-      minimum = std::nextafter(def->min, INFINITY);
+    exclusive = def->min_exclusive;
     return it->second;
   }
   const Value* v = scene.find(key);
@@ -111,6 +114,25 @@ double value_of(const Scene& scene, const std::string& key, double& minimum)
   if (const double* d = std::get_if<double>(v))
     return *d;
   throw SceneError("--free '" + key + "': not a number key (" + to_toml(*v) + ")");
+}
+
+/// The message of the lowest-ranked process of `comm` that has one ("" if
+/// none has). Collective.
+std::string first_message(const std::string& mine, MPI_Comm comm)
+{
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  int first = size;
+  const int have = mine.empty() ? size : rank;
+  MPI_Allreduce(&have, &first, 1, MPI_INT, MPI_MIN, comm);
+  if (first == size)
+    return "";
+  long long length = rank == first ? static_cast<long long>(mine.size()) : 0;
+  MPI_Bcast(&length, 1, MPI_LONG_LONG, first, comm);
+  std::string message = rank == first ? mine : std::string(std::size_t(length), ' ');
+  MPI_Bcast(message.data(), int(length), MPI_CHAR, first, comm);
+  return message;
 }
 
 /// The free values with their starts and bounds; throws SceneError.
@@ -124,7 +146,7 @@ std::vector<Free> free_values(const Scene& scene, const FitOptions& opt)
     if (std::any_of(free.begin(), free.end(), [&](const Free& f) { return f.key == key; }))
       throw SceneError("--free '" + key + "' is given twice");
     Free f{key};
-    f.start = value_of(scene, key, f.lo);
+    f.start = value_of(scene, key, f.lo, f.lo_exclusive);
     f.scale = f.start != 0 ? std::abs(f.start) : 1.0;
     free.push_back(f);
   }
@@ -141,8 +163,11 @@ std::vector<Free> free_values(const Scene& scene, const FitOptions& opt)
     try
     {
       const std::string lo = b.substr(eq + 1, colon - eq - 1), hi = b.substr(colon + 1);
-      if (!lo.empty())
-        f->lo = std::max(f->lo, std::stod(lo));
+      if (!lo.empty() && std::stod(lo) > f->lo)
+      {
+        f->lo = std::stod(lo);
+        f->lo_exclusive = false;
+      }
       if (!hi.empty())
         f->hi = std::stod(hi);
     }
@@ -152,9 +177,10 @@ std::vector<Free> free_values(const Scene& scene, const FitOptions& opt)
     }
   }
   for (const Free& f : free)
-    if (!(f.lo <= f.start && f.start <= f.hi))
-      throw SceneError("the bounds of '" + f.key + "' [" + number_text(f.lo) + ", " +
-                       number_text(f.hi) + "] exclude its start " + number_text(f.start));
+    if (!(f.tao_lo() <= f.start && f.start <= f.hi))
+      throw SceneError("the bounds of '" + f.key + "' " + (f.lo_exclusive ? "(" : "[") +
+                       number_text(f.lo) + ", " + number_text(f.hi) + "] exclude its start " +
+                       number_text(f.start));
   return free;
 }
 
@@ -545,7 +571,7 @@ int fit(const FitOptions& opt)
   catch (const SceneError& e)
   {
     if (rank == 0)
-      std::cerr << "pushout: error in scene: " << e.what() << std::endl;
+      std::cerr << "pushout fit: error: " << e.what() << std::endl;
     return 2;
   }
 
@@ -574,7 +600,8 @@ int fit(const FitOptions& opt)
   {
     const Free& f = free[std::size_t(j)];
     check(VecSetValue(X, j, f.start / f.scale, INSERT_VALUES), "VecSetValue");
-    check(VecSetValue(lo, j, std::isfinite(f.lo) ? f.lo / f.scale : PETSC_NINFINITY, INSERT_VALUES),
+    check(VecSetValue(lo, j, std::isfinite(f.lo) ? f.tao_lo() / f.scale : PETSC_NINFINITY,
+                      INSERT_VALUES),
           "VecSetValue");
     check(VecSetValue(hi, j, std::isfinite(f.hi) ? f.hi / f.scale : PETSC_INFINITY, INSERT_VALUES),
           "VecSetValue");
@@ -667,6 +694,9 @@ int fit(const FitOptions& opt)
   evaluator.release();
   groups.close();
   const bool converged = reason > 0 && evaluator.failed() == 0;
+  // Why a run failed, from any process (the failure may have been another
+  // group's).
+  const std::string failure = first_message(evaluator.last_failure(), MPI_COMM_WORLD);
   int code = converged ? 0 : 3;
   if (rank == 0)
   {
@@ -674,16 +704,21 @@ int fit(const FitOptions& opt)
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     nlohmann::json j;
     nlohmann::json params = nlohmann::json::object(), errors = nlohmann::json::object(),
-                   starts = nlohmann::json::object(), bounds = nlohmann::json::object();
+                   starts = nlohmann::json::object(), bounds = nlohmann::json::object(),
+                   exclusive = nlohmann::json::array();
     nlohmann::json correlation = nlohmann::json::array();
     for (std::size_t k = 0; k < free.size(); ++k)
     {
       params[free[k].key] = x[k] * free[k].scale;
       errors[free[k].key] = std::isfinite(se[k]) ? nlohmann::json(se[k]) : nlohmann::json();
       starts[free[k].key] = free[k].start;
+      // [lo, hi], null where unbounded; lo itself excluded where the law says
+      // so (bounds_exclusive).
       bounds[free[k].key] = {
           std::isfinite(free[k].lo) ? nlohmann::json(free[k].lo) : nlohmann::json(),
           std::isfinite(free[k].hi) ? nlohmann::json(free[k].hi) : nlohmann::json()};
+      if (free[k].lo_exclusive)
+        exclusive.push_back(free[k].key);
       nlohmann::json row = nlohmann::json::array();
       for (std::size_t l = 0; l < free.size(); ++l)
         row.push_back(std::isfinite(corr[k][l]) ? nlohmann::json(corr[k][l]) : nlohmann::json());
@@ -697,6 +732,7 @@ int fit(const FitOptions& opt)
     j["correlation"] = {{"keys", keys}, {"matrix", correlation}};
     j["start"] = starts;
     j["bounds"] = bounds;
+    j["bounds_exclusive"] = exclusive;
     j["rms_MPa"] = std::sqrt(rss / double(m));
     j["points"] = m;
     j["evaluations"] = evaluator.evaluations();
@@ -725,7 +761,7 @@ int fit(const FitOptions& opt)
     if (!converged)
       std::cerr << "pushout: error: the fit did not converge (" << TaoConvergedReasons[reason]
                 << (evaluator.failed() ? "; " + std::to_string(evaluator.failed()) +
-                                             " runs did not converge: " + evaluator.last_failure()
+                                             " runs did not converge: " + failure
                                        : std::string())
                 << "); " << (opt.out / "fit.json").string() << " has where it stopped" << std::endl;
     if (talk)

@@ -273,7 +273,7 @@ int sweep(const SweepOptions& opt)
   catch (const SceneError& e)
   {
     if (rank == 0)
-      std::cerr << "pushout: error in scene: " << e.what() << std::endl;
+      std::cerr << "pushout sweep: error: " << e.what() << std::endl;
     return 2;
   }
 

@@ -70,6 +70,10 @@ check(result["converged"] and set(result["parameters"]) == set(TRUTH)
 for k, v in TRUTH.items():
     got, se = result["parameters"][k], result["standard_errors"][k]
     check(abs(got - v) < 2 * se, f"{k} = {got:.5g} +- {se:.2g} (truth {v}, start {START[k]})")
+# f_t and c of the softening law must be > 0, mu >= 0: the declared bounds.
+check(all(result["bounds"][k] == [0.0, None] for k in TRUTH)
+      and set(result["bounds_exclusive"]) == {"interface.1.f_t", "interface.1.c"},
+      f"bounds {result['bounds']}, exclusive {result['bounds_exclusive']}")
 check(abs(result["rms_MPa"] / noise - 1) < 0.3,
       f"rms {result['rms_MPa']:.4f} MPa, noise {noise:.4f} MPa")
 for name in ("fit.png", "fit.csv", "scene.toml", os.path.join("best", "curve.csv")):
