@@ -11,8 +11,10 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <mpi.h>
 #include <nlohmann/json.hpp>
+#include <numeric>
 #include <optional>
 #include <sstream>
 
@@ -215,6 +217,19 @@ std::vector<std::vector<std::string>> cartesian_cases(const std::vector<Variatio
   return cases;
 }
 
+std::vector<std::size_t> set_up_order(const std::vector<std::string>& set_ups)
+{
+  std::map<std::string, std::size_t> first; // each set-up's first case
+  for (std::size_t i = 0; i < set_ups.size(); ++i)
+    first.emplace(set_ups[i], i);
+  std::vector<std::size_t> order(set_ups.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b)
+                   { return first.at(set_ups[a]) < first.at(set_ups[b]); });
+  return order;
+}
+
 int sweep(const SweepOptions& opt)
 {
   int rank = 0;
@@ -222,6 +237,7 @@ int sweep(const SweepOptions& opt)
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<Variation> vary;
   std::vector<std::vector<std::string>> cases;
+  std::vector<std::size_t> order; // the cases in the order they are taken
   std::string model_type, plot;
   try
   {
@@ -242,6 +258,7 @@ int sweep(const SweepOptions& opt)
           const Scene base = Scene::load(opt.scene_file, parse_overrides(opt.sets));
           model_type = base.string("model.type");
           plot = base.boolean("output.plot") ? "yes" : "";
+          std::vector<std::string> set_ups(cases.size());
           for (std::size_t i = 0; i < cases.size(); ++i)
           {
             std::vector<std::string> sets = opt.sets;
@@ -251,6 +268,7 @@ int sweep(const SweepOptions& opt)
               const Scene scene = Scene::load(opt.scene_file, parse_overrides(sets));
               if (scene.string("model.type") != model_type)
                 throw SceneError("a sweep runs one model type: vary other keys");
+              set_ups[i] = Simulation::set_up_fingerprint(scene);
             }
             catch (const SceneError& e)
             {
@@ -260,6 +278,7 @@ int sweep(const SweepOptions& opt)
               throw SceneError(case_name(i) + " (" + what + "): " + e.what());
             }
           }
+          order = set_up_order(set_ups);
           if (rank == 0)
           {
             std::error_code ec;
@@ -322,6 +341,7 @@ int sweep(const SweepOptions& opt)
       stop_signal = signal;
     if (index >= int(cases.size()) || stop_signal != 0)
       break;
+    index = int(order[std::size_t(index)]);
     std::vector<std::string> sets = opt.sets;
     sets.insert(sets.end(), cases[std::size_t(index)].begin(), cases[std::size_t(index)].end());
     // Quiet, and no curve.png per case: sweep.png overlays them.

@@ -1,7 +1,8 @@
 // `pushout sweep`: a parameter study, the Cartesian product of the values of
 // one or more scene keys, each case run as `pushout run` would run it, in
 // its own folder (case_000, case_001, ...: resolved scene.toml, curve.csv,
-// summary.json).
+// summary.json). The cases that share a set-up (mesh, model, factorisation)
+// run one after the other on a group that reuses it (set_up_order).
 //
 // Under MPI the processes split into groups of `ranks_per_case`
 // (MPI_Comm_split); each group takes the next case from a counter that all
@@ -40,6 +41,13 @@ Variation parse_variation(const std::string& text);
 /// The cases: each a list of "key=value" overrides, the last key varying
 /// fastest.
 std::vector<std::vector<std::string>> cartesian_cases(const std::vector<Variation>& vary);
+
+/// The order the cases are taken in: the cases that share a set-up (the
+/// same Simulation::set_up_fingerprint, given per case) one after the other,
+/// each set-up where its first case is, so that a group rebuilds a set-up
+/// as rarely as possible; otherwise the cases' own order. The case folders
+/// keep the cases' numbers.
+std::vector<std::size_t> set_up_order(const std::vector<std::string>& set_ups);
 
 /// Runs the sweep on MPI_COMM_WORLD; returns the process exit code (0: every
 /// case converged; 3: some did not; 2: bad input; 128 + signal if a signal

@@ -6,7 +6,9 @@
    summary.json; the set-up is built for the first case and reused by the
    others (they change laws and loads only), and a reused case's curve
    equals that of `pushout run` with the same --set values bit for bit
-   (to 1e-10 asked); the plateau tau grows with mu and |dT|.
+   (to 1e-10 asked); the plateau tau grows with mu and |dT|. With a mesh
+   key varying fastest, the cases that share a set-up run together (two
+   set-ups built for four cases).
 2. MPI: the same sweep on 2 processes (two groups of one: the cases spread
    over them) gives the serial curves to 1e-10; with --ranks-per-case 2
    (one group: each case on 2 processes, the whole model) a case equals
@@ -80,6 +82,17 @@ check(tau[("0.4", "-25")] > tau[("0.2", "-25")] > tau[("0.2", "-5")] > 0
 reused = [summary(os.path.join(serial, r["case"]))["setup_reused"] for r in rows]
 check(reused == [False, True, True, True],
       f"the set-up (mesh, factorisation, condensed flexibility) built once, reused: {reused}")
+# Cases that share a set-up run one after the other: with the mesh varying
+# fastest (set-ups A, B, A, B) two are built, not four; the folders keep the
+# cases' numbers.
+grouped = out_dir("sweep_set_up_order")
+p = sweep(grouped, vary=["--vary", "interface.0.mu=0.2,0.4",
+                         "--vary", "mesh.elements_through_thickness=2,3"])
+g = table(grouped) if p.returncode == 0 else []
+built = [r["case"] for r in g if not summary(os.path.join(grouped, r["case"]))["setup_reused"]]
+check(p.returncode == 0 and [r["mesh.elements_through_thickness"] for r in g] == ["2", "3", "2", "3"]
+      and built == ["case_000", "case_001"],
+      f"cases sharing a set-up run together: set-ups built for {built} of 4 cases")
 direct = out_dir("sweep_direct_case_002")
 run(SCENE, direct, sets=["mesh.elements_per_quarter=4", "mesh.elements_through_thickness=2",
                          "interface.0.mu=0.4", "loading.temperature_change=-5"])
