@@ -186,8 +186,13 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
   ++cuts;
   ++_summary.cuts;
   if (_report.talk())
-    std::cout << what.substr(what.rfind("step ")) << ": " << reason << "; retrying with "
-              << size(stepper.increment()) << std::endl;
+  {
+    // "load step 3" is said "step 3", as its progress line; a stage of one
+    // step ("corrosion step") by its name.
+    const std::size_t at = what.rfind("step ");
+    std::cout << (at == std::string::npos ? what : what.substr(at)) << ": " << reason
+              << "; retrying with " << size(stepper.increment()) << std::endl;
+  }
   return true;
 }
 

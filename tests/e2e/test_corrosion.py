@@ -22,11 +22,16 @@ law oxide_friction and no temperature change:
    corroded state's p(x) raised by the push itself (the tube, pressed
    axially, swells by Poisson: +1.5 % on this slice, as in test_lame):
    within 2 %.
-5. Without a [corrosion] section nothing changes: no corrosion.csv."""
+5. Without a [corrosion] section nothing changes: no corrosion.csv.
+6. Stages of one step that are cut say so by their name ("corrosion step:
+   ... retrying with 0.5 of a step"; Newton limited to 4 iterations on the
+   corroded demo, coarse), and the run goes on to its end."""
 import math
 import os
+import subprocess
 
-from common import LAME, check, corroded_ring, corrosion, curve, out_dir, run, summary
+from common import (LAME, PUSHOUT, SOURCE, check, corroded_ring, corrosion, curve, out_dir,
+                    pushout_runs, run, summary)
 import analytic
 
 a, R, b = 8.0, 10.0, 50.0
@@ -82,3 +87,14 @@ check(abs(err) < 2e-3, f"plateau tau {tau:.4f} MPa vs mu p {mu * p_plateau:.4f} 
 err = p_plateau / p - 1
 check(abs(err) < 0.02, f"plateau p {p_plateau:.4f} MPa vs corroded p(x) {p:.4f} MPa ({100 * err:+.2f} %)")
 check(not os.path.exists(os.path.join(out_t, "corrosion.csv")), "no corrosion stage, no corrosion.csv")
+
+# 6. A stage of one step, cut.
+one = out_dir("corrosion_one_step_cut")
+cmd = pushout_runs.command(PUSHOUT, os.path.join(SOURCE, "demo", "pushout_corroded.toml"), one,
+                           ["mesh.elements_per_quarter=6", "mesh.elements_through_thickness=3",
+                            "corrosion.steps=1", "loading.steps=1", "output.plot=false"],
+                           ["-snes_max_it", "4"], quiet=False)
+p = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+retries = [line for line in p.stdout.splitlines() if "retrying" in line]
+check(p.returncode == 0 and retries and retries[0].startswith("corrosion step: DIVERGED_MAX_IT"),
+      f"one corrosion step, cut: exit {p.returncode}, {retries[:1] or p.stderr[-300:]}")
