@@ -13,6 +13,7 @@ void prepare_singleton_start()
   // The last argument 0: a value the user set stays.
   setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
   setenv("OMPI_MCA_pml", "ob1", 0);
-  setenv("OMPI_MCA_btl", "self,vader", 0);
+  setenv("OMPI_MCA_btl", "self", 0);
+  setenv("OMPI_MCA_orte_create_session_dirs", "0", 0);
 }
 } // namespace pushout::mpi
