@@ -16,7 +16,8 @@ namespace
 class CubicPath : public solver::NonlinearProblem
 {
 public:
-  double lambda = 0; ///< set by the path follower's set_load
+  double lambda = 0;         ///< set by the path follower's set_load
+  double jacobian_scale = 1; ///< the Jacobian given, times the true one
 
   Mat create_matrix() const override
   {
@@ -51,7 +52,7 @@ public:
   {
     check(MatZeroEntries(J), "MatZeroEntries");
     const PetscInt rows[2] = {0, 1};
-    const PetscScalar values[4] = {1, 0, -1, 1};
+    const PetscScalar values[4] = {jacobian_scale, 0, -jacobian_scale, jacobian_scale};
     check(MatSetValues(J, 2, rows, 2, rows, values, INSERT_VALUES), "MatSetValues");
     check(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
     check(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
@@ -70,10 +71,13 @@ public:
 };
 
 /// One step of control increment d_eta from the equilibrium at lambda0 with
-/// e by differences of step h (0: as if F were affine in lambda).
-solver::SolveReport step(double lambda0, double d_eta, double h, double& lambda)
+/// e by differences of step h (0: as if F were affine in lambda), the
+/// Jacobian times jacobian_scale.
+solver::SolveReport step(double lambda0, double d_eta, double h, double& lambda,
+                         double jacobian_scale = 1)
 {
   CubicPath problem;
+  problem.jacobian_scale = jacobian_scale;
   Vec a = problem.create_vector(), x = problem.create_vector();
   check(VecSetValue(a, 1, 1.0, INSERT_VALUES), "VecSetValue");
   check(VecSetValue(x, 0, lambda0 * lambda0, INSERT_VALUES), "VecSetValue");
@@ -117,4 +121,17 @@ TEST(ArcLength, AffineDirectionIsSlowForANonlinearLoadFactor)
   ASSERT_TRUE(rep.converged) << rep.reason;
   EXPECT_NEAR(lambda * lambda * (1 + lambda), 3.0, 1e-9);
   EXPECT_GT(rep.iterations, 10);
+}
+
+TEST(ArcLength, NoProgressIsCutEarly)
+{
+  // Half the Jacobian: each Newton step goes twice as far as it should and
+  // the iterates swing across the path without getting closer. The step
+  // fails once 10 iterations have not made |F| ten times smaller, not after
+  // all of -snes_max_it (50).
+  double lambda = 0;
+  const solver::SolveReport rep = step(1.0, 1.0, 1e-7, lambda, 0.5);
+  EXPECT_FALSE(rep.converged);
+  EXPECT_EQ(rep.reason.rfind("DIVERGED_NO_PROGRESS", 0), 0u) << rep.reason;
+  EXPECT_LE(rep.iterations, 15); // measured: 12
 }

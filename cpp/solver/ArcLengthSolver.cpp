@@ -254,9 +254,10 @@ SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
     // A Newton iteration that has not made |F| ten times smaller in
     // stall_iterations iterations has lost its way (near a brittle event the
     // bordered iterates can wander for all of -snes_max_it): the step is cut
-    // now rather than after the last iteration.
+    // now rather than after the last iteration. (Not once |F| meets its
+    // tolerance: the control equation may still be converging.)
     fnorms.push_back(fnorm);
-    if (it > stall_iterations)
+    if (it > stall_iterations && !small)
     {
       const auto recent = fnorms.end() - stall_iterations;
       if (*std::min_element(recent, fnorms.end()) >

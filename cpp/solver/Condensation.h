@@ -2,13 +2,12 @@
 //
 // Only the joint elements are nonlinear, and they see the displacement
 // only through the jumps d = u_plus - u_minus of their node pairs (3 per
-// pair; the steel-concrete interface's pairs are (steel, concrete), a crack
-// plane's its two faces): their nodal forces are f_int = G^T F(d), with G
-// the difference operator (d = G x) and F the forces on the plus nodes. A
-// node may belong to pairs of two sets (a crack's root node is concrete in
-// the interface and a face of the crack): G then has dependent rows, and
-// Newton's iterates stay in its range (R below maps it to itself), so each
-// set's forces are evaluated with its own minus nodes at zero.
+// pair, 1 for a mirror crack's, below; the steel-concrete interface's pairs
+// are (steel, concrete), a crack plane's its two faces): their nodal forces are f_int = G^T F(d),
+// with G the difference operator (d = G x) and F the forces on the plus nodes. A node may belong to
+// pairs of two sets (a crack's root node is concrete in the interface and a face of the crack): G
+// then has dependent rows, and Newton's iterates stay in its range (R below maps it to itself), so
+// each set's forces are evaluated with its own minus nodes at zero.
 //
 // Everything else is linear. With
 //   J0 = K with unit constrained rows, plus eps G^T G on the free rows of
@@ -22,7 +21,7 @@
 //   x = J0^-1 b - Z r,    Z = J0^-1 E_I G_I^T,   r = F(d) - eps d,
 //   R(d) = d + C r - d_b = 0,   C = G Z,   d_b = G J0^-1 b,
 // a dense system of 3 unknowns per node pair (a quarter of the paper's
-// mesh: 459) that the Newton and arc-length solvers take in place of the
+// mesh: 459; fewer for a mirror crack) that the Newton and arc-length solvers take in place of the
 // whole model. R is scaled by k = 1 / mean diag(C) [N/mm] so that its
 // tolerances are forces. Jacobian: k (I - eps C + C dF/dd), dF/dd sparse;
 // the Krylov solver applies it matrix-free (a sparse and a dense product),
@@ -113,7 +112,8 @@ public:
   /// The whole-model x of jumps d at the current loads (one solve).
   void expand(Vec d, Vec x);
   /// Only the interface and constrained entries of x from d (no solve);
-  /// the other entries are left alone.
+  /// the other entries are left alone, among them a mirror crack's
+  /// tangential components (bulk dofs here, no jump).
   void expand_interface(Vec d, Vec x);
   /// Forgets the load directions solved so far: the next loads are solved
   /// afresh, as in a first run (bit for bit).
@@ -133,6 +133,10 @@ public:
   void forget_trial_state() override { _eq.forget_trial_state(); }
 
 private:
+  /// The constructor's work; release() frees what it made (also when it
+  /// throws part way).
+  void build();
+  void release();
   /// F(d) and r = F - eps d into _r (and dF/dd into _T if asked); false if
   /// a law failed.
   bool interface_forces(Vec d, bool tangent, double* force_norm = nullptr);

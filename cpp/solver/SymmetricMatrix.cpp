@@ -116,8 +116,11 @@ template <class T> SymmetricMatrix<T>::SymmetricMatrix(Mat A)
     for (std::size_t j = i; j < n; ++j)
       _a.push_back(T(a[i + j * lda]));
   check(MatDenseRestoreArrayRead(A, &a), "MatDenseRestoreArrayRead");
-  _x.resize(n);
-  _y.resize(n);
+  if constexpr (!std::is_same_v<T, double>)
+  {
+    _x.resize(n);
+    _y.resize(n);
+  }
 }
 
 template <class T> void SymmetricMatrix<T>::multiply(const double* x, double* y) const

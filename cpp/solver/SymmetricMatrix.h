@@ -6,9 +6,9 @@
 // its products are bound by memory traffic: the residual's in every Newton
 // iteration (double) and the Jacobian's action in every GMRES iteration
 // (float or double). The packed triangle streams half the bytes of the full
-// matrix (on the paper's half model with one crack plane, 1 107 jumps:
-// 4.9 MB instead of 9.8 MB in double), at the same arithmetic: each stored
-// entry a_ij (i < j) serves y_i and y_j.
+// matrix (on the paper's half model with one crack plane, 963 jumps: 3.7 MB
+// instead of 7.4 MB in double), at the same arithmetic: each stored entry
+// a_ij (i < j) serves y_i and y_j.
 //
 // The kernels are compiled for the machine's widest vectors (AVX2 and FMA
 // where the CPU has them, chosen at run time; plain x86-64 elsewhere), as
@@ -22,8 +22,11 @@
 namespace pushout::solver
 {
 /// Largest relative asymmetry max|A - A^T| / max|A| of a matrix taken as
-/// symmetric: the round-off of a factorisation, not a property of A.
-constexpr double symmetry_tolerance = 1e-8;
+/// symmetric: the round-off of a factorisation, not a property of A (the
+/// condensed flexibilities of the demos and the full slice: 1e-11 to
+/// 5e-11). Averaging it away moves A's products by no more than this
+/// relative amount, below Newton's tolerances.
+constexpr double symmetry_tolerance = 1e-9;
 
 /// max|A - A^T| / max|A| of a square sequential dense matrix (0 for A = 0).
 double relative_asymmetry(Mat A);
@@ -47,8 +50,8 @@ public:
 
 private:
   std::size_t _n = 0;
-  std::vector<T> _a; ///< rows i = 0..n-1 of the upper triangle: a_ii, ..., a_i(n-1)
-  mutable std::vector<T> _x, _y;
+  std::vector<T> _a;             ///< rows i = 0..n-1 of the upper triangle: a_ii, ..., a_i(n-1)
+  mutable std::vector<T> _x, _y; ///< x and y rounded to T (float only)
 };
 
 extern template class SymmetricMatrix<float>;
