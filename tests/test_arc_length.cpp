@@ -127,8 +127,8 @@ TEST(ArcLength, NoProgressIsCutEarly)
 {
   // Half the Jacobian: each Newton step goes twice as far as it should and
   // the iterates swing across the path without getting closer. The step
-  // fails once 10 iterations have not made |F| ten times smaller, not after
-  // all of -snes_max_it (50).
+  // fails once 10 iterations have not halved the smallest |F| so far, not
+  // after all of -snes_max_it (50).
   double lambda = 0;
   const solver::SolveReport rep = step(1.0, 1.0, 1e-7, lambda, 0.5);
   EXPECT_FALSE(rep.converged);

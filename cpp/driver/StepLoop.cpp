@@ -15,10 +15,12 @@ namespace
 /// A try that converged in at most this many Newton iterations is easy;
 /// two easy tries in a row double the increment again (Stepper.h).
 constexpr int easy_iterations = 4;
-/// The same for the energy steps of dissipation control: their Newton
-/// iterations start from the committed state's tangent (StartTangent) and
-/// close the control equation too, so an easy one takes a few more.
-constexpr int easy_energy_iterations = 6;
+/// The same for the steps of the bordered system (arc length, and the energy
+/// steps of dissipation control): their Newton iterations close the control
+/// equation too (and energy steps start from the committed state's tangent,
+/// StartTangent), so an easy one takes a few more (arc length on brittle
+/// adhesion: 5 per step). With 4, a step cut once never grew back.
+constexpr int easy_bordered_iterations = 6;
 /// The load parameter reaches a nominal step within this tolerance.
 constexpr double step_tolerance = 1e-12;
 /// Path following: snap-back makes the path longer than the final push, so
@@ -202,6 +204,21 @@ void StepLoop::set_time_increment(double dt)
     joints->set_time_increment(dt);
 }
 
+namespace
+{
+/// While it lives, each Newton solve starts from the tangent at its initial
+/// guess (solver.first_tangent = "current").
+struct StartTangent
+{
+  solver::LoadStepSolver& solver;
+  const bool converged = solver.first_tangent_converged();
+  explicit StartTangent(solver::LoadStepSolver& s) : solver(s) { solver.set_first_tangent(false); }
+  ~StartTangent() { solver.set_first_tangent(converged); }
+  StartTangent(const StartTangent&) = delete;
+  StartTangent& operator=(const StartTangent&) = delete;
+};
+} // namespace
+
 /// Step 0: the thermal step or preload, if the scenario has one, in parts
 /// (its load scaled, cut in halves like a load step) when it does not
 /// converge whole. It takes the pseudo-time of one nominal load step, so
@@ -226,6 +243,11 @@ bool StepLoop::initial_step()
   }
   const double step_time = _scenario.time_at(1.0) - _scenario.time_at(0.0);
   int iterations = 0; // of all its parts
+  // Its parts (after a cut) start from the committed state's tangent: where
+  // the thermal load starts a brittle layer softening, the last part's
+  // converged tangent is its softening branch, a poor predictor of the next
+  // (c = 2000 1/mm, f_t = 6 MPa, k = 1e5 N/mm^3 on the demo: step 0 failed).
+  const StartTangent start_tangent{_solver};
   return nominal_steps({"step 0 (initial/thermal step)", 1,
                         [&](double fraction)
                         { _scenario.apply_initial_load(fraction, _equilibrium); },
@@ -490,7 +512,7 @@ bool StepLoop::path_following()
   const double lambda_final = p.lambda_final, h_nominal = p.h_nominal; // [mm]
   const auto set_load = [&](double lambda) { _scenario.apply_load_factor(lambda, _equilibrium); };
   const auto length = sized("a length of", h_nominal, "mm");
-  Stepper stepper(_max_cuts, easy_iterations);
+  Stepper stepper(_max_cuts, easy_bordered_iterations);
   double lambda = 0.0, slip = path.control(_x);
   double d_lambda_prev = 0.0, d_slip_prev = 0.0; // the last converged step
   int cuts = 0;
@@ -641,21 +663,6 @@ bool StepLoop::corrode_by_dissipation()
 /// move lambda by more than a step of lambda. Failed steps are halved (each
 /// kind its own Stepper.h). Without softening layers (dG = 0) the stage
 /// runs as without dissipation control.
-namespace
-{
-/// While it lives, each Newton solve starts from the tangent at its initial
-/// guess (solver.first_tangent = "current").
-struct StartTangent
-{
-  solver::LoadStepSolver& solver;
-  const bool converged = solver.first_tangent_converged();
-  explicit StartTangent(solver::LoadStepSolver& s) : solver(s) { solver.set_first_tangent(false); }
-  ~StartTangent() { solver.set_first_tangent(converged); }
-  StartTangent(const StartTangent&) = delete;
-  StartTangent& operator=(const StartTangent&) = delete;
-};
-} // namespace
-
 bool StepLoop::by_dissipation(const DissipationStage& stage)
 {
   const LoadFactorPath& p = stage.path;
@@ -698,7 +705,7 @@ bool StepLoop::by_dissipation(const DissipationStage& stage)
     _equilibrium.apply_constraints(_x);
     return _solver.solve(_x);
   };
-  Stepper by_lambda(_max_cuts, easy_iterations), energy(_max_cuts, easy_energy_iterations);
+  Stepper by_lambda(_max_cuts, easy_iterations), energy(_max_cuts, easy_bordered_iterations);
   bool by_energy = false;       // the kind of the next step
   double released_in_event = 0; // by the softening layers in the energy steps so far [N mm]
   double lambda = 0.0, P = stage.force();

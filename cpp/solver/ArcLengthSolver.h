@@ -101,9 +101,10 @@ class ArcLengthSolver
 public:
   /// `control`: the control function c, a vector `like` of the problem's
   /// space to copy the layout from. Tolerances and the iteration limit are SNES's (-snes_rtol,
-  /// -snes_atol, -snes_stol, -snes_max_it; a step also fails when 10 iterations have not made |F|
-  /// ten times smaller; -arc_monitor prints each iteration); the linear solver is configured like
-  /// SNES's KSP (-ksp_type, -pc_type, ...), with the same preconditioner policy as NewtonSolver.
+  /// -snes_atol, -snes_stol, -snes_max_it; a step also fails when 10 iterations have not halved
+  /// the smallest |F| so far; -arc_monitor prints each iteration); the linear solver is configured
+  /// like SNES's KSP (-ksp_type, -pc_type, ...), with the same preconditioner policy as
+  /// NewtonSolver.
   ArcLengthSolver(NonlinearProblem& problem, PathConstraint& control,
                   NewtonSolver::Preconditioner pc, int refactor_iterations);
   ~ArcLengthSolver();
