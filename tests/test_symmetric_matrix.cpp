@@ -1,7 +1,8 @@
 // The packed symmetric matrix of the condensed flexibility
 // (solver/SymmetricMatrix.h): its products agree with the full matrix's
 // (PETSc's MatMult) to the rounding of its precision, for sizes around the
-// kernel's vector lanes; asymmetry is measured and averaged away.
+// kernel's vector lanes and for a column stride other than the size;
+// asymmetry is measured and averaged away.
 #include "common/petsc_check.h"
 #include "solver/SymmetricMatrix.h"
 #include <cmath>
@@ -101,4 +102,23 @@ TEST(SymmetricMatrix, AsymmetryIsMeasuredAndAveragedAway)
   EXPECT_NEAR(a_ij, b_ij - 0.5e-3, 1e-15);
   check(MatDestroy(&A), "MatDestroy");
   check(MatDestroy(&B), "MatDestroy");
+}
+
+TEST(SymmetricMatrix, ReadsAMatrixWhoseColumnStrideIsNotItsSize)
+{
+  // The leading 30 x 30 block of a 40 x 40 matrix (column stride 40), as
+  // condensation's dense matrices may be laid out.
+  const PetscInt N = 40, n = 30;
+  Mat big = random_matrix(N, 7), A;
+  check(MatDenseGetSubMatrix(big, 0, n, 0, n, &A), "MatDenseGetSubMatrix");
+  PetscInt lda;
+  check(MatDenseGetLDA(A, &lda), "MatDenseGetLDA");
+  ASSERT_EQ(lda, N);
+  const solver::SymmetricMatrix<double> Sd(A);
+  const solver::SymmetricMatrix<float> Sf(A);
+  EXPECT_EQ(solver::relative_asymmetry(A), 0.0);
+  EXPECT_LT(product_error(A, Sd), 1e-14);
+  EXPECT_LT(product_error(A, Sf), 1e-6);
+  check(MatDenseRestoreSubMatrix(big, &A), "MatDenseRestoreSubMatrix");
+  check(MatDestroy(&big), "MatDestroy");
 }
