@@ -427,9 +427,11 @@ std::vector<KeyDef> make_keys()
        "",
        "the Jacobian of each load step's first Newton iteration. converged: the last "
        "converged step's (a predictor along the path; a sliding joint keeps its sliding "
-       "tangent); current: the tangent at the step's start, where the laws are at their "
+       "tangent; a step that fails from it is tried again from the current one before it is "
+       "cut); current: the tangent at the step's start, where the laws are at their "
        "committed state (always under dissipation control, whose steps must stay on the "
-       "committed state's branch). The converged solution is the same",
+       "committed state's branch, and in the thermal step). The converged solution is the "
+       "same",
        -inf,
        inf,
        false,

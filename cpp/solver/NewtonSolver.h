@@ -59,7 +59,8 @@ public:
   /// Whether a solve's first iteration takes the last converged solve's
   /// tangent (true, the default) or the tangent at the initial guess. It
   /// takes the initial guess's after a failed solve, a restart or a change
-  /// of the constrained dofs.
+  /// of the constrained dofs; and a solve that fails from the converged
+  /// tangent is tried once more from the initial guess's.
   void set_first_tangent(bool converged) { _previous_tangent = converged; }
 
   /// Solves F(x) = 0 from the initial guess x (constraints already in x).
@@ -105,6 +106,9 @@ public:
   void forget_tangent() { _tangent_converged = false; }
 
 private:
+  /// One SNES solve from x (solve() retries it once from the tangent at the
+  /// initial guess when the last converged tangent's try failed).
+  SolveReport attempt(Vec x);
   static PetscErrorCode jacobian_callback(SNES snes, Vec x, Mat J, Mat P, void* ctx);
   static PetscErrorCode convergence_test(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm,
                                          PetscReal fnorm, SNESConvergedReason* reason, void* ctx);
