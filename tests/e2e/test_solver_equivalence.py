@@ -5,7 +5,9 @@
 iteration on the step's own tangent (solver.first_tangent = current) give the
 plain full-Newton curve (LU of every whole-model Jacobian) to 1e-6 relative
 on a friction + adhesion push-out through the peak; mixed and double
-precision agree to 1e-9."""
+precision agree to 1e-9. A stiff stick-slip push (k = 1e6 N/mm^3, mu = 1,
+nodal quadrature, 1000 steps) needs no cut: a step that fails from the last
+converged tangent is retried from the current one."""
 from common import COARSE_MESH, EXP_SOFT, FRICTION_2, THROUGH_PEAK, check, curve, out_dir, run, summary
 
 scene = COARSE_MESH + FRICTION_2 + EXP_SOFT + THROUGH_PEAK
@@ -42,3 +44,37 @@ for key in ("P_N", "p_MPa", "slip_mm"):
     s = max(abs(r[key]) for r in double)
     diff = max(abs(x[key] - y[key]) for x, y in zip(mixed, double))
     check(diff <= 1e-9 * s, f"mixed against double precision: max |{key}| difference {diff:.2e} <= 1e-9 x {s:.4g}")
+
+# Stiff stick-slip (k = 1e6 N/mm^3 both layers, mu = 1, nodal quadrature,
+# 1000 steps: bench/stress_matrix.py's hardest friction case). A step whose
+# first iteration on the last converged tangent fails is tried again from
+# the current tangent before it is cut: no cut (78 without the retry), and
+# the curve of solver.first_tangent = current to Newton's tolerance.
+stiff = COARSE_MESH + """interface_quadrature = "nodal"
+[[interface]]
+law = "friction"
+k = 1000000.0
+mu = 1.0
+[[interface]]
+law = "exponential_softening"
+k = 1000000.0
+f_t = 3.0
+c = 25.0
+f_fr = 0.0
+[loading]
+temperature_change = -25.0
+push_displacement = 0.1
+steps = 1000
+"""
+conv, curr = out_dir("solver_stiff_converged"), out_dir("solver_stiff_current")
+run(stiff, conv)
+run(stiff, curr, sets=["solver.first_tangent=current"])
+sc, su = summary(conv), summary(curr)
+check(sc["cuts"] == 0 and sc["newton_iterations"] < su["newton_iterations"],
+      f"stiff stick-slip: no cut, {sc['newton_iterations']} Newton iterations "
+      f"(current tangent: {su['newton_iterations']}, {su['cuts']} cuts)")
+a, b = curve(conv), curve(curr)
+s = max(abs(r["P_N"]) for r in b)
+diff = max(abs(x["P_N"] - y["P_N"]) for x, y in zip(a, b))
+check(len(a) == len(b) == 1001 and diff <= 1e-6 * s,
+      f"stiff stick-slip: converged against current tangent: max |P difference| {diff:.2e} <= 1e-6 x {s:.4g}")
