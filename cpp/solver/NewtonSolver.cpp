@@ -2,6 +2,7 @@
 #include "../common/Interrupt.h"
 #include "../common/mpi_errors.h"
 #include "../common/petsc_check.h"
+#include "Vector.h"
 #include <algorithm>
 #include <cmath>
 
@@ -248,8 +249,9 @@ SolveReport NewtonSolver::solve(Vec x)
   // step again from the tangent at its initial guess, before the step loop
   // cuts it (k = 1e6 N/mm^3, mu = 1, nodal quadrature, 1000 steps of the
   // stress matrix: 78 cuts and 7 519 Newton iterations without the retry).
-  Vec start;
-  check(VecDuplicate(x, &start), "VecDuplicate");
+  Vec copy;
+  check(VecDuplicate(x, &copy), "VecDuplicate");
+  const Vector start(copy); // destroyed on every way out
   check(VecCopy(x, start), "VecCopy");
   SolveReport r = attempt(x);
   if (!r.converged)
@@ -260,7 +262,6 @@ SolveReport NewtonSolver::solve(Vec x)
     r = attempt(x);
     r.iterations += first;
   }
-  check(VecDestroy(&start), "VecDestroy");
   return r;
 }
 
