@@ -36,8 +36,8 @@ void lu_solve_kernel(const float* __restrict lu, std::size_t n, float* __restric
 }
 
 /// The entries of a square sequential dense matrix, column-major without
-/// padding (n x n, lda = n), as T; returns n.
-template <class T> std::size_t copy_dense(Mat A, std::vector<T>& out)
+/// padding (n x n, lda = n); returns n.
+std::size_t copy_dense(Mat A, std::vector<double>& out)
 {
   PetscInt rows, cols, lda;
   check(MatGetSize(A, &rows, &cols), "MatGetSize");
@@ -48,7 +48,7 @@ template <class T> std::size_t copy_dense(Mat A, std::vector<T>& out)
   check(MatDenseGetArrayRead(A, &a), "MatDenseGetArrayRead");
   for (std::size_t j = 0; j < n; ++j)
     for (std::size_t i = 0; i < n; ++i)
-      out[i + j * n] = T(a[i + j * std::size_t(lda)]);
+      out[i + j * n] = a[i + j * std::size_t(lda)];
   check(MatDenseRestoreArrayRead(A, &a), "MatDenseRestoreArrayRead");
   return n;
 }
