@@ -318,11 +318,10 @@ void Condensation::build()
   check(MatFactorRestoreSchurComplement(_factor, &S, status), "MatFactorRestoreSchurComplement");
   check(MatDestroy(&B), "MatDestroy");
 
-  // C = G Z, E = I - eps C, k = 1 / mean diag(C).
+  // C = G Z, k = 1 / mean diag(C).
   check(MatCreateSeqDense(PETSC_COMM_SELF, n, n, nullptr, &_C), "MatCreateSeqDense");
-  check(MatCreateSeqDense(PETSC_COMM_SELF, n, n, nullptr, &_E), "MatCreateSeqDense");
   {
-    Dense Z(_Z), C(_C), E(_E);
+    Dense Z(_Z), C(_C);
     double trace = 0;
     int counted = 0;
     for (PetscInt col = 0; col < n; ++col)
@@ -353,12 +352,6 @@ void Condensation::build()
   }
   symmetrize(_C);
   _C_packed = SymmetricMatrix<double>(_C);
-  {
-    Dense C(_C), E(_E);
-    for (PetscInt col = 0; col < n; ++col)
-      for (PetscInt j = 0; j < n; ++j)
-        E(j, col) = (j == col ? 1.0 : 0.0) - _eps * C(j, col);
-  }
 
   // dF/dd: 3 x 3 blocks of node pairs, one matrix per set of joints (its
   // plus blocks map to their pairs, its minus blocks to nothing).
@@ -416,7 +409,7 @@ void Condensation::release()
   for (auto* list : {&_basis, &_basis_g, &_basis_d})
     for (Vec& v : *list)
       petsc::check_nothrow(VecDestroy(&v), "VecDestroy");
-  for (Mat* m : {&_Z, &_C, &_E, &_factor, &_J0})
+  for (Mat* m : {&_Z, &_C, &_factor, &_J0})
     petsc::check_nothrow(MatDestroy(m), "MatDestroy");
   for (Mat& T : _T)
     petsc::check_nothrow(MatDestroy(&T), "MatDestroy");
@@ -434,7 +427,7 @@ Mat Condensation::create_matrix() const
 {
   Mat J;
   check(MatCreateSeqDense(PETSC_COMM_SELF, size(), size(), nullptr, &J), "MatCreateSeqDense");
-  check(MatCopy(_E, J, SAME_NONZERO_PATTERN), "MatCopy");
+  set_linear_part(J);
   return J;
 }
 
@@ -722,9 +715,16 @@ bool Condensation::jacobian(Vec d, Mat J)
   return ok;
 }
 
+void Condensation::set_linear_part(Mat J) const
+{
+  check(MatCopy(_C, J, SAME_NONZERO_PATTERN), "MatCopy");
+  check(MatScale(J, -_eps), "MatScale");
+  check(MatShift(J, 1.0), "MatShift");
+}
+
 void Condensation::form_jacobian(Mat J) const
 {
-  check(MatCopy(_E, J, SAME_NONZERO_PATTERN), "MatCopy");
+  set_linear_part(J);
   {
     // J += C dF/dd, column by column: J(:, j) += T(i, j) C(:, i), T read
     // at the extended components that are jumps.

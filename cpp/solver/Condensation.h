@@ -144,6 +144,8 @@ private:
   /// nodes at d) and zeroes its nodes in _f; the set's range [first, end)
   /// of the jumps.
   std::pair<std::size_t, std::size_t> load_set(std::size_t s, const double* d);
+  /// J = I - eps C, the Jacobian's part without the joints (unscaled).
+  void set_linear_part(Mat J) const;
   /// The Jacobian at the last jacobian() call, explicitly, into J.
   void form_jacobian(Mat J) const;
   static PetscErrorCode operator_mult(Mat J, Vec v, Vec y);
@@ -173,7 +175,6 @@ private:
   SymmetricMatrix<double> _C_packed; ///< C's upper triangle, for its products
   bool _single = false;              ///< GMRES in single precision (set_single_precision)
   SymmetricMatrix<float> _C_single;  ///< the same in single precision, for the Jacobian's action
-  Mat _E = nullptr;                  ///< I - eps C, dense
   std::vector<Mat> _T;               ///< dF/dd of each set, sparse (node-pair blocks, extended)
   Vec _b = nullptr;                  ///< whole model: right-hand side
   Vec _r = nullptr;                  ///< jumps: F(d) - eps d
