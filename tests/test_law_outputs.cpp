@@ -143,14 +143,14 @@ std::map<std::string, std::vector<Case>> cases()
          return Expected{{1000 * wn, ts * e[0], ts * e[1]}, {h.slip_e * e[0], h.slip_e * e[1]}, 0};
        }}};
   // The oxide's pressure p = (g0 - w_n) / (1/k + c_ox) in contact; opening
-  // beyond g0 resists with k.
+  // beyond g0 pulls nothing.
   c["oxide_friction"] = {
       {"k 1000, mu 0.4, g0 5e-4, c_ox 2e-4",
        {},
        [](double wn, double ws, History& h)
        {
          const double k = 1000, k_contact = 1 / (1 / k + oxide_compliance);
-         const double tn = wn < oxide_gap ? k_contact * (wn - oxide_gap) : k * (wn - oxide_gap);
+         const double tn = wn < oxide_gap ? k_contact * (wn - oxide_gap) : 0.0;
          h.slip_e = friction_slip(h.slip_e, ws, std::max(-tn, 0.0), k, 0.4);
          const double ts = k * (ws - h.slip_e);
          return Expected{{tn, ts * e[0], ts * e[1]}, {h.slip_e * e[0], h.slip_e * e[1]}, 0};

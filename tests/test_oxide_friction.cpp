@@ -69,16 +69,24 @@ TEST(OxideFriction, HeldNormalPressesWithTheSeriesStiffness)
   EXPECT_NEAR(r2.t[1], 0.8, 1e-13);
 }
 
-TEST(OxideFriction, OpeningBeyondTheOxideResistsWithThePenalty)
+TEST(OxideFriction, OpeningBeyondTheOxidePullsNothing)
 {
+  // The oxide cannot glue the concrete: beyond g0 no traction, no stiffness
+  // (Friction would pull with k (w_n - g0) = 1 MPa here).
   const OxideFriction law(1000.0, 0.4);
   std::vector<double> s0(OxideFriction::state_size), s1(s0.size());
-  const auto r = law.update(s0, {0.003, 0, 0}, s1, {0, 0.002, 1e-3});
-  EXPECT_NEAR(r.t[0], 1.0, 1e-13);
-  EXPECT_DOUBLE_EQ(r.D[0], 1000.0);
+  const auto r = law.update(s0, {0.003, 0.001, 0}, s1, {0, 0.002, 1e-3});
+  EXPECT_EQ(r.t[0], 0.0);
+  EXPECT_EQ(r.t[1], 0.0);
+  EXPECT_EQ(r.D[0], 0.0);
+  EXPECT_EQ(r.D[3], 0.0); // the shear does not see w_n either
+  // Without corrosion too: an open joint carries nothing.
+  EXPECT_EQ(law.update(s0, {1e-4, 0, 0}, s1).t[0], 0.0);
+  // At the gap exactly it keeps the penalty (a joint at rest is not singular).
+  EXPECT_EQ(law.update(s0, {0.002, 0, 0}, s1, {0, 0.002, 1e-3}).D[0], 1000.0);
 }
 
-TEST(OxideFriction, WithoutCorrosionItIsFriction)
+TEST(OxideFriction, WithoutCorrosionInContactItIsFriction)
 {
   std::mt19937 gen(7);
   std::uniform_real_distribution<double> U(-1, 1);
@@ -86,7 +94,7 @@ TEST(OxideFriction, WithoutCorrosionItIsFriction)
   const Friction friction(2000.0, 0.35);
   for (int i = 0; i < 200; ++i)
   {
-    const Vec3 w = {1e-3 * U(gen), 1e-3 * U(gen), 1e-3 * U(gen)};
+    const Vec3 w = {-1e-3 * (U(gen) + 1) / 2, 1e-3 * U(gen), 1e-3 * U(gen)}; // w_n <= 0
     const std::vector<double> s0 = {1e-3 * U(gen), 1e-3 * U(gen)};
     std::vector<double> a(2), b(2);
     const auto ra = oxide.update(s0, w, a), rb = friction.update(s0, w, b);

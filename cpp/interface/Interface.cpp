@@ -436,6 +436,32 @@ void Interface::add_jump_functional(const laws::Vec3& v, std::span<double> a) co
       scatter(p, q, v, a); // w . v
 }
 
+std::array<double, 2> Interface::opening_near(std::span<const double> u,
+                                              std::span<const std::int32_t> plus_blocks) const
+{
+  std::array<double, 2> sum = {0, 0};
+  const std::size_t nq = _q.weights.size();
+  for (std::size_t p = 0; p < _num_pairs; ++p)
+  {
+    const std::int32_t* plus = _blocks.data() + 2 * _n * p + _n;
+    for (std::size_t q = 0; q < nq; ++q)
+    {
+      const double* N = _N.data() + _n * q;
+      double weight = 0; // of the given nodes at point q
+      for (int a = 0; a < _n; ++a)
+        if (std::binary_search(plus_blocks.begin(), plus_blocks.end(), plus[a]))
+          weight += N[a];
+      if (weight > 0.5)
+      {
+        const double dA = _dA[p * nq + q];
+        sum[0] += jump(u, p, q)[0] * dA;
+        sum[1] += dA;
+      }
+    }
+  }
+  return sum;
+}
+
 double Interface::area() const
 {
   double a = 0;

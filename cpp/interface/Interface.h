@@ -145,6 +145,16 @@ public:
   /// Area of the interface on this process [mm^2].
   double area() const;
 
+  /// The normal opening w . n of `u` near a set of plus-side nodes (a crack
+  /// plane's mouth on the slice's outer face), read where the laws evaluate
+  /// it: at the quadrature points whose shape functions give those nodes a
+  /// weight above one half (the points of the adjacent pairs nearer to them:
+  /// the nodes themselves with nodal quadrature, the outer row of Gauss
+  /// points otherwise). `plus_blocks`: local dof blocks of the nodes, sorted.
+  /// Returns this process's {int w_n dA [mm^3], int dA [mm^2]}.
+  std::array<double, 2> opening_near(std::span<const double> u,
+                                     std::span<const std::int32_t> plus_blocks) const;
+
   /// Integral of each layer's normal traction over this process's pairs
   /// [N], from the last evaluation (assemble(): after a converged step, its
   /// state; stored, not re-evaluated, since a viscous law's update from the

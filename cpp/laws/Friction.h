@@ -108,19 +108,37 @@ public:
   double damage(std::span<const double>) const { return 0; }
 
 protected:
+  /// How the joint answers an opening beyond its free gap.
+  enum class Opening
+  {
+    penalty,   ///< t_n = k (w_n - gap): it resists separation (eq. 5)
+    unilateral ///< t_n = 0: nothing pulls (the oxide of OxideFriction.h)
+  };
+
   /// The update when the joint has a free normal opening `gap` [mm] and a
   /// normal compliance [mm^3/N] in series with k in contact (OxideFriction.h);
-  /// with both 0 it is eqs. (4)-(6) as above, to the bit.
+  /// with both 0 and Opening::penalty it is eqs. (4)-(6) as above, to the bit.
   LawResult update_with_gap(std::span<const double> state_old, const Vec3& w,
-                            std::span<double> state_new, double gap, double compliance) const
+                            std::span<double> state_new, double gap, double compliance,
+                            Opening opening_law = Opening::penalty) const
   {
     LawResult r;
     const double k = _k;
     const double opening = w[0] - gap; // [mm]
     const bool contact = opening < 0;
     const double kn = contact && compliance > 0 ? 1 / (1 / k + compliance) : k;
-    r.t[0] = kn * opening;
-    r.D = {kn, 0, 0, 0, k, 0, 0, 0, k};
+    if (opening_law == Opening::unilateral && opening > 0)
+    {
+      // Separated: no normal traction and no normal stiffness. At w_n = gap
+      // exactly the penalty k stays, so a joint at rest is not singular.
+      r.t[0] = 0;
+      r.D = {0, 0, 0, 0, k, 0, 0, 0, k};
+    }
+    else
+    {
+      r.t[0] = kn * opening;
+      r.D = {kn, 0, 0, 0, k, 0, 0, 0, k};
+    }
     const double p = contact ? -r.t[0] : 0.0;
     const double dp_dwn = contact ? -kn : 0.0;
     coulomb_return(k, _mu, p, dp_dwn, w, PlasticSlip(state_old), PlasticSlip(state_new), r);

@@ -8,9 +8,12 @@
 // and the shear is eq. (6) on that pressure: trial k (w_s - w^p), limit mu p,
 // radial return with vector plastic slip, consistent tangent (the shear
 // couples to w_n through mu dp/dw_n). Opening beyond the oxide (w_n > g0):
-// p = 0, no shear, and the penalty resists the separation, t_n = k (w_n - g0),
-// as Friction does for w_n > 0. With g0 = c_ox = 0 (no corrosion) the law is
-// Friction exactly.
+// t_n = 0, no shear, no stiffness: a layer of rust cannot pull the concrete
+// back (unilateral contact). Where the concrete cracks, the segments between
+// the cracks then carry no tension from the oxide, and the pressure the
+// interface reports is the one the cover feels. The fixings of the model, not
+// the joint, hold the rigid modes. With g0 = c_ox = 0 (no corrosion) the law
+// is Friction in contact and carries nothing in opening.
 //
 // Why one law and not an oxide layer superposed on a friction layer: layers
 // share the jump, so an expansion taken up by one layer would open the
@@ -33,7 +36,8 @@ class OxideFriction : public Friction
 public:
   static constexpr const char* name = "oxide_friction";
   static constexpr const char* doc =
-      "Coulomb friction on the pressure of the corrosion oxide (k, mu); friction without corrosion";
+      "Coulomb friction on the pressure of the corrosion oxide (k, mu), which never pulls; "
+      "friction in contact without corrosion";
 
   static std::vector<ParamDef> params()
   {
@@ -46,7 +50,8 @@ public:
   LawResult update(std::span<const double> state_old, const Vec3& w, std::span<double> state_new,
                    const StepInputs& in = {}) const
   {
-    return update_with_gap(state_old, w, state_new, in.oxide_gap, in.oxide_compliance);
+    return update_with_gap(state_old, w, state_new, in.oxide_gap, in.oxide_compliance,
+                           Opening::unilateral);
   }
 };
 } // namespace pushout::laws

@@ -335,14 +335,11 @@ std::vector<Model::CrackMouth> crack_mouths(const mesh::MeshData& data,
   for (const mesh::CrackPlane& crack : data.cracks)
   {
     Model::CrackMouth m;
-    m.normal = crack.mirrored()
-                   ? crack.mirror
-                   : std::array<double, 3>{-std::sin(crack.angle), std::cos(crack.angle), 0.0};
-    m.mirrored = crack.mirrored();
     m.image_of = crack.image_of;
-    m.global_pairs = std::int64_t(crack.mouth.size());
-    for (const auto& [minus, plus] : crack.mouth)
-      m.blocks.push_back({node_block[minus], node_block[plus]});
+    for (const auto& pair : crack.mouth)
+      if (node_block[pair[1]] >= 0)
+        m.plus_blocks.push_back(node_block[pair[1]]);
+    std::sort(m.plus_blocks.begin(), m.plus_blocks.end());
     mouths.push_back(std::move(m));
   }
   return mouths;
@@ -426,29 +423,26 @@ std::vector<const interface::Interface*> Model::joints() const
 
 std::vector<double> Model::crack_mouth_openings() const
 {
-  // Sums over the owned plus-side nodes of each mouth, then over processes.
-  std::vector<double> sum(_mouths.size(), 0.0);
+  // {int w_n dA, int dA} near each mouth, over this process's joints, then
+  // over processes.
+  std::vector<double> sums(2 * _mouths.size(), 0.0);
   const std::span<const double> u = _u->x()->array();
-  const int bs = block_size();
-  for (std::size_t i = 0; i < _mouths.size(); ++i)
-    for (const auto& [minus, plus] : _mouths[i].blocks)
-      if (owned(plus))
-      {
-        if (minus < 0)
-          throw std::logic_error("crack mouth split across processes");
-        for (int d = 0; d < 3; ++d)
-          sum[i] +=
-              (_mouths[i].mirrored ? 2 * u[bs * plus + d] : u[bs * plus + d] - u[bs * minus + d]) *
-              _mouths[i].normal[d];
-      }
-  MPI_Allreduce(MPI_IN_PLACE, sum.data(), int(sum.size()), MPI_DOUBLE, MPI_SUM, comm());
   for (std::size_t i = 0; i < _mouths.size(); ++i)
     if (_mouths[i].image_of < 0)
-      sum[i] /= double(_mouths[i].global_pairs);
+    {
+      const auto s = _cracks[i]->opening_near(u, _mouths[i].plus_blocks);
+      sums[2 * i] = s[0];
+      sums[2 * i + 1] = s[1];
+    }
+  MPI_Allreduce(MPI_IN_PLACE, sums.data(), int(sums.size()), MPI_DOUBLE, MPI_SUM, comm());
+  std::vector<double> width(_mouths.size(), 0.0);
+  for (std::size_t i = 0; i < _mouths.size(); ++i)
+    if (_mouths[i].image_of < 0 && sums[2 * i + 1] > 0)
+      width[i] = sums[2 * i] / sums[2 * i + 1];
   for (std::size_t i = 0; i < _mouths.size(); ++i)
     if (_mouths[i].image_of >= 0)
-      sum[i] = sum[std::size_t(_mouths[i].image_of)];
-  return sum;
+      width[i] = width[std::size_t(_mouths[i].image_of)];
+  return width;
 }
 
 std::int64_t Model::num_dofs() const

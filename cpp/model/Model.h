@@ -81,19 +81,20 @@ public:
   /// Simulation).
   void set_laws(const Scene& scene);
 
-  /// The mouth of a crack plane: node pairs on the slice's outer face.
+  /// The mouth of a crack plane: its nodes on the slice's outer face.
   struct CrackMouth
   {
-    std::array<double, 3> normal;                    ///< of the plane, minus to plus
-    std::vector<std::array<std::int32_t, 2>> blocks; ///< (minus, plus) local dof blocks
-    std::int64_t global_pairs = 0;                   ///< node pairs on all processes
-    bool mirrored = false; ///< on a symmetry plane: minus = the plus side's mirror image
-    int image_of = -1;     ///< cut away by symmetry: the opening is that plane's
+    std::vector<std::int32_t> plus_blocks; ///< local dof blocks of the plus side, sorted
+    int image_of = -1;                     ///< cut away by symmetry: the opening is that plane's
   };
-  /// Crack-mouth opening of each crack plane [mm]: the opening (u_plus -
-  /// u_minus) . n averaged over the plane's nodes on the slice's outer face,
-  /// where experiments measure the crack width (on a symmetry plane: 2 u . n,
-  /// n into the model; a plane cut away: its image's). Collective.
+  /// Crack-mouth opening of each crack plane [mm], where experiments measure
+  /// the crack width: the opening w . n averaged over the plane's quadrature
+  /// points next to the slice's outer face (Interface::opening_near: the
+  /// outer row of Gauss points, a fraction 0.21 of the element's radial size
+  /// inside the face for 2-point Gauss), where the laws evaluate it. A nodal
+  /// value at the face would extrapolate a linear jump over a coarse element
+  /// and can read negative while every point of the plane opens. A plane cut
+  /// away by symmetry has its image's. Collective.
   std::vector<double> crack_mouth_openings() const;
 
   /// Bulk stiffness K [N/mm], with room for the interface couplings.
