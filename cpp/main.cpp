@@ -9,6 +9,7 @@
 //   pushout keys        # the scene keys, with defaults, units and docs
 //   pushout laws        # the interface laws and their parameters
 #include "common/Interrupt.h"
+#include "common/exit_codes.h"
 #include "common/mpi_errors.h"
 #include "common/mpi_start.h"
 #include "common/petsc_check.h"
@@ -19,10 +20,17 @@
 #include "mesh/generate.h"
 #include "scene/SceneError.h"
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <dolfinx/common/log.h>
+#include <exception>
 #include <filesystem>
 #include <iostream>
+#include <petscsnes.h>
 #include <petscsys.h>
+#include <petsctao.h>
+#include <sstream>
 
 namespace
 {
@@ -53,6 +61,8 @@ void print_laws()
     for (const auto& p : law.params)
     {
       std::cout << "    " << p.name << " [" << p.unit << "] " << p.doc;
+      if (std::isfinite(p.max))
+        std::cout << " (at most " << p.max << ")";
       if (p.default_value)
         std::cout << " (default " << *p.default_value << ")";
       else if (!p.default_from.empty())
@@ -111,57 +121,172 @@ int run_scene(const std::string& scene_file, const std::string& out,
       if (rank == 0)
         std::cerr << "pushout: " << s.message << "; " << out << "/curve.csv keeps them"
                   << std::endl;
-      return 128 + s.signal;
+      return exit_code::signal(s.signal);
     }
     if (!s.converged)
     {
       if (rank == 0)
         std::cerr << "pushout: error: " << s.message << "; " << out << "/curve.csv keeps the "
                   << s.steps << " converged steps" << std::endl;
-      return 3;
+      return exit_code::not_converged;
     }
     if (rank == 0 && !quiet)
       std::cout << "pushout: done in " << std::fixed << std::setprecision(2) << s.wall_s << " s, "
                 << s.newton_iterations << " Newton iterations; curve: " << out << "/curve.csv"
                 << (scene.boolean("output.plot") ? ", plot: " + out + "/curve.png" : "")
                 << std::endl;
-    return 0;
+    return exit_code::done;
   }
   catch (const driver::TooLarge& e)
   {
     if (rank == 0)
       std::cerr << "pushout: error: " << e.what() << std::endl;
-    return 2;
+    return exit_code::bad_input;
   }
   catch (const SceneError& e)
   {
     if (rank == 0)
       std::cerr << "pushout: error in scene: " << e.what() << std::endl;
-    return 2;
+    return exit_code::bad_input;
   }
   catch (const std::exception& e)
   {
     if (rank == 0)
       std::cerr << "pushout: error: " << e.what() << std::endl;
-    return 1;
+    return exit_code::failure;
   }
   catch (const std::string& e) // gmsh reports errors this way
   {
     if (rank == 0)
       std::cerr << "pushout: error: " << e << std::endl;
-    return 1;
+    return exit_code::failure;
   }
+}
+
+/// Whether this process prints what every process would (before MPI is
+/// started: the launcher's rank, if any, is 0).
+bool first_process()
+{
+  const char* rank = std::getenv("OMPI_COMM_WORLD_RANK");
+  return !rank || std::string(rank) == "0";
+}
+
+/// An exception nothing can catch (one thrown inside gmsh's OpenMP regions
+/// ends there): one line and exit_code::failure, not an abort.
+[[noreturn]] void on_terminate()
+{
+  std::string what = "an internal error";
+  try
+  {
+    if (const std::exception_ptr e = std::current_exception())
+      std::rethrow_exception(e);
+  }
+  catch (const std::exception& e)
+  {
+    what = e.what();
+  }
+  catch (const std::string& e) // gmsh's errors
+  {
+    what = e;
+  }
+  catch (...)
+  {
+  }
+  std::replace(what.begin(), what.end(), '\n', ' ');
+  std::cerr << "pushout: error: " << what << " (uncaught)" << std::endl;
+  int started = 0, size = 1;
+  MPI_Initialized(&started);
+  if (started)
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+  if (size > 1)
+    MPI_Abort(MPI_COMM_WORLD, pushout::exit_code::failure);
+  std::_Exit(pushout::exit_code::failure);
+}
+
+/// The options of PETSc's that nothing read, on every process alike: an
+/// option read on any process counts as read. The default solver path's
+/// options (SNES, KSP, PC, MUMPS, TAO and this program's own) count as read
+/// even where this run did not create that solver.
+std::vector<std::string> unused_petsc_options()
+{
+  using pushout::petsc::check;
+  PetscInt left = 0;
+  check(PetscOptionsLeftGet(nullptr, &left, nullptr, nullptr), "PetscOptionsLeftGet");
+  if (left > 0)
+  {
+    // Objects of the default path read their options; none of them solves.
+    SNES snes;
+    check(SNESCreate(PETSC_COMM_SELF, &snes), "SNESCreate");
+    check(SNESSetFromOptions(snes), "SNESSetFromOptions");
+    KSP ksp;
+    check(SNESGetKSP(snes, &ksp), "SNESGetKSP");
+    check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
+    check(SNESDestroy(&snes), "SNESDestroy");
+    Mat A, F;
+    check(MatCreateSeqAIJ(PETSC_COMM_SELF, 1, 1, 1, nullptr, &A), "MatCreateSeqAIJ");
+    check(MatSetValue(A, 0, 0, 1.0, INSERT_VALUES), "MatSetValue");
+    check(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+    check(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+    if (MatGetFactor(A, MATSOLVERMUMPS, MAT_FACTOR_LU, &F) == 0)
+    {
+      MatFactorInfo info;
+      check(MatFactorInfoInitialize(&info), "MatFactorInfoInitialize");
+      check(MatLUFactorSymbolic(F, A, nullptr, nullptr, &info), "MatLUFactorSymbolic");
+      check(MatDestroy(&F), "MatDestroy");
+    }
+    check(MatDestroy(&A), "MatDestroy");
+    Tao tao;
+    check(TaoCreate(PETSC_COMM_SELF, &tao), "TaoCreate");
+    check(TaoSetFromOptions(tao), "TaoSetFromOptions");
+    check(TaoDestroy(&tao), "TaoDestroy");
+    for (const char* own : {"-arc_monitor", "-options_left"}) // read by pushout, or at the end
+    {
+      PetscBool set;
+      check(PetscOptionsHasName(nullptr, nullptr, own, &set), "PetscOptionsHasName");
+    }
+  }
+  // Rank 0's list; each is unused where no process read it.
+  char** names = nullptr;
+  char** values = nullptr;
+  check(PetscOptionsLeftGet(nullptr, &left, &names, &values), "PetscOptionsLeftGet");
+  std::string list;
+  for (PetscInt i = 0; i < left; ++i)
+    list += std::string("-") + names[i] + "\n";
+  check(PetscOptionsLeftRestore(nullptr, &left, &names, &values), "PetscOptionsLeftRestore");
+  int length = int(list.size());
+  MPI_Bcast(&length, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  list.resize(std::size_t(length));
+  MPI_Bcast(list.data(), length, MPI_CHAR, 0, MPI_COMM_WORLD);
+  std::vector<std::string> candidates;
+  std::istringstream in(list);
+  for (std::string name; std::getline(in, name);)
+    candidates.push_back(name);
+  std::vector<int> used(candidates.size(), 0);
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+  {
+    PetscBool u = PETSC_FALSE;
+    check(PetscOptionsUsed(nullptr, candidates[i].c_str(), &u), "PetscOptionsUsed");
+    used[i] = u ? 1 : 0;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, used.data(), int(used.size()), MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  std::vector<std::string> unused;
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    if (!used[i])
+      unused.push_back(candidates[i]);
+  return unused;
 }
 } // namespace
 
 int main(int argc, char* argv[])
 {
+  using pushout::exit_code::bad_input;
+  std::set_terminate(on_terminate);
   CLI::App app{"pushout: push-out tests of RC slices with cohesive-frictional interfaces"};
   app.require_subcommand(1);
   app.allow_extras(); // the rest goes to PETSc
   std::string scene_file, out;
   std::vector<std::string> sets;
-  bool quiet = false, force = false;
+  bool quiet = false, force = false, allow_unused = false;
   // The scene, the output folder, the overrides and the flags every command
   // that runs takes; `ranks`: --ranks-per-case, for those that make many runs.
   const auto common = [&](CLI::App* cmd, const std::string& scene_doc, int* ranks)
@@ -175,6 +300,11 @@ int main(int argc, char* argv[])
     cmd->add_flag("--quiet", quiet, "no progress lines");
     cmd->add_flag("--force", force,
                   "run even if the size guard estimates a run cannot fit in memory");
+    cmd->add_flag("--allow-unused-petsc-options", allow_unused,
+                  "a PETSc option that nothing read is a warning, not an error (exit 2)");
+    cmd->footer("Options with one dash go to PETSc (-snes_monitor, -ksp_type gmres); one that "
+                "no solver of the run (nor of the default solver path) read is an error, "
+                "reported at the end of the run, unless --allow-unused-petsc-options.");
     cmd->allow_extras();
   };
   CLI::App* run = app.add_subcommand("run", "run a scene");
@@ -187,6 +317,9 @@ int main(int argc, char* argv[])
   sweep
       ->add_option("--vary", sweep_options.vary, "a key and its values: key=v1,v2,... (repeatable)")
       ->required();
+  sweep->add_option("--max-cases", sweep_options.max_cases,
+                    "the most cases the sweep runs; more is refused (default " +
+                        std::to_string(pushout::driver::SweepOptions::default_max_cases) + ")");
   pushout::driver::FitOptions fit_options;
   CLI::App* fit = app.add_subcommand(
       "fit", "fit scene values (law parameters, loads) to a measured push-out curve by least "
@@ -200,23 +333,47 @@ int main(int argc, char* argv[])
                   "bounds of a free key: key=lo:hi (either may be empty; repeatable)");
   app.add_subcommand("keys", "print the scene keys (Markdown table)");
   app.add_subcommand("laws", "print the interface laws and their parameters");
+  // A usage error is one line naming the option, with where help is.
+  std::string command;
+  for (int i = 1; i < argc && command.empty(); ++i)
+    for (const char* name : {"run", "sweep", "fit", "keys", "laws"})
+      if (std::string(argv[i]) == name)
+        command = name;
+  const std::string help = command.empty() ? "pushout --help" : "pushout " + command + " --help";
+  const auto usage_error = [&](std::string message)
+  {
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    if (first_process())
+      std::cerr << "pushout: error: " << message << " (" << help << ")" << std::endl;
+    return bad_input;
+  };
   try
   {
     app.parse(argc, argv);
   }
   catch (const CLI::ParseError& e)
   {
-    return app.exit(e);
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) // --help
+      return app.exit(e);
+    if (command.empty() && argc > 1 && argv[1][0] != '-')
+      return usage_error(std::string("unknown command '") + argv[1] +
+                         "'; commands: run, sweep, fit, keys, laws");
+    return usage_error(e.what());
   }
+  // Options with two dashes are pushout's: one it does not know is a typo,
+  // not a PETSc option (those have one dash).
+  for (const std::string& extra : app.remaining(true))
+    if (extra.rfind("--", 0) == 0)
+      return usage_error("unknown option '" + extra.substr(0, extra.find('=')) + "'");
   if (app.got_subcommand("keys"))
   {
     print_keys();
-    return 0;
+    return pushout::exit_code::done;
   }
   if (app.got_subcommand("laws"))
   {
     print_laws();
-    return 0;
+    return pushout::exit_code::done;
   }
 
   // PETSc sees only the options CLI11 did not consume.
@@ -242,7 +399,7 @@ int main(int argc, char* argv[])
   catch (const std::exception& e)
   {
     std::cerr << "pushout: error: " << e.what() << std::endl;
-    return 1;
+    return pushout::exit_code::failure;
   }
   // After PETSc, whose own handlers would otherwise abort on SIGTERM.
   pushout::interrupt::install();
@@ -258,7 +415,7 @@ int main(int argc, char* argv[])
     o.quiet = quiet;
     o.force = force;
   };
-  int rc = 0;
+  int rc = pushout::exit_code::done;
   try
   {
     if (app.got_subcommand("fit"))
@@ -277,7 +434,34 @@ int main(int argc, char* argv[])
   catch (const std::exception& e) // an error outside the runs of a sweep or fit
   {
     std::cerr << "pushout: error: " << e.what() << std::endl;
-    MPI_Abort(MPI_COMM_WORLD, 1); // the other processes may wait in a collective
+    MPI_Abort(MPI_COMM_WORLD, pushout::exit_code::failure); // others may wait in a collective
+  }
+  // A PETSc option nothing read is most likely a typo of one (-snes_monitr).
+  try
+  {
+    const std::vector<std::string> unused = unused_petsc_options();
+    int rank = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    if (!unused.empty())
+    {
+      std::string list;
+      for (const std::string& u : unused)
+        list += (list.empty() ? "" : ", ") + u;
+      const bool error = !allow_unused && rc == pushout::exit_code::done;
+      if (rank == 0)
+        std::cerr << "pushout: " << (error ? "error" : "warning") << ": PETSc option"
+                  << (unused.size() > 1 ? "s " : " ") << list
+                  << " not read by any solver (a typo?); --allow-unused-petsc-options "
+                     "accepts "
+                  << (unused.size() > 1 ? "them" : "it") << std::endl;
+      if (error)
+        rc = bad_input;
+    }
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "pushout: error: " << e.what() << std::endl;
+    MPI_Abort(MPI_COMM_WORLD, pushout::exit_code::failure);
   }
   // The command has said how it ended: a signal that came meanwhile ends
   // nothing more.

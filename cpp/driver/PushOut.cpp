@@ -15,6 +15,24 @@ namespace pushout::driver
 {
 namespace
 {
+/// The thinnest tube wall, and the narrowest gap between the tube and the
+/// support, as a fraction of the tube's outer diameter D.
+constexpr double min_width_ratio = 0.01;
+/// The largest push as a fraction of the slice thickness L: the model's
+/// small-displacement range.
+constexpr double max_push_ratio = 0.1;
+/// The largest ratio of the last push step to the first (step_growth).
+constexpr double max_step_ratio = 1e6;
+
+/// The upper bound declared for a scene key (scene/keys.cpp).
+double key_max(const std::string& path)
+{
+  for (const KeyDef& k : scene_keys())
+    if (k.path == path)
+      return k.max;
+  throw std::logic_error("no scene key '" + path + "'");
+}
+
 /// Node of `candidates` nearest to p.
 std::int64_t nearest(const mesh::MeshData& m, const std::vector<std::int64_t>& candidates,
                      std::array<double, 3> p)
@@ -328,16 +346,30 @@ void PushOut::check_scene(const Scene& scene)
   const double D = scene.number("geometry.tube_outer_diameter");
   const double Di = scene.number("geometry.tube_inner_diameter");
   const double Ds = scene.number("geometry.support_inner_diameter");
+  const double L = scene.number("geometry.thickness");
   const auto& c = scene.numbers("geometry.tube_center");
   if (c.size() != 2)
     throw SceneError("'geometry.tube_center' must have 2 entries (x, y)");
+  // The tube wall and the support's gap around the tube are meshed with
+  // elements across them: thinner than min_width_ratio D they are no
+  // geometry the mesher (or the model) can resolve.
+  std::ostringstream min_width;
+  min_width << min_width_ratio * D << " mm (1 % of 'geometry.tube_outer_diameter')";
   if (!(Di < D))
     throw SceneError("'geometry.tube_inner_diameter' must be smaller than "
                      "'geometry.tube_outer_diameter'");
+  if (!((D - Di) / 2 >= min_width_ratio * D))
+    throw SceneError("'geometry.tube_inner_diameter' leaves a tube wall (D - Di) / 2 thinner "
+                     "than " +
+                     min_width.str());
   if (!(Ds > D))
     throw SceneError("'geometry.support_inner_diameter' must be larger than "
                      "'geometry.tube_outer_diameter' (the support holds the "
                      "concrete, not the tube)");
+  if (!((Ds - D) / 2 >= min_width_ratio * D))
+    throw SceneError("'geometry.support_inner_diameter' leaves a gap (Ds - D) / 2 between the "
+                     "tube and the support narrower than " +
+                     min_width.str());
   const bool circle = scene.string("geometry.outer_shape") == "circle";
   // The support hole must leave a ring of concrete inside the slice.
   const double margin =
@@ -346,17 +378,37 @@ void PushOut::check_scene(const Scene& scene)
     throw SceneError("'geometry.support_inner_diameter' (or "
                      "'geometry.tube_center') leaves no support outside "
                      "the hole: the hole must fit inside the slice");
-  if (scene.number("loading.push_displacement") >= scene.number("geometry.thickness"))
-    throw SceneError("'loading.push_displacement' must be smaller than "
-                     "'geometry.thickness'");
+  // The model is small-displacement: beyond a push of max_push_ratio L the
+  // contact length it keeps (L) and the one tau divides by (L - delta)
+  // differ by more than 10 %.
+  const auto beyond_small_displacement = [&](const std::string& key, double push)
+  {
+    std::ostringstream s;
+    s << "'" << key << "' pushes " << push << " mm, more than 10 % of 'geometry.thickness' ("
+      << max_push_ratio * L
+      << " mm): the model is small-displacement (it keeps the whole contact length L while "
+         "tau = P / (pi D (L - delta)))";
+    return SceneError(s.str());
+  };
+  if (const double push = scene.number("loading.push_displacement");
+      !(std::abs(push) <= max_push_ratio * L))
+    throw beyond_small_displacement("loading.push_displacement", push);
+  const double max_steps = key_max("loading.steps");
   if (const auto& path = scene.numbers("loading.push_path"); !path.empty())
   {
     if (path[0] != 0.0)
       throw SceneError("'loading.push_path' must start at 0: the push starts from the state "
                        "after the thermal step (and the corrosion stage)");
-    if (std::any_of(path.begin(), path.end(),
-                    [&](double d) { return std::abs(d) >= scene.number("geometry.thickness"); }))
-      throw SceneError("'loading.push_path' values must be smaller than 'geometry.thickness'");
+    for (const double d : path)
+      if (!(std::abs(d) <= max_push_ratio * L))
+        throw beyond_small_displacement("loading.push_path", d);
+    const double steps =
+        double(path.size() - 1) * double(scene.integer("loading.steps_per_segment"));
+    if (steps > max_steps)
+      throw SceneError("'loading.steps_per_segment' times the " + std::to_string(path.size() - 1) +
+                       " segments of 'loading.push_path' is " +
+                       std::to_string(std::int64_t(steps)) + " steps, more than " +
+                       std::to_string(std::int64_t(max_steps)));
     if (scene.number("loading.step_growth") != 1.0)
       throw SceneError("'loading.step_growth' applies to the monotonic push "
                        "(push_displacement, steps), not to 'loading.push_path': leave it at 1");
@@ -364,6 +416,18 @@ void PushOut::check_scene(const Scene& scene)
       throw SceneError("'loading.push_path' is followed under 'loading.control' = "
                        "\"displacement\" (path following and dissipation control run a "
                        "monotonic push)");
+  }
+  // Steps growing (or shrinking) geometrically: the last at most
+  // max_step_ratio times the first, or the other way round.
+  const double growth = scene.number("loading.step_growth");
+  if (const auto steps = scene.integer("loading.steps");
+      std::abs(double(steps - 1) * std::log(growth)) > std::log(max_step_ratio))
+  {
+    std::ostringstream s;
+    s << "'loading.step_growth' = " << growth << " over 'loading.steps' = " << steps
+      << " makes the last step " << growth << "^" << steps - 1
+      << " times the first: at most 1e6 either way";
+    throw SceneError(s.str());
   }
   // Crack planes that cannot be meshed (e.g. two within one element).
   mesh::crack_directions(scene);

@@ -1,5 +1,6 @@
 #include "Sweep.h"
 #include "../common/Interrupt.h"
+#include "../common/exit_codes.h"
 #include "../common/mpi_errors.h"
 #include "../output/plot.h"
 #include "../scene/SceneError.h"
@@ -251,7 +252,25 @@ int sweep(const SweepOptions& opt)
             throw SceneError("pushout sweep needs at least one --vary key=value,value,...");
           ProcessGroups::check(opt.ranks_per_case);
           for (const std::string& v : opt.vary)
+          {
             vary.push_back(parse_variation(v));
+            for (std::size_t i = 0; i + 1 < vary.size(); ++i)
+              if (vary[i].key == vary.back().key)
+                throw SceneError("'" + vary.back().key +
+                                 "' is given in two --vary options: give its values in one");
+          }
+          // The count before the cases are made (it may not fit in memory).
+          double count = 1;
+          for (const Variation& v : vary)
+            count *= double(v.values.size());
+          if (count > double(opt.max_cases))
+          {
+            std::ostringstream s;
+            s << std::setprecision(15) << "the --vary options make " << count
+              << " cases, more than " << opt.max_cases << ": --max-cases " << std::size_t(count)
+              << " runs them";
+            throw SceneError(s.str());
+          }
           cases = cartesian_cases(vary);
           // The model type and the plot of the sweep: the scene's with the
           // --set values (a case may not change them).
@@ -293,7 +312,7 @@ int sweep(const SweepOptions& opt)
   {
     if (rank == 0)
       std::cerr << "pushout sweep: error: " << e.what() << std::endl;
-    return 2;
+    return exit_code::bad_input;
   }
 
   ProcessGroups groups(opt.ranks_per_case);

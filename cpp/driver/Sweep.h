@@ -27,6 +27,9 @@ namespace pushout::driver
 struct SweepOptions : ManyRunsOptions
 {
   std::vector<std::string> vary; ///< --vary key=v1,v2,...
+  /// --max-cases: the most cases a sweep runs (more is refused, exit 2).
+  std::size_t max_cases = default_max_cases;
+  static constexpr std::size_t default_max_cases = 10000;
 };
 
 /// One varied key and its values, from "key=v1,v2,..." (commas inside

@@ -65,7 +65,7 @@ public:
     ParamDef w_c2{"w_c2", std::nullopt, "mm", "linear envelope: softening length", 0, true};
     ParamDef c{"c", std::nullopt, "1/mm", "exponential envelope: decay rate", 0, true};
     w_c2.optional = c.optional = true;
-    return {{"k", 1000.0, "N/mm^3", "penalty stiffness", 0, true},
+    return {penalty_param("k", 1000.0, "penalty stiffness"),
             {"mu", 0.4, "-", "friction coefficient of the damaged part", 0, false},
             {"f_t", 3.0, "MPa", "tensile strength (peak traction)", 0, true},
             w_c2,

@@ -18,9 +18,9 @@ public:
 
   static std::vector<ParamDef> params()
   {
-    return {{"k", 1000.0, "N/mm^3", "penalty stiffness (default of k_n, k_s)", 0, true},
-            {"k_n", std::nullopt, "N/mm^3", "normal stiffness", 0, true, "k"},
-            {"k_s", std::nullopt, "N/mm^3", "shear stiffness", 0, true, "k"}};
+    return {penalty_param("k", 1000.0, "penalty stiffness (default of k_n, k_s)"),
+            penalty_param("k_n", std::nullopt, "normal stiffness", "k"),
+            penalty_param("k_s", std::nullopt, "shear stiffness", "k")};
   }
 
   Elastic(double k_n, double k_s) : _kn(k_n), _ks(k_s) {}

@@ -15,7 +15,7 @@ struct ExponentialSofteningSpec
       "Camanho-Davila damage, exponential softening to f_fr, paper §2.3 Fig. 5b";
   static std::vector<ParamDef> params()
   {
-    return {{"k", 1000.0, "N/mm^3", "penalty stiffness (Table 1: Exp. soft.)", 0, true},
+    return {penalty_param("k", 1000.0, "penalty stiffness (Table 1: Exp. soft.)"),
             {"f_t", 3.0, "MPa", "tensile strength (peak traction)", 0, true},
             {"c", 25.0, "1/mm", "exponential decay rate", 0, true},
             {"f_fr", 0.0, "MPa", "asymptotic residual traction (<= f_t)", 0, false}};

@@ -88,7 +88,7 @@ public:
 
   static std::vector<ParamDef> params()
   {
-    return {{"k", 1000.0, "N/mm^3", "penalty stiffness (Table 1: Friction 2)", 0, true},
+    return {penalty_param("k", 1000.0, "penalty stiffness (Table 1: Friction 2)"),
             {"mu", 0.4, "-", "friction coefficient", 0, false}};
   }
 

@@ -25,7 +25,23 @@ struct ParamDef
   bool min_exclusive = false;
   std::string default_from = {}; ///< defaults to this other parameter's value
   bool optional = false;         ///< may be absent (then not in Params)
+  double max = std::numeric_limits<double>::infinity();
 };
+
+/// The stiffest penalty a joint law takes [N/mm^3]: 1e9 is 5000 times the
+/// steel's E over a 1 mm element, stiffer than any interface needs; beyond,
+/// the joints' tangent swamps the bulk's in the linear solves.
+constexpr double max_penalty = 1e9;
+
+/// A penalty stiffness parameter [N/mm^3], > 0 and at most max_penalty.
+inline ParamDef penalty_param(std::string name, std::optional<double> default_value,
+                              std::string doc, std::string default_from = {})
+{
+  ParamDef p{std::move(name),        default_value, "N/mm^3", std::move(doc), 0, true,
+             std::move(default_from)};
+  p.max = max_penalty;
+  return p;
+}
 
 /// Resolved parameters of one layer, by name. `at(name)` is valid for every
 /// declared parameter except absent optional ones.

@@ -15,7 +15,7 @@ struct LinearSofteningSpec
       "Camanho-Davila damage, linear softening, paper §2.3 Fig. 5a (k, f_t, w_c2)";
   static std::vector<ParamDef> params()
   {
-    return {{"k", 100.0, "N/mm^3", "penalty stiffness (Table 1: Lin. soft.)", 0, true},
+    return {penalty_param("k", 100.0, "penalty stiffness (Table 1: Lin. soft.)"),
             {"f_t", 1.0, "MPa", "tensile strength (peak traction)", 0, true},
             {"w_c2", 0.3, "mm", "softening length from the peak to zero traction", 0, true}};
   }

@@ -16,7 +16,7 @@ struct LinearSofteningFrictionSpec
       "Camanho-Davila damage, linear softening to a constant residual f_fr, paper §2.3";
   static std::vector<ParamDef> params()
   {
-    return {{"k", 100.0, "N/mm^3", "penalty stiffness", 0, true},
+    return {penalty_param("k", 100.0, "penalty stiffness"),
             {"f_t", 1.0, "MPa", "tensile strength (peak traction)", 0, true},
             {"w_c2", 0.3, "mm", "softening length of the linear branch (to zero)", 0, true},
             {"f_fr", std::nullopt, "MPa", "residual traction (<= f_t)", 0, false}};

@@ -41,7 +41,7 @@ public:
 
   static std::vector<ParamDef> params()
   {
-    return {{"k", 1000.0, "N/mm^3", "penalty stiffness, in series with the oxide layer", 0, true},
+    return {penalty_param("k", 1000.0, "penalty stiffness, in series with the oxide layer"),
             {"mu", 0.4, "-", "friction coefficient", 0, false}};
   }
 

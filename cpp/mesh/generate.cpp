@@ -320,6 +320,16 @@ MeshData generate(const Scene& scene, const std::filesystem::path& cache_dir, bo
       error = e.what();
       flags[0] = 1;
     }
+    catch (const std::string& e) // gmsh's errors
+    {
+      error = e;
+      flags[0] = 1;
+    }
+    catch (...)
+    {
+      error = "an unknown error";
+      flags[0] = 1;
+    }
   }
   // Every process learns of a failure and throws: none waits in a
   // collective that the others skipped.

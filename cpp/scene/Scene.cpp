@@ -29,6 +29,113 @@ std::vector<std::string> split(const std::string& s, char sep)
   return parts;
 }
 
+/// Levels of tables, arrays and dotted keys a scene may nest (a scene needs
+/// 3: `[[interface]]`, `k`; deeper text is not a scene, and would exhaust the
+/// TOML parser's stack).
+constexpr std::size_t max_nesting = 32;
+
+/// The largest scene file [bytes]: 1 MiB (a scene is a few kB).
+constexpr std::uintmax_t max_scene_bytes = std::uintmax_t(1) << 20;
+
+/// At most the first 60 characters of `s` (a path or value in a message).
+std::string shortened(const std::string& s)
+{
+  return s.size() <= 60 ? s : s.substr(0, 60) + "...";
+}
+
+/// The line (from 1) of TOML text at which tables, arrays and dotted keys
+/// nest deeper than max_nesting, or 0. A scan of brackets, braces and dots
+/// outside strings and comments, made before the parser sees the text.
+std::size_t too_deep_at(const std::string& text)
+{
+  enum class In
+  {
+    code,
+    comment,
+    basic,     // "..."
+    literal,   // '...'
+    ml_basic,  // """..."""
+    ml_literal // '''...'''
+  };
+  In in = In::code;
+  std::size_t line = 1, depth = 0, dots = 0;
+  for (std::size_t i = 0; i < text.size(); ++i)
+  {
+    const char c = text[i];
+    const bool triple = i + 2 < text.size() && text[i + 1] == c && text[i + 2] == c;
+    if (c == '\n')
+      ++line;
+    switch (in)
+    {
+    case In::comment:
+      if (c == '\n')
+        in = In::code;
+      continue;
+    case In::basic:
+    case In::ml_basic:
+      if (c == '\\')
+        ++i;
+      else if (c == '"' && (in == In::basic || triple))
+      {
+        i += in == In::basic ? 0 : 2;
+        in = In::code;
+      }
+      else if (c == '\n' && in == In::basic)
+        in = In::code; // unterminated: the parser reports it
+      continue;
+    case In::literal:
+    case In::ml_literal:
+      if (c == '\'' && (in == In::literal || triple))
+      {
+        i += in == In::literal ? 0 : 2;
+        in = In::code;
+      }
+      else if (c == '\n' && in == In::literal)
+        in = In::code;
+      continue;
+    case In::code:
+      break;
+    }
+    switch (c)
+    {
+    case '#':
+      in = In::comment;
+      break;
+    case '"':
+      in = triple ? In::ml_basic : In::basic;
+      i += triple ? 2 : 0;
+      break;
+    case '\'':
+      in = triple ? In::ml_literal : In::literal;
+      i += triple ? 2 : 0;
+      break;
+    case '[':
+    case '{':
+      ++depth;
+      dots = 0;
+      break;
+    case ']':
+    case '}':
+      depth -= depth > 0 ? 1 : 0;
+      dots = 0;
+      break;
+    case '.':
+      ++dots;
+      break;
+    case '=':
+    case ',':
+    case '\n':
+      dots = 0;
+      break;
+    default:
+      break;
+    }
+    if (depth + dots > max_nesting)
+      return line;
+  }
+  return 0;
+}
+
 bool is_index(const std::string& s)
 {
   return !s.empty() && s.find_first_not_of("0123456789") == std::string::npos;
@@ -46,7 +153,13 @@ std::string where(const toml::node& node)
 void apply_override(toml::table& root, const Override& o)
 {
   const std::vector<std::string> parts = split(o.path, '.');
-  const std::string what = "--set " + o.path;
+  const std::string what = "--set " + shortened(o.path);
+  if (parts.size() > max_nesting)
+    throw SceneError(what + ": too deeply nested (" + std::to_string(parts.size()) +
+                     " levels; a scene key has at most " + std::to_string(max_nesting) + ")");
+  if (too_deep_at(o.value))
+    throw SceneError(what + ": the value is too deeply nested (arrays or tables more than " +
+                     std::to_string(max_nesting) + " levels deep)");
   for (const std::string& p : parts)
     if (p.empty())
       throw SceneError(what + ": malformed key path");
@@ -151,6 +264,8 @@ std::string range_text(double min, double max, bool open)
     s << " and ";
   if (std::isfinite(max))
     s << (open ? "< " : "<= ") << max;
+  if (!std::isfinite(min) && !std::isfinite(max))
+    s << "finite";
   return s.str();
 }
 
@@ -174,6 +289,13 @@ void check_value(const KeyDef& def, const Value& v)
     check_range(*d, def.min, def.max, def.open, def.path, def.unit);
   else if (const auto* i = std::get_if<std::int64_t>(&v))
     check_range(double(*i), def.min, def.max, def.open, def.path, def.unit);
+  else if (const auto* a = std::get_if<std::vector<double>>(&v))
+  {
+    // Every number of an array as a scalar of the key would be.
+    for (std::size_t j = 0; j < a->size(); ++j)
+      check_range((*a)[j], def.min, def.max, def.open, def.path + "[" + std::to_string(j) + "]",
+                  def.unit);
+  }
   else if (const auto* s = std::get_if<std::string>(&v); s && !def.choices.empty())
   {
     bool ok = false;
@@ -266,8 +388,13 @@ LayerSpec read_layer(const toml::node& node, std::size_t index, const std::strin
   }
   for (const auto& p : info->params)
     if (layer.params.count(p.name))
-      check_range(layer.params.at(p.name), p.min, std::numeric_limits<double>::infinity(),
-                  p.min_exclusive, prefix + p.name, p.unit);
+    {
+      // An open lower bound with a closed upper one: min < x <= max.
+      const double x = layer.params.at(p.name);
+      if (p.min_exclusive && !(x > p.min))
+        check_range(x, p.min, p.max, true, prefix + p.name, p.unit);
+      check_range(x, p.min, p.max, false, prefix + p.name, p.unit);
+    }
   try
   {
     info->make(layer.params, prefix); // checks combinations of parameters
@@ -329,18 +456,44 @@ std::vector<Override> parse_overrides(const std::vector<std::string>& texts)
 
 Scene Scene::load(const std::filesystem::path& file, const std::vector<Override>& overrides)
 {
-  std::ifstream in(file);
+  namespace fs = std::filesystem;
+  const std::string name = "scene file '" + file.string() + "'";
+  std::error_code ec;
+  const fs::file_status status = fs::status(file, ec);
+  if (ec || !fs::exists(status))
+    throw SceneError("cannot read " + name);
+  // Not a directory, a device or a pipe: those read as no scene, or forever.
+  if (!fs::is_regular_file(status))
+    throw SceneError(name + " is not a regular file");
+  const auto too_large = [&]
+  {
+    return SceneError(name + " is larger than " + std::to_string(max_scene_bytes >> 20) +
+                      " MiB: not a scene");
+  };
+  if (fs::file_size(file, ec) > max_scene_bytes && !ec)
+    throw too_large();
+  std::ifstream in(file, std::ios::binary);
   if (!in)
-    throw SceneError("cannot read scene file '" + file.string() + "'");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse(text.str(), overrides, file.string());
+    throw SceneError("cannot read " + name);
+  // At most one byte more than the limit, should the file grow meanwhile.
+  std::string text(max_scene_bytes + 1, '\0');
+  in.read(text.data(), std::streamsize(text.size()));
+  text.resize(std::size_t(in.gcount()));
+  if (text.size() > max_scene_bytes)
+    throw too_large();
+  if (in.bad())
+    throw SceneError("cannot read " + name);
+  return parse(text, overrides, file.string());
 }
 
 Scene Scene::parse(const std::string& toml_text, const std::vector<Override>& overrides,
                    const std::string& origin)
 {
   toml::table root;
+  if (const std::size_t line = too_deep_at(toml_text))
+    throw SceneError(origin + ": too deeply nested at line " + std::to_string(line) +
+                     ": more than " + std::to_string(max_nesting) +
+                     " levels of tables, arrays or dotted keys");
   try
   {
     root = toml::parse(toml_text, origin);

@@ -195,9 +195,10 @@ std::vector<KeyDef> make_keys()
        K::number,
        -25.0,
        "degC",
-       "applied to the bulk in one step before pushing (0: no thermal step)",
-       -inf,
-       inf,
+       "applied to the bulk in one step before pushing (0: no thermal step); at most 1000 "
+       "degC either way (the model is linear thermo-elastic: concrete does not survive more)",
+       -1000,
+       1000,
        false,
        {},
        A::pushout},
@@ -205,7 +206,9 @@ std::vector<KeyDef> make_keys()
        K::number,
        0.010,
        "mm",
-       "final downward displacement delta of the tube's top nodes",
+       "final downward displacement delta of the tube's top nodes; at most 10 % of "
+       "geometry.thickness either way: the model is small-displacement (it keeps the whole "
+       "contact length L while tau = P / (pi D (L - delta)) divides by the shrinking one)",
        -inf,
        inf,
        false,
@@ -216,9 +219,10 @@ std::vector<KeyDef> make_keys()
        1.0,
        "",
        "ratio of each push step to the previous one (1: equal steps; > 1: fine steps "
-       "first, for the peak, coarse ones later)",
+       "first, for the peak, coarse ones later); below 10, and the last step at most 1e6 "
+       "times the first (step_growth^(steps - 1)): more leaves the first steps below round-off",
        0,
-       inf,
+       10,
        true,
        {},
        A::pushout},
@@ -237,9 +241,10 @@ std::vector<KeyDef> make_keys()
        K::integer,
        std::int64_t(9),
        "",
-       "equal displacement steps from 0 to push_displacement",
+       "equal displacement steps from 0 to push_displacement; at most 100000 (a step takes "
+       "milliseconds to seconds: more would run for days)",
        1,
-       1e9,
+       100000,
        false,
        {},
        A::pushout},
@@ -292,9 +297,10 @@ std::vector<KeyDef> make_keys()
        "dissipation control: the energy released per step is the fracture energy of the "
        "softening joint layers and crack planes (InterfaceLaw G_F x area) over this many "
        "steps; a step of delta (or x) releasing more than that and more than the work of the "
-       "push (or of the oxide's expansion) is redone under dissipation control",
+       "push (or of the oxide's expansion) is redone under dissipation control; at most "
+       "100000",
        1,
-       1e9,
+       100000,
        false,
        {},
        A::pushout},
@@ -327,9 +333,11 @@ std::vector<KeyDef> make_keys()
        K::integer,
        std::int64_t(20),
        "",
-       "load steps on each segment of shear_path (single joint) or push_path (push-out)",
+       "load steps on each segment of shear_path (single joint) or push_path (push-out); at "
+       "most 100000 on all segments together (a step takes milliseconds to seconds: more "
+       "would run for days)",
        1,
-       1e9,
+       100000,
        false,
        {},
        A::all},
@@ -354,9 +362,10 @@ std::vector<KeyDef> make_keys()
        K::integer,
        std::int64_t(20),
        "",
-       "equal steps of x in the corrosion stage (cut in halves when Newton fails, as the push)",
+       "equal steps of x in the corrosion stage (cut in halves when Newton fails, as the "
+       "push); at most 100000 (a step takes milliseconds to seconds: more would run for days)",
        1,
-       1e9,
+       100000,
        false,
        {},
        A::pushout},

@@ -1,0 +1,159 @@
+"""Hostile input: scene files, --set values and command lines that once
+crashed, ran until killed or ran silently. Each must end at once with exit 2
+and one line on stderr naming the key, option or file."""
+import os
+import subprocess
+import time
+
+from common import COARSE_MESH, FRICTION_2, OUT_ROOT, PUSHOUT, check, out_dir
+
+GOOD = COARSE_MESH + FRICTION_2
+QUICK = ["--set", "loading.steps=1", "--set", "output.plot=false"]
+os.makedirs(OUT_ROOT, exist_ok=True)
+
+
+def scene(name, text):
+    path = os.path.join(OUT_ROOT, "hostile_" + name + ".toml")
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+GOOD_SCENE = scene("good", GOOD)
+
+
+def pushout(args, timeout=60):
+    t0 = time.monotonic()
+    try:
+        p = subprocess.run([PUSHOUT] + args, capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        raise SystemExit(f"FAILED: pushout {' '.join(args)[:200]} still running after {timeout} s")
+    return p, time.monotonic() - t0
+
+
+def refused(name, args, words, timeout=60, seconds=None):
+    """`pushout args` must exit 2 with one stderr line holding every word."""
+    p, wall = pushout(args, timeout)
+    err = p.stderr.strip()
+    check(p.returncode == 2, f"{name}: exit {p.returncode} (2 wanted): {err[:300]!r}")
+    check(len(err.splitlines()) == 1, f"{name}: one line on stderr")
+    check(all(w in err for w in words), f"{name}: message names {words}: {err[:300]!r}")
+    if seconds:
+        check(wall < seconds, f"{name}: refused in {wall:.1f} s (< {seconds} s)")
+    return err
+
+
+def run_args(name, path, sets=(), extra=()):
+    out = out_dir("hostile_" + name)
+    args = ["run", path, "--out", out, "--quiet"]
+    for s in sets:
+        args += ["--set", s]
+    return args + list(extra), out
+
+
+def refused_run(name, text, sets, words, **kw):
+    args, out = run_args(name.replace(" ", "_"), scene(name.replace(" ", "_"), text), sets)
+    refused(name, args, words, **kw)
+    check(not os.path.exists(os.path.join(out, "curve.csv")), f"{name}: no curve.csv")
+
+
+# 1. Nesting that would exhaust the TOML parser's stack.
+deep = ".".join(["a"] * 50000)
+refused_run("deep dotted key", GOOD + "\n" + deep + " = 1\n", [], ["too deeply nested", "line"],
+            timeout=30, seconds=10)
+refused_run("deep arrays", GOOD + "\n[loading]\npush_path = " + "[" * 30000 + "]" * 30000 + "\n", [],
+            ["too deeply nested"], timeout=30, seconds=10)
+refused_run("deep inline tables", GOOD + "\nx = " + "{a=" * 30000 + "1" + "}" * 30000 + "\n", [],
+            ["too deeply nested"], timeout=30, seconds=10)
+refused_run("deep --set path", GOOD, ["loading." + ".".join(["a"] * 50000) + "=1"],
+            ["--set", "too deeply nested"], timeout=30, seconds=10)
+refused_run("deep --set value", GOOD, ["loading.push_path=" + "[" * 30000 + "]" * 30000],
+            ["loading.push_path", "too deeply nested"], timeout=30, seconds=10)
+
+# 2, 3. Scene paths that are not a scene file of reasonable size.
+args, _ = run_args("dev_zero", "/dev/zero")
+refused("/dev/zero as the scene", args, ["/dev/zero", "regular file"], timeout=30, seconds=10)
+big = scene("big", GOOD + ("# padding\n" * 120000))  # 1.2 MB of comments
+args, _ = run_args("big", big)
+refused("scene over 1 MiB", args, ["hostile_big.toml", "MiB"], timeout=30, seconds=10)
+args, _ = run_args("directory", "/tmp")
+refused("directory as the scene", args, ["/tmp", "regular file"], timeout=30, seconds=10)
+
+# 4. Step counts that would run for days.
+refused_run("steps 1e7", GOOD, ["loading.steps=10000000"], ["loading.steps", "100000"], seconds=10)
+refused_run("corrosion steps 1e7", GOOD, ["corrosion.steps=10000000"], ["corrosion.steps"], seconds=10)
+refused_run("steps per segment 1e7", GOOD, ["loading.steps_per_segment=10000000"],
+            ["loading.steps_per_segment"], seconds=10)
+refused_run("dissipation steps 1e7", GOOD, ["loading.dissipation_steps=10000000"],
+            ["loading.dissipation_steps"], seconds=10)
+refused_run("path steps 1e6", GOOD, ["loading.push_path=[0.0,0.01,0.0,0.01,0.0,0.01,0.0,0.01,0.0,0.01,0.0,0.01]",
+                                     "loading.steps_per_segment=100000"],
+            ["loading.steps_per_segment", "loading.push_path"], seconds=10)
+
+# 5. Every number of an array checked as a scalar is.
+refused_run("nan in push_path", GOOD, ["loading.push_path=[0.0,nan]"], ["loading.push_path", "nan"],
+            seconds=10)
+refused_run("inf in tube_center", GOOD, ["geometry.tube_center=[50.0,inf]"],
+            ["geometry.tube_center", "inf"], seconds=10)
+
+# 6. Values far outside what the model means.
+refused_run("penalty 1e300", GOOD, ["interface.0.k=1e300"], ["interface.0.k", "out of range"], seconds=10)
+refused_run("crack penalty 1e300", GOOD + "\n[[crack]]\nangle = 90.0\nk = 1e300\n", [], ["crack.0.k"],
+            seconds=10)
+refused_run("step growth 1e300", GOOD, ["loading.step_growth=1e300"], ["loading.step_growth"], seconds=10)
+refused_run("step growth 5 over 200 steps", GOOD, ["loading.step_growth=5", "loading.steps=200"],
+            ["loading.step_growth", "loading.steps"], seconds=10)
+refused_run("temperature 1e6", GOOD, ["loading.temperature_change=1e6"],
+            ["loading.temperature_change", "out of range"], seconds=10)
+
+# 7. The model is small-displacement: a push beyond 10 % of the thickness.
+for push in ("10", "19", "19.999", "2.5"):
+    refused_run(f"push {push} mm", GOOD, [f"loading.push_displacement={push}"],
+                ["loading.push_displacement", "10 %", "geometry.thickness"], seconds=10)
+refused_run("push path 5 mm", GOOD, ["loading.push_path=[0.0,0.01,-5.0]"],
+            ["loading.push_path", "10 %"], seconds=10)
+
+# 8. Degenerate geometry.
+refused_run("tube wall 1e-7 mm", GOOD, ["geometry.tube_inner_diameter=19.9999999"],
+            ["geometry.tube_inner_diameter"], seconds=10)
+refused_run("support gap 1e-7 mm", GOOD, ["geometry.support_inner_diameter=20.0000001"],
+            ["geometry.support_inner_diameter"], seconds=10)
+
+# 9. Sweeps: a key varied twice, and more cases than the limit.
+sweep = ["sweep", GOOD_SCENE, "--out", out_dir("hostile_sweep"), "--quiet"]
+refused("sweep: key varied twice", sweep + ["--vary", "interface.0.mu=0.1,0.2", "--vary", "interface.0.mu=0.3"],
+        ["interface.0.mu", "--vary"], seconds=10)
+values = ",".join(str(0.1 + i / 1000) for i in range(200))
+err = refused("sweep: 40 000 cases", sweep + ["--vary", f"interface.0.mu={values}", "--vary",
+                                            f"interface.0.k={','.join(str(1000 + i) for i in range(200))}"],
+              ["40000", "--max-cases"], seconds=10)
+
+# 10. Command-line usage errors: one line, exit 2, a hint.
+refused("run without --out", ["run", GOOD_SCENE], ["--out", "pushout run --help"])
+refused("no command", [], ["pushout --help"])
+refused("unknown command", ["frobnicate", GOOD_SCENE], ["frobnicate", "pushout --help"])
+refused("fit without --free", ["fit", GOOD_SCENE, "--data", "x.csv", "--out", out_dir("hostile_fit")],
+        ["--free", "pushout fit --help"])
+for cmd in ([], ["run"], ["sweep"]):
+    p, _ = pushout(cmd + ["--help"])
+    check(p.returncode == 0 and "--out" in p.stdout or not cmd, f"pushout {' '.join(cmd)} --help: exit 0, help")
+p, _ = pushout(["run", "--help"])
+check("--allow-unused-petsc-options" in p.stdout, "run --help documents --allow-unused-petsc-options")
+
+# 11. Typos: an unknown --option, and a PETSc option nothing read.
+for typo in (["--sett", "loading.steps=3"], ["--froce"], ["--bogus"]):
+    args, out = run_args("typo", GOOD_SCENE, extra=typo)
+    refused(f"unknown option {typo[0]}", args, [typo[0], "pushout run --help"], seconds=10)
+args, out = run_args("petsc_typo", GOOD_SCENE, extra=QUICK + ["-snes_monitr"])
+refused("unused PETSc option", args, ["-snes_monitr", "--allow-unused-petsc-options"])
+args, out = run_args("petsc_allowed", GOOD_SCENE,
+                     extra=QUICK + ["-snes_monitr", "--allow-unused-petsc-options"])
+p, _ = pushout(args)
+check(p.returncode == 0 and "-snes_monitr" in p.stderr, "unused PETSc option allowed: exit 0, a warning")
+# Options of the default solver path pass, read or not by this scene's.
+args, out = run_args("petsc_ok", GOOD_SCENE, extra=QUICK + ["-snes_monitor", "-ksp_type", "gmres",
+                                                            "-pc_type", "lu", "-snes_rtol", "1e-9",
+                                                            "-mat_mumps_icntl_14", "50"])
+p, _ = pushout(args)
+check(p.returncode == 0, f"PETSc options of the solver pass: exit {p.returncode} {p.stderr[-300:]!r}")
+print("hostile inputs refused")
