@@ -56,6 +56,7 @@ public:
 
   double k() const { return _k; }
   double w0() const { return _w0; }
+  const Envelope& envelope() const { return _env; }
 
   /// The energy per unit area released from the unloaded state to full
   /// softening [N/mm]: f_t^2 / (2 k) + the softening's

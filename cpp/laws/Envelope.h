@@ -50,6 +50,18 @@ struct Envelope
     return {sigma, -f_t / w_c2};
   }
 
+  /// The area under the envelope from w0 to kappa [N/mm]: int sigma.
+  double work(double kappa, double w0) const
+  {
+    const double x = std::max(kappa - w0, 0.0);
+    if (kind == Kind::exponential)
+      return f_fr * x + (f_t - f_fr) * (1 - std::exp(-c * x)) / c;
+    const double floor = kind == Kind::linear ? 0.0 : f_fr;
+    const double x_floor = w_c2 * (1 - floor / f_t); // where the line meets the floor
+    const double xl = std::min(x, x_floor);
+    return f_t * (xl - xl * xl / (2 * w_c2)) + floor * (x - xl);
+  }
+
   /// The area between the envelope and its residual f_fr beyond the peak
   /// [N/mm]: the energy the softening releases (the residual's part is the
   /// plateau's, not brittle). Exponential (f_t - f_fr) / c; linear

@@ -1,0 +1,369 @@
+// Concrete that cracks: linear elastic until the largest principal stress
+// reaches f_t, then a cohesive crack smeared over a band (Bazant & Oh 1983),
+// at one quadrature point. The bulk law of cracks anywhere in the concrete
+// (docs/cracking.md).
+//
+// Why a crack band and not an embedded discontinuity: the concrete's
+// hexahedra are not constant-strain elements, so their quadrature points
+// carry different strains; the crack lives where the strain does, at the
+// points, and the element's size along the crack normal is the band width h
+// over which the crack's opening w is smeared:
+//
+//   epsilon = epsilon_e + sym(w (x) n) / h,     sigma = C : epsilon_e
+//
+// Then a crack of opening w dissipates G_F per unit crack area whatever the
+// element size: the band's energy density G_F / h times its volume A h.
+//
+// Onset: the point is uncracked while the largest principal stress of
+// C : epsilon is below f_t; when it reaches f_t a crack is inserted with its
+// normal n along that principal direction, fixed from then on (state: n, a
+// tangent s1, h). The crack's traction-opening law is a softening law of the
+// interface registry (laws/CamanhoDavila.h with the envelope of
+// `exponential_softening` or `linear_softening`): central force (the
+// traction parallel to the opening), damage with secant unloading to the
+// origin, closure in compression by a penalty. Its penalty k_p is stiff
+// against the band, k_p = penalty_factor (lambda + 2 mu) / h, so that the
+// inserted crack takes 1/penalty_factor of the band's compliance (the stress
+// drops by that fraction, 0.1 % by default, where it is inserted).
+//
+// At each update the opening w solves the crack's equilibrium, the traction
+// of the band's stress on the crack plane equal to the cohesive traction:
+//
+//   r(w) = t(w) + A w / h - sigma_0 n = 0,   A = P^T C P (acoustic tensor),
+//
+// sigma_0 = C : epsilon the stress of the uncracked point, P the map
+// w -> sym(w (x) n): a 3 x 3 Newton iteration with backtracking. The
+// consistent tangent follows by eliminating dw:
+//
+//   d sigma / d epsilon = C - (1/h) (C P) J^-1 (C P)^T,   J = R^T D_t R + A / h
+//
+// (D_t the cohesive law's tangent in the crack frame R = [n, s1, s2]). J must
+// stay positive definite on the softening branch: h < mu / |sigma'|_max
+// (max_band_width), the size condition of the crack band; a wider band would
+// snap back at the point and is reported as a failure.
+//
+// Units: stress MPa, strain -, opening and h mm, energy density N mm/mm^3.
+#pragma once
+
+#include "../laws/CamanhoDavila.h"
+#include "../laws/Envelope.h"
+#include "Voigt.h"
+#include <algorithm>
+#include <cmath>
+#include <span>
+
+namespace pushout::bulk
+{
+/// Named view of a point's state, the one place that knows its layout
+/// [cracked, n (3), s1 (3), h, kappa, D]. T is double (to write) or const
+/// double.
+template <typename T> class CrackState
+{
+public:
+  static constexpr int size = 10;
+  explicit CrackState(std::span<T> s) : _s(s.first(size)) {}
+  bool cracked() const { return _s[0] != 0; }
+  T& cracked_flag() const { return _s[0]; }
+  /// Unit normal of the crack (global frame).
+  Vec3 normal() const { return {_s[1], _s[2], _s[3]}; }
+  /// Unit tangent s1 of the crack plane; s2 = n x s1.
+  Vec3 tangent() const { return {_s[4], _s[5], _s[6]}; }
+  /// Band width: the element's size along n [mm].
+  T& band_width() const { return _s[7]; }
+  /// The cohesive law's history [kappa, D] (laws::DamageHistory).
+  std::span<T> law_state() const { return _s.subspan(8, 2); }
+  void set_frame(const Vec3& n, const Vec3& s1) const
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      _s[1 + i] = n[i];
+      _s[4 + i] = s1[i];
+    }
+  }
+
+private:
+  std::span<T> _s;
+};
+
+/// What an update returns.
+struct CrackBandResult
+{
+  Voigt stress{};    ///< [MPa]
+  Voigt66 tangent{}; ///< d stress / d strain (Voigt, engineering shears) [MPa]
+  Vec3 opening{};    ///< crack opening in the crack frame [n, s1, s2] [mm]; 0 uncracked
+  double damage = 0; ///< the crack's damage D in [0, 1]; 0 uncracked
+  /// Energy dissipated per unit volume from the committed state to the
+  /// trial one [N mm/mm^3]: the crack's dissipation per unit area over h.
+  double dissipation = 0;
+  enum class Status
+  {
+    ok,
+    not_converged, ///< the crack's 3 x 3 equilibrium did not converge
+    band_too_wide  ///< h >= max_band_width(): the point would snap back
+  } status = Status::ok;
+};
+
+class CrackBand
+{
+public:
+  static constexpr int state_size = CrackState<double>::size;
+
+  /// E [MPa], nu [-]; `envelope` the cohesive law's softening curve (its
+  /// f_t the tensile strength); `eta` the damage viscosity of the cohesive
+  /// law [pseudo time] (0: none).
+  CrackBand(double E, double nu, laws::Envelope envelope, double eta = 0,
+            double penalty_factor = 1e3)
+      : _C(isotropic_stiffness(E, nu)), _lame(lame(E, nu)), _env(envelope), _eta(eta),
+        _penalty_factor(penalty_factor)
+  {
+  }
+
+  const Voigt66& stiffness() const { return _C; }
+
+  /// The envelope of a point whose strength is `strength` times the
+  /// envelope's (a random strength field scales the tractions, f_t and f_fr;
+  /// the openings stay).
+  laws::Envelope envelope(double strength = 1) const
+  {
+    laws::Envelope e = _env;
+    e.f_t *= strength;
+    e.f_fr *= strength;
+    return e;
+  }
+
+  /// The cohesive law of a crack whose band is h wide [mm].
+  laws::CamanhoDavila cohesive_law(double h, double strength = 1) const
+  {
+    return {_penalty_factor * (_lame[0] + 2 * _lame[1]) / h, envelope(strength), _eta};
+  }
+
+  /// The widest band a point can soften over without snapping back [mm]:
+  /// mu / |d sigma / d w|_max (conservative: mode II's stiffness).
+  double max_band_width(double strength = 1) const
+  {
+    const laws::Envelope e = envelope(strength);
+    const double slope =
+        e.kind == laws::Envelope::Kind::exponential ? e.c * (e.f_t - e.f_fr) : e.f_t / e.w_c2;
+    return slope > 0 ? _lame[1] / slope : INFINITY;
+  }
+
+  /// The update from the committed state `old` at the strain `strain`;
+  /// writes the trial state `now` (same size). `band_width(n)` gives the
+  /// element's size along a unit normal n [mm] (called when a crack is
+  /// inserted); `strength` is the point's f_t over the envelope's; `dt` the
+  /// step's pseudo-time increment (viscous damage).
+  template <typename BandWidth>
+  CrackBandResult update(std::span<const double> old, const Voigt& strain, std::span<double> now,
+                         BandWidth&& band_width, double strength = 1, double dt = 0) const
+  {
+    CrackBandResult r;
+    std::copy(old.begin(), old.begin() + state_size, now.begin());
+    const CrackState<const double> before(old);
+    const CrackState<double> after(now);
+    const Voigt sigma0 = multiply(_C, strain);
+    if (!before.cracked())
+    {
+      Vec3 principal;
+      Mat3 axes;
+      symmetric_eigen(stress_tensor(sigma0), principal, axes);
+      if (!(principal[0] >= strength * _env.f_t))
+      {
+        r.stress = sigma0;
+        r.tangent = _C;
+        return r;
+      }
+      // Onset: a crack normal to the largest principal stress.
+      const Vec3 n = {axes[0], axes[1], axes[2]}, s1 = {axes[3], axes[4], axes[5]};
+      after.cracked_flag() = 1;
+      after.set_frame(n, s1);
+      after.band_width() = band_width(n);
+      std::fill(after.law_state().begin(), after.law_state().end(), 0.0);
+    }
+    const double h = after.band_width();
+    if (!(h < max_band_width(strength)))
+    {
+      r.status = CrackBandResult::Status::band_too_wide;
+      return r;
+    }
+    solve_crack(before.cracked() ? before.law_state() : std::span<const double>(zero_history),
+                after, sigma0, strength, dt, r);
+    return r;
+  }
+
+private:
+  static constexpr std::array<double, 2> zero_history = {0, 0};
+
+  /// The crack's equilibrium and the point's stress and tangent.
+  void solve_crack(std::span<const double> law_old, const CrackState<double>& state,
+                   const Voigt& sigma0, double strength, double dt, CrackBandResult& r) const
+  {
+    const Vec3 n = state.normal(), s1 = state.tangent();
+    const Vec3 s2 = {n[1] * s1[2] - n[2] * s1[1], n[2] * s1[0] - n[0] * s1[2],
+                     n[0] * s1[1] - n[1] * s1[0]};
+    const Mat3 R = {n[0], n[1], n[2], s1[0], s1[1], s1[2], s2[0], s2[1], s2[2]};
+    const double h = state.band_width();
+    const laws::CamanhoDavila law = cohesive_law(h, strength);
+
+    // C P (6 x 3, column k: the stress of a unit opening along e_k over a
+    // unit band) and A / h = P^T C P / h.
+    std::array<Voigt, 3> CP;
+    Mat3 A_h{};
+    for (int k = 0; k < 3; ++k)
+    {
+      Vec3 e{};
+      e[k] = 1;
+      CP[k] = multiply(_C, band_strain(e, n));
+      const Vec3 a = traction(CP[k], n);
+      for (int i = 0; i < 3; ++i)
+        A_h[3 * i + k] = a[i] / h;
+    }
+    const Vec3 s0 = traction(sigma0, n);
+    std::span<double> law_now = state.law_state();
+
+    // Residual r(w) = R^T t(R w) + A w / h - s0 and its Jacobian.
+    laws::LawResult cohesive;
+    const auto residual = [&](const Vec3& w, Vec3& res)
+    {
+      cohesive = law.update(law_old, rotate(R, w), law_now, dt);
+      const Vec3 t = rotate_back(R, cohesive.t);
+      double norm = 0;
+      for (int i = 0; i < 3; ++i)
+      {
+        res[i] = t[i] - s0[i];
+        for (int k = 0; k < 3; ++k)
+          res[i] += A_h[3 * i + k] * w[k];
+        norm = std::max(norm, std::abs(res[i]));
+      }
+      return norm;
+    };
+    const auto jacobian = [&]()
+    {
+      Mat3 J = A_h;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b)
+              J[3 * i + j] += R[3 * a + i] * cohesive.D[3 * a + b] * R[3 * b + j];
+      return J;
+    };
+
+    // Start from the secant of the committed damage (exact if the crack
+    // unloads or stays closed).
+    const laws::DamageHistory<const double> history(law_old);
+    const double g = (1 - history.damage()) * law.k();
+    Mat3 K0 = A_h;
+    for (int i = 0; i < 3; ++i)
+      K0[4 * i] += g;
+    Vec3 w{};
+    if (!solve3(K0, s0, w))
+    {
+      r.status = CrackBandResult::Status::not_converged;
+      return;
+    }
+    // Converged when the traction balance holds to 1e-10 f_t, or to the
+    // round-off of the trial traction s0 (which grows with the opening).
+    const double tol = std::max(1e-10 * strength * _env.f_t,
+                                1e-14 * (std::abs(s0[0]) + std::abs(s0[1]) + std::abs(s0[2])));
+    Vec3 res;
+    double norm = residual(w, res);
+    for (int it = 0; it < 60 && norm > tol; ++it)
+    {
+      const Mat3 J = jacobian();
+      Vec3 dw;
+      if (!solve3(J, {-res[0], -res[1], -res[2]}, dw))
+        break;
+      // Backtracking on the largest residual component: the cohesive law is
+      // only piecewise smooth (loading, unloading, closure).
+      double alpha = 1;
+      Vec3 trial{}, trial_res{};
+      double trial_norm = INFINITY;
+      for (int cut = 0; cut < 30; ++cut, alpha *= 0.5)
+      {
+        for (int i = 0; i < 3; ++i)
+          trial[i] = w[i] + alpha * dw[i];
+        trial_norm = residual(trial, trial_res);
+        if (trial_norm < norm)
+          break;
+      }
+      if (!(trial_norm < norm))
+        break;
+      w = trial;
+      res = trial_res;
+      norm = trial_norm;
+    }
+    norm = residual(w, res); // the state and tangent of the final w
+    if (!(norm <= tol) || cohesive.status != laws::LawStatus::ok)
+    {
+      r.status = CrackBandResult::Status::not_converged;
+      return;
+    }
+
+    // sigma = C (epsilon - P w / h) and the consistent tangent.
+    r.stress = sigma0;
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < 6; ++i)
+        r.stress[i] -= CP[k][i] * w[k] / h;
+    const Mat3 J = jacobian();
+    std::array<Vec3, 3> Jinv; // columns
+    for (int k = 0; k < 3; ++k)
+    {
+      Vec3 e{};
+      e[k] = 1;
+      if (!solve3(J, e, Jinv[k]))
+      {
+        r.status = CrackBandResult::Status::not_converged;
+        return;
+      }
+    }
+    r.tangent = _C;
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < 6; ++j)
+      {
+        double correction = 0;
+        for (int k = 0; k < 3; ++k)
+          for (int l = 0; l < 3; ++l)
+            correction += CP[k][i] * Jinv[l][k] * CP[l][j];
+        r.tangent[6 * i + j] -= correction / h;
+      }
+    r.opening = rotate(R, w);
+    r.damage = laws::DamageHistory<double>(law_now).damage();
+    // Without viscosity the energy dissipated is a function of the history
+    // alone, exact whatever the step; the law's own estimate is second order
+    // in the step, and a crack's first step overshoots its w0 = f_t / k_p (a
+    // fraction of a micrometre) many times.
+    r.dissipation = (_eta > 0 ? cohesive.dissipation
+                              : dissipated(law, laws::DamageHistory<double>(law_now).kappa()) -
+                                    dissipated(law, history.kappa())) /
+                    h;
+  }
+
+  /// The energy per unit crack area a crack has dissipated when its history
+  /// is kappa [N/mm]: the work along the envelope less the energy its
+  /// secant unloading would give back, 1/2 f_t w0 + int sigma - 1/2 sigma(kappa) kappa.
+  double dissipated(const laws::CamanhoDavila& law, double kappa) const
+  {
+    if (kappa <= law.w0())
+      return 0;
+    const laws::Envelope e = law.envelope();
+    return 0.5 * e.f_t * law.w0() + e.work(kappa, law.w0()) -
+           0.5 * e.evaluate(kappa, law.w0()).sigma * kappa;
+  }
+
+  static Vec3 rotate(const Mat3& R, const Vec3& v)
+  {
+    return {R[0] * v[0] + R[1] * v[1] + R[2] * v[2], R[3] * v[0] + R[4] * v[1] + R[5] * v[2],
+            R[6] * v[0] + R[7] * v[1] + R[8] * v[2]};
+  }
+  static Vec3 rotate_back(const Mat3& R, const Vec3& v)
+  {
+    return {R[0] * v[0] + R[3] * v[1] + R[6] * v[2], R[1] * v[0] + R[4] * v[1] + R[7] * v[2],
+            R[2] * v[0] + R[5] * v[1] + R[8] * v[2]};
+  }
+
+  Voigt66 _C;
+  std::array<double, 2> _lame; ///< lambda, mu [MPa]
+  laws::Envelope _env;
+  double _eta;
+  double _penalty_factor;
+};
+} // namespace pushout::bulk
