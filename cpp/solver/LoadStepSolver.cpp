@@ -120,7 +120,15 @@ SolveReport LoadStepSolver::solve(Vec x)
   Vec xp = to_problem(x);
   SolveReport r = _newton->solve(xp);
   if (r.converged)
+  {
     from_problem(x);
+    if (!finite(x)) // the bulk recovered from the jumps
+    {
+      r.converged = false;
+      r.reason = "DIVERGED_NONFINITE_SOLUTION (the displacement recovered from the jumps is not a "
+                 "number)";
+    }
+  }
   return r;
 }
 
