@@ -1,5 +1,6 @@
 #include "Corrosion.h"
 #include "../common/mpi_errors.h"
+#include "NonFinite.h"
 #include <algorithm>
 #include <iomanip>
 #include <iostream>
@@ -60,6 +61,8 @@ void Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iterati
   const double crack_width = widths.empty() ? 0.0 : *std::max_element(widths.begin(), widths.end());
   std::vector<double> values = {x, p, crack_width};
   values.insert(values.end(), widths.begin(), widths.end());
+  refuse_non_finite(values, {"penetration_mm", "p_MPa", "crack_width_mm"},
+                    "corrosion step " + std::to_string(step), _comm);
   values.insert(values.end(), {double(iterations), double(cuts), _report.seconds()});
   mpi::collectively(_comm,
                     [&]

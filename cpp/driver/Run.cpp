@@ -99,10 +99,12 @@ Simulation::Simulation(const Scene& scene, const RunOptions& opt, RunReport& rep
   _model = std::make_unique<model::Model>(opt.comm, _data, scene);
   _equilibrium = std::make_unique<solver::Equilibrium>(*_model);
   _solver = solver::LoadStepSolver::from_scene(*_equilibrium, scene);
+  _solver->set_talk(report.talk());
   describe_model(scene, _data, *_model, *_solver, report);
   make_scenario(scene, _data, *_model)->apply_load(0.0, *_equilibrium); // step 0's constraints
   _solver->prepare();                                                   // the condensation, if any
   summary.condensed_dofs = _solver->condensed_size();
+  summary.condensation_asymmetry = _solver->condensation_asymmetry();
   summary.setup_s = report.seconds() - t0;
   _set_up = summary;
   test_failure_at_setup(opt.comm);
@@ -141,6 +143,7 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, RunReport
     summary.cells = _set_up.cells;
     summary.interface_pairs = _set_up.interface_pairs;
     summary.condensed_dofs = _set_up.condensed_dofs;
+    summary.condensation_asymmetry = _set_up.condensation_asymmetry;
     summary.setup_reused = true;
     _model->set_laws(scene);
     _solver->restart();

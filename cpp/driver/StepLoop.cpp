@@ -3,6 +3,7 @@
 #include "../common/mpi_errors.h"
 #include "../common/petsc_check.h"
 #include "../solver/PathFollower.h"
+#include "NonFinite.h"
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -120,21 +121,29 @@ void StepLoop::time_linear_solve()
 
 bool StepLoop::run(Control control)
 {
-  // Step 0 and the corrosion stage end with the push's start recorded
-  // (curve.csv row 0) before their last commit.
-  if (!initial_step())
-    return false;
-  if (_corrosion.active() &&
-      !(control == Control::dissipation ? corrode_by_dissipation() : corrode()))
-    return false;
-  switch (control)
+  try
   {
-  case Control::arc_length:
-    return path_following();
-  case Control::dissipation:
-    return push_by_dissipation();
-  default:
-    return push_by_displacement();
+    // Step 0 and the corrosion stage end with the push's start recorded
+    // (curve.csv row 0) before their last commit.
+    if (!initial_step())
+      return false;
+    if (_corrosion.active() &&
+        !(control == Control::dissipation ? corrode_by_dissipation() : corrode()))
+      return false;
+    switch (control)
+    {
+    case Control::arc_length:
+      return path_following();
+    case Control::dissipation:
+      return push_by_dissipation();
+    default:
+      return push_by_displacement();
+    }
+  }
+  catch (const NonFiniteResult& e) // thrown on every process alike
+  {
+    _summary.message = std::string(e.what()) + "; stopped (not written)";
+    return false;
   }
 }
 

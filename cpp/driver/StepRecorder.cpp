@@ -1,6 +1,7 @@
 #include "StepRecorder.h"
 #include "../common/Interrupt.h"
 #include "../common/mpi_errors.h"
+#include "NonFinite.h"
 #include <iomanip>
 #include <iostream>
 
@@ -41,6 +42,8 @@ void StepRecorder::record(Vec x, int iterations, int cuts, int step, int steps)
     const solver::ReadView r(_reactions), xa(x);
     values = _scenario.row(r.span(), xa.span(), _equilibrium.model());
   }
+  refuse_non_finite(values, _scenario.columns(), "step " + std::to_string(step),
+                    _equilibrium.model().comm());
   const std::string line = _scenario.progress(values);
   values.insert(values.end(), {double(iterations), double(cuts), _report.seconds()});
   mpi::collectively(_equilibrium.model().comm(),

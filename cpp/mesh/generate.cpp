@@ -5,6 +5,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <dlfcn.h>
 #include <fstream>
@@ -118,15 +119,52 @@ MeshData mesh_with_gmsh(const std::filesystem::path& geo,
   return m;
 }
 
-/// The cache file: a header line, the counts, then the arrays as they are
-/// in memory (the cache is this machine's).
-constexpr std::string_view cache_header = "pushout mesh cache 1\n";
+/// The cache file: a header line (the format's version), the hash of what
+/// made the mesh, the counts, the arrays as they are in memory (the cache is
+/// this machine's), then the checksum of counts and arrays. A file that
+/// fails any check is meshed again.
+constexpr std::string_view cache_header = "pushout mesh cache 2\n";
 
-void write_cached(const std::filesystem::path& path, const MeshData& m)
+/// The version of what the mesher makes of a .geo file and its constants:
+/// raise it when gmsh_mesher.cpp (or what it is given) changes the mesh, and
+/// every cached mesh is made again.
+constexpr std::uint64_t mesher_version = 1;
+
+/// FNV-1a, 64 bits: the checksum of the cache's content and of the mesher's
+/// inputs (a hash that is the same in every build, unlike std::hash).
+class Fnv1a
+{
+public:
+  void add(const void* data, std::size_t bytes)
+  {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < bytes; ++i)
+      _h = (_h ^ p[i]) * 0x100000001b3ULL;
+  }
+  std::uint64_t value() const { return _h; }
+
+private:
+  std::uint64_t _h = 0xcbf29ce484222325ULL;
+};
+
+/// The checksum of a mesh's counts and arrays.
+std::uint64_t content_checksum(const std::uint64_t (&counts)[2], const MeshData& m)
+{
+  Fnv1a h;
+  h.add(counts, sizeof(counts));
+  h.add(m.x.data(), m.x.size() * sizeof(double));
+  h.add(m.cells.data(), m.cells.size() * sizeof(std::int64_t));
+  h.add(m.material.data(), m.material.size() * sizeof(std::int32_t));
+  return h.value();
+}
+
+void write_cached(const std::filesystem::path& path, const MeshData& m, std::uint64_t inputs)
 {
   std::ofstream out(path, std::ios::binary);
   const std::uint64_t counts[2] = {m.num_nodes(), m.num_cells()};
+  const std::uint64_t checksum = content_checksum(counts, m);
   out.write(cache_header.data(), std::streamsize(cache_header.size()));
+  out.write(reinterpret_cast<const char*>(&inputs), sizeof(inputs));
   out.write(reinterpret_cast<const char*>(counts), sizeof(counts));
   out.write(reinterpret_cast<const char*>(m.x.data()),
             std::streamsize(m.x.size() * sizeof(double)));
@@ -134,29 +172,46 @@ void write_cached(const std::filesystem::path& path, const MeshData& m)
             std::streamsize(m.cells.size() * sizeof(std::int64_t)));
   out.write(reinterpret_cast<const char*>(m.material.data()),
             std::streamsize(m.material.size() * sizeof(std::int32_t)));
+  out.write(reinterpret_cast<const char*>(&checksum), sizeof(checksum));
   if (!out)
     throw std::runtime_error("cannot write the mesh cache file " + path.string());
 }
 
-/// The cached mesh, or false if the file is not one (then it is meshed again).
-bool read_cached(const std::filesystem::path& path, MeshData& m)
+/// The cached mesh made from `inputs` (the hash of the mesher's inputs),
+/// or false with the reason in `why` if the file is not one (then it is
+/// meshed again).
+bool read_cached(const std::filesystem::path& path, std::uint64_t inputs, MeshData& m,
+                 std::string& why)
 {
   std::ifstream in(path, std::ios::binary);
   std::string header(cache_header.size(), '\0');
-  std::uint64_t counts[2] = {0, 0};
+  std::uint64_t stored_inputs = 0, counts[2] = {0, 0}, checksum = 0;
   in.read(header.data(), std::streamsize(header.size()));
+  in.read(reinterpret_cast<char*>(&stored_inputs), sizeof(stored_inputs));
   in.read(reinterpret_cast<char*>(counts), sizeof(counts));
   if (!in || header != cache_header)
+  {
+    why = "not a mesh of this version of pushout";
     return false;
+  }
+  if (stored_inputs != inputs)
+  {
+    why = "made by another mesher version or from other inputs";
+    return false;
+  }
   // The counts must account for the file's size exactly (a damaged header
   // is not an allocation of 100 GB).
   std::error_code ec;
   const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
-  const double expected = double(cache_header.size() + sizeof(counts)) +
-                          double(counts[0]) * 3 * sizeof(double) +
-                          double(counts[1]) * (8 * sizeof(std::int64_t) + sizeof(std::int32_t));
+  const double expected =
+      double(cache_header.size() + sizeof(stored_inputs) + sizeof(counts) + sizeof(checksum)) +
+      double(counts[0]) * 3 * sizeof(double) +
+      double(counts[1]) * (8 * sizeof(std::int64_t) + sizeof(std::int32_t));
   if (ec || double(bytes) != expected)
+  {
+    why = "its size does not match its counts (cut short?)";
     return false;
+  }
   m.x.resize(3 * counts[0]);
   m.cells.resize(8 * counts[1]);
   m.material.resize(counts[1]);
@@ -165,11 +220,26 @@ bool read_cached(const std::filesystem::path& path, MeshData& m)
           std::streamsize(m.cells.size() * sizeof(std::int64_t)));
   in.read(reinterpret_cast<char*>(m.material.data()),
           std::streamsize(m.material.size() * sizeof(std::int32_t)));
+  in.read(reinterpret_cast<char*>(&checksum), sizeof(checksum));
   if (!in || in.peek() != std::ifstream::traits_type::eof())
+  {
+    why = "it cannot be read whole";
     return false;
+  }
+  if (checksum != content_checksum(counts, m))
+  {
+    why = "its checksum does not match its content (damaged)";
+    return false;
+  }
   const std::int64_t n = std::int64_t(counts[0]);
-  return std::all_of(m.cells.begin(), m.cells.end(),
-                     [n](std::int64_t v) { return v >= 0 && v < n; });
+  if (!std::all_of(m.cells.begin(), m.cells.end(),
+                   [n](std::int64_t v) { return v >= 0 && v < n; }) ||
+      !std::all_of(m.x.begin(), m.x.end(), [](double v) { return std::isfinite(v); }))
+  {
+    why = "its cells or coordinates are out of range";
+    return false;
+  }
+  return true;
 }
 } // namespace
 
@@ -246,17 +316,24 @@ MeshData generate_here(const Scene& scene, const std::filesystem::path& cache_di
 {
   const auto [geo, constants] = geo_for(scene);
   std::ostringstream key;
-  key << read_file(geo);
+  key << "mesher " << mesher_version << ";" << read_file(geo);
   for (const auto& [name, value] : constants)
     key << name << "=" << std::setprecision(17) << value << ";";
+  Fnv1a inputs_hash;
+  inputs_hash.add(key.str().data(), key.str().size());
+  const std::uint64_t inputs = inputs_hash.value();
   std::ostringstream hex;
-  hex << std::hex << std::hash<std::string>{}(key.str());
+  hex << std::hex << std::setw(16) << std::setfill('0') << inputs;
   const std::filesystem::path cached =
       cache_dir / (geo.stem().string() + "-" + hex.str() + std::string(cache_extension));
 
   MeshData m;
   const double limit_mb = cache_limit_mb();
-  reused = limit_mb > 0 && std::filesystem::exists(cached) && read_cached(cached, m);
+  std::string why;
+  reused = limit_mb > 0 && std::filesystem::exists(cached) && read_cached(cached, inputs, m, why);
+  if (!why.empty())
+    std::cerr << "pushout: note: the cached mesh " << cached.string() << " is not used (" << why
+              << "); meshing again" << std::endl;
   if (reused)
   {
     // Marks it used: the cache forgets the least recently used first.
@@ -277,7 +354,7 @@ MeshData generate_here(const Scene& scene, const std::filesystem::path& cache_di
       try
       {
         std::filesystem::create_directories(cache_dir);
-        write_cached(tmp, m);
+        write_cached(tmp, m, inputs);
         std::filesystem::rename(tmp, cached);
         prune_cache(cache_dir, limit_mb, cached);
       }

@@ -4,6 +4,7 @@
 // the run agrees on it (common/mpi_errors.h).
 #pragma once
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -31,8 +32,14 @@ public:
       throw std::runtime_error("cannot write " + file.string());
   }
 
+  /// Writes a converged step's row; refuses a value that is not finite (a
+  /// run stops before it writes one: driver/NonFinite.h).
   void row(int step, const std::vector<double>& values)
   {
+    for (double v : values)
+      if (!std::isfinite(v))
+        throw std::runtime_error("refusing to write a non-finite value to " + _file.string() +
+                                 " as step " + std::to_string(step) + " of the curve");
     _out << step;
     for (double v : values)
       _out << "," << v;

@@ -24,6 +24,7 @@ void Summary::write(const std::filesystem::path& file) const
       {"model_type", model_type},
       {"symmetry", symmetry},
       {"condensed_dofs", condensed_dofs},
+      {"condensation_asymmetry", condensation_asymmetry},
       {"steps", steps},
       {"corrosion_steps", corrosion_steps},
       {"dissipation_steps", dissipation_steps},

@@ -48,6 +48,10 @@ struct Summary
   std::string symmetry = "full"; ///< quarter: the model is a quarter of the specimen
   /// Size of the condensed system Newton ran on (0: the whole model).
   std::int64_t condensed_dofs = 0;
+  /// max|C - C^T| / max|C| of the condensed flexibility (the round-off of
+  /// its factorisation; 0: not condensed), also where it was not trusted
+  /// and the whole model ran instead.
+  double condensation_asymmetry = 0;
   /// A crack plane ([[crack]]) at the start of the push (after the thermal
   /// step and the corrosion stage).
   struct Crack

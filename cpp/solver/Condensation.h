@@ -95,6 +95,12 @@ public:
   Condensation(const Condensation&) = delete;
   Condensation& operator=(const Condensation&) = delete;
 
+  /// Why C is not accurate enough to solve on (its round-off asymmetry
+  /// above trusted_asymmetry, SymmetricMatrix.h), or "" if it is.
+  const std::string& untrusted() const { return _untrusted; }
+  /// max|C - C^T| / max|C| as computed, before C was symmetrised.
+  double asymmetry() const { return _asymmetry; }
+
   /// Whether GMRES applies C and the lagged preconditioner's LU in single
   /// precision (SinglePrecision.h; the default) or in double. Set before
   /// the first solve.
@@ -168,6 +174,8 @@ private:
   std::vector<double> _load_c;                 ///< coefficients of the current b on the basis
   double _eps = 0;                             ///< J0's joint stiffness [N/mm]
   double _k = 1;                               ///< residual scale [N/mm]
+  std::string _untrusted;                      ///< untrusted()
+  double _asymmetry = 0;                       ///< asymmetry()
   double _C_norm = -1;                         ///< a bound of ||C||_2, once needed [mm/N]
   Mat _J0 = nullptr, _factor = nullptr;
   Mat _Z = nullptr;                  ///< Z on the joint dofs (_gamma), dense

@@ -1,6 +1,7 @@
 #include "LoadStepSolver.h"
 #include "../common/petsc_check.h"
 #include "../scene/SceneError.h"
+#include <iostream>
 
 namespace pushout::solver
 {
@@ -36,6 +37,7 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::from_scene(Equilibrium& eq, cons
       eq, condense, pc, int(scene.integer("solver.refactor_iterations")), description);
   solver->set_first_tangent(scene.string("solver.first_tangent") == "converged");
   solver->_single_precision = scene.string("solver.precision") == "mixed";
+  solver->_condense_required = mode == "on";
   return solver;
 }
 
@@ -64,6 +66,23 @@ void LoadStepSolver::update()
   if (_x)
     check(VecDestroy(&_x), "VecDestroy");
   _condensation = std::make_unique<Condensation>(_eq);
+  _asymmetry = _condensation->asymmetry();
+  if (const std::string why = _condensation->untrusted(); !why.empty())
+  {
+    // "on" asked for the condensed system; "auto" never fails where the
+    // whole model runs.
+    if (_condense_required)
+      throw std::runtime_error("condensation: " + why +
+                               "; solver.condensation = \"off\" (or \"auto\") solves the "
+                               "whole model");
+    ++_retired_factorizations;
+    _condensation.reset();
+    _condense = false;
+    _description = "the whole model (not condensed: " + why + ")";
+    if (_talk)
+      std::cout << "pushout: " << why << "; Newton on the whole model" << std::endl;
+    return;
+  }
   _condensation->set_single_precision(_single_precision);
   _newton = std::make_unique<NewtonSolver>(*_condensation, _pc, _refactor_iterations);
   _newton->set_first_tangent(_first_tangent_converged);
@@ -120,7 +139,15 @@ SolveReport LoadStepSolver::solve(Vec x)
   Vec xp = to_problem(x);
   SolveReport r = _newton->solve(xp);
   if (r.converged)
+  {
     from_problem(x);
+    if (!finite(x)) // the bulk recovered from the jumps
+    {
+      r.converged = false;
+      r.reason = "DIVERGED_NONFINITE_SOLUTION (the displacement recovered from the jumps is not a "
+                 "number)";
+    }
+  }
   return r;
 }
 

@@ -52,6 +52,10 @@ public:
       _newton->forget_tangent();
   }
 
+  /// Whether a change of solver (a condensation not accurate enough, the
+  /// whole model instead) is said on stdout.
+  void set_talk(bool talk) { _talk = talk; }
+
   /// Builds what the current constraints need before the first solve (the
   /// condensation, which takes a while on a large interface).
   void prepare() { update(); }
@@ -88,6 +92,9 @@ public:
   int refactor_iterations() const { return _refactor_iterations; }
   /// Size of the condensed system (0 if not condensed).
   std::int64_t condensed_size() const { return _condensation ? _condensation->size() : 0; }
+  /// The relative asymmetry of the last condensed flexibility built (0 if
+  /// none), kept where it was not trusted (Condensation::untrusted).
+  double condensation_asymmetry() const { return _asymmetry; }
   /// Numeric factorisations so far (whole, condensed and J0 factors).
   int factorizations() const;
   /// The next solve starts as the first solve of a run: its preconditioner
@@ -112,7 +119,10 @@ private:
   NewtonSolver::Preconditioner _pc;
   int _refactor_iterations;
   bool _first_tangent_converged = true;
-  bool _single_precision = true; ///< solver.precision = "mixed" (Condensation)
+  bool _single_precision = true;   ///< solver.precision = "mixed" (Condensation)
+  bool _condense_required = false; ///< solver.condensation = "on"
+  bool _talk = false;
+  double _asymmetry = 0; ///< condensation_asymmetry()
   std::string _description;
   bool _bulk_needed = true;
   NewtonSolver _whole;

@@ -5,6 +5,8 @@
 #include "Vector.h"
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <limits>
 
 namespace pushout::solver
 {
@@ -33,6 +35,27 @@ PetscErrorCode form_function(SNES snes, Vec x, Vec F, void* ctx)
       });
 }
 
+/// Test hook, not a scene key (tests/e2e/test_no_silent_result.py): with
+/// PUSHOUT_TEST_NONFINITE_FROM=n, the n-th converged Newton solve of the
+/// process and every later one leave a NaN in their solution, as a solve
+/// whose result is not a number would.
+void test_non_finite(Vec x)
+{
+  static const char* from = std::getenv("PUSHOUT_TEST_NONFINITE_FROM");
+  static long solves = 0;
+  if (!from || ++solves < std::atol(from))
+    return;
+  PetscInt begin = 0, end = 0;
+  check(VecGetOwnershipRange(x, &begin, &end), "VecGetOwnershipRange");
+  if (end > begin)
+  {
+    check(VecSetValue(x, begin, std::numeric_limits<double>::quiet_NaN(), INSERT_VALUES),
+          "VecSetValue");
+  }
+  check(VecAssemblyBegin(x), "VecAssemblyBegin");
+  check(VecAssemblyEnd(x), "VecAssemblyEnd");
+}
+
 void set_default(const char* name, const char* value)
 {
   PetscBool set = PETSC_FALSE;
@@ -59,6 +82,14 @@ std::string factor_failure_text(PCFailedReason reason)
   }
 }
 } // namespace
+
+bool finite(Vec x)
+{
+  // max |x_i| is NaN or inf if any entry is, on every process alike.
+  PetscReal largest = 0;
+  check(VecNorm(x, NORM_INFINITY, &largest), "VecNorm");
+  return std::isfinite(largest);
+}
 
 bool zero_pivot_error(PetscErrorCode code)
 {
@@ -301,6 +332,15 @@ SolveReport NewtonSolver::attempt(Vec x)
   }
   r.iterations = int(its);
   r.reason = SNESConvergedReasons[reason];
+  if (r.converged)
+    test_non_finite(x);
+  if (r.converged && !finite(x))
+  {
+    // A finite residual norm does not vouch for every entry of x (a NaN
+    // where no residual entry reads it): a failed solve, cut back.
+    r.converged = _tangent_converged = false;
+    r.reason = "DIVERGED_NONFINITE_SOLUTION (a displacement or jump is not a number)";
+  }
   if (reason == SNES_DIVERGED_LINEAR_SOLVE)
   {
     KSP ksp;

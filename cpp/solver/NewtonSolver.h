@@ -118,6 +118,9 @@ private:
 /// processes, in words ("zero pivot", ...; "" if it did not). Collective.
 std::string factorization_failure(KSP ksp);
 
+/// Whether every entry of x is finite (collective).
+bool finite(Vec x);
+
 /// Whether a PETSc error code is a zero pivot of a factorisation that raises
 /// an error instead of recording a failed reason (PETSc's dense LU: the
 /// condensed systems', on one process).

@@ -1,5 +1,6 @@
 #include "PathFollower.h"
 #include "Vector.h"
+#include <cmath>
 #include <stdexcept>
 
 namespace pushout::solver
@@ -36,10 +37,19 @@ void PathFollower::set_slip_weight(double beta)
 SolveReport PathFollower::step(Vec x, double& lambda, double d_control,
                                const std::function<void(double)>& set_load, double max_dlambda)
 {
-  const SolveReport report =
-      _arc->step(_solver.to_problem(x), lambda, d_control, set_load, max_dlambda);
+  SolveReport report = _arc->step(_solver.to_problem(x), lambda, d_control, set_load, max_dlambda);
   if (report.converged)
+  {
     _solver.from_problem(x);
+    // A failed step (cut back) where the solution or the load factor is not
+    // a number, whatever the residual's norm said.
+    if (!finite(x) || !std::isfinite(lambda))
+    {
+      report.converged = false;
+      report.reason = "DIVERGED_NONFINITE_SOLUTION (the displacement or the load factor is not a "
+                      "number)";
+    }
+  }
   return report;
 }
 

@@ -1,6 +1,7 @@
 """Helpers for the whole-pipeline tests: the scene pieces they share, and
 running build/pushout (scripts/pushout_runs.py) with a failure as a test
 failure."""
+import math
 import os
 import shutil
 import sys
@@ -70,6 +71,32 @@ steps = {steps}
 beta = {beta}
 oxide_bulk = {oxide_bulk}
 """
+
+
+# Newton's tolerances (NewtonSolver::set_default_options): a step converges
+# when |F|_2 <= snes_atol [N] or <= snes_rtol |F0|_2, F0 the residual the
+# step started with.
+SNES_RTOL = 1e-10
+
+
+def newton_bound(steps, unknowns):
+    """The largest relative difference of a curve column (to its largest
+    magnitude) that two runs may show when each converged every one of
+    `steps` steps to Newton's tolerance on a system of `unknowns` (the
+    jumps, condensed, or the whole model's dofs), in whatever order their
+    processes, threads or precision summed: a residual F moves a sum of
+    nodal forces (P, a reaction, the pressure's integral) by at most
+    sqrt(unknowns) |F|_2 <= sqrt(unknowns) snes_rtol |F0|_2, and a step's
+    initial out-of-balance |F0| is at most the forces it changes (the
+    column's scale); a path-dependent law carries each step's error on to
+    the next (at most `steps` of them), and each of the two runs has its
+    own: 2 steps sqrt(unknowns) snes_rtol."""
+    return 2 * steps * math.sqrt(unknowns) * SNES_RTOL
+
+
+def solved_unknowns(s):
+    """The size of the system Newton ran on, from a summary.json."""
+    return s["condensed_dofs"] or s["dofs"]
 
 
 def out_dir(name):

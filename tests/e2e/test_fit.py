@@ -10,7 +10,9 @@
    fit.png and fit.csv are written, and the fitted scene.toml reruns to the
    fitted curve.
 2. The same fit on 2 processes (the Jacobian's runs shared by two groups)
-   gives the same values to 1e-10.
+   gives the same values to the optimizer's tolerance (fit_bound: TAO stops
+   at a gradient 1e6 below its start, not at the optimum, and the order of
+   MUMPS's and BLAS's sums moves where it stops).
 3. Bad input exits 2 with one message: no data file, a data file without
    tau_MPa, a cell that is not a number, delta not increasing, a free key
    that does not exist, one that is not a number, bounds that exclude the
@@ -28,6 +30,45 @@ COARSE = ["mesh.elements_per_quarter=4", "mesh.elements_through_thickness=2", "l
 TRUTH = {"interface.1.f_t": 3.0, "interface.1.c": 25.0, "interface.0.mu": 0.4}
 START = {"interface.1.f_t": 3.9, "interface.1.c": 17.5, "interface.0.mu": 0.52}
 MPIRUN = shutil.which("mpirun")
+
+
+def inverse(a):
+    """The inverse of a small square matrix (Gauss-Jordan, partial pivoting)."""
+    n = len(a)
+    m = [list(row) + [float(i == j) for j in range(n)] for i, row in enumerate(a)]
+    for c in range(n):
+        p = max(range(c, n), key=lambda r: abs(m[r][c]))
+        m[c], m[p] = m[p], m[c]
+        pivot = m[c][c]
+        m[c] = [v / pivot for v in m[c]]
+        for r in range(n):
+            if r != c:
+                f = m[r][c]
+                m[r] = [v - f * w for v, w in zip(m[r], m[c])]
+    return [row[n:] for row in m]
+
+
+def fit_bound(result):
+    """The largest relative difference of a fitted value that two fits
+    converged to TAO's tolerance may show. TAO (Fit.cpp) stops when the
+    gradient g of 1/2 |r|^2 in the scaled values x (each key over its start)
+    has fallen to gttol = 1e-6 of its start g0 (grtol 0; gatol 1e-12
+    MPa^2 is below both). Near the optimum x*, g = H (x - x*) with H the
+    Gauss-Newton Hessian J^T J, and g0 = H (x0 - x*) to first order, so a fit
+    stops within |x - x*| <= gttol cond(H) |x0 - x*| of it, each of the two:
+    relative to the smallest |x*_k|, twice that. H is, up to a factor, the
+    inverse of the covariance fit.json reports (standard errors and
+    correlations, scaled like x), and cond(H) <= |H|_F |H^-1|_F."""
+    keys = result["correlation"]["keys"]
+    scale = {k: abs(result["start"][k]) for k in keys}
+    se = {k: result["standard_errors"][k] / scale[k] for k in keys}
+    cov = [[result["correlation"]["matrix"][i][j] * se[a] * se[b] for j, b in enumerate(keys)]
+           for i, a in enumerate(keys)]
+    frobenius = lambda m: sum(v * v for row in m for v in row) ** 0.5  # noqa: E731
+    cond = frobenius(cov) * frobenius(inverse(cov))
+    x = {k: result["parameters"][k] / scale[k] for k in keys}
+    distance = sum((result["start"][k] / scale[k] - x[k]) ** 2 for k in keys) ** 0.5
+    return 2 * 1e-6 * cond * distance / min(abs(v) for v in x.values())
 
 
 def fit(out, data, free=tuple(START), extra=(), processes=None, start=START):
@@ -93,7 +134,9 @@ if MPIRUN:
         r2 = json.load(f)
     worst = max(abs(r2["parameters"][k] - result["parameters"][k]) / abs(result["parameters"][k])
                 for k in TRUTH)
-    check(worst < 1e-10, f"2 processes: the same values (largest relative difference {worst:.1e})")
+    tol = fit_bound(result)
+    check(worst <= tol, f"2 processes: the same values to the optimizer's tolerance (largest "
+                        f"relative difference {worst:.1e} <= {tol:.1e})")
 else:
     print("SKIPPED (MPI part): mpirun not found")
 

@@ -1,0 +1,91 @@
+"""solver.condensation = "auto" never fails where "off" runs.
+
+1. A circular slice with four crack planes (0, 90, 180, 270 degrees, the
+   default crack law), everything else default but a coarser mesh (8 elements
+   per quarter: condensed, 1 836 jumps), at steel.E = 3e5 and 2e6 MPa (moduli
+   whose condensed flexibility C a round-off threshold of 1e-9 refused on
+   some machines): exit 0, condensed, and the curve equals the whole
+   model's (solver.condensation = "off") to the bound of Newton's tolerance
+   on the two runs (common.newton_bound) plus C's own round-off (the
+   asymmetry measured, summary.json condensation_asymmetry: symmetrising
+   moves C's products by half of it, and its symmetric part carries about
+   as much).
+2. Where C is not trusted (a test hook, PUSHOUT_TEST_TRUSTED_ASYMMETRY,
+   sets a limit below the asymmetry measured), "auto" says so in one
+   progress line and solves the whole model: exit 0, not condensed, the
+   "off" curve to the same bound; "on" is an error that names the
+   asymmetry."""
+import os
+import subprocess
+
+from common import (OUT_ROOT, PUSHOUT, check, curve, newton_bound, out_dir, run, solved_unknowns,
+                    summary)
+
+scene = """
+[geometry]
+outer_shape = "circle"
+[mesh]
+elements_per_quarter = 8
+[[crack]]
+angle = 0.0
+[[crack]]
+angle = 90.0
+[[crack]]
+angle = 180.0
+[[crack]]
+angle = 270.0
+"""
+COLUMNS = ("P_N", "tau_MPa", "p_MPa", "slip_mm")
+
+
+def largest_difference(a, b):
+    """Largest difference of COLUMNS relative to each column's largest |value|."""
+    if len(a) != len(b):
+        return float("inf")
+    worst = 0.0
+    for c in COLUMNS:
+        scale = max(abs(r[c]) for r in b) or 1.0
+        worst = max(worst, max(abs(x[c] - y[c]) for x, y in zip(a, b)) / scale)
+    return worst
+
+
+def bound(a, b):
+    sa, sb = summary(a), summary(b)
+    steps = len(curve(b))  # step 0 and the load steps
+    return (newton_bound(steps, max(solved_unknowns(sa), solved_unknowns(sb)))
+            + 2 * max(sa["condensation_asymmetry"], sb["condensation_asymmetry"]))
+
+
+for E in ("3e5", "2e6"):
+    auto, off = out_dir(f"trust_auto_E{E}"), out_dir(f"trust_off_E{E}")
+    run(scene, auto, sets=[f"steel.E={E}"])
+    run(scene, off, sets=[f"steel.E={E}", "solver.condensation=off"])
+    s = summary(auto)
+    check(s["converged"] and s["condensed_dofs"] > 0,
+          f"E = {E}: auto condensed {s['condensed_dofs']} jumps, "
+          f"max|C - C^T| = {s['condensation_asymmetry']:.2e} max|C|")
+    d, tol = largest_difference(curve(auto), curve(off)), bound(auto, off)
+    check(d <= tol, f"E = {E}: the whole model's curve to {d:.1e} <= {tol:.1e}")
+
+# 2. An untrusted C: the whole model instead (auto), an error (on).
+E = "3e5"
+env = dict(os.environ, PUSHOUT_TEST_TRUSTED_ASYMMETRY="1e-30")
+fallback = out_dir("trust_fallback")
+toml = os.path.join(OUT_ROOT, "trust_auto_E3e5.toml")  # the scene run() wrote above
+p = subprocess.run([PUSHOUT, "run", toml, "--out", fallback, "--set", f"steel.E={E}",
+                    "--set", "output.plot=false"],
+                   capture_output=True, text=True, env=env, timeout=900)
+said = [line for line in p.stdout.splitlines() if "not accurate enough" in line]
+s = summary(fallback)
+check(p.returncode == 0 and s["converged"] and s["condensed_dofs"] == 0
+      and s["condensation_asymmetry"] > 0 and len(said) == 1 and "whole model" in said[0],
+      f"untrusted C, auto: exit {p.returncode}, the whole model: {said}")
+off = os.path.join(OUT_ROOT, f"trust_off_E{E}")
+d, tol = largest_difference(curve(fallback), curve(off)), bound(fallback, off)
+check(d <= tol, f"untrusted C, auto: the 'off' curve to {d:.1e} <= {tol:.1e}")
+p = subprocess.run([PUSHOUT, "run", toml, "--out", out_dir("trust_on"), "--quiet",
+                    "--set", f"steel.E={E}", "--set", "solver.condensation=on"],
+                   capture_output=True, text=True, env=env, timeout=900)
+lines = [line for line in p.stderr.splitlines() if line.startswith("pushout")]
+check(p.returncode != 0 and len(lines) == 1 and "max|C - C^T|" in lines[0],
+      f"untrusted C, on: exit {p.returncode}, {lines[0] if lines else p.stderr[-300:]}")
