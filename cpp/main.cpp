@@ -21,6 +21,7 @@
 #include "scene/SceneError.h"
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <dolfinx/common/log.h>
@@ -30,6 +31,7 @@
 #include <petscsnes.h>
 #include <petscsys.h>
 #include <petsctao.h>
+#include <set>
 #include <sstream>
 
 namespace
@@ -203,11 +205,26 @@ bool first_process()
   std::_Exit(pushout::exit_code::failure);
 }
 
-/// The options of PETSc's that nothing read, on every process alike: an
-/// option read on any process counts as read. The default solver path's
-/// options (SNES, KSP, PC, MUMPS, TAO and this program's own) count as read
-/// even where this run did not create that solver.
-std::vector<std::string> unused_petsc_options()
+/// The names of the PETSc options on the command line ("-snes_monitor"):
+/// the words that start with a dash and a letter (a negative number is a
+/// value).
+std::set<std::string> option_names(const std::vector<std::string>& words)
+{
+  std::set<std::string> names;
+  for (const std::string& w : words)
+    if (w.size() > 1 && w[0] == '-' && std::isalpha(static_cast<unsigned char>(w[1])))
+      names.insert(w);
+  return names;
+}
+
+/// The user's PETSc options (`given`, from the command line) that nothing
+/// read, on every process alike: an option read on any process counts as
+/// read. The default solver path's options (SNES, KSP, PC, MUMPS, TAO and
+/// this program's own) count as read even where this run did not create
+/// that solver. Defaults the program sets itself (solver/NewtonSolver.cpp)
+/// are not the user's: a run with -pc_type gamg never reads its
+/// -pc_factor_mat_solver_type.
+std::vector<std::string> unused_petsc_options(const std::set<std::string>& given)
 {
   using pushout::petsc::check;
   PetscInt left = 0;
@@ -271,7 +288,7 @@ std::vector<std::string> unused_petsc_options()
   MPI_Allreduce(MPI_IN_PLACE, used.data(), int(used.size()), MPI_INT, MPI_MAX, MPI_COMM_WORLD);
   std::vector<std::string> unused;
   for (std::size_t i = 0; i < candidates.size(); ++i)
-    if (!used[i])
+    if (!used[i] && given.count(candidates[i]))
       unused.push_back(candidates[i]);
   return unused;
 }
@@ -439,7 +456,7 @@ int main(int argc, char* argv[])
   // A PETSc option nothing read is most likely a typo of one (-snes_monitr).
   try
   {
-    const std::vector<std::string> unused = unused_petsc_options();
+    const std::vector<std::string> unused = unused_petsc_options(option_names(extras));
     int rank = 0;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     if (!unused.empty())

@@ -156,4 +156,11 @@ args, out = run_args("petsc_ok", GOOD_SCENE, extra=QUICK + ["-snes_monitor", "-k
                                                             "-mat_mumps_icntl_14", "50"])
 p, _ = pushout(args)
 check(p.returncode == 0, f"PETSc options of the solver pass: exit {p.returncode} {p.stderr[-300:]!r}")
+# An iterative solver leaves the program's own defaults for LU unread
+# (-pc_factor_mat_solver_type mumps): not the user's, not reported.
+args, out = run_args("petsc_gamg", GOOD_SCENE, extra=QUICK + ["-ksp_type", "gmres", "-pc_type", "gamg",
+                                                              "--set", "solver.condensation=off"])
+p, _ = pushout(args)
+check(p.returncode == 0 and "not read" not in p.stderr,
+      f"the program's own PETSc defaults are not reported: exit {p.returncode} {p.stderr[-300:]!r}")
 print("hostile inputs refused")
