@@ -3,7 +3,7 @@
 
 Prints each folder with the project folders it includes (cpp/<folder>/... or
 cpp/main.cpp), then the cycles; exits 1 if there is one. Data flows one way:
-scene -> mesh -> model -> solver -> driver -> output (DESIGN.md); laws/ and
+scene -> mesh -> model -> solver -> driver -> output (docs/architecture.md); laws/ and
 common/ include nothing but themselves. Used by the test include_graph.
 
   scripts/include_graph.py [--dot]    (--dot: Graphviz text instead)

@@ -4,7 +4,8 @@
 // unit normal from steel to concrete, s1, s2 an orthonormal tangent pair.
 // Its one update maps (committed state, jump) to (traction, consistent
 // tangent, trial state, status), purely: no side effects, no allocation, no
-// exceptions (STYLE.md 1, 3). Traction and tangent come from the same call.
+// exceptions: a failure is a status the driver acts on (cutting the step).
+// Traction and tangent come from the same call.
 #pragma once
 
 #include <array>
