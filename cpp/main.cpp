@@ -9,6 +9,7 @@
 //   pushout keys        # the scene keys, with defaults, units and docs
 //   pushout laws        # the interface laws and their parameters
 #include "common/Interrupt.h"
+#include "common/exit_codes.h"
 #include "common/mpi_errors.h"
 #include "common/mpi_start.h"
 #include "common/petsc_check.h"
@@ -17,6 +18,7 @@
 #include "driver/Run.h"
 #include "driver/Sweep.h"
 #include "mesh/generate.h"
+#include "output/OutputFiles.h"
 #include "scene/SceneError.h"
 #include <CLI/CLI.hpp>
 #include <dolfinx/common/log.h>
@@ -97,12 +99,16 @@ int run_scene(const std::string& scene_file, const std::string& out,
     // error on any one is the same error on all, printed once (rank 0).
     const Scene scene =
         mpi::collectively<SceneError>(MPI_COMM_WORLD, [&] { return load_scene(scene_file, sets); });
-    mpi::collectively<SceneError>(MPI_COMM_WORLD,
-                                  [&]
-                                  {
-                                    if (rank == 0)
-                                      probe_output_folder(out);
-                                  });
+    // The folder is this run's alone, without an earlier run's outputs
+    // (output/OutputFiles.h).
+    mpi::collectively<SceneError, output::FolderError>(MPI_COMM_WORLD,
+                                                       [&]
+                                                       {
+                                                         if (rank != 0)
+                                                           return;
+                                                         probe_output_folder(out);
+                                                         output::claim(out, {scene_file});
+                                                       });
     const driver::RunOptions options{out, pushout::mesh::default_cache_dir(), quiet, force};
     const output::Summary s = mpi::collectively<SceneError, driver::TooLarge>(
         MPI_COMM_WORLD, [&] { return driver::run(scene, options); });
@@ -111,45 +117,51 @@ int run_scene(const std::string& scene_file, const std::string& out,
       if (rank == 0)
         std::cerr << "pushout: " << s.message << "; " << out << "/curve.csv keeps them"
                   << std::endl;
-      return 128 + s.signal;
+      return exit_code::signal(s.signal);
     }
     if (!s.converged)
     {
       if (rank == 0)
         std::cerr << "pushout: error: " << s.message << "; " << out << "/curve.csv keeps the "
                   << s.steps << " converged steps" << std::endl;
-      return 3;
+      return exit_code::not_converged;
     }
     if (rank == 0 && !quiet)
       std::cout << "pushout: done in " << std::fixed << std::setprecision(2) << s.wall_s << " s, "
                 << s.newton_iterations << " Newton iterations; curve: " << out << "/curve.csv"
                 << (scene.boolean("output.plot") ? ", plot: " + out + "/curve.png" : "")
                 << std::endl;
-    return 0;
+    return exit_code::done;
   }
   catch (const driver::TooLarge& e)
   {
     if (rank == 0)
       std::cerr << "pushout: error: " << e.what() << std::endl;
-    return 2;
+    return exit_code::bad_input;
+  }
+  catch (const output::FolderError& e)
+  {
+    if (rank == 0)
+      std::cerr << "pushout: error: " << e.what() << std::endl;
+    return exit_code::bad_input;
   }
   catch (const SceneError& e)
   {
     if (rank == 0)
       std::cerr << "pushout: error in scene: " << e.what() << std::endl;
-    return 2;
+    return exit_code::bad_input;
   }
   catch (const std::exception& e)
   {
     if (rank == 0)
       std::cerr << "pushout: error: " << e.what() << std::endl;
-    return 1;
+    return exit_code::failure;
   }
   catch (const std::string& e) // gmsh reports errors this way
   {
     if (rank == 0)
       std::cerr << "pushout: error: " << e << std::endl;
-    return 1;
+    return exit_code::failure;
   }
 }
 } // namespace

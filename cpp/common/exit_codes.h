@@ -9,5 +9,8 @@ constexpr int failure = 1;       ///< anything else: an I/O error, an internal e
 constexpr int bad_input = 2;     ///< a bad scene, option or command line
 constexpr int not_converged = 3; ///< a step that cannot converge (or a non-finite result)
 /// A signal stopped the command: 128 + its number (SIGINT 130, SIGTERM 143).
-constexpr int signal(int number) { return 128 + number; }
+constexpr int signal(int number)
+{
+  return 128 + number;
+}
 } // namespace pushout::exit_code

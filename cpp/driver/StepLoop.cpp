@@ -149,6 +149,7 @@ bool StepLoop::stop_requested()
   MPI_Allreduce(&local, &global, 1, MPI_INT, MPI_MAX, _comm);
   if (global == 0)
     return false;
+  interrupt::acknowledge(); // every process stops here, by itself
   _summary.interrupted = true;
   _summary.signal = global;
   _summary.stopped_in = "load steps";
