@@ -70,6 +70,33 @@ check(os.path.exists(os.path.join(out, "sweep.csv")) and not os.path.exists(os.p
       "sweep: sweep.csv written, no sweep.png")
 check(summary(os.path.join(out, "case_020"))["interrupted"], "sweep: the stopped case says so")
 
+# A fit stopped during its fitted run (before: best/ kept a part of the
+# curve and fit.json said converged, exit 0): exit 143, no fit.json, no
+# best/. The data: a friction curve (mu 0.4) of 5 points; each run takes
+# 3000 steps, so the fitted run lasts long enough to be stopped.
+out = out_dir("interrupt_fit")
+data = os.path.join(out + "_data.csv")
+with open(data, "w") as f:
+    f.write("delta_mm,tau_MPa\n0.0,-0.42\n0.0025,0.5\n0.005,1.0\n0.0075,1.2\n0.01,1.3\n")
+fit_scene = out + ".toml"
+with open(fit_scene, "w") as f:
+    f.write("[mesh]\nelements_per_quarter = 4\nelements_through_thickness = 2\n"
+            '[[interface]]\nlaw = "friction"\nk = 1000.0\nmu = 0.4\n'
+            "[loading]\ntemperature_change = -25.0\n")
+p = subprocess.Popen([PUSHOUT, "fit", fit_scene, "--data", data, "--free", "interface.0.mu", "--out",
+                      out, "--quiet", "--set", "loading.steps=3000", "--set", "output.plot=false"],
+                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+csv = os.path.join(out, "best", "curve.csv")
+deadline = time.time() + 300
+while p.poll() is None and time.time() < deadline and (not os.path.exists(csv) or len(open(csv).readlines()) < 3):
+    time.sleep(0.02)
+check(p.poll() is None, "fit: stopped during the fitted run")
+p.send_signal(signal.SIGTERM)
+_, err = p.communicate(timeout=120)
+check(p.returncode == 143, f"fit: exit {p.returncode} (143) {err.strip()[-300:]!r}")
+check(not os.path.exists(os.path.join(out, "fit.json")), "fit: no fit.json")
+check(not os.path.exists(os.path.join(out, "best")), "fit: no best/ with a part of a curve")
+
 # A signal during meshing (gmsh cannot look at it): the run stops within a
 # few seconds, with the same exit code, and summary.json says where. The
 # mesh is large (gmsh needs about a minute) and never cached.
