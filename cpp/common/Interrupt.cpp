@@ -26,9 +26,9 @@ extern "C" void on_signal(int sig)
 
 /// The longest grace of any phase [s] (infinite: none): under mpirun, whose
 /// SIGTERM to the processes is followed by a SIGKILL
-/// (odls_base_sigkill_timeout, default 1 s), a phase that has not stopped
-/// by itself well before that is ended by the watcher, which still has time
-/// to write summary.json.
+/// odls_base_sigkill_timeout later (default 1 s), a phase that has not
+/// stopped by itself well before that is ended by the watcher, which still
+/// has time to write summary.json.
 double grace_limit_s()
 {
   if (!std::getenv("OMPI_COMM_WORLD_SIZE")) // not started by mpirun
@@ -36,7 +36,7 @@ double grace_limit_s()
   double timeout_s = 1; // Open MPI's default
   if (const char* t = std::getenv("OMPI_MCA_odls_base_sigkill_timeout"))
     timeout_s = std::max(std::atof(t), 0.0);
-  return std::max(0.1, std::min(0.5 * timeout_s, timeout_s - 0.5));
+  return std::max(0.1, timeout_s - std::max(0.5, 0.2 * timeout_s));
 }
 
 /// What the watcher reads, guarded by `mutex`. Never destroyed, so the

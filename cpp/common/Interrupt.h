@@ -13,9 +13,9 @@
 // Under mpirun every process has its own handler and watcher; the step
 // loop stops where all processes agree (an MPI_Allreduce of the signal at
 // each step). mpirun follows its SIGTERM to the processes with a SIGKILL
-// after odls_base_sigkill_timeout (1 s unless set): there the graces are
-// shortened to fit in it (at most half of it), so that summary.json is
-// written before the SIGKILL.
+// odls_base_sigkill_timeout later (1 s unless set): there the graces are
+// shortened to end before it (by 0.5 s or a fifth of it), so that
+// summary.json is written before the SIGKILL.
 #pragma once
 
 #include <functional>

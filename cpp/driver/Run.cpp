@@ -219,8 +219,9 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
                             auto simulation = std::make_unique<Simulation>(scene, opt, report);
                             simulation->load_steps(scene, opt, report);
                             const interrupt::Phase writing("writing outputs", -1); // never forced
+                            const output::Summary s = report.finish();
                             simulation.reset();
-                            return report.finish();
+                            return s;
                           });
 }
 

@@ -4,6 +4,7 @@
 #include <iostream>
 #include <mpi.h>
 #include <sys/resource.h>
+#include <thread>
 
 namespace pushout::driver
 {
@@ -41,7 +42,12 @@ RunReport::RunReport(const Scene& scene, const std::filesystem::path& out, bool 
             s.wall_s = seconds();
             s.peak_memory_mb = peak_memory_here_mb();
             if (_rank != 0)
+            {
+              // mpirun ends every process as soon as one has ended with an
+              // error: rank 0, which writes summary.json, ends first.
+              std::this_thread::sleep_for(std::chrono::milliseconds(300));
               return;
+            }
             try
             {
               s.write(_out / "summary.json");
@@ -102,6 +108,23 @@ output::Summary RunReport::finish()
   if (_rank == 0)
     _summary.write(_out / "summary.json");
   return _summary;
+}
+
+void RunReport::save_stop() noexcept
+{
+  publish();
+  if (_rank != 0)
+    return;
+  try
+  {
+    output::Summary s = _summary;
+    s.wall_s = seconds();
+    s.peak_memory_mb = peak_memory_here_mb();
+    s.write(_out / "summary.json");
+  }
+  catch (...) // finish() writes it again, and reports an error there
+  {
+  }
 }
 
 void RunReport::fail(const std::string& message) noexcept

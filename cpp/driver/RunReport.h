@@ -45,6 +45,11 @@ public:
   /// run draws no plot. Collective. Returns the summary.
   output::Summary finish();
 
+  /// The run stops (a signal; the summary says so): summary.json now, as it
+  /// is (rank 0), before the outputs are finished, which under mpirun may
+  /// be cut short by its SIGKILL. Not collective.
+  void save_stop() noexcept;
+
   /// The end of a run that failed with `message` (an error, already agreed
   /// on): summary.json says so (rank 0), if it can be written. Not
   /// collective.

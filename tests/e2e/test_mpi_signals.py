@@ -1,6 +1,6 @@
 """Stopping a run under mpirun the ways users do: Ctrl-C (SIGINT to the
 whole process group), `kill -TERM <mpirun pid>` (mpirun sends SIGTERM to
-every process, then SIGKILL after odls_base_sigkill_timeout, 1 s) and
+every process, then SIGKILL odls_base_sigkill_timeout later, 1 s) and
 SIGTERM to every process (Slurm's scancel). Every way, summary.json says
 interrupted, by which signal, in the load steps, and curve.csv keeps whole
 rows, at least as many as summary.json counts. The exit code is mpirun's
@@ -35,11 +35,12 @@ def ranks(mpirun_pid):
     return [int(l.split()[0]) for l in p.stdout.splitlines() if "pushout" in l]
 
 
-def stop(name, how):
+def stop(name, how, mca=(), env=None):
     out = os.path.join(ROOT, name)
-    p = subprocess.Popen(["mpirun", "--allow-run-as-root", "--oversubscribe", "-n", "2", PUSHOUT,
-                          "run", scene, "--out", out, "--quiet"], stdout=subprocess.PIPE,
-                         stderr=subprocess.PIPE, text=True, start_new_session=True)
+    p = subprocess.Popen(["mpirun", "--allow-run-as-root", "--oversubscribe", "-n", "2"] + list(mca)
+                         + [PUSHOUT, "run", scene, "--out", out, "--quiet"], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True, start_new_session=True,
+                         env=dict(os.environ, **(env or {})))
     csv = os.path.join(out, "curve.csv")
     deadline = time.time() + 180
     while time.time() < deadline and (not os.path.exists(csv) or len(open(csv).readlines()) < 4):
@@ -62,6 +63,7 @@ def stop(name, how):
     rows = open(csv).read().splitlines()
     check(all(len(r.split(",")) == len(rows[0].split(",")) for r in rows) and len(rows) >= s["steps"] + 1,
           f"{name}: curve.csv has {len(rows) - 1} whole rows ({s['steps']} steps in summary.json)")
+    return s
 
 
 def ctrl_c(p):
@@ -85,3 +87,15 @@ def term_every_process(p):
 stop("ctrl_c", ctrl_c)
 stop("term_mpirun", term_mpirun)
 stop("term_every_process", term_every_process)
+
+# Load steps that do not look at signals for 2 s (a test hook standing for
+# a long factorisation): mpirun's SIGKILL comes 1 s after its SIGTERM, so
+# the processes end where they are after 0.5 s, summary.json written first.
+# With more time from mpirun (odls_base_sigkill_timeout 4: the SIGTERM 4 s
+# after mpirun's, the SIGKILL 4 s later) the run stops after the step, by
+# itself.
+slow = {"PUSHOUT_TEST_SLOW_STEP_S": "2"}
+s = stop("slow_step", term_mpirun, env=slow)
+check("during load steps" in s["message"], f"slow_step: ended where it was: {s['message']!r}")
+s = stop("slow_step_sigkill_4", term_mpirun, ["--mca", "odls_base_sigkill_timeout", "4"], slow)
+check("during" not in s["message"], f"slow_step_sigkill_4: stopped by itself: {s['message']!r}")
