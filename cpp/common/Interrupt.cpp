@@ -24,6 +24,14 @@ extern "C" void on_signal(int sig)
   signal_count = signal_count + 1;
 }
 
+/// Whether SIGHUP was ignored when the process started (`nohup`): read
+/// before main(), since PetscInitialize installs its own handler.
+const bool hangup_ignored = []
+{
+  struct sigaction action;
+  return sigaction(SIGHUP, nullptr, &action) == 0 && action.sa_handler == SIG_IGN;
+}();
+
 /// The longest grace of any phase [s] (infinite: none): under mpirun, whose
 /// SIGTERM to the processes is followed by a SIGKILL
 /// odls_base_sigkill_timeout later (default 1 s), a phase that has not
@@ -92,7 +100,9 @@ void install()
 {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
-  std::signal(SIGHUP, on_signal); // a closed terminal or ssh session: a clean stop
+  // A closed terminal or ssh session: a clean stop, unless started to
+  // outlive it (nohup).
+  std::signal(SIGHUP, hangup_ignored ? SIG_IGN : on_signal);
   // A closed pipe (`pushout run ... | head`) does not end the run: writes to
   // it fail (progress lines are no longer printed), the files are written.
   std::signal(SIGPIPE, SIG_IGN);

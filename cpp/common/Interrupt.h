@@ -24,8 +24,9 @@
 namespace pushout::interrupt
 {
 /// Installs the handlers for SIGINT, SIGTERM and SIGHUP (after
-/// PetscInitialize, whose handlers they replace), ignores SIGPIPE (a write
-/// to a closed pipe fails instead), and starts the watcher.
+/// PetscInitialize, whose handlers they replace; SIGHUP stays ignored if
+/// it was when the process started: nohup), ignores SIGPIPE (a write to a
+/// closed pipe fails instead), and starts the watcher.
 void install();
 
 /// The first signal received (0: none). Local to this process.

@@ -34,6 +34,19 @@ for sig in (signal.SIGTERM, signal.SIGINT, signal.SIGHUP):
     check(len(rows) == s["steps"] + 1 >= 4, f"{sig.name}: curve.csv keeps all {len(rows)} rows")
     check(all(len(r) == len(rows[0]) for r in rows), f"{sig.name}: every row complete")
 
+# Under nohup (SIGHUP ignored from the start) SIGHUP does not stop the run.
+out = out_dir("interrupt_nohup")
+p = subprocess.Popen([PUSHOUT, "run", scene, "--out", out, "--quiet", "--set", "loading.steps=2000"],
+                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                     preexec_fn=lambda: signal.signal(signal.SIGHUP, signal.SIG_IGN))
+csv = os.path.join(out, "curve.csv")
+deadline = time.time() + 120
+while time.time() < deadline and (not os.path.exists(csv) or len(open(csv).readlines()) < 4):
+    time.sleep(0.05)
+p.send_signal(signal.SIGHUP)
+_, err = p.communicate(timeout=300)
+check(p.returncode == 0 and summary(out)["converged"], f"nohup: SIGHUP ignored, exit {p.returncode}")
+
 # A reader that closes the pipe (`| head -3`; before: killed by SIGPIPE,
 # exit 141, no summary.json): the run goes on, writes its files, exit 0.
 out = out_dir("interrupt_pipe")
