@@ -25,10 +25,10 @@ with open(scene, "w") as f:
 
 def mount(size):
     """A tmpfs of `size` (e.g. "256k"); exits 77 (skip) where mounting is not allowed."""
-    d = tempfile.mkdtemp(prefix="pushout-full-disk-")
     if os.geteuid() != 0:
         print("SKIPPED: mounting a tmpfs needs root")
         sys.exit(77)
+    d = tempfile.mkdtemp(prefix="pushout-full-disk-")
     p = subprocess.run(["mount", "-t", "tmpfs", "-o", f"size={size}", "tmpfs", d],
                        capture_output=True, text=True)
     if p.returncode != 0:
