@@ -13,6 +13,9 @@ import tempfile
 from common import COARSE_MESH, FRICTION_2, check, out_dir
 
 PUSHOUT = sys.argv[1]
+if os.geteuid() != 0:
+    print("SKIPPED: mounting a tmpfs needs root")
+    sys.exit(77)
 PAGE = 4096  # tmpfs allocates whole pages [B]
 ROOT = out_dir("full_disk")
 os.makedirs(ROOT)
@@ -25,9 +28,6 @@ with open(scene, "w") as f:
 
 def mount(size):
     """A tmpfs of `size` (e.g. "256k"); exits 77 (skip) where mounting is not allowed."""
-    if os.geteuid() != 0:
-        print("SKIPPED: mounting a tmpfs needs root")
-        sys.exit(77)
     d = tempfile.mkdtemp(prefix="pushout-full-disk-")
     p = subprocess.run(["mount", "-t", "tmpfs", "-o", f"size={size}", "tmpfs", d],
                        capture_output=True, text=True)
