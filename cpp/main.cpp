@@ -18,6 +18,7 @@
 #include "driver/Run.h"
 #include "driver/Sweep.h"
 #include "mesh/generate.h"
+#include "output/OutputFiles.h"
 #include "scene/SceneError.h"
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -109,12 +110,16 @@ int run_scene(const std::string& scene_file, const std::string& out,
     // error on any one is the same error on all, printed once (rank 0).
     const Scene scene =
         mpi::collectively<SceneError>(MPI_COMM_WORLD, [&] { return load_scene(scene_file, sets); });
-    mpi::collectively<SceneError>(MPI_COMM_WORLD,
-                                  [&]
-                                  {
-                                    if (rank == 0)
-                                      probe_output_folder(out);
-                                  });
+    // The folder is this run's alone, without an earlier run's outputs
+    // (output/OutputFiles.h).
+    mpi::collectively<SceneError, output::FolderError>(MPI_COMM_WORLD,
+                                                       [&]
+                                                       {
+                                                         if (rank != 0)
+                                                           return;
+                                                         probe_output_folder(out);
+                                                         output::claim(out, {scene_file});
+                                                       });
     const driver::RunOptions options{out, pushout::mesh::default_cache_dir(), quiet, force};
     const output::Summary s = mpi::collectively<SceneError, driver::TooLarge>(
         MPI_COMM_WORLD, [&] { return driver::run(scene, options); });
@@ -140,6 +145,12 @@ int run_scene(const std::string& scene_file, const std::string& out,
     return exit_code::done;
   }
   catch (const driver::TooLarge& e)
+  {
+    if (rank == 0)
+      std::cerr << "pushout: error: " << e.what() << std::endl;
+    return exit_code::bad_input;
+  }
+  catch (const output::FolderError& e)
   {
     if (rank == 0)
       std::cerr << "pushout: error: " << e.what() << std::endl;

@@ -1,9 +1,11 @@
 #include "Interrupt.h"
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <limits>
 #include <mutex>
 #include <thread>
 
@@ -11,13 +13,38 @@ namespace pushout::interrupt
 {
 namespace
 {
-volatile std::sig_atomic_t signal_received = 0;
+volatile std::sig_atomic_t signal_received = 0; ///< the first signal
 volatile std::sig_atomic_t signal_count = 0;
+volatile std::sig_atomic_t signal_acknowledged = 0;
 
 extern "C" void on_signal(int sig)
 {
-  signal_received = sig;
+  if (signal_received == 0)
+    signal_received = sig;
   signal_count = signal_count + 1;
+}
+
+/// Whether SIGHUP was ignored when the process started (`nohup`): read
+/// before main(), since PetscInitialize installs its own handler.
+const bool hangup_ignored = []
+{
+  struct sigaction action;
+  return sigaction(SIGHUP, nullptr, &action) == 0 && action.sa_handler == SIG_IGN;
+}();
+
+/// The longest grace of any phase [s] (infinite: none): under mpirun, whose
+/// SIGTERM to the processes is followed by a SIGKILL
+/// odls_base_sigkill_timeout later (default 1 s), a phase that has not
+/// stopped by itself well before that is ended by the watcher, which still
+/// has time to write summary.json.
+double grace_limit_s()
+{
+  if (!std::getenv("OMPI_COMM_WORLD_SIZE")) // not started by mpirun
+    return std::numeric_limits<double>::infinity();
+  double timeout_s = 1; // Open MPI's default
+  if (const char* t = std::getenv("OMPI_MCA_odls_base_sigkill_timeout"))
+    timeout_s = std::max(std::atof(t), 0.0);
+  return std::max(0.1, timeout_s - std::max(0.5, 0.2 * timeout_s));
 }
 
 /// What the watcher reads, guarded by `mutex`. Never destroyed, so the
@@ -42,6 +69,7 @@ void watch()
   using Clock = std::chrono::steady_clock;
   constexpr auto poll = std::chrono::milliseconds(50);
   Clock::time_point since{};
+  const double limit_s = grace_limit_s();
   for (;;)
   {
     std::this_thread::sleep_for(poll);
@@ -54,7 +82,8 @@ void watch()
     std::lock_guard lock(w.mutex);
     const double waited = std::chrono::duration<double>(Clock::now() - since).count();
     const bool again = signal_count > 1;
-    if (!again && (w.grace_s < 0 || waited < w.grace_s))
+    const double grace_s = w.grace_s < 0 ? w.grace_s : std::min(w.grace_s, limit_s);
+    if (!again && (signal_acknowledged || grace_s < 0 || waited < grace_s))
       continue;
     if (w.report)
       w.report(sig, w.phase);
@@ -71,15 +100,23 @@ void install()
 {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
-  // A closed pipe (`pushout run ... | head`) ends the run quietly, as for
-  // any command, instead of through PETSc's error handler.
-  std::signal(SIGPIPE, SIG_DFL);
+  // A closed terminal or ssh session: a clean stop, unless started to
+  // outlive it (nohup).
+  std::signal(SIGHUP, hangup_ignored ? SIG_IGN : on_signal);
+  // A closed pipe (`pushout run ... | head`) does not end the run: writes to
+  // it fail (progress lines are no longer printed), the files are written.
+  std::signal(SIGPIPE, SIG_IGN);
   std::thread(watch).detach();
 }
 
 int received()
 {
   return signal_received;
+}
+
+void acknowledge()
+{
+  signal_acknowledged = 1;
 }
 
 std::string signal_name(int signal)
@@ -90,6 +127,8 @@ std::string signal_name(int signal)
     return "SIGINT";
   case SIGTERM:
     return "SIGTERM";
+  case SIGHUP:
+    return "SIGHUP";
   default:
     return "signal " + std::to_string(signal);
   }

@@ -1,4 +1,4 @@
-// SIGINT/SIGTERM handling, at any time of a run.
+// SIGINT/SIGTERM/SIGHUP handling, at any time of a run.
 //
 // The handler only records the signal. Between load steps (and inside
 // Newton, by failing the current solve) the step loop looks at it and stops
@@ -8,7 +8,14 @@
 // longer than the current phase's grace, the watcher reports where the run
 // stopped (the driver's stop report: summary.json and one line on stderr)
 // and ends the process with exit code 128 + signal. A second signal ends it
-// at once, whatever the phase.
+// at once, whatever the phase. The signal reported is the first one.
+//
+// Under mpirun every process has its own handler and watcher; the step
+// loop stops where all processes agree (an MPI_Allreduce of the signal at
+// each step). mpirun follows its SIGTERM to the processes with a SIGKILL
+// odls_base_sigkill_timeout later (1 s unless set): there the graces are
+// shortened to end before it (by 0.5 s or a fifth of it), so that
+// summary.json is written before the SIGKILL.
 #pragma once
 
 #include <functional>
@@ -16,13 +23,18 @@
 
 namespace pushout::interrupt
 {
-/// Installs the handlers for SIGINT and SIGTERM (after PetscInitialize,
-/// whose handlers they replace), the default action for SIGPIPE, and
-/// starts the watcher.
+/// Installs the handlers for SIGINT, SIGTERM and SIGHUP (after
+/// PetscInitialize, whose handlers they replace; SIGHUP stays ignored if
+/// it was when the process started: nohup), ignores SIGPIPE (a write to a
+/// closed pipe fails instead), and starts the watcher.
 void install();
 
-/// The signal received (0: none). Local to this process.
+/// The first signal received (0: none). Local to this process.
 int received();
+
+/// The code has seen the signal and is stopping by itself: the watcher no
+/// longer ends the process for it (only for a second signal).
+void acknowledge();
 
 /// The name of a signal ("SIGTERM").
 std::string signal_name(int signal);

@@ -1,8 +1,10 @@
 #include "Fit.h"
 #include "../common/Interrupt.h"
+#include "../common/exit_codes.h"
 #include "../common/mpi_errors.h"
 #include "../common/petsc_check.h"
 #include "../laws/LawRegistry.h"
+#include "../output/OutputFiles.h"
 #include "../output/plot.h"
 #include "../scene/SceneError.h"
 #include "Run.h"
@@ -216,7 +218,10 @@ public:
     int signal = std::max(interrupt::received(), _signal);
     MPI_Allreduce(MPI_IN_PLACE, &signal, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
     if (signal != 0) // on every process alike: TaoSolve ends with it
+    {
+      interrupt::acknowledge();
       throw Interrupted(signal);
+    }
     int failed = _failed;
     MPI_Allreduce(&failed, &_failed_total, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
     _evaluations += int(points.size());
@@ -246,8 +251,9 @@ public:
         run_case(_opt.scene_file, sets_at(x),
                  {out, _opt.mesh_cache, true, _opt.force, _group, plot}, _simulation);
     std::vector<double> r(_data.delta.size(), 0.0);
-    if (o.exit_code > 128)
-      _signal = o.exit_code - 128;
+    _last_exit_code = o.exit_code;
+    if (o.exit_code > exit_code::signal(0))
+      _signal = o.exit_code - exit_code::signal(0);
     if (o.exit_code != 0 && _leader) // once per group: the count is summed over processes
     {
       ++_failed;
@@ -282,6 +288,16 @@ public:
   }
 
   int evaluations() const { return _evaluations; }
+  /// The exit code of this group's last run.
+  int last_exit_code() const { return _last_exit_code; }
+  /// A signal that stopped a run of any process, or came here (collective
+  /// on MPI_COMM_WORLD).
+  int signal_anywhere() const
+  {
+    int signal = std::max(interrupt::received(), _signal);
+    MPI_Allreduce(MPI_IN_PLACE, &signal, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    return signal;
+  }
   int failed() const { return _failed_total; }
   const std::string& last_failure() const { return _last_failure; }
   void release() { _simulation.reset(); }
@@ -296,6 +312,7 @@ private:
   std::unique_ptr<Simulation> _simulation; ///< the group's set-up, reused
   int _evaluations = 0, _failed = 0, _failed_total = 0;
   int _signal = 0; ///< a run stopped by this signal
+  int _last_exit_code = exit_code::done;
   std::string _last_failure;
 };
 
@@ -572,7 +589,30 @@ int fit(const FitOptions& opt)
   {
     if (rank == 0)
       std::cerr << "pushout fit: error: " << e.what() << std::endl;
-    return 2;
+    return exit_code::bad_input;
+  }
+  // The folder is this fit's alone, without an earlier run's outputs
+  // (output/OutputFiles.h); neither the scene nor the data may be among them.
+  try
+  {
+    mpi::collectively<output::FolderError>(MPI_COMM_WORLD,
+                                           [&]
+                                           {
+                                             if (rank == 0)
+                                               output::claim(opt.out, {opt.scene_file, opt.data});
+                                           });
+  }
+  catch (const output::FolderError& e)
+  {
+    if (rank == 0)
+      std::cerr << "pushout fit: error: " << e.what() << std::endl;
+    return exit_code::bad_input;
+  }
+  catch (const std::exception& e)
+  {
+    if (rank == 0)
+      std::cerr << "pushout fit: error: " << e.what() << std::endl;
+    return exit_code::failure;
   }
 
   ProcessGroups groups(opt.ranks_per_case);
@@ -645,7 +685,7 @@ int fit(const FitOptions& opt)
     if (rank == 0)
       std::cerr << "pushout: " << e.what() << " after " << evaluator.evaluations()
                 << " runs; no fit written" << std::endl;
-    return 128 + e.signal;
+    return exit_code::signal(e.signal);
   }
   TaoConvergedReason reason;
   check(TaoGetConvergedReason(tao, &reason), "TaoGetConvergedReason");
@@ -688,16 +728,33 @@ int fit(const FitOptions& opt)
   else
     warnings.push_back("J^T J is singular at the optimum: some values do not change the curve");
 
-  // The fitted run, with its outputs, in DIR/best (group 0).
+  // The fitted run, with its outputs, in DIR/best (group 0; rank 0 leads
+  // it).
   if (groups.index() == 0)
     evaluator.run(x, opt.out / "best", true);
+  const int best_exit_code = evaluator.last_exit_code();
   evaluator.release();
   groups.close();
-  const bool converged = reason > 0 && evaluator.failed() == 0;
+  // A stopped fitted run leaves no best/ (it would hold a part of the
+  // curve) and no fit.json.
+  if (const int signal = evaluator.signal_anywhere(); signal != 0)
+  {
+    interrupt::acknowledge();
+    destroy();
+    if (rank == 0)
+    {
+      output::remove_outputs(opt.out / "best");
+      std::cerr << "pushout: interrupted by " << interrupt::signal_name(signal)
+                << " during the fitted run after " << evaluator.evaluations()
+                << " runs; no fit written" << std::endl;
+    }
+    return exit_code::signal(signal);
+  }
+  const bool converged = reason > 0 && evaluator.failed() == 0 && best_exit_code == exit_code::done;
   // Why a run failed, from any process (the failure may have been another
   // group's).
   const std::string failure = first_message(evaluator.last_failure(), MPI_COMM_WORLD);
-  int code = converged ? 0 : 3;
+  int code = converged ? exit_code::done : exit_code::not_converged;
   if (rank == 0)
   {
     const double wall =
@@ -743,16 +800,24 @@ int fit(const FitOptions& opt)
     j["warnings"] = warnings;
     j["data"] = opt.data.string();
     j["wall_s"] = wall;
-    std::ofstream(opt.out / "fit.json") << j.dump(2) << "\n";
-    // The fitted scene, rerunnable.
-    std::vector<std::string> sets = evaluator.sets_at(x);
-    std::ofstream(opt.out / "scene.toml")
-        << Scene::load(opt.scene_file, parse_overrides(sets)).to_toml();
-    std::ofstream csv(opt.out / "fit.csv");
-    csv << "delta_mm,tau_data_MPa,tau_model_MPa\n" << std::setprecision(12);
-    for (std::size_t i = 0; i < std::size_t(m); ++i)
-      csv << data.delta[i] << "," << data.tau[i] << "," << data.tau[i] + r[i] << "\n";
-    csv.close();
+    try
+    {
+      output::write_file(opt.out / "fit.json", j.dump(2) + "\n");
+      // The fitted scene, rerunnable.
+      std::vector<std::string> sets = evaluator.sets_at(x);
+      output::write_file(opt.out / "scene.toml",
+                         Scene::load(opt.scene_file, parse_overrides(sets)).to_toml());
+      std::ostringstream csv;
+      csv << "delta_mm,tau_data_MPa,tau_model_MPa\n" << std::setprecision(12);
+      for (std::size_t i = 0; i < std::size_t(m); ++i)
+        csv << data.delta[i] << "," << data.tau[i] << "," << data.tau[i] + r[i] << "\n";
+      output::write_file(opt.out / "fit.csv", csv.str());
+    }
+    catch (const std::exception& e)
+    {
+      std::cerr << "pushout: error: " << e.what() << std::endl;
+      code = exit_code::failure;
+    }
     std::string why;
     if (!output::plot_fit(opt.out, opt.out / "fit.png", why))
       std::cerr << "pushout: warning: no fit.png: " << why << std::endl;

@@ -1,5 +1,6 @@
 #include "Run.h"
 #include "../common/Interrupt.h"
+#include "../common/exit_codes.h"
 #include "../common/mpi_errors.h"
 #include "../mesh/generate.h"
 #include "../mesh/symmetry.h"
@@ -185,14 +186,46 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, RunReport
   recorder.close();
 }
 
+namespace
+{
+/// Runs `f` (the run's steps and its end); an error other than a bad scene
+/// or size (which write nothing) is in summary.json too, where it fits.
+template <class F> output::Summary reporting_errors(RunReport& report, F&& f)
+{
+  try
+  {
+    return f();
+  }
+  catch (const SceneError&)
+  {
+    throw;
+  }
+  catch (const TooLarge&)
+  {
+    throw;
+  }
+  catch (const std::exception& e)
+  {
+    report.fail(e.what());
+    throw;
+  }
+}
+} // namespace
+
 output::Summary run(const Scene& scene, const RunOptions& opt)
 {
   check_scene(scene);
   RunReport report(scene, opt.out, opt.quiet, opt.comm, opt.plot);
-  Simulation simulation(scene, opt, report);
-  simulation.load_steps(scene, opt, report);
-  const interrupt::Phase writing("writing outputs", -1); // never forced
-  return report.finish();
+  return reporting_errors(report,
+                          [&]
+                          {
+                            auto simulation = std::make_unique<Simulation>(scene, opt, report);
+                            simulation->load_steps(scene, opt, report);
+                            const interrupt::Phase writing("writing outputs", -1); // never forced
+                            const output::Summary s = report.finish();
+                            simulation.reset();
+                            return s;
+                          });
 }
 
 RunOutcome run_case(const std::filesystem::path& scene_file, const std::vector<std::string>& sets,
@@ -219,39 +252,46 @@ RunOutcome run_case(const std::filesystem::path& scene_file, const std::vector<s
           }
           check_scene(scene);
           RunReport report(scene, opt.out, opt.quiet, opt.comm, opt.plot);
-          if (!simulation || !simulation->fits(scene))
-          {
-            simulation.reset(); // its memory first
-            simulation = std::make_unique<Simulation>(scene, opt, report);
-          }
-          simulation->load_steps(scene, opt, report);
-          const interrupt::Phase writing("writing outputs", -1); // never forced
-          return report.finish();
+          return reporting_errors(report,
+                                  [&]
+                                  {
+                                    if (!simulation || !simulation->fits(scene))
+                                    {
+                                      simulation.reset(); // its memory first
+                                      simulation = std::make_unique<Simulation>(scene, opt, report);
+                                    }
+                                    simulation->load_steps(scene, opt, report);
+                                    const interrupt::Phase writing("writing outputs",
+                                                                   -1); // never forced
+                                    return report.finish();
+                                  });
         });
-    r.exit_code = s.interrupted ? 128 + s.signal : s.converged ? 0 : 3;
+    r.exit_code = s.interrupted ? exit_code::signal(s.signal)
+                  : s.converged ? exit_code::done
+                                : exit_code::not_converged;
     r.message = s.message;
   }
   catch (const SceneError& e)
   {
-    r.exit_code = 2;
+    r.exit_code = exit_code::bad_input;
     r.message = std::string("error in scene: ") + e.what();
   }
   catch (const TooLarge& e)
   {
-    r.exit_code = 2;
+    r.exit_code = exit_code::bad_input;
     r.message = e.what();
   }
   catch (const std::exception& e)
   {
-    r.exit_code = 1;
+    r.exit_code = exit_code::failure;
     r.message = e.what();
   }
   catch (const std::string& e) // gmsh reports errors this way
   {
-    r.exit_code = 1;
+    r.exit_code = exit_code::failure;
     r.message = e;
   }
-  if (r.exit_code == 1 || r.exit_code == 2)
+  if (r.exit_code == exit_code::failure || r.exit_code == exit_code::bad_input)
     simulation.reset(); // an error may have left it half built: not reused
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;

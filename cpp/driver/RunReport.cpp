@@ -1,9 +1,10 @@
 #include "RunReport.h"
+#include "../output/OutputFiles.h"
 #include "../output/plot.h"
-#include <fstream>
 #include <iostream>
 #include <mpi.h>
 #include <sys/resource.h>
+#include <thread>
 
 namespace pushout::driver
 {
@@ -41,18 +42,31 @@ RunReport::RunReport(const Scene& scene, const std::filesystem::path& out, bool 
             s.wall_s = seconds();
             s.peak_memory_mb = peak_memory_here_mb();
             if (_rank != 0)
+            {
+              // mpirun ends every process as soon as one has ended with an
+              // error: rank 0, which writes summary.json, ends first.
+              std::this_thread::sleep_for(std::chrono::milliseconds(300));
               return;
-            s.write(_out / "summary.json");
-            std::cerr << "pushout: " << s.message << "; " << (_out / "summary.json").string()
-                      << " says so" << std::endl;
+            }
+            try
+            {
+              s.write(_out / "summary.json");
+              std::cerr << "pushout: " << s.message << "; " << (_out / "summary.json").string()
+                        << " says so" << std::endl;
+            }
+            catch (const std::exception& e)
+            {
+              std::cerr << "pushout: " << s.message << "; error: " << e.what() << std::endl;
+            }
           })
 {
   int size = 1;
   MPI_Comm_size(comm, &size);
   _summary.model_type = scene.string("model.type");
   _summary.processes = size;
+  _summary.run_id = output::run_id();
   if (_rank == 0)
-    std::ofstream(_out / "scene.toml") << scene.to_toml();
+    output::write_file(_out / "scene.toml", scene.to_toml());
   if (_rank == 0 && plot && scene.boolean("output.plot"))
     _plotter.emplace();
   publish();
@@ -71,6 +85,10 @@ double RunReport::seconds() const
 
 output::Summary RunReport::finish()
 {
+  // A stopped run draws nothing: it stops within the time a launcher gives
+  // it (mpirun: 1 s before its SIGKILL), and curve.csv has the curve.
+  if (_plotter && _summary.interrupted)
+    _plotter.reset();
   if (_plotter)
   {
     _plotter->draw(_out / "curve.csv", _out / "curve.png", _summary.model_type);
@@ -90,5 +108,41 @@ output::Summary RunReport::finish()
   if (_rank == 0)
     _summary.write(_out / "summary.json");
   return _summary;
+}
+
+void RunReport::save_stop() noexcept
+{
+  publish();
+  if (_rank != 0)
+    return;
+  try
+  {
+    output::Summary s = _summary;
+    s.wall_s = seconds();
+    s.peak_memory_mb = peak_memory_here_mb();
+    s.write(_out / "summary.json");
+  }
+  catch (...) // finish() writes it again, and reports an error there
+  {
+  }
+}
+
+void RunReport::fail(const std::string& message) noexcept
+{
+  if (_rank != 0)
+    return;
+  try
+  {
+    _plotter.reset();
+    output::Summary s = _summary;
+    s.converged = false;
+    s.message = message;
+    s.wall_s = seconds();
+    s.peak_memory_mb = peak_memory_here_mb();
+    s.write(_out / "summary.json");
+  }
+  catch (...) // no room for it either: the error line is what the user gets
+  {
+  }
 }
 } // namespace pushout::driver

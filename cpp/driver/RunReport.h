@@ -41,8 +41,19 @@ public:
 
   /// The end of the run: curve.png (and corrosion.png) if it draws them,
   /// the wall time and the largest peak memory of the processes,
-  /// summary.json (rank 0). Collective. Returns the summary.
+  /// summary.json (rank 0; throws if it cannot be written). An interrupted
+  /// run draws no plot. Collective. Returns the summary.
   output::Summary finish();
+
+  /// The run stops (a signal; the summary says so): summary.json now, as it
+  /// is (rank 0), before the outputs are finished, which under mpirun may
+  /// be cut short by its SIGKILL. Not collective.
+  void save_stop() noexcept;
+
+  /// The end of a run that failed with `message` (an error, already agreed
+  /// on): summary.json says so (rank 0), if it can be written. Not
+  /// collective.
+  void fail(const std::string& message) noexcept;
 
 private:
   using Clock = std::chrono::steady_clock;

@@ -4,10 +4,12 @@
 #include "../common/petsc_check.h"
 #include "../solver/PathFollower.h"
 #include "NonFinite.h"
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <sstream>
+#include <thread>
 
 namespace pushout::driver
 {
@@ -76,6 +78,16 @@ struct FactorizationCount
   const solver::PathFollower& path;
   ~FactorizationCount() { summary.factorizations += path.factorizations(); }
 };
+
+/// A test hook: from the third load step on, each step spends
+/// PUSHOUT_TEST_SLOW_STEP_S seconds without looking at signals, as a long
+/// factorisation does (the tests of a stop that cannot wait for the step).
+void test_slow_step(int steps)
+{
+  static const char* slow_s = std::getenv("PUSHOUT_TEST_SLOW_STEP_S");
+  if (slow_s && steps >= 2)
+    std::this_thread::sleep_for(std::chrono::duration<double>(std::atof(slow_s)));
+}
 
 void test_failure(const char* at, MPI_Comm comm)
 {
@@ -149,6 +161,7 @@ bool StepLoop::run(Control control)
 
 bool StepLoop::stop_requested()
 {
+  test_slow_step(_summary.steps);
   if (_summary.steps == 2)
     test_failure("step", _comm);
   mpi::checkpoint(_comm);
@@ -158,11 +171,13 @@ bool StepLoop::stop_requested()
   MPI_Allreduce(&local, &global, 1, MPI_INT, MPI_MAX, _comm);
   if (global == 0)
     return false;
+  interrupt::acknowledge(); // every process stops here, by itself
   _summary.interrupted = true;
   _summary.signal = global;
   _summary.stopped_in = "load steps";
   _summary.message = "interrupted by " + interrupt::signal_name(global) + " after " +
                      std::to_string(_summary.steps) + " load steps";
+  _report.save_stop();
   return true;
 }
 

@@ -29,6 +29,14 @@ StepRecorder::StepRecorder(const Scene& scene, const std::filesystem::path& out,
     _fields = std::make_unique<output::FieldWriter>(equilibrium.model(), out);
 }
 
+void StepRecorder::close()
+{
+  if (!_fields)
+    return;
+  mpi::collectively(_equilibrium.model().comm(), [&] { _fields->close(); });
+  _fields.reset();
+}
+
 void StepRecorder::record(Vec x, int iterations, int cuts, int step, int steps)
 {
   const interrupt::Phase writing("writing step outputs", -1);
@@ -53,7 +61,7 @@ void StepRecorder::record(Vec x, int iterations, int cuts, int step, int steps)
                         _curve->row(_row, values);
                     });
   if (_fields)
-    _fields->write(double(_row));
+    mpi::collectively(_equilibrium.model().comm(), [&] { _fields->write(double(_row)); });
   ++_row;
   _report.summary().output_s += _report.seconds() - t_out;
   if (!_report.talk())

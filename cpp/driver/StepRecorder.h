@@ -34,8 +34,9 @@ public:
   /// following, which does not know its number of steps).
   void record(Vec x, int iterations, int cuts, int step, int steps);
 
-  /// Closes the field files.
-  void close() { _fields.reset(); }
+  /// Closes the field files; an error (a full disk) on any process is the
+  /// same error on every process.
+  void close();
 
 private:
   const Scenario& _scenario;

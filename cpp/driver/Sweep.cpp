@@ -2,6 +2,7 @@
 #include "../common/Interrupt.h"
 #include "../common/exit_codes.h"
 #include "../common/mpi_errors.h"
+#include "../output/OutputFiles.h"
 #include "../output/plot.h"
 #include "../scene/SceneError.h"
 #include "Run.h"
@@ -130,7 +131,7 @@ void write_table(const SweepOptions& opt, const std::vector<Variation>& vary,
                  const std::vector<std::vector<std::string>>& cases,
                  const std::vector<CaseResult>& results, const Axes& ax)
 {
-  std::ofstream out(opt.out / "sweep.csv");
+  std::ostringstream out;
   out << "case";
   for (const Variation& v : vary)
     out << "," << csv_cell(v.key);
@@ -170,8 +171,7 @@ void write_table(const SweepOptions& opt, const std::vector<Variation>& vary,
         << (r.exit_code == 0 ? 1 : 0) << "," << r.exit_code << "," << r.wall_s << ","
         << csv_cell(r.message) << "\n";
   }
-  if (!out)
-    throw std::runtime_error("cannot write " + (opt.out / "sweep.csv").string());
+  output::write_file(opt.out / "sweep.csv", out.str());
 }
 } // namespace
 
@@ -315,6 +315,30 @@ int sweep(const SweepOptions& opt)
     return exit_code::bad_input;
   }
 
+  // The folder is this sweep's alone, without an earlier run's outputs
+  // (output/OutputFiles.h: its case folders, sweep.csv, ...).
+  try
+  {
+    mpi::collectively<output::FolderError>(MPI_COMM_WORLD,
+                                           [&]
+                                           {
+                                             if (rank == 0)
+                                               output::claim(opt.out, {opt.scene_file});
+                                           });
+  }
+  catch (const output::FolderError& e)
+  {
+    if (rank == 0)
+      std::cerr << "pushout sweep: error: " << e.what() << std::endl;
+    return exit_code::bad_input;
+  }
+  catch (const std::exception& e)
+  {
+    if (rank == 0)
+      std::cerr << "pushout sweep: error: " << e.what() << std::endl;
+    return exit_code::failure;
+  }
+
   ProcessGroups groups(opt.ranks_per_case);
   const MPI_Comm group = groups.comm();
   const bool leader = groups.leader();
@@ -357,7 +381,10 @@ int sweep(const SweepOptions& opt)
     int signal = interrupt::received();
     MPI_Allreduce(MPI_IN_PLACE, &signal, 1, MPI_INT, MPI_MAX, group);
     if (signal != 0)
+    {
       stop_signal = signal;
+      interrupt::acknowledge(); // the sweep stops here, on every process
+    }
     if (index >= int(cases.size()) || stop_signal != 0)
       break;
     index = int(order[std::size_t(index)]);
@@ -395,7 +422,7 @@ int sweep(const SweepOptions& opt)
 
   phase.emplace("writing outputs", -1);
   const std::vector<CaseResult> results = gather(mine);
-  int code = 0;
+  int code = exit_code::done;
   if (rank == 0)
   {
     try
@@ -405,8 +432,12 @@ int sweep(const SweepOptions& opt)
     catch (const std::exception& e)
     {
       std::cerr << "pushout: error: " << e.what() << std::endl;
-      code = 1;
+      code = exit_code::failure;
     }
+    // A stopped sweep draws no sweep.png: plotting every curve takes
+    // longer than a stop may (sweep.csv has the table).
+    if (stop_signal != 0)
+      plot.clear();
     std::string why;
     if (!plot.empty() && !output::plot_sweep(opt.out, opt.out / "sweep.png", why))
       std::cerr << "pushout: warning: no sweep.png: " << why << std::endl;
@@ -423,10 +454,10 @@ int sweep(const SweepOptions& opt)
           << " in " << std::fixed << std::setprecision(2) << wall
           << " s; table: " << (opt.out / "sweep.csv").string()
           << (plot.empty() ? "" : ", plot: " + (opt.out / "sweep.png").string()) << std::endl;
-    if (code == 0 && stop_signal != 0)
-      code = 128 + stop_signal;
-    else if (code == 0 && converged < std::ptrdiff_t(cases.size()))
-      code = 3;
+    if (code == exit_code::done && stop_signal != 0)
+      code = exit_code::signal(stop_signal);
+    else if (code == exit_code::done && converged < std::ptrdiff_t(cases.size()))
+      code = exit_code::not_converged;
   }
   MPI_Bcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD);
   return code;

@@ -1,16 +1,28 @@
 #include "FieldWriter.h"
+#include "../common/mpi_errors.h"
 #include "elasticity.h"
+#include "xdmf_checked.h"
 #include <dolfinx/fem/utils.h>
+#include <sys/statvfs.h>
 
 namespace pushout::output
 {
 FieldWriter::FieldWriter(const model::Model& model, const std::filesystem::path& dir)
-    : _model(model), _stress(model)
+    : _model(model), _dir(dir), _fields_file(dir / "fields.xdmf"), _stress(model)
 {
   namespace fem = dolfinx::fem;
   MPI_Comm comm = model.comm();
-  _fields = std::make_unique<dolfinx::io::XDMFFile>(comm, (dir / "fields.xdmf").string(), "w");
-  _fields->write_mesh(*model.mesh());
+  silence_hdf5();
+  try
+  {
+    _fields = std::make_unique<dolfinx::io::XDMFFile>(comm, _fields_file.string(), "w");
+  }
+  catch (...)
+  {
+    throw std::runtime_error(cannot_write(_fields_file));
+  }
+  xdmf_checked(_fields, _fields_file,
+               [&](dolfinx::io::XDMFFile& f) { f.write_mesh(*model.mesh()); });
   if (model.degree() == 2)
   {
     _u1 = std::make_shared<fem::Function<double>>(std::make_shared<fem::FunctionSpace>(
@@ -69,15 +81,73 @@ FieldWriter::FieldWriter(const model::Model& model, const std::filesystem::path&
 
 FieldWriter::~FieldWriter()
 {
-  _fields->close();
+  if (_open)
+    try
+    {
+      close();
+    }
+    catch (const std::exception&) // an error on the way out, reported before
+    {
+    }
+}
+
+void FieldWriter::close()
+{
+  _open = false;
+  xdmf_close(_fields, _fields_file);
+  _interface->close();
+  if (_cracks)
+    _cracks->close();
+}
+
+std::uintmax_t FieldWriter::data_bytes() const
+{
+  std::uintmax_t total = 0;
+  for (const char* f : {"fields.h5", "interface.h5", "cracks.h5"})
+  {
+    std::error_code ec;
+    const std::uintmax_t size = std::filesystem::file_size(_dir / f, ec);
+    total += ec ? 0 : size;
+  }
+  return total;
+}
+
+void FieldWriter::check_room()
+{
+  // HDF5 that meets a full disk leaves its files in a state that cannot be
+  // closed (nor ended at MPI_Finalize): a step is written only where it
+  // fits, with room to close the files after it. A step takes about what
+  // the last one took; the first, about the mesh (the nodes' displacement
+  // as their coordinates, the cells' stress as their connectivity).
+  constexpr std::uintmax_t margin = 128 * 1024; // closing, the XML files [B]
+  int rank = 0;
+  MPI_Comm_rank(_model.comm(), &rank);
+  bool full = false;
+  std::uintmax_t now = 0;
+  if (rank == 0)
+  {
+    now = data_bytes();
+    const std::uintmax_t step = _bytes_before > 0 ? now - std::min(now, _bytes_before) : now;
+    struct statvfs fs;
+    if (::statvfs(_dir.c_str(), &fs) == 0)
+      full = std::uintmax_t(fs.f_bavail) * fs.f_frsize < 2 * step + margin;
+  }
+  _bytes_before = now;
+  mpi::throw_if_any(_model.comm(), full, cannot_write(_fields_file));
 }
 
 void FieldWriter::write(double t)
 {
+  check_room();
   if (_u1)
     _u1->interpolate(_model.displacement());
-  _fields->write_function(_u1 ? *_u1 : _model.displacement(), t);
-  _fields->write_function(_stress.update(), t);
+  const auto& stress = _stress.update();
+  xdmf_checked(_fields, _fields_file,
+               [&](dolfinx::io::XDMFFile& f)
+               {
+                 f.write_function(_u1 ? *_u1 : _model.displacement(), t);
+                 f.write_function(stress, t);
+               });
 
   const std::span<const double> u = _model.displacement().x()->array();
   _interface->write(u, t);

@@ -22,12 +22,30 @@ class FieldWriter
 {
 public:
   FieldWriter(const model::Model& model, const std::filesystem::path& dir);
+  /// Closes the files if close() was not called (an error there is not
+  /// reported).
   ~FieldWriter();
+  /// Writes the fields of time `t`; throws (cannot_write of fields.xdmf) on
+  /// every process if the disk has no room for them, or if a file cannot be
+  /// written. Collective.
   void write(double t);
+  /// Closes the files; throws (cannot_write) if one cannot be written whole.
+  /// Collective.
+  void close();
 
 private:
+  /// The bytes of the HDF5 files so far (rank 0).
+  std::uintmax_t data_bytes() const;
+  /// Throws cannot_write(fields.xdmf) on every process if the next step may
+  /// not fit on the disk (collective).
+  void check_room();
+
   const model::Model& _model;
+  std::filesystem::path _dir;
+  std::filesystem::path _fields_file;
+  std::uintmax_t _bytes_before = 0; ///< data_bytes() before the last step [B]
   std::unique_ptr<dolfinx::io::XDMFFile> _fields;
+  bool _open = true;
   std::unique_ptr<JointWriter> _interface, _cracks;
   StressProjection _stress;
   /// mesh.degree = 2: the displacement interpolated to the trilinear space

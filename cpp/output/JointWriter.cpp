@@ -1,4 +1,5 @@
 #include "JointWriter.h"
+#include "xdmf_checked.h"
 #include <basix/finite-element.h>
 #include <dolfinx/fem/utils.h>
 #include <dolfinx/graph/AdjacencyList.h>
@@ -71,13 +72,34 @@ JointWriter::JointWriter(MPI_Comm comm, std::vector<const interface::Interface*>
   for (std::size_t c = 0; c < original.size(); ++c)
     _pair_of_dof[Q->dofmap()->cell_dofs(std::int32_t(c))[0]] =
         pair_of_cell[std::size_t(original[c] - first)];
-  _file = std::make_unique<dolfinx::io::XDMFFile>(comm, file.string(), "w");
-  _file->write_mesh(*_mesh);
+  _path = file;
+  try
+  {
+    _file = std::make_unique<dolfinx::io::XDMFFile>(comm, file.string(), "w");
+  }
+  catch (...)
+  {
+    throw std::runtime_error(cannot_write(file));
+  }
+  xdmf_checked(_file, _path, [&](dolfinx::io::XDMFFile& f) { f.write_mesh(*_mesh); });
 }
 
 JointWriter::~JointWriter()
 {
-  _file->close();
+  if (_open)
+    try
+    {
+      close();
+    }
+    catch (const std::exception&) // an error on the way out, reported before
+    {
+    }
+}
+
+void JointWriter::close()
+{
+  _open = false;
+  xdmf_close(_file, _path);
 }
 
 void JointWriter::write(std::span<const double> u, double t)
@@ -98,7 +120,11 @@ void JointWriter::write(std::span<const double> u, double t)
     for (std::size_t i = 0; i < nf; ++i)
       _fields[i]->x()->mutable_array()[dof] = sum[i];
   }
-  for (const auto& f : _fields)
-    _file->write_function(*f, t);
+  xdmf_checked(_file, _path,
+               [&](dolfinx::io::XDMFFile& file)
+               {
+                 for (const auto& f : _fields)
+                   file.write_function(*f, t);
+               });
 }
 } // namespace pushout::output

@@ -29,10 +29,16 @@ public:
   JointWriter(MPI_Comm comm, std::vector<const interface::Interface*> sets,
               const std::vector<double>& dof_x, std::vector<std::string> names, Values values,
               const std::filesystem::path& file);
+  /// Closes the file if close() was not called (an error there is not
+  /// reported).
   ~JointWriter();
 
-  /// Writes the fields at displacement `u` (local, with ghosts) at time t.
+  /// Writes the fields at displacement `u` (local, with ghosts) at time t;
+  /// throws (output::cannot_write) if the file cannot be written.
+  /// Collective.
   void write(std::span<const double> u, double t);
+  /// Closes the file; throws as write(). Collective.
+  void close();
 
 private:
   std::vector<const interface::Interface*> _sets;
@@ -41,6 +47,8 @@ private:
   std::vector<std::shared_ptr<dolfinx::fem::Function<double>>> _fields;
   /// DG0 dof -> (set, pair)
   std::vector<std::pair<std::size_t, std::size_t>> _pair_of_dof;
+  std::filesystem::path _path;
   std::unique_ptr<dolfinx::io::XDMFFile> _file;
+  bool _open = true;
 };
 } // namespace pushout::output

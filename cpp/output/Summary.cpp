@@ -1,5 +1,5 @@
 #include "Summary.h"
-#include <fstream>
+#include "OutputFiles.h"
 #include <nlohmann/json.hpp>
 
 namespace pushout::output
@@ -17,6 +17,7 @@ void Summary::write(const std::filesystem::path& file) const
   for (const LayerDamage& d : initial_damage)
     damage_list.push_back({{"layer", d.layer}, {"mean", d.mean}, {"max", d.max}});
   const nlohmann::json j = {
+      {"run_id", run_id},
       {"converged", converged},
       {"interrupted", interrupted},
       {"signal", signal},
@@ -51,11 +52,6 @@ void Summary::write(const std::filesystem::path& file) const
         {"interface_pairs", estimate.interface_pairs},
         {"peak_memory_mb", estimate.peak_memory_mb}}},
       {"stopped_in", stopped_in}};
-  const std::filesystem::path tmp = file.string() + ".tmp";
-  {
-    std::ofstream out(tmp);
-    out << j.dump(2) << "\n";
-  }
-  std::filesystem::rename(tmp, file);
+  write_file(file, j.dump(2) + "\n");
 }
 } // namespace pushout::output

@@ -9,6 +9,7 @@ namespace pushout::output
 {
 struct Summary
 {
+  std::string run_id;        ///< the run's id (output::run_id): which run wrote the folder
   bool converged = false;    ///< every requested step converged
   bool interrupted = false;  ///< stopped by a signal
   int signal = 0;            ///< the signal, if interrupted
@@ -73,6 +74,7 @@ struct Summary
   };
   std::vector<LayerDamage> initial_damage;
 
+  /// Writes it whole (output::write_file); throws if it cannot.
   void write(const std::filesystem::path& file) const;
 };
 } // namespace pushout::output

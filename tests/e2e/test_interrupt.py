@@ -1,6 +1,8 @@
-"""A run killed with SIGTERM or SIGINT mid-way exits with 128 + signal, keeps
-a valid curve.csv with every finished step, and its summary.json says it was
-interrupted (and not converged)."""
+"""A run killed with SIGTERM, SIGINT or SIGHUP mid-way exits with 128 +
+signal, keeps a valid curve.csv with every finished step, and its
+summary.json says it was interrupted (and not converged). A closed pipe
+(`pushout run ... | head -3`) does not stop it. A sweep stops within a few
+seconds, without plotting."""
 import os
 import signal
 import subprocess
@@ -10,11 +12,12 @@ import time
 from common import check, curve, out_dir, summary
 
 PUSHOUT = sys.argv[1]
+os.makedirs(os.environ.get("PUSHOUT_TEST_OUT", "/tmp"), exist_ok=True)
 scene = os.path.join(os.environ.get("PUSHOUT_TEST_OUT", "/tmp"), "interrupt.toml")
 with open(scene, "w") as f:
     f.write("[mesh]\nelements_per_quarter = 4\nelements_through_thickness = 2\n"
             "[loading]\nsteps = 100000\n")
-for sig in (signal.SIGTERM, signal.SIGINT):
+for sig in (signal.SIGTERM, signal.SIGINT, signal.SIGHUP):
     out = out_dir(f"interrupt_{sig.name}")
     p = subprocess.Popen([PUSHOUT, "run", scene, "--out", out, "--quiet"],
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -30,6 +33,82 @@ for sig in (signal.SIGTERM, signal.SIGINT):
     check(s["interrupted"] and not s["converged"], f"{sig.name}: summary.json says interrupted")
     check(len(rows) == s["steps"] + 1 >= 4, f"{sig.name}: curve.csv keeps all {len(rows)} rows")
     check(all(len(r) == len(rows[0]) for r in rows), f"{sig.name}: every row complete")
+
+# Under nohup (SIGHUP ignored from the start) SIGHUP does not stop the run.
+out = out_dir("interrupt_nohup")
+p = subprocess.Popen([PUSHOUT, "run", scene, "--out", out, "--quiet", "--set", "loading.steps=2000"],
+                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                     preexec_fn=lambda: signal.signal(signal.SIGHUP, signal.SIG_IGN))
+csv = os.path.join(out, "curve.csv")
+deadline = time.time() + 120
+while time.time() < deadline and (not os.path.exists(csv) or len(open(csv).readlines()) < 4):
+    time.sleep(0.05)
+p.send_signal(signal.SIGHUP)
+_, err = p.communicate(timeout=300)
+check(p.returncode == 0 and summary(out)["converged"], f"nohup: SIGHUP ignored, exit {p.returncode}")
+
+# A reader that closes the pipe (`| head -3`; before: killed by SIGPIPE,
+# exit 141, no summary.json): the run goes on, writes its files, exit 0.
+out = out_dir("interrupt_pipe")
+p = subprocess.Popen([PUSHOUT, "run", scene, "--out", out, "--set", "loading.steps=30"],
+                     stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+for _ in range(3):
+    p.stdout.readline()
+p.stdout.close()
+err = p.stderr.read().decode()
+p.wait(timeout=300)
+check(p.returncode == 0, f"a closed stdout: exit {p.returncode} (0) {err.strip()[-300:]!r}")
+s = summary(out)
+check(s["converged"] and s["steps"] == 30 and len(curve(out)) == 31,
+      "a closed stdout: every step in curve.csv, summary.json converged")
+
+# A sweep stops within a few seconds of SIGTERM and draws no plot (before:
+# 24 s, plotting every finished curve). Twenty short cases, then a long one.
+out = out_dir("interrupt_sweep")
+steps = ",".join([str(n) for n in range(2, 22)] + ["100000"])
+p = subprocess.Popen([PUSHOUT, "sweep", scene, "--out", out, "--quiet", "--vary",
+                      f"loading.steps={steps}"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                     text=True)
+csv = os.path.join(out, "case_020", "curve.csv")
+deadline = time.time() + 300
+while time.time() < deadline and (not os.path.exists(csv) or len(open(csv).readlines()) < 3):
+    time.sleep(0.1)
+t0 = time.time()
+p.send_signal(signal.SIGTERM)
+_, err = p.communicate(timeout=120)
+waited = time.time() - t0
+check(p.returncode == 143, f"sweep: exit {p.returncode} (143) {err.strip()[-300:]!r}")
+check(waited < 10, f"sweep: stopped {waited:.1f} s after SIGTERM")
+check(os.path.exists(os.path.join(out, "sweep.csv")) and not os.path.exists(os.path.join(out, "sweep.png")),
+      "sweep: sweep.csv written, no sweep.png")
+check(summary(os.path.join(out, "case_020"))["interrupted"], "sweep: the stopped case says so")
+
+# A fit stopped during its fitted run (before: best/ kept a part of the
+# curve and fit.json said converged, exit 0): exit 143, no fit.json, no
+# best/. The data: a friction curve (mu 0.4) of 5 points; each run takes
+# 3000 steps, so the fitted run lasts long enough to be stopped.
+out = out_dir("interrupt_fit")
+data = os.path.join(out + "_data.csv")
+with open(data, "w") as f:
+    f.write("delta_mm,tau_MPa\n0.0,-0.42\n0.0025,0.5\n0.005,1.0\n0.0075,1.2\n0.01,1.3\n")
+fit_scene = out + ".toml"
+with open(fit_scene, "w") as f:
+    f.write("[mesh]\nelements_per_quarter = 4\nelements_through_thickness = 2\n"
+            '[[interface]]\nlaw = "friction"\nk = 1000.0\nmu = 0.4\n'
+            "[loading]\ntemperature_change = -25.0\n")
+p = subprocess.Popen([PUSHOUT, "fit", fit_scene, "--data", data, "--free", "interface.0.mu", "--out",
+                      out, "--quiet", "--set", "loading.steps=3000", "--set", "output.plot=false"],
+                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+csv = os.path.join(out, "best", "curve.csv")
+deadline = time.time() + 300
+while p.poll() is None and time.time() < deadline and (not os.path.exists(csv) or len(open(csv).readlines()) < 3):
+    time.sleep(0.02)
+check(p.poll() is None, "fit: stopped during the fitted run")
+p.send_signal(signal.SIGTERM)
+_, err = p.communicate(timeout=120)
+check(p.returncode == 143, f"fit: exit {p.returncode} (143) {err.strip()[-300:]!r}")
+check(not os.path.exists(os.path.join(out, "fit.json")), "fit: no fit.json")
+check(not os.path.exists(os.path.join(out, "best")), "fit: no best/ with a part of a curve")
 
 # A signal during meshing (gmsh cannot look at it): the run stops within a
 # few seconds, with the same exit code, and summary.json says where. The

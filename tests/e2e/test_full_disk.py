@@ -1,0 +1,146 @@
+"""A full disk is one clear error, never an abort or a cut file: on a small
+tmpfs (mounted here; skipped where mounting is not allowed) a run whose
+fields.xdmf fills it, one whose curve.csv does, one with no room for
+summary.json and one with no room for scene.toml each exit with code 1 and
+one line `pushout: error: cannot write FILE (disk full?)`; curve.csv keeps
+every row it has, each whole; summary.json is whole or absent."""
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+from common import COARSE_MESH, FRICTION_2, check, out_dir
+
+PUSHOUT = sys.argv[1]
+if os.geteuid() != 0:
+    print("SKIPPED: mounting a tmpfs needs root")
+    sys.exit(77)
+PAGE = 4096  # tmpfs allocates whole pages [B]
+ROOT = out_dir("full_disk")
+os.makedirs(ROOT)
+CACHE = os.path.join(ROOT, "cache")  # the mesh cache is not on the small disk
+scene = os.path.join(ROOT, "scene.toml")
+with open(scene, "w") as f:
+    f.write(COARSE_MESH + FRICTION_2 + "[loading]\ntemperature_change = -25.0\n"
+            "push_displacement = 0.01\nsteps = 4\n[output]\nplot = false\n")
+
+
+def mount(size):
+    """A tmpfs of `size` (e.g. "256k"); exits 77 (skip) where mounting is not allowed."""
+    d = tempfile.mkdtemp(prefix="pushout-full-disk-")
+    p = subprocess.run(["mount", "-t", "tmpfs", "-o", f"size={size}", "tmpfs", d],
+                       capture_output=True, text=True)
+    if p.returncode != 0:
+        os.rmdir(d)
+        print(f"SKIPPED: cannot mount a tmpfs here: {p.stderr.strip()}")
+        sys.exit(77)
+    return d
+
+
+def unmount(d):
+    subprocess.run(["umount", d], check=False)
+    os.rmdir(d)
+
+
+def fill(d, leave_pages):
+    """Fills the tmpfs at d but `leave_pages` pages."""
+    st = os.statvfs(d)
+    free = st.f_bavail * st.f_frsize
+    with open(os.path.join(d, "filler"), "wb") as f:
+        f.write(b"x" * max(free - leave_pages * PAGE, 0))
+
+
+def pages(path):
+    return -(-os.path.getsize(path) // PAGE) if os.path.exists(path) else 0
+
+
+def run(out, sets=(), mpirun=None):
+    cmd = [PUSHOUT, "run", scene, "--out", out, "--quiet"]
+    for s in sets:
+        cmd += ["--set", s]
+    if mpirun:
+        cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-n", str(mpirun)] + cmd
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=300,
+                          env=dict(os.environ, PUSHOUT_CACHE_DIR=CACHE))
+
+
+def check_outcome(name, p, out, files, mpirun=False):
+    """`files`: the file the error may name (the first that found the disk full)."""
+    err = p.stderr.strip()
+    check(p.returncode == 1, f"{name}: exit {p.returncode} (1)")
+    wanted = [f"pushout: error: cannot write {os.path.join(out, f)} (disk full?)"
+              for f in files.split()]
+    # (under mpirun, mpirun adds its own lines about the exit code)
+    lines = [l for l in err.splitlines() if l.strip() and (not mpirun or "pushout" in l)]
+    check(len(lines) == 1 and lines[0] in wanted, f"{name}: one error line {wanted[0]!r}: {err[-600:]!r}")
+    csv = os.path.join(out, "curve.csv")
+    if os.path.exists(csv):
+        text = open(csv).read()
+        rows = text.splitlines()
+        check(text.endswith("\n") and all(len(r.split(",")) == len(rows[0].split(",")) for r in rows),
+              f"{name}: curve.csv has {len(rows) - 1} rows, each whole")
+    sj = os.path.join(out, "summary.json")
+    if os.path.exists(sj):
+        import json
+        s = json.load(open(sj))
+        check(not s["converged"] and "cannot write" in s["message"],
+              f"{name}: summary.json says why: {s['message']!r}")
+    else:
+        print(f"ok: {name}: no summary.json (no room for it)")
+    return lines
+
+
+# The sizes of a run's files, on a disk with room.
+ref = os.path.join(ROOT, "reference")
+p = run(ref)
+check(p.returncode == 0, f"the reference run: exit {p.returncode} {p.stderr[-300:]!r}")
+lock = os.path.join(ref, ".pushout.lock")
+base_pages = pages(os.path.join(ref, "scene.toml")) + max(pages(lock), 1)
+
+# No room for summary.json (before: exit 0 and an empty summary.json).
+d = mount("128k")
+try:
+    fill(d, base_pages + pages(os.path.join(ref, "curve.csv")))
+    out = os.path.join(d, "out")
+    p = run(out)
+    check_outcome("no room for summary.json", p, out, "summary.json")
+    check(not os.path.exists(os.path.join(out, "summary.json")), "no summary.json, not an empty one")
+    check(len(open(os.path.join(out, "curve.csv")).read().splitlines()) == 6,
+          "curve.csv has every step")
+finally:
+    unmount(d)
+
+# curve.csv fills the disk (before: its last row cut mid-line, exit 0).
+d = mount("128k")
+try:
+    fill(d, base_pages + 1)
+    out = os.path.join(d, "out")
+    p = run(out, ["loading.steps=200"])
+    check_outcome("curve.csv fills the disk", p, out, "curve.csv")
+finally:
+    unmount(d)
+
+# No room for scene.toml.
+d = mount("128k")
+try:
+    fill(d, 0)
+    out = os.path.join(d, "out")
+    os.makedirs(out)
+    p = run(out)
+    check_outcome("no room for scene.toml", p, out, "scene.toml")
+finally:
+    unmount(d)
+
+# fields.xdmf fills the disk (before: SIGABRT, an HDF5 error stack, no
+# summary.json; under mpirun exit 134 on every process).
+for n in (None, 2) if shutil.which("mpirun") else (None,):
+    name = f"fields.xdmf fills the disk ({n or 1} process{'es' if n else ''})"
+    d = mount("512k")
+    try:
+        out = os.path.join(d, "out")
+        p = run(out, ["output.xdmf=true", "loading.steps=100"], mpirun=n)
+        check("HDF5" not in p.stderr and "Abort" not in p.stderr, f"{name}: no HDF5 error stack")
+        check_outcome(name, p, out, "fields.xdmf", mpirun=bool(n))
+    finally:
+        unmount(d)
