@@ -1,4 +1,5 @@
 #include "Interrupt.h"
+#include "exit_codes.h"
 #include <algorithm>
 #include <chrono>
 #include <csignal>
@@ -91,7 +92,7 @@ void watch()
       std::cerr << "pushout: interrupted by " << signal_name(sig) << " during " << w.phase
                 << std::endl;
     std::fflush(nullptr);
-    std::_Exit(128 + sig);
+    std::_Exit(exit_code::signal(sig));
   }
 }
 } // namespace
