@@ -533,6 +533,11 @@ MeasuredCurve read_measured(const std::filesystem::path& file)
   }
   if (c.delta.empty())
     throw SceneError("--data '" + file.string() + "' has no rows");
+  if (std::none_of(c.tau.begin(), c.tau.end(), [](double t) { return t > 0; }))
+    throw SceneError("--data '" + file.string() +
+                     "': no tau_MPa above 0: a push-out's bond stress is positive (the push "
+                     "force resists the push); a curve of the opposite sign needs its sign "
+                     "changed");
   if (!(c.delta.back() > 0))
     throw SceneError("--data '" + file.string() + "': the largest delta_mm must be > 0");
   return c;
@@ -727,6 +732,17 @@ int fit(const FitOptions& opt)
   }
   else
     warnings.push_back("J^T J is singular at the optimum: some values do not change the curve");
+  // A value the optimum pushes onto a bound is not a fit of it: the data
+  // want it beyond (a different model, or data the model cannot make).
+  for (std::size_t k = 0; k < free.size(); ++k)
+  {
+    const double v = x[k] * free[k].scale, tol = 1e-6 * free[k].scale;
+    for (const double bound : {free[k].lo, free[k].hi})
+      if (std::isfinite(bound) && std::abs(v - bound) <= tol)
+        warnings.push_back(free[k].key + " = " + number_text(v) +
+                           " sits on its bound: the best fit would take it beyond, so the "
+                           "model does not describe these data well there");
+  }
 
   // The fitted run, with its outputs, in DIR/best (group 0; rank 0 leads
   // it).

@@ -16,7 +16,9 @@
 3. Bad input exits 2 with one message: no data file, a data file without
    tau_MPa, a cell that is not a number, delta not increasing, a free key
    that does not exist, one that is not a number, bounds that exclude the
-   start."""
+   start, a curve with no positive tau.
+4. A value the optimum drives onto its bound is a warning, in fit.json and
+   on stderr."""
 import json
 import os
 import random
@@ -162,9 +164,23 @@ cases = [
     ("unknown key", data, {"free": ["interface.1.f_tt"]}, "no parameter"),
     ("not a number key", data, {"free": ["loading.control"]}, "not a number"),
     ("bounds exclude the start", data, {"extra": ["--bounds", "interface.1.c=5:10"]}, "exclude"),
+    ("no positive tau", write("negative.csv", "delta_mm,tau_MPa\n0.01,-1.0\n0.02,-2\n0.03,-2\n"),
+     {}, "no tau_MPa above 0"),
 ]
 for what, path, kw, words in cases:
     p = fit(out_dir("fit_error"), path, free=kw.get("free", tuple(START)), extra=kw.get("extra", ()))
     lines = [line for line in p.stderr.splitlines() if line.startswith("pushout")]
     check(p.returncode == 2 and len(lines) == 1 and words in lines[0],
           f"{what}: exit {p.returncode}, {lines[0] if lines else p.stderr[-300:]}")
+
+# 4. A value the optimum pushes onto its bound is said: mu alone fitted to a
+# curve far below what the adhesion layer gives (0.01 MPa) goes to mu = 0.
+low = write("low.csv", "delta_mm,tau_MPa\n" + "".join(f"{0.005 * i},0.01\n" for i in range(1, 41)))
+out4 = out_dir("fit_on_bound")
+p = fit(out4, low, free=["interface.0.mu"])
+with open(os.path.join(out4, "fit.json")) as f:
+    r4 = json.load(f)
+said = [w for w in r4["warnings"] if "interface.0.mu" in w and "sits on its bound" in w]
+check(r4["parameters"]["interface.0.mu"] < 1e-6 and said and "sits on its bound" in p.stderr,
+      f"mu on its bound ({r4['parameters']['interface.0.mu']:.2e}) is a warning: {said}")
+
