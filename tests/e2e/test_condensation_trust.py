@@ -82,7 +82,7 @@ elements_through_thickness = 1
 E = 2.0e8
 [[interface]]
 law = "oxide_friction"
-mu = 0.0
+mu = 0.4
 [loading]
 temperature_change = 0.0
 push_displacement = 0.0001

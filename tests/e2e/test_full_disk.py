@@ -16,6 +16,9 @@ PUSHOUT = sys.argv[1]
 if os.geteuid() != 0:
     print("SKIPPED: mounting a tmpfs needs root")
     sys.exit(77)
+if not shutil.which("mount"):
+    print("SKIPPED: no mount command (scripts/setup.sh installs it)")
+    sys.exit(77)
 PAGE = 4096  # tmpfs allocates whole pages [B]
 ROOT = out_dir("full_disk")
 os.makedirs(ROOT)
