@@ -17,6 +17,7 @@
 #include "driver/ResourceGuard.h"
 #include "driver/Run.h"
 #include "driver/Sweep.h"
+#include "driver/exit_on_error.h"
 #include "mesh/generate.h"
 #include "output/OutputFiles.h"
 #include "scene/SceneError.h"
@@ -85,18 +86,6 @@ pushout::Scene load_scene(const std::string& scene_file, const std::vector<std::
   return pushout::Scene::load(scene_file, pushout::parse_overrides(sets));
 }
 
-/// Creates the output folder and writes a file there (rank 0 only: the
-/// others learn the outcome collectively).
-void probe_output_folder(const std::string& out)
-{
-  std::error_code ec;
-  std::filesystem::create_directories(out, ec);
-  const std::filesystem::path probe = std::filesystem::path(out) / ".pushout-write-test";
-  if (ec || !std::ofstream(probe))
-    throw pushout::SceneError("--out '" + out + "': cannot create or write this folder");
-  std::filesystem::remove(probe);
-}
-
 /// Runs a scene; returns the process exit code.
 int run_scene(const std::string& scene_file, const std::string& out,
               const std::vector<std::string>& sets, bool quiet, bool force)
@@ -104,76 +93,47 @@ int run_scene(const std::string& scene_file, const std::string& out,
   using namespace pushout;
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  try
-  {
-    // Each phase is agreed on by all processes (common/mpi_errors.h): an
-    // error on any one is the same error on all, printed once (rank 0).
-    const Scene scene =
-        mpi::collectively<SceneError>(MPI_COMM_WORLD, [&] { return load_scene(scene_file, sets); });
-    // The folder is this run's alone, without an earlier run's outputs
-    // (output/OutputFiles.h).
-    mpi::collectively<SceneError, output::FolderError>(MPI_COMM_WORLD,
-                                                       [&]
-                                                       {
-                                                         if (rank != 0)
-                                                           return;
-                                                         probe_output_folder(out);
-                                                         output::claim(out, {scene_file});
-                                                       });
-    const driver::RunOptions options{out, pushout::mesh::default_cache_dir(), quiet, force};
-    const output::Summary s = mpi::collectively<SceneError, driver::TooLarge>(
-        MPI_COMM_WORLD, [&] { return driver::run(scene, options); });
-    if (s.interrupted)
-    {
-      if (rank == 0)
-        std::cerr << "pushout: " << s.message << "; " << out << "/curve.csv keeps them"
-                  << std::endl;
-      return exit_code::signal(s.signal);
-    }
-    if (!s.converged)
-    {
-      if (rank == 0)
-        std::cerr << "pushout: error: " << s.message << "; " << out << "/curve.csv keeps the "
-                  << s.steps << " converged steps" << std::endl;
-      return exit_code::not_converged;
-    }
-    if (rank == 0 && !quiet)
-      std::cout << "pushout: done in " << std::fixed << std::setprecision(2) << s.wall_s << " s, "
-                << s.newton_iterations << " Newton iterations; curve: " << out << "/curve.csv"
-                << (scene.boolean("output.plot") ? ", plot: " + out + "/curve.png" : "")
-                << std::endl;
-    return exit_code::done;
-  }
-  catch (const driver::TooLarge& e)
-  {
-    if (rank == 0)
-      std::cerr << "pushout: error: " << e.what() << std::endl;
-    return exit_code::bad_input;
-  }
-  catch (const output::FolderError& e)
-  {
-    if (rank == 0)
-      std::cerr << "pushout: error: " << e.what() << std::endl;
-    return exit_code::bad_input;
-  }
-  catch (const SceneError& e)
-  {
-    if (rank == 0)
-      std::cerr << "pushout: error in scene: " << e.what() << std::endl;
-    return exit_code::bad_input;
-  }
-  catch (const std::exception& e)
-  {
-    if (rank == 0)
-      std::cerr << "pushout: error: " << e.what() << std::endl;
-    return exit_code::failure;
-  }
-  catch (const std::string& e) // gmsh reports errors this way
-  {
-    if (rank == 0)
-      std::cerr << "pushout: error: " << e << std::endl;
-    return exit_code::failure;
-  }
+  return driver::exit_code_of(
+      "pushout", "error in scene",
+      [&]
+      {
+        // Each phase is agreed on by all processes (common/mpi_errors.h): an
+        // error on any one is the same error on all, printed once (rank 0).
+        const Scene scene = mpi::collectively<SceneError>(MPI_COMM_WORLD, [&]
+                                                          { return load_scene(scene_file, sets); });
+        // The folder is this run's alone, without an earlier run's outputs
+        // (output/OutputFiles.h).
+        mpi::collectively<SceneError, output::FolderError>(MPI_COMM_WORLD,
+                                                           [&]
+                                                           {
+                                                             if (rank == 0)
+                                                               output::claim(out, {scene_file});
+                                                           });
+        const driver::RunOptions options{out, pushout::mesh::default_cache_dir(), quiet, force};
+        const output::Summary s = mpi::collectively<SceneError, driver::TooLarge>(
+            MPI_COMM_WORLD, [&] { return driver::run(scene, options); });
+        if (s.interrupted)
+        {
+          if (rank == 0)
+            std::cerr << "pushout: " << s.message << "; " << out << "/curve.csv keeps them"
+                      << std::endl;
+          return exit_code::signal(s.signal);
+        }
+        if (!s.converged)
+        {
+          if (rank == 0)
+            std::cerr << "pushout: error: " << s.message << "; " << out << "/curve.csv keeps the "
+                      << s.steps << " converged steps" << std::endl;
+          return exit_code::not_converged;
+        }
+        if (rank == 0 && !quiet)
+          std::cout << "pushout: done in " << std::fixed << std::setprecision(2) << s.wall_s
+                    << " s, " << s.newton_iterations << " Newton iterations; curve: " << out
+                    << "/curve.csv"
+                    << (scene.boolean("output.plot") ? ", plot: " + out + "/curve.png" : "")
+                    << std::endl;
+        return exit_code::done;
+      });
 }
 
 /// Whether this process prints what every process would (before MPI is

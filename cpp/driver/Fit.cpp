@@ -9,6 +9,7 @@
 #include "../scene/SceneError.h"
 #include "Run.h"
 #include "Scenario.h"
+#include "exit_on_error.h"
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -564,61 +565,46 @@ int fit(const FitOptions& opt)
   const auto t0 = std::chrono::steady_clock::now();
   MeasuredCurve data;
   std::vector<Free> free;
-  try
-  {
-    mpi::collectively<SceneError>(
-        MPI_COMM_WORLD,
-        [&]
-        {
-          ProcessGroups::check(opt.ranks_per_case);
-          data = read_measured(opt.data);
-          const Scene scene = Scene::load(opt.scene_file, parse_overrides(opt.sets));
-          if (scene.string("model.type") != "pushout")
-            throw SceneError("pushout fit fits push-out curves (model.type = \"pushout\")");
-          if (!scene.numbers("loading.push_path").empty())
-            throw SceneError("pushout fit runs a monotonic push: leave 'loading.push_path' empty");
-          free = free_values(scene, opt);
-          if (data.delta.size() <= free.size())
-            throw SceneError("--data '" + opt.data.string() + "' has " +
-                             std::to_string(data.delta.size()) + " rows: more than the " +
-                             std::to_string(free.size()) + " free values are needed");
-          // The start must be a valid scene with the push to the data's end.
-          std::vector<std::string> sets = opt.sets;
-          sets.push_back("loading.push_displacement=" + number_text(data.delta.back()));
-          check_scene(Scene::load(opt.scene_file, parse_overrides(sets)));
-          if (rank == 0)
-            std::filesystem::create_directories(opt.out);
-        });
-  }
-  catch (const SceneError& e)
-  {
-    if (rank == 0)
-      std::cerr << "pushout fit: error: " << e.what() << std::endl;
-    return exit_code::bad_input;
-  }
-  // The folder is this fit's alone, without an earlier run's outputs
-  // (output/OutputFiles.h); neither the scene nor the data may be among them.
-  try
-  {
-    mpi::collectively<output::FolderError>(MPI_COMM_WORLD,
-                                           [&]
-                                           {
-                                             if (rank == 0)
-                                               output::claim(opt.out, {opt.scene_file, opt.data});
-                                           });
-  }
-  catch (const output::FolderError& e)
-  {
-    if (rank == 0)
-      std::cerr << "pushout fit: error: " << e.what() << std::endl;
-    return exit_code::bad_input;
-  }
-  catch (const std::exception& e)
-  {
-    if (rank == 0)
-      std::cerr << "pushout fit: error: " << e.what() << std::endl;
-    return exit_code::failure;
-  }
+  const int set_up = exit_code_of(
+      "pushout fit", "error",
+      [&]
+      {
+        mpi::collectively<SceneError>(
+            MPI_COMM_WORLD,
+            [&]
+            {
+              ProcessGroups::check(opt.ranks_per_case);
+              data = read_measured(opt.data);
+              const Scene scene = Scene::load(opt.scene_file, parse_overrides(opt.sets));
+              if (scene.string("model.type") != "pushout")
+                throw SceneError("pushout fit fits push-out curves (model.type = \"pushout\")");
+              if (!scene.numbers("loading.push_path").empty())
+                throw SceneError(
+                    "pushout fit runs a monotonic push: leave 'loading.push_path' empty");
+              free = free_values(scene, opt);
+              if (data.delta.size() <= free.size())
+                throw SceneError("--data '" + opt.data.string() + "' has " +
+                                 std::to_string(data.delta.size()) + " rows: more than the " +
+                                 std::to_string(free.size()) + " free values are needed");
+              // The start must be a valid scene with the push to the data's end.
+              std::vector<std::string> sets = opt.sets;
+              sets.push_back("loading.push_displacement=" + number_text(data.delta.back()));
+              check_scene(Scene::load(opt.scene_file, parse_overrides(sets)));
+            });
+        // The folder is this fit's alone, without an earlier run's outputs
+        // (output/OutputFiles.h); neither the scene nor the data may be
+        // among them.
+        mpi::collectively<output::FolderError>(
+            MPI_COMM_WORLD,
+            [&]
+            {
+              if (rank == 0)
+                output::claim(opt.out, {opt.scene_file, opt.data});
+            });
+        return exit_code::done;
+      });
+  if (set_up != exit_code::done)
+    return set_up;
 
   ProcessGroups groups(opt.ranks_per_case);
   Evaluator evaluator(opt, free, data, groups.comm(), groups.count(), groups.index());

@@ -6,6 +6,7 @@
 #include "../output/plot.h"
 #include "../scene/SceneError.h"
 #include "Run.h"
+#include "exit_on_error.h"
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -231,113 +232,103 @@ std::vector<std::size_t> set_up_order(const std::vector<std::string>& set_ups)
   return order;
 }
 
+/// What a sweep runs: its variations, its cases (each a list of key=value)
+/// and the order it takes them in, the model type and whether it plots.
+struct SweepPlan
+{
+  std::vector<Variation> vary;
+  std::vector<std::vector<std::string>> cases;
+  std::vector<std::size_t> order; ///< the cases in the order they are taken
+  std::string model_type;
+  bool plot = false;
+};
+
+/// Reads every case's scene, so that a bad value stops the sweep before any
+/// case runs; throws SceneError.
+SweepPlan plan_sweep(const SweepOptions& opt)
+{
+  SweepPlan plan;
+  if (opt.vary.empty())
+    throw SceneError("pushout sweep needs at least one --vary key=value,value,...");
+  ProcessGroups::check(opt.ranks_per_case);
+  for (const std::string& v : opt.vary)
+  {
+    plan.vary.push_back(parse_variation(v));
+    for (std::size_t i = 0; i + 1 < plan.vary.size(); ++i)
+      if (plan.vary[i].key == plan.vary.back().key)
+        throw SceneError("'" + plan.vary.back().key +
+                         "' is given in two --vary options: give its values in one");
+  }
+  // The count before the cases are made (it may not fit in memory).
+  double count = 1;
+  for (const Variation& v : plan.vary)
+    count *= double(v.values.size());
+  if (count > double(opt.max_cases))
+  {
+    std::ostringstream s;
+    s << std::setprecision(15) << "the --vary options make " << count << " cases, more than "
+      << opt.max_cases << ": --max-cases " << std::size_t(count) << " runs them";
+    throw SceneError(s.str());
+  }
+  plan.cases = cartesian_cases(plan.vary);
+  // The model type and the plot of the sweep: the scene's with the
+  // --set values (a case may not change them).
+  const Scene base = Scene::load(opt.scene_file, parse_overrides(opt.sets));
+  plan.model_type = base.string("model.type");
+  plan.plot = base.boolean("output.plot");
+  std::vector<std::string> set_ups(plan.cases.size());
+  for (std::size_t i = 0; i < plan.cases.size(); ++i)
+  {
+    std::vector<std::string> sets = opt.sets;
+    sets.insert(sets.end(), plan.cases[i].begin(), plan.cases[i].end());
+    try
+    {
+      const Scene scene = Scene::load(opt.scene_file, parse_overrides(sets));
+      if (scene.string("model.type") != plan.model_type)
+        throw SceneError("a sweep runs one model type: vary other keys");
+      set_ups[i] = Simulation::set_up_fingerprint(scene);
+    }
+    catch (const SceneError& e)
+    {
+      std::string what;
+      for (const std::string& s : plan.cases[i])
+        what += (what.empty() ? "" : " ") + s;
+      throw SceneError(case_name(i) + " (" + what + "): " + e.what());
+    }
+  }
+  plan.order = set_up_order(set_ups);
+  return plan;
+}
+
 int sweep(const SweepOptions& opt)
 {
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   const auto t0 = std::chrono::steady_clock::now();
-  std::vector<Variation> vary;
-  std::vector<std::vector<std::string>> cases;
-  std::vector<std::size_t> order; // the cases in the order they are taken
-  std::string model_type, plot;
-  try
-  {
-    // Every case's scene is read here, so that a bad value stops the sweep
-    // before any case runs (the same on every process).
-    mpi::collectively<SceneError>(
-        MPI_COMM_WORLD,
-        [&]
-        {
-          if (opt.vary.empty())
-            throw SceneError("pushout sweep needs at least one --vary key=value,value,...");
-          ProcessGroups::check(opt.ranks_per_case);
-          for (const std::string& v : opt.vary)
-          {
-            vary.push_back(parse_variation(v));
-            for (std::size_t i = 0; i + 1 < vary.size(); ++i)
-              if (vary[i].key == vary.back().key)
-                throw SceneError("'" + vary.back().key +
-                                 "' is given in two --vary options: give its values in one");
-          }
-          // The count before the cases are made (it may not fit in memory).
-          double count = 1;
-          for (const Variation& v : vary)
-            count *= double(v.values.size());
-          if (count > double(opt.max_cases))
-          {
-            std::ostringstream s;
-            s << std::setprecision(15) << "the --vary options make " << count
-              << " cases, more than " << opt.max_cases << ": --max-cases " << std::size_t(count)
-              << " runs them";
-            throw SceneError(s.str());
-          }
-          cases = cartesian_cases(vary);
-          // The model type and the plot of the sweep: the scene's with the
-          // --set values (a case may not change them).
-          const Scene base = Scene::load(opt.scene_file, parse_overrides(opt.sets));
-          model_type = base.string("model.type");
-          plot = base.boolean("output.plot") ? "yes" : "";
-          std::vector<std::string> set_ups(cases.size());
-          for (std::size_t i = 0; i < cases.size(); ++i)
-          {
-            std::vector<std::string> sets = opt.sets;
-            sets.insert(sets.end(), cases[i].begin(), cases[i].end());
-            try
-            {
-              const Scene scene = Scene::load(opt.scene_file, parse_overrides(sets));
-              if (scene.string("model.type") != model_type)
-                throw SceneError("a sweep runs one model type: vary other keys");
-              set_ups[i] = Simulation::set_up_fingerprint(scene);
-            }
-            catch (const SceneError& e)
-            {
-              std::string what;
-              for (const std::string& s : cases[i])
-                what += (what.empty() ? "" : " ") + s;
-              throw SceneError(case_name(i) + " (" + what + "): " + e.what());
-            }
-          }
-          order = set_up_order(set_ups);
-          if (rank == 0)
-          {
-            std::error_code ec;
-            std::filesystem::create_directories(opt.out, ec);
-            if (ec || !std::ofstream(opt.out / ".pushout-write-test"))
-              throw SceneError("--out '" + opt.out.string() + "': cannot create or write it");
-            std::filesystem::remove(opt.out / ".pushout-write-test");
-          }
-        });
-  }
-  catch (const SceneError& e)
-  {
-    if (rank == 0)
-      std::cerr << "pushout sweep: error: " << e.what() << std::endl;
-    return exit_code::bad_input;
-  }
-
-  // The folder is this sweep's alone, without an earlier run's outputs
-  // (output/OutputFiles.h: its case folders, sweep.csv, ...).
-  try
-  {
-    mpi::collectively<output::FolderError>(MPI_COMM_WORLD,
-                                           [&]
-                                           {
-                                             if (rank == 0)
-                                               output::claim(opt.out, {opt.scene_file});
-                                           });
-  }
-  catch (const output::FolderError& e)
-  {
-    if (rank == 0)
-      std::cerr << "pushout sweep: error: " << e.what() << std::endl;
-    return exit_code::bad_input;
-  }
-  catch (const std::exception& e)
-  {
-    if (rank == 0)
-      std::cerr << "pushout sweep: error: " << e.what() << std::endl;
-    return exit_code::failure;
-  }
+  SweepPlan plan;
+  const int set_up = exit_code_of(
+      "pushout sweep", "error",
+      [&]
+      {
+        // The same on every process.
+        plan = mpi::collectively<SceneError>(MPI_COMM_WORLD, [&] { return plan_sweep(opt); });
+        // The folder is this sweep's alone, without an earlier
+        // run's outputs (output/OutputFiles.h: its case folders,
+        // sweep.csv, ...).
+        mpi::collectively<output::FolderError>(MPI_COMM_WORLD,
+                                               [&]
+                                               {
+                                                 if (rank == 0)
+                                                   output::claim(opt.out, {opt.scene_file});
+                                               });
+        return exit_code::done;
+      });
+  if (set_up != exit_code::done)
+    return set_up;
+  const std::vector<Variation>& vary = plan.vary;
+  const std::vector<std::vector<std::string>>& cases = plan.cases;
+  const std::vector<std::size_t>& order = plan.order;
+  const std::string& model_type = plan.model_type;
 
   ProcessGroups groups(opt.ranks_per_case);
   const MPI_Comm group = groups.comm();
@@ -436,10 +427,9 @@ int sweep(const SweepOptions& opt)
     }
     // A stopped sweep draws no sweep.png: plotting every curve takes
     // longer than a stop may (sweep.csv has the table).
-    if (stop_signal != 0)
-      plot.clear();
+    const bool plot = plan.plot && stop_signal == 0;
     std::string why;
-    if (!plot.empty() && !output::plot_sweep(opt.out, opt.out / "sweep.png", why))
+    if (plot && !output::plot_sweep(opt.out, opt.out / "sweep.png", why))
       std::cerr << "pushout: warning: no sweep.png: " << why << std::endl;
     const auto converged = std::count_if(results.begin(), results.end(),
                                          [](const CaseResult& r) { return r.exit_code == 0; });
@@ -453,7 +443,7 @@ int sweep(const SweepOptions& opt)
                   : "")
           << " in " << std::fixed << std::setprecision(2) << wall
           << " s; table: " << (opt.out / "sweep.csv").string()
-          << (plot.empty() ? "" : ", plot: " + (opt.out / "sweep.png").string()) << std::endl;
+          << (plot ? ", plot: " + (opt.out / "sweep.png").string() : "") << std::endl;
     if (code == exit_code::done && stop_signal != 0)
       code = exit_code::signal(stop_signal);
     else if (code == exit_code::done && converged < std::ptrdiff_t(cases.size()))
