@@ -193,38 +193,41 @@ public:
 private:
   static constexpr std::array<double, 2> zero_history = {0, 0};
 
-  /// The crack's equilibrium and the point's stress and tangent.
-  void solve_crack(std::span<const double> law_old, const CrackState<double>& state,
-                   const Voigt& sigma0, double strength, double dt, CrackBandResult& r) const
+  /// The equilibrium of a crack at one update: the residual
+  /// r(w) = R^T t(R w) + A w / h - s0 of its opening w (global frame) and its
+  /// Jacobian, from the cohesive law's update, which writes the law's trial
+  /// history.
+  class CrackEquilibrium
   {
-    const Vec3 n = state.normal(), s1 = state.tangent();
-    const Vec3 s2 = {n[1] * s1[2] - n[2] * s1[1], n[2] * s1[0] - n[0] * s1[2],
-                     n[0] * s1[1] - n[1] * s1[0]};
-    const Mat3 R = {n[0], n[1], n[2], s1[0], s1[1], s1[2], s2[0], s2[1], s2[2]};
-    const double h = state.band_width();
-    const laws::CamanhoDavila law = cohesive_law(h, strength);
-
-    // C P (6 x 3, column k: the stress of a unit opening along e_k over a
-    // unit band) and A / h = P^T C P / h.
-    std::array<Voigt, 3> CP;
-    Mat3 A_h{};
-    for (int k = 0; k < 3; ++k)
+  public:
+    CrackEquilibrium(const CrackBand& band, std::span<const double> law_old,
+                     const CrackState<double>& state, const Voigt& sigma0, double strength,
+                     double dt)
+        : h(state.band_width()), law(band.cohesive_law(h, strength)), law_old(law_old),
+          law_now(state.law_state()), _dt(dt)
     {
-      Vec3 e{};
-      e[k] = 1;
-      CP[k] = multiply(_C, band_strain(e, n));
-      const Vec3 a = traction(CP[k], n);
-      for (int i = 0; i < 3; ++i)
-        A_h[3 * i + k] = a[i] / h;
+      const Vec3 n = state.normal(), s1 = state.tangent();
+      const Vec3 s2 = {n[1] * s1[2] - n[2] * s1[1], n[2] * s1[0] - n[0] * s1[2],
+                       n[0] * s1[1] - n[1] * s1[0]};
+      R = {n[0], n[1], n[2], s1[0], s1[1], s1[2], s2[0], s2[1], s2[2]};
+      // C P (6 x 3, column k: the stress of a unit opening along e_k over a
+      // unit band) and A / h = P^T C P / h.
+      for (int k = 0; k < 3; ++k)
+      {
+        Vec3 e{};
+        e[k] = 1;
+        CP[k] = multiply(band.stiffness(), band_strain(e, n));
+        const Vec3 a = traction(CP[k], n);
+        for (int i = 0; i < 3; ++i)
+          A_h[3 * i + k] = a[i] / h;
+      }
+      s0 = traction(sigma0, n);
     }
-    const Vec3 s0 = traction(sigma0, n);
-    std::span<double> law_now = state.law_state();
 
-    // Residual r(w) = R^T t(R w) + A w / h - s0 and its Jacobian.
-    laws::LawResult cohesive;
-    const auto residual = [&](const Vec3& w, Vec3& res)
+    /// r(w) into `res`; returns its largest component [MPa].
+    double residual(const Vec3& w, Vec3& res)
     {
-      cohesive = law.update(law_old, rotate(R, w), law_now, dt);
+      cohesive = law.update(law_old, rotate(R, w), law_now, _dt);
       const Vec3 t = rotate_back(R, cohesive.t);
       double norm = 0;
       for (int i = 0; i < 3; ++i)
@@ -235,8 +238,10 @@ private:
         norm = std::max(norm, std::abs(res[i]));
       }
       return norm;
-    };
-    const auto jacobian = [&]()
+    }
+
+    /// dr/dw at the w of the last residual() [N/mm^3].
+    Mat3 jacobian() const
     {
       Mat3 J = A_h;
       for (int i = 0; i < 3; ++i)
@@ -245,96 +250,110 @@ private:
             for (int b = 0; b < 3; ++b)
               J[3 * i + j] += R[3 * a + i] * cohesive.D[3 * a + b] * R[3 * b + j];
       return J;
-    };
-
-    // Start from the secant of the committed damage (exact if the crack
-    // unloads or stays closed).
-    const laws::DamageHistory<const double> history(law_old);
-    const double g = (1 - history.damage()) * law.k();
-    Mat3 K0 = A_h;
-    for (int i = 0; i < 3; ++i)
-      K0[4 * i] += g;
-    Vec3 w{};
-    if (!solve3(K0, s0, w))
-    {
-      r.status = CrackBandResult::Status::not_converged;
-      return;
     }
+
+    /// Newton with backtracking on the largest residual component (the
+    /// cohesive law is only piecewise smooth: loading, unloading, closure),
+    /// from the secant of the committed damage (exact if the crack unloads
+    /// or stays closed). Converged when the traction balance holds to
+    /// `tol` [MPa]; the law's trial history is then w's.
+    bool solve(Vec3& w, double tol)
+    {
+      const double g = (1 - laws::DamageHistory<const double>(law_old).damage()) * law.k();
+      Mat3 K0 = A_h;
+      for (int i = 0; i < 3; ++i)
+        K0[4 * i] += g;
+      if (!solve3(K0, s0, w))
+        return false;
+      Vec3 res;
+      double norm = residual(w, res);
+      for (int it = 0; it < 60 && norm > tol; ++it)
+      {
+        Vec3 dw;
+        if (!solve3(jacobian(), {-res[0], -res[1], -res[2]}, dw))
+          break;
+        Vec3 trial{}, trial_res{};
+        double trial_norm = INFINITY, alpha = 1;
+        for (int cut = 0; cut < 30 && !(trial_norm < norm); ++cut, alpha *= 0.5)
+        {
+          for (int i = 0; i < 3; ++i)
+            trial[i] = w[i] + alpha * dw[i];
+          trial_norm = residual(trial, trial_res);
+        }
+        if (!(trial_norm < norm))
+          break;
+        w = trial;
+        res = trial_res;
+        norm = trial_norm;
+      }
+      norm = residual(w, res); // the state and tangent of the final w
+      return norm <= tol && cohesive.status == laws::LawStatus::ok;
+    }
+
+    double h; ///< band width [mm]
+    laws::CamanhoDavila law;
+    std::span<const double> law_old;
+    std::span<double> law_now;
+    Mat3 R;                   ///< rows n, s1, s2
+    std::array<Voigt, 3> CP;  ///< C P by columns [MPa]
+    Mat3 A_h{};               ///< A / h [N/mm^3]
+    Vec3 s0;                  ///< traction of the uncracked stress on the crack [MPa]
+    laws::LawResult cohesive; ///< of the last residual()
+
+  private:
+    double _dt;
+  };
+
+  /// The crack's equilibrium and the point's stress and tangent.
+  void solve_crack(std::span<const double> law_old, const CrackState<double>& state,
+                   const Voigt& sigma0, double strength, double dt, CrackBandResult& r) const
+  {
+    CrackEquilibrium eq(*this, law_old, state, sigma0, strength, dt);
     // Converged when the traction balance holds to 1e-10 f_t, or to the
     // round-off of the trial traction s0 (which grows with the opening).
-    const double tol = std::max(1e-10 * strength * _env.f_t,
-                                1e-14 * (std::abs(s0[0]) + std::abs(s0[1]) + std::abs(s0[2])));
-    Vec3 res;
-    double norm = residual(w, res);
-    for (int it = 0; it < 60 && norm > tol; ++it)
-    {
-      const Mat3 J = jacobian();
-      Vec3 dw;
-      if (!solve3(J, {-res[0], -res[1], -res[2]}, dw))
-        break;
-      // Backtracking on the largest residual component: the cohesive law is
-      // only piecewise smooth (loading, unloading, closure).
-      double alpha = 1;
-      Vec3 trial{}, trial_res{};
-      double trial_norm = INFINITY;
-      for (int cut = 0; cut < 30; ++cut, alpha *= 0.5)
-      {
-        for (int i = 0; i < 3; ++i)
-          trial[i] = w[i] + alpha * dw[i];
-        trial_norm = residual(trial, trial_res);
-        if (trial_norm < norm)
-          break;
-      }
-      if (!(trial_norm < norm))
-        break;
-      w = trial;
-      res = trial_res;
-      norm = trial_norm;
-    }
-    norm = residual(w, res); // the state and tangent of the final w
-    if (!(norm <= tol) || cohesive.status != laws::LawStatus::ok)
-    {
-      r.status = CrackBandResult::Status::not_converged;
-      return;
-    }
-
-    // sigma = C (epsilon - P w / h) and the consistent tangent.
-    r.stress = sigma0;
-    for (int k = 0; k < 3; ++k)
-      for (int i = 0; i < 6; ++i)
-        r.stress[i] -= CP[k][i] * w[k] / h;
-    const Mat3 J = jacobian();
-    std::array<Vec3, 3> Jinv; // columns
-    for (int k = 0; k < 3; ++k)
+    const double tol =
+        std::max(1e-10 * strength * _env.f_t,
+                 1e-14 * (std::abs(eq.s0[0]) + std::abs(eq.s0[1]) + std::abs(eq.s0[2])));
+    Vec3 w{};
+    std::array<Vec3, 3> Jinv; // columns of J^-1 at w
+    bool ok = eq.solve(w, tol);
+    const Mat3 J = eq.jacobian();
+    for (int k = 0; k < 3 && ok; ++k)
     {
       Vec3 e{};
       e[k] = 1;
-      if (!solve3(J, e, Jinv[k]))
-      {
-        r.status = CrackBandResult::Status::not_converged;
-        return;
-      }
+      ok = solve3(J, e, Jinv[k]);
     }
+    if (!ok)
+    {
+      r.status = CrackBandResult::Status::not_converged;
+      return;
+    }
+    // sigma = C (epsilon - P w / h); d sigma / d epsilon = C - (1/h) (C P)
+    // J^-1 (C P)^T.
+    const double h = eq.h;
+    r.stress = sigma0;
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < 6; ++i)
+        r.stress[i] -= eq.CP[k][i] * w[k] / h;
     r.tangent = _C;
     for (int i = 0; i < 6; ++i)
       for (int j = 0; j < 6; ++j)
-      {
-        double correction = 0;
         for (int k = 0; k < 3; ++k)
           for (int l = 0; l < 3; ++l)
-            correction += CP[k][i] * Jinv[l][k] * CP[l][j];
-        r.tangent[6 * i + j] -= correction / h;
-      }
-    r.opening = rotate(R, w);
-    r.damage = laws::DamageHistory<double>(law_now).damage();
+            r.tangent[6 * i + j] -= eq.CP[k][i] * Jinv[l][k] * eq.CP[l][j] / h;
+    r.opening = rotate(eq.R, w);
+    const laws::DamageHistory<double> now(eq.law_now);
+    r.damage = now.damage();
     // Without viscosity the energy dissipated is a function of the history
     // alone, exact whatever the step; the law's own estimate is second order
     // in the step, and a crack's first step overshoots its w0 = f_t / k_p (a
     // fraction of a micrometre) many times.
-    r.dissipation = (_eta > 0 ? cohesive.dissipation
-                              : dissipated(law, laws::DamageHistory<double>(law_now).kappa()) -
-                                    dissipated(law, history.kappa())) /
-                    h;
+    r.dissipation =
+        (_eta > 0 ? eq.cohesive.dissipation
+                  : dissipated(eq.law, now.kappa()) -
+                        dissipated(eq.law, laws::DamageHistory<const double>(law_old).kappa())) /
+        h;
   }
 
   /// The energy per unit crack area a crack has dissipated when its history
