@@ -30,6 +30,7 @@
 #include <exception>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <petscsnes.h>
 #include <petscsys.h>
 #include <petsctao.h>
@@ -263,21 +264,128 @@ std::vector<std::string> unused_petsc_options(const std::set<std::string>& given
       unused.push_back(candidates[i]);
   return unused;
 }
-} // namespace
-
-int main(int argc, char* argv[])
+/// The command line: the commands, their options and what they were given.
+/// Built in place (its options write into its members).
+struct CommandLine
 {
-  using pushout::exit_code::bad_input;
-  std::set_terminate(on_terminate);
   CLI::App app{"pushout: push-out tests of RC slices with cohesive-frictional interfaces"};
-  app.require_subcommand(1);
-  app.allow_extras(); // the rest goes to PETSc
   std::string scene_file, out;
   std::vector<std::string> sets;
   bool quiet = false, force = false, allow_unused = false;
-  // The scene, the output folder, the overrides and the flags every command
-  // that runs takes; `ranks`: --ranks-per-case, for those that make many runs.
-  const auto common = [&](CLI::App* cmd, const std::string& scene_doc, int* ranks)
+  pushout::driver::SweepOptions sweep_options;
+  pushout::driver::FitOptions fit_options;
+  CLI::App* run = nullptr;
+  CLI::App* sweep = nullptr;
+  CLI::App* fit = nullptr;
+
+  CommandLine()
+  {
+    app.require_subcommand(1);
+    app.allow_extras(); // the rest goes to PETSc
+    run = app.add_subcommand("run", "run a scene");
+    common(run, "scene file (TOML)", nullptr);
+    sweep = app.add_subcommand(
+        "sweep", "run the Cartesian product of scene values, each case in DIR/case_NNN; under "
+                 "mpirun the processes share the cases (docs/sweeps.md)");
+    common(sweep, "scene file (TOML)", &sweep_options.ranks_per_case);
+    sweep
+        ->add_option("--vary", sweep_options.vary,
+                     "a key and its values: key=v1,v2,... (repeatable)")
+        ->required();
+    sweep->add_option("--max-cases", sweep_options.max_cases,
+                      "the most cases the sweep runs; more is refused (default " +
+                          std::to_string(pushout::driver::SweepOptions::default_max_cases) + ")");
+    fit = app.add_subcommand(
+        "fit", "fit scene values (law parameters, loads) to a measured push-out curve by least "
+               "squares (PETSc TAO); DIR/fit.json has them with their standard errors "
+               "(docs/fitting.md)");
+    common(fit, "scene file (TOML): the start values", &fit_options.ranks_per_case);
+    fit->add_option("--data", fit_options.data, "measured curve: CSV with delta_mm, tau_MPa")
+        ->required();
+    fit->add_option("--free", fit_options.free, "a scene key to fit (repeatable)")->required();
+    fit->add_option("--bounds", fit_options.bounds,
+                    "bounds of a free key: key=lo:hi (either may be empty; repeatable)");
+    app.add_subcommand("keys", "print the scene keys (Markdown table)");
+    app.add_subcommand("laws", "print the interface laws and their parameters");
+  }
+
+  /// Parses the command line: an exit code to end with (a usage error: one
+  /// line naming the option, with where help is; --help), or none.
+  std::optional<int> parse(int argc, char* argv[])
+  {
+    std::string command;
+    for (int i = 1; i < argc && command.empty(); ++i)
+      for (const char* name : {"run", "sweep", "fit", "keys", "laws"})
+        if (std::string(argv[i]) == name)
+          command = name;
+    const std::string help = command.empty() ? "pushout --help" : "pushout " + command + " --help";
+    const auto usage_error = [&](std::string message)
+    {
+      std::replace(message.begin(), message.end(), '\n', ' ');
+      if (first_process())
+        std::cerr << "pushout: error: " << message << " (" << help << ")" << std::endl;
+      return pushout::exit_code::bad_input;
+    };
+    try
+    {
+      app.parse(argc, argv);
+    }
+    catch (const CLI::ParseError& e)
+    {
+      if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) // --help
+        return app.exit(e);
+      if (command.empty() && argc > 1 && argv[1][0] != '-')
+        return usage_error(std::string("unknown command '") + argv[1] +
+                           "'; commands: run, sweep, fit, keys, laws");
+      return usage_error(e.what());
+    }
+    // Options with two dashes are pushout's: one it does not know is a
+    // typo, not a PETSc option (those have one dash).
+    for (const std::string& extra : app.remaining(true))
+      if (extra.rfind("--", 0) == 0)
+        return usage_error("unknown option '" + extra.substr(0, extra.find('=')) + "'");
+    return std::nullopt;
+  }
+
+  /// The options CLI11 did not consume: PETSc's.
+  std::vector<std::string> petsc_options() const
+  {
+    return app.got_subcommand("sweep") ? sweep->remaining()
+           : app.got_subcommand("fit") ? fit->remaining()
+                                       : run->remaining();
+  }
+
+  /// Runs the command (run, sweep or fit); returns its exit code.
+  int run_command()
+  {
+    // What sweep and fit share, from the command line.
+    const auto fill = [&](pushout::driver::ManyRunsOptions& o)
+    {
+      o.scene_file = scene_file;
+      o.sets = sets;
+      o.out = out;
+      o.mesh_cache = pushout::mesh::default_cache_dir();
+      o.quiet = quiet;
+      o.force = force;
+    };
+    if (app.got_subcommand("fit"))
+    {
+      fill(fit_options);
+      return pushout::driver::fit(fit_options);
+    }
+    if (app.got_subcommand("sweep"))
+    {
+      fill(sweep_options);
+      return pushout::driver::sweep(sweep_options);
+    }
+    return run_scene(scene_file, out, sets, quiet, force);
+  }
+
+private:
+  /// The scene, the output folder, the overrides and the flags every
+  /// command that runs takes; `ranks`: --ranks-per-case, for those that
+  /// make many runs.
+  void common(CLI::App* cmd, const std::string& scene_doc, int* ranks)
   {
     cmd->add_option("scene", scene_file, scene_doc)->required();
     cmd->add_option("--out", out, "output folder")->required();
@@ -294,83 +402,15 @@ int main(int argc, char* argv[])
                 "no solver of the run (nor of the default solver path) read is an error, "
                 "reported at the end of the run, unless --allow-unused-petsc-options.");
     cmd->allow_extras();
-  };
-  CLI::App* run = app.add_subcommand("run", "run a scene");
-  common(run, "scene file (TOML)", nullptr);
-  pushout::driver::SweepOptions sweep_options;
-  CLI::App* sweep = app.add_subcommand(
-      "sweep", "run the Cartesian product of scene values, each case in DIR/case_NNN; under "
-               "mpirun the processes share the cases (docs/sweeps.md)");
-  common(sweep, "scene file (TOML)", &sweep_options.ranks_per_case);
-  sweep
-      ->add_option("--vary", sweep_options.vary, "a key and its values: key=v1,v2,... (repeatable)")
-      ->required();
-  sweep->add_option("--max-cases", sweep_options.max_cases,
-                    "the most cases the sweep runs; more is refused (default " +
-                        std::to_string(pushout::driver::SweepOptions::default_max_cases) + ")");
-  pushout::driver::FitOptions fit_options;
-  CLI::App* fit = app.add_subcommand(
-      "fit", "fit scene values (law parameters, loads) to a measured push-out curve by least "
-             "squares (PETSc TAO); DIR/fit.json has them with their standard errors "
-             "(docs/fitting.md)");
-  common(fit, "scene file (TOML): the start values", &fit_options.ranks_per_case);
-  fit->add_option("--data", fit_options.data, "measured curve: CSV with delta_mm, tau_MPa")
-      ->required();
-  fit->add_option("--free", fit_options.free, "a scene key to fit (repeatable)")->required();
-  fit->add_option("--bounds", fit_options.bounds,
-                  "bounds of a free key: key=lo:hi (either may be empty; repeatable)");
-  app.add_subcommand("keys", "print the scene keys (Markdown table)");
-  app.add_subcommand("laws", "print the interface laws and their parameters");
-  // A usage error is one line naming the option, with where help is.
-  std::string command;
-  for (int i = 1; i < argc && command.empty(); ++i)
-    for (const char* name : {"run", "sweep", "fit", "keys", "laws"})
-      if (std::string(argv[i]) == name)
-        command = name;
-  const std::string help = command.empty() ? "pushout --help" : "pushout " + command + " --help";
-  const auto usage_error = [&](std::string message)
-  {
-    std::replace(message.begin(), message.end(), '\n', ' ');
-    if (first_process())
-      std::cerr << "pushout: error: " << message << " (" << help << ")" << std::endl;
-    return bad_input;
-  };
-  try
-  {
-    app.parse(argc, argv);
   }
-  catch (const CLI::ParseError& e)
-  {
-    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) // --help
-      return app.exit(e);
-    if (command.empty() && argc > 1 && argv[1][0] != '-')
-      return usage_error(std::string("unknown command '") + argv[1] +
-                         "'; commands: run, sweep, fit, keys, laws");
-    return usage_error(e.what());
-  }
-  // Options with two dashes are pushout's: one it does not know is a typo,
-  // not a PETSc option (those have one dash).
-  for (const std::string& extra : app.remaining(true))
-    if (extra.rfind("--", 0) == 0)
-      return usage_error("unknown option '" + extra.substr(0, extra.find('=')) + "'");
-  if (app.got_subcommand("keys"))
-  {
-    print_keys();
-    return pushout::exit_code::done;
-  }
-  if (app.got_subcommand("laws"))
-  {
-    print_laws();
-    return pushout::exit_code::done;
-  }
+};
 
-  // PETSc sees only the options CLI11 did not consume.
-  std::vector<std::string> extras = app.got_subcommand("sweep") ? sweep->remaining()
-                                    : app.got_subcommand("fit") ? fit->remaining()
-                                                                : run->remaining();
-  std::vector<char*> petsc_argv = {argv[0]};
-  for (std::string& e : extras)
-    petsc_argv.push_back(e.data());
+/// Starts PETSc (and MPI) with `options`; false after saying why.
+bool start_petsc(char* program, std::vector<std::string>& options)
+{
+  std::vector<char*> petsc_argv = {program};
+  for (std::string& o : options)
+    petsc_argv.push_back(o.data());
   petsc_argv.push_back(nullptr);
   int petsc_argc = int(petsc_argv.size()) - 1;
   char** petsc_args = petsc_argv.data();
@@ -387,69 +427,68 @@ int main(int argc, char* argv[])
   catch (const std::exception& e)
   {
     std::cerr << "pushout: error: " << e.what() << std::endl;
-    return pushout::exit_code::failure;
+    return false;
   }
+  return true;
+}
+
+/// The exit code after the user's PETSc options (`given`) were checked: a
+/// PETSc option nothing read is most likely a typo of one (-snes_monitr):
+/// an error (exit 2) after a run that succeeded, unless `allow_unused`; a
+/// warning otherwise. Collective.
+int check_petsc_options(const std::set<std::string>& given, bool allow_unused, int rc)
+{
+  const std::vector<std::string> unused = unused_petsc_options(given);
+  if (unused.empty())
+    return rc;
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  std::string list;
+  for (const std::string& u : unused)
+    list += (list.empty() ? "" : ", ") + u;
+  const bool error = !allow_unused && rc == pushout::exit_code::done;
+  if (rank == 0)
+    std::cerr << "pushout: " << (error ? "error" : "warning") << ": PETSc option"
+              << (unused.size() > 1 ? "s " : " ") << list
+              << " not read by any solver (a typo?); --allow-unused-petsc-options accepts "
+              << (unused.size() > 1 ? "them" : "it") << std::endl;
+  return error ? pushout::exit_code::bad_input : rc;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  std::set_terminate(on_terminate);
+  CommandLine cli;
+  if (const std::optional<int> end = cli.parse(argc, argv))
+    return *end;
+  if (cli.app.got_subcommand("keys"))
+  {
+    print_keys();
+    return pushout::exit_code::done;
+  }
+  if (cli.app.got_subcommand("laws"))
+  {
+    print_laws();
+    return pushout::exit_code::done;
+  }
+  std::vector<std::string> petsc_options = cli.petsc_options();
+  if (!start_petsc(argv[0], petsc_options))
+    return pushout::exit_code::failure;
   // After PETSc, whose own handlers would otherwise abort on SIGTERM.
   pushout::interrupt::install();
   dolfinx::init_logging(1, argv);
   loguru::g_stderr_verbosity = loguru::Verbosity_WARNING;
-  // What sweep and fit share, from the command line.
-  const auto fill = [&](pushout::driver::ManyRunsOptions& o)
-  {
-    o.scene_file = scene_file;
-    o.sets = sets;
-    o.out = out;
-    o.mesh_cache = pushout::mesh::default_cache_dir();
-    o.quiet = quiet;
-    o.force = force;
-  };
   int rc = pushout::exit_code::done;
   try
   {
-    if (app.got_subcommand("fit"))
-    {
-      fill(fit_options);
-      rc = pushout::driver::fit(fit_options);
-    }
-    else if (app.got_subcommand("sweep"))
-    {
-      fill(sweep_options);
-      rc = pushout::driver::sweep(sweep_options);
-    }
-    else
-      rc = run_scene(scene_file, out, sets, quiet, force);
+    rc = cli.run_command();
+    rc = check_petsc_options(option_names(petsc_options), cli.allow_unused, rc);
   }
   catch (const std::exception& e) // an error outside the runs of a sweep or fit
   {
     std::cerr << "pushout: error: " << e.what() << std::endl;
     MPI_Abort(MPI_COMM_WORLD, pushout::exit_code::failure); // others may wait in a collective
-  }
-  // A PETSc option nothing read is most likely a typo of one (-snes_monitr).
-  try
-  {
-    const std::vector<std::string> unused = unused_petsc_options(option_names(extras));
-    int rank = 0;
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    if (!unused.empty())
-    {
-      std::string list;
-      for (const std::string& u : unused)
-        list += (list.empty() ? "" : ", ") + u;
-      const bool error = !allow_unused && rc == pushout::exit_code::done;
-      if (rank == 0)
-        std::cerr << "pushout: " << (error ? "error" : "warning") << ": PETSc option"
-                  << (unused.size() > 1 ? "s " : " ") << list
-                  << " not read by any solver (a typo?); --allow-unused-petsc-options "
-                     "accepts "
-                  << (unused.size() > 1 ? "them" : "it") << std::endl;
-      if (error)
-        rc = bad_input;
-    }
-  }
-  catch (const std::exception& e)
-  {
-    std::cerr << "pushout: error: " << e.what() << std::endl;
-    MPI_Abort(MPI_COMM_WORLD, pushout::exit_code::failure);
   }
   // The command has said how it ended: a signal that came meanwhile ends
   // nothing more.
