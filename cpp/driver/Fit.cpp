@@ -557,6 +557,110 @@ double interpolate(const std::vector<double>& delta, const std::vector<double>& 
   return tau.back();
 }
 
+namespace
+{
+/// What the fit found beyond its values: their standard errors and
+/// correlations, the residual sum of squares, and what the user should know.
+struct FitStatistics
+{
+  std::vector<double> se;                ///< standard errors, the keys' units
+  std::vector<std::vector<double>> corr; ///< correlations (NaN: undetermined)
+  std::vector<std::string> warnings;
+  double rss = 0; ///< |r|^2 [MPa^2]
+};
+
+/// The statistics at the optimum x (scaled values) from the Jacobian J (m x
+/// n, dense, of the scaled values) and the residuals r [MPa]: s^2 = |r|^2 /
+/// (m - n), cov = s^2 (J^T J)^-1 in the keys' units (docs/fitting.md).
+FitStatistics statistics(Mat J, const std::vector<double>& r, const std::vector<Free>& free,
+                         const std::vector<double>& x)
+{
+  const std::size_t n = free.size(), m = r.size();
+  FitStatistics st;
+  std::vector<std::vector<double>> JtJ(n, std::vector<double>(n, 0.0));
+  {
+    const PetscScalar* a;
+    check(MatDenseGetArrayRead(J, &a), "MatDenseGetArrayRead");
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t k = 0; k < n; ++k)
+        for (std::size_t i = 0; i < m; ++i)
+          JtJ[j][k] += a[j * m + i] / free[j].scale * a[k * m + i] / free[k].scale;
+    check(MatDenseRestoreArrayRead(J, &a), "MatDenseRestoreArrayRead");
+  }
+  for (double v : r)
+    st.rss += v * v;
+  const double s2 = st.rss / double(m > n ? m - n : 1);
+  std::vector<std::vector<double>> cov;
+  st.se.assign(n, INFINITY);
+  st.corr.assign(n, std::vector<double>(n, NAN));
+  if (invert(JtJ, cov))
+  {
+    for (std::size_t j = 0; j < n; ++j)
+      st.se[j] = std::sqrt(std::max(s2 * cov[j][j], 0.0));
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t k = 0; k < n; ++k)
+        st.corr[j][k] = s2 * cov[j][k] / (st.se[j] * st.se[k]);
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t k = j + 1; k < n; ++k)
+        if (std::abs(st.corr[j][k]) > identifiable_correlation)
+          st.warnings.push_back(free[j].key + " and " + free[k].key + " are correlated (" +
+                                number_text(std::round(st.corr[j][k] * 1000) / 1000) +
+                                "): the data do not determine them separately");
+  }
+  else
+    st.warnings.push_back("J^T J is singular at the optimum: some values do not change the curve");
+  // A value the optimum pushes onto a bound is not a fit of it: the data
+  // want it beyond (a different model, or data the model cannot make).
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const double v = x[k] * free[k].scale, tol = 1e-6 * free[k].scale;
+    for (const double bound : {free[k].lo, free[k].hi})
+      if (std::isfinite(bound) && std::abs(v - bound) <= tol)
+        st.warnings.push_back(free[k].key + " = " + number_text(v) +
+                              " sits on its bound: the best fit would take it beyond, so the "
+                              "model does not describe these data well there");
+  }
+  return st;
+}
+
+/// fit.json's part on the values: `parameters`, `standard_errors`,
+/// `correlation`, `start`, `bounds`, `bounds_exclusive`.
+nlohmann::json fitted_values(const std::vector<Free>& free, const std::vector<double>& x,
+                             const FitStatistics& st)
+{
+  const auto number_or_null = [](double v)
+  { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
+  nlohmann::json params = nlohmann::json::object(), errors = nlohmann::json::object(),
+                 starts = nlohmann::json::object(), bounds = nlohmann::json::object(),
+                 exclusive = nlohmann::json::array(), correlation = nlohmann::json::array();
+  std::vector<std::string> keys;
+  for (std::size_t k = 0; k < free.size(); ++k)
+  {
+    keys.push_back(free[k].key);
+    params[free[k].key] = x[k] * free[k].scale;
+    errors[free[k].key] = number_or_null(st.se[k]);
+    starts[free[k].key] = free[k].start;
+    // [lo, hi], null where unbounded; lo itself excluded where the law says
+    // so (bounds_exclusive).
+    bounds[free[k].key] = {number_or_null(free[k].lo), number_or_null(free[k].hi)};
+    if (free[k].lo_exclusive)
+      exclusive.push_back(free[k].key);
+    nlohmann::json row = nlohmann::json::array();
+    for (double c : st.corr[k])
+      row.push_back(number_or_null(c));
+    correlation.push_back(row);
+  }
+  nlohmann::json j;
+  j["parameters"] = params;
+  j["standard_errors"] = errors;
+  j["correlation"] = {{"keys", keys}, {"matrix", correlation}};
+  j["start"] = starts;
+  j["bounds"] = bounds;
+  j["bounds_exclusive"] = exclusive;
+  return j;
+}
+} // namespace
+
 int fit(const FitOptions& opt)
 {
   int rank = 0;
@@ -682,53 +786,9 @@ int fit(const FitOptions& opt)
   check(TaoGetConvergedReason(tao, &reason), "TaoGetConvergedReason");
 
   const std::vector<double> r = problem.r_last;
-  std::vector<std::vector<double>> JtJ(free.size(), std::vector<double>(free.size(), 0.0));
-  {
-    const PetscScalar* a;
-    check(MatDenseGetArrayRead(J, &a), "MatDenseGetArrayRead");
-    for (std::size_t j = 0; j < free.size(); ++j)
-      for (std::size_t k = 0; k < free.size(); ++k)
-        for (std::size_t i = 0; i < std::size_t(m); ++i)
-          JtJ[j][k] +=
-              a[j * std::size_t(m) + i] / free[j].scale * a[k * std::size_t(m) + i] / free[k].scale;
-    check(MatDenseRestoreArrayRead(J, &a), "MatDenseRestoreArrayRead");
-  }
-  double rss = 0;
-  for (double v : r)
-    rss += v * v;
-  const double s2 = rss / double(std::max<PetscInt>(m - n, 1));
-  std::vector<std::vector<double>> cov;
-  const bool determined = invert(JtJ, cov);
-  std::vector<double> se(free.size(), INFINITY);
-  std::vector<std::vector<double>> corr(free.size(), std::vector<double>(free.size(), NAN));
-  std::vector<std::string> warnings;
-  if (determined)
-  {
-    for (std::size_t j = 0; j < free.size(); ++j)
-      se[j] = std::sqrt(std::max(s2 * cov[j][j], 0.0));
-    for (std::size_t j = 0; j < free.size(); ++j)
-      for (std::size_t k = 0; k < free.size(); ++k)
-        corr[j][k] = s2 * cov[j][k] / (se[j] * se[k]);
-    for (std::size_t j = 0; j < free.size(); ++j)
-      for (std::size_t k = j + 1; k < free.size(); ++k)
-        if (std::abs(corr[j][k]) > identifiable_correlation)
-          warnings.push_back(free[j].key + " and " + free[k].key + " are correlated (" +
-                             number_text(std::round(corr[j][k] * 1000) / 1000) +
-                             "): the data do not determine them separately");
-  }
-  else
-    warnings.push_back("J^T J is singular at the optimum: some values do not change the curve");
-  // A value the optimum pushes onto a bound is not a fit of it: the data
-  // want it beyond (a different model, or data the model cannot make).
-  for (std::size_t k = 0; k < free.size(); ++k)
-  {
-    const double v = x[k] * free[k].scale, tol = 1e-6 * free[k].scale;
-    for (const double bound : {free[k].lo, free[k].hi})
-      if (std::isfinite(bound) && std::abs(v - bound) <= tol)
-        warnings.push_back(free[k].key + " = " + number_text(v) +
-                           " sits on its bound: the best fit would take it beyond, so the "
-                           "model does not describe these data well there");
-  }
+  const FitStatistics stats = statistics(J, r, free, x);
+  const std::vector<double>& se = stats.se;
+  const double rss = stats.rss;
 
   // The fitted run, with its outputs, in DIR/best (group 0; rank 0 leads
   // it).
@@ -761,37 +821,7 @@ int fit(const FitOptions& opt)
   {
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    nlohmann::json j;
-    nlohmann::json params = nlohmann::json::object(), errors = nlohmann::json::object(),
-                   starts = nlohmann::json::object(), bounds = nlohmann::json::object(),
-                   exclusive = nlohmann::json::array();
-    nlohmann::json correlation = nlohmann::json::array();
-    for (std::size_t k = 0; k < free.size(); ++k)
-    {
-      params[free[k].key] = x[k] * free[k].scale;
-      errors[free[k].key] = std::isfinite(se[k]) ? nlohmann::json(se[k]) : nlohmann::json();
-      starts[free[k].key] = free[k].start;
-      // [lo, hi], null where unbounded; lo itself excluded where the law says
-      // so (bounds_exclusive).
-      bounds[free[k].key] = {
-          std::isfinite(free[k].lo) ? nlohmann::json(free[k].lo) : nlohmann::json(),
-          std::isfinite(free[k].hi) ? nlohmann::json(free[k].hi) : nlohmann::json()};
-      if (free[k].lo_exclusive)
-        exclusive.push_back(free[k].key);
-      nlohmann::json row = nlohmann::json::array();
-      for (std::size_t l = 0; l < free.size(); ++l)
-        row.push_back(std::isfinite(corr[k][l]) ? nlohmann::json(corr[k][l]) : nlohmann::json());
-      correlation.push_back(row);
-    }
-    std::vector<std::string> keys;
-    for (const Free& f : free)
-      keys.push_back(f.key);
-    j["parameters"] = params;
-    j["standard_errors"] = errors;
-    j["correlation"] = {{"keys", keys}, {"matrix", correlation}};
-    j["start"] = starts;
-    j["bounds"] = bounds;
-    j["bounds_exclusive"] = exclusive;
+    nlohmann::json j = fitted_values(free, x, stats);
     j["rms_MPa"] = std::sqrt(rss / double(m));
     j["points"] = m;
     j["evaluations"] = evaluator.evaluations();
@@ -799,7 +829,7 @@ int fit(const FitOptions& opt)
     j["iterations"] = problem.iterations;
     j["converged"] = converged;
     j["reason"] = TaoConvergedReasons[reason];
-    j["warnings"] = warnings;
+    j["warnings"] = stats.warnings;
     j["data"] = opt.data.string();
     j["wall_s"] = wall;
     try
@@ -823,7 +853,7 @@ int fit(const FitOptions& opt)
     std::string why;
     if (!output::plot_fit(opt.out, opt.out / "fit.png", why))
       std::cerr << "pushout: warning: no fit.png: " << why << std::endl;
-    for (const std::string& w : warnings)
+    for (const std::string& w : stats.warnings)
       std::cerr << "pushout: warning: " << w << std::endl;
     if (!converged)
       std::cerr << "pushout: error: the fit did not converge (" << TaoConvergedReasons[reason]
