@@ -559,6 +559,63 @@ double interpolate(const std::vector<double>& delta, const std::vector<double>& 
 
 namespace
 {
+/// The TAO solver of a fit (bounded regularised Gauss-Newton, TAOBRGN) on
+/// the scaled values x = value / scale, with its vectors: the start and the
+/// bounds of `free`, the m residuals and their Jacobian; freed when it goes.
+struct TaoFit
+{
+  Tao tao = nullptr;
+  Vec X = nullptr, F = nullptr, lo = nullptr, hi = nullptr;
+  Mat J = nullptr;
+
+  TaoFit(const std::vector<Free>& free, PetscInt m, Problem& problem)
+  {
+    const PetscInt n = PetscInt(free.size());
+    check(TaoCreate(PETSC_COMM_SELF, &tao), "TaoCreate");
+    check(TaoSetType(tao, TAOBRGN), "TaoSetType");
+    check(VecCreateSeq(PETSC_COMM_SELF, n, &X), "VecCreateSeq");
+    check(VecDuplicate(X, &lo), "VecDuplicate");
+    check(VecDuplicate(X, &hi), "VecDuplicate");
+    check(VecCreateSeq(PETSC_COMM_SELF, m, &F), "VecCreateSeq");
+    check(MatCreateSeqDense(PETSC_COMM_SELF, m, n, nullptr, &J), "MatCreateSeqDense");
+    for (PetscInt j = 0; j < n; ++j)
+    {
+      const Free& f = free[std::size_t(j)];
+      check(VecSetValue(X, j, f.start / f.scale, INSERT_VALUES), "VecSetValue");
+      check(VecSetValue(lo, j, std::isfinite(f.lo) ? f.tao_lo() / f.scale : PETSC_NINFINITY,
+                        INSERT_VALUES),
+            "VecSetValue");
+      check(
+          VecSetValue(hi, j, std::isfinite(f.hi) ? f.hi / f.scale : PETSC_INFINITY, INSERT_VALUES),
+          "VecSetValue");
+    }
+    for (Vec v : {X, lo, hi})
+    {
+      check(VecAssemblyBegin(v), "VecAssemblyBegin");
+      check(VecAssemblyEnd(v), "VecAssemblyEnd");
+    }
+    check(TaoSetSolution(tao, X), "TaoSetSolution");
+    check(TaoSetVariableBounds(tao, lo, hi), "TaoSetVariableBounds");
+    check(TaoSetResidualRoutine(tao, F, residual_callback, &problem), "TaoSetResidualRoutine");
+    check(TaoSetJacobianResidualRoutine(tao, J, J, jacobian_callback, &problem),
+          "TaoSetJacobianResidualRoutine");
+    // Converged when the gradient fell by 1e6 from the start (the
+    // differences' noise floor is near 1e-10 of it) or below 1e-12 [MPa^2].
+    check(TaoSetTolerances(tao, 1e-12, 0.0, 1e-6), "TaoSetTolerances");
+    check(TaoSetMaximumIterations(tao, 50), "TaoSetMaximumIterations");
+    check(TaoSetFromOptions(tao), "TaoSetFromOptions");
+  }
+  ~TaoFit()
+  {
+    petsc::check_nothrow(TaoDestroy(&tao), "TaoDestroy");
+    for (Vec* v : {&X, &F, &lo, &hi})
+      petsc::check_nothrow(VecDestroy(v), "VecDestroy");
+    petsc::check_nothrow(MatDestroy(&J), "MatDestroy");
+  }
+  TaoFit(const TaoFit&) = delete;
+  TaoFit& operator=(const TaoFit&) = delete;
+};
+
 /// What the fit found beyond its values: their standard errors and
 /// correlations, the residual sum of squares, and what the user should know.
 struct FitStatistics
@@ -720,61 +777,21 @@ int fit(const FitOptions& opt)
               << (opt.ranks_per_case == 1 ? " process" : " processes") << std::endl;
 
   // TAO on each process alike (PETSC_COMM_SELF), on the scaled values.
-  const PetscInt n = PetscInt(free.size()), m = PetscInt(data.delta.size());
-  Tao tao;
-  Vec X, F, lo, hi;
-  Mat J;
-  check(TaoCreate(PETSC_COMM_SELF, &tao), "TaoCreate");
-  check(TaoSetType(tao, TAOBRGN), "TaoSetType");
-  check(VecCreateSeq(PETSC_COMM_SELF, n, &X), "VecCreateSeq");
-  check(VecDuplicate(X, &lo), "VecDuplicate");
-  check(VecDuplicate(X, &hi), "VecDuplicate");
-  check(VecCreateSeq(PETSC_COMM_SELF, m, &F), "VecCreateSeq");
-  check(MatCreateSeqDense(PETSC_COMM_SELF, m, n, nullptr, &J), "MatCreateSeqDense");
-  for (PetscInt j = 0; j < n; ++j)
-  {
-    const Free& f = free[std::size_t(j)];
-    check(VecSetValue(X, j, f.start / f.scale, INSERT_VALUES), "VecSetValue");
-    check(VecSetValue(lo, j, std::isfinite(f.lo) ? f.tao_lo() / f.scale : PETSC_NINFINITY,
-                      INSERT_VALUES),
-          "VecSetValue");
-    check(VecSetValue(hi, j, std::isfinite(f.hi) ? f.hi / f.scale : PETSC_INFINITY, INSERT_VALUES),
-          "VecSetValue");
-  }
-  for (Vec v : {X, lo, hi})
-  {
-    check(VecAssemblyBegin(v), "VecAssemblyBegin");
-    check(VecAssemblyEnd(v), "VecAssemblyEnd");
-  }
-  check(TaoSetSolution(tao, X), "TaoSetSolution");
-  check(TaoSetVariableBounds(tao, lo, hi), "TaoSetVariableBounds");
-  check(TaoSetResidualRoutine(tao, F, residual_callback, &problem), "TaoSetResidualRoutine");
-  check(TaoSetJacobianResidualRoutine(tao, J, J, jacobian_callback, &problem),
-        "TaoSetJacobianResidualRoutine");
-  // Converged when the gradient fell by 1e6 from the start (the
-  // differences' noise floor is near 1e-10 of it) or below 1e-12 [MPa^2].
-  check(TaoSetTolerances(tao, 1e-12, 0.0, 1e-6), "TaoSetTolerances");
-  check(TaoSetMaximumIterations(tao, 50), "TaoSetMaximumIterations");
-  check(TaoSetFromOptions(tao), "TaoSetFromOptions");
-  const auto destroy = [&]
-  {
-    check(TaoDestroy(&tao), "TaoDestroy");
-    for (Vec* v : {&X, &F, &lo, &hi})
-      check(VecDestroy(v), "VecDestroy");
-    check(MatDestroy(&J), "MatDestroy");
-  };
+  const PetscInt m = PetscInt(data.delta.size());
+  TaoFit solver(free, m, problem);
+  Tao tao = solver.tao;
+  Mat J = solver.J;
   std::vector<double> x;
   try
   {
     const interrupt::Phase phase("fit", stop_grace_s);
     check(TaoSolve(tao), "TaoSolve");
     // At the optimum: residuals and the Jacobian (in the keys' units below).
-    x = problem.values(X);
+    x = problem.values(solver.X);
     problem.evaluate(x, J);
   }
   catch (const Interrupted& e)
   {
-    destroy();
     evaluator.release();
     groups.close();
     if (rank == 0)
@@ -802,7 +819,6 @@ int fit(const FitOptions& opt)
   if (const int signal = evaluator.signal_anywhere(); signal != 0)
   {
     interrupt::acknowledge();
-    destroy();
     if (rank == 0)
     {
       output::remove_outputs(opt.out / "best");
@@ -873,7 +889,6 @@ int fit(const FitOptions& opt)
                 << (opt.out / "scene.toml").string() << std::endl;
     }
   }
-  destroy();
   MPI_Bcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD);
   return code;
 }
