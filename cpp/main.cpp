@@ -475,6 +475,7 @@ int main(int argc, char* argv[])
   std::vector<std::string> petsc_options = cli.petsc_options();
   if (!start_petsc(argv[0], petsc_options))
     return pushout::exit_code::failure;
+  pushout::output::share_run_id(MPI_COMM_WORLD);
   // After PETSc, whose own handlers would otherwise abort on SIGTERM.
   pushout::interrupt::install();
   dolfinx::init_logging(1, argv);

@@ -1,6 +1,7 @@
 #include "Interrupt.h"
 #include "exit_codes.h"
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -14,15 +15,18 @@ namespace pushout::interrupt
 {
 namespace
 {
-volatile std::sig_atomic_t signal_received = 0; ///< the first signal
-volatile std::sig_atomic_t signal_count = 0;
-volatile std::sig_atomic_t signal_acknowledged = 0;
+// Written by the handler and the main thread, read by the watcher thread:
+// atomics, lock-free so that the handler may touch them.
+static_assert(std::atomic<int>::is_always_lock_free);
+std::atomic<int> signal_received = 0; ///< the first signal
+std::atomic<int> signal_count = 0;
+std::atomic<int> signal_acknowledged = 0;
 
 extern "C" void on_signal(int sig)
 {
-  if (signal_received == 0)
-    signal_received = sig;
-  signal_count = signal_count + 1;
+  int none = 0;
+  signal_received.compare_exchange_strong(none, sig);
+  ++signal_count;
 }
 
 /// Whether SIGHUP was ignored when the process started (`nohup`): read

@@ -31,7 +31,15 @@ public:
     std::string header = "step";
     for (const std::string& c : columns)
       header += "," + c;
-    append(header + "\n");
+    try
+    {
+      append(header + "\n");
+    }
+    catch (...)
+    {
+      ::close(_fd); // no destructor for a writer not made
+      throw;
+    }
   }
   ~CurveWriter()
   {

@@ -3,6 +3,8 @@
 #include "elasticity.h"
 #include "xdmf_checked.h"
 #include <dolfinx/fem/utils.h>
+#include <exception>
+#include <functional>
 #include <sys/statvfs.h>
 
 namespace pushout::output
@@ -91,13 +93,37 @@ FieldWriter::~FieldWriter()
     }
 }
 
+namespace
+{
+/// Runs every step (each a collective HDF5 call on all processes, so none
+/// may be skipped because another failed), then rethrows the first error.
+void all_of(std::initializer_list<std::function<void()>> steps)
+{
+  std::exception_ptr first;
+  for (const auto& step : steps)
+    try
+    {
+      step();
+    }
+    catch (...)
+    {
+      if (!first)
+        first = std::current_exception();
+    }
+  if (first)
+    std::rethrow_exception(first);
+}
+} // namespace
+
 void FieldWriter::close()
 {
   _open = false;
-  xdmf_close(_fields, _fields_file);
-  _interface->close();
-  if (_cracks)
-    _cracks->close();
+  all_of({[&] { xdmf_close(_fields, _fields_file); }, [&] { _interface->close(); },
+          [&]
+          {
+            if (_cracks)
+              _cracks->close();
+          }});
 }
 
 std::uintmax_t FieldWriter::data_bytes() const
@@ -142,16 +168,21 @@ void FieldWriter::write(double t)
   if (_u1)
     _u1->interpolate(_model.displacement());
   const auto& stress = _stress.update();
-  xdmf_checked(_fields, _fields_file,
-               [&](dolfinx::io::XDMFFile& f)
-               {
-                 f.write_function(_u1 ? *_u1 : _model.displacement(), t);
-                 f.write_function(stress, t);
-               });
-
   const std::span<const double> u = _model.displacement().x()->array();
-  _interface->write(u, t);
-  if (_cracks)
-    _cracks->write(u, t);
+  all_of({[&]
+          {
+            xdmf_checked(_fields, _fields_file,
+                         [&](dolfinx::io::XDMFFile& f)
+                         {
+                           f.write_function(_u1 ? *_u1 : _model.displacement(), t);
+                           f.write_function(stress, t);
+                         });
+          },
+          [&] { _interface->write(u, t); },
+          [&]
+          {
+            if (_cracks)
+              _cracks->write(u, t);
+          }});
 }
 } // namespace pushout::output

@@ -1,4 +1,5 @@
 #include "OutputFiles.h"
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <fcntl.h>
@@ -88,7 +89,10 @@ void lock(const fs::path& dir)
   if (::flock(fd, LOCK_EX | LOCK_NB) != 0)
   {
     if (errno != EWOULDBLOCK)
+    {
+      ::close(fd);
       return; // a file system without locks: the folder is not guarded
+    }
     char pid[32] = {};
     const ssize_t n = ::pread(fd, pid, sizeof(pid) - 1, 0);
     ::close(fd);
@@ -113,11 +117,13 @@ std::string cannot_write(const fs::path& file)
 
 void write_file(const fs::path& file, const std::string& text)
 {
-  std::string name = ".";
-  name += file.filename().string();
-  name += ".pushout-tmp";
-  const fs::path tmp = file.parent_path() / name;
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  // A name of this writer's own: two threads (the stop report of
+  // common/Interrupt.h and the step loop) may write one file at once.
+  static std::atomic<unsigned> writes{0};
+  std::ostringstream name;
+  name << "." << file.filename().string() << "." << ::getpid() << "." << writes++ << ".pushout-tmp";
+  const fs::path tmp = file.parent_path() / name.str();
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
   bool ok = fd >= 0;
   for (std::size_t done = 0; ok && done < text.size();)
   {
@@ -141,6 +147,10 @@ void claim(const fs::path& dir, const std::vector<fs::path>& inputs)
   fs::create_directories(dir, ec);
   if (ec || !fs::is_directory(dir))
     throw FolderError("--out '" + dir.string() + "': cannot create or write this folder");
+  // Only a folder that a run of pushout has used (it leaves its lock file)
+  // holds outputs to remove: a folder of the user's own keeps its files,
+  // whatever their names.
+  const bool used_before = fs::exists(dir / ".pushout.lock");
   const fs::path home = fs::canonical(dir);
   for (const fs::path& input : inputs)
     if (!input.empty() && fs::exists(input) &&
@@ -148,7 +158,8 @@ void claim(const fs::path& dir, const std::vector<fs::path>& inputs)
       throw FolderError(input.string() + " is an output of pushout in " + dir.string() +
                         " and would be overwritten: copy it elsewhere, or choose another --out");
   lock(dir);
-  clean(dir, true);
+  if (used_before)
+    clean(dir, true);
 }
 
 void remove_outputs(const fs::path& dir)
@@ -160,9 +171,11 @@ void remove_outputs(const fs::path& dir)
     fs::remove(dir);
 }
 
-const std::string& run_id()
+namespace
 {
-  static const std::string id = []
+std::string& the_run_id()
+{
+  static std::string id = []
   {
     std::random_device random;
     std::ostringstream s;
@@ -170,5 +183,20 @@ const std::string& run_id()
     return s.str();
   }();
   return id;
+}
+} // namespace
+
+const std::string& run_id()
+{
+  return the_run_id();
+}
+
+void share_run_id(MPI_Comm comm)
+{
+  std::string& id = the_run_id();
+  int length = int(id.size());
+  MPI_Bcast(&length, 1, MPI_INT, 0, comm);
+  id.resize(std::size_t(length));
+  MPI_Bcast(id.data(), length, MPI_CHAR, 0, comm);
 }
 } // namespace pushout::output

@@ -8,11 +8,13 @@
 // The output folder (--out) belongs to one run at a time: claim() takes a
 // lock held until the process ends (`DIR/.pushout.lock`, flock(2)), then
 // removes what an earlier run of pushout left there (the files of the
-// Outputs table, by name: a file of another name is never touched), so that
-// no output of an earlier run can be read as this run's.
+// Outputs table, by name: a file of another name is never touched, nor any
+// file of a folder no run of pushout used), so that no output of an earlier
+// run can be read as this run's.
 #pragma once
 
 #include <filesystem>
+#include <mpi.h>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -37,16 +39,21 @@ void write_file(const std::filesystem::path& file, const std::string& text);
 
 /// Takes the output folder `dir` for this process (one process of a run:
 /// rank 0): creates it, refuses it if one of `inputs` is a file pushout
-/// writes there, takes its lock (held until the process ends) and removes
-/// the outputs of earlier runs. Throws FolderError (in use, an input among
-/// the outputs) or std::runtime_error (cannot create or write it).
+/// writes there, takes its lock (held until the process ends) and, if a run
+/// of pushout used it before (its lock file is there), removes that run's
+/// outputs. Throws FolderError (in use, cannot be created or written, an
+/// input among the outputs).
 void claim(const std::filesystem::path& dir, const std::vector<std::filesystem::path>& inputs);
 
 /// Removes the outputs of a run of pushout from `dir`, and `dir` if nothing
 /// else is left in it.
 void remove_outputs(const std::filesystem::path& dir);
 
-/// This process's run id (random, hex): in summary.json, tells one run's
+/// The command's run id (random, hex): in summary.json, tells one run's
 /// outputs from another's.
 const std::string& run_id();
+
+/// Gives every process of `comm` rank 0's run id (collective; once, at the
+/// start, so that every summary of a sweep or fit carries the same one).
+void share_run_id(MPI_Comm comm);
 } // namespace pushout::output

@@ -134,6 +134,7 @@ Vec LoadStepSolver::functional(Vec a)
 
 SolveReport LoadStepSolver::solve(Vec x)
 {
+  update(); // may find the condensation untrusted, and turn it off
   if (!_condense)
     return _whole.solve(x);
   Vec xp = to_problem(x);

@@ -2,7 +2,8 @@
 use is refused (exit 2, naming the pid of the one using it); a run removes
 what an earlier run of pushout left there (so a stale summary.json cannot
 outlive a run killed with SIGKILL, and a smaller sweep leaves no old case
-folders), but no file of another name; summary.json has a run id of its own;
+folders), but no file of another name, and nothing from a folder no run of
+pushout used; summary.json has a run id of its own;
 an input that is one of the outputs (the scene DIR/scene.toml with --out DIR)
 is refused (exit 2) and left as it was."""
 import json
@@ -84,6 +85,19 @@ check("notes.txt" in left, "a file pushout did not write is kept")
 p = run(out)
 check(p.returncode == 0 and summary(out)["run_id"] not in ("", first_id),
       f"each run has its own run id: {first_id} then {summary(out)['run_id']}")
+
+# A folder no run of pushout used (no lock file) keeps its files, whatever
+# their names: they are the user's (here a measured fit.csv and a folder
+# case_001 of notes), not an earlier run's.
+out = os.path.join(ROOT, "users_own")
+os.makedirs(os.path.join(out, "case_001"))
+for name in ("fit.csv", os.path.join("case_001", "curve.csv")):
+    with open(os.path.join(out, name), "w") as f:
+        f.write("the user's\n")
+p = run(out)
+check(p.returncode == 0 and os.path.exists(os.path.join(out, "fit.csv"))
+      and os.path.exists(os.path.join(out, "case_001", "curve.csv")),
+      f"a folder pushout never used keeps its files: exit {p.returncode}, {sorted(os.listdir(out))}")
 
 # The scene is DIR/scene.toml (before: overwritten by the run into DIR).
 before = open(os.path.join(out, "scene.toml")).read()
