@@ -7,13 +7,14 @@
 // energy density and the stiffness is a symmetric 6 x 6 (row-major).
 #pragma once
 
+#include "../laws/InterfaceLaw.h"
 #include <array>
 #include <cmath>
 
 namespace pushout::bulk
 {
-using Vec3 = std::array<double, 3>;
-using Mat3 = std::array<double, 9>; ///< row-major
+using laws::Mat3; ///< 3 x 3, row-major
+using laws::Vec3;
 using Voigt = std::array<double, 6>;
 using Voigt66 = std::array<double, 36>; ///< row-major
 

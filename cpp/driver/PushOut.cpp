@@ -27,9 +27,8 @@ constexpr double max_step_ratio = 1e6;
 /// The upper bound declared for a scene key (scene/keys.cpp).
 double key_max(const std::string& path)
 {
-  for (const KeyDef& k : scene_keys())
-    if (k.path == path)
-      return k.max;
+  if (const KeyDef* k = find_key(path))
+    return k->max;
   throw std::logic_error("no scene key '" + path + "'");
 }
 

@@ -209,6 +209,11 @@ template <class F> output::Summary reporting_errors(RunReport& report, F&& f)
     report.fail(e.what());
     throw;
   }
+  catch (const std::string& e) // gmsh reports errors this way
+  {
+    report.fail(e);
+    throw;
+  }
 }
 } // namespace
 

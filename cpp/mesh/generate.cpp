@@ -9,7 +9,6 @@
 #include <cstdlib>
 #include <dlfcn.h>
 #include <fstream>
-#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <map>

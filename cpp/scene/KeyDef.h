@@ -33,4 +33,7 @@ struct KeyDef
 /// Every scalar scene key outside [[interface]], declared once
 /// (cpp/scene/keys.cpp).
 const std::vector<KeyDef>& scene_keys();
+
+/// The declaration of the key at `path`, or nullptr.
+const KeyDef* find_key(const std::string& path);
 } // namespace pushout

@@ -11,14 +11,6 @@ namespace pushout
 {
 namespace
 {
-const KeyDef* find_key(const std::string& path)
-{
-  for (const KeyDef& k : scene_keys())
-    if (k.path == path)
-      return &k;
-  return nullptr;
-}
-
 std::vector<std::string> split(const std::string& s, char sep)
 {
   std::vector<std::string> parts;

@@ -476,4 +476,11 @@ const std::vector<KeyDef>& scene_keys()
   static const std::vector<KeyDef> keys = make_keys();
   return keys;
 }
+const KeyDef* find_key(const std::string& path)
+{
+  for (const KeyDef& k : scene_keys())
+    if (k.path == path)
+      return &k;
+  return nullptr;
+}
 } // namespace pushout
