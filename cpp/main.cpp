@@ -13,14 +13,14 @@
 #include "common/mpi_errors.h"
 #include "common/mpi_start.h"
 #include "common/petsc_check.h"
-#include "driver/Fit.h"
-#include "driver/ResourceGuard.h"
 #include "driver/Run.h"
-#include "driver/Sweep.h"
 #include "driver/exit_on_error.h"
 #include "mesh/generate.h"
 #include "output/OutputFiles.h"
+#include "record/ResourceGuard.h"
 #include "scene/SceneError.h"
+#include "study/Fit.h"
+#include "study/Sweep.h"
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cctype>
@@ -111,7 +111,7 @@ int run_scene(const std::string& scene_file, const std::string& out,
                                                                output::claim(out, {scene_file});
                                                            });
         const driver::RunOptions options{out, pushout::mesh::default_cache_dir(), quiet, force};
-        const output::Summary s = mpi::collectively<SceneError, driver::TooLarge>(
+        const output::Summary s = mpi::collectively<SceneError, record::TooLarge>(
             MPI_COMM_WORLD, [&] { return driver::run(scene, options); });
         if (s.interrupted)
         {
@@ -272,8 +272,8 @@ struct CommandLine
   std::string scene_file, out;
   std::vector<std::string> sets;
   bool quiet = false, force = false, allow_unused = false;
-  pushout::driver::SweepOptions sweep_options;
-  pushout::driver::FitOptions fit_options;
+  pushout::study::SweepOptions sweep_options;
+  pushout::study::FitOptions fit_options;
   CLI::App* run = nullptr;
   CLI::App* sweep = nullptr;
   CLI::App* fit = nullptr;
@@ -294,7 +294,7 @@ struct CommandLine
         ->required();
     sweep->add_option("--max-cases", sweep_options.max_cases,
                       "the most cases the sweep runs; more is refused (default " +
-                          std::to_string(pushout::driver::SweepOptions::default_max_cases) + ")");
+                          std::to_string(pushout::study::SweepOptions::default_max_cases) + ")");
     fit = app.add_subcommand(
         "fit", "fit scene values (law parameters, loads) to a measured push-out curve by least "
                "squares (PETSc TAO); DIR/fit.json has them with their standard errors "
@@ -359,7 +359,7 @@ struct CommandLine
   int run_command()
   {
     // What sweep and fit share, from the command line.
-    const auto fill = [&](pushout::driver::ManyRunsOptions& o)
+    const auto fill = [&](pushout::study::ManyRunsOptions& o)
     {
       o.scene_file = scene_file;
       o.sets = sets;
@@ -371,12 +371,12 @@ struct CommandLine
     if (app.got_subcommand("fit"))
     {
       fill(fit_options);
-      return pushout::driver::fit(fit_options);
+      return pushout::study::fit(fit_options);
     }
     if (app.got_subcommand("sweep"))
     {
       fill(sweep_options);
-      return pushout::driver::sweep(sweep_options);
+      return pushout::study::sweep(sweep_options);
     }
     return run_scene(scene_file, out, sets, quiet, force);
   }

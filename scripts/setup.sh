@@ -15,7 +15,7 @@ packages=(
   paraview python3-paraview xvfb xauth  # pvbatch renders the interface maps (Fig. 8);
                                         # its Python module is only a recommended package
   libgtest-dev clang-format             # unit tests; the format test (ctest -R format)
-  mount                                 # e2e_full_disk mounts a small tmpfs
+  mount                                 # e2e_full_disk_fails_cleanly mounts a small tmpfs
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -5,14 +5,14 @@
 #include "../mesh/generate.h"
 #include "../mesh/symmetry.h"
 #include "../model/Model.h"
+#include "../record/ResourceGuard.h"
+#include "../record/RunReport.h"
 #include "../scene/SceneError.h"
 #include "../solver/LoadStepSolver.h"
-#include "Corrosion.h"
-#include "ResourceGuard.h"
-#include "RunReport.h"
-#include "Scenario.h"
-#include "StepLoop.h"
-#include "StepRecorder.h"
+#include "../specimen/Corrosion.h"
+#include "../specimen/Scenario.h"
+#include "../stepping/StepLoop.h"
+#include "../stepping/StepRecorder.h"
 #include <chrono>
 #include <iomanip>
 #include <iostream>
@@ -30,10 +30,10 @@ constexpr double stop_grace_s = 5;
 
 /// Before meshing: the size guard (throws TooLarge unless the run fits or
 /// --force), its estimate into the summary and the first progress line.
-void guard_size(const Scene& scene, const RunOptions& opt, RunReport& report)
+void guard_size(const Scene& scene, const RunOptions& opt, record::RunReport& report)
 {
-  const ResourceEstimate estimate = estimate_resources(scene, opt.comm);
-  check_fits(estimate, scene, opt.force);
+  const record::ResourceEstimate estimate = record::estimate_resources(scene, opt.comm);
+  record::check_fits(estimate, scene, opt.force);
   output::Summary& s = report.summary();
   s.estimate = {estimate.size.dofs, estimate.size.cells, estimate.size.joint_elements,
                 estimate.peak_mb()};
@@ -48,7 +48,7 @@ void guard_size(const Scene& scene, const RunOptions& opt, RunReport& report)
 /// was built and what Newton runs on (before the condensation, which takes
 /// a while on a large interface).
 void describe_model(const Scene& scene, const mesh::MeshData& data, const model::Model& model,
-                    const solver::LoadStepSolver& solver, RunReport& report)
+                    const solver::LoadStepSolver& solver, record::RunReport& report)
 {
   output::Summary& s = report.summary();
   s.dofs = model.num_dofs();
@@ -82,7 +82,7 @@ void describe_model(const Scene& scene, const mesh::MeshData& data, const model:
 }
 } // namespace
 
-Simulation::Simulation(const Scene& scene, const RunOptions& opt, RunReport& report)
+Simulation::Simulation(const Scene& scene, const RunOptions& opt, record::RunReport& report)
     : _fingerprint(set_up_fingerprint(scene))
 {
   output::Summary& summary = report.summary();
@@ -102,13 +102,14 @@ Simulation::Simulation(const Scene& scene, const RunOptions& opt, RunReport& rep
   _solver = solver::LoadStepSolver::from_scene(*_equilibrium, scene);
   _solver->set_talk(report.talk());
   describe_model(scene, _data, *_model, *_solver, report);
-  make_scenario(scene, _data, *_model)->apply_load(0.0, *_equilibrium); // step 0's constraints
-  _solver->prepare();                                                   // the condensation, if any
+  specimen::make_scenario(scene, _data, *_model)
+      ->apply_load(0.0, *_equilibrium); // step 0's constraints
+  _solver->prepare();                   // the condensation, if any
   summary.condensed_dofs = _solver->condensed_size();
   summary.condensation_asymmetry = _solver->condensation_asymmetry();
   summary.setup_s = report.seconds() - t0;
   _set_up = summary;
-  test_failure_at_setup(opt.comm);
+  stepping::test_failure_at_setup(opt.comm);
   mpi::checkpoint(opt.comm); // an error of the set-up on any process
 }
 
@@ -131,7 +132,7 @@ std::string Simulation::set_up_fingerprint(const Scene& scene)
   return s.str();
 }
 
-void Simulation::load_steps(const Scene& scene, const RunOptions& opt, RunReport& report)
+void Simulation::load_steps(const Scene& scene, const RunOptions& opt, record::RunReport& report)
 {
   output::Summary& summary = report.summary();
   if (_runs++ > 0)
@@ -149,16 +150,18 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, RunReport
     _model->set_laws(scene);
     _solver->restart();
   }
-  const std::unique_ptr<Scenario> scenario = make_scenario(scene, _data, *_model);
+  const std::unique_ptr<specimen::Scenario> scenario =
+      specimen::make_scenario(scene, _data, *_model);
   scenario->apply_load(0.0, *_equilibrium);
   const int factorizations_before = _solver->factorizations();
 
   // Outputs and load steps.
-  StepRecorder recorder(scene, opt.out, *scenario, *_equilibrium, report);
-  Corrosion corrosion(scene, opt.out, report, opt.comm);
-  StepLoop loop(*scenario, corrosion, *_equilibrium, *_solver, recorder, report,
-                int(scene.integer("loading.max_cuts")),
-                scenario->has_load_factor() ? int(scene.integer("loading.dissipation_steps")) : 1);
+  stepping::StepRecorder recorder(scene, opt.out, *scenario, *_equilibrium, report);
+  specimen::Corrosion corrosion(scene, opt.out, report, opt.comm);
+  stepping::StepLoop loop(
+      *scenario, corrosion, *_equilibrium, *_solver, recorder, report,
+      int(scene.integer("loading.max_cuts")),
+      scenario->has_load_factor() ? int(scene.integer("loading.dissipation_steps")) : 1);
   if (scene.boolean("solver.time_linear_solve"))
     loop.time_linear_solve();
   report.publish();
@@ -167,13 +170,13 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, RunReport
   const auto control = [&]
   {
     if (!scenario->has_load_factor())
-      return StepLoop::Control::displacement;
+      return stepping::StepLoop::Control::displacement;
     const std::string c = scene.string("loading.control");
     if (c == "displacement")
-      return StepLoop::Control::displacement;
+      return stepping::StepLoop::Control::displacement;
     if (c == "arc_length")
-      return StepLoop::Control::arc_length;
-    return StepLoop::Control::dissipation; // "dissipation" or "auto"
+      return stepping::StepLoop::Control::arc_length;
+    return stepping::StepLoop::Control::dissipation; // "dissipation" or "auto"
   }();
   // An error on one process is agreed on here, where the solvers still
   // live: destroying a MUMPS factor is collective, so a process must not
@@ -190,7 +193,7 @@ namespace
 {
 /// Runs `f` (the run's steps and its end); an error other than a bad scene
 /// or size (which write nothing) is in summary.json too, where it fits.
-template <class F> output::Summary reporting_errors(RunReport& report, F&& f)
+template <class F> output::Summary reporting_errors(record::RunReport& report, F&& f)
 {
   try
   {
@@ -200,7 +203,7 @@ template <class F> output::Summary reporting_errors(RunReport& report, F&& f)
   {
     throw;
   }
-  catch (const TooLarge&)
+  catch (const record::TooLarge&)
   {
     throw;
   }
@@ -219,8 +222,8 @@ template <class F> output::Summary reporting_errors(RunReport& report, F&& f)
 
 output::Summary run(const Scene& scene, const RunOptions& opt)
 {
-  check_scene(scene);
-  RunReport report(scene, opt.out, opt.quiet, opt.comm, opt.plot);
+  specimen::check_scene(scene);
+  record::RunReport report(scene, opt.out, opt.quiet, opt.comm, opt.plot);
   return reporting_errors(report,
                           [&]
                           {
@@ -240,7 +243,7 @@ RunOutcome run_case(const std::filesystem::path& scene_file, const std::vector<s
   const auto t0 = std::chrono::steady_clock::now();
   try
   {
-    const output::Summary s = mpi::collectively<SceneError, TooLarge>(
+    const output::Summary s = mpi::collectively<SceneError, record::TooLarge>(
         opt.comm,
         [&]
         {
@@ -255,8 +258,8 @@ RunOutcome run_case(const std::filesystem::path& scene_file, const std::vector<s
             for (const char* f : {"curve.csv", "summary.json", "corrosion.csv"})
               std::filesystem::remove(opt.out / f);
           }
-          check_scene(scene);
-          RunReport report(scene, opt.out, opt.quiet, opt.comm, opt.plot);
+          specimen::check_scene(scene);
+          record::RunReport report(scene, opt.out, opt.quiet, opt.comm, opt.plot);
           return reporting_errors(report,
                                   [&]
                                   {
@@ -281,7 +284,7 @@ RunOutcome run_case(const std::filesystem::path& scene_file, const std::vector<s
     r.exit_code = exit_code::bad_input;
     r.message = std::string("error in scene: ") + e.what();
   }
-  catch (const TooLarge& e)
+  catch (const record::TooLarge& e)
   {
     r.exit_code = exit_code::bad_input;
     r.message = e.what();
@@ -302,34 +305,4 @@ RunOutcome run_case(const std::filesystem::path& scene_file, const std::vector<s
   return r;
 }
 
-void ProcessGroups::check(int ranks_per_case)
-{
-  int size = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
-  if (ranks_per_case < 1 || size % ranks_per_case != 0)
-    throw SceneError("--ranks-per-case " + std::to_string(ranks_per_case) + " must divide the " +
-                     std::to_string(size) + " processes");
-}
-
-ProcessGroups::ProcessGroups(int ranks_per_case)
-{
-  int rank = 0, size = 1;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
-  _count = size / ranks_per_case;
-  _index = rank / ranks_per_case;
-  MPI_Comm_split(MPI_COMM_WORLD, _index, rank, &_comm);
-  int group_rank = 0;
-  MPI_Comm_rank(_comm, &group_rank);
-  _leader = group_rank == 0;
-  mpi::set_run_processes(_comm);
-}
-
-void ProcessGroups::close()
-{
-  if (_comm == MPI_COMM_NULL)
-    return;
-  mpi::set_run_processes(MPI_COMM_WORLD);
-  MPI_Comm_free(&_comm);
-}
 } // namespace pushout::driver

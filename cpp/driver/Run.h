@@ -10,10 +10,10 @@
 #include "../mesh/MeshData.h"
 #include "../model/Model.h"
 #include "../output/Summary.h"
+#include "../record/RunReport.h"
 #include "../scene/Scene.h"
 #include "../solver/Equilibrium.h"
 #include "../solver/LoadStepSolver.h"
-#include "RunReport.h"
 #include <filesystem>
 #include <memory>
 #include <mpi.h>
@@ -37,7 +37,7 @@ class Simulation
 public:
   /// The size guard, the mesh and the set-up of `scene` on options.comm,
   /// their sizes and times into the report's summary. Collective.
-  Simulation(const Scene& scene, const RunOptions& options, RunReport& report);
+  Simulation(const Scene& scene, const RunOptions& options, record::RunReport& report);
   ~Simulation();
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
@@ -50,7 +50,7 @@ public:
   /// their outputs in options.out, into the report's summary (the set-up's
   /// sizes copied, its times zero if it was built for another scene).
   /// Collective.
-  void load_steps(const Scene& scene, const RunOptions& options, RunReport& report);
+  void load_steps(const Scene& scene, const RunOptions& options, record::RunReport& report);
 
   /// The scene keys the set-up depends on, as text: model, geometry, mesh,
   /// materials, solver keys, the thermal tube-top condition, the crack
@@ -71,46 +71,6 @@ private:
 /// curve.png, XDMF) into options.out. Returns the summary; a step that
 /// cannot converge ends the run with summary.converged = false.
 output::Summary run(const Scene& scene, const RunOptions& options);
-
-/// What the commands that make many runs (pushout sweep, fit) share.
-struct ManyRunsOptions
-{
-  std::filesystem::path scene_file;
-  std::vector<std::string> sets; ///< --set overrides of every run
-  std::filesystem::path out;     ///< the command's folder
-  std::filesystem::path mesh_cache;
-  int ranks_per_case = 1; ///< processes per run (--ranks-per-case)
-  bool quiet = false;
-  bool force = false;
-};
-
-/// The processes of MPI_COMM_WORLD in groups of ranks_per_case
-/// (MPI_Comm_split), each running its runs on its own communicator, which
-/// the error agreements use (mpi::set_run_processes) until close().
-/// Collective on MPI_COMM_WORLD.
-class ProcessGroups
-{
-public:
-  /// Throws SceneError unless `ranks_per_case` divides the processes.
-  static void check(int ranks_per_case);
-  explicit ProcessGroups(int ranks_per_case);
-  ~ProcessGroups() { close(); }
-  ProcessGroups(const ProcessGroups&) = delete;
-  ProcessGroups& operator=(const ProcessGroups&) = delete;
-
-  MPI_Comm comm() const { return _comm; }
-  int count() const { return _count; }
-  int index() const { return _index; }
-  /// Whether this process is its group's first.
-  bool leader() const { return _leader; }
-  /// Agreements on MPI_COMM_WORLD again; the groups' communicator freed.
-  void close();
-
-private:
-  MPI_Comm _comm = MPI_COMM_NULL;
-  int _count = 1, _index = 0;
-  bool _leader = true;
-};
 
 /// How a run ended, as `pushout run` would exit: 0 converged, 2 a bad
 /// scene or refused by the size guard, 3 a step did not converge, 1 another

@@ -4,8 +4,8 @@
 
 #include "../common/exit_codes.h"
 #include "../output/OutputFiles.h"
+#include "../record/ResourceGuard.h"
 #include "../scene/SceneError.h"
-#include "ResourceGuard.h"
 #include <iostream>
 #include <mpi.h>
 #include <string>
@@ -38,7 +38,7 @@ template <class F> int exit_code_of(const std::string& who, const std::string& s
   {
     return say(scene_label, e.what(), exit_code::bad_input);
   }
-  catch (const TooLarge& e)
+  catch (const record::TooLarge& e)
   {
     return say("error", e.what(), exit_code::bad_input);
   }

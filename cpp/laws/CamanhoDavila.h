@@ -61,7 +61,7 @@ public:
   /// The energy per unit area released from the unloaded state to full
   /// softening [N/mm]: f_t^2 / (2 k) + the softening's
   /// (Envelope::softening_energy); with f_fr = 0 the fracture energy G_F
-  /// (tests/test_dissipation.cpp).
+  /// (tests/unit/laws/test_dissipation.cpp).
   double fracture_energy() const { return 0.5 * _env.f_t * _w0 + _env.softening_energy(); }
 
   /// Secant stiffness g(kappa) [N/mm^3].

@@ -43,7 +43,7 @@ struct LawResult
   /// Energy dissipated per unit area from the committed state to the trial
   /// one [N/mm = mJ/mm^2]: damage (1/2 k |w_open|^2 dD) and frictional slip
   /// (t_s . dw^p). Summed to full separation it is the law's fracture
-  /// energy G_F (tests/test_dissipation.cpp).
+  /// energy G_F (tests/unit/laws/test_dissipation.cpp).
   double dissipation = 0;
   LawStatus status = LawStatus::ok;
 };

@@ -24,7 +24,7 @@ struct MeshSize
 
 /// The block divisions of meshes/slice.geo for a push-out scene. These
 /// formulas mirror the .geo file: change both together (the e2e test
-/// test_resource_guard compares them with generated meshes).
+/// test_resource_estimate_within_factor_2 compares them with generated meshes).
 struct SliceDivisions
 {
   std::int64_t circumferential; ///< elements per quarter circumference (nq)

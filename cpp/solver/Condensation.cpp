@@ -345,7 +345,7 @@ void Condensation::build()
   // C is not accurate enough for the curve, the caller solves the whole
   // model instead (LoadStepSolver::update).
   // (Test hook, not a scene key: PUSHOUT_TEST_TRUSTED_ASYMMETRY sets
-  // another limit, so that tests/e2e/test_condensation_trust.py can make a
+  // another limit, so that tests/e2e/test_condensation_checked_or_whole_model.py can make a
   // scene's C untrusted.)
   static const double trusted = []
   {

@@ -35,7 +35,7 @@ PetscErrorCode form_function(SNES snes, Vec x, Vec F, void* ctx)
       });
 }
 
-/// Test hook, not a scene key (tests/e2e/test_no_silent_result.py): with
+/// Test hook, not a scene key (tests/e2e/test_no_silent_wrong_result.py): with
 /// PUSHOUT_TEST_NONFINITE_FROM=n, the n-th converged Newton solve of the
 /// process and every later one leave a NaN in their solution, as a solve
 /// whose result is not a number would.

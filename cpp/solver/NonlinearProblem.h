@@ -16,7 +16,7 @@ namespace pushout::solver
 /// times the bound's scale on the whole model (full model, 2016 dofs: 7e-11
 /// N against 3.4e-9 N) and at 0.1-0.2 of it on the condensed system, so C
 /// = 1 sits above the noise with a margin, and far below the tolerances a
-/// run needs (tests/e2e/test_solver_floor.py: -snes_atol 1e-30).
+/// run needs (tests/e2e/test_newton_stops_at_round_off_floor.py: -snes_atol 1e-30).
 constexpr double residual_floor_factor = 1.0;
 
 class NonlinearProblem

@@ -31,7 +31,7 @@ push_displacement = 0.04
 steps = 20
 """
 # Lame shrink fit: a circular slice (outer diameter 100 mm) shrinks onto the
-# tube through a friction interface; its plateau is tau = mu p (test_lame).
+# tube through a friction interface; its plateau is tau = mu p (test_friction_plateau_matches_lame).
 LAME = """
 [geometry]
 outer_shape = "circle"
@@ -51,8 +51,8 @@ steps = 4
 def corroded_ring(mesh, x, steps, mu=0.4, push=0.01, push_steps=4, beta=2.0, oxide_bulk=2000.0):
     """The circular slice of LAME (outer diameter 100 mm) without the thermal
     step, an oxide_friction interface (k 1000 N/mm^3), corroded to x [mm] in
-    `steps`, then pushed by `push` [mm] (TOML text; test_corrosion,
-    test_cracks)."""
+    `steps`, then pushed by `push` [mm] (TOML text; test_corrosion_matches_thick_cylinder,
+    test_cover_cracks_match_closed_forms)."""
     return mesh + f"""
 [geometry]
 outer_shape = "circle"

@@ -1,0 +1,144 @@
+#include "ResourceGuard.h"
+#include "../solver/Condensation.h"
+#include "../solver/NewtonSolver.h"
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace pushout::record
+{
+namespace
+{
+// The fitted law of ResourceGuard.h [MB].
+constexpr double base_mb = 110;                    // libraries, MPI, PETSc
+constexpr double lu_mb_degree1 = 4.2e-4;           // c_1: per dof and sqrt(separator dof)
+constexpr double lu_mb_degree2 = 5.5e-4;           // c_2
+constexpr double condensed_lu_factor = 1.3;        // the interface ordered last
+constexpr double dense_bytes_per_entry = 32;       // Schur complement, its LU, Z and C
+constexpr double gmsh_mb_per_cell = 0.35e-3;       // gmsh's mesh and its reading
+constexpr double mesh_arrays_mb_per_cell = 0.1e-3; // MeshData on every process
+constexpr double lu_parallel_exponent = 0.6;       // MUMPS's share per process: P^-0.6
+constexpr double iterative_mb_per_dof = 5.2e-3;    // matrices, Krylov basis, AMG levels
+constexpr double iterative_parallel_exponent = 0.5;
+
+/// Dofs of the largest cut through the specimen (ResourceGuard.h: F).
+double separator_dofs(const Scene& scene, const mesh::MeshSize& size)
+{
+  if (scene.string("model.type") != "pushout")
+    return 1;
+  const mesh::SliceDivisions d = mesh::slice_divisions(scene);
+  const std::int64_t p = scene.integer("mesh.degree");
+  const double section =
+      3.0 * double(p * (d.steel + d.ring + d.graded) + 2) * double(p * d.thickness + 1);
+  return size.symmetry.copies() > 1 ? section : 2 * section; // an arc, or a ring cut twice
+}
+
+std::string gigabytes(double mb)
+{
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(mb < 10240 ? 2 : 1) << mb / 1024 << " GB";
+  return s.str();
+}
+} // namespace
+
+double available_memory_mb()
+{
+  double available = -1;
+  std::ifstream meminfo("/proc/meminfo");
+  for (std::string key; meminfo >> key;)
+  {
+    double kb = 0;
+    meminfo >> kb;
+    if (key == "MemAvailable:")
+      available = kb / 1024;
+    meminfo.ignore(256, '\n');
+  }
+  // A cgroup (v2) limit, as in containers and batch jobs.
+  std::ifstream max_file("/sys/fs/cgroup/memory.max"),
+      current_file("/sys/fs/cgroup/memory.current");
+  std::string max;
+  double current = 0;
+  if (max_file >> max && max != "max" && current_file >> current)
+  {
+    const double left = (std::stod(max) - current) / (1024.0 * 1024.0);
+    if (available < 0 || left < available)
+      available = left;
+  }
+  return available;
+}
+
+double ResourceEstimate::peak_mb() const
+{
+  return std::max(meshing_mb, solve_mb);
+}
+
+std::string ResourceEstimate::describe() const
+{
+  std::ostringstream s;
+  s << size.dofs << " dofs, " << size.joint_elements << " joint elements"
+    << (size.symmetry.copies() > 1 ? " of a " + size.symmetry.name() + " model" : std::string())
+    << ", Newton on " << (condensed ? "the condensed interface" : "the whole model")
+    << (condensed || direct ? "" : " (iterative)");
+  return s.str();
+}
+
+std::string ResourceEstimate::memory() const
+{
+  std::string s = "about " + gigabytes(machine_mb) + " of memory";
+  if (processes_here > 1)
+    s += " (" + std::to_string(processes_here) + " processes)";
+  return s;
+}
+
+ResourceEstimate estimate_resources(const Scene& scene, MPI_Comm comm)
+{
+  ResourceEstimate e;
+  e.size = mesh::predict_size(scene);
+  MPI_Comm_size(comm, &e.processes);
+  MPI_Comm local;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &local);
+  MPI_Comm_size(local, &e.processes_here);
+  MPI_Comm_free(&local);
+
+  std::string why;
+  e.condensed = solver::Condensation::chosen(scene.string("solver.condensation"), e.processes,
+                                             e.size.interface_dofs, why);
+  e.direct = solver::NewtonSolver::direct_factorization();
+  const double n = double(e.size.dofs), P = double(e.processes);
+  const double c = scene.integer("mesh.degree") == 2 ? lu_mb_degree2 : lu_mb_degree1;
+  const double lu = c * n * std::sqrt(separator_dofs(scene, e.size));
+  const double n_i = double(e.size.interface_dofs);
+  double solver_mb = iterative_mb_per_dof * n / std::pow(P, iterative_parallel_exponent);
+  if (e.condensed)
+    solver_mb = condensed_lu_factor * lu + dense_bytes_per_entry * n_i * n_i / 1e6;
+  else if (e.direct)
+    solver_mb = lu / std::pow(P, lu_parallel_exponent);
+  e.solve_mb = base_mb + mesh_arrays_mb_per_cell * double(e.size.cells_generated) + solver_mb;
+  e.meshing_mb = base_mb + gmsh_mb_per_cell * double(e.size.cells_generated);
+  // Rank 0 meshes while the others wait; then every process solves.
+  e.machine_mb =
+      std::max(e.meshing_mb + base_mb * (e.processes_here - 1), e.solve_mb * e.processes_here);
+  // Each machine judges by its own memory; the tightest decides.
+  e.available_mb = available_memory_mb();
+  MPI_Allreduce(MPI_IN_PLACE, &e.available_mb, 1, MPI_DOUBLE, MPI_MIN, comm);
+  return e;
+}
+
+void check_fits(const ResourceEstimate& e, const Scene& scene, bool force)
+{
+  if (force || e.available_mb < 0 || e.machine_mb <= e.available_mb)
+    return;
+  std::ostringstream m;
+  m << "this run needs " << e.memory() << ", more than the " << gigabytes(e.available_mb)
+    << " available here (" << e.describe() << ")";
+  if (scene.string("model.type") == "pushout")
+    m << "; lower mesh.elements_per_quarter (" << scene.integer("mesh.elements_per_quarter")
+      << ") or mesh.elements_through_thickness ("
+      << scene.integer("mesh.elements_through_thickness") << ")"
+      << (scene.integer("mesh.degree") == 2 ? ", or use mesh.degree = 1" : std::string());
+  m << "; --force runs it anyway";
+  throw TooLarge(m.str());
+}
+} // namespace pushout::record

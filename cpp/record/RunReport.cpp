@@ -1,0 +1,148 @@
+#include "RunReport.h"
+#include "../output/OutputFiles.h"
+#include "../output/plot.h"
+#include <iostream>
+#include <mpi.h>
+#include <sys/resource.h>
+#include <thread>
+
+namespace pushout::record
+{
+double peak_memory_here_mb()
+{
+  rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  return double(usage.ru_maxrss) / 1024.0;
+}
+
+namespace
+{
+int rank_in(MPI_Comm comm)
+{
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  return rank;
+}
+} // namespace
+
+RunReport::RunReport(const Scene& scene, const std::filesystem::path& out, bool quiet,
+                     MPI_Comm comm, bool plot)
+    : _out(out), _comm(comm), _rank(rank_in(comm)), _talk(_rank == 0 && !quiet),
+      _on_stop(
+          [this](int sig, const std::string& phase)
+          {
+            std::lock_guard lock(_published_mutex);
+            output::Summary s = _published;
+            s.interrupted = true;
+            s.converged = false;
+            s.signal = sig;
+            s.stopped_in = phase;
+            s.message = "interrupted by " + interrupt::signal_name(sig) + " during " + phase +
+                        " after " + std::to_string(s.steps) + " load steps";
+            s.wall_s = seconds();
+            s.peak_memory_mb = peak_memory_here_mb();
+            if (_rank != 0)
+            {
+              // mpirun ends every process as soon as one has ended with an
+              // error: rank 0, which writes summary.json, ends first.
+              std::this_thread::sleep_for(std::chrono::milliseconds(300));
+              return;
+            }
+            try
+            {
+              s.write(_out / "summary.json");
+              std::cerr << "pushout: " << s.message << "; " << (_out / "summary.json").string()
+                        << " says so" << std::endl;
+            }
+            catch (const std::exception& e)
+            {
+              std::cerr << "pushout: " << s.message << "; error: " << e.what() << std::endl;
+            }
+          })
+{
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  _summary.model_type = scene.string("model.type");
+  _summary.processes = size;
+  _summary.run_id = output::run_id();
+  if (_rank == 0)
+    output::write_file(_out / "scene.toml", scene.to_toml());
+  if (_rank == 0 && plot && scene.boolean("output.plot"))
+    _plotter.emplace();
+  publish();
+}
+
+void RunReport::publish()
+{
+  std::lock_guard lock(_published_mutex);
+  _published = _summary;
+}
+
+double RunReport::seconds() const
+{
+  return std::chrono::duration<double>(Clock::now() - _start).count();
+}
+
+output::Summary RunReport::finish()
+{
+  // A stopped run draws nothing: it stops within the time a launcher gives
+  // it (mpirun: 1 s before its SIGKILL), and curve.csv has the curve.
+  if (_plotter && _summary.interrupted)
+    _plotter.reset();
+  if (_plotter)
+  {
+    _plotter->draw(_out / "curve.csv", _out / "curve.png", _summary.model_type);
+    if (_summary.corrosion_steps > 0)
+      _plotter->draw(_out / "corrosion.csv", _out / "corrosion.png", "corrosion");
+    std::string why;
+    if (!_plotter->finish(why))
+      std::cerr << "pushout: warning: no curve.png"
+                << (_summary.corrosion_steps > 0 ? " or corrosion.png" : "") << ": " << why
+                << std::endl;
+    _plotter.reset();
+  }
+  _summary.wall_s = seconds();
+  double peak_mb = peak_memory_here_mb();
+  MPI_Allreduce(MPI_IN_PLACE, &peak_mb, 1, MPI_DOUBLE, MPI_MAX, _comm);
+  _summary.peak_memory_mb = peak_mb;
+  if (_rank == 0)
+    _summary.write(_out / "summary.json");
+  return _summary;
+}
+
+void RunReport::save_stop() noexcept
+{
+  publish();
+  if (_rank != 0)
+    return;
+  try
+  {
+    output::Summary s = _summary;
+    s.wall_s = seconds();
+    s.peak_memory_mb = peak_memory_here_mb();
+    s.write(_out / "summary.json");
+  }
+  catch (...) // finish() writes it again, and reports an error there
+  {
+  }
+}
+
+void RunReport::fail(const std::string& message) noexcept
+{
+  if (_rank != 0)
+    return;
+  try
+  {
+    _plotter.reset();
+    output::Summary s = _summary;
+    s.converged = false;
+    s.message = message;
+    s.wall_s = seconds();
+    s.peak_memory_mb = peak_memory_here_mb();
+    s.write(_out / "summary.json");
+  }
+  catch (...) // no room for it either: the error line is what the user gets
+  {
+  }
+}
+} // namespace pushout::record

@@ -1,0 +1,74 @@
+// What a run reports while it runs and when it ends: the summary as it
+// grows, the state a forced stop reports (common/Interrupt.h: the watcher
+// thread writes summary.json from the last published state), the progress
+// lines, and at the end curve.png, the wall time, the peak memory and
+// summary.json.
+#pragma once
+
+#include "../common/Interrupt.h"
+#include "../output/Summary.h"
+#include "../output/plot.h"
+#include "../scene/Scene.h"
+#include <chrono>
+#include <filesystem>
+#include <mpi.h>
+#include <mutex>
+#include <optional>
+#include <string>
+
+namespace pushout::record
+{
+class RunReport
+{
+public:
+  /// Writes the resolved scene (scene.toml) into `out` (rank 0 of the
+  /// run's processes `comm`) and sets the stop report; starts the plotting
+  /// process if the run draws its curve (output.plot and `plot`). `quiet`:
+  /// no progress lines.
+  RunReport(const Scene& scene, const std::filesystem::path& out, bool quiet, MPI_Comm comm,
+            bool plot = true);
+  RunReport(const RunReport&) = delete;
+  RunReport& operator=(const RunReport&) = delete;
+
+  output::Summary& summary() { return _summary; }
+  /// Makes the summary as it is now the one a forced stop reports.
+  void publish();
+
+  /// Whether this process prints progress lines (rank 0, not quiet).
+  bool talk() const { return _talk; }
+  /// Seconds since the run started.
+  double seconds() const;
+
+  /// The end of the run: curve.png (and corrosion.png) if it draws them,
+  /// the wall time and the largest peak memory of the processes,
+  /// summary.json (rank 0; throws if it cannot be written). An interrupted
+  /// run draws no plot. Collective. Returns the summary.
+  output::Summary finish();
+
+  /// The run stops (a signal; the summary says so): summary.json now, as it
+  /// is (rank 0), before the outputs are finished, which under mpirun may
+  /// be cut short by its SIGKILL. Not collective.
+  void save_stop() noexcept;
+
+  /// The end of a run that failed with `message` (an error, already agreed
+  /// on): summary.json says so (rank 0), if it can be written. Not
+  /// collective.
+  void fail(const std::string& message) noexcept;
+
+private:
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point _start = Clock::now();
+  std::filesystem::path _out;
+  MPI_Comm _comm;
+  int _rank = 0;
+  bool _talk = false;
+  output::Summary _summary;
+  std::mutex _published_mutex;
+  output::Summary _published; ///< guarded by _published_mutex
+  interrupt::ReportOnStop _on_stop;
+  std::optional<output::CurvePlotter> _plotter; ///< rank 0, if the run draws its curve
+};
+
+/// Peak resident memory of this process so far [MB].
+double peak_memory_here_mb();
+} // namespace pushout::record

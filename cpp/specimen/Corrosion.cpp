@@ -1,0 +1,138 @@
+#include "Corrosion.h"
+#include "../common/mpi_errors.h"
+#include "../record/NonFinite.h"
+#include <algorithm>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <numbers>
+#include <numeric>
+#include <sstream>
+
+namespace pushout::specimen
+{
+Corrosion::Corrosion(const Scene& scene, const std::filesystem::path& out,
+                     record::RunReport& report, MPI_Comm comm)
+    : _report(report), _comm(comm)
+{
+  if (scene.string("model.type") != "pushout")
+    return;
+  _x_final = scene.number("corrosion.penetration");
+  _steps = int(scene.integer("corrosion.steps"));
+  _oxide = {scene.number("corrosion.beta"), scene.number("corrosion.porous_zone"),
+            scene.number("corrosion.oxide_bulk")};
+  _directions = mesh::crack_directions(scene);
+  for (std::size_t i = 0; i < _directions.angles.size(); ++i)
+    if (_directions.snapped[i] && _report.talk())
+      std::cout << "pushout: crack." << i << ".angle "
+                << _directions.asked[i] * 180 / std::numbers::pi
+                << " deg is within half an element of a block corner of the mesh: the plane is at "
+                << _directions.angles[i] * 180 / std::numbers::pi << " deg" << std::endl;
+  if (!active())
+    return;
+  std::vector<std::string> columns = {"penetration_mm", "p_MPa", "crack_width_mm"};
+  for (std::size_t i = 0; i < scene.cracks().size(); ++i)
+    columns.push_back("w_crack_" + std::to_string(i) + "_mm");
+  columns.insert(columns.end(), {"newton_iterations", "cuts", "wall_s"});
+  int rank = 0;
+  MPI_Comm_rank(_comm, &rank);
+  mpi::collectively(_comm,
+                    [&]
+                    {
+                      if (rank == 0)
+                        _csv.emplace(out / "corrosion.csv", columns);
+                    });
+}
+
+void Corrosion::apply(double s, interface::Interface& itf) const
+{
+  const laws::OxideInputs in = laws::oxide_inputs(_oxide, penetration_at(s));
+  itf.set_oxide(in.gap, in.compliance);
+}
+
+void Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iterations, int cuts,
+                       int step, bool numbered)
+{
+  eq.update_displacement(state); // the crack mouths read the model's displacement
+  const model::Model& model = eq.model();
+  const double x = penetration_at(s);
+  const double p = mean_pressure(model.interface(), _comm);
+  const std::vector<double> widths = model.crack_mouth_openings();
+  const double crack_width = widths.empty() ? 0.0 : *std::max_element(widths.begin(), widths.end());
+  std::vector<double> values = {x, p, crack_width};
+  values.insert(values.end(), widths.begin(), widths.end());
+  record::refuse_non_finite(values, {"penetration_mm", "p_MPa", "crack_width_mm"},
+                            "corrosion step " + std::to_string(step), _comm);
+  values.insert(values.end(), {double(iterations), double(cuts), _report.seconds()});
+  mpi::collectively(_comm,
+                    [&]
+                    {
+                      if (_csv)
+                        _csv->row(step, values);
+                    });
+  if (!_report.talk())
+    return;
+  std::ostringstream line;
+  line.precision(4);
+  line << "corrosion " << step;
+  if (numbered)
+    line << "/" << _steps;
+  line << "  x = " << x * 1e3 << " um  p = " << p << " MPa";
+  if (!widths.empty())
+    line << "  crack width = " << crack_width * 1e3 << " um";
+  line << "  (newton " << iterations << (cuts ? ", cuts " + std::to_string(cuts) : "") << ", "
+       << std::fixed << std::setprecision(2) << _report.seconds() << " s)";
+  std::cout << line.str() << std::endl;
+}
+
+void Corrosion::describe_cracks(solver::Equilibrium& eq, Vec state, output::Summary& summary) const
+{
+  eq.update_displacement(state);
+  const model::Model& model = eq.model();
+  const std::vector<double> mouth = model.crack_mouth_openings();
+  summary.cracks.clear();
+  for (std::size_t i = 0; i < model.num_cracks(); ++i)
+  {
+    const interface::Interface& crack = model.crack(i);
+    double largest[2] = {-std::numeric_limits<double>::infinity(), 0.0}; // opening, damage
+    for (std::size_t p = 0; p < crack.num_pairs(); ++p)
+      for (std::size_t q = 0; q < crack.points_per_pair(); ++q)
+      {
+        const interface::PointOutput o =
+            crack.point_output(model.displacement().x()->array(), p, q);
+        largest[0] = std::max(largest[0], o.w[0]);
+        largest[1] = std::max(largest[1], o.damage[0]);
+      }
+    MPI_Allreduce(MPI_IN_PLACE, largest, 2, MPI_DOUBLE, MPI_MAX, _comm);
+    summary.cracks.push_back({_directions.angles[i] * 180 / std::numbers::pi,
+                              bool(_directions.snapped[i]), mouth[i], largest[0], largest[1]});
+  }
+  for (std::size_t i = 0; i < model.num_cracks(); ++i)
+    if (const int image = model.crack_image(i); image >= 0) // cut away by symmetry
+    {
+      summary.cracks[i].max_opening_mm = summary.cracks[std::size_t(image)].max_opening_mm;
+      summary.cracks[i].max_damage = summary.cracks[std::size_t(image)].max_damage;
+    }
+}
+
+double Corrosion::expansion_force(const interface::Interface& itf, double s) const
+{
+  const double N = pressure_force(itf, _comm)[0]; // [N]
+  return laws::oxide_inputs(_oxide, penetration_at(s)).gap > 0 ? (_oxide.beta - 1) * N : 0.0;
+}
+
+std::array<double, 2> pressure_force(const interface::Interface& itf, MPI_Comm comm)
+{
+  const std::vector<double> normal = itf.normal_force();
+  std::array<double, 2> total = {-std::accumulate(normal.begin(), normal.end(), 0.0), itf.area()};
+  MPI_Allreduce(MPI_IN_PLACE, total.data(), 2, MPI_DOUBLE, MPI_SUM, comm);
+  return total;
+}
+
+double mean_pressure(const interface::Interface& itf, MPI_Comm comm)
+{
+  const auto [N, area] = pressure_force(itf, comm);
+  const double p = area > 0 ? N / area : 0.0;
+  return p == 0 ? 0.0 : p; // never -0 in the progress line
+}
+} // namespace pushout::specimen

@@ -1,0 +1,84 @@
+// The corrosion stage of a push-out (scene section [corrosion];
+// docs/corrosion.md): between the thermal step and the push, the steel
+// turns to oxide to depth x [mm] in `steps` equal steps. The oxide occupies
+// beta times the volume of the steel it replaces (Molina, Alonso & Andrade
+// 1993), so the interface gets the free normal opening
+//   g0 = max((beta - 1) x - porous_zone, 0)
+// and the oxide layer (thickness beta x, bulk modulus B_ox, confined and
+// shear-free) the normal compliance beta x / B_ox, in series with the
+// joint's penalty: the inputs of the law oxide_friction (laws/Oxide.h).
+// Each converged step writes a row of corrosion.csv (rank 0):
+//   step, penetration_mm, p_MPa, crack_width_mm[, w_crack_I_mm...],
+//   newton_iterations, cuts, wall_s
+// p the mean interface pressure (as in curve.csv), crack_width_mm the
+// largest crack-mouth opening (0 without crack planes), w_crack_I_mm that of
+// crack plane I (Model::crack_mouth_openings).
+#pragma once
+
+#include "../laws/Oxide.h"
+#include "../mesh/cracks.h"
+#include "../model/Model.h"
+#include "../output/CurveWriter.h"
+#include "../output/Summary.h"
+#include "../record/RunReport.h"
+#include "../scene/Scene.h"
+#include "../solver/Equilibrium.h"
+#include <array>
+#include <filesystem>
+#include <optional>
+
+namespace pushout::specimen
+{
+class Corrosion
+{
+public:
+  /// Opens corrosion.csv in `out` if the scene has a corrosion stage;
+  /// `comm`: the run's processes.
+  Corrosion(const Scene& scene, const std::filesystem::path& out, record::RunReport& report,
+            MPI_Comm comm);
+
+  /// Whether the scene has a corrosion stage (penetration > 0).
+  bool active() const { return _x_final > 0; }
+  int steps() const { return _steps; }
+  /// Corrosion depth x at stage parameter s in [0, steps] [mm].
+  double penetration_at(double s) const { return _x_final * s / _steps; }
+
+  /// Sets the interface's oxide inputs for depth x(s).
+  void apply(double s, interface::Interface& itf) const;
+
+  /// Records the converged `state` (whole model; with the condensed bulk,
+  /// right on the joints) at s of corrosion step `step` (0: before
+  /// corrosion): a corrosion.csv row and the progress line, which shows
+  /// `step` of the nominal steps if `numbered` (not under dissipation
+  /// control, whose steps are not those). Collective.
+  void record(double s, solver::Equilibrium& eq, Vec state, int iterations, int cuts, int step,
+              bool numbered = true);
+
+  /// The force that works on the corrosion depth x [N]: the oxide's
+  /// expansion does the work  int p dg0 dA = (beta - 1) N dx  on the
+  /// interface, N = int p dA its normal force (0 while the porous zone
+  /// takes the expansion), from the laws' last evaluation. Collective.
+  double expansion_force(const interface::Interface& itf, double s) const;
+
+  /// The crack planes' state now (their direction, mouth and largest
+  /// opening, largest damage) into the summary. Collective.
+  void describe_cracks(solver::Equilibrium& eq, Vec state, output::Summary& summary) const;
+
+private:
+  double _x_final = 0; ///< [mm]
+  int _steps = 1;
+  laws::OxideLayer _oxide;
+  mesh::CrackDirections _directions;
+  record::RunReport& _report;
+  MPI_Comm _comm;
+  std::optional<output::CurveWriter> _csv; ///< rank 0
+};
+
+/// The normal force N = -int t_n dA [N] and the area A [mm^2] of the whole
+/// interface, from the last evaluation of the laws. Collective.
+std::array<double, 2> pressure_force(const interface::Interface& itf, MPI_Comm comm);
+
+/// The mean pressure p = -int t_n dA / A over the whole interface [MPa],
+/// from the last evaluation of the laws. Collective.
+double mean_pressure(const interface::Interface& itf, MPI_Comm comm);
+} // namespace pushout::specimen

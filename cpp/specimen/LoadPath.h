@@ -1,0 +1,77 @@
+// A piecewise-linear path of a prescribed displacement [mm] through the
+// vertices v_0, v_1, ..., v_m (the single joint's loading.shear_path, the
+// push-out's loading.push_path), each segment in `per_segment` nominal
+// steps: the load parameter s in [0, m per_segment] gives
+//   value(s) = v_j + (s / per_segment - j) (v_{j+1} - v_j),
+//   j = floor(s / per_segment) (the last segment for s at the end),
+// and the path length travelled to s (the pseudo-time of viscous laws).
+// A segment can be ended early (end_segment: an unloading push that stops
+// where the force reaches zero); the next one starts from there.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+namespace pushout::specimen
+{
+class LoadPath
+{
+public:
+  LoadPath() = default;
+  /// One vertex is a path that stays there (one segment).
+  LoadPath(std::vector<double> vertices, int per_segment)
+      : _v(std::move(vertices)), _per_segment(per_segment)
+  {
+    if (_v.size() == 1)
+      _v.push_back(_v[0]);
+  }
+
+  bool empty() const { return _v.empty(); }
+  std::size_t segments() const { return _v.empty() ? 0 : _v.size() - 1; }
+  int steps() const { return int(segments()) * _per_segment; }
+
+  /// The segment of load parameter s (the segment it ends, at a vertex).
+  std::size_t segment_at(double s) const
+  {
+    const double t = std::max(s, 0.0) / _per_segment;
+    return std::min(std::size_t(std::ceil(t)) - (t > 0 ? 1 : 0), segments() - 1);
+  }
+  /// The segment of nominal step k (1-based: from s = k - 1 to k).
+  std::size_t segment_of_step(int k) const { return std::size_t(k - 1) / _per_segment; }
+  /// Whether segment j moves the value down.
+  bool decreasing(std::size_t j) const { return _v[j + 1] < _v[j]; }
+
+  /// The value at load parameter s [mm].
+  double value(double s) const
+  {
+    const std::size_t j = segment_at(s);
+    const double f = s / _per_segment - double(j);
+    return _v[j] + f * (_v[j + 1] - _v[j]);
+  }
+
+  /// The path length from s = 0 to s [mm].
+  double length_to(double s) const
+  {
+    const std::size_t j = segment_at(s);
+    double length = 0;
+    for (std::size_t i = 0; i < j; ++i)
+      length += std::abs(_v[i + 1] - _v[i]);
+    return length + std::abs(value(s) - _v[j]);
+  }
+
+  /// Ends segment j at load parameter s inside it: its end vertex becomes
+  /// value(s), so that the next segment starts there. Returns the load
+  /// parameter of the segment's end, where the path goes on.
+  double end_segment(std::size_t j, double s)
+  {
+    _v[j + 1] = value(s);
+    return double((j + 1) * std::size_t(_per_segment));
+  }
+
+private:
+  std::vector<double> _v;
+  int _per_segment = 1;
+};
+} // namespace pushout::specimen

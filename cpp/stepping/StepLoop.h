@@ -1,0 +1,171 @@
+// The load steps of a run: step 0 (the thermal step or preload), the
+// corrosion stage if the scene has one (Corrosion.h), then the push under
+// displacement control (nominal steps, cut and grown back by Stepper.h),
+// path following on the mean slip, or dissipation control (steps of the
+// push or of the energy released, solver/PathFollower.h); each converged
+// step recorded and
+// committed, a failed one reverted and cut, a signal agreed on between
+// tries (common/Interrupt.h).
+#pragma once
+
+#include "../output/Summary.h"
+#include "../record/RunReport.h"
+#include "../solver/LoadStepSolver.h"
+#include "../solver/Vector.h"
+#include "../specimen/Corrosion.h"
+#include "../specimen/Scenario.h"
+#include "StepRecorder.h"
+#include "Stepper.h"
+#include <array>
+#include <functional>
+#include <string>
+
+namespace pushout::stepping
+{
+class StepLoop
+{
+public:
+  /// How the load steps are controlled (loading.control).
+  enum class Control
+  {
+    displacement, ///< nominal steps of the load parameter
+    arc_length,   ///< path following by the mean axial slip (specimen::Scenario::has_load_factor)
+    dissipation   ///< steps of delta or of the energy released, as the step needs
+  };
+
+  /// `max_cuts`: halvings of a step before the run stops (loading.max_cuts);
+  /// `dissipation_steps`: steps in which dissipation control releases the
+  /// joints' fracture energy (loading.dissipation_steps).
+  StepLoop(specimen::Scenario& scenario, specimen::Corrosion& corrosion,
+           solver::Equilibrium& equilibrium, solver::LoadStepSolver& solver, StepRecorder& recorder,
+           record::RunReport& report, int max_cuts, int dissipation_steps);
+
+  /// Times one linear solve of the first load step (the thermal load
+  /// included) from the unloaded state, into the summary.
+  void time_linear_solve();
+
+  /// Step 0, the corrosion stage, then the push. False if a step did not
+  /// converge or a signal stopped the run (summary.message says which).
+  bool run(Control control);
+
+private:
+  /// A stage of nominal steps s = 1, ..., steps of a load parameter s.
+  struct Stage
+  {
+    std::string step_name;                          ///< "load step" (messages)
+    int steps;                                      ///< nominal steps
+    std::function<void(double s)> apply;            ///< constraints, loads, inputs at s
+    std::function<double(double, double)> duration; ///< pseudo-time from s0 to s1
+    /// Records a converged try of nominal step k that reached s (before its
+    /// commit; a cut step has several).
+    std::function<void(int iterations, int cuts, int k, double s)> record;
+    /// Whether unloading segments may end where the scenario's load force
+    /// falls to zero (Scenario::ends_at_zero_force): the push's stage.
+    bool zero_force_ends = false;
+  };
+
+  bool initial_step();
+  /// The corrosion stage: steps of the corrosion depth, constraints of step 0.
+  bool corrode();
+  /// Records converged corrosion step k at stage parameter s (before its
+  /// commit): corrosion.csv, the summary, and at the end of the stage the
+  /// push's start. `numbered`: the progress line shows k of the stage's
+  /// nominal steps.
+  void record_corrosion(int iterations, int cuts, int k, double s, bool numbered);
+  /// The push's start: the scenario's reference state and curve row 0.
+  void start_push(int iterations);
+  /// Nominal steps, each tried whole and cut in halves when Newton fails.
+  bool nominal_steps(const Stage& stage);
+  /// After a converged try of step k from the committed state at s0 (force
+  /// P0 >= 0) to s1 (P1 < 0), reverted: the load parameter s where the
+  /// force is zero (within `tol` [N]), into s, its state recorded and
+  /// committed. Each try is one step from s0. False (with the summary's
+  /// message) if a try did not converge or the search did not end.
+  bool zero_force_step(const Stage& stage, int k, int cuts, double s0, double P0, double s1,
+                       double P1, double tol, double& s);
+  bool push_by_displacement();
+
+  /// What path following and dissipation control share: the push by its
+  /// load factor lambda = delta [mm].
+  struct LoadFactorPath
+  {
+    double lambda_final = 0;      ///< the final push [mm]
+    double h_nominal = 0;         ///< a nominal step of it [mm]
+    int max_steps = 0;            ///< steps before the run gives up
+    std::string target = "push";  ///< the stage lambda runs (messages)
+    std::string symbol = "delta"; ///< lambda's name (messages)
+  };
+  /// What dissipation control needs of a stage: its load factor lambda
+  /// [mm] (the push delta, the corrosion depth x), how it is set and what
+  /// works on it.
+  struct DissipationStage
+  {
+    std::string step_name;                ///< "load step", "corrosion step" (messages)
+    std::string increment_words;          ///< "a push of" (messages, in mm)
+    LoadFactorPath path;                  ///< from 0 to path.lambda_final
+    std::function<void(double)> set_load; ///< constraints, loads, inputs at lambda
+    double load_difference = 0;           ///< PathFollower::set_load_difference [mm]
+    double time_per_lambda = 1;           ///< pseudo-time of a unit of lambda
+    Vec control = nullptr;                ///< a mean jump that grows with lambda [mm]
+    std::function<double()> force;        ///< that works on lambda [N]
+    std::function<void(int iterations, int cuts, int k, double lambda)> record;
+    std::function<bool()> without_softening; ///< the stage's run if nothing softens
+  };
+  /// Sets the push's constraints (before a PathFollower takes the solver's
+  /// problem) and `p`; false, with the summary's message naming `control`,
+  /// if the final push is not positive.
+  bool begin_load_factor_path(const std::string& control, LoadFactorPath& p);
+  /// False, with the summary's message, once step k is past the limit.
+  bool within_step_limit(const LoadFactorPath& p, int k, double lambda, const std::string& control);
+  /// A displacement-controlled step of the load factor (pseudo-time: its
+  /// change).
+  solver::SolveReport load_factor_step(double lambda_from, double lambda_to);
+  bool path_following();
+  /// Dissipation control (loading.control = "dissipation" or "auto") of
+  /// the push and of the corrosion stage.
+  bool push_by_dissipation();
+  bool corrode_by_dissipation();
+  bool by_dissipation(const DissipationStage& stage);
+  /// The energy released by the joints to full softening, summed over the
+  /// processes [N mm].
+  double fracture_energy();
+  /// The energy the joints dissipated from the committed state to the last
+  /// evaluation, summed over the processes [N mm]: all layers, softening
+  /// layers.
+  std::array<double, 2> dissipation();
+
+  /// The pseudo-time increment of the step, for every set of joints.
+  void set_time_increment(double dt);
+  /// Commits the converged state of a step (recorded before).
+  void commit();
+  /// Back to the committed state.
+  void revert();
+  /// After a failed try (reverted): false (with the summary's message) if
+  /// the step cannot be cut again or a signal stops the run; otherwise
+  /// halves the increment, counts the cut and says so. `what` names the
+  /// step, `size(increment)` words its size.
+  template <class Words>
+  bool cut_back(Stepper& stepper, int& cuts, const std::string& what, const std::string& reason,
+                Words size);
+  /// Whether a signal asked to stop (agreed on by all processes); first an
+  /// error of any process since the last agreement is thrown on all.
+  bool stop_requested();
+
+  specimen::Scenario& _scenario;
+  specimen::Corrosion& _corrosion;
+  solver::Equilibrium& _equilibrium;
+  solver::LoadStepSolver& _solver;
+  StepRecorder& _recorder;
+  record::RunReport& _report;
+  output::Summary& _summary;
+  int _max_cuts;
+  int _dissipation_steps;
+  MPI_Comm _comm;                  ///< the run's processes
+  solver::Vector _x, _x_committed; ///< whole-model displacement [mm]: trial and committed
+};
+
+/// Test hook (tests/e2e/test_error_on_one_process_ends_all.py, StepLoop.cpp): with
+/// PUSHOUT_TEST_FAIL_AT=setup, process PUSHOUT_TEST_FAIL_RANK alone throws
+/// at the end of the set-up.
+void test_failure_at_setup(MPI_Comm comm);
+} // namespace pushout::stepping

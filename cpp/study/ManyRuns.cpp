@@ -1,0 +1,37 @@
+#include "ManyRuns.h"
+#include "../common/mpi_errors.h"
+#include "../scene/SceneError.h"
+
+namespace pushout::study
+{
+void ProcessGroups::check(int ranks_per_case)
+{
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  if (ranks_per_case < 1 || size % ranks_per_case != 0)
+    throw SceneError("--ranks-per-case " + std::to_string(ranks_per_case) + " must divide the " +
+                     std::to_string(size) + " processes");
+}
+
+ProcessGroups::ProcessGroups(int ranks_per_case)
+{
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  _count = size / ranks_per_case;
+  _index = rank / ranks_per_case;
+  MPI_Comm_split(MPI_COMM_WORLD, _index, rank, &_comm);
+  int group_rank = 0;
+  MPI_Comm_rank(_comm, &group_rank);
+  _leader = group_rank == 0;
+  mpi::set_run_processes(_comm);
+}
+
+void ProcessGroups::close()
+{
+  if (_comm == MPI_COMM_NULL)
+    return;
+  mpi::set_run_processes(MPI_COMM_WORLD);
+  MPI_Comm_free(&_comm);
+}
+} // namespace pushout::study

@@ -1,0 +1,52 @@
+// What the commands that make many runs (pushout sweep, fit) share: their
+// options and the process groups that run their cases side by side.
+#pragma once
+
+#include <filesystem>
+#include <mpi.h>
+#include <string>
+#include <vector>
+
+namespace pushout::study
+{
+/// What the commands that make many runs (pushout sweep, fit) share.
+struct ManyRunsOptions
+{
+  std::filesystem::path scene_file;
+  std::vector<std::string> sets; ///< --set overrides of every run
+  std::filesystem::path out;     ///< the command's folder
+  std::filesystem::path mesh_cache;
+  int ranks_per_case = 1; ///< processes per run (--ranks-per-case)
+  bool quiet = false;
+  bool force = false;
+};
+
+/// The processes of MPI_COMM_WORLD in groups of ranks_per_case
+/// (MPI_Comm_split), each running its runs on its own communicator, which
+/// the error agreements use (mpi::set_run_processes) until close().
+/// Collective on MPI_COMM_WORLD.
+class ProcessGroups
+{
+public:
+  /// Throws SceneError unless `ranks_per_case` divides the processes.
+  static void check(int ranks_per_case);
+  explicit ProcessGroups(int ranks_per_case);
+  ~ProcessGroups() { close(); }
+  ProcessGroups(const ProcessGroups&) = delete;
+  ProcessGroups& operator=(const ProcessGroups&) = delete;
+
+  MPI_Comm comm() const { return _comm; }
+  int count() const { return _count; }
+  int index() const { return _index; }
+  /// Whether this process is its group's first.
+  bool leader() const { return _leader; }
+  /// Agreements on MPI_COMM_WORLD again; the groups' communicator freed.
+  void close();
+
+private:
+  MPI_Comm _comm = MPI_COMM_NULL;
+  int _count = 1, _index = 0;
+  bool _leader = true;
+};
+
+} // namespace pushout::study

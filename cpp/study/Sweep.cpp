@@ -1,0 +1,459 @@
+#include "Sweep.h"
+#include "../common/Interrupt.h"
+#include "../common/exit_codes.h"
+#include "../common/mpi_errors.h"
+#include "../driver/Run.h"
+#include "../driver/exit_on_error.h"
+#include "../output/OutputFiles.h"
+#include "../output/plot.h"
+#include "../scene/SceneError.h"
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <mpi.h>
+#include <nlohmann/json.hpp>
+#include <numeric>
+#include <optional>
+#include <sstream>
+
+namespace pushout::study
+{
+using driver::run_case;
+using driver::RunOptions;
+using driver::RunOutcome;
+using driver::Simulation;
+namespace
+{
+/// How long a signal between cases may wait for the loop to see it [s].
+constexpr double stop_grace_s = 5;
+
+/// The outcome of one case, as its group's first process knows it.
+struct CaseResult : RunOutcome
+{
+  int index = -1;
+};
+
+/// The curve's abscissa and ordinate of a model type, for sweep.csv: name,
+/// unit.
+struct Axes
+{
+  std::string x, x_unit, y, y_unit;
+};
+Axes axes_of(const std::string& model_type)
+{
+  if (model_type == "single_joint")
+    return {"u_s", "mm", "F_s", "N"};
+  return {"delta", "mm", "tau", "MPa"};
+}
+
+std::string case_name(std::size_t i)
+{
+  std::ostringstream s;
+  s << "case_" << std::setw(3) << std::setfill('0') << i;
+  return s.str();
+}
+
+/// The results of every process's cases on rank 0 (others: empty).
+std::vector<CaseResult> gather(const std::vector<CaseResult>& mine)
+{
+  nlohmann::json j = nlohmann::json::array();
+  for (const CaseResult& r : mine)
+    j.push_back({{"index", r.index},
+                 {"exit_code", r.exit_code},
+                 {"wall_s", r.wall_s},
+                 {"message", r.message}});
+  // (a message that is not UTF-8 is replaced, not thrown on one process)
+  const std::string text = j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  const int length = int(text.size());
+  const auto n = std::size_t(size);
+  std::vector<int> lengths(n, 0), offsets(n + 1, 0);
+  MPI_Gather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  for (int p = 0; p < size; ++p)
+    offsets[std::size_t(p) + 1] = offsets[std::size_t(p)] + lengths[std::size_t(p)];
+  std::string all(std::size_t(rank == 0 ? offsets.back() : 0), ' ');
+  MPI_Gatherv(text.data(), length, MPI_CHAR, all.data(), lengths.data(), offsets.data(), MPI_CHAR,
+              0, MPI_COMM_WORLD);
+  std::vector<CaseResult> results;
+  if (rank != 0)
+    return results;
+  for (int p = 0; p < size; ++p)
+    for (const auto& e : nlohmann::json::parse(all.substr(std::size_t(offsets[std::size_t(p)]),
+                                                          std::size_t(lengths[std::size_t(p)]))))
+    {
+      CaseResult r;
+      r.index = e["index"].get<int>();
+      r.exit_code = e["exit_code"].get<int>();
+      r.wall_s = e["wall_s"].get<double>();
+      r.message = e["message"].get<std::string>();
+      results.push_back(r);
+    }
+  std::sort(results.begin(), results.end(),
+            [](const CaseResult& a, const CaseResult& b) { return a.index < b.index; });
+  return results;
+}
+
+/// Columns of a CSV file of numbers (curve.csv): name -> values.
+std::vector<std::pair<std::string, std::vector<double>>> read_csv(const std::filesystem::path& file)
+{
+  std::vector<std::pair<std::string, std::vector<double>>> columns;
+  std::ifstream in(file);
+  std::string line;
+  if (!std::getline(in, line))
+    return columns;
+  std::stringstream header(line);
+  for (std::string name; std::getline(header, name, ',');)
+    columns.push_back({name, {}});
+  while (std::getline(in, line))
+  {
+    std::stringstream row(line);
+    std::string cell;
+    for (std::size_t c = 0; c < columns.size() && std::getline(row, cell, ','); ++c)
+      columns[c].second.push_back(std::stod(cell));
+  }
+  return columns;
+}
+
+std::string csv_cell(const std::string& s)
+{
+  if (s.find_first_of(",\"\n") == std::string::npos)
+    return s;
+  std::string q = "\"";
+  for (char c : s)
+    q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+/// sweep.csv (rank 0): one row per case.
+void write_table(const SweepOptions& opt, const std::vector<Variation>& vary,
+                 const std::vector<std::vector<std::string>>& cases,
+                 const std::vector<CaseResult>& results, const Axes& ax)
+{
+  std::ostringstream out;
+  out << "case";
+  for (const Variation& v : vary)
+    out << "," << csv_cell(v.key);
+  out << ",peak_" << ax.y << "_" << ax.y_unit << "," << ax.x << "_at_peak_" << ax.x_unit << ","
+      << ax.y << "_last_" << ax.y_unit << "," << ax.x << "_last_" << ax.x_unit
+      << ",steps,converged,exit_code,wall_s,message\n";
+  out << std::setprecision(12);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const CaseResult& r : results)
+  {
+    const std::string name = case_name(std::size_t(r.index));
+    out << name;
+    for (const std::string& set : cases[std::size_t(r.index)])
+      out << "," << csv_cell(set.substr(set.find('=') + 1));
+    double peak = nan, x_peak = nan, y_last = nan, x_last = nan;
+    std::size_t rows = 0;
+    const auto curve = read_csv(opt.out / name / "curve.csv");
+    const auto column = [&](const std::string& c) -> const std::vector<double>*
+    {
+      for (const auto& [n, values] : curve)
+        if (n == c)
+          return &values;
+      return nullptr;
+    };
+    const auto* x = column(ax.x + "_" + ax.x_unit);
+    const auto* y = column(ax.y + "_" + ax.y_unit);
+    if (x && y && !y->empty())
+    {
+      const auto it = std::max_element(y->begin(), y->end());
+      peak = *it;
+      x_peak = (*x)[std::size_t(it - y->begin())];
+      y_last = y->back();
+      x_last = x->back();
+      rows = y->size() - 1;
+    }
+    out << "," << peak << "," << x_peak << "," << y_last << "," << x_last << "," << rows << ","
+        << (r.exit_code == 0 ? 1 : 0) << "," << r.exit_code << "," << r.wall_s << ","
+        << csv_cell(r.message) << "\n";
+  }
+  output::write_file(opt.out / "sweep.csv", out.str());
+}
+} // namespace
+
+Variation parse_variation(const std::string& text)
+{
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
+    throw SceneError("--vary '" + text + "': expected key=value,value,...");
+  Variation v{text.substr(0, eq), {}};
+  std::string value;
+  int depth = 0;
+  for (char c : text.substr(eq + 1))
+  {
+    depth += c == '[' ? 1 : c == ']' ? -1 : 0;
+    if (c == ',' && depth == 0)
+    {
+      v.values.push_back(value);
+      value.clear();
+    }
+    else
+      value += c;
+  }
+  v.values.push_back(value);
+  if (depth != 0 ||
+      std::any_of(v.values.begin(), v.values.end(), [](const std::string& s) { return s.empty(); }))
+    throw SceneError("--vary '" + text + "': an empty value or unbalanced [ ]");
+  return v;
+}
+
+std::vector<std::vector<std::string>> cartesian_cases(const std::vector<Variation>& vary)
+{
+  std::vector<std::vector<std::string>> cases = {{}};
+  for (const Variation& v : vary)
+  {
+    std::vector<std::vector<std::string>> next;
+    for (const auto& c : cases)
+      for (const std::string& value : v.values)
+      {
+        next.push_back(c);
+        next.back().push_back(v.key + "=" + value);
+      }
+    cases = std::move(next);
+  }
+  return cases;
+}
+
+std::vector<std::size_t> set_up_order(const std::vector<std::string>& set_ups)
+{
+  std::map<std::string, std::size_t> first; // each set-up's first case
+  for (std::size_t i = 0; i < set_ups.size(); ++i)
+    first.emplace(set_ups[i], i);
+  std::vector<std::size_t> order(set_ups.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b)
+                   { return first.at(set_ups[a]) < first.at(set_ups[b]); });
+  return order;
+}
+
+/// What a sweep runs: its variations, its cases (each a list of key=value)
+/// and the order it takes them in, the model type and whether it plots.
+struct SweepPlan
+{
+  std::vector<Variation> vary;
+  std::vector<std::vector<std::string>> cases;
+  std::vector<std::size_t> order; ///< the cases in the order they are taken
+  std::string model_type;
+  bool plot = false;
+};
+
+/// Reads every case's scene, so that a bad value stops the sweep before any
+/// case runs; throws SceneError.
+SweepPlan plan_sweep(const SweepOptions& opt)
+{
+  SweepPlan plan;
+  if (opt.vary.empty())
+    throw SceneError("pushout sweep needs at least one --vary key=value,value,...");
+  ProcessGroups::check(opt.ranks_per_case);
+  for (const std::string& v : opt.vary)
+  {
+    plan.vary.push_back(parse_variation(v));
+    for (std::size_t i = 0; i + 1 < plan.vary.size(); ++i)
+      if (plan.vary[i].key == plan.vary.back().key)
+        throw SceneError("'" + plan.vary.back().key +
+                         "' is given in two --vary options: give its values in one");
+  }
+  // The count before the cases are made (it may not fit in memory).
+  double count = 1;
+  for (const Variation& v : plan.vary)
+    count *= double(v.values.size());
+  if (count > double(opt.max_cases))
+  {
+    std::ostringstream s;
+    s << std::setprecision(15) << "the --vary options make " << count << " cases, more than "
+      << opt.max_cases << ": --max-cases " << std::size_t(count) << " runs them";
+    throw SceneError(s.str());
+  }
+  plan.cases = cartesian_cases(plan.vary);
+  // The model type and the plot of the sweep: the scene's with the
+  // --set values (a case may not change them).
+  const Scene base = Scene::load(opt.scene_file, parse_overrides(opt.sets));
+  plan.model_type = base.string("model.type");
+  plan.plot = base.boolean("output.plot");
+  std::vector<std::string> set_ups(plan.cases.size());
+  for (std::size_t i = 0; i < plan.cases.size(); ++i)
+  {
+    std::vector<std::string> sets = opt.sets;
+    sets.insert(sets.end(), plan.cases[i].begin(), plan.cases[i].end());
+    try
+    {
+      const Scene scene = Scene::load(opt.scene_file, parse_overrides(sets));
+      if (scene.string("model.type") != plan.model_type)
+        throw SceneError("a sweep runs one model type: vary other keys");
+      set_ups[i] = Simulation::set_up_fingerprint(scene);
+    }
+    catch (const SceneError& e)
+    {
+      std::string what;
+      for (const std::string& s : plan.cases[i])
+        what += (what.empty() ? "" : " ") + s;
+      throw SceneError(case_name(i) + " (" + what + "): " + e.what());
+    }
+  }
+  plan.order = set_up_order(set_ups);
+  return plan;
+}
+
+int sweep(const SweepOptions& opt)
+{
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  const auto t0 = std::chrono::steady_clock::now();
+  SweepPlan plan;
+  const int set_up = driver::exit_code_of(
+      "pushout sweep", "error",
+      [&]
+      {
+        // The same on every process.
+        plan = mpi::collectively<SceneError>(MPI_COMM_WORLD, [&] { return plan_sweep(opt); });
+        // The folder is this sweep's alone, without an earlier
+        // run's outputs (output/OutputFiles.h: its case folders,
+        // sweep.csv, ...).
+        mpi::collectively<output::FolderError>(MPI_COMM_WORLD,
+                                               [&]
+                                               {
+                                                 if (rank == 0)
+                                                   output::claim(opt.out, {opt.scene_file});
+                                               });
+        return exit_code::done;
+      });
+  if (set_up != exit_code::done)
+    return set_up;
+  const std::vector<Variation>& vary = plan.vary;
+  const std::vector<std::vector<std::string>>& cases = plan.cases;
+  const std::vector<std::size_t>& order = plan.order;
+  const std::string& model_type = plan.model_type;
+
+  ProcessGroups groups(opt.ranks_per_case);
+  const MPI_Comm group = groups.comm();
+  const bool leader = groups.leader();
+  if (rank == 0 && !opt.quiet)
+    std::cout << "pushout sweep: " << cases.size() << " cases, " << groups.count()
+              << (groups.count() == 1 ? " group" : " groups") << " of " << opt.ranks_per_case
+              << (opt.ranks_per_case == 1 ? " process" : " processes") << std::endl;
+
+  // The shared counter of the next case (rank 0's window).
+  int* next = nullptr;
+  MPI_Win window;
+  MPI_Win_allocate(rank == 0 ? MPI_Aint(sizeof(int)) : 0, sizeof(int), MPI_INFO_NULL,
+                   MPI_COMM_WORLD, &next, &window);
+  if (rank == 0)
+  {
+    MPI_Win_lock(MPI_LOCK_EXCLUSIVE, 0, 0, window);
+    *next = 0;
+    MPI_Win_unlock(0, window);
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+
+  // Between cases a signal waits for the loop to see it (at most a case's
+  // set-up: the run's own phases apply inside a case), then the table of
+  // what ran is written.
+  std::optional<interrupt::Phase> phase(std::in_place, "sweep", stop_grace_s);
+  std::vector<CaseResult> mine;
+  std::unique_ptr<Simulation> simulation; // the group's last set-up
+  int stop_signal = 0;
+  for (;;)
+  {
+    int index = 0;
+    if (leader)
+    {
+      const int one = 1;
+      MPI_Win_lock(MPI_LOCK_SHARED, 0, 0, window);
+      MPI_Fetch_and_op(&one, &index, MPI_INT, 0, 0, MPI_SUM, window);
+      MPI_Win_unlock(0, window);
+    }
+    MPI_Bcast(&index, 1, MPI_INT, 0, group);
+    int signal = interrupt::received();
+    MPI_Allreduce(MPI_IN_PLACE, &signal, 1, MPI_INT, MPI_MAX, group);
+    if (signal != 0)
+    {
+      stop_signal = signal;
+      interrupt::acknowledge(); // the sweep stops here, on every process
+    }
+    if (index >= int(cases.size()) || stop_signal != 0)
+      break;
+    index = int(order[std::size_t(index)]);
+    std::vector<std::string> sets = opt.sets;
+    sets.insert(sets.end(), cases[std::size_t(index)].begin(), cases[std::size_t(index)].end());
+    // Quiet, and no curve.png per case: sweep.png overlays them.
+    CaseResult r;
+    static_cast<RunOutcome&>(r) = run_case(
+        opt.scene_file, sets,
+        {opt.out / case_name(std::size_t(index)), opt.mesh_cache, true, opt.force, group, false},
+        simulation);
+    r.index = index;
+    if (r.exit_code > 128)
+      stop_signal = r.exit_code - 128;
+    if (!leader)
+      continue;
+    mine.push_back(r);
+    if (!opt.quiet)
+    {
+      std::string what;
+      for (const std::string& s : cases[std::size_t(index)])
+        what += (what.empty() ? "" : " ") + s;
+      std::ostringstream line;
+      line << "sweep: " << case_name(std::size_t(index)) << " (" << what << "): "
+           << (r.exit_code == 0 ? "done" : "failed (exit " + std::to_string(r.exit_code) + ")")
+           << " in " << std::fixed << std::setprecision(2) << r.wall_s << " s"
+           << (r.message.empty() ? "" : ": " + r.message) << " [process " << rank << "]\n";
+      std::cout << line.str() << std::flush;
+    }
+  }
+  simulation.reset(); // on the group, before it goes
+  MPI_Win_free(&window);
+  groups.close();
+  MPI_Allreduce(MPI_IN_PLACE, &stop_signal, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+
+  phase.emplace("writing outputs", -1);
+  const std::vector<CaseResult> results = gather(mine);
+  int code = exit_code::done;
+  if (rank == 0)
+  {
+    try
+    {
+      write_table(opt, vary, cases, results, axes_of(model_type));
+    }
+    catch (const std::exception& e)
+    {
+      std::cerr << "pushout: error: " << e.what() << std::endl;
+      code = exit_code::failure;
+    }
+    // A stopped sweep draws no sweep.png: plotting every curve takes
+    // longer than a stop may (sweep.csv has the table).
+    const bool plot = plan.plot && stop_signal == 0;
+    std::string why;
+    if (plot && !output::plot_sweep(opt.out, opt.out / "sweep.png", why))
+      std::cerr << "pushout: warning: no sweep.png: " << why << std::endl;
+    const auto converged = std::count_if(results.begin(), results.end(),
+                                         [](const CaseResult& r) { return r.exit_code == 0; });
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (!opt.quiet || converged < std::ptrdiff_t(cases.size()))
+      (converged < std::ptrdiff_t(cases.size()) ? std::cerr : std::cout)
+          << "pushout sweep: " << converged << " of " << cases.size() << " cases converged"
+          << (results.size() < cases.size()
+                  ? " (" + std::to_string(cases.size() - results.size()) + " not run)"
+                  : "")
+          << " in " << std::fixed << std::setprecision(2) << wall
+          << " s; table: " << (opt.out / "sweep.csv").string()
+          << (plot ? ", plot: " + (opt.out / "sweep.png").string() : "") << std::endl;
+    if (code == exit_code::done && stop_signal != 0)
+      code = exit_code::signal(stop_signal);
+    else if (code == exit_code::done && converged < std::ptrdiff_t(cases.size()))
+      code = exit_code::not_converged;
+  }
+  MPI_Bcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return code;
+}
+} // namespace pushout::study

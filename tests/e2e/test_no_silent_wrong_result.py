@@ -1,0 +1,89 @@
+"""No silent wrong result.
+
+1. A cached mesh whose coordinates were changed in place (the file keeps its
+   size and header) is not used: the run says so in one line on stderr,
+   meshes again (summary: mesh_reused false) and gives the clean run's curve
+   (the same binary, process and mesh: bit for bit, wall_s aside). The same
+   for a file whose checksum itself was changed.
+2. A solve whose solution is not a number (a test hook,
+   PUSHOUT_TEST_NONFINITE_FROM: every converged Newton solve from the 3rd on
+   leaves a NaN in its solution) is a failed step: cut back, and, when the
+   cuts run out, exit 3 with a message that says what was not a number;
+   summary.json says not converged, and curve.csv holds only finite rows.
+   (The curve writer's own refusal of a non-finite row: tests/unit/record/test_recorder.cpp.)"""
+import glob
+import math
+import os
+import shutil
+import struct
+import subprocess
+
+from common import OUT_ROOT, PUSHOUT, check, curve, out_dir, run, summary
+
+scene = """
+[mesh]
+elements_per_quarter = 4
+elements_through_thickness = 2
+[loading]
+steps = 3
+"""
+cache = os.path.join(os.environ.get("PUSHOUT_TEST_OUT", "/tmp"), "mesh-checksum-test")
+shutil.rmtree(cache, ignore_errors=True)
+os.environ["PUSHOUT_CACHE_DIR"] = cache
+strip = lambda rows: [{k: v for k, v in r.items() if k != "wall_s"} for r in rows]  # noqa: E731
+
+clean = out_dir("checksum_clean")
+run(scene, clean)
+files = glob.glob(os.path.join(cache, "*.mesh"))
+check(len(files) == 1, f"one cached mesh: {files}")
+path = files[0]
+with open(path, "rb") as f:
+    original = f.read()
+
+
+def damaged(name, change):
+    """Runs the scene from a cached mesh changed by change(bytearray)."""
+    data = bytearray(original)
+    change(data)
+    with open(path, "wb") as f:
+        f.write(data)
+    out = out_dir(f"checksum_{name}")
+    p = run(scene, out, check=False)
+    notes = [line for line in p.stderr.splitlines() if "meshing again" in line]
+    check(p.returncode == 0 and not summary(out)["mesh_reused"] and len(notes) == 1,
+          f"{name}: exit {p.returncode}, meshed again, one note: {notes}")
+    check(strip(curve(out)) == strip(curve(clean)), f"{name}: the clean run's curve")
+    with open(path, "rb") as f:
+        check(f.read() == original, f"{name}: the cache holds the mesh again")
+
+
+def move_nodes(data):
+    # The coordinates follow the header line, the hash of the mesher's
+    # inputs and the two counts (cpp/mesh/generate.cpp); every 7th value of
+    # the first 300 is moved by 1 mm, in place.
+    start = data.index(b"\n") + 1 + 8 + 16
+    for i in range(0, 300, 7):
+        (v,) = struct.unpack_from("<d", data, start + 8 * i)
+        struct.pack_into("<d", data, start + 8 * i, v + 1.0)
+
+
+def flip_checksum(data):
+    data[-1] ^= 0xFF
+
+
+damaged("coordinates", move_nodes)
+damaged("checksum", flip_checksum)
+
+# 2. A non-finite solution: cut back, then exit 3, nothing non-finite written.
+out = out_dir("nonfinite_solution")
+env = dict(os.environ, PUSHOUT_TEST_NONFINITE_FROM="3")
+p = subprocess.run([PUSHOUT, "run", os.path.join(OUT_ROOT, "checksum_clean.toml"), "--out", out, "--quiet", "--set", "loading.max_cuts=2"],
+                   capture_output=True, text=True, env=env, timeout=600)
+lines = [line for line in p.stderr.splitlines() if line.startswith("pushout")]
+check(p.returncode == 3 and len(lines) == 1 and "not a number" in lines[0],
+      f"a non-finite solution: exit {p.returncode}, {lines[0] if lines else p.stderr[-300:]}")
+s = summary(out)
+rows = curve(out)
+check(not s["converged"] and s["cuts"] >= 1
+      and all(math.isfinite(v) for r in rows for v in r.values()),
+      f"not converged, {s['cuts']} cuts, {len(rows)} finite rows in curve.csv")
