@@ -130,8 +130,7 @@ int run_scene(const std::string& scene_file, const std::string& out,
         if (rank == 0 && !quiet)
           std::cout << "pushout: done in " << std::fixed << std::setprecision(2) << s.wall_s
                     << " s, " << s.newton_iterations << " Newton iterations; curve: " << out
-                    << "/curve.csv"
-                    << (scene.boolean("output.plot") ? ", plot: " + out + "/curve.png" : "")
+                    << "/curve.csv" << (scene.output().plot ? ", plot: " + out + "/curve.png" : "")
                     << std::endl;
         return exit_code::done;
       });

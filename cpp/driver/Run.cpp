@@ -32,8 +32,10 @@ constexpr double stop_grace_s = 5;
 /// --force), its estimate into the summary and the first progress line.
 void guard_size(const Scene& scene, const RunOptions& opt, record::RunReport& report)
 {
-  const record::ResourceEstimate estimate = record::estimate_resources(scene, opt.comm);
-  record::check_fits(estimate, scene, opt.force);
+  const mesh::MeshInput shape = mesh::MeshInput::of(scene);
+  const record::ResourceEstimate estimate =
+      record::estimate_resources(shape, scene.solver(), opt.comm);
+  record::check_fits(estimate, shape, opt.force);
   output::Summary& s = report.summary();
   s.estimate = {estimate.size.dofs, estimate.size.cells, estimate.size.joint_elements,
                 estimate.peak_mb()};
@@ -63,7 +65,7 @@ void describe_model(const Scene& scene, const mesh::MeshData& data, const model:
     return;
   std::string cut;
   std::string why;
-  mesh::model_symmetry(scene, why);
+  mesh::model_symmetry(mesh::MeshInput::of(scene), why);
   if (symmetry.copies() == 4)
     cut = " (quarter model by symmetry)";
   else if (symmetry.copies() == 2)
@@ -91,15 +93,15 @@ Simulation::Simulation(const Scene& scene, const RunOptions& opt, record::RunRep
   // Mesh.
   std::optional<interrupt::Phase> phase(std::in_place, "meshing", 0);
   double t0 = report.seconds();
-  _data = mesh::generate(scene, opt.mesh_cache, summary.mesh_reused, opt.comm);
+  _data = mesh::generate(mesh::MeshInput::of(scene), opt.mesh_cache, summary.mesh_reused, opt.comm);
   summary.mesh_s = report.seconds() - t0;
 
   // Model and the solver of a load step.
   phase.emplace("set-up", 0);
   t0 = report.seconds();
-  _model = std::make_unique<model::Model>(opt.comm, _data, scene);
+  _model = std::make_unique<model::Model>(opt.comm, _data, model::ModelInput::of(scene));
   _equilibrium = std::make_unique<solver::Equilibrium>(*_model);
-  _solver = solver::LoadStepSolver::from_scene(*_equilibrium, scene);
+  _solver = solver::LoadStepSolver::make(*_equilibrium, scene.solver());
   _solver->set_talk(report.talk());
   describe_model(scene, _data, *_model, *_solver, report);
   specimen::make_scenario(scene, _data, *_model)
@@ -123,10 +125,10 @@ std::string Simulation::set_up_fingerprint(const Scene& scene)
     for (const char* prefix : {"model.", "geometry.", "mesh.", "concrete.", "steel.", "solver."})
       if (const Value* v = scene.find(k.path); v && k.path.starts_with(prefix))
         s << k.path << "=" << to_toml(*v) << "\n";
-  if (scene.string("model.type") == "pushout")
-    s << "loading.thermal_tube_top=" << scene.string("loading.thermal_tube_top") << "\n";
+  if (scene.model().pushout())
+    s << "loading.thermal_tube_top=" << (scene.loading().tube_top_free ? "free" : "held") << "\n";
   // A model cut by symmetry is only for runs without fields (mesh/symmetry.h).
-  s << "output.xdmf=" << scene.boolean("output.xdmf") << "\n";
+  s << "output.xdmf=" << scene.output().xdmf << "\n";
   for (const CrackSpec& c : scene.cracks())
     s << "crack.angle=" << (c.angle_deg ? std::to_string(*c.angle_deg) : "nearest_face") << "\n";
   return s.str();
@@ -147,7 +149,7 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, record::R
     summary.condensed_dofs = _set_up.condensed_dofs;
     summary.condensation_asymmetry = _set_up.condensation_asymmetry;
     summary.setup_reused = true;
-    _model->set_laws(scene);
+    _model->set_laws(model::JointLaws::of(scene));
     _solver->restart();
   }
   const std::unique_ptr<specimen::Scenario> scenario =
@@ -156,13 +158,14 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, record::R
   const int factorizations_before = _solver->factorizations();
 
   // Outputs and load steps.
-  stepping::StepRecorder recorder(scene, opt.out, *scenario, *_equilibrium, report);
-  specimen::Corrosion corrosion(scene, opt.out, report, opt.comm);
-  stepping::StepLoop loop(
-      *scenario, corrosion, *_equilibrium, *_solver, recorder, report,
-      int(scene.integer("loading.max_cuts")),
-      scenario->has_load_factor() ? int(scene.integer("loading.dissipation_steps")) : 1);
-  if (scene.boolean("solver.time_linear_solve"))
+  stepping::StepRecorder recorder(scene.output(), opt.out, *scenario, *_equilibrium, report);
+  specimen::Corrosion corrosion(scene.corrosion(), scene.crack_directions(), opt.out, report,
+                                opt.comm);
+  const Loading& loading = scene.loading();
+  stepping::StepLoop loop(*scenario, corrosion, *_equilibrium, *_solver, recorder, report,
+                          int(loading.max_cuts),
+                          scenario->has_load_factor() ? int(loading.dissipation_steps) : 1);
+  if (scene.solver().time_linear_solve)
     loop.time_linear_solve();
   report.publish();
   std::optional<interrupt::Phase> phase(std::in_place, "load steps", stop_grace_s);
@@ -171,12 +174,15 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, record::R
   {
     if (!scenario->has_load_factor())
       return stepping::StepLoop::Control::displacement;
-    const std::string c = scene.string("loading.control");
-    if (c == "displacement")
+    switch (loading.control)
+    {
+    case Loading::Control::displacement:
       return stepping::StepLoop::Control::displacement;
-    if (c == "arc_length")
+    case Loading::Control::arc_length:
       return stepping::StepLoop::Control::arc_length;
-    return stepping::StepLoop::Control::dissipation; // "dissipation" or "auto"
+    default:
+      return stepping::StepLoop::Control::dissipation; // "dissipation" or "auto"
+    }
   }();
   // An error on one process is agreed on here, where the solvers still
   // live: destroying a MUMPS factor is collective, so a process must not

@@ -1,4 +1,5 @@
 #include "cracks.h"
+#include "../scene/CrackPlanes.h"
 #include "../scene/SceneError.h"
 #include "symmetry.h"
 #include <algorithm>
@@ -15,115 +16,11 @@ namespace
 {
 constexpr double pi = std::numbers::pi;
 
-/// a reduced to [0, 2 pi).
-double turn(double a)
-{
-  a = std::fmod(a, 2 * pi);
-  return a < 0 ? a + 2 * pi : a;
-}
-
 double degrees(double a)
 {
   return a * 180 / pi;
 }
-
-struct SliceShape
-{
-  bool square;
-  double W;                ///< side or diameter [mm]
-  std::array<double, 2> c; ///< tube centre [mm]
-  std::int64_t nq;         ///< elements per quarter circumference
-};
-
-SliceShape shape_of(const Scene& scene)
-{
-  const auto& c = scene.numbers("geometry.tube_center");
-  return {scene.string("geometry.outer_shape") == "square",
-          scene.number("geometry.width"),
-          {c[0], c[1]},
-          scene.integer("mesh.elements_per_quarter")};
-}
-
-/// The block corner directions: towards the square's corners from the tube
-/// centre (so that every ray between two of them meets one side), or 45 +
-/// 90 k degrees in a circle (slice.geo's, for a centred tube).
-std::array<double, 4> corner_angles(const SliceShape& s)
-{
-  if (!s.square)
-    return {pi / 4, 3 * pi / 4, 5 * pi / 4, 7 * pi / 4};
-  const double W = s.W, x = s.c[0], y = s.c[1];
-  return {turn(std::atan2(W - y, W - x)), turn(std::atan2(W - y, -x)), turn(std::atan2(-y, -x)),
-          turn(std::atan2(-y, W - x))};
-}
-
-/// Where the ray from the tube centre at angle a meets the slice boundary.
-std::array<double, 2> boundary_point(const SliceShape& s, double a)
-{
-  const double dx = std::cos(a), dy = std::sin(a);
-  if (!s.square)
-    return {s.c[0] + s.W / 2 * dx, s.c[1] + s.W / 2 * dy};
-  const double inf = std::numeric_limits<double>::infinity();
-  const double tx = dx > 1e-14 ? (s.W - s.c[0]) / dx : dx < -1e-14 ? -s.c[0] / dx : inf;
-  const double ty = dy > 1e-14 ? (s.W - s.c[1]) / dy : dy < -1e-14 ? -s.c[1] / dy : inf;
-  const double t = std::min(tx, ty);
-  return {s.c[0] + t * dx, s.c[1] + t * dy};
-}
 } // namespace
-
-double angle_between(double a, double b)
-{
-  const double d = turn(a - b);
-  return std::min(d, 2 * pi - d);
-}
-
-CrackDirections crack_directions(const Scene& scene)
-{
-  CrackDirections d;
-  const auto& cracks = scene.cracks();
-  if (cracks.empty())
-    return d;
-  const SliceShape s = shape_of(scene);
-  const std::array<double, 4> corners = corner_angles(s);
-  const double element = pi / 2 / double(s.nq); // angle of one interface element
-  for (std::size_t i = 0; i < cracks.size(); ++i)
-  {
-    const std::string key = "crack." + std::to_string(i) + ".angle";
-    double a;
-    if (cracks[i].angle_deg)
-      a = turn(*cracks[i].angle_deg * pi / 180);
-    else
-    {
-      if (!s.square)
-        throw SceneError("'" + key +
-                         "' = \"nearest_face\" needs a square slice: every face of a "
-                         "circular slice is equally near; give the angle in degrees");
-      // Distances to the sides -y, +x, +y, -x (ties: the first).
-      const std::array<double, 4> cover = {s.c[1], s.W - s.c[0], s.W - s.c[1], s.c[0]};
-      const std::array<double, 4> towards = {3 * pi / 2, 0, pi / 2, pi};
-      a = towards[std::min_element(cover.begin(), cover.end()) - cover.begin()];
-    }
-    d.asked.push_back(a);
-    bool snapped = false;
-    for (double corner : corners)
-      if (angle_between(a, corner) < element / 2)
-      {
-        snapped = angle_between(a, corner) > 1e-9;
-        a = corner; // exactly, so that the sectors do not get a sliver
-      }
-    for (std::size_t j = 0; j < d.angles.size(); ++j)
-      if (angle_between(a, d.angles[j]) < element)
-      {
-        std::ostringstream m;
-        m << "'" << key << "' (" << degrees(a) << " deg) is within one interface element ("
-          << degrees(element) << " deg) of 'crack." << j << ".angle' (" << degrees(d.angles[j])
-          << " deg): two crack planes need at least one element between them";
-        throw SceneError(m.str());
-      }
-    d.angles.push_back(a);
-    d.snapped.push_back(snapped);
-  }
-  return d;
-}
 
 std::int64_t SliceSectors::around() const
 {
@@ -133,17 +30,17 @@ std::int64_t SliceSectors::around() const
   return n;
 }
 
-SliceSectors slice_sectors(const Scene& scene)
+SliceSectors slice_sectors(const MeshInput& in)
 {
-  const SliceShape s = shape_of(scene);
-  const std::array<double, 4> corners = corner_angles(s);
+  const Geometry& g = in.geometry;
+  const std::array<double, 4> corners = corner_angles(g);
   std::vector<std::pair<double, bool>> b; // (angle, is a corner)
   for (double a : corners)
     b.push_back({a, true});
   // The cracks, and a boundary on each symmetry plane (mesh/symmetry.h), so
   // that a half or a quarter of this mesh is a model of its own.
-  std::vector<double> rays = crack_directions(scene).angles;
-  const Symmetry symmetry = geometric_symmetry(scene);
+  std::vector<double> rays = in.cracks.angles;
+  const Symmetry symmetry = geometric_symmetry(in);
   if (symmetry.x_plane)
     rays.insert(rays.end(), {pi / 2, 3 * pi / 2});
   if (symmetry.y_plane)
@@ -158,19 +55,20 @@ SliceSectors slice_sectors(const Scene& scene)
   {
     const auto [a, corner] = b[i];
     sec.angles.push_back(a);
-    if (corner && s.square)
+    if (corner && !g.circle)
     {
       const std::size_t k =
           std::size_t(std::find(corners.begin(), corners.end(), a) - corners.begin());
       const std::array<std::array<double, 2>, 4> square = {
-          {{s.W, s.W}, {0, s.W}, {0, 0}, {s.W, 0}}};
+          {{g.width, g.width}, {0, g.width}, {0, 0}, {g.width, 0}}};
       sec.outer.push_back(square[k]);
     }
     else
-      sec.outer.push_back(boundary_point(s, a));
+      sec.outer.push_back(boundary_point(g, a));
     const double next = i + 1 < b.size() ? b[i + 1].first : b[0].first + 2 * pi;
     const double share = (next - a) / (pi / 2); // of a quarter circumference
-    sec.elements.push_back(std::max<std::int64_t>(std::llround(double(s.nq) * share), 1));
+    sec.elements.push_back(
+        std::max<std::int64_t>(std::llround(double(in.mesh.elements_per_quarter) * share), 1));
   }
   return sec;
 }

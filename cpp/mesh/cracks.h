@@ -12,31 +12,14 @@
 // and the mesh is slice.geo's, unchanged.
 #pragma once
 
-#include "../scene/Scene.h"
 #include "MeshData.h"
+#include "MeshInput.h"
 #include <array>
 #include <cstdint>
 #include <vector>
 
 namespace pushout::mesh
 {
-/// Smallest angle between two directions [rad].
-double angle_between(double a, double b);
-
-/// The directions of the scene's crack planes [rad, in [0, 2 pi)], in the
-/// order of its [[crack]] tables. "nearest_face" is the direction of the
-/// square's side nearest the tube axis (ties: -y, +x, +y, -x). A crack
-/// within half an element of a block corner direction is moved onto it
-/// (snapped[i] says so). Throws SceneError on cracks that cannot be meshed
-/// (two in one element, "nearest_face" in a circle).
-struct CrackDirections
-{
-  std::vector<double> angles; ///< [rad]
-  std::vector<bool> snapped;  ///< moved onto a block corner
-  std::vector<double> asked;  ///< the scene's angle [rad] before snapping
-};
-CrackDirections crack_directions(const Scene& scene);
-
 /// The sectors of meshes/slice_cracked.geo: boundaries at increasing angles
 /// from the tube centre (the block corners, the cracks and the symmetry
 /// planes of mesh/symmetry.h geometric_symmetry), each with its
@@ -49,7 +32,7 @@ struct SliceSectors
   std::vector<std::int64_t> elements;       ///< elements around each sector
   std::int64_t around() const;              ///< elements around the whole circumference
 };
-SliceSectors slice_sectors(const Scene& scene);
+SliceSectors slice_sectors(const MeshInput& in);
 
 /// Splits the concrete along each crack plane (rays from `centre` at
 /// `angles`, r >= R): the nodes on a plane get copies on its + side (the

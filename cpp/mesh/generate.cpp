@@ -28,16 +28,17 @@ namespace
 {
 /// The .geo file and its constants for this scene.
 std::pair<std::filesystem::path, std::vector<std::pair<std::string, double>>>
-geo_for(const Scene& scene)
+geo_for(const MeshInput& in)
 {
+  const Geometry& g = in.geometry;
   const std::filesystem::path dir(PUSHOUT_MESH_DIR);
-  if (scene.string("model.type") == "single_joint")
-    return {dir / "single_joint.geo", {{"a", std::sqrt(scene.number("geometry.area"))}}};
-  const auto& c = scene.numbers("geometry.tube_center");
+  if (!in.pushout)
+    return {dir / "single_joint.geo", {{"a", std::sqrt(g.area)}}};
+  const auto& c = g.tube_center;
   std::vector<std::pair<std::string, double>> sectors; // slice_cracked.geo's (cracks.h)
-  if (!scene.cracks().empty())
+  if (in.cracked())
   {
-    const SliceSectors sec = slice_sectors(scene);
+    const SliceSectors sec = slice_sectors(in);
     sectors.push_back({"nb", double(sec.angles.size())});
     for (std::size_t i = 0; i < sec.angles.size(); ++i)
     {
@@ -49,18 +50,18 @@ geo_for(const Scene& scene)
     }
   }
   std::vector<std::pair<std::string, double>> constants = {
-      {"shape", scene.string("geometry.outer_shape") == "circle" ? 1.0 : 0.0},
-      {"W", scene.number("geometry.width")},
-      {"L", scene.number("geometry.thickness")},
-      {"D", scene.number("geometry.tube_outer_diameter")},
-      {"Di", scene.number("geometry.tube_inner_diameter")},
+      {"shape", g.circle ? 1.0 : 0.0},
+      {"W", g.width},
+      {"L", g.thickness},
+      {"D", g.tube_outer_diameter},
+      {"Di", g.tube_inner_diameter},
       {"cx", c[0]},
       {"cy", c[1]},
-      {"Ds", scene.number("geometry.support_inner_diameter")},
-      {"nq", double(scene.integer("mesh.elements_per_quarter"))},
-      {"nz", double(scene.integer("mesh.elements_through_thickness"))},
-      {"ns", double(scene.integer("mesh.steel_layers"))},
-      {"ratio", scene.number("mesh.outer_size_ratio")}};
+      {"Ds", g.support_inner_diameter},
+      {"nq", double(in.mesh.elements_per_quarter)},
+      {"nz", double(in.mesh.elements_through_thickness)},
+      {"ns", double(in.mesh.steel_layers)},
+      {"ratio", in.mesh.outer_size_ratio}};
   if (sectors.empty())
     return {dir / "slice.geo", constants};
   constants.insert(constants.end(), sectors.begin(), sectors.end());
@@ -311,9 +312,9 @@ void prune_cache(const std::filesystem::path& cache_dir, double limit_mb,
 namespace
 {
 /// gmsh on this process: the cached or a new mesh.
-MeshData generate_here(const Scene& scene, const std::filesystem::path& cache_dir, bool& reused)
+MeshData generate_here(const MeshInput& in, const std::filesystem::path& cache_dir, bool& reused)
 {
-  const auto [geo, constants] = geo_for(scene);
+  const auto [geo, constants] = geo_for(in);
   std::ostringstream key;
   key << "mesher " << mesher_version << ";" << read_file(geo);
   for (const auto& [name, value] : constants)
@@ -366,17 +367,13 @@ MeshData generate_here(const Scene& scene, const std::filesystem::path& cache_di
     }
   }
   insert_interface(m);
-  if (!scene.cracks().empty())
-  {
-    const auto& c = scene.numbers("geometry.tube_center");
-    insert_cracks(m, {c[0], c[1]}, scene.number("geometry.tube_outer_diameter") / 2,
-                  crack_directions(scene).angles);
-  }
+  if (in.cracked())
+    insert_cracks(m, in.geometry.tube_center, in.geometry.tube_radius(), in.cracks.angles);
   return m;
 }
 } // namespace
 
-MeshData generate(const Scene& scene, const std::filesystem::path& cache_dir, bool& reused,
+MeshData generate(const MeshInput& in, const std::filesystem::path& cache_dir, bool& reused,
                   MPI_Comm comm)
 {
   int rank;
@@ -388,7 +385,7 @@ MeshData generate(const Scene& scene, const std::filesystem::path& cache_dir, bo
   {
     try
     {
-      m = generate_here(scene, cache_dir, reused);
+      m = generate_here(in, cache_dir, reused);
       flags[1] = reused;
     }
     catch (const std::exception& e)
@@ -421,11 +418,8 @@ MeshData generate(const Scene& scene, const std::filesystem::path& cache_dir, bo
   reused = flags[1];
   broadcast(m, comm, 0);
   std::string why;
-  if (const Symmetry symmetry = model_symmetry(scene, why); symmetry.copies() > 1)
-  {
-    const auto& c = scene.numbers("geometry.tube_center");
-    keep_symmetric_part(m, symmetry, {c[0], c[1]});
-  }
+  if (const Symmetry symmetry = model_symmetry(in, why); symmetry.copies() > 1)
+    keep_symmetric_part(m, symmetry, in.geometry.tube_center);
   return m;
 }
 } // namespace pushout::mesh

@@ -5,19 +5,19 @@
 // 70 libraries it brings.
 #pragma once
 
-#include "../scene/Scene.h"
 #include "MeshData.h"
+#include "MeshInput.h"
 #include <filesystem>
 #include <string_view>
 
 namespace pushout::mesh
 {
-/// The mesh the scene asks for, with its interface inserted. Rank 0 of
+/// The mesh `in` describes, with its interface inserted. Rank 0 of
 /// `comm` runs gmsh and every process receives the whole mesh. The gmsh mesh
 /// is cached in `cache_dir` (*.mesh: its nodes, hexahedra and materials)
 /// under a hash of the .geo text and constants.
 /// `reused` reports whether the cache served it. Collective.
-MeshData generate(const Scene& scene, const std::filesystem::path& cache_dir, bool& reused,
+MeshData generate(const MeshInput& in, const std::filesystem::path& cache_dir, bool& reused,
                   MPI_Comm comm = MPI_COMM_WORLD);
 
 /// Default cache folder: $PUSHOUT_CACHE_DIR, else $XDG_CACHE_HOME/pushout,

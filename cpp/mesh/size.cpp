@@ -7,22 +7,23 @@
 
 namespace pushout::mesh
 {
-SliceDivisions slice_divisions(const Scene& scene)
+SliceDivisions slice_divisions(const MeshInput& in)
 {
   // meshes/slice.geo, line for line.
-  const double W = scene.number("geometry.width");
-  const double R = scene.number("geometry.tube_outer_diameter") / 2;
-  const double Rs = scene.number("geometry.support_inner_diameter") / 2;
-  const double ratio = scene.number("mesh.outer_size_ratio");
-  const auto& c = scene.numbers("geometry.tube_center");
+  const Geometry& g = in.geometry;
+  const double W = g.width;
+  const double R = g.tube_radius();
+  const double Rs = g.support_inner_diameter / 2;
+  const double ratio = in.mesh.outer_size_ratio;
+  const auto& c = g.tube_center;
   SliceDivisions d;
-  d.circumferential = scene.integer("mesh.elements_per_quarter");
-  d.steel = scene.integer("mesh.steel_layers");
-  d.thickness = scene.integer("mesh.elements_through_thickness");
+  d.circumferential = in.mesh.elements_per_quarter;
+  d.steel = in.mesh.steel_layers;
+  d.thickness = in.mesh.elements_through_thickness;
   const double h = std::numbers::pi / 2 * R / double(d.circumferential); // interface element [mm]
   d.ring = std::max<std::int64_t>(std::int64_t(std::floor((Rs - R) / h + 0.5)), 1);
   double Lr = W / 2 - Rs;
-  if (scene.string("geometry.outer_shape") == "square")
+  if (!g.circle)
     Lr = std::min({W / 2, c[0], c[1], W - c[0], W - c[1]}) - Rs;
   const double he = ratio * h;
   d.graded = std::int64_t(std::ceil(Lr / h));
@@ -36,11 +37,11 @@ SliceDivisions slice_divisions(const Scene& scene)
   return d;
 }
 
-MeshSize predict_size(const Scene& scene)
+MeshSize predict_size(const MeshInput& in)
 {
   MeshSize s;
-  const int p = int(scene.integer("mesh.degree")); // nodes per element edge - 1
-  if (scene.string("model.type") == "single_joint")
+  const int p = in.mesh.degree; // nodes per element edge - 1
+  if (!in.pushout)
   {
     // meshes/single_joint.geo: two stacked unit cells, one joint element.
     s.cells = s.cells_generated = 2;
@@ -51,20 +52,20 @@ MeshSize predict_size(const Scene& scene)
     s.dofs = 3 * s.nodes;
     return s;
   }
-  const SliceDivisions d = slice_divisions(scene);
+  const SliceDivisions d = slice_divisions(in);
   const std::int64_t radial = d.steel + d.ring + d.graded; // elements along a radius
   std::string why;
-  const Symmetry symmetry = model_symmetry(scene, why);
+  const Symmetry symmetry = model_symmetry(in, why);
   s.symmetry = symmetry;
   const int copies = symmetry.copies();
   // Elements around the circumference: of the whole slice, and of the part
   // the model keeps (with crack planes the circumference is cut into
   // sectors, cracks.h, with a boundary on each symmetry plane).
-  const bool cracked = !scene.cracks().empty();
+  const bool cracked = in.cracked();
   std::int64_t full_around = 4 * d.circumferential, around = full_around / copies;
   if (cracked)
   {
-    const SliceSectors sec = slice_sectors(scene);
+    const SliceSectors sec = slice_sectors(in);
     full_around = sec.around();
     around = 0;
     for (std::size_t i = 0; i < sec.angles.size(); ++i)
@@ -92,7 +93,7 @@ MeshSize predict_size(const Scene& scene)
   // pairs only); one outside is cut away. Each kept plane adds its joint
   // elements; 6 dofs per node pair.
   const std::int64_t crack_nodes = (p * (d.ring + d.graded) + 1) * n_thick;
-  for (double angle : crack_directions(scene).angles)
+  for (double angle : in.cracks.angles)
   {
     const Side side = side_of(symmetry, angle);
     if (side == Side::outside)

@@ -2,10 +2,10 @@
 // any meshing: meshes/slice.geo is a structured block mesh, so its element
 // counts follow from its block divisions in closed form. Used to refuse a run
 // that cannot fit in memory before gmsh spends minutes on it
-// (driver/ResourceGuard.h).
+// (record/ResourceGuard.h).
 #pragma once
 
-#include "../scene/Scene.h"
+#include "MeshInput.h"
 #include "symmetry.h"
 #include <cstdint>
 
@@ -33,8 +33,8 @@ struct SliceDivisions
   std::int64_t graded;          ///< radial elements from there to the boundary (nr2)
   std::int64_t thickness;       ///< elements through the thickness (nz)
 };
-SliceDivisions slice_divisions(const Scene& scene);
+SliceDivisions slice_divisions(const MeshInput& in);
 
 /// The size of the scene's mesh and model (push-out or single joint).
-MeshSize predict_size(const Scene& scene);
+MeshSize predict_size(const MeshInput& in);
 } // namespace pushout::mesh

@@ -1,4 +1,5 @@
 #include "symmetry.h"
+#include "../scene/CrackPlanes.h"
 #include "cracks.h"
 #include <algorithm>
 #include <cmath>
@@ -33,17 +34,17 @@ bool invariant(const std::vector<double>& angles, bool x_plane)
 }
 
 /// Why the slice is not symmetric about one plane ("" if it is).
-std::string asymmetry(const Scene& scene, bool x_plane)
+std::string asymmetry(const MeshInput& in, bool x_plane)
 {
   const char* axis = x_plane ? "x" : "y";
-  if (scene.string("geometry.outer_shape") == "square")
+  if (!in.geometry.circle)
   {
-    const double W = scene.number("geometry.width");
-    const double c = scene.numbers("geometry.tube_center")[x_plane ? 0 : 1];
+    const double W = in.geometry.width;
+    const double c = in.geometry.tube_center[x_plane ? 0 : 1];
     if (std::abs(c - W / 2) > 1e-12 * W)
       return std::string("the tube is not centred in ") + axis;
   }
-  if (!invariant(crack_directions(scene).angles, x_plane))
+  if (!invariant(in.cracks.angles, x_plane))
     return std::string("the crack planes are not symmetric about ") + axis + " = " +
            (x_plane ? "xc" : "yc");
   return "";
@@ -73,44 +74,43 @@ Side side_of(Symmetry s, double angle)
   return Side::inside;
 }
 
-Symmetry geometric_symmetry(const Scene& scene)
+Symmetry geometric_symmetry(const MeshInput& in)
 {
-  if (scene.string("model.type") != "pushout")
+  if (!in.pushout)
     return {};
-  return {asymmetry(scene, true).empty(), asymmetry(scene, false).empty()};
+  return {asymmetry(in, true).empty(), asymmetry(in, false).empty()};
 }
 
-Symmetry model_symmetry(const Scene& scene, std::string& why)
+Symmetry model_symmetry(const MeshInput& in, std::string& why)
 {
   why.clear();
-  if (scene.string("model.type") != "pushout")
+  if (!in.pushout)
     return {};
-  const std::string mode = scene.string("model.symmetry");
-  if (mode == "full")
+  if (in.symmetry == ModelPart::Symmetry::full)
   {
     why = "model.symmetry = \"full\"";
     return {};
   }
-  if (scene.boolean("output.xdmf"))
+  if (in.fields)
   {
     why = "output.xdmf asks for fields of the whole specimen";
     return {};
   }
   // slice_cracked.geo has a sector boundary on each symmetry plane; slice.geo
   // has a mesh line there only with an even number of elements per quarter.
-  if (scene.cracks().empty() && scene.integer("mesh.elements_per_quarter") % 2 != 0)
+  if (!in.cracked() && in.mesh.elements_per_quarter % 2 != 0)
   {
     why = "mesh.elements_per_quarter is odd (the symmetry planes are not mesh surfaces)";
     return {};
   }
-  std::string x_why = asymmetry(scene, true), y_why = asymmetry(scene, false);
+  std::string x_why = asymmetry(in, true), y_why = asymmetry(in, false);
   // Crack planes that are each other's mirror images (not on the plane):
   // the cut model makes them open alike; the whole slice may localise in
   // one. Only model.symmetry = "symmetric" cuts there.
-  if (mode == "auto")
+  if (in.symmetry == ModelPart::Symmetry::automatic)
   {
     const Symmetry x_only{true, false}, y_only{false, true};
-    for (double a : crack_directions(scene).angles)
+    for (double a : in.cracks.angles)
     {
       const char* paired = "crack planes that are mirror images of each other could open "
                            "unalike (model.symmetry = \"symmetric\" cuts there)";

@@ -25,8 +25,8 @@
 // crack plane lies on; "symmetric" cuts wherever the geometry allows.
 #pragma once
 
-#include "../scene/Scene.h"
 #include "MeshData.h"
+#include "MeshInput.h"
 #include <array>
 #include <string>
 
@@ -56,7 +56,7 @@ Side side_of(Symmetry s, double angle);
 
 /// The planes the slice and its crack planes are symmetric about (geometry
 /// only: the meshes of the full and of the cut model are the same).
-Symmetry geometric_symmetry(const Scene& scene);
+Symmetry geometric_symmetry(const MeshInput& in);
 
 /// The planes the run is cut along: those of geometric_symmetry() of a
 /// push-out with model.symmetry = "symmetric", an even
@@ -64,7 +64,7 @@ Symmetry geometric_symmetry(const Scene& scene);
 /// cover the whole specimen); with "auto" only those that every crack plane
 /// lies on. `why` says why the model is not cut at all, or not about both
 /// planes ("" if it is a quarter).
-Symmetry model_symmetry(const Scene& scene, std::string& why);
+Symmetry model_symmetry(const MeshInput& in, std::string& why);
 
 /// Keeps the cells in the part (x >= xc if s.x_plane, y >= yc if s.y_plane;
 /// by centroid) and the joint elements between them, makes the crack planes

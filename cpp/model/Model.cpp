@@ -146,16 +146,17 @@ displacement_space(std::shared_ptr<dolfinx::mesh::Mesh> mesh, int degree)
 
 /// Step 3: E, nu, alpha per cell from its material ([steel], [concrete]).
 Materials assign_materials(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
-                           const std::vector<std::int32_t>& material, const Scene& scene)
+                           const std::vector<std::int32_t>& material, const Material& steel,
+                           const Material& concrete)
 {
   namespace fem = dolfinx::fem;
   auto Q = std::make_shared<fem::FunctionSpace>(
       fem::create_functionspace(functionspace_form_elasticity_a, "E", mesh));
   Materials m{std::make_shared<Function<double>>(Q), std::make_shared<Function<double>>(Q),
               std::make_shared<Function<double>>(Q), std::make_shared<fem::Constant<double>>(0.0)};
-  for (const auto& [f, key] : {std::pair{m.E, "E"}, {m.nu, "nu"}, {m.alpha, "alpha"}})
-    set_by_material(*f, *mesh, material, scene.number(std::string("steel.") + key),
-                    scene.number(std::string("concrete.") + key));
+  set_by_material(*m.E, *mesh, material, steel.E, concrete.E);
+  set_by_material(*m.nu, *mesh, material, steel.nu, concrete.nu);
+  set_by_material(*m.alpha, *mesh, material, steel.alpha, concrete.alpha);
   return m;
 }
 
@@ -238,12 +239,12 @@ void append_facet_blocks_p2(std::span<const std::int32_t> cell_dofs, std::span<c
 }
 
 /// The laws of the [[interface]] layers.
-std::vector<std::unique_ptr<laws::InterfaceLaw>> make_layers(const Scene& scene)
+std::vector<std::unique_ptr<laws::InterfaceLaw>> make_layers(const JointLaws& laws)
 {
   std::vector<std::unique_ptr<laws::InterfaceLaw>> layers;
-  for (std::size_t l = 0; l < scene.layers().size(); ++l)
+  for (std::size_t l = 0; l < laws.interface.size(); ++l)
   {
-    const LayerSpec& spec = scene.layers()[l];
+    const LayerSpec& spec = laws.interface[l];
     layers.push_back(
         laws::find_law(spec.law)->make(spec.params, "interface." + std::to_string(l) + "."));
   }
@@ -251,9 +252,9 @@ std::vector<std::unique_ptr<laws::InterfaceLaw>> make_layers(const Scene& scene)
 }
 
 /// The law of [[crack]] i, as its one layer.
-std::vector<std::unique_ptr<laws::InterfaceLaw>> crack_layers(const Scene& scene, std::size_t i)
+std::vector<std::unique_ptr<laws::InterfaceLaw>> crack_layers(const JointLaws& laws, std::size_t i)
 {
-  const LayerSpec& spec = scene.cracks()[i].layer;
+  const LayerSpec& spec = laws.cracks[i];
   std::vector<std::unique_ptr<laws::InterfaceLaw>> layers;
   layers.push_back(laws::find_law(spec.law)->make(spec.params, "crack." + std::to_string(i) + "."));
   return layers;
@@ -266,7 +267,7 @@ std::vector<std::unique_ptr<laws::InterfaceLaw>> crack_layers(const Scene& scene
 std::unique_ptr<interface::Interface>
 build_joints(MPI_Comm comm, const mesh::MeshData& data,
              const std::vector<mesh::InterfacePair>& pairs,
-             std::vector<std::unique_ptr<laws::InterfaceLaw>> layers, const Scene& scene,
+             std::vector<std::unique_ptr<laws::InterfaceLaw>> layers, bool nodal_quadrature,
              const dolfinx::mesh::Mesh& mesh, const dolfinx::fem::FunctionSpace& V, int degree,
              const std::vector<std::int32_t>& node_block, std::array<double, 3> mirror = {0, 0, 0})
 {
@@ -308,21 +309,22 @@ build_joints(MPI_Comm comm, const mesh::MeshData& data,
         }
         return std::make_unique<interface::Interface>(
             std::move(pair_blocks), pair_x,
-            interface::make_quadrature(scene.string("mesh.interface_quadrature"), q2 ? 9 : 4),
+            interface::make_quadrature(nodal_quadrature ? "nodal" : "gauss", q2 ? 9 : 4),
             std::move(layers), mirror);
       });
 }
 
 /// Step 6b: the joint elements of each crack plane.
 std::vector<std::unique_ptr<interface::Interface>>
-build_cracks(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene,
+build_cracks(MPI_Comm comm, const mesh::MeshData& data, const ModelInput& in,
              const dolfinx::mesh::Mesh& mesh, const dolfinx::fem::FunctionSpace& V, int degree,
              const std::vector<std::int32_t>& node_block)
 {
   std::vector<std::unique_ptr<interface::Interface>> cracks;
   for (std::size_t i = 0; i < data.cracks.size(); ++i)
-    cracks.push_back(build_joints(comm, data, data.cracks[i].pairs, crack_layers(scene, i), scene,
-                                  mesh, V, degree, node_block, data.cracks[i].mirror));
+    cracks.push_back(build_joints(comm, data, data.cracks[i].pairs, crack_layers(in.laws, i),
+                                  in.nodal_quadrature, mesh, V, degree, node_block,
+                                  data.cracks[i].mirror));
   return cracks;
 }
 
@@ -384,16 +386,30 @@ Mat assemble_stiffness(MPI_Comm comm, const dolfinx::fem::Form<double>& a,
 }
 } // namespace
 
-Model::Model(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene)
-    : _mesh(distribute_mesh(comm, data)), _degree(int(scene.integer("mesh.degree"))),
+JointLaws JointLaws::of(const Scene& scene)
+{
+  JointLaws laws{scene.layers(), {}};
+  for (const CrackSpec& crack : scene.cracks())
+    laws.cracks.push_back(crack.layer);
+  return laws;
+}
+
+ModelInput ModelInput::of(const Scene& scene)
+{
+  return {scene.mesh().degree, scene.mesh().nodal_quadrature, scene.steel(), scene.concrete(),
+          JointLaws::of(scene)};
+}
+
+Model::Model(MPI_Comm comm, const mesh::MeshData& data, const ModelInput& in)
+    : _mesh(distribute_mesh(comm, data)), _degree(in.degree),
       _V(displacement_space(_mesh, _degree)),
       _u(std::make_shared<dolfinx::fem::Function<double>>(_V)),
-      _materials(assign_materials(_mesh, data.material, scene)),
+      _materials(assign_materials(_mesh, data.material, in.steel, in.concrete)),
       _a(bulk_form(_V, _degree, _materials)), _L_thermal(thermal_form(_V, _degree, _materials)),
       _node_block(node_blocks(*_mesh, *_V, data.num_nodes())),
-      _interface(build_joints(comm, data, data.pairs, make_layers(scene), scene, *_mesh, *_V,
-                              _degree, _node_block)),
-      _cracks(build_cracks(comm, data, scene, *_mesh, *_V, _degree, _node_block)),
+      _interface(build_joints(comm, data, data.pairs, make_layers(in.laws), in.nodal_quadrature,
+                              *_mesh, *_V, _degree, _node_block)),
+      _cracks(build_cracks(comm, data, in, *_mesh, *_V, _degree, _node_block)),
       _mouths(crack_mouths(data, _node_block)), _K(assemble_stiffness(comm, *_a, joints()))
 {
   _u->name = "displacement"; // in fields.xdmf
@@ -466,13 +482,13 @@ Vec Model::thermal_load(double dT_value) const
   return b;
 }
 
-void Model::set_laws(const Scene& scene)
+void Model::set_laws(const JointLaws& laws)
 {
-  if (scene.cracks().size() != _cracks.size())
+  if (laws.cracks.size() != _cracks.size())
     throw std::logic_error("Model::set_laws: another number of crack planes");
-  _interface->set_layers(make_layers(scene));
+  _interface->set_layers(make_layers(laws));
   for (std::size_t i = 0; i < _cracks.size(); ++i)
-    _cracks[i]->set_layers(crack_layers(scene, i));
+    _cracks[i]->set_layers(crack_layers(laws, i));
   std::fill(_u->x()->mutable_array().begin(), _u->x()->mutable_array().end(), 0.0);
 }
 

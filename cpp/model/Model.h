@@ -32,10 +32,29 @@ struct Materials
   std::shared_ptr<dolfinx::fem::Constant<double>> dT;    ///< temperature change [degC]
 };
 
+/// The laws of the joints: each [[interface]] layer, each [[crack]] plane's.
+struct JointLaws
+{
+  std::vector<LayerSpec> interface;
+  std::vector<LayerSpec> cracks;
+  static JointLaws of(const Scene& scene);
+};
+
+/// What the model is built from besides its mesh: the bulk's degree and
+/// materials, the joints' quadrature and laws.
+struct ModelInput
+{
+  int degree = 1;                ///< mesh.degree
+  bool nodal_quadrature = false; ///< mesh.interface_quadrature
+  Material steel, concrete;
+  JointLaws laws;
+  static ModelInput of(const Scene& scene);
+};
+
 class Model
 {
 public:
-  Model(MPI_Comm comm, const mesh::MeshData& data, const Scene& scene);
+  Model(MPI_Comm comm, const mesh::MeshData& data, const ModelInput& input);
   ~Model();
   Model(const Model&) = delete;
   Model& operator=(const Model&) = delete;
@@ -74,12 +93,11 @@ public:
   /// assembles, commits or reverts joints does it for all of these.
   std::vector<interface::Interface*> joints();
   std::vector<const interface::Interface*> joints() const;
-  /// The laws of `scene`'s [[interface]] layers and [[crack]] planes in
-  /// place of the present ones, every joint's state and the displacement
-  /// back to zero: the model as built for `scene`, if `scene` has the mesh,
-  /// materials and crack planes this one was built for (driver/Run.h:
-  /// Simulation).
-  void set_laws(const Scene& scene);
+  /// `laws` in place of the present ones, every joint's state and the
+  /// displacement back to zero: the model as built for a scene with these
+  /// laws, if it has the mesh, materials and crack planes this one was built
+  /// for (driver/Run.h: Simulation).
+  void set_laws(const JointLaws& laws);
 
   /// The mouth of a crack plane: its nodes on the slice's outer face.
   struct CrackMouth

@@ -24,12 +24,12 @@ constexpr double iterative_mb_per_dof = 5.2e-3;    // matrices, Krylov basis, AM
 constexpr double iterative_parallel_exponent = 0.5;
 
 /// Dofs of the largest cut through the specimen (ResourceGuard.h: F).
-double separator_dofs(const Scene& scene, const mesh::MeshSize& size)
+double separator_dofs(const mesh::MeshInput& in, const mesh::MeshSize& size)
 {
-  if (scene.string("model.type") != "pushout")
+  if (!in.pushout)
     return 1;
-  const mesh::SliceDivisions d = mesh::slice_divisions(scene);
-  const std::int64_t p = scene.integer("mesh.degree");
+  const mesh::SliceDivisions d = mesh::slice_divisions(in);
+  const std::int64_t p = in.mesh.degree;
   const double section =
       3.0 * double(p * (d.steel + d.ring + d.graded) + 2) * double(p * d.thickness + 1);
   return size.symmetry.copies() > 1 ? section : 2 * section; // an arc, or a ring cut twice
@@ -92,10 +92,11 @@ std::string ResourceEstimate::memory() const
   return s;
 }
 
-ResourceEstimate estimate_resources(const Scene& scene, MPI_Comm comm)
+ResourceEstimate estimate_resources(const mesh::MeshInput& in, const SolverPart& solver,
+                                    MPI_Comm comm)
 {
   ResourceEstimate e;
-  e.size = mesh::predict_size(scene);
+  e.size = mesh::predict_size(in);
   MPI_Comm_size(comm, &e.processes);
   MPI_Comm local;
   MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &local);
@@ -103,12 +104,12 @@ ResourceEstimate estimate_resources(const Scene& scene, MPI_Comm comm)
   MPI_Comm_free(&local);
 
   std::string why;
-  e.condensed = solver::Condensation::chosen(scene.string("solver.condensation"), e.processes,
+  e.condensed = solver::Condensation::chosen(solver.condensation_name(), e.processes,
                                              e.size.interface_dofs, why);
   e.direct = solver::NewtonSolver::direct_factorization();
   const double n = double(e.size.dofs), P = double(e.processes);
-  const double c = scene.integer("mesh.degree") == 2 ? lu_mb_degree2 : lu_mb_degree1;
-  const double lu = c * n * std::sqrt(separator_dofs(scene, e.size));
+  const double c = in.mesh.degree == 2 ? lu_mb_degree2 : lu_mb_degree1;
+  const double lu = c * n * std::sqrt(separator_dofs(in, e.size));
   const double n_i = double(e.size.interface_dofs);
   double solver_mb = iterative_mb_per_dof * n / std::pow(P, iterative_parallel_exponent);
   if (e.condensed)
@@ -126,18 +127,17 @@ ResourceEstimate estimate_resources(const Scene& scene, MPI_Comm comm)
   return e;
 }
 
-void check_fits(const ResourceEstimate& e, const Scene& scene, bool force)
+void check_fits(const ResourceEstimate& e, const mesh::MeshInput& in, bool force)
 {
   if (force || e.available_mb < 0 || e.machine_mb <= e.available_mb)
     return;
   std::ostringstream m;
   m << "this run needs " << e.memory() << ", more than the " << gigabytes(e.available_mb)
     << " available here (" << e.describe() << ")";
-  if (scene.string("model.type") == "pushout")
-    m << "; lower mesh.elements_per_quarter (" << scene.integer("mesh.elements_per_quarter")
-      << ") or mesh.elements_through_thickness ("
-      << scene.integer("mesh.elements_through_thickness") << ")"
-      << (scene.integer("mesh.degree") == 2 ? ", or use mesh.degree = 1" : std::string());
+  if (in.pushout)
+    m << "; lower mesh.elements_per_quarter (" << in.mesh.elements_per_quarter
+      << ") or mesh.elements_through_thickness (" << in.mesh.elements_through_thickness << ")"
+      << (in.mesh.degree == 2 ? ", or use mesh.degree = 1" : std::string());
   m << "; --force runs it anyway";
   throw TooLarge(m.str());
 }

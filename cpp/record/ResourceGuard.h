@@ -47,8 +47,10 @@ struct ResourceEstimate
   std::string memory() const;
 };
 
-/// The estimate for this scene on `comm`'s processes. Collective.
-ResourceEstimate estimate_resources(const Scene& scene, MPI_Comm comm);
+/// The estimate for the mesh `in` describes, solved as `solver` asks, on
+/// `comm`'s processes. Collective.
+ResourceEstimate estimate_resources(const mesh::MeshInput& in, const SolverPart& solver,
+                                    MPI_Comm comm);
 
 /// A run refused by the size guard (exit 2, like a bad scene).
 class TooLarge : public std::runtime_error
@@ -59,7 +61,7 @@ public:
 
 /// Throws TooLarge, on every process, unless the run fits in the memory
 /// available here (or `force`).
-void check_fits(const ResourceEstimate& estimate, const Scene& scene, bool force);
+void check_fits(const ResourceEstimate& estimate, const mesh::MeshInput& in, bool force);
 
 /// Memory available to new allocations on this machine [MB]: MemAvailable
 /// of /proc/meminfo, or less under a cgroup memory limit.

@@ -62,12 +62,12 @@ RunReport::RunReport(const Scene& scene, const std::filesystem::path& out, bool 
 {
   int size = 1;
   MPI_Comm_size(comm, &size);
-  _summary.model_type = scene.string("model.type");
+  _summary.model_type = scene.model().name();
   _summary.processes = size;
   _summary.run_id = output::run_id();
   if (_rank == 0)
     output::write_file(_out / "scene.toml", scene.to_toml());
-  if (_rank == 0 && plot && scene.boolean("output.plot"))
+  if (_rank == 0 && plot && scene.output().plot)
     _plotter.emplace();
   publish();
 }

@@ -1,6 +1,7 @@
 #include "Scene.h"
 #include "../laws/ParameterError.h"
 #include "SceneError.h"
+#include "TomlNesting.h"
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -21,11 +22,6 @@ std::vector<std::string> split(const std::string& s, char sep)
   return parts;
 }
 
-/// Levels of tables, arrays and dotted keys a scene may nest (a scene needs
-/// 3: `[[interface]]`, `k`; deeper text is not a scene, and would exhaust the
-/// TOML parser's stack).
-constexpr std::size_t max_nesting = 32;
-
 /// The largest scene file [bytes]: 1 MiB (a scene is a few kB).
 constexpr std::uintmax_t max_scene_bytes = std::uintmax_t(1) << 20;
 
@@ -33,99 +29,6 @@ constexpr std::uintmax_t max_scene_bytes = std::uintmax_t(1) << 20;
 std::string shortened(const std::string& s)
 {
   return s.size() <= 60 ? s : s.substr(0, 60) + "...";
-}
-
-/// The line (from 1) of TOML text at which tables, arrays and dotted keys
-/// nest deeper than max_nesting, or 0. A scan of brackets, braces and dots
-/// outside strings and comments, made before the parser sees the text.
-std::size_t too_deep_at(const std::string& text)
-{
-  enum class In
-  {
-    code,
-    comment,
-    basic,     // "..."
-    literal,   // '...'
-    ml_basic,  // """..."""
-    ml_literal // '''...'''
-  };
-  In in = In::code;
-  std::size_t line = 1, depth = 0, dots = 0;
-  for (std::size_t i = 0; i < text.size(); ++i)
-  {
-    const char c = text[i];
-    const bool triple = i + 2 < text.size() && text[i + 1] == c && text[i + 2] == c;
-    if (c == '\n')
-      ++line;
-    switch (in)
-    {
-    case In::comment:
-      if (c == '\n')
-        in = In::code;
-      continue;
-    case In::basic:
-    case In::ml_basic:
-      if (c == '\\')
-        ++i;
-      else if (c == '"' && (in == In::basic || triple))
-      {
-        i += in == In::basic ? 0 : 2;
-        in = In::code;
-      }
-      else if (c == '\n' && in == In::basic)
-        in = In::code; // unterminated: the parser reports it
-      continue;
-    case In::literal:
-    case In::ml_literal:
-      if (c == '\'' && (in == In::literal || triple))
-      {
-        i += in == In::literal ? 0 : 2;
-        in = In::code;
-      }
-      else if (c == '\n' && in == In::literal)
-        in = In::code;
-      continue;
-    case In::code:
-      break;
-    }
-    switch (c)
-    {
-    case '#':
-      in = In::comment;
-      break;
-    case '"':
-      in = triple ? In::ml_basic : In::basic;
-      i += triple ? 2 : 0;
-      break;
-    case '\'':
-      in = triple ? In::ml_literal : In::literal;
-      i += triple ? 2 : 0;
-      break;
-    case '[':
-    case '{':
-      ++depth;
-      dots = 0;
-      break;
-    case ']':
-    case '}':
-      depth -= depth > 0 ? 1 : 0;
-      dots = 0;
-      break;
-    case '.':
-      ++dots;
-      break;
-    case '=':
-    case ',':
-    case '\n':
-      dots = 0;
-      break;
-    default:
-      break;
-    }
-    if (depth + dots > max_nesting)
-      return line;
-  }
-  return 0;
 }
 
 bool is_index(const std::string& s)
@@ -565,19 +468,22 @@ Scene Scene::parse(const std::string& toml_text, const std::vector<Override>& ov
     scene._layers.push_back(read_layer(t, 0, "interface", "friction"));
   }
 
-  // Relations between keys of one model type are its scenario's
-  // (driver/Scenario.h: check_scene), checked before the run.
+  scene.fill_parts();
+  // Relations between keys of one model type are its specimen's
+  // (specimen/Scenario.h: check_scene), checked before the run.
   return scene;
 }
 
 const Value& Scene::get(const std::string& path, KeyType type) const
 {
-  const auto it = _values.find(path);
   const KeyDef* def = find_key(path);
-  if (it == _values.end() || !def || def->type != type)
+  if (!def || def->type != type)
     throw std::logic_error("scene key '" + path + "' read as " + type_name(type) +
                            " but not declared so");
-  return it->second;
+  // A key of another model type is not in the scene: its part holds the
+  // declared default.
+  const auto it = _values.find(path);
+  return it == _values.end() ? def->default_value : it->second;
 }
 
 double Scene::number(const std::string& path) const

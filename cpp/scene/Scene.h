@@ -1,9 +1,11 @@
 // The scene: the user's TOML file, with `--set` overrides applied, checked
-// against the declared keys (keys.cpp, cpp/laws/) and completed with defaults.
+// against the declared keys (keys.cpp, cpp/laws/), completed with defaults
+// and parsed once into typed parts (SceneParts.h) that the modules take.
 #pragma once
 
 #include "../laws/LawRegistry.h"
 #include "KeyDef.h"
+#include "SceneParts.h"
 #include "Value.h"
 #include <filesystem>
 #include <map>
@@ -13,24 +15,6 @@
 
 namespace pushout
 {
-/// One [[interface]] layer: its law and resolved parameters.
-struct LayerSpec
-{
-  std::string law;
-  laws::Params params;
-};
-
-/// One [[crack]] plane of a push-out (docs/corrosion.md): a plane through
-/// the whole thickness of the concrete, from the interface to the slice's
-/// outer boundary, with a cohesive law.
-struct CrackSpec
-{
-  /// Direction from the tube axis in the x-y plane [deg, from +x towards
-  /// +y]; unset: "nearest_face" (the cover side, resolved with the geometry).
-  std::optional<double> angle_deg;
-  LayerSpec layer; ///< the crack's law (one layer)
-};
-
 /// A `--set key=value` override, as typed by the user.
 struct Override
 {
@@ -54,29 +38,53 @@ public:
   static Scene parse(const std::string& toml_text, const std::vector<Override>& overrides = {},
                      const std::string& origin = "scene");
 
-  double number(const std::string& path) const;
-  std::int64_t integer(const std::string& path) const;
-  bool boolean(const std::string& path) const;
-  const std::string& string(const std::string& path) const;
-  const std::vector<double>& numbers(const std::string& path) const;
-  /// The value of a key, or nullptr if the scene has none (a key of another
-  /// model type).
+  const ModelPart& model() const { return _model; }
+  const Geometry& geometry() const { return _geometry; }
+  const MeshPart& mesh() const { return _mesh; }
+  const Material& concrete() const { return _concrete; }
+  const Material& steel() const { return _steel; }
+  const Loading& loading() const { return _loading; }
+  const CorrosionPart& corrosion() const { return _corrosion; }
+  const SolverPart& solver() const { return _solver; }
+  const OutputPart& output() const { return _output; }
+  const std::vector<LayerSpec>& layers() const { return _layers; }
+  const std::vector<CrackSpec>& cracks() const { return _cracks; }
+  /// The crack planes' directions, resolved from the geometry (CrackPlanes.h).
+  const CrackDirections& crack_directions() const { return _crack_directions; }
+
+  /// The value of a key named at run time (pushout fit --free, sweep
+  /// --vary, the set-up's fingerprint), or nullptr if the scene has none (a
+  /// key of another model type). Modules take the typed parts instead.
   const Value* find(const std::string& path) const
   {
     const auto it = _values.find(path);
     return it == _values.end() ? nullptr : &it->second;
   }
 
-  const std::vector<LayerSpec>& layers() const { return _layers; }
-  const std::vector<CrackSpec>& cracks() const { return _cracks; }
-
   /// The fully resolved scene as TOML (every key, defaults included).
   std::string to_toml() const;
 
 private:
+  /// The typed parts from the validated values (SceneParts.cpp).
+  void fill_parts();
+  double number(const std::string& path) const;
+  std::int64_t integer(const std::string& path) const;
+  bool boolean(const std::string& path) const;
+  const std::string& string(const std::string& path) const;
+  const std::vector<double>& numbers(const std::string& path) const;
   const Value& get(const std::string& path, KeyType type) const;
-  std::map<std::string, Value> _values;
+
+  std::map<std::string, Value> _values; ///< every key of the model type, by path
+  ModelPart _model;
+  Geometry _geometry;
+  MeshPart _mesh;
+  Material _concrete, _steel;
+  Loading _loading;
+  CorrosionPart _corrosion;
+  SolverPart _solver;
+  OutputPart _output;
   std::vector<LayerSpec> _layers;
   std::vector<CrackSpec> _cracks;
+  CrackDirections _crack_directions;
 };
 } // namespace pushout

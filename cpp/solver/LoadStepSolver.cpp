@@ -14,14 +14,13 @@ LoadStepSolver::LoadStepSolver(Equilibrium& eq, bool condense, NewtonSolver::Pre
 {
 }
 
-std::unique_ptr<LoadStepSolver> LoadStepSolver::from_scene(Equilibrium& eq, const Scene& scene)
+std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const SolverPart& part)
 {
-  const auto pc = scene.string("solver.preconditioner") == "lagged"
-                      ? NewtonSolver::Preconditioner::lagged
-                      : NewtonSolver::Preconditioner::jacobian;
+  const auto pc = part.lagged_preconditioner ? NewtonSolver::Preconditioner::lagged
+                                             : NewtonSolver::Preconditioner::jacobian;
   NewtonSolver::set_default_options(pc);
 
-  const std::string mode = scene.string("solver.condensation");
+  const std::string mode = part.condensation_name();
   int processes = 1;
   MPI_Comm_size(eq.model().comm(), &processes);
   const std::int64_t interface_dofs = Condensation::interface_dofs(eq.model());
@@ -33,10 +32,10 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::from_scene(Equilibrium& eq, cons
       condense ? "the " + std::to_string(Condensation::unknowns(eq.model())) +
                      " interface jumps (bulk condensed)"
                : "the whole model" + (why.empty() ? "" : " (not condensed: " + why + ")");
-  auto solver = std::make_unique<LoadStepSolver>(
-      eq, condense, pc, int(scene.integer("solver.refactor_iterations")), description);
-  solver->set_first_tangent(scene.string("solver.first_tangent") == "converged");
-  solver->_single_precision = scene.string("solver.precision") == "mixed";
+  auto solver = std::make_unique<LoadStepSolver>(eq, condense, pc, int(part.refactor_iterations),
+                                                 description);
+  solver->set_first_tangent(part.first_tangent_converged);
+  solver->_single_precision = part.mixed_precision;
   solver->_condense_required = mode == "on";
   return solver;
 }

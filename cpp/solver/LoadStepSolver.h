@@ -6,12 +6,12 @@
 // push). Path following works in the same space (PathFollower.h, through
 // problem(), to_problem(), from_problem()).
 //
-// from_scene() decides, from the solver.* keys and the number of processes,
+// make() decides, from the scene's [solver] part and the number of processes,
 // whether the bulk is condensed (Condensation::chosen) and says so in
 // description() for the progress line.
 #pragma once
 
-#include "../scene/Scene.h"
+#include "../scene/SceneParts.h"
 #include "Condensation.h"
 #include "NewtonSolver.h"
 #include <memory>
@@ -27,11 +27,11 @@ public:
   LoadStepSolver(Equilibrium& eq, bool condense, NewtonSolver::Preconditioner pc,
                  int refactor_iterations, std::string description = "");
 
-  /// The solver the scene's solver.* keys ask for, condensed or not
+  /// The solver the scene's [solver] part asks for, condensed or not
   /// (solver.condensation, Condensation::chosen on this number of
   /// processes); sets PETSc's default Newton options for the preconditioner
   /// policy. Throws SceneError if solver.condensation = "on" is not possible.
-  static std::unique_ptr<LoadStepSolver> from_scene(Equilibrium& eq, const Scene& scene);
+  static std::unique_ptr<LoadStepSolver> make(Equilibrium& eq, const SolverPart& part);
 
   /// What Newton runs on: "the N interface jumps (bulk condensed)" or "the
   /// whole model" (with " (not condensed: why)" when the choice was not the

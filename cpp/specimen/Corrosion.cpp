@@ -11,17 +11,14 @@
 
 namespace pushout::specimen
 {
-Corrosion::Corrosion(const Scene& scene, const std::filesystem::path& out,
-                     record::RunReport& report, MPI_Comm comm)
+Corrosion::Corrosion(const CorrosionPart& corrosion, const CrackDirections& cracks,
+                     const std::filesystem::path& out, record::RunReport& report, MPI_Comm comm)
     : _report(report), _comm(comm)
 {
-  if (scene.string("model.type") != "pushout")
-    return;
-  _x_final = scene.number("corrosion.penetration");
-  _steps = int(scene.integer("corrosion.steps"));
-  _oxide = {scene.number("corrosion.beta"), scene.number("corrosion.porous_zone"),
-            scene.number("corrosion.oxide_bulk")};
-  _directions = mesh::crack_directions(scene);
+  _x_final = corrosion.penetration;
+  _steps = int(corrosion.steps);
+  _oxide = {corrosion.beta, corrosion.porous_zone, corrosion.oxide_bulk};
+  _directions = cracks;
   for (std::size_t i = 0; i < _directions.angles.size(); ++i)
     if (_directions.snapped[i] && _report.talk())
       std::cout << "pushout: crack." << i << ".angle "
@@ -31,7 +28,7 @@ Corrosion::Corrosion(const Scene& scene, const std::filesystem::path& out,
   if (!active())
     return;
   std::vector<std::string> columns = {"penetration_mm", "p_MPa", "crack_width_mm"};
-  for (std::size_t i = 0; i < scene.cracks().size(); ++i)
+  for (std::size_t i = 0; i < cracks.angles.size(); ++i)
     columns.push_back("w_crack_" + std::to_string(i) + "_mm");
   columns.insert(columns.end(), {"newton_iterations", "cuts", "wall_s"});
   int rank = 0;

@@ -32,10 +32,11 @@ namespace pushout::specimen
 class Corrosion
 {
 public:
-  /// Opens corrosion.csv in `out` if the scene has a corrosion stage;
-  /// `comm`: the run's processes.
-  Corrosion(const Scene& scene, const std::filesystem::path& out, record::RunReport& report,
-            MPI_Comm comm);
+  /// Opens corrosion.csv in `out` if `corrosion` has a stage (penetration
+  /// > 0); `cracks`: the crack planes' directions; `comm`: the run's
+  /// processes.
+  Corrosion(const CorrosionPart& corrosion, const CrackDirections& cracks,
+            const std::filesystem::path& out, record::RunReport& report, MPI_Comm comm);
 
   /// Whether the scene has a corrosion stage (penetration > 0).
   bool active() const { return _x_final > 0; }
@@ -68,7 +69,7 @@ private:
   double _x_final = 0; ///< [mm]
   int _steps = 1;
   laws::OxideLayer _oxide;
-  mesh::CrackDirections _directions;
+  CrackDirections _directions;
   record::RunReport& _report;
   MPI_Comm _comm;
   std::optional<output::CurveWriter> _csv; ///< rank 0

@@ -53,19 +53,17 @@ std::int64_t nearest(const mesh::MeshData& m, const std::vector<std::int64_t>& c
 }
 } // namespace
 
-PushOut::PushOut(const Scene& scene, const mesh::MeshData& m, const model::Model& model)
-    : _D(scene.number("geometry.tube_outer_diameter")), _L(scene.number("geometry.thickness")),
-      _delta_final(scene.number("loading.push_displacement")),
-      _dT(scene.number("loading.temperature_change")), _growth(scene.number("loading.step_growth")),
-      _steps(int(scene.integer("loading.steps"))),
-      _path(scene.numbers("loading.push_path"), int(scene.integer("loading.steps_per_segment"))),
-      _zero_force_unloading(scene.string("loading.unload_to") == "zero_force"),
-      _hold_top_in_thermal_step(scene.string("loading.thermal_tube_top") == "held"),
-      _layers(scene.layers().size()), _copies(m.copies)
+PushOut::PushOut(const mesh::MeshInput& shape, const Loading& loading, std::size_t layers,
+                 const mesh::MeshData& m, const model::Model& model)
+    : _D(shape.geometry.tube_outer_diameter), _L(shape.geometry.thickness),
+      _delta_final(loading.push_displacement), _dT(loading.temperature_change),
+      _growth(loading.step_growth), _steps(int(loading.steps)),
+      _path(loading.push_path, int(loading.steps_per_segment)),
+      _zero_force_unloading(loading.unload_to_zero_force),
+      _hold_top_in_thermal_step(!loading.tube_top_free), _layers(layers), _copies(m.copies)
 {
-  const auto& c = scene.numbers("geometry.tube_center");
-  const double Rs = scene.number("geometry.support_inner_diameter") / 2;
-  const double Ri = scene.number("geometry.tube_inner_diameter") / 2;
+  const auto& c = shape.geometry.tube_center;
+  const double Rs = shape.geometry.support_inner_diameter / 2;
   const double tol = 1e-6 * std::max(_L, _D);
 
   std::vector<std::uint8_t> is_steel(m.num_nodes(), 0), is_concrete(m.num_nodes(), 0);
@@ -128,6 +126,24 @@ PushOut::PushOut(const Scene& scene, const mesh::MeshData& m, const model::Model
     if (y_plane && std::abs(y - yc) < tol && !on_mirror_crack(b))
       _fixed.push_back(3 * b + 1);
   }
+  fix_rigid_modes(shape, m, model, top, support);
+  for (std::size_t l = 0; l < _layers; ++l)
+    if (model.interface().softens(l))
+      _damage_layers.push_back(l);
+  _top_start.assign(_top_z.size(), 0.0);
+  const solver::Vector slip(model.mean_axial_slip_functional());
+  const solver::ReadView slip_view(slip);
+  _slip.assign(slip_view.span().begin(), slip_view.span().end());
+}
+
+void PushOut::fix_rigid_modes(const mesh::MeshInput& shape, const mesh::MeshData& m,
+                              const model::Model& model, const std::vector<std::int64_t>& top,
+                              const std::vector<std::int64_t>& support)
+{
+  const auto& c = shape.geometry.tube_center;
+  const double Rs = shape.geometry.support_inner_diameter / 2;
+  const double Ri = shape.geometry.tube_inner_diameter / 2;
+  const auto [x_plane, y_plane] = m.symmetry_planes;
   const auto add = [&](std::int64_t node, int comp)
   {
     if (model.owned(model.node_block(node)))
@@ -156,20 +172,18 @@ PushOut::PushOut(const Scene& scene, const mesh::MeshData& m, const model::Model
       // in x too, and the tube top at (xc + Ri, yc) in y (its rotation).
       // With only x = xc (the tube off-centre in y), the same turned: the
       // support at (xc, yc + Rs) in x, the pair (xc +- Rs, yc) in y, the
-      // tube top at (xc, yc + Ri) in x. (Before, the tube top was held in y
-      // there too, which held its shift in y against the slice: tau 3.5e-5
-      // off, relative, on the corroded specimen without its crack.) A slice without
-      // symmetry keeps the first set; its tube-top fixing may then carry a
-      // little.
-      const mesh::Symmetry symmetry = mesh::geometric_symmetry(scene);
+      // tube top at (xc, yc + Ri) in x (the tube top is not held in y
+      // there: that would hold its shift in y against the slice). A slice
+      // without symmetry keeps the first set; its tube-top fixing may then
+      // carry a little.
+      const mesh::Symmetry symmetry = mesh::geometric_symmetry(shape);
       const std::int64_t a = nearest(m, support, {c[0] + Rs, c[1], 0});
       const std::int64_t b = nearest(m, support, {c[0] - Rs, c[1], 0});
       add(a, 1);
       add(b, 1);
       // (On the plane only where it is a mesh line: an even number of
       // elements per quarter.)
-      if (symmetry.x_plane && !symmetry.y_plane &&
-          scene.integer("mesh.elements_per_quarter") % 2 == 0)
+      if (symmetry.x_plane && !symmetry.y_plane && shape.mesh.elements_per_quarter % 2 == 0)
       {
         add(nearest(m, support, {c[0], c[1] + Rs, 0}), 0);
         add(nearest(m, top, {c[0], c[1] + Ri, _L}), 0);
@@ -193,13 +207,6 @@ PushOut::PushOut(const Scene& scene, const mesh::MeshData& m, const model::Model
       add(b, 1);
     }
   }
-  for (std::size_t l = 0; l < _layers; ++l)
-    if (model.interface().softens(l))
-      _damage_layers.push_back(l);
-  _top_start.assign(_top_z.size(), 0.0);
-  const solver::Vector slip(model.mean_axial_slip_functional());
-  const solver::ReadView slip_view(slip);
-  _slip.assign(slip_view.span().begin(), slip_view.span().end());
 }
 
 std::vector<std::string> PushOut::columns() const
@@ -341,14 +348,11 @@ namespace pushout::specimen
 {
 void PushOut::check_scene(const Scene& scene)
 {
-  const double W = scene.number("geometry.width");
-  const double D = scene.number("geometry.tube_outer_diameter");
-  const double Di = scene.number("geometry.tube_inner_diameter");
-  const double Ds = scene.number("geometry.support_inner_diameter");
-  const double L = scene.number("geometry.thickness");
-  const auto& c = scene.numbers("geometry.tube_center");
-  if (c.size() != 2)
-    throw SceneError("'geometry.tube_center' must have 2 entries (x, y)");
+  const Geometry& g = scene.geometry();
+  const Loading& loading = scene.loading();
+  const double W = g.width, D = g.tube_outer_diameter, Di = g.tube_inner_diameter;
+  const double Ds = g.support_inner_diameter, L = g.thickness;
+  const auto& c = g.tube_center;
   // The tube wall and the support's gap around the tube are meshed with
   // elements across them: thinner than min_width_ratio D they are no
   // geometry the mesher (or the model) can resolve.
@@ -369,7 +373,7 @@ void PushOut::check_scene(const Scene& scene)
     throw SceneError("'geometry.support_inner_diameter' leaves a gap (Ds - D) / 2 between the "
                      "tube and the support narrower than " +
                      min_width.str());
-  const bool circle = scene.string("geometry.outer_shape") == "circle";
+  const bool circle = g.circle;
   // The support hole must leave a ring of concrete inside the slice.
   const double margin =
       circle ? W / 2 - Ds / 2 : std::min({c[0], c[1], W - c[0], W - c[1]}) - Ds / 2;
@@ -389,11 +393,10 @@ void PushOut::check_scene(const Scene& scene)
          "tau = P / (pi D (L - delta)))";
     return SceneError(s.str());
   };
-  if (const double push = scene.number("loading.push_displacement");
-      !(std::abs(push) <= max_push_ratio * L))
+  if (const double push = loading.push_displacement; !(std::abs(push) <= max_push_ratio * L))
     throw beyond_small_displacement("loading.push_displacement", push);
   const double max_steps = key_max("loading.steps");
-  if (const auto& path = scene.numbers("loading.push_path"); !path.empty())
+  if (const auto& path = loading.push_path; !path.empty())
   {
     if (path[0] != 0.0)
       throw SceneError("'loading.push_path' must start at 0: the push starts from the state "
@@ -401,25 +404,24 @@ void PushOut::check_scene(const Scene& scene)
     for (const double d : path)
       if (!(std::abs(d) <= max_push_ratio * L))
         throw beyond_small_displacement("loading.push_path", d);
-    const double steps =
-        double(path.size() - 1) * double(scene.integer("loading.steps_per_segment"));
+    const double steps = double(path.size() - 1) * double(loading.steps_per_segment);
     if (steps > max_steps)
       throw SceneError("'loading.steps_per_segment' times the " + std::to_string(path.size() - 1) +
                        " segments of 'loading.push_path' is " +
                        std::to_string(std::int64_t(steps)) + " steps, more than " +
                        std::to_string(std::int64_t(max_steps)));
-    if (scene.number("loading.step_growth") != 1.0)
+    if (loading.step_growth != 1.0)
       throw SceneError("'loading.step_growth' applies to the monotonic push "
                        "(push_displacement, steps), not to 'loading.push_path': leave it at 1");
-    if (scene.string("loading.control") != "displacement")
+    if (loading.control != Loading::Control::displacement)
       throw SceneError("'loading.push_path' is followed under 'loading.control' = "
                        "\"displacement\" (path following and dissipation control run a "
                        "monotonic push)");
   }
   // Steps growing (or shrinking) geometrically: the last at most
   // max_step_ratio times the first, or the other way round.
-  const double growth = scene.number("loading.step_growth");
-  if (const auto steps = scene.integer("loading.steps");
+  const double growth = loading.step_growth;
+  if (const auto steps = loading.steps;
       std::abs(double(steps - 1) * std::log(growth)) > std::log(max_step_ratio))
   {
     std::ostringstream s;
@@ -428,11 +430,9 @@ void PushOut::check_scene(const Scene& scene)
       << " times the first: at most 1e6 either way";
     throw SceneError(s.str());
   }
-  // Crack planes that cannot be meshed (e.g. two within one element).
-  mesh::crack_directions(scene);
   // The oxide presses on the concrete only through a law that models it.
   const auto& layers = scene.layers();
-  if (scene.number("corrosion.penetration") > 0 &&
+  if (scene.corrosion().penetration > 0 &&
       std::none_of(layers.begin(), layers.end(),
                    [](const LayerSpec& l) { return l.law == "oxide_friction"; }))
     throw SceneError("'corrosion.penetration' > 0 needs an interface layer with law "

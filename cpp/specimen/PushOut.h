@@ -44,6 +44,7 @@
 // for each damage layer L its mean (area-weighted) and largest damage.
 #pragma once
 
+#include "../mesh/MeshInput.h"
 #include "../scene/Scene.h"
 #include "LoadPath.h"
 #include "Scenario.h"
@@ -54,7 +55,10 @@ class PushOut : public Scenario
 {
 public:
   /// Constraints and loads go to the dofs this process owns.
-  PushOut(const Scene& scene, const mesh::MeshData& mesh, const model::Model& model);
+  /// `shape`: the slice and its mesh keys; `layers`: the number of
+  /// [[interface]] layers.
+  PushOut(const mesh::MeshInput& shape, const Loading& loading, std::size_t layers,
+          const mesh::MeshData& mesh, const model::Model& model);
 
   /// The relations between the push-out's geometry keys that no single
   /// key's range can express (the tube inside the slice, the support
@@ -100,6 +104,12 @@ private:
   /// Constraints of the push (top held at start - delta if `top_held`) and
   /// the temperature change dT [degC].
   void constrain(bool top_held, double delta, double dT, solver::Equilibrium& eq) const;
+  /// The in-plane fixings that hold the rigid modes a symmetry condition
+  /// does not (none carries a force at equilibrium); `top` and `support`:
+  /// the tube-top and support nodes.
+  void fix_rigid_modes(const mesh::MeshInput& shape, const mesh::MeshData& m,
+                       const model::Model& model, const std::vector<std::int64_t>& top,
+                       const std::vector<std::int64_t>& support);
 
   double _D, _L, _delta_final, _dT, _growth;
   int _steps;

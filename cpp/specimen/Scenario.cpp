@@ -6,7 +6,7 @@ namespace pushout::specimen
 {
 void check_scene(const Scene& scene)
 {
-  if (scene.string("model.type") == "single_joint")
+  if (!scene.model().pushout())
     SingleJoint::check_scene(scene);
   else
     PushOut::check_scene(scene);
@@ -15,8 +15,9 @@ void check_scene(const Scene& scene)
 std::unique_ptr<Scenario> make_scenario(const Scene& scene, const mesh::MeshData& mesh,
                                         const model::Model& model)
 {
-  if (scene.string("model.type") == "single_joint")
-    return std::make_unique<SingleJoint>(scene, mesh, model);
-  return std::make_unique<PushOut>(scene, mesh, model);
+  if (!scene.model().pushout())
+    return std::make_unique<SingleJoint>(scene.loading(), mesh, model);
+  return std::make_unique<PushOut>(mesh::MeshInput::of(scene), scene.loading(),
+                                   scene.layers().size(), mesh, model);
 }
 } // namespace pushout::specimen

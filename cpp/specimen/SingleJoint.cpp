@@ -7,9 +7,9 @@
 
 namespace pushout::specimen
 {
-SingleJoint::SingleJoint(const Scene& scene, const mesh::MeshData& m, const model::Model& model)
-    : _path(scene.numbers("loading.shear_path"), int(scene.integer("loading.steps_per_segment"))),
-      _force_per_node(scene.number("loading.normal_force_per_node"))
+SingleJoint::SingleJoint(const Loading& loading, const mesh::MeshData& m, const model::Model& model)
+    : _path(loading.shear_path, int(loading.steps_per_segment)),
+      _force_per_node(loading.normal_force_per_node)
 {
   std::vector<std::uint8_t> in_steel(m.num_nodes(), 0), in_concrete(m.num_nodes(), 0);
   for (std::size_t c = 0; c < m.num_cells(); ++c)
@@ -96,9 +96,9 @@ namespace pushout::specimen
 {
 void SingleJoint::check_scene(const Scene& scene)
 {
-  if (scene.integer("mesh.degree") == 2)
+  if (scene.mesh().degree == 2)
     throw SceneError("'mesh.degree' = 2 is implemented for model.type = \"pushout\" only");
-  if (scene.numbers("loading.shear_path").empty())
+  if (scene.loading().shear_path.empty())
     throw SceneError("'loading.shear_path' must have at least one value");
 }
 } // namespace pushout::specimen

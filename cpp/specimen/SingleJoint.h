@@ -18,7 +18,7 @@ class SingleJoint : public Scenario
 {
 public:
   /// Constraints and loads go to the dofs this process owns.
-  SingleJoint(const Scene& scene, const mesh::MeshData& mesh, const model::Model& model);
+  SingleJoint(const Loading& loading, const mesh::MeshData& mesh, const model::Model& model);
 
   /// The single joint's checks of the scene beyond the keys' ranges;
   /// throws SceneError.

@@ -7,7 +7,7 @@
 
 namespace pushout::stepping
 {
-StepRecorder::StepRecorder(const Scene& scene, const std::filesystem::path& out,
+StepRecorder::StepRecorder(const OutputPart& output, const std::filesystem::path& out,
                            const specimen::Scenario& scenario, solver::Equilibrium& equilibrium,
                            record::RunReport& report)
     : _scenario(scenario), _equilibrium(equilibrium), _report(report),
@@ -25,7 +25,7 @@ StepRecorder::StepRecorder(const Scene& scene, const std::filesystem::path& out,
                       columns.insert(columns.end(), {"newton_iterations", "cuts", "wall_s"});
                       _curve.emplace(out / "curve.csv", columns);
                     });
-  if (scene.boolean("output.xdmf"))
+  if (output.xdmf)
     _fields = std::make_unique<output::FieldWriter>(equilibrium.model(), out);
 }
 

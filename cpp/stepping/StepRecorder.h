@@ -23,7 +23,7 @@ class StepRecorder
 public:
   /// Opens curve.csv (and fields.xdmf, interface.xdmf) in `out`; an error
   /// writing them on rank 0 is the same error on every process.
-  StepRecorder(const Scene& scene, const std::filesystem::path& out,
+  StepRecorder(const OutputPart& output, const std::filesystem::path& out,
                const specimen::Scenario& scenario, solver::Equilibrium& equilibrium,
                record::RunReport& report);
 

@@ -741,9 +741,9 @@ int fit(const FitOptions& opt)
               ProcessGroups::check(opt.ranks_per_case);
               data = read_measured(opt.data);
               const Scene scene = Scene::load(opt.scene_file, parse_overrides(opt.sets));
-              if (scene.string("model.type") != "pushout")
+              if (!scene.model().pushout())
                 throw SceneError("pushout fit fits push-out curves (model.type = \"pushout\")");
-              if (!scene.numbers("loading.push_path").empty())
+              if (!scene.loading().push_path.empty())
                 throw SceneError(
                     "pushout fit runs a monotonic push: leave 'loading.push_path' empty");
               free = free_values(scene, opt);

@@ -278,8 +278,8 @@ SweepPlan plan_sweep(const SweepOptions& opt)
   // The model type and the plot of the sweep: the scene's with the
   // --set values (a case may not change them).
   const Scene base = Scene::load(opt.scene_file, parse_overrides(opt.sets));
-  plan.model_type = base.string("model.type");
-  plan.plot = base.boolean("output.plot");
+  plan.model_type = base.model().name();
+  plan.plot = base.output().plot;
   std::vector<std::string> set_ups(plan.cases.size());
   for (std::size_t i = 0; i < plan.cases.size(); ++i)
   {
@@ -288,7 +288,7 @@ SweepPlan plan_sweep(const SweepOptions& opt)
     try
     {
       const Scene scene = Scene::load(opt.scene_file, parse_overrides(sets));
-      if (scene.string("model.type") != plan.model_type)
+      if (scene.model().name() != plan.model_type)
         throw SceneError("a sweep runs one model type: vary other keys");
       set_ups[i] = Simulation::set_up_fingerprint(scene);
     }

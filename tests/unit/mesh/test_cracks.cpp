@@ -1,5 +1,5 @@
 // Crack-plane directions and the sectors of meshes/slice_cracked.geo
-// (mesh/cracks.h), from scenes alone (no meshing).
+// (scene/CrackPlanes.h, mesh/cracks.h), from scenes alone (no meshing).
 #include "mesh/cracks.h"
 #include "scene/SceneError.h"
 #include <cmath>
@@ -8,8 +8,7 @@
 
 using pushout::Scene;
 using pushout::SceneError;
-using pushout::mesh::crack_directions;
-using pushout::mesh::slice_sectors;
+using pushout::mesh::MeshInput;
 
 namespace
 {
@@ -17,6 +16,15 @@ constexpr double pi = std::numbers::pi;
 double deg(double a)
 {
   return a * 180 / pi;
+}
+/// The crack directions the scene resolved as it was parsed (scene/CrackPlanes.h).
+pushout::CrackDirections crack_directions(const Scene& s)
+{
+  return s.crack_directions();
+}
+pushout::mesh::SliceSectors slice_sectors(const Scene& s)
+{
+  return pushout::mesh::slice_sectors(MeshInput::of(s));
 }
 } // namespace
 

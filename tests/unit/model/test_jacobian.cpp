@@ -24,9 +24,9 @@ double jacobian_error(const std::string& quadrature, int degree = 1)
       "[[interface]]\nlaw = \"friction\"\nk = 1000.0\nmu = 0.4\n",
       {{"mesh.interface_quadrature", quadrature}, {"mesh.degree", std::to_string(degree)}});
   bool reused = false;
-  const pushout::mesh::MeshData data =
-      pushout::mesh::generate(scene, pushout::mesh::default_cache_dir(), reused);
-  model::Model model(MPI_COMM_WORLD, data, scene);
+  const pushout::mesh::MeshData data = pushout::mesh::generate(
+      pushout::mesh::MeshInput::of(scene), pushout::mesh::default_cache_dir(), reused);
+  model::Model model(MPI_COMM_WORLD, data, model::ModelInput::of(scene));
   solver::Equilibrium eq(model);
   solver::NewtonSolver::set_default_options(solver::NewtonSolver::Preconditioner::jacobian);
 

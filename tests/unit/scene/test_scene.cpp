@@ -27,12 +27,136 @@ std::string error_of(const std::string& text, const std::vector<Override>& sets 
 TEST(Scene, DefaultsFillEveryKey)
 {
   const Scene s = Scene::parse("");
-  EXPECT_EQ(s.string("model.type"), "pushout");
-  EXPECT_DOUBLE_EQ(s.number("geometry.width"), 100.0);
-  EXPECT_EQ(s.integer("mesh.elements_per_quarter"), 16);
+  EXPECT_TRUE(s.model().pushout());
+  EXPECT_DOUBLE_EQ(s.geometry().width, 100.0);
+  EXPECT_EQ(s.mesh().elements_per_quarter, 16);
   ASSERT_EQ(s.layers().size(), 1u);
   EXPECT_EQ(s.layers()[0].law, "friction");
   EXPECT_DOUBLE_EQ(s.layers()[0].params.at("k"), 1000.0);
+}
+
+// Every key reaches its typed part (SceneParts.h): a scene with no key at
+// its default reads back each value from the part that holds it.
+TEST(Scene, EveryKeyReachesItsTypedPart)
+{
+  const Scene s = Scene::parse(R"(
+[model]
+symmetry = "full"
+[geometry]
+outer_shape = "circle"
+width = 90.0
+thickness = 15.0
+tube_outer_diameter = 18.0
+tube_inner_diameter = 14.0
+tube_center = [45.0, 44.0]
+support_inner_diameter = 28.0
+[mesh]
+elements_per_quarter = 6
+elements_through_thickness = 3
+steel_layers = 2
+outer_size_ratio = 4.0
+degree = 2
+interface_quadrature = "nodal"
+[concrete]
+E = 31000.0
+nu = 0.21
+alpha = 1.1e-5
+[steel]
+E = 210000.0
+nu = 0.29
+alpha = 1.2e-5
+[loading]
+temperature_change = -20.0
+push_displacement = 0.02
+step_growth = 1.5
+thermal_tube_top = "free"
+steps = 7
+unload_to = "zero_force"
+control = "arc_length"
+dissipation_steps = 11
+max_cuts = 4
+steps_per_segment = 5
+[corrosion]
+penetration = 0.01
+steps = 6
+beta = 2.5
+porous_zone = 0.002
+oxide_bulk = 1500.0
+[solver]
+preconditioner = "jacobian"
+condensation = "off"
+refactor_iterations = 3
+first_tangent = "current"
+precision = "double"
+time_linear_solve = true
+[output]
+xdmf = true
+plot = false
+)");
+  EXPECT_EQ(s.model().symmetry, pushout::ModelPart::Symmetry::full);
+  const pushout::Geometry& g = s.geometry();
+  EXPECT_TRUE(g.circle);
+  EXPECT_EQ(g.width, 90.0);
+  EXPECT_EQ(g.thickness, 15.0);
+  EXPECT_EQ(g.tube_outer_diameter, 18.0);
+  EXPECT_EQ(g.tube_inner_diameter, 14.0);
+  EXPECT_EQ(g.tube_center[0], 45.0);
+  EXPECT_EQ(g.tube_center[1], 44.0);
+  EXPECT_EQ(g.support_inner_diameter, 28.0);
+  const pushout::MeshPart& m = s.mesh();
+  EXPECT_EQ(m.elements_per_quarter, 6);
+  EXPECT_EQ(m.elements_through_thickness, 3);
+  EXPECT_EQ(m.steel_layers, 2);
+  EXPECT_EQ(m.outer_size_ratio, 4.0);
+  EXPECT_EQ(m.degree, 2);
+  EXPECT_TRUE(m.nodal_quadrature);
+  EXPECT_EQ(s.concrete().E, 31000.0);
+  EXPECT_EQ(s.concrete().nu, 0.21);
+  EXPECT_EQ(s.concrete().alpha, 1.1e-5);
+  EXPECT_EQ(s.steel().E, 210000.0);
+  EXPECT_EQ(s.steel().nu, 0.29);
+  EXPECT_EQ(s.steel().alpha, 1.2e-5);
+  const pushout::Loading& l = s.loading();
+  EXPECT_EQ(l.temperature_change, -20.0);
+  EXPECT_EQ(l.push_displacement, 0.02);
+  EXPECT_EQ(l.step_growth, 1.5);
+  EXPECT_TRUE(l.tube_top_free);
+  EXPECT_EQ(l.steps, 7);
+  EXPECT_TRUE(l.unload_to_zero_force);
+  EXPECT_EQ(l.control, pushout::Loading::Control::arc_length);
+  EXPECT_EQ(l.dissipation_steps, 11);
+  EXPECT_EQ(l.max_cuts, 4);
+  EXPECT_EQ(l.steps_per_segment, 5);
+  const pushout::CorrosionPart& c = s.corrosion();
+  EXPECT_EQ(c.penetration, 0.01);
+  EXPECT_EQ(c.steps, 6);
+  EXPECT_EQ(c.beta, 2.5);
+  EXPECT_EQ(c.porous_zone, 0.002);
+  EXPECT_EQ(c.oxide_bulk, 1500.0);
+  const pushout::SolverPart& v = s.solver();
+  EXPECT_FALSE(v.lagged_preconditioner);
+  EXPECT_EQ(v.condensation, pushout::SolverPart::Condensation::off);
+  EXPECT_EQ(v.refactor_iterations, 3);
+  EXPECT_FALSE(v.first_tangent_converged);
+  EXPECT_FALSE(v.mixed_precision);
+  EXPECT_TRUE(v.time_linear_solve);
+  EXPECT_TRUE(s.output().xdmf);
+  EXPECT_FALSE(s.output().plot);
+
+  // The single joint's keys, and a push path.
+  const Scene j =
+      Scene::parse("[model]\ntype = \"single_joint\"\n[geometry]\narea = 4.0\n"
+                   "[loading]\nnormal_force_per_node = -0.3\nshear_path = [0.0, 0.1]\n");
+  EXPECT_FALSE(j.model().pushout());
+  EXPECT_EQ(j.geometry().area, 4.0);
+  EXPECT_EQ(j.loading().normal_force_per_node, -0.3);
+  EXPECT_EQ(j.loading().shear_path, (std::vector<double>{0.0, 0.1}));
+  EXPECT_EQ(Scene::parse("[loading]\npush_path = [0.0, 0.01]\n").loading().push_path,
+            (std::vector<double>{0.0, 0.01}));
+  // A key of another model type holds its declared default, and is not
+  // written to the resolved scene.
+  EXPECT_EQ(j.geometry().width, 100.0);
+  EXPECT_EQ(j.to_toml().find("width"), std::string::npos);
 }
 
 TEST(Scene, OverridesReachTablesAndLayers)
@@ -42,7 +166,7 @@ TEST(Scene, OverridesReachTablesAndLayers)
       "[[interface]]\nlaw = \"elastic\"\nk = 5.0\n",
       {{"interface.0.mu", "0.2"}, {"loading.temperature_change", "-50"}, {"interface.1.k_s", "7"}});
   EXPECT_DOUBLE_EQ(s.layers()[0].params.at("mu"), 0.2);
-  EXPECT_DOUBLE_EQ(s.number("loading.temperature_change"), -50.0);
+  EXPECT_DOUBLE_EQ(s.loading().temperature_change, -50.0);
   EXPECT_DOUBLE_EQ(s.layers()[1].params.at("k_n"), 5.0); // defaults to k
   EXPECT_DOUBLE_EQ(s.layers()[1].params.at("k_s"), 7.0);
 }
@@ -53,7 +177,7 @@ TEST(Scene, ResolvedSceneReadsBackToTheSameScene)
       Scene::parse("[loading]\nsteps = 3\n[[interface]]\nmu = 0.3\n", {{"interface.0.mu", "0.25"}});
   const Scene b = Scene::parse(a.to_toml());
   EXPECT_EQ(a.to_toml(), b.to_toml());
-  EXPECT_EQ(b.integer("loading.steps"), 3);
+  EXPECT_EQ(b.loading().steps, 3);
   EXPECT_DOUBLE_EQ(b.layers()[0].params.at("mu"), 0.25);
 }
 

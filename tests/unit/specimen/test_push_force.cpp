@@ -28,10 +28,11 @@ double push_force_mismatch(int degree)
                    "push_displacement = 0.005\nsteps = 1\n",
                    {{"mesh.degree", std::to_string(degree)}});
   bool reused = false;
-  const pushout::mesh::MeshData data =
-      pushout::mesh::generate(scene, pushout::mesh::default_cache_dir(), reused);
-  model::Model model(MPI_COMM_WORLD, data, scene);
-  specimen::PushOut pushout(scene, data, model);
+  const pushout::mesh::MeshData data = pushout::mesh::generate(
+      pushout::mesh::MeshInput::of(scene), pushout::mesh::default_cache_dir(), reused);
+  model::Model model(MPI_COMM_WORLD, data, model::ModelInput::of(scene));
+  specimen::PushOut pushout(pushout::mesh::MeshInput::of(scene), scene.loading(),
+                            scene.layers().size(), data, model);
   solver::Equilibrium eq(model);
   solver::NewtonSolver::set_default_options(solver::NewtonSolver::Preconditioner::jacobian);
   solver::NewtonSolver newton(eq, solver::NewtonSolver::Preconditioner::jacobian);
