@@ -2,7 +2,7 @@
 // any meshing: meshes/slice.geo is a structured block mesh, so its element
 // counts follow from its block divisions in closed form. Used to refuse a run
 // that cannot fit in memory before gmsh spends minutes on it
-// (driver/ResourceGuard.h).
+// (record/ResourceGuard.h).
 #pragma once
 
 #include "../scene/Scene.h"
