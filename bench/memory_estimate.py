@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The size guard's peak-memory estimate (driver/ResourceGuard.h) against the
+"""The size guard's peak-memory estimate (record/ResourceGuard.h) against the
 measured peak resident memory, over mesh sizes and solver paths: the
 friction push-out (demo scene, 1 push step) on the quarter model condensed
 and whole, the full model, the triquadratic bulk, 2 MPI processes and an

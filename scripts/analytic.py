@@ -28,7 +28,7 @@ def linear_softening(us, k, f_t, w_c2, area=1.0):
 
 
 # Thick rings (plane stress): the steel tube a < r < R in the concrete ring
-# R < r < b (docs/corrosion.md; notes/corrosion.md's closed forms).
+# R < r < b (Lamé's closed forms, used as in docs/corrosion.md).
 
 def ring_compliances(R, a, b, Ec, nuc, Es, nus):
     """Radial compliances [mm^3/N] at r = R: the concrete ring's outward

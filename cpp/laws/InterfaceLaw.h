@@ -74,7 +74,7 @@ public:
   /// The energy per unit area a softening law releases from the unloaded
   /// state to full softening [N/mm] (its G_F without the residual's
   /// plateau); 0 for laws that do not soften (elastic, friction). Sets the
-  /// scale of dissipation-controlled steps (driver/StepLoop.cpp).
+  /// scale of dissipation-controlled steps (stepping/StepLoop.cpp).
   virtual double fracture_energy() const = 0;
 };
 

@@ -2,7 +2,7 @@
 // step, written at once (one write(2) per row, no buffer) so that a run that
 // stops later keeps every step it finished. A row is written whole or not at
 // all: one that could not be (a full disk) is cut off the file again and is
-// an error. One process writes it (rank 0, driver/StepRecorder.cpp); the
+// an error. One process writes it (rank 0, stepping/StepRecorder.cpp); the
 // error is thrown there and the run agrees on it (common/mpi_errors.h).
 #pragma once
 
@@ -50,7 +50,7 @@ public:
   CurveWriter& operator=(const CurveWriter&) = delete;
 
   /// Writes a converged step's row; refuses a value that is not finite (a
-  /// run stops before it writes one: driver/NonFinite.h).
+  /// run stops before it writes one: record/NonFinite.h).
   void row(int step, const std::vector<double>& values)
   {
     for (double v : values)

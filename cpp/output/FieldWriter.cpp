@@ -33,7 +33,7 @@ FieldWriter::FieldWriter(const model::Model& model, const std::filesystem::path&
   }
 
   // The joint elements: interface.xdmf has the interface and the crack
-  // planes (the issue 14 contract: one file of every joint element, `crack`
+  // planes (so that one file shows every joint element: `crack`
   // -1 on the interface, the plane's index on a plane); cracks.xdmf has the
   // planes alone, with their own fields.
   const std::vector<double> dof_x = model.space()->tabulate_dof_coordinates(false);

@@ -38,7 +38,7 @@ struct Summary
   std::int64_t interface_pairs = 0;
   int processes = 1;
   double peak_memory_mb = 0; ///< largest peak resident memory of a process
-  /// The size guard's estimate, made before meshing (driver/ResourceGuard.h).
+  /// The size guard's estimate, made before meshing (record/ResourceGuard.h).
   struct Estimate
   {
     std::int64_t dofs = 0, cells = 0, interface_pairs = 0;

@@ -1,5 +1,5 @@
 // The scene keys of pushout: each declared once, with type, default, unit,
-// range and doc. README.md's scene reference is printed from this table by
+// range and doc. docs/scene-reference.md is printed from this table by
 // `pushout keys`. Interface-layer keys are declared by each law (cpp/laws/).
 #include "KeyDef.h"
 

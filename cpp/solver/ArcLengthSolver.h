@@ -12,7 +12,7 @@
 // dlambda at the constrained rows, 0 elsewhere; on the condensed interface
 // system the bulk carries the load to every row). A load factor that enters
 // the laws instead (the corrosion depth x of the oxide's expansion,
-// driver/Corrosion.h) makes F nonlinear in lambda: e is then the forward
+// specimen/Corrosion.h) makes F nonlinear in lambda: e is then the forward
 // difference -(F(x, lambda + h) - F(x, lambda)) / h at every iterate
 // (set_load_difference). Equations:
 //   F(x, lambda) = 0        equilibrium (constrained rows: x_c - g(lambda))
@@ -23,7 +23,7 @@
 // by block elimination, two solves with the same J:
 //   J v1 = -F,   J v2 = e,
 //   dlambda = -(c(x) - eta + a . v1) / (a . v2),   dx = v1 + dlambda v2.
-// The caller chooses the control increment of each step (driver/StepLoop.cpp:
+// The caller chooses the control increment of each step (stepping/StepLoop.cpp:
 // from the previous step, scaled to a path length in the (lambda, s) plane).
 // The slip of a push-out only grows (damage and friction never pull the
 // tube back), and so does the energy released, so a positive increment fixes

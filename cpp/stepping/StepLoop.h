@@ -1,5 +1,5 @@
 // The load steps of a run: step 0 (the thermal step or preload), the
-// corrosion stage if the scene has one (Corrosion.h), then the push under
+// corrosion stage if the scene has one (specimen/Corrosion.h), then the push under
 // displacement control (nominal steps, cut and grown back by Stepper.h),
 // path following on the mean slip, or dissipation control (steps of the
 // push or of the energy released, solver/PathFollower.h); each converged

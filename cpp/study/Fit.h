@@ -13,7 +13,7 @@
 // the standard errors sqrt(cov_jj) and the correlations cov_jk /
 // (se_j se_k), J the forward-difference Jacobian there (in the keys' units).
 //
-// Every run of the fit is a run_case (Run.h) on its group's reused set-up:
+// Every run of the fit is a run_case (driver/Run.h) on its group's reused set-up:
 // the Jacobian's n runs spread over the groups of --ranks-per-case
 // processes (MPI_Comm_split, as pushout sweep), each process driving the
 // same TAO on the same numbers.

@@ -3,8 +3,8 @@
 1. A circular slice with four crack planes (0, 90, 180, 270 degrees, the
    default crack law), everything else default but a coarser mesh (8 elements
    per quarter: condensed, 1 836 jumps), at steel.E = 3e5 and 2e6 MPa (moduli
-   whose condensed flexibility C a round-off threshold of 1e-9 refused on
-   some machines): exit 0, condensed, and the curve equals the whole
+   whose condensed flexibility C a fixed round-off threshold of 1e-9 would
+   refuse on some machines): exit 0, condensed, and the curve equals the whole
    model's (solver.condensation = "off") to the bound of Newton's tolerance
    on the two runs (common.newton_bound) plus C's own round-off (the
    asymmetry measured, summary.json condensation_asymmetry: symmetrising

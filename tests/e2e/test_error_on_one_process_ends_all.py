@@ -2,8 +2,8 @@
 an `mpirun -n 2` run ends the whole run within seconds, non-zero, with one
 message on stderr (rank 0's, or the failing process's own when the other
 waits in a collective it skipped), never a hang. The failures on one
-process come from a test hook of the driver (PUSHOUT_TEST_FAIL_RANK,
-PUSHOUT_TEST_FAIL_AT: driver/StepLoop.cpp), during the set-up and during the
+process come from a test hook of the step loop (PUSHOUT_TEST_FAIL_RANK,
+PUSHOUT_TEST_FAIL_AT: stepping/StepLoop.cpp), during the set-up and during the
 load steps. A PETSc error (a solver type that does not exist) is one clear
 message too, without PETSc's traceback, on 1 and 2 processes. mpirun adds
 its own notice that a process ended non-zero; only pushout's lines count.

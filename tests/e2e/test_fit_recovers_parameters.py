@@ -1,4 +1,4 @@
-"""pushout fit (driver/Fit.h): parameters from a measured curve.
+"""pushout fit (study/Fit.h): parameters from a measured curve.
 
 1. A curve made by the model itself (the Fig. 10 layers on the coarse mesh,
    friction mu 0.4, adhesion f_t 3 MPa, c 25 1/mm; 0.2 mm in 40 steps) plus
@@ -52,7 +52,7 @@ def inverse(a):
 
 def fit_bound(result):
     """The largest relative difference of a fitted value that two fits
-    converged to TAO's tolerance may show. TAO (Fit.cpp) stops when the
+    converged to TAO's tolerance may show. TAO (study/Fit.cpp) stops when the
     gradient g of 1/2 |r|^2 in the scaled values x (each key over its start)
     has fallen to gttol = 1e-6 of its start g0 (grtol 0; gatol 1e-12
     MPa^2 is below both). Near the optimum x*, g = H (x - x*) with H the

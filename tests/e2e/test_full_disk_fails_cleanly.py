@@ -101,7 +101,7 @@ check(p.returncode == 0, f"the reference run: exit {p.returncode} {p.stderr[-300
 lock = os.path.join(ref, ".pushout.lock")
 base_pages = pages(os.path.join(ref, "scene.toml")) + max(pages(lock), 1)
 
-# No room for summary.json (before: exit 0 and an empty summary.json).
+# No room for summary.json: exit 1, and no summary.json, not an empty one.
 d = mount("128k")
 try:
     fill(d, base_pages + pages(os.path.join(ref, "curve.csv")))
@@ -114,7 +114,7 @@ try:
 finally:
     unmount(d)
 
-# curve.csv fills the disk (before: its last row cut mid-line, exit 0).
+# curve.csv fills the disk: exit 1, and no row cut mid-line.
 d = mount("128k")
 try:
     fill(d, base_pages + 1)
@@ -135,8 +135,8 @@ try:
 finally:
     unmount(d)
 
-# fields.xdmf fills the disk (before: SIGABRT, an HDF5 error stack, no
-# summary.json; under mpirun exit 134 on every process).
+# fields.xdmf fills the disk: one line and exit 1, not HDF5's abort (SIGABRT,
+# an HDF5 error stack, no summary.json; under mpirun exit 134 everywhere).
 for n in (None, 2) if shutil.which("mpirun") else (None,):
     name = f"fields.xdmf fills the disk ({n or 1} process{'es' if n else ''})"
     d = mount("512k")

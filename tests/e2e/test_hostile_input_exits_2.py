@@ -1,5 +1,5 @@
-"""Hostile input: scene files, --set values and command lines that once
-crashed, ran until killed or ran silently. Each must end at once with exit 2
+"""Hostile input: scene files, --set values and command lines that could
+crash, run until killed or run silently. Each must end at once with exit 2
 and one line on stderr naming the key, option or file."""
 import os
 import subprocess

@@ -47,8 +47,8 @@ p.send_signal(signal.SIGHUP)
 _, err = p.communicate(timeout=300)
 check(p.returncode == 0 and summary(out)["converged"], f"nohup: SIGHUP ignored, exit {p.returncode}")
 
-# A reader that closes the pipe (`| head -3`; before: killed by SIGPIPE,
-# exit 141, no summary.json): the run goes on, writes its files, exit 0.
+# A reader that closes the pipe (`| head -3`): the run goes on, writes its
+# files, exit 0 (SIGPIPE would kill it: exit 141, no summary.json).
 out = out_dir("interrupt_pipe")
 p = subprocess.Popen([PUSHOUT, "run", scene, "--out", out, "--set", "loading.steps=30"],
                      stdout=subprocess.PIPE, stderr=subprocess.PIPE)
@@ -62,8 +62,8 @@ s = summary(out)
 check(s["converged"] and s["steps"] == 30 and len(curve(out)) == 31,
       "a closed stdout: every step in curve.csv, summary.json converged")
 
-# A sweep stops within a few seconds of SIGTERM and draws no plot (before:
-# 24 s, plotting every finished curve). Twenty short cases, then a long one.
+# A sweep stops within a few seconds of SIGTERM and draws no plot (plotting
+# every finished curve takes 24 s here). Twenty short cases, then a long one.
 out = out_dir("interrupt_sweep")
 steps = ",".join([str(n) for n in range(2, 22)] + ["100000"])
 p = subprocess.Popen([PUSHOUT, "sweep", scene, "--out", out, "--quiet", "--vary",
@@ -83,9 +83,9 @@ check(os.path.exists(os.path.join(out, "sweep.csv")) and not os.path.exists(os.p
       "sweep: sweep.csv written, no sweep.png")
 check(summary(os.path.join(out, "case_020"))["interrupted"], "sweep: the stopped case says so")
 
-# A fit stopped during its fitted run (before: best/ kept a part of the
-# curve and fit.json said converged, exit 0): exit 143, no fit.json, no
-# best/. The data: a friction curve (mu 0.4) of 5 points; each run takes
+# A fit stopped during its fitted run: exit 143, no fit.json, no best/ (a
+# part of the curve in best/ and a fit.json saying converged would pass for
+# a finished fit). The data: a friction curve (mu 0.4) of 5 points; each run takes
 # 3000 steps, so the fitted run lasts long enough to be stopped.
 out = out_dir("interrupt_fit")
 data = os.path.join(out + "_data.csv")

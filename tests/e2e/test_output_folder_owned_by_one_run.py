@@ -46,7 +46,7 @@ def summary(out):
     return json.load(open(os.path.join(out, "summary.json")))
 
 
-# A folder in use (before: both runs exit 0, their outputs interleaved).
+# A folder in use: a second run is refused (the two would interleave outputs).
 out = os.path.join(ROOT, "in_use")
 first = start_long(out)
 try:
@@ -61,8 +61,8 @@ check(first.returncode == 143 and summary(out)["interrupted"], "the first run we
 p = run(out)
 check(p.returncode == 0, f"the folder is free again once it ended: exit {p.returncode}")
 
-# Outputs of an earlier run never survive a later one (before: a run
-# killed with SIGKILL left the earlier summary.json saying converged).
+# Outputs of an earlier run never survive a later one, even one killed with
+# SIGKILL (the earlier summary.json would say converged for it).
 out = os.path.join(ROOT, "stale")
 p = run(out, "--set", "output.xdmf=true")
 check(p.returncode == 0, f"a first run: exit {p.returncode}")
@@ -99,7 +99,7 @@ check(p.returncode == 0 and os.path.exists(os.path.join(out, "fit.csv"))
       and os.path.exists(os.path.join(out, "case_001", "curve.csv")),
       f"a folder pushout never used keeps its files: exit {p.returncode}, {sorted(os.listdir(out))}")
 
-# The scene is DIR/scene.toml (before: overwritten by the run into DIR).
+# The scene is DIR/scene.toml, which the run into DIR would overwrite.
 before = open(os.path.join(out, "scene.toml")).read()
 with open(os.path.join(out, "scene.toml"), "a") as f:
     f.write("# the user's edit\n")
@@ -109,8 +109,8 @@ check(p.returncode == 2 and "would be overwritten" in p.stderr,
 check(open(os.path.join(out, "scene.toml")).read() == before + "# the user's edit\n",
       "the scene is left as it was")
 
-# A smaller sweep into the folder of a larger one (before: the old case
-# folders stayed beside the new sweep.csv).
+# A smaller sweep into the folder of a larger one: no case folder of the
+# larger one stays beside the new sweep.csv.
 out = os.path.join(ROOT, "sweep")
 cmd = [PUSHOUT, "sweep", scene, "--out", out, "--quiet"]
 p = subprocess.run(cmd + ["--vary", "interface.0.mu=0.3,0.4,0.5"], capture_output=True, text=True,

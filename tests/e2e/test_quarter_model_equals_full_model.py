@@ -46,8 +46,9 @@ def same(name, a, b, keys, tol):
 
 
 # A tube centred in one direction only: a half model, about y = yc or x = xc.
-# (Off-centre in y, the full model's tube-top fixing once held the tube's
-# shift against the slice: 3.5e-5 off. Its fixings now lie on the plane.)
+# (Off-centre in y, the full model's fixings lie on the plane x = xc or in
+# mirror pairs, so that none carries a force: a tube-top fixing in y would
+# hold the tube's shift against the slice, 3.5e-5 off.)
 for name, centre in (("off centre in x", "[42.0, 50.0]"), ("off centre in y", "[50.0, 40.0]")):
     half, full = out_dir(f"symmetry_half_{name[-1]}"), out_dir(f"symmetry_half_{name[-1]}_full")
     off_centre = [f"geometry.tube_center={centre}"]

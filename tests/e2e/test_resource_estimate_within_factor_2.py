@@ -1,4 +1,4 @@
-"""The size guard (driver/ResourceGuard.h): the mesh size predicted from the
+"""The size guard (record/ResourceGuard.h): the mesh size predicted from the
 mesh keys before meshing equals the mesh gmsh makes, the peak-memory
 estimate is within a factor 2 of the measured peak, and a run that cannot
 fit is refused at once with exit 2 and a message that says what to change;

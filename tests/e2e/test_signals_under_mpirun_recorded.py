@@ -4,8 +4,9 @@ every process, then SIGKILL odls_base_sigkill_timeout later, 1 s) and
 SIGTERM to every process (Slurm's scancel). Every way, summary.json says
 interrupted, by which signal, in the load steps, and curve.csv keeps whole
 rows, at least as many as summary.json counts. The exit code is mpirun's
-own (README, "Parallel runs"). Before: 9 of 10 stops through mpirun left no
-summary.json, and one named the wrong phase."""
+own (docs/running.md, "Under mpirun"). After Ctrl-C or a SIGTERM to mpirun,
+its SIGKILL comes a second after its SIGTERM: summary.json, naming the
+phase, must be written before it."""
 import json
 import os
 import shutil

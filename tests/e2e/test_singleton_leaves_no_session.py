@@ -5,8 +5,9 @@ common/mpi_start.h):
    while a run lasts (every isolated singleton would use the same one, and
    one that ends would remove it under another that starts);
 2. runs side by side with others: 3 rounds of 8 runs at once all converge
-   (a stop-22 build failed one in 24 runs of scripts/studies.py on a fresh
-   Debian root: "orte_session_dir failed");
+   (with a shared session directory about one in 24 runs of
+   scripts/studies.py on a fresh Debian root fails: "orte_session_dir
+   failed");
 3. keeps the user's own Open MPI settings: OMPI_MCA_btl=self,vader given
    runs as well."""
 import os

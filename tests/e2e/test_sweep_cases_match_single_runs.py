@@ -1,4 +1,4 @@
-"""pushout sweep (the Cartesian product of scene values, driver/Sweep.h):
+"""pushout sweep (the Cartesian product of scene values, study/Sweep.h):
 
 1. Serial: 2 x 2 cases of the friction push-out (mu x dT, coarse mesh):
    sweep.csv has one row per case with the varied values, the peak and last

@@ -1,5 +1,5 @@
 // No converged step is written with a value that is not a number: the
-// recorder's check (driver/NonFinite.h) names the column and stops the run,
+// recorder's check (record/NonFinite.h) names the column and stops the run,
 // and the curve writer (output/CurveWriter.h) refuses such a row on its own.
 #include "output/CurveWriter.h"
 #include "record/NonFinite.h"

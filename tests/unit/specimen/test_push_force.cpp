@@ -1,5 +1,5 @@
 // The push force P of curve.csv is the axial resultant of the interface
-// tractions (driver/PushOut.h); paper eq. (1) and the README define it as the
+// tractions (specimen/PushOut.h); paper eq. (1) and the README define it as the
 // sum of the support reactions. At equilibrium the two are the same: check
 // it after the thermal step and a push step on a coarse quarter model, with
 // friction + exponential softening, trilinear and triquadratic bulk.
