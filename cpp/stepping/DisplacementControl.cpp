@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 namespace pushout::stepping
@@ -113,61 +114,58 @@ bool StepLoop::nominal_steps(const Stage& stage)
   return true;
 }
 
+/// The search (find_zero_force) chooses the load parameters; each try here
+/// is one step from the committed state at s0 (a path-dependent law sees
+/// one increment, as in the try that overshot), reverted before the next.
 bool StepLoop::zero_force_step(const Stage& stage, int k, int cuts, double s0, double P0, double s1,
                                double P1, double tol, double& s)
 {
-  // Illinois false position on [s0, s1], P0 >= 0 > P1; every try one step
-  // from the committed state at s0 (a path-dependent law sees one
-  // increment, as in the try that overshot).
   const double s_committed = s0;
-  int replaced = 0; // the end the last try replaced: -1 (s0) or +1 (s1)
-  for (int tries = 0; tries < zero_force_max_tries; ++tries)
+  solver::SolveReport rep; // of the last try
+  bool stopped = false;    // a signal stopped the run before a try
+  bool tried = false;      // the state holds the last try's converged step
+  const auto try_at = [&](double s_try) -> std::optional<double>
   {
+    if (tried)
+      revert();
+    tried = false;
     if (stop_requested())
-      return false;
-    s = s1 - P1 * (s1 - s0) / (P1 - P0);
-    stage.apply(s);
-    set_time_increment(stage.duration(s_committed, s));
+    {
+      stopped = true;
+      return std::nullopt;
+    }
+    stage.apply(s_try);
+    set_time_increment(stage.duration(s_committed, s_try));
     _equilibrium.apply_constraints(_x);
-    const solver::SolveReport rep = _solver.solve(_x);
+    rep = _solver.solve(_x);
     _summary.newton_iterations += rep.iterations;
     if (!rep.converged)
     {
       revert();
+      return std::nullopt;
+    }
+    tried = true;
+    return _scenario.load_force(_equilibrium.model());
+  };
+  const ZeroForceResult zero = find_zero_force(s0, P0, s1, P1, tol, try_at);
+  s = zero.s;
+  switch (zero.outcome)
+  {
+  case ZeroForceResult::Outcome::found:
+    stage.record(rep.iterations, cuts, k, s); // before the commit: StepRecorder.h
+    commit();
+    return true;
+  case ZeroForceResult::Outcome::try_failed:
+    if (!stopped) // else the summary says so
       _summary.message = "load step " + std::to_string(k) +
                          ": a try at the zero force of the unloading did not converge (" +
                          rep.reason + "); stopped";
-      return false;
-    }
-    const double P = _scenario.load_force(_equilibrium.model());
-    // Found, or the bracket is down to round-off of the load parameter
-    // (the force's own noise above tol).
-    if (std::abs(P) <= tol || std::abs(s1 - s0) <= zero_force_bracket * std::max(1.0, s))
-    {
-      stage.record(rep.iterations, cuts, k, s); // before the commit: StepRecorder.h
-      commit();
-      return true;
-    }
+    return false;
+  default:
     revert();
-    if (P < 0)
-    {
-      s1 = s;
-      P1 = P;
-      if (replaced == +1) // s0 kept twice: halve its weight
-        P0 /= 2;
-      replaced = +1;
-    }
-    else
-    {
-      s0 = s;
-      P0 = P;
-      if (replaced == -1)
-        P1 /= 2;
-      replaced = -1;
-    }
+    _summary.message = "load step " + std::to_string(k) + ": the zero force of the unloading was " +
+                       "not found in " + std::to_string(zero.tries) + " tries; stopped";
+    return false;
   }
-  _summary.message = "load step " + std::to_string(k) + ": the zero force of the unloading was " +
-                     "not found in " + std::to_string(zero_force_max_tries) + " tries; stopped";
-  return false;
 }
 } // namespace pushout::stepping
