@@ -155,7 +155,11 @@ private:
   /// Dissipation control (loading.control = "dissipation" or "auto") of
   /// the push.
   bool push_by_dissipation();
+  /// Dissipation control of a stage: hands its steps to DissipationSteps.
   bool by_dissipation(const DissipationStage& stage);
+  /// The steps of one stage under dissipation control, one member function
+  /// per part of a step.
+  class DissipationSteps;
 
   // --- CorrosionStage.cpp ---
 
