@@ -97,7 +97,7 @@ private:
   /// Records and commits converged step k, and chooses the kind of the
   /// next.
   void accept(int k, const std::string& name, const Try& t);
-  /// The stage's mean jump at the trial state [mm].
+  /// The stage's mean jump at the state in _x [mm].
   double mean_jump();
   void say(const std::string& what);
 
