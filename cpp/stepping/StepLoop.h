@@ -3,9 +3,19 @@
 // displacement control (nominal steps, cut and grown back by Stepper.h),
 // path following on the mean slip, or dissipation control (steps of the
 // push or of the energy released, solver/PathFollower.h); each converged
-// step recorded and
-// committed, a failed one reverted and cut, a signal agreed on between
-// tries (common/Interrupt.h).
+// step recorded and committed, a failed one reverted and cut, a signal
+// agreed on between tries (common/Interrupt.h).
+//
+// One class, its member functions in one file per control:
+//   StepLoop.cpp            run(), step 0, and what the controls share
+//                           (commit, revert, cut_back, stop_requested, the
+//                           load factor path)
+//   DisplacementControl.cpp nominal steps with cut-back, unloading to zero
+//                           force (the search itself: ZeroForceSearch.h)
+//   PathFollowing.cpp       path following on the mean axial slip
+//   DissipationControl.cpp  dissipation control, and the joints' energy sums
+//   CorrosionStage.cpp      the corrosion stage, by either control
+// with StepLoopShared.h (constants and guards) and TestHooks.h.
 #pragma once
 
 #include "../output/Summary.h"
@@ -16,7 +26,7 @@
 #include "../specimen/Scenario.h"
 #include "StepRecorder.h"
 #include "Stepper.h"
-#include <array>
+#include "TestHooks.h" // test_failure_at_setup, for driver/Run.cpp
 #include <functional>
 #include <string>
 
@@ -49,6 +59,49 @@ public:
   bool run(Control control);
 
 private:
+  // --- StepLoop.cpp: step 0 and what the controls share ---
+
+  bool initial_step();
+  /// The push's start: the scenario's reference state and curve row 0.
+  void start_push(int iterations);
+
+  /// The pseudo-time increment of the step, for every set of joints.
+  void set_time_increment(double dt);
+  /// Commits the converged state of a step (recorded before).
+  void commit();
+  /// Back to the committed state.
+  void revert();
+  /// Words for an increment of a step, in a cut_back message.
+  using Words = std::function<std::string(double increment)>;
+  /// After a failed try (reverted): false (with the summary's message) if
+  /// the step cannot be cut again or a signal stops the run; otherwise
+  /// halves the increment, counts the cut and says so. `what` names the
+  /// step, `size(increment)` words its size.
+  bool cut_back(Stepper& stepper, int& cuts, const std::string& what, const std::string& reason,
+                const Words& size);
+  /// Whether a signal asked to stop (agreed on by all processes); first an
+  /// error of any process since the last agreement is thrown on all.
+  bool stop_requested();
+
+  /// What path following and dissipation control share: the push by its
+  /// load factor lambda = delta [mm].
+  struct LoadFactorPath
+  {
+    double lambda_final = 0;      ///< the final push [mm]
+    double h_nominal = 0;         ///< a nominal step of it [mm]
+    int max_steps = 0;            ///< steps before the run gives up
+    std::string target = "push";  ///< the stage lambda runs (messages)
+    std::string symbol = "delta"; ///< lambda's name (messages)
+  };
+  /// Sets the push's constraints (before a PathFollower takes the solver's
+  /// problem) and `p`; false, with the summary's message naming `control`,
+  /// if the final push is not positive.
+  bool begin_load_factor_path(const std::string& control, LoadFactorPath& p);
+  /// False, with the summary's message, once step k is past the limit.
+  bool within_step_limit(const LoadFactorPath& p, int k, double lambda, const std::string& control);
+
+  // --- DisplacementControl.cpp ---
+
   /// A stage of nominal steps s = 1, ..., steps of a load parameter s.
   struct Stage
   {
@@ -63,17 +116,7 @@ private:
     /// falls to zero (Scenario::ends_at_zero_force): the push's stage.
     bool zero_force_ends = false;
   };
-
-  bool initial_step();
-  /// The corrosion stage: steps of the corrosion depth, constraints of step 0.
-  bool corrode();
-  /// Records converged corrosion step k at stage parameter s (before its
-  /// commit): corrosion.csv, the summary, and at the end of the stage the
-  /// push's start. `numbered`: the progress line shows k of the stage's
-  /// nominal steps.
-  void record_corrosion(int iterations, int cuts, int k, double s, bool numbered);
-  /// The push's start: the scenario's reference state and curve row 0.
-  void start_push(int iterations);
+  bool push_by_displacement();
   /// Nominal steps, each tried whole and cut in halves when Newton fails.
   bool nominal_steps(const Stage& stage);
   /// After a converged try of step k from the committed state at s0 (force
@@ -83,18 +126,16 @@ private:
   /// message) if a try did not converge or the search did not end.
   bool zero_force_step(const Stage& stage, int k, int cuts, double s0, double P0, double s1,
                        double P1, double tol, double& s);
-  bool push_by_displacement();
 
-  /// What path following and dissipation control share: the push by its
-  /// load factor lambda = delta [mm].
-  struct LoadFactorPath
-  {
-    double lambda_final = 0;      ///< the final push [mm]
-    double h_nominal = 0;         ///< a nominal step of it [mm]
-    int max_steps = 0;            ///< steps before the run gives up
-    std::string target = "push";  ///< the stage lambda runs (messages)
-    std::string symbol = "delta"; ///< lambda's name (messages)
-  };
+  // --- PathFollowing.cpp ---
+
+  bool path_following();
+  /// A displacement-controlled step of the load factor (pseudo-time: its
+  /// change).
+  solver::SolveReport load_factor_step(double lambda_from, double lambda_to);
+
+  // --- DissipationControl.cpp ---
+
   /// What dissipation control needs of a stage: its load factor lambda
   /// [mm] (the push delta, the corrosion depth x), how it is set and what
   /// works on it.
@@ -111,45 +152,26 @@ private:
     std::function<void(int iterations, int cuts, int k, double lambda)> record;
     std::function<bool()> without_softening; ///< the stage's run if nothing softens
   };
-  /// Sets the push's constraints (before a PathFollower takes the solver's
-  /// problem) and `p`; false, with the summary's message naming `control`,
-  /// if the final push is not positive.
-  bool begin_load_factor_path(const std::string& control, LoadFactorPath& p);
-  /// False, with the summary's message, once step k is past the limit.
-  bool within_step_limit(const LoadFactorPath& p, int k, double lambda, const std::string& control);
-  /// A displacement-controlled step of the load factor (pseudo-time: its
-  /// change).
-  solver::SolveReport load_factor_step(double lambda_from, double lambda_to);
-  bool path_following();
   /// Dissipation control (loading.control = "dissipation" or "auto") of
-  /// the push and of the corrosion stage.
+  /// the push.
   bool push_by_dissipation();
-  bool corrode_by_dissipation();
+  /// Dissipation control of a stage: hands its steps to DissipationSteps.
   bool by_dissipation(const DissipationStage& stage);
-  /// The energy released by the joints to full softening, summed over the
-  /// processes [N mm].
-  double fracture_energy();
-  /// The energy the joints dissipated from the committed state to the last
-  /// evaluation, summed over the processes [N mm]: all layers, softening
-  /// layers.
-  std::array<double, 2> dissipation();
+  /// The steps of one stage under dissipation control, one member function
+  /// per part of a step.
+  class DissipationSteps;
 
-  /// The pseudo-time increment of the step, for every set of joints.
-  void set_time_increment(double dt);
-  /// Commits the converged state of a step (recorded before).
-  void commit();
-  /// Back to the committed state.
-  void revert();
-  /// After a failed try (reverted): false (with the summary's message) if
-  /// the step cannot be cut again or a signal stops the run; otherwise
-  /// halves the increment, counts the cut and says so. `what` names the
-  /// step, `size(increment)` words its size.
-  template <class Words>
-  bool cut_back(Stepper& stepper, int& cuts, const std::string& what, const std::string& reason,
-                Words size);
-  /// Whether a signal asked to stop (agreed on by all processes); first an
-  /// error of any process since the last agreement is thrown on all.
-  bool stop_requested();
+  // --- CorrosionStage.cpp ---
+
+  /// The corrosion stage: steps of the corrosion depth, constraints of step 0.
+  bool corrode();
+  /// The corrosion stage under dissipation control.
+  bool corrode_by_dissipation();
+  /// Records converged corrosion step k at stage parameter s (before its
+  /// commit): corrosion.csv, the summary, and at the end of the stage the
+  /// push's start. `numbered`: the progress line shows k of the stage's
+  /// nominal steps.
+  void record_corrosion(int iterations, int cuts, int k, double s, bool numbered);
 
   specimen::Scenario& _scenario;
   specimen::Corrosion& _corrosion;
@@ -163,9 +185,4 @@ private:
   MPI_Comm _comm;                  ///< the run's processes
   solver::Vector _x, _x_committed; ///< whole-model displacement [mm]: trial and committed
 };
-
-/// Test hook (tests/e2e/test_error_on_one_process_ends_all.py, StepLoop.cpp): with
-/// PUSHOUT_TEST_FAIL_AT=setup, process PUSHOUT_TEST_FAIL_RANK alone throws
-/// at the end of the set-up.
-void test_failure_at_setup(MPI_Comm comm);
 } // namespace pushout::stepping

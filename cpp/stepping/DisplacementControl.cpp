@@ -1,0 +1,171 @@
+// Displacement control (loading.control = "displacement"): nominal steps of
+// the load parameter, each tried whole and, when Newton fails, retried from
+// the committed state in halves, grown back after easy steps (Stepper.h;
+// docs/numerics.md, "Adaptive stepping"). Step 0 and the corrosion stage
+// run the same steps. An unloading segment of the push that ends where the
+// force falls to zero (docs/results.md, "Unload and reload") ends at the
+// load parameter ZeroForceSearch.h finds; its tries are solved here.
+#include "StepLoop.h"
+#include "StepLoopShared.h"
+#include "ZeroForceSearch.h"
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <optional>
+#include <sstream>
+
+namespace pushout::stepping
+{
+using namespace detail;
+
+namespace
+{
+/// Unloading at zero force (loading.unload_to): the force's zero is found
+/// to this fraction of the largest push force so far (ZeroForceSearch.h).
+constexpr double zero_force_tolerance = 1e-6;
+} // namespace
+
+/// Displacement control of the push.
+bool StepLoop::push_by_displacement()
+{
+  const int steps = _scenario.steps();
+  return nominal_steps(
+      {"load step", steps, [&](double s) { _scenario.apply_load(s, _equilibrium); },
+       [&](double s0, double s1) { return _scenario.time_at(s1) - _scenario.time_at(s0); },
+       [&](int iterations, int cuts, int k, double)
+       {
+         _recorder.record(_x, iterations, cuts, k, steps);
+         ++_summary.steps;
+       },
+       true});
+}
+
+/// Each nominal step is tried whole and cut in halves (from the committed
+/// state) when Newton fails; increments grow back after easy convergence
+/// (Stepper.h).
+bool StepLoop::nominal_steps(const Stage& stage)
+{
+  const int steps = stage.steps;
+  Stepper stepper(_max_cuts, easy_iterations);
+  const Words fraction = [](double increment)
+  {
+    std::ostringstream s;
+    s << increment << " of a step";
+    return s.str();
+  };
+  // The load force of the committed state and its largest magnitude so far
+  // [N], for unloading that ends at zero force.
+  const model::Model& model = _equilibrium.model();
+  double P = stage.zero_force_ends ? _scenario.load_force(model) : 0.0, P_peak = std::abs(P);
+  double s = 0.0;
+  for (int k = 1; k <= steps; ++k)
+  {
+    int cuts = 0;
+    while (s < double(k) - step_tolerance)
+    {
+      if (stop_requested())
+        return false;
+      const double s_try = stepper.next(s, double(k));
+      stage.apply(s_try);
+      set_time_increment(stage.duration(s, s_try));
+      _equilibrium.apply_constraints(_x);
+      const solver::SolveReport rep = _solver.solve(_x);
+      _summary.newton_iterations += rep.iterations;
+      if (rep.converged && stage.zero_force_ends)
+      {
+        const double P_try = _scenario.load_force(model);
+        if (_scenario.ends_at_zero_force(k) && P >= 0 && P_try < 0)
+        {
+          // The device cannot pull: the unloading ends where P = 0, and
+          // the next segment starts there.
+          revert();
+          double s_zero;
+          if (!zero_force_step(stage, k, cuts, s, P, s_try, P_try,
+                               zero_force_tolerance * std::max(P_peak, 1e-300), s_zero))
+            return false;
+          const double delta = _scenario.prescribed_at(s_zero);
+          _summary.permanent_displacements_mm.push_back(delta);
+          if (_report.talk())
+            std::cout << "step " << k << ": the push force fell to zero at delta = " << delta * 1e3
+                      << " um (permanent displacement); the unloading ends there" << std::endl;
+          s = _scenario.end_segment_at(k, s_zero);
+          k = int(std::lround(s));
+          P = _scenario.load_force(model);
+          break;
+        }
+        P = P_try;
+        P_peak = std::max(P_peak, std::abs(P));
+      }
+      if (rep.converged)
+      {
+        stage.record(rep.iterations, cuts, k, s_try); // before the commit: StepRecorder.h
+        commit();
+        s = s_try;
+        stepper.converged(rep.iterations);
+        continue;
+      }
+      revert();
+      const std::string what =
+          steps == 1 ? stage.step_name : stage.step_name + " " + std::to_string(k);
+      if (!cut_back(stepper, cuts, what, rep.reason, fraction))
+        return false;
+    }
+  }
+  return true;
+}
+
+/// The search (find_zero_force) chooses the load parameters; each try here
+/// is one step from the committed state at s0 (a path-dependent law sees
+/// one increment, as in the try that overshot), reverted before the next.
+bool StepLoop::zero_force_step(const Stage& stage, int k, int cuts, double s0, double P0, double s1,
+                               double P1, double tol, double& s)
+{
+  const double s_committed = s0;
+  solver::SolveReport rep; // of the last try
+  bool stopped = false;    // a signal stopped the run before a try
+  bool tried = false;      // the state holds the last try's converged step
+  const auto try_at = [&](double s_try) -> std::optional<double>
+  {
+    if (tried)
+      revert();
+    tried = false;
+    if (stop_requested())
+    {
+      stopped = true;
+      return std::nullopt;
+    }
+    stage.apply(s_try);
+    set_time_increment(stage.duration(s_committed, s_try));
+    _equilibrium.apply_constraints(_x);
+    rep = _solver.solve(_x);
+    _summary.newton_iterations += rep.iterations;
+    if (!rep.converged)
+    {
+      revert();
+      return std::nullopt;
+    }
+    tried = true;
+    return _scenario.load_force(_equilibrium.model());
+  };
+  const ZeroForceResult zero = find_zero_force(s0, P0, s1, P1, tol, try_at);
+  s = zero.s;
+  switch (zero.outcome)
+  {
+  case ZeroForceResult::Outcome::found:
+    stage.record(rep.iterations, cuts, k, s); // before the commit: StepRecorder.h
+    commit();
+    return true;
+  case ZeroForceResult::Outcome::try_failed:
+    if (!stopped) // else the summary says so
+      _summary.message = "load step " + std::to_string(k) +
+                         ": a try at the zero force of the unloading did not converge (" +
+                         rep.reason + "); stopped";
+    return false;
+  default:
+    revert();
+    _summary.message = "load step " + std::to_string(k) + ": the zero force of the unloading was " +
+                       "not found in " + std::to_string(zero.tries) + " tries; stopped";
+    return false;
+  }
+}
+} // namespace pushout::stepping

@@ -1,0 +1,353 @@
+// Dissipation control (loading.control = "dissipation" or "auto"; Gutierrez
+// 2004; Verhoosel, Remmers & Gutierrez 2009; docs/numerics.md,
+// "Dissipation control"): steps of the load factor lambda while the joints
+// dissipate little, steps of the energy they release through a brittle
+// event (solver/PathFollower.h). For the push here, for the corrosion
+// stage in CorrosionStage.cpp; the switching between the two kinds of
+// step in StepLoop::DissipationSteps, one member function per part of a
+// step. The energies are summed over the processes here, the one control
+// that needs them.
+#include "../common/petsc_check.h"
+#include "StepLoop.h"
+#include "StepLoopShared.h"
+#include <array>
+#include <iostream>
+#include <sstream>
+
+namespace pushout::stepping
+{
+using namespace detail;
+
+namespace
+{
+/// Dissipation control: a step of delta that dissipates too much is halved
+/// down to this fraction of a step before energy steps take over.
+constexpr double min_probe_increment = 1.0 / 16;
+/// Dissipation control: steps of delta again after an energy step in which
+/// the softening layers released less than this fraction of its increment
+/// (the slip term of the control did the rest), once the energy steps have
+/// released more than one increment (the event is over, not beginning).
+constexpr double released_to_return = 0.25;
+
+/// The energy released by the joints to full softening, summed over the
+/// processes [N mm].
+double fracture_energy(model::Model& model)
+{
+  double local = 0, total = 0;
+  for (const interface::Interface* joints : model.joints())
+    local += joints->fracture_energy();
+  MPI_Allreduce(&local, &total, 1, MPI_DOUBLE, MPI_SUM, model.comm());
+  return total;
+}
+
+/// The energy the joints dissipated from the committed state to the last
+/// evaluation, summed over the processes [N mm]: all layers, softening
+/// layers.
+std::array<double, 2> dissipation(model::Model& model)
+{
+  std::array<double, 2> local = {0, 0}, total;
+  for (const interface::Interface* joints : model.joints())
+  {
+    local[0] += joints->dissipation();
+    local[1] += joints->dissipation(true);
+  }
+  MPI_Allreduce(local.data(), total.data(), 2, MPI_DOUBLE, MPI_SUM, model.comm());
+  return total;
+}
+} // namespace
+
+/// The steps of a stage under dissipation control from lambda = 0 to its
+/// end (StepLoop::by_dissipation says which step is taken when): the state
+/// the loop keeps between steps, and one member function per part of a
+/// step.
+class StepLoop::DissipationSteps
+{
+public:
+  /// dG_nominal: the energy increment of a whole energy step [N mm].
+  DissipationSteps(StepLoop& loop, const DissipationStage& stage, double dG_nominal);
+  /// All steps; false if one failed or a signal stopped the run (the
+  /// summary's message says which).
+  bool run();
+
+private:
+  /// One try of a step from the committed state at _lambda.
+  struct Try
+  {
+    solver::SolveReport rep;
+    double lambda_new;            ///< the load factor it reached [mm]
+    bool energy_step;             ///< a step of energy (else of lambda)
+    double dG_step;               ///< the increment of an energy step [N mm]
+    bool too_dissipative = false; ///< a converged step of lambda reverted: it dissipated too much
+  };
+  /// An energy step if the last steps chose one (a step of lambda instead
+  /// if it would move lambda too far), else a step of lambda.
+  Try try_step(const std::string& name);
+  /// A step of energy dG_step [N mm] from the committed state; lambda_new:
+  /// the load factor it reached.
+  solver::SolveReport energy_step(double& lambda_new, double dG_step);
+  /// A step of lambda from lambda_from to lambda_to.
+  solver::SolveReport lambda_step(double lambda_from, double lambda_to);
+  /// After a converged step of lambda to lambda_new: whether it dissipated
+  /// more than dG_nominal beyond its work (then reverted, and the next try
+  /// a shorter step of lambda or an energy step).
+  bool too_dissipative(const std::string& name, double lambda_new);
+  /// After a failed try: reverted and cut; false if it cannot be cut again
+  /// or a signal stops the run. Chooses the kind of the next try.
+  bool failed(const std::string& name, const Try& t);
+  /// Records and commits converged step k, and chooses the kind of the
+  /// next.
+  void accept(int k, const std::string& name, const Try& t);
+  /// The stage's mean jump at the state in _x [mm].
+  double mean_jump();
+  void say(const std::string& what);
+
+  StepLoop& _loop;
+  const DissipationStage& _stage;
+  const double _lambda_final, _h_nominal; ///< the stage's final lambda, a nominal step [mm]
+  const double _dG_nominal;               ///< [N mm]
+  /// Controls the energy released + beta times the mean jump.
+  solver::PathFollower _path;
+  const FactorizationCount _count{_loop._summary, _path};
+  const Words _step_words, _energy_words;
+  Stepper _by_lambda, _energy;
+  bool _by_energy = false;       ///< the kind of the next step
+  double _released_in_event = 0; ///< by the softening layers in the energy steps so far [N mm]
+  double _lambda = 0.0;          ///< of the committed state [mm]
+  double _P = 0;                 ///< the force on lambda at the committed state [N]
+  double _jump = 0;              ///< the mean jump at the committed state [mm]
+  double _jump_rate = 0;         ///< d jump / d lambda of the last step
+  int _cuts = 0;                 ///< of the step being tried
+};
+
+/// Dissipation control of the push: the push delta is the load factor, the
+/// mean axial slip keeps an elastic energy step controllable, P works on it.
+bool StepLoop::push_by_dissipation()
+{
+  LoadFactorPath p;
+  if (!begin_load_factor_path("dissipation control", p))
+    return false;
+  const solver::Vector slip(_equilibrium.model().mean_axial_slip_functional());
+  return by_dissipation({"load step", "a push of", p,
+                         [&](double lambda) { _scenario.apply_load_factor(lambda, _equilibrium); },
+                         0.0, 1.0, slip, [&] { return _scenario.load_force(_equilibrium.model()); },
+                         [&](int iterations, int cuts, int k, double)
+                         {
+                           _recorder.record(_x, iterations, cuts, k, 0);
+                           ++_summary.steps;
+                         },
+                         [&] { return push_by_displacement(); }});
+}
+
+/// Dissipation control of a stage (Verhoosel, Remmers & Gutierrez 2009):
+/// steps of the load factor lambda as under displacement control while the
+/// joints dissipate little; steps of the energy they release (path
+/// following, solver/PathFollower.h: the softening layers'
+/// Interface::energy_release plus beta times the stage's mean jump, beta
+/// set so that where nothing softens an energy step moves lambda by about a
+/// step of lambda) through a brittle event. A step of lambda hands over to
+/// energy steps when it fails, or when it dissipates D (the laws' own
+/// account, Interface::dissipation) more than the dissipation increment
+/// dG = fracture energy / dissipation_steps and more than dG beyond the
+/// work W = 1/2 (P0 + P1) d lambda of the force P on lambda: a brittle
+/// event that fed on the elastic energy stored, where displacement control
+/// jumps (snap-through) or stalls. Such a step is first halved, down to
+/// min_probe_increment: before a peak a shorter step dissipates less,
+/// through a snap-back it does not. Energy steps hand back to steps of
+/// lambda once the event is over (released_to_return), or when one would
+/// move lambda by more than a step of lambda. Failed steps are halved (each
+/// kind its own Stepper.h). Without softening layers (dG = 0) the stage
+/// runs as without dissipation control.
+bool StepLoop::by_dissipation(const DissipationStage& stage)
+{
+  const double dG_nominal = fracture_energy(_equilibrium.model()) / _dissipation_steps; // [N mm]
+  if (!(dG_nominal > 0))
+  {
+    if (_report.talk())
+      std::cout << "dissipation control: no joint layer softens (no fracture energy); the "
+                << stage.path.target << " runs under displacement control" << std::endl;
+    return stage.without_softening();
+  }
+  // Steps of lambda here must stay on the branch of the committed state:
+  // the loop, not Newton, passes the brittle events. They start from the
+  // committed state's tangent whatever solver.first_tangent says (the last
+  // converged tangent may carry Newton to another branch).
+  const StartTangent start_tangent{_solver};
+  DissipationSteps steps(*this, stage, dG_nominal);
+  return steps.run();
+}
+
+StepLoop::DissipationSteps::DissipationSteps(StepLoop& loop, const DissipationStage& stage,
+                                             double dG_nominal)
+    : _loop(loop), _stage(stage), _lambda_final(stage.path.lambda_final),
+      _h_nominal(stage.path.h_nominal), _dG_nominal(dG_nominal),
+      _path(solver::PathFollower::by_energy(loop._solver, stage.control)),
+      _step_words(sized(stage.increment_words, _h_nominal, "mm")),
+      _energy_words(sized("a release of", dG_nominal, "N mm")),
+      _by_lambda(loop._max_cuts, easy_iterations), _energy(loop._max_cuts, easy_bordered_iterations)
+{
+  _path.set_load_difference(stage.load_difference);
+  _jump = mean_jump();
+  _P = stage.force();
+}
+
+bool StepLoop::DissipationSteps::run()
+{
+  for (int k = 1; _lambda < _lambda_final - step_tolerance * _lambda_final;)
+  {
+    if (_loop.stop_requested() ||
+        !_loop.within_step_limit(_stage.path, k, _lambda, "dissipation control"))
+      return false;
+    const std::string name = _stage.step_name + " " + std::to_string(k);
+    const Try t = try_step(name);
+    if (t.too_dissipative)
+      continue;
+    if (!t.rep.converged)
+    {
+      if (!failed(name, t))
+        return false;
+      continue;
+    }
+    accept(k, name, t);
+    ++k;
+  }
+  return true;
+}
+
+StepLoop::DissipationSteps::Try StepLoop::DissipationSteps::try_step(const std::string& name)
+{
+  Try t{{}, _lambda, _by_energy, _energy.increment() * _dG_nominal};
+  bool overshot = false;
+  if (_by_energy)
+  {
+    t.rep = energy_step(t.lambda_new, t.dG_step);
+    if (t.rep.converged && (t.lambda_new > _lambda + _h_nominal || t.lambda_new > _lambda_final))
+    {
+      // Past a nominal step of lambda (the joints have little left to
+      // release) or its final value: a step of lambda instead, taken
+      // whatever it dissipates, and steps of lambda again.
+      _loop.revert();
+      t.energy_step = _by_energy = false;
+      overshot = true;
+      _by_lambda = Stepper(_loop._max_cuts, easy_iterations); // a whole step
+      const std::string& lambda = _stage.path.symbol;
+      say(name + ": a step of energy would move " + lambda + " by more than a step of " + lambda +
+          "; displacement control");
+    }
+  }
+  if (!t.energy_step)
+  {
+    t.lambda_new = _lambda + _by_lambda.increment() * _h_nominal;
+    if (t.lambda_new > _lambda_final * (1 - step_tolerance))
+      t.lambda_new = _lambda_final;
+    t.rep = lambda_step(_lambda, t.lambda_new);
+    _loop._summary.newton_iterations += t.rep.iterations;
+    t.too_dissipative = t.rep.converged && !overshot && too_dissipative(name, t.lambda_new);
+  }
+  return t;
+}
+
+solver::SolveReport StepLoop::DissipationSteps::energy_step(double& lambda_new, double dG_step)
+{
+  // beta such that an elastic energy step (G = 0) moves lambda by about a
+  // nominal step: dG_nominal = beta jump_rate h_nominal. No Newton
+  // iteration moves lambda by more than the shortest probe of a step of
+  // lambda: at the start of an event the control's linearisation sees few
+  // of the points that will soften, and would overshoot.
+  _path.set_slip_weight(_jump_rate > 0 ? _dG_nominal / (_jump_rate * _h_nominal) : 0.0);
+  _loop.set_time_increment(_h_nominal * _stage.time_per_lambda);
+  const solver::SolveReport rep =
+      _path.step(_loop._x, lambda_new, dG_step, _stage.set_load, min_probe_increment * _h_nominal);
+  _loop._summary.newton_iterations += rep.iterations;
+  return rep;
+}
+
+solver::SolveReport StepLoop::DissipationSteps::lambda_step(double lambda_from, double lambda_to)
+{
+  _stage.set_load(lambda_to);
+  _loop.set_time_increment((lambda_to - lambda_from) * _stage.time_per_lambda);
+  _loop._equilibrium.apply_constraints(_loop._x);
+  return _loop._solver.solve(_loop._x);
+}
+
+bool StepLoop::DissipationSteps::too_dissipative(const std::string& name, double lambda_new)
+{
+  const auto [D, D_softening] = dissipation(_loop._equilibrium.model());
+  const double P_new = _stage.force();
+  const double work = 0.5 * (_P + P_new) * (lambda_new - _lambda);
+  if (!(D_softening > _dG_nominal && D > work + _dG_nominal))
+    return false;
+  // Shorter steps first: before a peak the dissipation shrinks with the
+  // step; through a snap-back it does not.
+  _loop.revert();
+  std::ostringstream s;
+  s << name << ": " << _stage.increment_words << " " << lambda_new - _lambda << " mm dissipated "
+    << D << " N mm, " << D - work << " N mm more than its work; ";
+  _by_energy = _by_lambda.increment() <= min_probe_increment || !_by_lambda.failed();
+  s << (_by_energy ? "dissipation control" : "a shorter step");
+  say(s.str());
+  return true;
+}
+
+bool StepLoop::DissipationSteps::failed(const std::string& name, const Try& t)
+{
+  _loop.revert();
+  Stepper& stepper = t.energy_step ? _energy : _by_lambda;
+  if (!_loop.cut_back(stepper, _cuts, (t.energy_step ? "dissipation-controlled " : "") + name,
+                      t.rep.reason, t.energy_step ? _energy_words : _step_words))
+    return false;
+  // A step of lambda that failed short (below min_probe_increment) is
+  // retried under dissipation control; a step of energy that nothing along
+  // the path dissipates (singular control) under displacement control.
+  if (t.energy_step)
+    _by_energy = t.rep.reason.find("singular") == std::string::npos;
+  else if (_by_lambda.increment() < min_probe_increment)
+  {
+    _by_energy = true;
+    say(name + ": dissipation control");
+  }
+  return true;
+}
+
+void StepLoop::DissipationSteps::accept(int k, const std::string& name, const Try& t)
+{
+  _stage.record(t.rep.iterations, _cuts, k, t.lambda_new); // before the commit: StepRecorder.h
+  if (t.energy_step)
+    ++_loop._summary.dissipation_steps;
+  _loop.commit();
+  (t.energy_step ? _energy : _by_lambda).converged(t.rep.iterations);
+  if (t.energy_step)
+  {
+    const double released = dissipation(_loop._equilibrium.model())[1];
+    _released_in_event += released;
+    if (_released_in_event > _dG_nominal && released < released_to_return * t.dG_step)
+    {
+      // The event is over: whole steps of lambda again (cut if they fail).
+      _by_energy = false;
+      _by_lambda = Stepper(_loop._max_cuts, easy_iterations);
+      say(name + ": the softening layers released little in the step; displacement control");
+    }
+  }
+  else
+    _released_in_event = 0;
+  _P = _stage.force();
+  const double jump_new = mean_jump();
+  if (t.lambda_new > _lambda && jump_new > _jump)
+    _jump_rate = (jump_new - _jump) / (t.lambda_new - _lambda);
+  _jump = jump_new;
+  _lambda = t.lambda_new;
+  _cuts = 0;
+}
+
+double StepLoop::DissipationSteps::mean_jump()
+{
+  double s;
+  petsc::check(VecDot(_stage.control, _loop._x, &s), "VecDot");
+  return s;
+}
+
+void StepLoop::DissipationSteps::say(const std::string& what)
+{
+  if (_loop._report.talk())
+    std::cout << what << std::endl;
+}
+} // namespace pushout::stepping

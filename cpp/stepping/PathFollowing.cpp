@@ -1,0 +1,100 @@
+// Path following (loading.control = "arc_length"): indirect displacement
+// control of the push by the mean axial slip of the interface (de Borst
+// 1987), through a snap-back where the push delta must decrease
+// (solver/PathFollower.h; docs/numerics.md, "Path following").
+#include "StepLoop.h"
+#include "StepLoopShared.h"
+#include <algorithm>
+#include <cmath>
+
+namespace pushout::stepping
+{
+using namespace detail;
+
+solver::SolveReport StepLoop::load_factor_step(double lambda_from, double lambda_to)
+{
+  _scenario.apply_load_factor(lambda_to, _equilibrium);
+  set_time_increment(lambda_to - lambda_from);
+  _equilibrium.apply_constraints(_x);
+  return _solver.solve(_x);
+}
+
+/// Path following (solver/PathFollower.h) in steps of length
+/// h = lambda_final / steps in the plane (lambda, s) of the push delta and
+/// the mean slip [mm]. The first step is displacement-controlled (delta =
+/// h); each later one prescribes the slip increment of the previous step
+/// scaled to length h,  ds = ds_prev h / |(dlambda_prev, ds_prev)|,  which
+/// depends only on converged states (not on the tangent at a kink of the
+/// laws). Failed steps are halved, easy ones grow back (Stepper.h). The step
+/// that would pass lambda_final is replaced by a displacement-controlled step
+/// to exactly lambda_final.
+bool StepLoop::path_following()
+{
+  LoadFactorPath p;
+  if (!begin_load_factor_path("path following", p))
+    return false;
+  const solver::Vector a(_equilibrium.model().mean_axial_slip_functional());
+  solver::PathFollower path(_solver, a);
+  const FactorizationCount count{_summary, path};
+  const double lambda_final = p.lambda_final, h_nominal = p.h_nominal; // [mm]
+  const auto set_load = [&](double lambda) { _scenario.apply_load_factor(lambda, _equilibrium); };
+  const auto length = sized("a length of", h_nominal, "mm");
+  Stepper stepper(_max_cuts, easy_bordered_iterations);
+  double lambda = 0.0, slip = path.control(_x);
+  double d_lambda_prev = 0.0, d_slip_prev = 0.0; // the last converged step
+  int cuts = 0;
+  for (int k = 1; lambda < lambda_final;)
+  {
+    if (stop_requested() || !within_step_limit(p, k, lambda, "path following"))
+      return false;
+    const double h = stepper.increment() * h_nominal;
+    double lambda_new = lambda;
+    solver::SolveReport rep;
+    if (k == 1)
+    {
+      lambda_new = std::min(h, lambda_final);
+      rep = load_factor_step(lambda, lambda_new);
+    }
+    else
+    {
+      const double d_slip = d_slip_prev * h / std::hypot(d_lambda_prev, d_slip_prev);
+      set_time_increment(h);
+      rep = path.step(_x, lambda_new, d_slip, set_load);
+      if (rep.converged && lambda_new > lambda_final)
+      {
+        _summary.newton_iterations += rep.iterations;
+        revert();
+        lambda_new = lambda_final;
+        rep = load_factor_step(lambda, lambda_new);
+      }
+    }
+    _summary.newton_iterations += rep.iterations;
+    if (rep.converged)
+    {
+      const double slip_new = path.control(_x);
+      if (!(slip_new > slip))
+      {
+        revert();
+        _summary.message = "path following: the mean slip did not grow in step " +
+                           std::to_string(k) + "; the push cannot be followed by slip control";
+        return false;
+      }
+      _recorder.record(_x, rep.iterations, cuts, k, 0); // before the commit: StepRecorder.h
+      ++_summary.steps;
+      commit();
+      d_lambda_prev = lambda_new - lambda;
+      d_slip_prev = slip_new - slip;
+      lambda = lambda_new;
+      slip = slip_new;
+      stepper.converged(rep.iterations);
+      cuts = 0;
+      ++k;
+      continue;
+    }
+    revert();
+    if (!cut_back(stepper, cuts, "path-following step " + std::to_string(k), rep.reason, length))
+      return false;
+  }
+  return true;
+}
+} // namespace pushout::stepping

@@ -1,0 +1,65 @@
+// What the files of the step loop (StepLoop.cpp and one file per control)
+// share beyond StepLoop.h: the stepping constants more than one control
+// uses, the words of cut_back's messages, and guards of the solver's state.
+// Internal to cpp/stepping/.
+#pragma once
+
+#include "../output/Summary.h"
+#include "../solver/LoadStepSolver.h"
+#include "../solver/PathFollower.h"
+#include <functional>
+#include <sstream>
+#include <string>
+
+namespace pushout::stepping::detail
+{
+/// A try that converged in at most this many Newton iterations is easy;
+/// two easy tries in a row double the increment again (Stepper.h).
+constexpr int easy_iterations = 4;
+/// The same for the steps of the bordered system (arc length, and the energy
+/// steps of dissipation control): their Newton iterations close the control
+/// equation too (and energy steps start from the committed state's tangent,
+/// StartTangent), so an easy one takes a few more (arc length on brittle
+/// adhesion: 5 per step). With 4, a step cut once never grew back.
+constexpr int easy_bordered_iterations = 6;
+/// The load parameter reaches a nominal step within this tolerance.
+constexpr double step_tolerance = 1e-12;
+/// Path following: snap-back makes the path longer than the final push, so
+/// a run whose path never reaches it stops after path_steps_per_step x the
+/// nominal steps + path_steps_extra.
+constexpr int path_steps_per_step = 20;
+constexpr int path_steps_extra = 100;
+
+/// Words for an increment of a step in `scale` units (cut_back's messages):
+/// "a push of 0.025 mm".
+inline std::function<std::string(double)> sized(std::string what, double scale, std::string unit)
+{
+  return [=](double increment)
+  {
+    std::ostringstream s;
+    s << what << " " << increment * scale << " " << unit;
+    return s.str();
+  };
+}
+
+/// Adds a path follower's factorisations to the summary on every way out of
+/// a loop that uses it.
+struct FactorizationCount
+{
+  output::Summary& summary;
+  const solver::PathFollower& path;
+  ~FactorizationCount() { summary.factorizations += path.factorizations(); }
+};
+
+/// While it lives, each Newton solve starts from the tangent at its initial
+/// guess (solver.first_tangent = "current").
+struct StartTangent
+{
+  solver::LoadStepSolver& solver;
+  const bool converged = solver.first_tangent_converged();
+  explicit StartTangent(solver::LoadStepSolver& s) : solver(s) { solver.set_first_tangent(false); }
+  ~StartTangent() { solver.set_first_tangent(converged); }
+  StartTangent(const StartTangent&) = delete;
+  StartTangent& operator=(const StartTangent&) = delete;
+};
+} // namespace pushout::stepping::detail

@@ -1,0 +1,32 @@
+// Test hooks, not scene keys: environment variables that make one process
+// fail, or a step slow, where the end-to-end tests need it
+// (tests/e2e/test_error_on_one_process_ends_all.py,
+// tests/e2e/test_signals_under_mpirun_recorded.py). Unset, they do nothing.
+//
+// With PUSHOUT_TEST_FAIL_RANK=r and PUSHOUT_TEST_FAIL_AT=`at`, process r
+// alone throws, as an error found on one process only would: "setup" at
+// the end of the set-up (driver/Run.cpp), "step" after two load steps,
+// "collective" there too but where the others next wait in a collective
+// that is no agreement (common/mpi_errors.h: the run ends with MPI_Abort
+// after abandon_after_s). With PUSHOUT_TEST_SLOW_STEP_S=t, from the third
+// load step on, each step spends t seconds without looking at signals, as
+// a long factorisation does (the tests of a stop that cannot wait for the
+// step).
+#pragma once
+
+#include <mpi.h>
+
+namespace pushout::stepping
+{
+/// PUSHOUT_TEST_FAIL_AT=setup: process PUSHOUT_TEST_FAIL_RANK alone throws
+/// at the end of the set-up.
+void test_failure_at_setup(MPI_Comm comm);
+
+/// Before the agreement between tries (StepLoop::stop_requested), after
+/// `steps` load steps: the slow step (PUSHOUT_TEST_SLOW_STEP_S), and
+/// PUSHOUT_TEST_FAIL_AT=step.
+void test_hooks_before_agreement(int steps, MPI_Comm comm);
+
+/// After that agreement: PUSHOUT_TEST_FAIL_AT=collective.
+void test_hooks_after_agreement(int steps, MPI_Comm comm);
+} // namespace pushout::stepping

@@ -1,0 +1,84 @@
+// The cut and regrowth of load steps (stepping/Stepper.h): a failed try
+// halves the increment down to 2^-max_cuts of a nominal step, then the step
+// cannot be cut again; two easy tries in a row double it back, never beyond
+// one nominal step; the next try never passes its nominal step.
+#include "stepping/Stepper.h"
+#include <gtest/gtest.h>
+
+using pushout::stepping::Stepper;
+
+namespace
+{
+constexpr int easy = 4; // Newton iterations of an easy try
+} // namespace
+
+TEST(Stepper, HalvesDownToTwoToTheMinusMaxCutsThenRefuses)
+{
+  Stepper stepper(3, easy);
+  EXPECT_EQ(stepper.increment(), 1.0);
+  EXPECT_TRUE(stepper.failed());
+  EXPECT_EQ(stepper.increment(), 0.5);
+  EXPECT_TRUE(stepper.failed());
+  EXPECT_EQ(stepper.increment(), 0.25);
+  EXPECT_TRUE(stepper.failed());
+  EXPECT_EQ(stepper.increment(), 0.125);
+  EXPECT_FALSE(stepper.failed()); // 2^-3: no further cut
+  EXPECT_EQ(stepper.increment(), 0.125);
+  EXPECT_FALSE(stepper.failed());
+}
+
+TEST(Stepper, NoCutsAllowedRefusesTheFirstFailure)
+{
+  Stepper stepper(0, easy);
+  EXPECT_FALSE(stepper.failed());
+  EXPECT_EQ(stepper.increment(), 1.0);
+}
+
+TEST(Stepper, TwoEasyTriesDoubleBackNeverBeyondOne)
+{
+  Stepper stepper(5, easy);
+  stepper.failed();
+  stepper.failed();
+  ASSERT_EQ(stepper.increment(), 0.25);
+  stepper.converged(easy);
+  EXPECT_EQ(stepper.increment(), 0.25); // one easy try is not enough
+  stepper.converged(1);
+  EXPECT_EQ(stepper.increment(), 0.5);
+  stepper.converged(easy);
+  stepper.converged(easy);
+  EXPECT_EQ(stepper.increment(), 1.0);
+  for (int i = 0; i < 6; ++i)
+    stepper.converged(1);
+  EXPECT_EQ(stepper.increment(), 1.0); // a nominal step at most
+}
+
+TEST(Stepper, AHardTryOrAFailureStartsTheEasyCountAgain)
+{
+  Stepper stepper(5, easy);
+  stepper.failed();
+  stepper.failed();
+  stepper.converged(easy);
+  stepper.converged(easy + 1); // hard
+  stepper.converged(easy);
+  EXPECT_EQ(stepper.increment(), 0.25);
+  stepper.converged(easy);
+  EXPECT_EQ(stepper.increment(), 0.5);
+
+  stepper.converged(easy);
+  stepper.failed(); // to 0.25, the easy try forgotten
+  stepper.converged(easy);
+  EXPECT_EQ(stepper.increment(), 0.25);
+  stepper.converged(easy);
+  EXPECT_EQ(stepper.increment(), 0.5);
+}
+
+TEST(Stepper, NextClampsAtTheTarget)
+{
+  Stepper stepper(5, easy);
+  EXPECT_EQ(stepper.next(0.0, 1.0), 1.0);
+  EXPECT_EQ(stepper.next(2.5, 3.0), 3.0); // a whole step would pass the target
+  stepper.failed();
+  stepper.failed();
+  EXPECT_EQ(stepper.next(2.5, 3.0), 2.75);
+  EXPECT_EQ(stepper.next(2.75, 3.0), 3.0);
+}
