@@ -51,9 +51,6 @@ public:
   int signal;
 };
 
-/// How long a signal between runs may wait for the fit to see it [s].
-constexpr double stop_grace_s = 5;
-
 /// A free value: its key, start, bounds and the scale TAO divides it by.
 struct Free
 {
@@ -788,7 +785,7 @@ int fit(const FitOptions& opt)
   std::vector<double> x;
   try
   {
-    const interrupt::Phase phase("fit", stop_grace_s);
+    const interrupt::Phase phase("fit", interrupt::stop_grace_s);
     check(TaoSolve(tao), "TaoSolve");
     // At the optimum: residuals and the Jacobian (in the keys' units below).
     x = problem.values(solver.X);

@@ -29,9 +29,6 @@ using driver::RunOutcome;
 using driver::Simulation;
 namespace
 {
-/// How long a signal between cases may wait for the loop to see it [s].
-constexpr double stop_grace_s = 5;
-
 /// The outcome of one case, as its group's first process knows it.
 struct CaseResult : RunOutcome
 {
@@ -358,7 +355,7 @@ int sweep(const SweepOptions& opt)
   // Between cases a signal waits for the loop to see it (at most a case's
   // set-up: the run's own phases apply inside a case), then the table of
   // what ran is written.
-  std::optional<interrupt::Phase> phase(std::in_place, "sweep", stop_grace_s);
+  std::optional<interrupt::Phase> phase(std::in_place, "sweep", interrupt::stop_grace_s);
   std::vector<CaseResult> mine;
   std::unique_ptr<Simulation> simulation; // the group's last set-up
   int stop_signal = 0;
