@@ -22,6 +22,10 @@
 // evaluations, converged, ...), DIR/fit.csv (data and fitted tau at the
 // data's delta), DIR/scene.toml (the fitted scene, rerunnable), DIR/best/
 // (its run), DIR/fit.png.
+//
+// Fit.cpp holds the set-up and the steps; MeasuredCurve.h the data,
+// FitEvaluator.h the runs, TaoFit.h the TAO solver, FitStatistics.h the
+// standard errors and correlations, FitReport.h what is written.
 #pragma once
 
 #include "ManyRuns.h"
