@@ -149,7 +149,7 @@ private:
   /// Returns, per set, the node pair of each block (its plus blocks; -1 for
   /// the others): the local-to-global map of its tangent.
   std::vector<std::vector<std::int32_t>> number_jumps();
-  /// Which ends of each jump are free dofs under the constraints of now (a
+  /// Which ends of each jump are free dofs under the current constraints (a
   /// mirror set's minus end never is: it stands for the plus node's image).
   void mark_free_ends();
   /// J0 = K with unit constrained rows, plus eps G^T G on the free rows of
