@@ -39,6 +39,13 @@ void acknowledge();
 /// The name of a signal ("SIGTERM").
 std::string signal_name(int signal);
 
+/// The grace of the phases that look at the signal themselves (a run's load
+/// steps, a fit's or a sweep's time between runs) [s]: how long a signal may
+/// wait for the code to stop cleanly (between Newton iterations, steps or
+/// runs) before the watcher ends the process where it is, e.g. inside a long
+/// factorisation.
+constexpr double stop_grace_s = 5;
+
 /// Marks a phase of the run for the watcher, until destroyed (the previous
 /// phase then returns). `grace_s`: how long a signal may wait for the code
 /// to stop by itself before the watcher ends the process; 0 for phases that

@@ -23,11 +23,6 @@ namespace pushout::driver
 {
 namespace
 {
-/// How long a signal may wait for a load step to stop by itself (between
-/// Newton iterations) before the process is ended where it is, e.g. inside a
-/// long factorisation [s].
-constexpr double stop_grace_s = 5;
-
 /// Before meshing: the size guard (throws TooLarge unless the run fits or
 /// --force), its estimate into the summary and the first progress line.
 void guard_size(const Scene& scene, const RunOptions& opt, record::RunReport& report)
@@ -168,7 +163,7 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, record::R
   if (scene.solver().time_linear_solve)
     loop.time_linear_solve();
   report.publish();
-  std::optional<interrupt::Phase> phase(std::in_place, "load steps", stop_grace_s);
+  std::optional<interrupt::Phase> phase(std::in_place, "load steps", interrupt::stop_grace_s);
   const double t0 = report.seconds();
   const auto control = [&]
   {

@@ -128,7 +128,34 @@ Symmetry model_symmetry(const MeshInput& in, std::string& why)
   return s;
 }
 
-void keep_symmetric_part(MeshData& m, Symmetry s, std::array<double, 2> centre)
+namespace
+{
+/// The numbers in the part of the full mesh's cells and nodes (-1: cut
+/// away).
+struct Renumbering
+{
+  std::vector<std::int64_t> cell, node;
+
+  /// A joint element's face, its nodes renumbered.
+  std::array<std::int64_t, 4> face(const std::array<std::int64_t, 4>& side) const
+  {
+    std::array<std::int64_t, 4> r;
+    for (int i = 0; i < 4; ++i)
+      r[i] = node[side[i]];
+    return r;
+  }
+  /// A joint element whose two cells are kept, renumbered.
+  InterfacePair pair(const InterfacePair& p) const
+  {
+    return {face(p.minus), face(p.plus), cell[p.minus_cell], cell[p.plus_cell]};
+  }
+};
+
+/// Copies into `q` the cells of `m` in the part (x >= xc if s.x_plane, y >=
+/// yc if s.y_plane; by centroid), their materials and nodes, renumbered in
+/// the order met; throws logic_error if a kept cell has a node outside the
+/// part (it straddles a plane: not a mesh surface).
+Renumbering keep_cells(const MeshData& m, Symmetry s, std::array<double, 2> centre, MeshData& q)
 {
   const auto [xc, yc] = centre;
   double extent = 0;
@@ -141,8 +168,8 @@ void keep_symmetric_part(MeshData& m, Symmetry s, std::array<double, 2> centre)
   const auto in_part = [&](double x, double y, double margin)
   { return (!s.x_plane || x >= xc + margin) && (!s.y_plane || y >= yc + margin); };
 
-  std::vector<std::int64_t> new_cell(m.num_cells(), -1), new_node(m.num_nodes(), -1);
-  MeshData q;
+  Renumbering r{std::vector<std::int64_t>(m.num_cells(), -1),
+                std::vector<std::int64_t>(m.num_nodes(), -1)};
   std::int64_t nodes = 0;
   for (std::size_t c = 0; c < m.num_cells(); ++c)
   {
@@ -155,11 +182,11 @@ void keep_symmetric_part(MeshData& m, Symmetry s, std::array<double, 2> centre)
       if (!in_part(m.x[3 * n], m.x[3 * n + 1], -tol))
         throw std::logic_error("symmetry: a cell straddles a symmetry plane (not a mesh surface)");
     }
-    new_cell[c] = std::int64_t(q.num_cells());
+    r.cell[c] = std::int64_t(q.num_cells());
     q.material.push_back(m.material[c]);
     for (int i = 0; i < 8; ++i)
     {
-      std::int64_t& n = new_node[m.cells[8 * c + i]];
+      std::int64_t& n = r.node[m.cells[8 * c + i]];
       if (n < 0)
         n = nodes++;
       q.cells.push_back(n);
@@ -167,73 +194,74 @@ void keep_symmetric_part(MeshData& m, Symmetry s, std::array<double, 2> centre)
   }
   q.x.resize(3 * std::size_t(nodes));
   for (std::size_t n = 0; n < m.num_nodes(); ++n)
-    if (new_node[n] >= 0)
+    if (r.node[n] >= 0)
       for (int d = 0; d < 3; ++d)
-        q.x[3 * new_node[n] + d] = m.x[3 * n + d];
-  const auto renumbered = [&](const std::array<std::int64_t, 4>& side)
-  {
-    std::array<std::int64_t, 4> r;
-    for (int i = 0; i < 4; ++i)
-      r[i] = new_node[side[i]];
-    return r;
-  };
-  for (const InterfacePair& p : m.pairs)
-  {
-    if (new_cell[p.minus_cell] < 0 || new_cell[p.plus_cell] < 0)
-      continue;
-    q.pairs.push_back(
-        {renumbered(p.minus), renumbered(p.plus), new_cell[p.minus_cell], new_cell[p.plus_cell]});
-  }
+        q.x[3 * r.node[n] + d] = m.x[3 * n + d];
+  return r;
+}
 
-  // Crack planes: inside the part, on a symmetry plane (one face kept: a
-  // mirror crack), or outside it (the image of one inside).
-  for (const CrackPlane& crack : m.cracks)
+/// A crack plane of the full mesh in the part `q` (its cells and nodes
+/// kept, `kept`): its joint elements inside the part; on a symmetry plane
+/// (one face kept) a mirror crack, each pair the kept face against its
+/// mirror image; outside the part, no joint elements (linked to its image
+/// by link_images). Throws logic_error if a plane off the symmetry planes
+/// is cut.
+CrackPlane cut_crack(const CrackPlane& crack, Symmetry s, std::array<double, 2> centre,
+                     const Renumbering& kept, const MeshData& q)
+{
+  const auto [xc, yc] = centre;
+  const std::vector<std::int64_t>& new_cell = kept.cell;
+  const std::vector<std::int64_t>& new_node = kept.node;
+  CrackPlane r;
+  r.angle = crack.angle;
+  const bool on_x = s.x_plane && std::abs(std::cos(crack.angle)) <= same_direction;
+  const bool on_y = s.y_plane && std::abs(std::sin(crack.angle)) <= same_direction;
+  for (const InterfacePair& p : crack.pairs)
   {
-    CrackPlane r;
-    r.angle = crack.angle;
-    const bool on_x = s.x_plane && std::abs(std::cos(crack.angle)) <= same_direction;
-    const bool on_y = s.y_plane && std::abs(std::sin(crack.angle)) <= same_direction;
-    for (const InterfacePair& p : crack.pairs)
+    const bool minus = new_cell[p.minus_cell] >= 0, plus = new_cell[p.plus_cell] >= 0;
+    if (minus && plus)
     {
-      const bool minus = new_cell[p.minus_cell] >= 0, plus = new_cell[p.plus_cell] >= 0;
-      if (minus && plus)
-      {
-        r.pairs.push_back({renumbered(p.minus), renumbered(p.plus), new_cell[p.minus_cell],
-                           new_cell[p.plus_cell]});
-        continue;
-      }
-      if (!minus && !plus)
-        continue;
-      if (!on_x && !on_y)
-        throw std::logic_error("symmetry: a crack plane off the symmetry planes is cut");
-      const std::int64_t cell = new_cell[minus ? p.minus_cell : p.plus_cell];
-      const std::array<std::int64_t, 4> face = renumbered(minus ? p.minus : p.plus);
-      InterfacePair mirrored = {face, face, cell, cell};
-      // Oriented from the mirror image of the kept cell into it.
-      std::array<double, 3> image = centroid(q, std::size_t(cell));
-      if (on_x)
-        image[0] = 2 * xc - image[0];
-      else
-        image[1] = 2 * yc - image[1];
-      orient(mirrored, q, image);
-      r.pairs.push_back(mirrored);
-      r.mirror = on_x ? std::array<double, 3>{1, 0, 0} : std::array<double, 3>{0, 1, 0};
+      r.pairs.push_back(kept.pair(p));
+      continue;
     }
-    for (const auto& [minus, plus] : crack.mouth)
-    {
-      if (r.mirrored())
-      {
-        const std::int64_t kept = new_node[minus] >= 0 ? new_node[minus] : new_node[plus];
-        r.mouth.push_back({kept, kept});
-      }
-      else if (new_node[minus] >= 0 && new_node[plus] >= 0)
-        r.mouth.push_back({new_node[minus], new_node[plus]});
-    }
-    q.cracks.push_back(std::move(r));
+    if (!minus && !plus)
+      continue;
+    if (!on_x && !on_y)
+      throw std::logic_error("symmetry: a crack plane off the symmetry planes is cut");
+    const std::int64_t cell = new_cell[minus ? p.minus_cell : p.plus_cell];
+    const std::array<std::int64_t, 4> face = kept.face(minus ? p.minus : p.plus);
+    InterfacePair mirrored = {face, face, cell, cell};
+    // Oriented from the mirror image of the kept cell into it.
+    std::array<double, 3> image = centroid(q, std::size_t(cell));
+    if (on_x)
+      image[0] = 2 * xc - image[0];
+    else
+      image[1] = 2 * yc - image[1];
+    orient(mirrored, q, image);
+    r.pairs.push_back(mirrored);
+    r.mirror = on_x ? std::array<double, 3>{1, 0, 0} : std::array<double, 3>{0, 1, 0};
   }
-  for (std::size_t i = 0; i < q.cracks.size(); ++i)
+  for (const auto& [minus, plus] : crack.mouth)
   {
-    CrackPlane& crack = q.cracks[i];
+    if (r.mirrored())
+    {
+      const std::int64_t node = new_node[minus] >= 0 ? new_node[minus] : new_node[plus];
+      r.mouth.push_back({node, node});
+    }
+    else if (new_node[minus] >= 0 && new_node[plus] >= 0)
+      r.mouth.push_back({new_node[minus], new_node[plus]});
+  }
+  return r;
+}
+
+/// Each crack plane cut away (no joint elements in the part): the plane in
+/// the part it is the image of, by one symmetry plane or by both; throws
+/// logic_error if there is none.
+void link_images(std::vector<CrackPlane>& cracks, Symmetry s)
+{
+  for (std::size_t i = 0; i < cracks.size(); ++i)
+  {
+    CrackPlane& crack = cracks[i];
     if (!crack.pairs.empty())
       continue;
     // Its image by one plane or by both.
@@ -244,14 +272,29 @@ void keep_symmetric_part(MeshData& m, Symmetry s, std::array<double, 2> centre)
       images.push_back(reflected(crack.angle, false));
     if (s.x_plane && s.y_plane)
       images.push_back(crack.angle + pi);
-    for (std::size_t j = 0; j < q.cracks.size() && crack.image_of < 0; ++j)
-      if (!q.cracks[j].pairs.empty())
+    for (std::size_t j = 0; j < cracks.size() && crack.image_of < 0; ++j)
+      if (!cracks[j].pairs.empty())
         for (double a : images)
-          if (angle_between(a, q.cracks[j].angle) < same_direction)
+          if (angle_between(a, cracks[j].angle) < same_direction)
             crack.image_of = int(j);
     if (crack.image_of < 0)
       throw std::logic_error("symmetry: a crack plane cut away has no image in the part");
   }
+}
+} // namespace
+
+void keep_symmetric_part(MeshData& m, Symmetry s, std::array<double, 2> centre)
+{
+  MeshData q;
+  const Renumbering kept = keep_cells(m, s, centre, q);
+  for (const InterfacePair& p : m.pairs)
+    if (kept.cell[p.minus_cell] >= 0 && kept.cell[p.plus_cell] >= 0)
+      q.pairs.push_back(kept.pair(p));
+  // Crack planes: inside the part, on a symmetry plane (one face kept: a
+  // mirror crack), or outside it (the image of one inside).
+  for (const CrackPlane& crack : m.cracks)
+    q.cracks.push_back(cut_crack(crack, s, centre, kept, q));
+  link_images(q.cracks, s);
   q.copies = s.copies();
   q.symmetry_center = centre;
   q.symmetry_planes = {s.x_plane, s.y_plane};

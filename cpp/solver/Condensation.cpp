@@ -1,13 +1,18 @@
+// Condensation: whether the bulk is condensed, and the building of the
+// condensed system in named steps (the jumps' numbering, J0 with its eps
+// springs, the MUMPS factorisation with the interface's Schur complement, Z,
+// C and its symmetry check, the tangent blocks); Condensation.h has the
+// mathematics. Its use per Newton iteration is in CondensationNewton.cpp,
+// the loads and the whole model's displacements in CondensationLoads.cpp.
 #include "Condensation.h"
 #include "../common/petsc_check.h"
-#include "Vector.h"
+#include "DenseArray.h"
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
 #include <dolfinx/common/IndexMap.h>
 #include <iomanip>
-#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -17,9 +22,6 @@ using petsc::check;
 
 namespace
 {
-/// Load directions kept before the basis starts again.
-constexpr std::size_t max_basis = 6;
-
 /// Node pairs of this process, per set of joint elements (the interface,
 /// then the crack planes): (minus block, plus block), sorted by plus block.
 /// Within a set every plus node has one partner; a node may be in pairs of
@@ -61,20 +63,37 @@ std::array<bool, 3> jump_components(const interface::Interface& joints)
   return {true, true, true};
 }
 
-/// Column-major dense array of a SEQDENSE matrix and its leading dimension.
-struct Dense
+/// The node blocks of this process, owned and ghosts (3 dofs each).
+std::int32_t local_blocks(const model::Model& model)
 {
-  Mat A;
-  double* a = nullptr;
-  PetscInt lda = 0;
-  explicit Dense(Mat M) : A(M)
+  const auto& map = model.index_map();
+  return map.size_local() + map.num_ghosts();
+}
+
+/// Throws a clear error if the `phase` of `factor` (MUMPS) failed: MUMPS
+/// records a failure (a zero pivot: a body held by nothing) instead of
+/// raising an error.
+void check_factored(Mat factor, const std::string& phase)
+{
+  MatFactorError error;
+  check(MatFactorGetError(factor, &error), "MatFactorGetError");
+  if (error == MAT_FACTOR_NOERROR)
+    return;
+  std::string what = "MUMPS failed";
+  if (error == MAT_FACTOR_STRUCT_ZEROPIVOT || error == MAT_FACTOR_NUMERIC_ZEROPIVOT)
   {
-    check(MatDenseGetLDA(A, &lda), "MatDenseGetLDA");
-    check(MatDenseGetArray(A, &a), "MatDenseGetArray");
+    PetscReal pivot = 0;
+    PetscInt row = -1;
+    check(MatFactorGetErrorZeroPivot(factor, &pivot, &row), "MatFactorGetErrorZeroPivot");
+    what = "zero pivot" + (row >= 0 ? " in row " + std::to_string(row) : std::string());
   }
-  ~Dense() { petsc::check_nothrow(MatDenseRestoreArray(A, &a), "MatDenseRestoreArray"); }
-  double& operator()(PetscInt i, PetscInt j) { return a[i + j * lda]; }
-};
+  else if (error == MAT_FACTOR_OUTMEMORY)
+    what = "out of memory";
+  throw std::runtime_error("condensation: the " + phase +
+                           " of the bulk stiffness J0 (MUMPS, with the interface Schur "
+                           "complement) failed: " +
+                           what + "; solver.condensation = \"off\" solves the whole model");
+}
 } // namespace
 
 std::int64_t Condensation::interface_dofs(const model::Model& model)
@@ -153,13 +172,24 @@ Condensation::Condensation(Equilibrium& eq) : _eq(eq)
 
 void Condensation::build()
 {
-  Equilibrium& eq = _eq;
   std::string why;
-  if (!possible(eq, why))
+  if (!possible(_eq, why))
     throw std::runtime_error("cannot condense the bulk: " + why);
-  const model::Model& model = eq.model();
-  const auto& map = model.index_map();
-  const std::int32_t n_blocks = map.size_local() + map.num_ghosts();
+  const std::vector<std::vector<std::int32_t>> pair_of_block = number_jumps();
+  mark_free_ends();
+  assemble_J0();
+  factor_J0();
+  compute_Z();
+  compute_C();
+  check_symmetry();
+  create_tangents(pair_of_block);
+  create_work_vectors();
+}
+
+std::vector<std::vector<std::int32_t>> Condensation::number_jumps()
+{
+  const model::Model& model = _eq.model();
+  const std::int32_t n_blocks = local_blocks(model);
   // The jumps: 3 per node pair (1 for a mirror set on a coordinate plane),
   // set by set; the l2g of each set maps its plus blocks to their pairs
   // (its minus blocks to nothing).
@@ -190,7 +220,6 @@ void Condensation::build()
     }
     _set_end.push_back(_minus.size());
   }
-  const PetscInt n_ext = 3 * n_pairs;
   const PetscInt n = PetscInt(_minus.size());
   // The interface dofs: every dof of a pair, once.
   _gamma.assign(_minus.begin(), _minus.end());
@@ -204,14 +233,17 @@ void Condensation::build()
     _pos_minus.push_back(position(_minus[j]));
     _pos_plus.push_back(position(_plus[j]));
   }
-  const PetscInt n_gamma = PetscInt(_gamma.size());
+  return pair_of_block;
+}
 
-  const Constraints& bc = eq.constraints();
-  _constraint_version = eq.constraint_version();
-  std::vector<std::uint8_t> constrained(std::size_t(3) * n_blocks, 0);
+void Condensation::mark_free_ends()
+{
+  const Constraints& bc = _eq.constraints();
+  _constraint_version = _eq.constraint_version();
+  std::vector<std::uint8_t> constrained(std::size_t(3) * local_blocks(_eq.model()), 0);
   for (std::int32_t d : bc.dofs)
     constrained[d] = 1;
-  for (PetscInt j = 0; j < n; ++j)
+  for (std::size_t j = 0; j < _minus.size(); ++j)
   {
     // A pair of a mirror set (its minus node is the plus node's mirror
     // image): its jump is the plus node's displacement, as if the minus
@@ -220,9 +252,13 @@ void Condensation::build()
     _minus_free.push_back(!constrained[_minus[j]] && !_mirror[j]);
     _plus_free.push_back(!constrained[_plus[j]]);
   }
+}
 
-  // J0: K with unit constrained rows, plus eps G^T G on the free interface
-  // rows; eps a hundredth of K's mean diagonal there.
+void Condensation::assemble_J0()
+{
+  const model::Model& model = _eq.model();
+  const Constraints& bc = _eq.constraints();
+  const PetscInt n = PetscInt(size());
   check(MatDuplicate(model.stiffness(), MAT_COPY_VALUES, &_J0), "MatDuplicate");
   check(MatZeroRowsLocal(_J0, PetscInt(bc.dofs.size()), bc.dofs.data(), 1.0, nullptr, nullptr),
         "MatZeroRowsLocal");
@@ -256,35 +292,15 @@ void Condensation::build()
   }
   check(MatAssemblyBegin(_J0, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   check(MatAssemblyEnd(_J0, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+}
 
-  // One MUMPS factorisation with the interface dofs (gamma) last; their Schur complement S comes
-  // out of it. MUMPS records a failure (a zero pivot: a body held by nothing) instead of raising an
-  // error: it is a clear error here.
-  const auto factored = [&](const std::string& phase)
-  {
-    MatFactorError error;
-    check(MatFactorGetError(_factor, &error), "MatFactorGetError");
-    if (error == MAT_FACTOR_NOERROR)
-      return;
-    std::string what = "MUMPS failed";
-    if (error == MAT_FACTOR_STRUCT_ZEROPIVOT || error == MAT_FACTOR_NUMERIC_ZEROPIVOT)
-    {
-      PetscReal pivot = 0;
-      PetscInt row = -1;
-      check(MatFactorGetErrorZeroPivot(_factor, &pivot, &row), "MatFactorGetErrorZeroPivot");
-      what = "zero pivot" + (row >= 0 ? " in row " + std::to_string(row) : std::string());
-    }
-    else if (error == MAT_FACTOR_OUTMEMORY)
-      what = "out of memory";
-    throw std::runtime_error("condensation: the " + phase +
-                             " of the bulk stiffness J0 (MUMPS, with the interface Schur "
-                             "complement) failed: " +
-                             what + "; solver.condensation = \"off\" solves the whole model");
-  };
+void Condensation::factor_J0()
+{
   check(MatGetFactor(_J0, MATSOLVERMUMPS, MAT_FACTOR_LU, &_factor), "MatGetFactor");
   {
     IS is;
-    check(ISCreateGeneral(PETSC_COMM_SELF, n_gamma, _gamma.data(), PETSC_COPY_VALUES, &is),
+    check(ISCreateGeneral(PETSC_COMM_SELF, PetscInt(_gamma.size()), _gamma.data(),
+                          PETSC_COPY_VALUES, &is),
           "ISCreateGeneral");
     check(MatFactorSetSchurIS(_factor, is), "MatFactorSetSchurIS");
     check(ISDestroy(&is), "ISDestroy");
@@ -292,18 +308,22 @@ void Condensation::build()
   MatFactorInfo info;
   check(MatFactorInfoInitialize(&info), "MatFactorInfoInitialize");
   check(MatLUFactorSymbolic(_factor, _J0, nullptr, nullptr, &info), "MatLUFactorSymbolic");
-  factored("analysis");
+  check_factored(_factor, "analysis");
   check(MatLUFactorNumeric(_factor, _J0, &info), "MatLUFactorNumeric");
-  factored("numerical factorisation");
+  check_factored(_factor, "numerical factorisation");
   check(MatFactorFactorizeSchurComplement(_factor),
         "MatFactorFactorizeSchurComplement"); // dense LU of S, kept in the factor
+}
 
-  // Z on the interface = S^-1 E_I G_I^T; column j: -1 at the minus dof of
-  // jump j, +1 at its plus dof (free ones only).
+void Condensation::compute_Z()
+{
+  const PetscInt n = PetscInt(size()), n_gamma = PetscInt(_gamma.size());
+  // Column j of E_I G_I^T: -1 at the minus dof of jump j, +1 at its plus
+  // dof (free ones only).
   Mat B;
   check(MatCreateSeqDense(PETSC_COMM_SELF, n_gamma, n, nullptr, &B), "MatCreateSeqDense");
   {
-    Dense Bd(B);
+    DenseArray Bd(B);
     for (PetscInt j = 0; j < n; ++j)
     {
       Bd(_pos_minus[j], j) = _minus_free[j] ? -1.0 : 0.0;
@@ -318,26 +338,31 @@ void Condensation::build()
   check(MatMatSolve(S, B, _Z), "MatMatSolve");
   check(MatFactorRestoreSchurComplement(_factor, &S, status), "MatFactorRestoreSchurComplement");
   check(MatDestroy(&B), "MatDestroy");
+}
 
-  // C = G Z, k = 1 / mean diag(C).
+void Condensation::compute_C()
+{
+  const PetscInt n = PetscInt(size());
   check(MatCreateSeqDense(PETSC_COMM_SELF, n, n, nullptr, &_C), "MatCreateSeqDense");
-  {
-    Dense Z(_Z), C(_C);
-    double trace = 0;
-    int counted = 0;
-    for (PetscInt col = 0; col < n; ++col)
-      for (PetscInt j = 0; j < n; ++j)
-      {
-        C(j, col) = Z(_pos_plus[j], col) - (_mirror[j] ? 0.0 : Z(_pos_minus[j], col));
-      }
+  DenseArray Z(_Z), C(_C);
+  double trace = 0;
+  int counted = 0;
+  for (PetscInt col = 0; col < n; ++col)
     for (PetscInt j = 0; j < n; ++j)
-      if (C(j, j) > 0)
-      {
-        trace += C(j, j);
-        ++counted;
-      }
-    _k = counted > 0 ? double(counted) / trace : 1.0;
-  }
+    {
+      C(j, col) = Z(_pos_plus[j], col) - (_mirror[j] ? 0.0 : Z(_pos_minus[j], col));
+    }
+  for (PetscInt j = 0; j < n; ++j)
+    if (C(j, j) > 0)
+    {
+      trace += C(j, j);
+      ++counted;
+    }
+  _k = counted > 0 ? double(counted) / trace : 1.0;
+}
+
+void Condensation::check_symmetry()
+{
   // C = G_f (J0_ff)^-1 G_f^T on the free dofs (Z is zero on the
   // constrained ones) is symmetric; what the factorisation left of
   // asymmetry is its round-off, averaged away, and its products stream the
@@ -362,9 +387,12 @@ void Condensation::build()
   }
   symmetrize(_C);
   _C_packed = SymmetricMatrix<double>(_C);
+}
 
-  // dF/dd: 3 x 3 blocks of node pairs, one matrix per set of joints (its
-  // plus blocks map to their pairs, its minus blocks to nothing).
+void Condensation::create_tangents(const std::vector<std::vector<std::int32_t>>& pair_of_block)
+{
+  const std::int32_t n_blocks = local_blocks(_eq.model());
+  const PetscInt n_ext = PetscInt(_jump_of_ext.size());
   for (const std::vector<std::int32_t>& map_of_set : pair_of_block)
   {
     ISLocalToGlobalMapping l2g;
@@ -382,29 +410,22 @@ void Condensation::build()
     check(MatSetOption(T, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE), "MatSetOption");
     check(MatSetLocalToGlobalMapping(T, l2g, l2g), "MatSetLocalToGlobalMapping");
   }
+}
 
+void Condensation::create_work_vectors()
+{
+  const std::int32_t n_blocks = local_blocks(_eq.model());
   check(MatCreateVecs(_J0, &_b, nullptr), "MatCreateVecs");
   _r = create_vector();
   _d_b = create_vector();
-  check(VecCreateSeq(PETSC_COMM_SELF, n_gamma, &_g), "VecCreateSeq");
+  check(VecCreateSeq(PETSC_COMM_SELF, PetscInt(_gamma.size()), &_g), "VecCreateSeq");
   check(VecDuplicate(_b, &_rest), "VecDuplicate");
   _Tv = create_vector();
-  check(VecCreateSeq(PETSC_COMM_SELF, n_ext, &_v_ext), "VecCreateSeq");
+  check(VecCreateSeq(PETSC_COMM_SELF, PetscInt(_jump_of_ext.size()), &_v_ext), "VecCreateSeq");
   check(VecDuplicate(_v_ext, &_Tv_ext), "VecDuplicate");
   check(VecDuplicate(_g, &_Zr), "VecDuplicate");
   _u.assign(std::size_t(3) * n_blocks, 0.0);
   _f.assign(_u.size(), 0.0);
-}
-
-void Condensation::forget_loads()
-{
-  for (auto* list : {&_basis, &_basis_g, &_basis_d})
-  {
-    for (Vec& v : *list)
-      check(VecDestroy(&v), "VecDestroy");
-    list->clear();
-  }
-  _load_version = -1;
 }
 
 Condensation::~Condensation()
@@ -425,445 +446,5 @@ void Condensation::release()
     petsc::check_nothrow(MatDestroy(&T), "MatDestroy");
   for (ISLocalToGlobalMapping& l2g : _l2g)
     petsc::check_nothrow(ISLocalToGlobalMappingDestroy(&l2g), "ISLocalToGlobalMappingDestroy");
-}
-
-void Condensation::set_single_precision(bool single)
-{
-  _single = single;
-  _C_single = single ? SymmetricMatrix<float>(_C) : SymmetricMatrix<float>();
-}
-
-Mat Condensation::create_matrix() const
-{
-  Mat J;
-  check(MatCreateSeqDense(PETSC_COMM_SELF, size(), size(), nullptr, &J), "MatCreateSeqDense");
-  set_linear_part(J);
-  return J;
-}
-
-Vec Condensation::create_vector() const
-{
-  Vec v;
-  check(VecCreateSeq(PETSC_COMM_SELF, size(), &v), "VecCreateSeq");
-  return v;
-}
-
-void Condensation::configure(KSP ksp) const
-{
-  PC pc;
-  check(KSPGetPC(ksp, &pc), "KSPGetPC");
-  KSPType type;
-  check(KSPGetType(ksp, &type), "KSPGetType");
-  if (_single && std::string(type) != KSPPREONLY)
-  {
-    // A preconditioner of GMRES: its LU in single precision is as good a
-    // guide at half the memory traffic (SinglePrecision.h). Flexible GMRES
-    // (right preconditioning): its residual is the operator's, whatever the
-    // rounding of the preconditioner. The operator is applied in single
-    // precision too, so a relative tolerance below its rounding would only
-    // iterate on noise: Newton's next residual, in double, corrects the
-    // step.
-    use_single_precision_lu(pc);
-    if (std::string(type) == KSPGMRES)
-    {
-      PetscInt restart;
-      check(KSPGMRESGetRestart(ksp, &restart), "KSPGMRESGetRestart");
-      check(KSPSetType(ksp, KSPFGMRES), "KSPSetType");
-      check(KSPGMRESSetRestart(ksp, restart), "KSPGMRESSetRestart");
-    }
-    PetscReal rtol, abstol, dtol;
-    PetscInt max_it;
-    check(KSPGetTolerances(ksp, &rtol, &abstol, &dtol, &max_it), "KSPGetTolerances");
-    check(KSPSetTolerances(ksp, std::max(rtol, single_precision_rtol), abstol, dtol, max_it),
-          "KSPSetTolerances");
-    return;
-  }
-  // The LU in double; with KSP preonly it is the solver
-  // (solver.preconditioner = "jacobian").
-  check(PCFactorSetMatSolverType(pc, MATSOLVERPETSC), "PCFactorSetMatSolverType");
-  check(PCFactorSetMatOrderingType(pc, MATORDERINGNATURAL), "PCFactorSetMatOrderingType");
-}
-
-void Condensation::restrict_to(Vec x, Vec d) const
-{
-  const double* a;
-  double* g;
-  check(VecGetArrayRead(x, &a), "VecGetArrayRead");
-  check(VecGetArray(d, &g), "VecGetArray");
-  for (std::size_t j = 0; j < _minus.size(); ++j)
-    g[j] = a[_plus[j]] - (_mirror[j] ? 0.0 : a[_minus[j]]);
-  check(VecRestoreArray(d, &g), "VecRestoreArray");
-  check(VecRestoreArrayRead(x, &a), "VecRestoreArrayRead");
-}
-
-void Condensation::restrict_functional(Vec a, Vec a_d) const
-{
-  const double* aa;
-  double* g;
-  check(VecGetArrayRead(a, &aa), "VecGetArrayRead");
-  check(VecGetArray(a_d, &g), "VecGetArray");
-  // a_d on the first set's pairs (the interface): the functionals of the
-  // jumps the solvers use (the mean axial slip) are the interface's. Then
-  // a must equal G^T a_d on every interface dof.
-  const std::size_t n = _minus.size();
-  std::vector<double> Gt(_gamma.size(), 0.0);
-  double scale = 0;
-  for (std::size_t j = 0; j < n; ++j)
-  {
-    g[j] = j < _set_end[0] ? aa[_plus[j]] : 0.0;
-    Gt[std::size_t(_pos_plus[j])] += g[j];
-    if (!_mirror[j])
-      Gt[std::size_t(_pos_minus[j])] -= g[j];
-    scale = std::max(scale, std::abs(g[j]));
-  }
-  double mismatch = 0;
-  for (std::size_t i = 0; i < _gamma.size(); ++i)
-    mismatch = std::max(mismatch, std::abs(Gt[i] - aa[_gamma[i]]));
-  check(VecRestoreArray(a_d, &g), "VecRestoreArray");
-  check(VecRestoreArrayRead(a, &aa), "VecRestoreArrayRead");
-  if (mismatch > 1e-12 * scale)
-    throw std::logic_error("condensation: the functional is not one of the interface's jumps");
-}
-
-void Condensation::combine(const std::vector<double>& c, const std::vector<Vec>& v, Vec y)
-{
-  check(VecSet(y, 0.0), "VecSet");
-  for (std::size_t k = 0; k < c.size(); ++k)
-    check(VecAXPY(y, c[k], v[k]), "VecAXPY");
-}
-
-const std::vector<double>& Condensation::load_coefficients()
-{
-  if (_eq.constraint_version() != _constraint_version)
-    throw std::logic_error("condensation: the constrained dofs changed");
-  if (_eq.load_version() == _load_version)
-    return _load_c; // the loads did not change (Newton iterations of a step)
-  _load_version = _eq.load_version();
-  _eq.linear_rhs(_b);
-  double b_norm;
-  check(VecNorm(_b, NORM_2, &b_norm), "VecNorm");
-  // Project b on the basis (classical Gram-Schmidt, twice).
-  Vec rest = _rest;
-  check(VecCopy(_b, rest), "VecCopy");
-  std::vector<double>& c = _load_c;
-  c.assign(_basis.size(), 0.0);
-  for (int pass = 0; pass < 2; ++pass)
-    for (std::size_t k = 0; k < _basis.size(); ++k)
-    {
-      double ck;
-      check(VecDot(_basis[k], rest, &ck), "VecDot");
-      check(VecAXPY(rest, -ck, _basis[k]), "VecAXPY");
-      c[k] += ck;
-    }
-  double r_norm;
-  check(VecNorm(rest, NORM_2, &r_norm), "VecNorm");
-  if (r_norm > 1e-12 * b_norm)
-  {
-    if (_basis.size() == max_basis) // start again from b
-    {
-      forget_loads();
-      c.clear();
-      check(VecCopy(_b, rest), "VecCopy");
-      r_norm = b_norm;
-    }
-    // The new direction q = rest / |rest|: J0^-1 q on the interface, and
-    // its jumps.
-    check(VecDuplicate(_b, &rest), "VecDuplicate");
-    check(VecCopy(_rest, rest), "VecCopy");
-    check(VecScale(rest, 1.0 / r_norm), "VecScale");
-    Vec y, g, d;
-    check(VecDuplicate(_b, &y), "VecDuplicate");
-    check(MatSolve(_factor, rest, y), "MatSolve");
-    check(VecDuplicate(_g, &g), "VecDuplicate");
-    d = create_vector();
-    const double* ya;
-    double *ga, *da;
-    check(VecGetArrayRead(y, &ya), "VecGetArrayRead");
-    check(VecGetArray(g, &ga), "VecGetArray");
-    check(VecGetArray(d, &da), "VecGetArray");
-    for (std::size_t i = 0; i < _gamma.size(); ++i)
-      ga[i] = ya[_gamma[i]];
-    for (std::size_t j = 0; j < _minus.size(); ++j)
-      da[j] = ga[_pos_plus[j]] - (_mirror[j] ? 0.0 : ga[_pos_minus[j]]);
-    check(VecRestoreArray(d, &da), "VecRestoreArray");
-    check(VecRestoreArray(g, &ga), "VecRestoreArray");
-    check(VecRestoreArrayRead(y, &ya), "VecRestoreArrayRead");
-    check(VecDestroy(&y), "VecDestroy");
-    _basis.push_back(rest);
-    _basis_g.push_back(g);
-    _basis_d.push_back(d);
-    c.push_back(r_norm);
-  }
-  return c;
-}
-
-std::pair<std::size_t, std::size_t> Condensation::load_set(std::size_t s, const double* d)
-{
-  const std::size_t first = s == 0 ? 0 : _set_end[s - 1], end = _set_end[s];
-  for (std::size_t j = first; j < end; ++j)
-  {
-    _u[_minus[j]] = 0.0;
-    _u[_plus[j]] = d[j];
-    _f[_minus[j]] = _f[_plus[j]] = 0.0;
-  }
-  return {first, end};
-}
-
-bool Condensation::interface_forces(Vec d, bool tangent, double* force_norm)
-{
-  // Set by set: the set's minus nodes at 0 and plus nodes at the jumps (its
-  // joints see only their jumps), its forces F at the plus nodes.
-  const double* da;
-  check(VecGetArrayRead(d, &da), "VecGetArrayRead");
-  double* r;
-  check(VecGetArray(_r, &r), "VecGetArray");
-  double f2 = 0;
-  bool ok = true;
-  const std::vector<interface::Interface*> sets = _eq.model().joints();
-  for (std::size_t s = 0; s < sets.size(); ++s)
-  {
-    const auto [first, end] = load_set(s, da);
-    if (tangent)
-      check(MatZeroEntries(_T[s]), "MatZeroEntries");
-    ok = sets[s]->assemble(_u, _f, tangent ? _T[s] : nullptr) && ok;
-    if (tangent)
-    {
-      check(MatAssemblyBegin(_T[s], MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-      check(MatAssemblyEnd(_T[s], MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-    }
-    for (std::size_t j = first; j < end; ++j)
-    {
-      const double F = _f[_plus[j]];
-      f2 += F * F;
-      r[j] = F - _eps * da[j];
-    }
-  }
-  check(VecRestoreArray(_r, &r), "VecRestoreArray");
-  check(VecRestoreArrayRead(d, &da), "VecRestoreArrayRead");
-  if (force_norm)
-    *force_norm = std::sqrt(f2);
-  return ok;
-}
-
-// As interface_forces(): each set with its minus nodes at 0 and plus nodes
-// at the jumps, so that dG/du at the plus nodes is dG/dd.
-bool Condensation::energy_release(Vec d, double& G, Vec gradient)
-{
-  const double* da;
-  check(VecGetArrayRead(d, &da), "VecGetArrayRead");
-  double* g;
-  check(VecGetArray(gradient, &g), "VecGetArray");
-  bool ok = true;
-  G = 0;
-  const std::vector<interface::Interface*> sets = _eq.model().joints();
-  for (std::size_t s = 0; s < sets.size(); ++s)
-  {
-    const auto [first, end] = load_set(s, da);
-    double G_set;
-    ok = sets[s]->energy_release(_u, _f, G_set) && ok;
-    G += G_set;
-    for (std::size_t j = first; j < end; ++j)
-      g[j] = _f[_plus[j]];
-  }
-  check(VecRestoreArray(gradient, &g), "VecRestoreArray");
-  check(VecRestoreArrayRead(d, &da), "VecRestoreArrayRead");
-  return ok;
-}
-
-bool Condensation::residual(Vec d, Vec R)
-{
-  double reaction_norm;
-  return residual(d, R, reaction_norm);
-}
-
-bool Condensation::residual(Vec d, Vec R, double& reaction_norm)
-{
-  combine(load_coefficients(), _basis_d, _d_b);
-  const bool ok = interface_forces(d, false, &reaction_norm);
-  {
-    const ReadView r(_r);
-    WriteView Ra(R);
-    _C_packed.multiply(r.data(), Ra.data());
-  }
-  check(VecAXPY(R, 1.0, d), "VecAXPY");
-  check(VecAXPY(R, -1.0, _d_b), "VecAXPY");
-  check(VecScale(R, _k), "VecScale");
-  return ok;
-}
-
-// R = k (d + C r - d_b): floor = C_f eps k (||d|| + ||C|| ||r|| + ||d_b||),
-// C_f = residual_floor_factor, ||C|| = sqrt(||C||_1 ||C||_inf) >= ||C||_2,
-// r from the last residual. (C and d_b carry the round-off of J0's
-// factorisation too, but the same in every evaluation: Newton solves the
-// condensed system as computed, and that error is not a floor of it.)
-double Condensation::residual_floor(Vec d)
-{
-  if (_C_norm < 0)
-  {
-    double n1, ninf;
-    check(MatNorm(_C, NORM_1, &n1), "MatNorm");
-    check(MatNorm(_C, NORM_INFINITY, &ninf), "MatNorm");
-    _C_norm = std::sqrt(n1 * ninf);
-  }
-  double d_norm, r_norm, b_norm;
-  check(VecNorm(d, NORM_2, &d_norm), "VecNorm");
-  check(VecNorm(_r, NORM_2, &r_norm), "VecNorm");
-  check(VecNorm(_d_b, NORM_2, &b_norm), "VecNorm");
-  return residual_floor_factor * std::numeric_limits<double>::epsilon() * _k *
-         (d_norm + _C_norm * r_norm + b_norm);
-}
-
-bool Condensation::jacobian(Vec d, Mat J)
-{
-  count_tangent();
-  const bool ok = interface_forces(d, true); // dF/dd into _T (per set)
-  PetscBool shell;
-  check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(J), MATSHELL, &shell),
-        "PetscObjectTypeCompare");
-  if (!shell)
-    form_jacobian(J);
-  return ok;
-}
-
-void Condensation::set_linear_part(Mat J) const
-{
-  check(MatCopy(_C, J, SAME_NONZERO_PATTERN), "MatCopy");
-  check(MatScale(J, -_eps), "MatScale");
-  check(MatShift(J, 1.0), "MatShift");
-}
-
-void Condensation::form_jacobian(Mat J) const
-{
-  set_linear_part(J);
-  {
-    // J += C dF/dd, column by column: J(:, j) += T(i, j) C(:, i), T read
-    // at the extended components that are jumps.
-    Dense Jd(J), C(_C);
-    const PetscInt n = size();
-    for (Mat T : _T)
-      for (PetscInt i = 0; i < n; ++i)
-      {
-        PetscInt ncols;
-        const PetscInt* cols;
-        const double* vals;
-        check(MatGetRow(T, _ext_of_jump[i], &ncols, &cols, &vals), "MatGetRow");
-        for (PetscInt c = 0; c < ncols; ++c)
-        {
-          const double t = vals[c];
-          const PetscInt j = _jump_of_ext[cols[c]];
-          if (t == 0.0 || j < 0)
-            continue;
-          double* Jj = &Jd(0, j);
-          const double* Ci = &C(0, i);
-          for (PetscInt r = 0; r < n; ++r)
-            Jj[r] += t * Ci[r];
-        }
-        check(MatRestoreRow(T, _ext_of_jump[i], &ncols, &cols, &vals), "MatRestoreRow");
-      }
-  }
-  check(MatScale(J, _k), "MatScale");
-}
-
-Mat Condensation::create_operator() const
-{
-  Mat J;
-  check(MatCreateShell(PETSC_COMM_SELF, size(), size(), size(), size(),
-                       const_cast<Condensation*>(this), &J),
-        "MatCreateShell");
-  check(MatShellSetOperation(J, MATOP_MULT, reinterpret_cast<void (*)(void)>(operator_mult)),
-        "MatShellSetOperation");
-  return J;
-}
-
-PetscErrorCode Condensation::operator_mult(Mat J, Vec v, Vec y)
-{
-  return petsc::callback(
-      [&]
-      {
-        // y = k (v + C (dF/dd - eps) v).
-        Condensation* self;
-        check(MatShellGetContext(J, &self), "MatShellGetContext");
-        {
-          // v onto the extended components (the others zero).
-          const ReadView va(v);
-          WriteView ve(self->_v_ext);
-          std::fill(ve.span().begin(), ve.span().end(), 0.0);
-          for (std::size_t j = 0; j < self->_ext_of_jump.size(); ++j)
-            ve.data()[self->_ext_of_jump[j]] = va.data()[j];
-        }
-        check(MatMult(self->_T[0], self->_v_ext, self->_Tv_ext), "MatMult");
-        for (std::size_t s = 1; s < self->_T.size(); ++s)
-          check(MatMultAdd(self->_T[s], self->_v_ext, self->_Tv_ext, self->_Tv_ext), "MatMultAdd");
-        {
-          const ReadView Te(self->_Tv_ext);
-          WriteView Tv(self->_Tv);
-          for (std::size_t j = 0; j < self->_ext_of_jump.size(); ++j)
-            Tv.data()[j] = Te.data()[self->_ext_of_jump[j]];
-        }
-        check(VecAXPY(self->_Tv, -self->_eps, v), "VecAXPY");
-        {
-          const ReadView Tv(self->_Tv);
-          WriteView ya(y);
-          if (self->_single)
-            self->_C_single.multiply(Tv.data(), ya.data());
-          else
-            self->_C_packed.multiply(Tv.data(), ya.data());
-        }
-        check(VecAXPY(y, 1.0, v), "VecAXPY");
-        check(VecScale(y, self->_k), "VecScale");
-      });
-}
-
-void Condensation::copy_jacobian(Mat J, Mat P) const
-{
-  PetscBool shell;
-  check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(J), MATSHELL, &shell),
-        "PetscObjectTypeCompare");
-  if (shell)
-    form_jacobian(P);
-  else
-    check(MatCopy(J, P, SAME_NONZERO_PATTERN), "MatCopy");
-}
-
-void Condensation::expand_interface(Vec d, Vec x)
-{
-  combine(load_coefficients(), _basis_g, _g);
-  interface_forces(d, false);
-  check(MatMult(_Z, _r, _Zr), "MatMult");
-  check(VecAXPY(_g, -1.0, _Zr), "VecAXPY");
-  const double* g;
-  double* xa;
-  check(VecGetArrayRead(_g, &g), "VecGetArrayRead");
-  check(VecGetArray(x, &xa), "VecGetArray");
-  for (std::size_t i = 0; i < _gamma.size(); ++i)
-    xa[_gamma[i]] = g[i];
-  check(VecRestoreArray(x, &xa), "VecRestoreArray");
-  check(VecRestoreArrayRead(_g, &g), "VecRestoreArrayRead");
-  _eq.apply_constraints(x);
-}
-
-void Condensation::expand(Vec d, Vec x)
-{
-  load_coefficients(); // _b: the current loads
-  interface_forces(d, false);
-  // x = J0^-1 (b - E_I G_I^T r).
-  Vec rhs = _rest;
-  check(VecCopy(_b, rhs), "VecCopy");
-  double* ra;
-  const double* r;
-  check(VecGetArray(rhs, &ra), "VecGetArray");
-  check(VecGetArrayRead(_r, &r), "VecGetArrayRead");
-  for (std::size_t j = 0; j < _minus.size(); ++j)
-  {
-    if (_minus_free[j])
-      ra[_minus[j]] += r[j];
-    if (_plus_free[j])
-      ra[_plus[j]] -= r[j];
-  }
-  check(VecRestoreArrayRead(_r, &r), "VecRestoreArrayRead");
-  check(VecRestoreArray(rhs, &ra), "VecRestoreArray");
-  check(MatSolve(_factor, rhs, x), "MatSolve");
-  check(VecGhostUpdateBegin(x, INSERT_VALUES, SCATTER_FORWARD), "VecGhostUpdateBegin");
-  check(VecGhostUpdateEnd(x, INSERT_VALUES, SCATTER_FORWARD), "VecGhostUpdateEnd");
 }
 } // namespace pushout::solver

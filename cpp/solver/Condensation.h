@@ -139,10 +139,39 @@ public:
   void forget_trial_state() override { _eq.forget_trial_state(); }
 
 private:
-  /// The constructor's work; release() frees what it made (also when it
-  /// throws part way).
+  /// The constructor's work, the steps below in turn; release() frees what
+  /// they made (also when one throws part way).
   void build();
   void release();
+  /// Numbers the jumps set by set (3 per node pair, 1 for a pair of a mirror
+  /// set on a coordinate plane: _minus, _plus, _ext_of_jump, _jump_of_ext,
+  /// _set_end) and the joint dofs (_gamma, and each jump's ends in it).
+  /// Returns, per set, the node pair of each block (its plus blocks; -1 for
+  /// the others): the local-to-global map of its tangent.
+  std::vector<std::vector<std::int32_t>> number_jumps();
+  /// Which ends of each jump are free dofs under the current constraints (a
+  /// mirror set's minus end never is: it stands for the plus node's image).
+  void mark_free_ends();
+  /// J0 = K with unit constrained rows, plus eps G^T G on the free rows of
+  /// the interface dofs; eps [N/mm] a hundredth of K's mean diagonal there.
+  void assemble_J0();
+  /// One MUMPS factorisation of J0 with the joint dofs (_gamma) last, and
+  /// the dense LU of their Schur complement S; throws a clear error if
+  /// MUMPS fails (a zero pivot: a body held by nothing).
+  void factor_J0();
+  /// Z on the joint dofs = S^-1 E_I G_I^T (dense).
+  void compute_Z();
+  /// C = G Z (dense) and the residual scale k = 1 / mean diag(C).
+  void compute_C();
+  /// C's round-off asymmetry (asymmetry(), untrusted()); then C symmetrised
+  /// and packed for its products.
+  void check_symmetry();
+  /// The tangent dF/dd of each set: sparse, 3 x 3 blocks of node pairs
+  /// (extended components), its plus blocks mapped to their pairs by
+  /// `pair_of_block` (number_jumps()).
+  void create_tangents(const std::vector<std::vector<std::int32_t>>& pair_of_block);
+  /// The scratch vectors and the whole-model arrays of the joints' kernel.
+  void create_work_vectors();
   /// F(d) and r = F - eps d into _r (and dF/dd into _T if asked); false if
   /// a law failed.
   bool interface_forces(Vec d, bool tangent, double* force_norm = nullptr);

@@ -22,9 +22,14 @@
 // evaluations, converged, ...), DIR/fit.csv (data and fitted tau at the
 // data's delta), DIR/scene.toml (the fitted scene, rerunnable), DIR/best/
 // (its run), DIR/fit.png.
+//
+// Fit.cpp holds the set-up and the steps; MeasuredCurve.h the data,
+// FitEvaluator.h the runs, TaoFit.h the TAO solver, FitStatistics.h the
+// standard errors and correlations, FitReport.h what is written.
 #pragma once
 
 #include "ManyRuns.h"
+#include "MeasuredCurve.h"
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -37,19 +42,6 @@ struct FitOptions : ManyRunsOptions
   std::vector<std::string> free;   ///< --free keys
   std::vector<std::string> bounds; ///< --bounds key=lo:hi
 };
-
-/// A measured curve: delta [mm] increasing, tau [MPa].
-struct MeasuredCurve
-{
-  std::vector<double> delta, tau;
-};
-/// Reads `file` (CSV with a header naming delta_mm and tau_MPa; other
-/// columns ignored); throws SceneError saying what is wrong.
-MeasuredCurve read_measured(const std::filesystem::path& file);
-
-/// tau of the curve (delta, tau) at d, linear between its points, its
-/// first/last value outside them.
-double interpolate(const std::vector<double>& delta, const std::vector<double>& tau, double d);
 
 /// Runs the fit on MPI_COMM_WORLD; returns the exit code (0: converged; 3:
 /// TAO did not converge or the runs failed; 2: bad input). Collective.

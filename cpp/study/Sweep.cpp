@@ -1,3 +1,6 @@
+// `pushout sweep` (Sweep.h): its plan (every case's scene read before any
+// runs), the cases run by the process groups, and sweep.csv, sweep.png and
+// the closing line.
 #include "Sweep.h"
 #include "../common/Interrupt.h"
 #include "../common/exit_codes.h"
@@ -15,10 +18,10 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <mpi.h>
 #include <nlohmann/json.hpp>
 #include <numeric>
-#include <optional>
 #include <sstream>
 
 namespace pushout::study
@@ -29,9 +32,6 @@ using driver::RunOutcome;
 using driver::Simulation;
 namespace
 {
-/// How long a signal between cases may wait for the loop to see it [s].
-constexpr double stop_grace_s = 5;
-
 /// The outcome of one case, as its group's first process knows it.
 struct CaseResult : RunOutcome
 {
@@ -304,6 +304,161 @@ SweepPlan plan_sweep(const SweepOptions& opt)
   return plan;
 }
 
+namespace
+{
+/// The cases the process groups ran: this group's outcomes (on its first
+/// process; none on the others) and the signal that stopped the sweep (0:
+/// none; the same on every process).
+struct CasesRun
+{
+  std::vector<CaseResult> mine;
+  int stop_signal = 0;
+};
+
+/// The number of the next case this process's group takes (its first
+/// process takes it from the counter in `window`, the others hear it): at
+/// least the number of cases when none is left.
+int next_case(MPI_Win window, bool leader, MPI_Comm group)
+{
+  int index = 0;
+  if (leader)
+  {
+    const int one = 1;
+    MPI_Win_lock(MPI_LOCK_SHARED, 0, 0, window);
+    MPI_Fetch_and_op(&one, &index, MPI_INT, 0, 0, MPI_SUM, window);
+    MPI_Win_unlock(0, window);
+  }
+  MPI_Bcast(&index, 1, MPI_INT, 0, group);
+  return index;
+}
+
+/// The progress line of a case that ran, `sets` its values (its group's
+/// first process, `rank`).
+void say_case(const std::vector<std::string>& sets, const CaseResult& r, int rank)
+{
+  std::string what;
+  for (const std::string& s : sets)
+    what += (what.empty() ? "" : " ") + s;
+  std::ostringstream line;
+  line << "sweep: " << case_name(std::size_t(r.index)) << " (" << what
+       << "): " << (r.exit_code == 0 ? "done" : "failed (exit " + std::to_string(r.exit_code) + ")")
+       << " in " << std::fixed << std::setprecision(2) << r.wall_s << " s"
+       << (r.message.empty() ? "" : ": " + r.message) << " [process " << rank << "]\n";
+  std::cout << line.str() << std::flush;
+}
+
+/// Runs the cases of `plan` in its order, each group taking the next one from
+/// a counter that every process shares (an MPI window on rank 0), until none
+/// is left or a signal stops the sweep; then closes `groups`. Collective on
+/// MPI_COMM_WORLD.
+CasesRun run_cases(const SweepOptions& opt, const SweepPlan& plan, ProcessGroups& groups)
+{
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  const std::vector<std::vector<std::string>>& cases = plan.cases;
+  const MPI_Comm group = groups.comm();
+  const bool leader = groups.leader();
+  // The shared counter of the next case (rank 0's window).
+  int* next = nullptr;
+  MPI_Win window;
+  MPI_Win_allocate(rank == 0 ? MPI_Aint(sizeof(int)) : 0, sizeof(int), MPI_INFO_NULL,
+                   MPI_COMM_WORLD, &next, &window);
+  if (rank == 0)
+  {
+    MPI_Win_lock(MPI_LOCK_EXCLUSIVE, 0, 0, window);
+    *next = 0;
+    MPI_Win_unlock(0, window);
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+
+  // Between cases a signal waits for the loop to see it (at most a case's
+  // set-up: the run's own phases apply inside a case), then the table of
+  // what ran is written.
+  const interrupt::Phase phase("sweep", interrupt::stop_grace_s);
+  CasesRun run;
+  std::unique_ptr<Simulation> simulation; // the group's last set-up
+  for (;;)
+  {
+    int index = next_case(window, leader, group);
+    int signal = interrupt::received();
+    MPI_Allreduce(MPI_IN_PLACE, &signal, 1, MPI_INT, MPI_MAX, group);
+    if (signal != 0)
+    {
+      run.stop_signal = signal;
+      interrupt::acknowledge(); // the sweep stops here, on every process
+    }
+    if (index >= int(cases.size()) || run.stop_signal != 0)
+      break;
+    index = int(plan.order[std::size_t(index)]);
+    std::vector<std::string> sets = opt.sets;
+    sets.insert(sets.end(), cases[std::size_t(index)].begin(), cases[std::size_t(index)].end());
+    // Quiet, and no curve.png per case: sweep.png overlays them.
+    CaseResult r;
+    static_cast<RunOutcome&>(r) = run_case(
+        opt.scene_file, sets,
+        {opt.out / case_name(std::size_t(index)), opt.mesh_cache, true, opt.force, group, false},
+        simulation);
+    r.index = index;
+    if (r.exit_code > 128)
+      run.stop_signal = r.exit_code - 128;
+    if (!leader)
+      continue;
+    run.mine.push_back(r);
+    if (!opt.quiet)
+      say_case(cases[std::size_t(index)], r, rank);
+  }
+  simulation.reset(); // on the group, before it goes
+  MPI_Win_free(&window);
+  groups.close();
+  MPI_Allreduce(MPI_IN_PLACE, &run.stop_signal, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  return run;
+}
+
+/// sweep.csv, sweep.png (unless a signal stopped the sweep) and the closing
+/// line, on rank 0, from the `results` of every case that ran; returns the
+/// exit code: 0 if every case converged, 3 if one did not, 128 + signal if
+/// a signal stopped the sweep, 1 if sweep.csv could not be written.
+int write_sweep(const SweepOptions& opt, const SweepPlan& plan,
+                const std::vector<CaseResult>& results, int stop_signal,
+                std::chrono::steady_clock::time_point t0)
+{
+  const std::vector<std::vector<std::string>>& cases = plan.cases;
+  int code = exit_code::done;
+  try
+  {
+    write_table(opt, plan.vary, cases, results, axes_of(plan.model_type));
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "pushout: error: " << e.what() << std::endl;
+    code = exit_code::failure;
+  }
+  // A stopped sweep draws no sweep.png: plotting every curve takes
+  // longer than a stop may (sweep.csv has the table).
+  const bool plot = plan.plot && stop_signal == 0;
+  std::string why;
+  if (plot && !output::plot_sweep(opt.out, opt.out / "sweep.png", why))
+    std::cerr << "pushout: warning: no sweep.png: " << why << std::endl;
+  const auto converged = std::count_if(results.begin(), results.end(),
+                                       [](const CaseResult& r) { return r.exit_code == 0; });
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!opt.quiet || converged < std::ptrdiff_t(cases.size()))
+    (converged < std::ptrdiff_t(cases.size()) ? std::cerr : std::cout)
+        << "pushout sweep: " << converged << " of " << cases.size() << " cases converged"
+        << (results.size() < cases.size()
+                ? " (" + std::to_string(cases.size() - results.size()) + " not run)"
+                : "")
+        << " in " << std::fixed << std::setprecision(2) << wall
+        << " s; table: " << (opt.out / "sweep.csv").string()
+        << (plot ? ", plot: " + (opt.out / "sweep.png").string() : "") << std::endl;
+  if (code == exit_code::done && stop_signal != 0)
+    code = exit_code::signal(stop_signal);
+  else if (code == exit_code::done && converged < std::ptrdiff_t(cases.size()))
+    code = exit_code::not_converged;
+  return code;
+}
+} // namespace
+
 int sweep(const SweepOptions& opt)
 {
   int rank = 0;
@@ -329,130 +484,18 @@ int sweep(const SweepOptions& opt)
       });
   if (set_up != exit_code::done)
     return set_up;
-  const std::vector<Variation>& vary = plan.vary;
-  const std::vector<std::vector<std::string>>& cases = plan.cases;
-  const std::vector<std::size_t>& order = plan.order;
-  const std::string& model_type = plan.model_type;
-
   ProcessGroups groups(opt.ranks_per_case);
-  const MPI_Comm group = groups.comm();
-  const bool leader = groups.leader();
   if (rank == 0 && !opt.quiet)
-    std::cout << "pushout sweep: " << cases.size() << " cases, " << groups.count()
+    std::cout << "pushout sweep: " << plan.cases.size() << " cases, " << groups.count()
               << (groups.count() == 1 ? " group" : " groups") << " of " << opt.ranks_per_case
               << (opt.ranks_per_case == 1 ? " process" : " processes") << std::endl;
+  const CasesRun run = run_cases(opt, plan, groups);
 
-  // The shared counter of the next case (rank 0's window).
-  int* next = nullptr;
-  MPI_Win window;
-  MPI_Win_allocate(rank == 0 ? MPI_Aint(sizeof(int)) : 0, sizeof(int), MPI_INFO_NULL,
-                   MPI_COMM_WORLD, &next, &window);
-  if (rank == 0)
-  {
-    MPI_Win_lock(MPI_LOCK_EXCLUSIVE, 0, 0, window);
-    *next = 0;
-    MPI_Win_unlock(0, window);
-  }
-  MPI_Barrier(MPI_COMM_WORLD);
-
-  // Between cases a signal waits for the loop to see it (at most a case's
-  // set-up: the run's own phases apply inside a case), then the table of
-  // what ran is written.
-  std::optional<interrupt::Phase> phase(std::in_place, "sweep", stop_grace_s);
-  std::vector<CaseResult> mine;
-  std::unique_ptr<Simulation> simulation; // the group's last set-up
-  int stop_signal = 0;
-  for (;;)
-  {
-    int index = 0;
-    if (leader)
-    {
-      const int one = 1;
-      MPI_Win_lock(MPI_LOCK_SHARED, 0, 0, window);
-      MPI_Fetch_and_op(&one, &index, MPI_INT, 0, 0, MPI_SUM, window);
-      MPI_Win_unlock(0, window);
-    }
-    MPI_Bcast(&index, 1, MPI_INT, 0, group);
-    int signal = interrupt::received();
-    MPI_Allreduce(MPI_IN_PLACE, &signal, 1, MPI_INT, MPI_MAX, group);
-    if (signal != 0)
-    {
-      stop_signal = signal;
-      interrupt::acknowledge(); // the sweep stops here, on every process
-    }
-    if (index >= int(cases.size()) || stop_signal != 0)
-      break;
-    index = int(order[std::size_t(index)]);
-    std::vector<std::string> sets = opt.sets;
-    sets.insert(sets.end(), cases[std::size_t(index)].begin(), cases[std::size_t(index)].end());
-    // Quiet, and no curve.png per case: sweep.png overlays them.
-    CaseResult r;
-    static_cast<RunOutcome&>(r) = run_case(
-        opt.scene_file, sets,
-        {opt.out / case_name(std::size_t(index)), opt.mesh_cache, true, opt.force, group, false},
-        simulation);
-    r.index = index;
-    if (r.exit_code > 128)
-      stop_signal = r.exit_code - 128;
-    if (!leader)
-      continue;
-    mine.push_back(r);
-    if (!opt.quiet)
-    {
-      std::string what;
-      for (const std::string& s : cases[std::size_t(index)])
-        what += (what.empty() ? "" : " ") + s;
-      std::ostringstream line;
-      line << "sweep: " << case_name(std::size_t(index)) << " (" << what << "): "
-           << (r.exit_code == 0 ? "done" : "failed (exit " + std::to_string(r.exit_code) + ")")
-           << " in " << std::fixed << std::setprecision(2) << r.wall_s << " s"
-           << (r.message.empty() ? "" : ": " + r.message) << " [process " << rank << "]\n";
-      std::cout << line.str() << std::flush;
-    }
-  }
-  simulation.reset(); // on the group, before it goes
-  MPI_Win_free(&window);
-  groups.close();
-  MPI_Allreduce(MPI_IN_PLACE, &stop_signal, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-
-  phase.emplace("writing outputs", -1);
-  const std::vector<CaseResult> results = gather(mine);
+  const interrupt::Phase phase("writing outputs", -1);
+  const std::vector<CaseResult> results = gather(run.mine);
   int code = exit_code::done;
   if (rank == 0)
-  {
-    try
-    {
-      write_table(opt, vary, cases, results, axes_of(model_type));
-    }
-    catch (const std::exception& e)
-    {
-      std::cerr << "pushout: error: " << e.what() << std::endl;
-      code = exit_code::failure;
-    }
-    // A stopped sweep draws no sweep.png: plotting every curve takes
-    // longer than a stop may (sweep.csv has the table).
-    const bool plot = plan.plot && stop_signal == 0;
-    std::string why;
-    if (plot && !output::plot_sweep(opt.out, opt.out / "sweep.png", why))
-      std::cerr << "pushout: warning: no sweep.png: " << why << std::endl;
-    const auto converged = std::count_if(results.begin(), results.end(),
-                                         [](const CaseResult& r) { return r.exit_code == 0; });
-    const double wall =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (!opt.quiet || converged < std::ptrdiff_t(cases.size()))
-      (converged < std::ptrdiff_t(cases.size()) ? std::cerr : std::cout)
-          << "pushout sweep: " << converged << " of " << cases.size() << " cases converged"
-          << (results.size() < cases.size()
-                  ? " (" + std::to_string(cases.size() - results.size()) + " not run)"
-                  : "")
-          << " in " << std::fixed << std::setprecision(2) << wall
-          << " s; table: " << (opt.out / "sweep.csv").string()
-          << (plot ? ", plot: " + (opt.out / "sweep.png").string() : "") << std::endl;
-    if (code == exit_code::done && stop_signal != 0)
-      code = exit_code::signal(stop_signal);
-    else if (code == exit_code::done && converged < std::ptrdiff_t(cases.size()))
-      code = exit_code::not_converged;
-  }
+    code = write_sweep(opt, plan, results, run.stop_signal, t0);
   MPI_Bcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD);
   return code;
 }

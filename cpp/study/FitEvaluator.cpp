@@ -1,0 +1,113 @@
+// The model runs of a fit (FitEvaluator.h): a batch of points over the
+// process groups, each run read back from its curve.csv as residuals at the
+// measured points.
+#include "FitEvaluator.h"
+#include "text.h"
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+
+namespace pushout::study
+{
+using driver::run_case;
+using driver::RunOutcome;
+
+Evaluator::Evaluator(const FitOptions& opt, const std::vector<Free>& free,
+                     const MeasuredCurve& data, MPI_Comm group, int groups, int group_index)
+    : _opt(opt), _free(free), _data(data), _group(group), _groups(groups), _group_index(group_index)
+{
+  int rank = 0;
+  MPI_Comm_rank(group, &rank);
+  _leader = rank == 0;
+}
+
+std::vector<std::vector<double>>
+Evaluator::residuals(const std::vector<std::vector<double>>& points)
+{
+  const std::size_t m = _data.delta.size();
+  std::vector<double> all(points.size() * m, 0.0);
+  for (std::size_t k = 0; k < points.size(); ++k)
+    if (int(k % std::size_t(_groups)) == _group_index)
+    {
+      const std::vector<double> r =
+          run(points[k], _opt.out / ".runs" / ("group_" + std::to_string(_group_index)));
+      if (_leader)
+        std::copy(r.begin(), r.end(), all.begin() + std::ptrdiff_t(k * m));
+    }
+  MPI_Allreduce(MPI_IN_PLACE, all.data(), int(all.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  int signal = std::max(interrupt::received(), _signal);
+  MPI_Allreduce(MPI_IN_PLACE, &signal, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  if (signal != 0) // on every process alike: TaoSolve ends with it
+  {
+    interrupt::acknowledge();
+    throw Interrupted(signal);
+  }
+  int failed = _failed;
+  MPI_Allreduce(&failed, &_failed_total, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
+  _evaluations += int(points.size());
+  std::vector<std::vector<double>> out;
+  for (std::size_t k = 0; k < points.size(); ++k)
+    out.emplace_back(all.begin() + std::ptrdiff_t(k * m),
+                     all.begin() + std::ptrdiff_t((k + 1) * m));
+  return out;
+}
+
+std::vector<std::string> Evaluator::sets_at(const std::vector<double>& x) const
+{
+  std::vector<std::string> sets = _opt.sets;
+  sets.push_back("loading.push_displacement=" + number_text(_data.delta.back()));
+  for (std::size_t j = 0; j < _free.size(); ++j)
+    sets.push_back(_free[j].key + "=" + number_text(x[j] * _free[j].scale));
+  return sets;
+}
+
+std::vector<double> Evaluator::run(const std::vector<double>& x, const std::filesystem::path& out,
+                                   bool plot)
+{
+  const RunOutcome o =
+      run_case(_opt.scene_file, sets_at(x), {out, _opt.mesh_cache, true, _opt.force, _group, plot},
+               _simulation);
+  std::vector<double> r(_data.delta.size(), 0.0);
+  _last_exit_code = o.exit_code;
+  if (o.exit_code > exit_code::signal(0))
+    _signal = o.exit_code - exit_code::signal(0);
+  if (o.exit_code != 0 && _leader) // once per group: the count is summed over processes
+  {
+    ++_failed;
+    _last_failure = o.message;
+  }
+  if (!_leader)
+    return r;
+  std::vector<double> delta, tau;
+  std::ifstream in(out / "curve.csv");
+  std::string line;
+  std::getline(in, line);
+  const std::vector<std::string> header = split(line, ',');
+  const auto column = [&](const std::string& name)
+  { return std::size_t(std::find(header.begin(), header.end(), name) - header.begin()); };
+  const std::size_t cd = column("delta_mm"), ct = column("tau_MPa");
+  while (std::getline(in, line)) // our own file: a row that does not parse ends it
+  {
+    const std::vector<std::string> cells = split(line, ',');
+    if (cd >= cells.size() || ct >= cells.size())
+      break;
+    char *end_d = nullptr, *end_t = nullptr;
+    const double d = std::strtod(cells[cd].c_str(), &end_d);
+    const double t = std::strtod(cells[ct].c_str(), &end_t);
+    if (end_d == cells[cd].c_str() || end_t == cells[ct].c_str())
+      break;
+    delta.push_back(d);
+    tau.push_back(t);
+  }
+  for (std::size_t i = 0; i < r.size(); ++i)
+    r[i] = (delta.empty() ? 0.0 : interpolate(delta, tau, _data.delta[i])) - _data.tau[i];
+  return r;
+}
+
+int Evaluator::signal_anywhere() const
+{
+  int signal = std::max(interrupt::received(), _signal);
+  MPI_Allreduce(MPI_IN_PLACE, &signal, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  return signal;
+}
+} // namespace pushout::study

@@ -1,0 +1,74 @@
+// The model runs of a fit (Fit.h): each a run_case (driver/Run.h) at a point
+// of the free values, on its process group's reused set-up, and its
+// residuals against the measured curve; a batch of points spread over the
+// groups. A signal stops the fit on every process at once (Interrupted).
+#pragma once
+
+#include "../common/Interrupt.h"
+#include "../common/exit_codes.h"
+#include "../driver/Run.h"
+#include "Fit.h"
+#include "FreeValue.h"
+#include <filesystem>
+#include <memory>
+#include <mpi.h>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pushout::study
+{
+/// A signal stopped the fit (thrown on every process at once).
+class Interrupted : public std::runtime_error
+{
+public:
+  explicit Interrupted(int signal)
+      : std::runtime_error("interrupted by " + interrupt::signal_name(signal)), signal(signal)
+  {
+  }
+  int signal;
+};
+
+/// The model runs of the fit, spread over the groups of processes.
+class Evaluator
+{
+public:
+  Evaluator(const FitOptions& opt, const std::vector<Free>& free, const MeasuredCurve& data,
+            MPI_Comm group, int groups, int group_index);
+
+  /// The residuals at each of `points` (scaled values); every process gets
+  /// them all. Collective on MPI_COMM_WORLD.
+  std::vector<std::vector<double>> residuals(const std::vector<std::vector<double>>& points);
+
+  /// The --set overrides of the scene at scaled values x.
+  std::vector<std::string> sets_at(const std::vector<double>& x) const;
+
+  /// One run at scaled values x into `out` on this group; its residuals
+  /// (leader), the curve held flat after its last row if it stopped short.
+  std::vector<double> run(const std::vector<double>& x, const std::filesystem::path& out,
+                          bool plot = false);
+
+  int evaluations() const { return _evaluations; }
+  /// The exit code of this group's last run.
+  int last_exit_code() const { return _last_exit_code; }
+  /// A signal that stopped a run of any process, or came here (collective
+  /// on MPI_COMM_WORLD).
+  int signal_anywhere() const;
+  int failed() const { return _failed_total; }
+  const std::string& last_failure() const { return _last_failure; }
+  void release() { _simulation.reset(); }
+
+private:
+  const FitOptions& _opt;
+  const std::vector<Free>& _free;
+  const MeasuredCurve& _data;
+  MPI_Comm _group;
+  int _groups, _group_index;
+  bool _leader = false;
+  std::unique_ptr<driver::Simulation> _simulation; ///< the group's set-up, reused
+  int _evaluations = 0, _failed = 0, _failed_total = 0;
+  int _signal = 0; ///< a run stopped by this signal
+  int _last_exit_code = exit_code::done;
+  std::string _last_failure;
+};
+} // namespace pushout::study

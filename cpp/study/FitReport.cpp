@@ -1,0 +1,117 @@
+// What a finished fit leaves (FitReport.h): fit.json, scene.toml, fit.csv,
+// fit.png and its closing lines.
+#include "FitReport.h"
+#include "../common/exit_codes.h"
+#include "../output/OutputFiles.h"
+#include "../output/plot.h"
+#include "../scene/Scene.h"
+#include <cmath>
+#include <exception>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace pushout::study
+{
+namespace
+{
+/// fit.json's part on the values: `parameters`, `standard_errors`,
+/// `correlation`, `start`, `bounds`, `bounds_exclusive`.
+nlohmann::json fitted_values(const std::vector<Free>& free, const std::vector<double>& x,
+                             const FitStatistics& st)
+{
+  const auto number_or_null = [](double v)
+  { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
+  nlohmann::json params = nlohmann::json::object(), errors = nlohmann::json::object(),
+                 starts = nlohmann::json::object(), bounds = nlohmann::json::object(),
+                 exclusive = nlohmann::json::array(), correlation = nlohmann::json::array();
+  std::vector<std::string> keys;
+  for (std::size_t k = 0; k < free.size(); ++k)
+  {
+    keys.push_back(free[k].key);
+    params[free[k].key] = x[k] * free[k].scale;
+    errors[free[k].key] = number_or_null(st.se[k]);
+    starts[free[k].key] = free[k].start;
+    // [lo, hi], null where unbounded; lo itself excluded where the law says
+    // so (bounds_exclusive).
+    bounds[free[k].key] = {number_or_null(free[k].lo), number_or_null(free[k].hi)};
+    if (free[k].lo_exclusive)
+      exclusive.push_back(free[k].key);
+    nlohmann::json row = nlohmann::json::array();
+    for (double c : st.corr[k])
+      row.push_back(number_or_null(c));
+    correlation.push_back(row);
+  }
+  nlohmann::json j;
+  j["parameters"] = params;
+  j["standard_errors"] = errors;
+  j["correlation"] = {{"keys", keys}, {"matrix", correlation}};
+  j["start"] = starts;
+  j["bounds"] = bounds;
+  j["bounds_exclusive"] = exclusive;
+  return j;
+}
+} // namespace
+
+int write_fit(const FitOptions& opt, const MeasuredCurve& data, const std::vector<Free>& free,
+              const FitOutcome& fit, bool talk)
+{
+  const std::vector<double>& x = fit.x;
+  const FitStatistics& stats = fit.statistics;
+  const std::size_t m = data.delta.size();
+  const double rss = stats.rss;
+  int code = fit.converged ? exit_code::done : exit_code::not_converged;
+  nlohmann::json j = fitted_values(free, x, stats);
+  j["rms_MPa"] = std::sqrt(rss / double(m));
+  j["points"] = m;
+  j["evaluations"] = fit.evaluations;
+  j["failed_runs"] = fit.failed_runs;
+  j["iterations"] = fit.iterations;
+  j["converged"] = fit.converged;
+  j["reason"] = fit.reason;
+  j["warnings"] = stats.warnings;
+  j["data"] = opt.data.string();
+  j["wall_s"] = fit.wall_s;
+  try
+  {
+    output::write_file(opt.out / "fit.json", j.dump(2) + "\n");
+    // The fitted scene, rerunnable.
+    output::write_file(opt.out / "scene.toml",
+                       Scene::load(opt.scene_file, parse_overrides(fit.sets)).to_toml());
+    std::ostringstream csv;
+    csv << "delta_mm,tau_data_MPa,tau_model_MPa\n" << std::setprecision(12);
+    for (std::size_t i = 0; i < m; ++i)
+      csv << data.delta[i] << "," << data.tau[i] << "," << data.tau[i] + fit.r[i] << "\n";
+    output::write_file(opt.out / "fit.csv", csv.str());
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "pushout: error: " << e.what() << std::endl;
+    code = exit_code::failure;
+  }
+  std::string why;
+  if (!output::plot_fit(opt.out, opt.out / "fit.png", why))
+    std::cerr << "pushout: warning: no fit.png: " << why << std::endl;
+  for (const std::string& w : stats.warnings)
+    std::cerr << "pushout: warning: " << w << std::endl;
+  if (!fit.converged)
+    std::cerr << "pushout: error: the fit did not converge (" << fit.reason
+              << (fit.failed_runs ? "; " + std::to_string(fit.failed_runs) +
+                                        " runs did not converge: " + fit.failure
+                                  : std::string())
+              << "); " << (opt.out / "fit.json").string() << " has where it stopped" << std::endl;
+  if (talk)
+  {
+    std::cout << "pushout fit: rms " << std::setprecision(6) << std::sqrt(rss / double(m))
+              << " MPa after " << fit.evaluations << " runs, " << std::fixed << std::setprecision(1)
+              << fit.wall_s << " s:" << std::defaultfloat << std::endl;
+    for (std::size_t k = 0; k < free.size(); ++k)
+      std::cout << "  " << free[k].key << " = " << std::setprecision(6) << x[k] * free[k].scale
+                << " +- " << stats.se[k] << std::endl;
+    std::cout << "results: " << (opt.out / "fit.json").string() << ", fitted scene "
+              << (opt.out / "scene.toml").string() << std::endl;
+  }
+  return code;
+}
+} // namespace pushout::study

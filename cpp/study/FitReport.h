@@ -1,0 +1,37 @@
+// What a finished fit leaves (Fit.h): DIR/fit.json (the values, their
+// standard errors and correlations, the rms, how the fit went), DIR/scene.toml
+// (the fitted scene, rerunnable), DIR/fit.csv (the data and the fitted tau at
+// the data's delta), DIR/fit.png, and its closing lines.
+#pragma once
+
+#include "Fit.h"
+#include "FitStatistics.h"
+#include "FreeValue.h"
+#include <string>
+#include <vector>
+
+namespace pushout::study
+{
+/// What a finished fit found and how it went.
+struct FitOutcome
+{
+  std::vector<double> x;         ///< the fitted values, scaled (value / scale)
+  std::vector<double> r;         ///< the residuals there [MPa]
+  FitStatistics statistics;      ///< at x
+  std::vector<std::string> sets; ///< the --set overrides of the fitted scene
+  int evaluations = 0;           ///< runs made
+  int failed_runs = 0;           ///< runs that did not converge
+  int iterations = 0;            ///< TAO's
+  bool converged = false;        ///< TAO converged, and every run did
+  std::string reason;            ///< why TAO stopped (PETSc's name)
+  std::string failure;           ///< why a run failed ("" if none did)
+  double wall_s = 0;             ///< the fit's wall time [s]
+};
+
+/// Writes the fit's files into opt.out, says what is wrong on stderr (its
+/// warnings, no convergence) and, if `talk`, the fitted values on stdout.
+/// Rank 0 only. Returns the exit code: 0 if converged, 3 if not, 1 if a file
+/// could not be written.
+int write_fit(const FitOptions& opt, const MeasuredCurve& data, const std::vector<Free>& free,
+              const FitOutcome& fit, bool talk);
+} // namespace pushout::study

@@ -1,0 +1,107 @@
+// The statistics of a fit at its optimum (FitStatistics.h).
+#include "FitStatistics.h"
+#include "../common/petsc_check.h"
+#include "text.h"
+#include <algorithm>
+#include <cmath>
+
+namespace pushout::study
+{
+namespace
+{
+using petsc::check;
+
+/// Two values whose correlation exceeds this are not separately
+/// identifiable from the data.
+constexpr double identifiable_correlation = 0.95;
+
+/// Solves the n x n system A y = b (A symmetric positive definite, small)
+/// by Gauss-Jordan with partial pivoting; false if A is singular.
+bool invert(std::vector<std::vector<double>> a, std::vector<std::vector<double>>& inverse)
+{
+  const std::size_t n = a.size();
+  inverse.assign(n, std::vector<double>(n, 0.0));
+  for (std::size_t i = 0; i < n; ++i)
+    inverse[i][i] = 1;
+  for (std::size_t c = 0; c < n; ++c)
+  {
+    std::size_t p = c;
+    for (std::size_t r = c + 1; r < n; ++r)
+      if (std::abs(a[r][c]) > std::abs(a[p][c]))
+        p = r;
+    if (!(std::abs(a[p][c]) > 1e-300))
+      return false;
+    std::swap(a[p], a[c]);
+    std::swap(inverse[p], inverse[c]);
+    const double d = a[c][c];
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      a[c][k] /= d;
+      inverse[c][k] /= d;
+    }
+    for (std::size_t r = 0; r < n; ++r)
+      if (r != c)
+      {
+        const double f = a[r][c];
+        for (std::size_t k = 0; k < n; ++k)
+        {
+          a[r][k] -= f * a[c][k];
+          inverse[r][k] -= f * inverse[c][k];
+        }
+      }
+  }
+  return true;
+}
+} // namespace
+
+FitStatistics statistics(Mat J, const std::vector<double>& r, const std::vector<Free>& free,
+                         const std::vector<double>& x)
+{
+  const std::size_t n = free.size(), m = r.size();
+  FitStatistics st;
+  std::vector<std::vector<double>> JtJ(n, std::vector<double>(n, 0.0));
+  {
+    const PetscScalar* a;
+    check(MatDenseGetArrayRead(J, &a), "MatDenseGetArrayRead");
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t k = 0; k < n; ++k)
+        for (std::size_t i = 0; i < m; ++i)
+          JtJ[j][k] += a[j * m + i] / free[j].scale * a[k * m + i] / free[k].scale;
+    check(MatDenseRestoreArrayRead(J, &a), "MatDenseRestoreArrayRead");
+  }
+  for (double v : r)
+    st.rss += v * v;
+  const double s2 = st.rss / double(m > n ? m - n : 1);
+  std::vector<std::vector<double>> cov;
+  st.se.assign(n, INFINITY);
+  st.corr.assign(n, std::vector<double>(n, NAN));
+  if (invert(JtJ, cov))
+  {
+    for (std::size_t j = 0; j < n; ++j)
+      st.se[j] = std::sqrt(std::max(s2 * cov[j][j], 0.0));
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t k = 0; k < n; ++k)
+        st.corr[j][k] = s2 * cov[j][k] / (st.se[j] * st.se[k]);
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t k = j + 1; k < n; ++k)
+        if (std::abs(st.corr[j][k]) > identifiable_correlation)
+          st.warnings.push_back(free[j].key + " and " + free[k].key + " are correlated (" +
+                                number_text(std::round(st.corr[j][k] * 1000) / 1000) +
+                                "): the data do not determine them separately");
+  }
+  else
+    st.warnings.push_back("J^T J is singular at the optimum: some values do not change the curve");
+  // A value the optimum pushes onto a bound is not a fit of it: the data
+  // want it beyond (a different model, or data the model cannot make).
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const double v = x[k] * free[k].scale, tol = 1e-6 * free[k].scale;
+    for (const double bound : {free[k].lo, free[k].hi})
+      if (std::isfinite(bound) && std::abs(v - bound) <= tol)
+        st.warnings.push_back(free[k].key + " = " + number_text(v) +
+                              " sits on its bound: the best fit would take it beyond, so the "
+                              "model does not describe these data well there");
+  }
+  return st;
+}
+} // namespace pushout::study

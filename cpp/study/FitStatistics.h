@@ -1,0 +1,30 @@
+// How well a fit determines its values (Fit.h): at the optimum
+//   s^2 = |r|^2 / (m - n),  cov = s^2 (J^T J)^-1,
+// the standard errors sqrt(cov_jj) and the correlations cov_jk / (se_j se_k)
+// in the keys' units, and the warnings the user should read (values the
+// data do not tell apart, a value on its bound).
+#pragma once
+
+#include "FreeValue.h"
+#include <petscmat.h>
+#include <string>
+#include <vector>
+
+namespace pushout::study
+{
+/// What the fit found beyond its values: their standard errors and
+/// correlations, the residual sum of squares, and what the user should know.
+struct FitStatistics
+{
+  std::vector<double> se;                ///< standard errors, the keys' units
+  std::vector<std::vector<double>> corr; ///< correlations (NaN: undetermined)
+  std::vector<std::string> warnings;
+  double rss = 0; ///< |r|^2 [MPa^2]
+};
+
+/// The statistics at the optimum x (scaled values) from the Jacobian J (m x
+/// n, dense, of the scaled values) and the residuals r [MPa]: s^2 = |r|^2 /
+/// (m - n), cov = s^2 (J^T J)^-1 in the keys' units (docs/fitting.md).
+FitStatistics statistics(Mat J, const std::vector<double>& r, const std::vector<Free>& free,
+                         const std::vector<double>& x);
+} // namespace pushout::study

@@ -1,0 +1,22 @@
+// The measured curve a fit matches (Fit.h): read from a CSV file, and the
+// linear interpolation by which a model's curve is read at its points.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+namespace pushout::study
+{
+/// A measured curve: delta [mm] increasing, tau [MPa].
+struct MeasuredCurve
+{
+  std::vector<double> delta, tau;
+};
+/// Reads `file` (CSV with a header naming delta_mm and tau_MPa; other
+/// columns ignored); throws SceneError saying what is wrong.
+MeasuredCurve read_measured(const std::filesystem::path& file);
+
+/// tau of the curve (delta, tau) at d, linear between its points, its
+/// first/last value outside them.
+double interpolate(const std::vector<double>& delta, const std::vector<double>& tau, double d);
+} // namespace pushout::study

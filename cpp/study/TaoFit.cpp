@@ -1,0 +1,193 @@
+// The least-squares solver of a fit (TaoFit.h): TAO's set-up, its callbacks
+// (residuals, forward-difference Jacobian from one batch of runs) and the
+// progress line of each iteration.
+#include "TaoFit.h"
+#include "../common/Interrupt.h"
+#include "../common/petsc_check.h"
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace pushout::study
+{
+namespace
+{
+using petsc::check;
+
+/// The relative step of the forward differences of the Jacobian (of the
+/// scaled values, which start at 1).
+constexpr double difference_step = 1e-4;
+
+PetscErrorCode residual_callback(Tao, Vec X, Vec F, void* ctx)
+{
+  return petsc::callback(
+      [&]
+      {
+        Problem& p = *static_cast<Problem*>(ctx);
+        p.evaluate(p.values(X), nullptr);
+        PetscScalar* f;
+        check(VecGetArray(F, &f), "VecGetArray");
+        std::copy(p.r_last.begin(), p.r_last.end(), f);
+        check(VecRestoreArray(F, &f), "VecRestoreArray");
+      });
+}
+
+PetscErrorCode jacobian_callback(Tao, Vec X, Mat J, Mat, void* ctx)
+{
+  return petsc::callback(
+      [&]
+      {
+        Problem& p = *static_cast<Problem*>(ctx);
+        p.evaluate(p.values(X), J);
+      });
+}
+} // namespace
+
+std::vector<double> Problem::values(Vec X) const
+{
+  const PetscScalar* a;
+  check(VecGetArrayRead(X, &a), "VecGetArrayRead");
+  std::vector<double> x(a, a + free.size());
+  check(VecRestoreArrayRead(X, &a), "VecRestoreArrayRead");
+  return x;
+}
+
+double Problem::rms() const
+{
+  double s = 0;
+  for (double r : r_last)
+    s += r * r;
+  return std::sqrt(s / double(r_last.size()));
+}
+
+void Problem::evaluate(const std::vector<double>& x, Mat J)
+{
+  if (J && x == x_jacobian && x == x_last) // TAO asks again at the same point
+  {
+    fill(J);
+    return;
+  }
+  std::vector<std::vector<double>> points;
+  const bool known = x == x_last;
+  if (!known)
+    points.push_back(x);
+  std::vector<double> h(x.size());
+  if (J)
+    for (std::size_t j = 0; j < x.size(); ++j)
+    {
+      h[j] = difference_step * std::max(std::abs(x[j]), 1e-3);
+      if (x[j] + h[j] > free[j].hi / free[j].scale)
+        h[j] = -h[j]; // backwards at the upper bound
+      points.push_back(x);
+      points.back()[j] += h[j];
+    }
+  const auto r = evaluator.residuals(points);
+  if (!known)
+  {
+    x_last = x;
+    r_last = r[0];
+  }
+  if (!J)
+    return;
+  const std::size_t first = known ? 0 : 1, m = r_last.size();
+  x_jacobian = x;
+  jacobian.assign(m * x.size(), 0.0);
+  for (std::size_t j = 0; j < x.size(); ++j)
+    for (std::size_t i = 0; i < m; ++i)
+      jacobian[j * m + i] = (r[first + j][i] - r_last[i]) / h[j];
+  fill(J);
+  ++iterations;
+  if (talk)
+  {
+    std::ostringstream s;
+    s << "fit: iteration " << iterations << ", rms " << std::setprecision(6) << rms() << " MPa at";
+    for (std::size_t j = 0; j < x.size(); ++j)
+      s << " " << free[j].key << " = " << std::setprecision(8) << x[j] * free[j].scale;
+    s << " (" << evaluator.evaluations() << " runs, " << std::fixed << std::setprecision(1)
+      << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s)";
+    std::cout << s.str() << std::endl;
+  }
+}
+
+void Problem::fill(Mat J) const
+{
+  const std::size_t m = r_last.size();
+  for (std::size_t j = 0; j < free.size(); ++j)
+    for (std::size_t i = 0; i < m; ++i)
+      check(MatSetValue(J, PetscInt(i), PetscInt(j), jacobian[j * m + i], INSERT_VALUES),
+            "MatSetValue");
+  check(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+}
+
+TaoFit::TaoFit(const std::vector<Free>& free, PetscInt m, Problem& problem)
+{
+  const PetscInt n = PetscInt(free.size());
+  check(TaoCreate(PETSC_COMM_SELF, &tao), "TaoCreate");
+  check(TaoSetType(tao, TAOBRGN), "TaoSetType");
+  check(VecCreateSeq(PETSC_COMM_SELF, n, &X), "VecCreateSeq");
+  check(VecDuplicate(X, &lo), "VecDuplicate");
+  check(VecDuplicate(X, &hi), "VecDuplicate");
+  check(VecCreateSeq(PETSC_COMM_SELF, m, &F), "VecCreateSeq");
+  check(MatCreateSeqDense(PETSC_COMM_SELF, m, n, nullptr, &J), "MatCreateSeqDense");
+  for (PetscInt j = 0; j < n; ++j)
+  {
+    const Free& f = free[std::size_t(j)];
+    check(VecSetValue(X, j, f.start / f.scale, INSERT_VALUES), "VecSetValue");
+    check(VecSetValue(lo, j, std::isfinite(f.lo) ? f.tao_lo() / f.scale : PETSC_NINFINITY,
+                      INSERT_VALUES),
+          "VecSetValue");
+    check(VecSetValue(hi, j, std::isfinite(f.hi) ? f.hi / f.scale : PETSC_INFINITY, INSERT_VALUES),
+          "VecSetValue");
+  }
+  for (Vec v : {X, lo, hi})
+  {
+    check(VecAssemblyBegin(v), "VecAssemblyBegin");
+    check(VecAssemblyEnd(v), "VecAssemblyEnd");
+  }
+  check(TaoSetSolution(tao, X), "TaoSetSolution");
+  check(TaoSetVariableBounds(tao, lo, hi), "TaoSetVariableBounds");
+  check(TaoSetResidualRoutine(tao, F, residual_callback, &problem), "TaoSetResidualRoutine");
+  check(TaoSetJacobianResidualRoutine(tao, J, J, jacobian_callback, &problem),
+        "TaoSetJacobianResidualRoutine");
+  // Converged when the gradient fell by 1e6 from the start (the
+  // differences' noise floor is near 1e-10 of it) or below 1e-12 [MPa^2].
+  check(TaoSetTolerances(tao, 1e-12, 0.0, 1e-6), "TaoSetTolerances");
+  check(TaoSetMaximumIterations(tao, 50), "TaoSetMaximumIterations");
+  check(TaoSetFromOptions(tao), "TaoSetFromOptions");
+}
+
+TaoFit::~TaoFit()
+{
+  petsc::check_nothrow(TaoDestroy(&tao), "TaoDestroy");
+  for (Vec* v : {&X, &F, &lo, &hi})
+    petsc::check_nothrow(VecDestroy(v), "VecDestroy");
+  petsc::check_nothrow(MatDestroy(&J), "MatDestroy");
+}
+
+std::vector<double> TaoFit::solve(Problem& problem)
+{
+  const interrupt::Phase phase("fit", interrupt::stop_grace_s);
+  check(TaoSolve(tao), "TaoSolve");
+  // At the optimum: residuals and the Jacobian (of the scaled values).
+  std::vector<double> x = problem.values(X);
+  problem.evaluate(x, J);
+  return x;
+}
+
+bool TaoFit::converged() const
+{
+  TaoConvergedReason reason;
+  check(TaoGetConvergedReason(tao, &reason), "TaoGetConvergedReason");
+  return reason > 0;
+}
+
+std::string TaoFit::reason() const
+{
+  TaoConvergedReason reason;
+  check(TaoGetConvergedReason(tao, &reason), "TaoGetConvergedReason");
+  return TaoConvergedReasons[reason];
+}
+} // namespace pushout::study
