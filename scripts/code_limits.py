@@ -75,7 +75,10 @@ def functions(path: Path):
             if is_function:
                 m = re.search(r"([~\w:]+|operator\S+)\s*\(", header)
                 name = m.group(1) if m else "?"
-                stack.append(("function", name, code.count("\n", 0, i) + 1))
+                # From the signature's first line (template and return type
+                # included) to the closing brace.
+                first = start + len(header) - len(header.lstrip())
+                stack.append(("function", name, code.count("\n", 0, first) + 1))
             else:
                 stack.append(is_scope or not in_scope)
             start = i + 1

@@ -14,6 +14,24 @@ namespace
 /// A step whose Newton iterations do not halve the smallest |F| so far in
 /// this many iterations fails (DIVERGED_NO_PROGRESS).
 constexpr std::ptrdiff_t stall_iterations = 10;
+
+/// Whether Newton iterations whose |F| so far are `fnorms` have lost their
+/// way: they have not halved the smallest |F| in stall_iterations
+/// iterations (near a brittle event the bordered iterates can wander for all
+/// of -snes_max_it; the step is cut now rather than after the last
+/// iteration). Slower than that (a factor 0.93 per iteration) no step
+/// converges within -snes_max_it; a slow but steady one is left alone. Never
+/// once |F| meets its tolerance (`small`): the control equation may still be
+/// converging.
+bool stalled(const std::vector<double>& fnorms, bool small)
+{
+  const auto n = std::ptrdiff_t(fnorms.size());
+  if (n <= stall_iterations + 1 || small)
+    return false;
+  const auto recent = fnorms.end() - stall_iterations;
+  return *std::min_element(recent, fnorms.end()) >
+         0.5 * *std::min_element(fnorms.begin() + 1, recent);
+}
 } // namespace
 
 using petsc::check;
@@ -186,6 +204,28 @@ bool ArcLengthSolver::load_direction(Vec x, double lambda,
   return ok;
 }
 
+std::string ArcLengthSolver::correction(Vec x, double c_minus_eta, double max_dlambda,
+                                        double& dlambda)
+{
+  if (!setup_operators(x))
+    return "an interface law failed";
+  check(VecScale(_F, -1.0), "VecScale");
+  if (std::string why = solve(_F, _v1); !why.empty())
+    return why;
+  if (std::string why = solve(_e, _v2); !why.empty())
+    return why;
+  double r, a_v1; // d(control)/d(lambda) along the tangent; a . v1
+  check(VecDot(_a, _v2, &r), "VecDot");
+  check(VecDot(_a, _v1, &a_v1), "VecDot");
+  if (!std::isfinite(r) || r == 0.0)
+    return "singular bordered system (d control / d lambda = 0)";
+  dlambda = -(c_minus_eta + a_v1) / r;
+  if (max_dlambda > 0 && std::abs(dlambda) > max_dlambda)
+    dlambda = std::copysign(max_dlambda, dlambda);
+  check(VecAXPY(_v1, dlambda, _v2), "VecAXPY"); // dx
+  return "";
+}
+
 SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
                                   const std::function<void(double)>& set_load, double max_dlambda)
 {
@@ -251,40 +291,15 @@ SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
     }
     if (it == _max_it)
       return fail("DIVERGED_MAX_IT");
-    // Newton iterations that have not halved the smallest |F| so far in
-    // stall_iterations iterations have lost their way (near a brittle event
-    // the bordered iterates can wander for all of -snes_max_it): the step is
-    // cut now rather than after the last iteration. Slower than that (a
-    // factor 0.93 per iteration) no step converges within -snes_max_it; a
-    // slow but steady one is left alone. (Nor once |F| meets its tolerance:
-    // the control equation may still be converging.)
     fnorms.push_back(fnorm);
-    if (it > stall_iterations && !small)
-    {
-      const auto recent = fnorms.end() - stall_iterations;
-      if (*std::min_element(recent, fnorms.end()) >
-          0.5 * *std::min_element(fnorms.begin() + 1, recent))
-        return fail("DIVERGED_NO_PROGRESS (|F| not halved in " + std::to_string(stall_iterations) +
-                    " iterations)");
-    }
+    if (stalled(fnorms, small))
+      return fail("DIVERGED_NO_PROGRESS (|F| not halved in " + std::to_string(stall_iterations) +
+                  " iterations)");
     if (!mpi::all(comm_of(x), !interrupt::received())) // a signal on any process
       return fail("interrupted");
-    if (!setup_operators(x))
-      return fail("an interface law failed");
-    check(VecScale(_F, -1.0), "VecScale");
-    if (std::string why = solve(_F, _v1); !why.empty())
+    double dlambda;
+    if (std::string why = correction(x, c - eta, it == 0 ? max_dlambda : 0, dlambda); !why.empty())
       return fail(why);
-    if (std::string why = solve(_e, _v2); !why.empty())
-      return fail(why);
-    double r, a_v1; // d(control)/d(lambda) along the tangent; a . v1
-    check(VecDot(_a, _v2, &r), "VecDot");
-    check(VecDot(_a, _v1, &a_v1), "VecDot");
-    if (!std::isfinite(r) || r == 0.0)
-      return fail("singular bordered system (d control / d lambda = 0)");
-    double dlambda = -(c - eta + a_v1) / r;
-    if (it == 0 && max_dlambda > 0 && std::abs(dlambda) > max_dlambda)
-      dlambda = std::copysign(max_dlambda, dlambda);
-    check(VecAXPY(_v1, dlambda, _v2), "VecAXPY"); // dx
     lam += dlambda;
     check(VecAXPY(x, 1.0, _v1), "VecAXPY");
     rep.iterations = int(it + 1);

@@ -146,6 +146,11 @@ private:
   /// refreshing P.
   std::string solve(Vec b, Vec y);
 
+  /// The bordered Newton correction at x, whose residual is in _F, tangent
+  /// e in _e and control gradient in _a, with the control c - eta =
+  /// `c_minus_eta`: dx into _v1 and d lambda into `dlambda` (at most
+  /// `max_dlambda` in size if positive); "" or why it failed.
+  std::string correction(Vec x, double c_minus_eta, double max_dlambda, double& dlambda);
   /// c(x) into `value`, dc/dx into _a, agreed on by every process.
   bool constraint(Vec x, double& value);
   /// e = -dF/dlambda at (x, lambda) into _e, and F(x, lambda) into _F, with
