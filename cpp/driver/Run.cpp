@@ -25,11 +25,10 @@ namespace
 {
 /// Before meshing: the size guard (throws TooLarge unless the run fits or
 /// --force), its estimate into the summary and the first progress line.
-void guard_size(const Scene& scene, const RunOptions& opt, record::RunReport& report)
+void guard_size(const mesh::MeshInput& shape, const SolverPart& solver, const RunOptions& opt,
+                record::RunReport& report)
 {
-  const mesh::MeshInput shape = mesh::MeshInput::of(scene);
-  const record::ResourceEstimate estimate =
-      record::estimate_resources(shape, scene.solver(), opt.comm);
+  const record::ResourceEstimate estimate = record::estimate_resources(shape, solver, opt.comm);
   record::check_fits(estimate, shape, opt.force);
   output::Summary& s = report.summary();
   s.estimate = {estimate.size.dofs, estimate.size.cells, estimate.size.joint_elements,
@@ -44,8 +43,9 @@ void guard_size(const Scene& scene, const RunOptions& opt, record::RunReport& re
 /// The model's size into the summary, and the progress line that says what
 /// was built and what Newton runs on (before the condensation, which takes
 /// a while on a large interface).
-void describe_model(const Scene& scene, const mesh::MeshData& data, const model::Model& model,
-                    const solver::LoadStepSolver& solver, record::RunReport& report)
+void describe_model(const mesh::MeshInput& shape, const mesh::MeshData& data,
+                    const model::Model& model, const solver::LoadStepSolver& solver,
+                    record::RunReport& report)
 {
   output::Summary& s = report.summary();
   s.dofs = model.num_dofs();
@@ -60,7 +60,7 @@ void describe_model(const Scene& scene, const mesh::MeshData& data, const model:
     return;
   std::string cut;
   std::string why;
-  mesh::model_symmetry(mesh::MeshInput::of(scene), why);
+  mesh::model_symmetry(shape, why);
   if (symmetry.copies() == 4)
     cut = " (quarter model by symmetry)";
   else if (symmetry.copies() == 2)
@@ -83,12 +83,13 @@ Simulation::Simulation(const Scene& scene, const RunOptions& opt, record::RunRep
     : _fingerprint(set_up_fingerprint(scene))
 {
   output::Summary& summary = report.summary();
-  guard_size(scene, opt, report);
+  const mesh::MeshInput shape = mesh::MeshInput::of(scene);
+  guard_size(shape, scene.solver(), opt, report);
 
   // Mesh.
   std::optional<interrupt::Phase> phase(std::in_place, "meshing", 0);
   double t0 = report.seconds();
-  _data = mesh::generate(mesh::MeshInput::of(scene), opt.mesh_cache, summary.mesh_reused, opt.comm);
+  _data = mesh::generate(shape, opt.mesh_cache, summary.mesh_reused, opt.comm);
   summary.mesh_s = report.seconds() - t0;
 
   // Model and the solver of a load step.
@@ -98,7 +99,7 @@ Simulation::Simulation(const Scene& scene, const RunOptions& opt, record::RunRep
   _equilibrium = std::make_unique<solver::Equilibrium>(*_model);
   _solver = solver::LoadStepSolver::make(*_equilibrium, scene.solver());
   _solver->set_talk(report.talk());
-  describe_model(scene, _data, *_model, *_solver, report);
+  describe_model(shape, _data, *_model, *_solver, report);
   specimen::make_scenario(scene, _data, *_model)
       ->apply_load(0.0, *_equilibrium); // step 0's constraints
   _solver->prepare();                   // the condensation, if any

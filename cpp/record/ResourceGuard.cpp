@@ -104,8 +104,8 @@ ResourceEstimate estimate_resources(const mesh::MeshInput& in, const SolverPart&
   MPI_Comm_free(&local);
 
   std::string why;
-  e.condensed = solver::Condensation::chosen(solver.condensation_name(), e.processes,
-                                             e.size.interface_dofs, why);
+  e.condensed =
+      solver::Condensation::chosen(solver.condensation, e.processes, e.size.interface_dofs, why);
   e.direct = solver::NewtonSolver::direct_factorization();
   const double n = double(e.size.dofs), P = double(e.processes);
   const double c = in.mesh.degree == 2 ? lu_mb_degree2 : lu_mb_degree1;

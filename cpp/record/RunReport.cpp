@@ -39,8 +39,7 @@ RunReport::RunReport(const Scene& scene, const std::filesystem::path& out, bool 
             s.stopped_in = phase;
             s.message = "interrupted by " + interrupt::signal_name(sig) + " during " + phase +
                         " after " + std::to_string(s.steps) + " load steps";
-            s.wall_s = seconds();
-            s.peak_memory_mb = peak_memory_here_mb();
+            stamp(s);
             if (_rank != 0)
             {
               // mpirun ends every process as soon as one has ended with an
@@ -110,6 +109,12 @@ output::Summary RunReport::finish()
   return _summary;
 }
 
+void RunReport::stamp(output::Summary& s) const
+{
+  s.wall_s = seconds();
+  s.peak_memory_mb = peak_memory_here_mb();
+}
+
 void RunReport::save_stop() noexcept
 {
   publish();
@@ -118,8 +123,7 @@ void RunReport::save_stop() noexcept
   try
   {
     output::Summary s = _summary;
-    s.wall_s = seconds();
-    s.peak_memory_mb = peak_memory_here_mb();
+    stamp(s);
     s.write(_out / "summary.json");
   }
   catch (...) // finish() writes it again, and reports an error there
@@ -137,8 +141,7 @@ void RunReport::fail(const std::string& message) noexcept
     output::Summary s = _summary;
     s.converged = false;
     s.message = message;
-    s.wall_s = seconds();
-    s.peak_memory_mb = peak_memory_here_mb();
+    stamp(s);
     s.write(_out / "summary.json");
   }
   catch (...) // no room for it either: the error line is what the user gets

@@ -56,6 +56,9 @@ public:
   void fail(const std::string& message) noexcept;
 
 private:
+  /// The run's wall time and this process's peak memory so far into `s`
+  /// (a summary written before finish()).
+  void stamp(output::Summary& s) const;
   using Clock = std::chrono::steady_clock;
   Clock::time_point _start = Clock::now();
   std::filesystem::path _out;

@@ -6,14 +6,29 @@
 
 namespace pushout
 {
+namespace
+{
+/// The value `text` names among `choices` (a key's declared choices, which
+/// parsing has checked it is one of).
+template <class T>
+T choice(const std::string& text, std::initializer_list<std::pair<const char*, T>> choices)
+{
+  for (const auto& [name, value] : choices)
+    if (text == name)
+      return value;
+  throw std::logic_error("scene choice '" + text + "' has no typed value");
+}
+} // namespace
+
 void Scene::fill_parts()
 {
-  _model.type = string("model.type") == "single_joint" ? ModelPart::Type::single_joint
-                                                       : ModelPart::Type::pushout;
-  const std::string& symmetry = string("model.symmetry");
-  _model.symmetry = symmetry == "full"        ? ModelPart::Symmetry::full
-                    : symmetry == "symmetric" ? ModelPart::Symmetry::symmetric
-                                              : ModelPart::Symmetry::automatic;
+  using Type = ModelPart::Type;
+  _model.type = choice<Type>(string("model.type"),
+                             {{"pushout", Type::pushout}, {"single_joint", Type::single_joint}});
+  using Symmetry = ModelPart::Symmetry;
+  _model.symmetry = choice<Symmetry>(string("model.symmetry"), {{"auto", Symmetry::automatic},
+                                                                {"symmetric", Symmetry::symmetric},
+                                                                {"full", Symmetry::full}});
 
   _geometry.circle = string("geometry.outer_shape") == "circle";
   _geometry.width = number("geometry.width");
@@ -44,11 +59,12 @@ void Scene::fill_parts()
   _loading.steps = integer("loading.steps");
   _loading.push_path = numbers("loading.push_path");
   _loading.unload_to_zero_force = string("loading.unload_to") == "zero_force";
-  const std::string& control = string("loading.control");
-  _loading.control = control == "arc_length"    ? Loading::Control::arc_length
-                     : control == "dissipation" ? Loading::Control::dissipation
-                     : control == "auto"        ? Loading::Control::automatic
-                                                : Loading::Control::displacement;
+  using Control = Loading::Control;
+  _loading.control =
+      choice<Control>(string("loading.control"), {{"displacement", Control::displacement},
+                                                  {"arc_length", Control::arc_length},
+                                                  {"dissipation", Control::dissipation},
+                                                  {"auto", Control::automatic}});
   _loading.dissipation_steps = integer("loading.dissipation_steps");
   _loading.max_cuts = integer("loading.max_cuts");
   _loading.normal_force_per_node = number("loading.normal_force_per_node");
@@ -62,10 +78,10 @@ void Scene::fill_parts()
   _corrosion.oxide_bulk = number("corrosion.oxide_bulk");
 
   _solver.lagged_preconditioner = string("solver.preconditioner") == "lagged";
-  const std::string& condensation = string("solver.condensation");
-  _solver.condensation = condensation == "on"    ? SolverPart::Condensation::on
-                         : condensation == "off" ? SolverPart::Condensation::off
-                                                 : SolverPart::Condensation::automatic;
+  using Condensation = SolverPart::Condensation;
+  _solver.condensation = choice<Condensation>(
+      string("solver.condensation"),
+      {{"auto", Condensation::automatic}, {"on", Condensation::on}, {"off", Condensation::off}});
   _solver.refactor_iterations = integer("solver.refactor_iterations");
   _solver.first_tangent_converged = string("solver.first_tangent") == "converged";
   _solver.mixed_precision = string("solver.precision") == "mixed";

@@ -119,13 +119,6 @@ struct SolverPart
   };
   bool lagged_preconditioner{}; ///< preconditioner: lagged (else jacobian)
   Condensation condensation{};
-  /// solver.condensation as written in the scene ("auto", "on", "off").
-  const char* condensation_name() const
-  {
-    return condensation == Condensation::on    ? "on"
-           : condensation == Condensation::off ? "off"
-                                               : "auto";
-  }
   std::int64_t refactor_iterations{};
   bool first_tangent_converged{}; ///< first_tangent: converged (else current)
   bool mixed_precision{};         ///< precision: mixed (else double)

@@ -141,14 +141,14 @@ bool Condensation::possible(int processes, std::int64_t n_interface, std::string
   return false;
 }
 
-bool Condensation::chosen(const std::string& mode, int processes, std::int64_t n_interface,
+bool Condensation::chosen(SolverPart::Condensation mode, int processes, std::int64_t n_interface,
                           std::string& why)
 {
-  if (mode == "off")
+  if (mode == SolverPart::Condensation::off)
     return false;
   if (!possible(processes, n_interface, why))
     return false;
-  if (mode == "auto" && n_interface > default_max_dofs)
+  if (mode == SolverPart::Condensation::automatic && n_interface > default_max_dofs)
   {
     why = std::to_string(n_interface) + " interface dofs, more than " +
           std::to_string(default_max_dofs);

@@ -52,6 +52,7 @@
 // model.
 #pragma once
 
+#include "../scene/SceneParts.h"
 #include "Equilibrium.h"
 #include "NonlinearProblem.h"
 #include "SinglePrecision.h"
@@ -77,10 +78,10 @@ public:
   static bool possible(int processes, std::int64_t interface_dofs, std::string& why);
 
   /// Whether Newton runs on the condensed system for solver.condensation =
-  /// `mode` (auto | on | off): "auto" condenses what is possible up to
-  /// default_max_dofs. `why` says why not ("" when "off" was asked for);
-  /// "on" when it is not possible is the caller's error to report.
-  static bool chosen(const std::string& mode, int processes, std::int64_t interface_dofs,
+  /// `mode`: "auto" condenses what is possible up to default_max_dofs. `why`
+  /// says why not ("" when "off" was asked for); "on" when it is not
+  /// possible is the caller's error to report.
+  static bool chosen(SolverPart::Condensation mode, int processes, std::int64_t interface_dofs,
                      std::string& why);
 
   /// Number of joint dofs, both sides of every node pair (6 per pair).

@@ -20,13 +20,13 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
                                              : NewtonSolver::Preconditioner::jacobian;
   NewtonSolver::set_default_options(pc);
 
-  const std::string mode = part.condensation_name();
   int processes = 1;
   MPI_Comm_size(eq.model().comm(), &processes);
   const std::int64_t interface_dofs = Condensation::interface_dofs(eq.model());
   std::string why;
-  const bool condense = Condensation::chosen(mode, processes, interface_dofs, why);
-  if (!condense && mode == "on")
+  const bool condense = Condensation::chosen(part.condensation, processes, interface_dofs, why);
+  const bool required = part.condensation == SolverPart::Condensation::on;
+  if (!condense && required)
     throw SceneError("solver.condensation = \"on\" is not possible here: " + why);
   const std::string description =
       condense ? "the " + std::to_string(Condensation::unknowns(eq.model())) +
@@ -36,7 +36,7 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
                                                  description);
   solver->set_first_tangent(part.first_tangent_converged);
   solver->_single_precision = part.mixed_precision;
-  solver->_condense_required = mode == "on";
+  solver->_condense_required = required;
   return solver;
 }
 
