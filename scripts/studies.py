@@ -252,26 +252,75 @@ class RenderError(RuntimeError):
 MISSING_PARAVIEW = "ParaView's Python module is missing: install python3-paraview (scripts/setup.sh does)"
 
 
+class VirtualDisplay:
+    """An Xvfb server on a display number that the server itself found free
+    (-displayfd): a lock-file scan such as xvfb-run's can pick a number whose
+    socket another server (another /tmp, another chroot) already holds, and
+    pvbatch then fails with "bad X server connection". Local clients only."""
+
+    def __init__(self):
+        self.proc = None
+        self.display = None
+        self.log = ""
+
+    def __enter__(self):
+        xvfb = shutil.which("Xvfb")
+        if not xvfb:
+            raise RenderError("Xvfb is missing: install xvfb (scripts/setup.sh does)")
+        read_end, write_end = os.pipe()
+        self.proc = subprocess.Popen([xvfb, "-displayfd", str(write_end), "-screen", "0", "1600x1200x24",
+                                      "-nolisten", "tcp"], pass_fds=(write_end,),
+                                     stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        os.close(write_end)
+        number = b""
+        # The server writes its display number once it accepts connections;
+        # end of file first means it died.
+        while not number.endswith(b"\n"):
+            chunk = os.read(read_end, 16)
+            if not chunk:
+                break
+            number += chunk
+        os.close(read_end)
+        if not number.strip().isdigit():
+            self.proc.kill()
+            err = self.proc.communicate()[1].strip().splitlines()
+            raise RenderError("Xvfb did not start: " + " | ".join(err[-3:]))
+        self.display = ":" + number.decode().strip()
+        return self
+
+    def __exit__(self, *exc):
+        self.proc.terminate()
+        try:
+            self.proc.communicate(timeout=10)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            self.proc.communicate()
+        return False
+
+
 def render_interface(folder, png, title):
-    """Renders folder/interface.xdmf into png with pvbatch (scripts/render_interface.py)
-    under a virtual X server. Raises RenderError with one clear line when it cannot."""
+    """Renders folder/interface.xdmf into png with pvbatch (scripts/render_interface.py),
+    under a virtual X server when no DISPLAY is set. Raises RenderError with one
+    clear line when it cannot."""
     pvbatch = shutil.which("pvbatch")
     if not pvbatch:
         raise RenderError("ParaView's pvbatch is missing: install paraview (scripts/setup.sh does)")
     cmd = [pvbatch, os.path.join(ROOT, "scripts", "render_interface.py"), folder, png, "--title", title]
-    if not os.environ.get("DISPLAY") and shutil.which("xvfb-run"):
-        cmd = ["xvfb-run", "-a", "-s", "-screen 0 1600x1200x24 -nolisten tcp"] + cmd
-    # A loaded machine can start pvbatch before the virtual X server is ready
-    # ("bad X server connection"): try again a few times before giving up.
+    # Up to three tries, each on a server of its own: a loaded machine has
+    # failed a first render that the next one did.
     for attempt in range(3):
-        p = subprocess.run(cmd, capture_output=True, text=True)
+        if os.environ.get("DISPLAY"):
+            p = subprocess.run(cmd, capture_output=True, text=True)
+        else:
+            with VirtualDisplay() as x:
+                p = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, DISPLAY=x.display))
         if p.returncode == 0 and os.path.exists(png):
             return
         if "No module named 'paraview'" in p.stdout + p.stderr:
             raise RenderError(MISSING_PARAVIEW)
-        time.sleep(2 * (attempt + 1))
+        time.sleep(1 + attempt)
     lines = [l for l in (p.stdout + p.stderr).splitlines() if "ERR" in l or "Error" in l]
-    raise RenderError("rendering failed three times: " + " | ".join(lines[-3:]))
+    raise RenderError(f"pvbatch failed three times (last exit {p.returncode}): " + " | ".join(lines[-3:]))
 
 
 def render_fig8(out, folder):
