@@ -118,7 +118,8 @@ std::string Simulation::set_up_fingerprint(const Scene& scene)
   std::ostringstream s;
   s << std::setprecision(17);
   for (const KeyDef& k : scene_keys())
-    for (const char* prefix : {"model.", "geometry.", "mesh.", "concrete.", "steel.", "solver."})
+    for (const char* prefix :
+         {"model.", "geometry.", "mesh.", "concrete.", "steel.", "cracking.", "solver."})
       if (const Value* v = scene.find(k.path); v && k.path.starts_with(prefix))
         s << k.path << "=" << to_toml(*v) << "\n";
   if (scene.model().pushout())
@@ -155,8 +156,8 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, record::R
 
   // Outputs and load steps.
   stepping::StepRecorder recorder(scene.output(), opt.out, *scenario, *_equilibrium, report);
-  specimen::Corrosion corrosion(scene.corrosion(), scene.crack_directions(), opt.out, report,
-                                opt.comm);
+  specimen::Corrosion corrosion(scene.corrosion(), scene.crack_directions(),
+                                scene.cracking().embedded, opt.out, report, opt.comm);
   const Loading& loading = scene.loading();
   stepping::StepLoop loop(*scenario, corrosion, *_equilibrium, *_solver, recorder, report,
                           int(loading.max_cuts),

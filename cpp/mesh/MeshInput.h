@@ -14,12 +14,14 @@ struct MeshInput
   CrackDirections cracks;         ///< the crack planes' directions (none: uncracked)
   ModelPart::Symmetry symmetry{}; ///< model.symmetry
   bool fields = false;            ///< output.xdmf (a model cut by symmetry writes none)
+  bool bulk_cracking = false;     ///< cracking.model = "embedded": cracks anywhere in the concrete
   bool cracked() const { return !cracks.angles.empty(); }
 
   static MeshInput of(const Scene& scene)
   {
     return {scene.model().pushout(),  scene.geometry(),       scene.mesh(),
-            scene.crack_directions(), scene.model().symmetry, scene.output().xdmf};
+            scene.crack_directions(), scene.model().symmetry, scene.output().xdmf,
+            scene.cracking().embedded};
   }
 };
 } // namespace pushout::mesh

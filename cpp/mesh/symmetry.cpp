@@ -91,6 +91,12 @@ Symmetry model_symmetry(const MeshInput& in, std::string& why)
     why = "model.symmetry = \"full\"";
     return {};
   }
+  if (in.bulk_cracking && in.symmetry == ModelPart::Symmetry::automatic)
+  {
+    why = "the concrete may crack anywhere ([cracking]): a crack may open on one side of a "
+          "symmetry plane only (model.symmetry = \"symmetric\" cuts there)";
+    return {};
+  }
   if (in.fields)
   {
     why = "output.xdmf asks for fields of the whole specimen";

@@ -396,8 +396,13 @@ JointLaws JointLaws::of(const Scene& scene)
 
 ModelInput ModelInput::of(const Scene& scene)
 {
-  return {scene.mesh().degree, scene.mesh().nodal_quadrature, scene.steel(), scene.concrete(),
-          JointLaws::of(scene)};
+  return {scene.mesh().degree,
+          scene.mesh().nodal_quadrature,
+          scene.steel(),
+          scene.concrete(),
+          JointLaws::of(scene),
+          scene.cracking(),
+          scene.geometry().tube_center};
 }
 
 Model::Model(MPI_Comm comm, const mesh::MeshData& data, const ModelInput& in)
@@ -413,6 +418,9 @@ Model::Model(MPI_Comm comm, const mesh::MeshData& data, const ModelInput& in)
       _mouths(crack_mouths(data, _node_block)), _K(assemble_stiffness(comm, *_a, joints()))
 {
   _u->name = "displacement"; // in fields.xdmf
+  if (in.cracking.embedded)
+    _bulk_cracking = std::make_unique<BulkCracking>(_mesh, _V, _u, _materials.alpha, data.material,
+                                                    in.concrete, in.cracking, in.tube_axis);
 }
 
 Model::~Model()
@@ -489,6 +497,8 @@ void Model::set_laws(const JointLaws& laws)
   _interface->set_layers(make_layers(laws));
   for (std::size_t i = 0; i < _cracks.size(); ++i)
     _cracks[i]->set_layers(crack_layers(laws, i));
+  if (_bulk_cracking)
+    _bulk_cracking->reset();
   std::fill(_u->x()->mutable_array().begin(), _u->x()->mutable_array().end(), 0.0);
 }
 

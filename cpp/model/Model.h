@@ -10,6 +10,7 @@
 #include "../interface/Interface.h"
 #include "../mesh/MeshData.h"
 #include "../scene/Scene.h"
+#include "BulkCracking.h"
 #include <dolfinx/common/IndexMap.h>
 #include <dolfinx/fem/Constant.h>
 #include <dolfinx/fem/Form.h>
@@ -48,6 +49,8 @@ struct ModelInput
   bool nodal_quadrature = false; ///< mesh.interface_quadrature
   Material steel, concrete;
   JointLaws laws;
+  CrackingPart cracking;             ///< [cracking]
+  std::array<double, 2> tube_axis{}; ///< geometry.tube_center [mm]
   static ModelInput of(const Scene& scene);
 };
 
@@ -78,6 +81,10 @@ public:
   const dolfinx::fem::Function<double>& displacement() const { return *_u; }
   std::shared_ptr<dolfinx::fem::Function<double>> displacement_ptr() const { return _u; }
   const Materials& materials() const { return _materials; }
+
+  /// The concrete's own cracks ([cracking]); nullptr if it stays linear.
+  BulkCracking* bulk_cracking() { return _bulk_cracking.get(); }
+  const BulkCracking* bulk_cracking() const { return _bulk_cracking.get(); }
 
   /// The steel-concrete interface.
   interface::Interface& interface() { return *_interface; }
@@ -150,5 +157,6 @@ private:
   std::vector<std::unique_ptr<interface::Interface>> _cracks;
   std::vector<CrackMouth> _mouths;
   Mat _K = nullptr;
+  std::unique_ptr<BulkCracking> _bulk_cracking;
 };
 } // namespace pushout::model

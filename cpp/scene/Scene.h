@@ -45,6 +45,7 @@ public:
   const Material& steel() const { return _steel; }
   const Loading& loading() const { return _loading; }
   const CorrosionPart& corrosion() const { return _corrosion; }
+  const CrackingPart& cracking() const { return _cracking; }
   const SolverPart& solver() const { return _solver; }
   const OutputPart& output() const { return _output; }
   const std::vector<LayerSpec>& layers() const { return _layers; }
@@ -81,6 +82,7 @@ private:
   Material _concrete, _steel;
   Loading _loading;
   CorrosionPart _corrosion;
+  CrackingPart _cracking;
   SolverPart _solver;
   OutputPart _output;
   std::vector<LayerSpec> _layers;

@@ -77,6 +77,16 @@ void Scene::fill_parts()
   _corrosion.porous_zone = number("corrosion.porous_zone");
   _corrosion.oxide_bulk = number("corrosion.oxide_bulk");
 
+  _cracking.embedded = string("cracking.model") == "embedded";
+  _cracking.linear_softening = string("cracking.law") == "linear_softening";
+  _cracking.f_t = number("cracking.f_t");
+  _cracking.c = number("cracking.c");
+  _cracking.w_c2 = number("cracking.w_c2");
+  _cracking.radius = number("cracking.radius");
+  _cracking.strength_cov = number("cracking.strength_cov");
+  _cracking.correlation_length = number("cracking.correlation_length");
+  _cracking.seed = integer("cracking.seed");
+
   _solver.lagged_preconditioner = string("solver.preconditioner") == "lagged";
   using Condensation = SolverPart::Condensation;
   _solver.condensation = choice<Condensation>(

@@ -108,6 +108,20 @@ struct CorrosionPart
   double oxide_bulk{};  ///< oxide bulk modulus B_ox [MPa]
 };
 
+/// [cracking]: cracks anywhere in the concrete (docs/cracking.md).
+struct CrackingPart
+{
+  bool embedded{};             ///< model = "embedded" (else the concrete is linear)
+  bool linear_softening{};     ///< law: linear_softening (else exponential_softening)
+  double f_t{};                ///< tensile strength [MPa]
+  double c{};                  ///< exponential decay [1/mm]
+  double w_c2{};               ///< linear softening: the opening at zero traction [mm]
+  double radius{};             ///< cracking region around the tube axis [mm]; 0: all concrete
+  double strength_cov{};       ///< coefficient of variation of f_t [-]
+  double correlation_length{}; ///< of the strength field [mm]
+  std::int64_t seed{};
+};
+
 /// [solver].
 struct SolverPart
 {

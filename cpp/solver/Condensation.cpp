@@ -121,6 +121,11 @@ bool Condensation::possible(const Equilibrium& eq, std::string& why)
 {
   int size = 1;
   MPI_Comm_size(PetscObjectComm(reinterpret_cast<PetscObject>(eq.model().stiffness())), &size);
+  if (eq.model().bulk_cracking())
+  {
+    why = "the concrete may crack ([cracking]): its bulk is not linear";
+    return false;
+  }
   return possible(size, interface_dofs(eq.model()), why);
 }
 

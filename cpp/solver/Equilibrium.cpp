@@ -31,6 +31,8 @@ void Equilibrium::set_temperature_change(double dT)
     return; // the thermal load is assembled once per temperature change
   _dT = dT;
   ++_load_version;
+  if (model::BulkCracking* cracking = _model.bulk_cracking())
+    cracking->set_temperature_change(dT);
   if (_f_thermal)
     check(VecDestroy(&_f_thermal), "VecDestroy");
   _f_thermal = dT != 0.0 ? _model.thermal_load(dT) : nullptr;
@@ -72,6 +74,14 @@ bool Equilibrium::assemble_joints(std::span<double> f, Mat A)
   bool ok = true;
   for (interface::Interface* joints : _model.joints())
     ok = joints->assemble(_model.displacement().x()->array(), f, A) && ok;
+  if (model::BulkCracking* cracking = _model.bulk_cracking())
+  {
+    ok = cracking->evaluate() && ok;
+    if (A)
+      cracking->add_tangent(A);
+    else
+      cracking->add_forces(f);
+  }
   return ok;
 }
 

@@ -72,6 +72,8 @@ public:
   {
     for (interface::Interface* joints : _model.joints())
       joints->state().revert();
+    if (model::BulkCracking* cracking = _model.bulk_cracking())
+      cracking->revert();
   }
   int constraint_version() const override { return _constraint_version; }
 
@@ -80,8 +82,8 @@ public:
 
 private:
   /// Adds the forces of every set of joint elements (interface, crack
-  /// planes) at the model's displacement to f, and their tangents to A if
-  /// given. False if a law failed.
+  /// planes) and of the concrete's cracks at the model's displacement to f,
+  /// and their tangents to A if given. False if a law failed.
   bool assemble_joints(std::span<double> f, Mat A);
 
   model::Model& _model;

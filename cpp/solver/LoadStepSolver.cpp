@@ -16,22 +16,32 @@ LoadStepSolver::LoadStepSolver(Equilibrium& eq, bool condense, NewtonSolver::Pre
 
 std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const SolverPart& part)
 {
-  const auto pc = part.lagged_preconditioner ? NewtonSolver::Preconditioner::lagged
-                                             : NewtonSolver::Preconditioner::jacobian;
+  // Concrete that cracks softens at many points at once, and GMRES on a
+  // lagged LU then fails where the LU of each Jacobian does not (the ring
+  // of docs/cracking.md: DIVERGED_LINEAR_SOLVE down to 2^-10 of a step):
+  // it takes the Jacobian's LU whatever solver.preconditioner says.
+  const bool lagged = part.lagged_preconditioner && !eq.model().bulk_cracking();
+  const auto pc =
+      lagged ? NewtonSolver::Preconditioner::lagged : NewtonSolver::Preconditioner::jacobian;
   NewtonSolver::set_default_options(pc);
 
   int processes = 1;
   MPI_Comm_size(eq.model().comm(), &processes);
   const std::int64_t interface_dofs = Condensation::interface_dofs(eq.model());
   std::string why;
-  const bool condense = Condensation::chosen(part.condensation, processes, interface_dofs, why);
+  // Condensation::possible(eq) says why not when the concrete may crack.
+  const bool condense = part.condensation != SolverPart::Condensation::off &&
+                        Condensation::possible(eq, why) &&
+                        Condensation::chosen(part.condensation, processes, interface_dofs, why);
   const bool required = part.condensation == SolverPart::Condensation::on;
   if (!condense && required)
     throw SceneError("solver.condensation = \"on\" is not possible here: " + why);
   const std::string description =
-      condense ? "the " + std::to_string(Condensation::unknowns(eq.model())) +
-                     " interface jumps (bulk condensed)"
-               : "the whole model" + (why.empty() ? "" : " (not condensed: " + why + ")");
+      (condense ? "the " + std::to_string(Condensation::unknowns(eq.model())) +
+                      " interface jumps (bulk condensed)"
+                : "the whole model" + (why.empty() ? "" : " (not condensed: " + why + ")")) +
+      (lagged == part.lagged_preconditioner ? ""
+                                            : ", the LU of every Jacobian (cracking concrete)");
   auto solver = std::make_unique<LoadStepSolver>(eq, condense, pc, int(part.refactor_iterations),
                                                  description);
   solver->set_first_tangent(part.first_tangent_converged);

@@ -12,7 +12,8 @@
 namespace pushout::specimen
 {
 Corrosion::Corrosion(const CorrosionPart& corrosion, const CrackDirections& cracks,
-                     const std::filesystem::path& out, record::RunReport& report, MPI_Comm comm)
+                     bool bulk_cracking, const std::filesystem::path& out,
+                     record::RunReport& report, MPI_Comm comm)
     : _report(report), _comm(comm)
 {
   _x_final = corrosion.penetration;
@@ -30,6 +31,8 @@ Corrosion::Corrosion(const CorrosionPart& corrosion, const CrackDirections& crac
   std::vector<std::string> columns = {"penetration_mm", "p_MPa", "crack_width_mm"};
   for (std::size_t i = 0; i < cracks.angles.size(); ++i)
     columns.push_back("w_crack_" + std::to_string(i) + "_mm");
+  if (bulk_cracking) // the concrete's own cracks (docs/cracking.md)
+    columns.insert(columns.end(), {"cracked_points", "concrete_dissipation_Nmm"});
   columns.insert(columns.end(), {"newton_iterations", "cuts", "wall_s"});
   int rank = 0;
   MPI_Comm_rank(_comm, &rank);
@@ -58,6 +61,12 @@ void Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iterati
   const double crack_width = widths.empty() ? 0.0 : *std::max_element(widths.begin(), widths.end());
   std::vector<double> values = {x, p, crack_width};
   values.insert(values.end(), widths.begin(), widths.end());
+  model::CrackingTotals bulk;
+  if (model::BulkCracking* cracking = eq.model().bulk_cracking())
+  {
+    bulk = cracking->totals();
+    values.insert(values.end(), {double(bulk.cracked_points), bulk.dissipated});
+  }
   record::refuse_non_finite(values, {"penetration_mm", "p_MPa", "crack_width_mm"},
                             "corrosion step " + std::to_string(step), _comm);
   values.insert(values.end(), {double(iterations), double(cuts), _report.seconds()});
@@ -77,6 +86,9 @@ void Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iterati
   line << "  x = " << x * 1e3 << " um  p = " << p << " MPa";
   if (!widths.empty())
     line << "  crack width = " << crack_width * 1e3 << " um";
+  if (model.bulk_cracking())
+    line << "  cracked points " << bulk.cracked_points << "/" << bulk.points << " (widest "
+         << bulk.max_opening * 1e3 << " um)";
   line << "  (newton " << iterations << (cuts ? ", cuts " + std::to_string(cuts) : "") << ", "
        << std::fixed << std::setprecision(2) << _report.seconds() << " s)";
   std::cout << line.str() << std::endl;

@@ -33,9 +33,9 @@ class Corrosion
 {
 public:
   /// Opens corrosion.csv in `out` if `corrosion` has a stage (penetration
-  /// > 0); `cracks`: the crack planes' directions; `comm`: the run's
-  /// processes.
-  Corrosion(const CorrosionPart& corrosion, const CrackDirections& cracks,
+  /// > 0); `cracks`: the crack planes' directions; `bulk_cracking`: the
+  /// concrete may crack anywhere ([cracking]); `comm`: the run's processes.
+  Corrosion(const CorrosionPart& corrosion, const CrackDirections& cracks, bool bulk_cracking,
             const std::filesystem::path& out, record::RunReport& report, MPI_Comm comm);
 
   /// Whether the scene has a corrosion stage (penetration > 0).

@@ -438,5 +438,30 @@ void PushOut::check_scene(const Scene& scene)
     throw SceneError("'corrosion.penetration' > 0 needs an interface layer with law "
                      "\"oxide_friction\": the oxide presses on the concrete through it "
                      "(it replaces \"friction\"; docs/corrosion.md)");
+  check_cracking(scene);
+}
+
+/// [cracking] with the rest of the scene: what cracks anywhere in the
+/// concrete works with so far (docs/cracking.md).
+void PushOut::check_cracking(const Scene& scene)
+{
+  const CrackingPart& cracking = scene.cracking();
+  if (!cracking.embedded)
+    return;
+  const Loading::Control control = scene.loading().control;
+  if (control == Loading::Control::dissipation || control == Loading::Control::automatic)
+    throw SceneError("'cracking.model' = \"embedded\" runs under 'loading.control' = "
+                     "\"displacement\" or \"arc_length\" for now: dissipation control does not "
+                     "count the energy of the concrete's cracks yet");
+  if (scene.mesh().degree != 1)
+    throw SceneError("'cracking.model' = \"embedded\" needs 'mesh.degree' = 1 (the crack band's "
+                     "forms are on the trilinear bulk)");
+  if (scene.solver().condensation == SolverPart::Condensation::on)
+    throw SceneError("'solver.condensation' = \"on\" condenses a linear bulk, and "
+                     "'cracking.model' = \"embedded\" makes the concrete nonlinear: leave it at "
+                     "\"auto\" (the whole model is solved)");
+  if (scene.model().symmetry == ModelPart::Symmetry::symmetric && cracking.strength_cov > 0)
+    throw SceneError("'model.symmetry' = \"symmetric\" cuts the slice, and a random strength "
+                     "field ('cracking.strength_cov' > 0) is not symmetric: leave it at \"auto\"");
 }
 } // namespace pushout::specimen

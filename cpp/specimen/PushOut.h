@@ -101,6 +101,7 @@ public:
   double delta_at(double s) const;
 
 private:
+  static void check_cracking(const Scene& scene);
   /// Constraints of the push (top held at start - delta if `top_held`) and
   /// the temperature change dT [degC].
   void constrain(bool top_held, double delta, double dT, solver::Equilibrium& eq) const;

@@ -142,6 +142,8 @@ void StepLoop::commit()
 {
   for (interface::Interface* joints : _equilibrium.model().joints())
     joints->commit();
+  if (model::BulkCracking* cracking = _equilibrium.model().bulk_cracking())
+    cracking->commit();
   _x_committed.copy_from(_x);
   _report.publish();
 }
@@ -150,6 +152,8 @@ void StepLoop::revert()
 {
   for (interface::Interface* joints : _equilibrium.model().joints())
     joints->state().revert();
+  if (model::BulkCracking* cracking = _equilibrium.model().bulk_cracking())
+    cracking->revert();
   _x.copy_from(_x_committed);
   _solver.forget_tangent(); // it was the reverted state's
 }

@@ -82,6 +82,16 @@ steps = 6
 beta = 2.5
 porous_zone = 0.002
 oxide_bulk = 1500.0
+[cracking]
+model = "embedded"
+law = "linear_softening"
+f_t = 2.5
+c = 20.0
+w_c2 = 0.12
+radius = 40.0
+strength_cov = 0.15
+correlation_length = 4.0
+seed = 7
 [solver]
 preconditioner = "jacobian"
 condensation = "off"
@@ -133,6 +143,16 @@ plot = false
   EXPECT_EQ(c.beta, 2.5);
   EXPECT_EQ(c.porous_zone, 0.002);
   EXPECT_EQ(c.oxide_bulk, 1500.0);
+  const pushout::CrackingPart& k = s.cracking();
+  EXPECT_TRUE(k.embedded);
+  EXPECT_TRUE(k.linear_softening);
+  EXPECT_EQ(k.f_t, 2.5);
+  EXPECT_EQ(k.c, 20.0);
+  EXPECT_EQ(k.w_c2, 0.12);
+  EXPECT_EQ(k.radius, 40.0);
+  EXPECT_EQ(k.strength_cov, 0.15);
+  EXPECT_EQ(k.correlation_length, 4.0);
+  EXPECT_EQ(k.seed, 7);
   const pushout::SolverPart& v = s.solver();
   EXPECT_FALSE(v.lagged_preconditioner);
   EXPECT_EQ(v.condensation, pushout::SolverPart::Condensation::off);

@@ -1,0 +1,264 @@
+#include "BulkCracking.h"
+#include "../mesh/MeshData.h"
+#include "../scene/SceneError.h"
+#include "cracking.h"
+#include <algorithm>
+#include <cmath>
+#include <dolfinx/fem/assembler.h>
+#include <dolfinx/fem/petsc.h>
+#include <dolfinx/fem/utils.h>
+#include <dolfinx/la/petsc.h>
+#include <sstream>
+
+namespace pushout::model
+{
+namespace
+{
+namespace fem = dolfinx::fem;
+constexpr int region_tag = 1; ///< REGION of forms/cracking.py
+constexpr int voigt = 6;      ///< strain and stress components
+constexpr int voigt_sq = 36;  ///< tangent components
+constexpr int state = bulk::CrackBand::state_size;
+
+/// Values of a Quadrature function at (cell, point), `bs` per point.
+std::span<double> at(fem::Function<double>& f, std::int32_t cell, int point, int bs)
+{
+  const std::int32_t dof = f.function_space()->dofmap()->cell_dofs(cell)[point];
+  return f.x()->mutable_array().subspan(std::size_t(dof) * bs, bs);
+}
+
+/// A row-major 2D view for Expression::eval.
+struct Rows
+{
+  double* data;
+  std::size_t columns;
+  double& operator()(std::size_t row, std::size_t column) { return data[row * columns + column]; }
+};
+
+/// The softening envelope of [cracking] (laws/Envelope.h).
+laws::Envelope envelope_of(const CrackingPart& part)
+{
+  if (part.linear_softening)
+    return {laws::Envelope::Kind::linear, part.f_t, part.w_c2, 0.0, 0.0};
+  return {laws::Envelope::Kind::exponential, part.f_t, 0.0, 0.0, part.c};
+}
+
+/// The owned concrete cells whose centre (vertex mean) is within `radius`
+/// of the tube axis (all owned concrete cells for radius 0), sorted.
+std::vector<std::int32_t> cracking_cells(const dolfinx::mesh::Mesh& mesh,
+                                         const std::vector<std::int32_t>& material, double radius,
+                                         std::array<double, 2> axis)
+{
+  const auto& original = mesh.topology().original_cell_index;
+  const std::int32_t n_owned = mesh.topology().index_map(3)->size_local();
+  const auto& x_dofmap = mesh.geometry().dofmap();
+  const std::span<const double> x = mesh.geometry().x();
+  std::vector<std::int32_t> cells;
+  for (std::int32_t c = 0; c < n_owned; ++c)
+  {
+    if (material[original[c]] != mesh::concrete)
+      continue;
+    double centre[2] = {0, 0};
+    auto nodes = x_dofmap.links(c);
+    for (std::int32_t node : nodes)
+      for (int d = 0; d < 2; ++d)
+        centre[d] += x[3 * node + d] / double(nodes.size());
+    if (radius <= 0 || std::hypot(centre[0] - axis[0], centre[1] - axis[1]) <= radius)
+      cells.push_back(c);
+  }
+  return cells;
+}
+} // namespace
+
+BulkCracking::BulkCracking(std::shared_ptr<const dolfinx::mesh::Mesh> mesh,
+                           std::shared_ptr<const fem::FunctionSpace> V,
+                           std::shared_ptr<const fem::Function<double>> u,
+                           std::shared_ptr<const fem::Function<double>> alpha,
+                           const std::vector<std::int32_t>& material, const Material& concrete,
+                           const CrackingPart& part, std::array<double, 2> axis)
+    : _mesh(mesh), _band(concrete.E, concrete.nu, envelope_of(part)),
+      _cells(cracking_cells(*mesh, material, part.radius, axis)),
+      _dT(std::make_shared<fem::Constant<double>>(0.0))
+{
+  auto mesh_nc = std::const_pointer_cast<dolfinx::mesh::Mesh>(mesh);
+  const auto space = [&](const char* name)
+  {
+    return std::make_shared<fem::FunctionSpace>(
+        fem::create_functionspace(functionspace_form_cracking_a_crack, name, mesh_nc));
+  };
+  _d_sigma = std::make_shared<fem::Function<double>>(std::make_shared<fem::FunctionSpace>(
+      fem::create_functionspace(functionspace_form_cracking_L_crack, "d_sigma", mesh_nc)));
+  _d_C = std::make_shared<fem::Function<double>>(space("d_C"));
+  _d_dissipated = std::make_shared<fem::Function<double>>(std::make_shared<fem::FunctionSpace>(
+      fem::create_functionspace(functionspace_form_cracking_M_dissipated, "dissipated", mesh_nc)));
+  _region = std::make_shared<dolfinx::mesh::MeshTags<std::int32_t>>(
+      mesh, 3, std::vector<std::int32_t>(_cells),
+      std::vector<std::int32_t>(_cells.size(), region_tag));
+  const std::map<fem::IntegralType, const dolfinx::mesh::MeshTags<int>*> subdomains = {
+      {fem::IntegralType::cell, _region.get()}};
+  _L = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+      *form_cracking_L_crack, {V}, {{"d_sigma", _d_sigma}}, {}, subdomains));
+  _a = std::make_shared<fem::Form<double>>(
+      fem::create_form<double>(*form_cracking_a_crack, {V, V}, {{"d_C", _d_C}}, {}, subdomains));
+  _M = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+      *form_cracking_M_dissipated, {}, {{"dissipated", _d_dissipated}}, {}, subdomains, mesh));
+  _strain = std::make_unique<fem::Expression<double>>(fem::create_expression<double>(
+      *expression_cracking_strain, {{"u_h", u}, {"alpha", alpha}}, {{"dT", _dT}}, mesh));
+
+  // The strength at each point, from the field at its position.
+  const int n_points = expression_cracking_position->num_points;
+  std::vector<double> positions(_cells.size() * n_points * 3);
+  {
+    const fem::Expression<double> position = fem::create_expression<double>(
+        *expression_cracking_position,
+        std::map<std::string, std::shared_ptr<const fem::Function<double>>>{},
+        std::map<std::string, std::shared_ptr<const fem::Constant<double>>>{}, mesh);
+    Rows rows{positions.data(), std::size_t(n_points) * 3};
+    position.eval(std::span<const std::int32_t>(_cells), rows);
+  }
+  const bulk::StrengthField field(part.strength_cov, part.correlation_length,
+                                  std::uint64_t(part.seed));
+  _strength.resize(_cells.size() * n_points);
+  for (std::size_t i = 0; i < _strength.size(); ++i)
+    _strength[i] = field.factor({positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]});
+  _committed.assign(_strength.size() * state, 0.0);
+  _trial = _committed;
+  _dissipated.assign(_strength.size(), 0.0);
+  _dissipated_trial = _dissipated;
+  _opening.assign(_strength.size(), 0.0);
+  _opening_trial = _opening;
+  _strain_values.resize(_strength.size() * voigt);
+
+  // The size condition of the crack band (bulk/CrackBand.h): the band may
+  // be as wide as the cell's bounding-box diagonal (no extent along a
+  // normal exceeds it), and must soften without snapping back there.
+  double worst = 0; // largest diagonal / max_band_width
+  for (std::size_t c = 0; c < _cells.size(); ++c)
+  {
+    double diagonal = 0;
+    for (const bulk::Vec3 n : {bulk::Vec3{1, 0, 0}, {0, 1, 0}, {0, 0, 1}})
+      diagonal += band_width(c, n) * band_width(c, n);
+    diagonal = std::sqrt(diagonal);
+    for (int q = 0; q < n_points; ++q)
+      worst = std::max(worst, diagonal / _band.max_band_width(_strength[c * n_points + q]));
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &worst, 1, MPI_DOUBLE, MPI_MAX, mesh->comm());
+  std::ostringstream why;
+  why << "cracking: a concrete element is " << worst
+      << " times the widest band its crack can soften over without snapping back (mu / |d "
+         "sigma / d w|, docs/cracking.md): refine the mesh (mesh.elements_per_quarter) or lower "
+         "cracking.f_t or raise cracking.w_c2 / lower cracking.c";
+  // The same value on every process: all refuse the scene together (exit 2).
+  if (worst >= 1)
+    throw SceneError(why.str());
+}
+
+double BulkCracking::band_width(std::size_t cell, const bulk::Vec3& n) const
+{
+  const auto nodes = _mesh->geometry().dofmap().links(_cells[cell]);
+  const std::span<const double> x = _mesh->geometry().x();
+  double lo = INFINITY, hi = -INFINITY;
+  for (std::int32_t node : nodes)
+  {
+    const double s = x[3 * node] * n[0] + x[3 * node + 1] * n[1] + x[3 * node + 2] * n[2];
+    lo = std::min(lo, s);
+    hi = std::max(hi, s);
+  }
+  return hi - lo;
+}
+
+void BulkCracking::commit()
+{
+  _committed = _trial;
+  _dissipated = _dissipated_trial;
+  _opening = _opening_trial;
+}
+
+void BulkCracking::revert()
+{
+  _trial = _committed;
+  _dissipated_trial = _dissipated;
+  _opening_trial = _opening;
+}
+
+void BulkCracking::reset()
+{
+  std::fill(_committed.begin(), _committed.end(), 0.0);
+  std::fill(_dissipated.begin(), _dissipated.end(), 0.0);
+  std::fill(_opening.begin(), _opening.end(), 0.0);
+  revert();
+}
+
+void BulkCracking::set_temperature_change(double dT)
+{
+  _dT->value = {dT};
+}
+
+bool BulkCracking::evaluate()
+{
+  const int n_points = expression_cracking_strain->num_points;
+  Rows rows{_strain_values.data(), std::size_t(n_points) * voigt};
+  _strain->eval(std::span<const std::int32_t>(_cells), rows);
+  const bulk::Voigt66& C = _band.stiffness();
+  bool ok = true;
+  for (std::size_t c = 0; c < _cells.size(); ++c)
+    for (int q = 0; q < n_points; ++q)
+    {
+      const std::size_t i = c * std::size_t(n_points) + q;
+      bulk::Voigt strain;
+      std::copy_n(_strain_values.begin() + voigt * i, voigt, strain.begin());
+      const std::span<const double> old(_committed.data() + state * i, state);
+      const std::span<double> now(_trial.data() + state * i, state);
+      const bulk::CrackBandResult r = _band.update(
+          old, strain, now, [&](const bulk::Vec3& n) { return band_width(c, n); }, _strength[i]);
+      ok = ok && r.status == bulk::CrackBandResult::Status::ok;
+      _dissipated_trial[i] = _dissipated[i] + r.dissipation;
+      _opening_trial[i] = r.opening[0];
+      const std::span<double> d_sigma = at(*_d_sigma, _cells[c], q, voigt);
+      const std::span<double> d_C = at(*_d_C, _cells[c], q, voigt_sq);
+      const bulk::Voigt elastic = bulk::multiply(C, strain);
+      for (int k = 0; k < voigt; ++k)
+        d_sigma[k] = r.stress[k] - elastic[k];
+      for (int k = 0; k < voigt_sq; ++k)
+        d_C[k] = r.tangent[k] - C[k];
+    }
+  return ok;
+}
+
+void BulkCracking::add_forces(std::span<double> f) const
+{
+  fem::assemble_vector(f, *_L);
+}
+
+void BulkCracking::add_tangent(Mat A) const
+{
+  fem::assemble_matrix(dolfinx::la::petsc::Matrix::set_block_fn(A, ADD_VALUES), *_a, {});
+}
+
+CrackingTotals BulkCracking::totals()
+{
+  evaluate(); // a failure was the converged step's, and is not one
+  const int n_points = expression_cracking_strain->num_points;
+  CrackingTotals t;
+  t.points = std::int64_t(_strength.size());
+  for (std::size_t c = 0; c < _cells.size(); ++c)
+    for (int q = 0; q < n_points; ++q)
+    {
+      const std::size_t i = c * std::size_t(n_points) + q;
+      at(*_d_dissipated, _cells[c], q, 1)[0] = _dissipated_trial[i];
+      const bulk::CrackState<const double> s(
+          std::span<const double>(_trial.data() + state * i, state));
+      if (!s.cracked())
+        continue;
+      ++t.cracked_points;
+      t.max_opening = std::max(t.max_opening, _opening_trial[i]);
+    }
+  t.dissipated = fem::assemble_scalar(*_M);
+  MPI_Comm comm = _mesh->comm();
+  MPI_Allreduce(MPI_IN_PLACE, &t.points, 1, MPI_INT64_T, MPI_SUM, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &t.cracked_points, 1, MPI_INT64_T, MPI_SUM, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &t.dissipated, 1, MPI_DOUBLE, MPI_SUM, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &t.max_opening, 1, MPI_DOUBLE, MPI_MAX, comm);
+  return t;
+}
+} // namespace pushout::model

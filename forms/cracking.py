@@ -1,0 +1,76 @@
+# Concrete that cracks (cpp/bulk/CrackBand.h, cpp/model/BulkCracking.h;
+# docs/cracking.md): the crack band's stress and tangent enter the bulk at
+# the quadrature points of the concrete that may crack, as coefficients of a
+# Quadrature element (point values, no interpolation).
+#
+# The linear bulk K of forms/elasticity.py stays assembled once; these forms
+# add what cracking changes, where it changes it:
+#
+#   f_crack(v) = int (sigma - C : eps_e) : eps(v) dx
+#   a_crack(u, v) = int eps(u) : (C_t - C) : eps(v) dx
+#
+# sigma and C_t the crack band's stress and consistent tangent at the point,
+# eps_e = eps(u) - alpha dT I the strain that the stress works on (the
+# thermal strain of the retraction is free, as in forms/elasticity.py). Both
+# differences are exactly zero at a point that has not cracked, so uncracked
+# concrete costs nothing and K keeps its meaning.
+#
+# Voigt order as in cpp/bulk/Voigt.h: stress [xx, yy, zz, yz, xz, xy],
+# strain [xx, yy, zz, 2 yz, 2 xz, 2 xy].
+#
+# The points: basix's default rule of degree 2 on the hexahedron (2 x 2 x 2
+# Gauss-Jacobi), the same rule for the Quadrature element's values, for the
+# integrals (metadata below) and for the expressions that evaluate the
+# strain and the position there, so that value i of a cell is at point i.
+#
+# Units: mm, N, MPa. Compiled by FFCx at build time (see CMakeLists.txt).
+import basix
+from ufl import (Coefficient, Constant, FiniteElement, FunctionSpace, Mesh,
+                 SpatialCoordinate, TestFunction, TrialFunction, VectorElement,
+                 as_matrix, as_vector, dot, dx, grad, hexahedron, inner, sym)
+
+DEGREE = 2  # of the quadrature rule
+coordinate_element = VectorElement("Lagrange", hexahedron, 1)
+mesh = Mesh(coordinate_element)
+
+V = FunctionSpace(mesh, VectorElement("Lagrange", hexahedron, 1))
+Q = FunctionSpace(mesh, FiniteElement("DG", hexahedron, 0))
+S = FunctionSpace(mesh, VectorElement("Quadrature", hexahedron, DEGREE, dim=6,
+                                      quad_scheme="default"))
+T = FunctionSpace(mesh, VectorElement("Quadrature", hexahedron, DEGREE, dim=36,
+                                      quad_scheme="default"))
+P = FunctionSpace(mesh, FiniteElement("Quadrature", hexahedron, DEGREE, quad_scheme="default"))
+
+d_sigma = Coefficient(S)  # sigma - C : eps_e at the points [MPa]
+d_C = Coefficient(T)      # C_t - C at the points, 6 x 6 row-major [MPa]
+alpha = Coefficient(Q)    # thermal expansion coefficient per cell [1/degC]
+dT = Constant(mesh)       # temperature change of the thermal step [degC]
+u_h = Coefficient(V)      # displacement [mm]
+dissipated = Coefficient(P)  # energy the cracks dissipated per unit volume [N mm/mm^3]
+
+u = TrialFunction(V)
+v = TestFunction(V)
+
+
+def voigt_strain(w):
+    """eps(w) in Voigt order with engineering shears."""
+    e = sym(grad(w))
+    return as_vector([e[0, 0], e[1, 1], e[2, 2], 2 * e[1, 2], 2 * e[0, 2], 2 * e[0, 1]])
+
+
+# Over the cracking cells only: tagged REGION by cpp/model/BulkCracking.cpp.
+REGION = 1
+at_points = dx(REGION, metadata={"quadrature_degree": DEGREE, "quadrature_rule": "default"})
+d_C_matrix = as_matrix([[d_C[6 * i + j] for j in range(6)] for i in range(6)])
+
+L_crack = inner(d_sigma, voigt_strain(v)) * at_points
+a_crack = inner(dot(d_C_matrix, voigt_strain(u)), voigt_strain(v)) * at_points
+# The energy the concrete's cracks dissipated [N mm].
+M_dissipated = dissipated * at_points
+
+points, _ = basix.make_quadrature(basix.CellType.hexahedron, DEGREE)
+strain = voigt_strain(u_h) - alpha * dT * as_vector([1.0, 1.0, 1.0, 0.0, 0.0, 0.0])
+position = SpatialCoordinate(mesh)
+
+forms = [L_crack, a_crack, M_dissipated]
+expressions = [(strain, points), (position, points)]
