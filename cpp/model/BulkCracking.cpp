@@ -1,4 +1,5 @@
 #include "BulkCracking.h"
+#include "../bulk/StrengthField.h"
 #include "../mesh/MeshData.h"
 #include "../scene/SceneError.h"
 #include "cracking.h"
@@ -25,6 +26,16 @@ std::span<double> at(fem::Function<double>& f, std::int32_t cell, int point, int
 {
   const std::int32_t dof = f.function_space()->dofmap()->cell_dofs(cell)[point];
   return f.x()->mutable_array().subspan(std::size_t(dof) * bs, bs);
+}
+
+/// A function on the Quadrature space that `form`'s coefficient `name`
+/// lives on (forms/cracking.py).
+std::shared_ptr<fem::Function<double>>
+quadrature_function(ufcx_function_space* (*form)(const char*), const char* name,
+                    std::shared_ptr<dolfinx::mesh::Mesh> mesh)
+{
+  return std::make_shared<fem::Function<double>>(
+      std::make_shared<fem::FunctionSpace>(fem::create_functionspace(form, name, mesh)));
 }
 
 /// A row-major 2D view for Expression::eval.
@@ -70,7 +81,7 @@ std::vector<std::int32_t> cracking_cells(const dolfinx::mesh::Mesh& mesh,
 }
 } // namespace
 
-BulkCracking::BulkCracking(std::shared_ptr<const dolfinx::mesh::Mesh> mesh,
+BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
                            std::shared_ptr<const fem::FunctionSpace> V,
                            std::shared_ptr<const fem::Function<double>> u,
                            std::shared_ptr<const fem::Function<double>> alpha,
@@ -80,17 +91,9 @@ BulkCracking::BulkCracking(std::shared_ptr<const dolfinx::mesh::Mesh> mesh,
       _cells(cracking_cells(*mesh, material, part.radius, axis)),
       _dT(std::make_shared<fem::Constant<double>>(0.0))
 {
-  auto mesh_nc = std::const_pointer_cast<dolfinx::mesh::Mesh>(mesh);
-  const auto space = [&](const char* name)
-  {
-    return std::make_shared<fem::FunctionSpace>(
-        fem::create_functionspace(functionspace_form_cracking_a_crack, name, mesh_nc));
-  };
-  _d_sigma = std::make_shared<fem::Function<double>>(std::make_shared<fem::FunctionSpace>(
-      fem::create_functionspace(functionspace_form_cracking_L_crack, "d_sigma", mesh_nc)));
-  _d_C = std::make_shared<fem::Function<double>>(space("d_C"));
-  _d_dissipated = std::make_shared<fem::Function<double>>(std::make_shared<fem::FunctionSpace>(
-      fem::create_functionspace(functionspace_form_cracking_M_dissipated, "dissipated", mesh_nc)));
+  _d_sigma = quadrature_function(functionspace_form_cracking_L_crack, "d_sigma", mesh);
+  _d_C = quadrature_function(functionspace_form_cracking_a_crack, "d_C", mesh);
+  _d_dissipated = quadrature_function(functionspace_form_cracking_M_dissipated, "dissipated", mesh);
   _region = std::make_shared<dolfinx::mesh::MeshTags<std::int32_t>>(
       mesh, 3, std::vector<std::int32_t>(_cells),
       std::vector<std::int32_t>(_cells.size(), region_tag));
@@ -135,10 +138,8 @@ BulkCracking::BulkCracking(std::shared_ptr<const dolfinx::mesh::Mesh> mesh,
   double worst = 0; // largest diagonal / max_band_width
   for (std::size_t c = 0; c < _cells.size(); ++c)
   {
-    double diagonal = 0;
-    for (const bulk::Vec3 n : {bulk::Vec3{1, 0, 0}, {0, 1, 0}, {0, 0, 1}})
-      diagonal += band_width(c, n) * band_width(c, n);
-    diagonal = std::sqrt(diagonal);
+    const double diagonal =
+        std::hypot(band_width(c, {1, 0, 0}), band_width(c, {0, 1, 0}), band_width(c, {0, 0, 1}));
     for (int q = 0; q < n_points; ++q)
       worst = std::max(worst, diagonal / _band.max_band_width(_strength[c * n_points + q]));
   }

@@ -17,7 +17,6 @@
 #pragma once
 
 #include "../bulk/CrackBand.h"
-#include "../bulk/StrengthField.h"
 #include "../scene/SceneParts.h"
 #include <array>
 #include <cstdint>
@@ -50,7 +49,7 @@ public:
   /// `material` the input cells' materials (MeshData); `axis` the tube
   /// axis (x, y) [mm]. Throws SceneError, on every process, if a cracking
   /// cell is too large for its crack band to soften without snapping back.
-  BulkCracking(std::shared_ptr<const dolfinx::mesh::Mesh> mesh,
+  BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
                std::shared_ptr<const dolfinx::fem::FunctionSpace> V,
                std::shared_ptr<const dolfinx::fem::Function<double>> u,
                std::shared_ptr<const dolfinx::fem::Function<double>> alpha,
@@ -89,7 +88,7 @@ private:
   /// vertices along n [mm] (bulk/CrackBand.h).
   double band_width(std::size_t cell, const bulk::Vec3& n) const;
 
-  std::shared_ptr<const dolfinx::mesh::Mesh> _mesh;
+  std::shared_ptr<dolfinx::mesh::Mesh> _mesh;
   bulk::CrackBand _band;
   std::vector<std::int32_t> _cells;       ///< cracking cells (local, owned), sorted
   std::vector<double> _strength;          ///< [cell][point] f_t factor of the field

@@ -77,10 +77,9 @@ bool Equilibrium::assemble_joints(std::span<double> f, Mat A)
   if (model::BulkCracking* cracking = _model.bulk_cracking())
   {
     ok = cracking->evaluate() && ok;
+    cracking->add_forces(f);
     if (A)
       cracking->add_tangent(A);
-    else
-      cracking->add_forces(f);
   }
   return ok;
 }

@@ -20,7 +20,8 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
   // lagged LU then fails where the LU of each Jacobian does not (the ring
   // of docs/cracking.md: DIVERGED_LINEAR_SOLVE down to 2^-10 of a step):
   // it takes the Jacobian's LU whatever solver.preconditioner says.
-  const bool lagged = part.lagged_preconditioner && !eq.model().bulk_cracking();
+  const bool overridden = part.lagged_preconditioner && eq.model().bulk_cracking();
+  const bool lagged = part.lagged_preconditioner && !overridden;
   const auto pc =
       lagged ? NewtonSolver::Preconditioner::lagged : NewtonSolver::Preconditioner::jacobian;
   NewtonSolver::set_default_options(pc);
@@ -40,8 +41,7 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
       (condense ? "the " + std::to_string(Condensation::unknowns(eq.model())) +
                       " interface jumps (bulk condensed)"
                 : "the whole model" + (why.empty() ? "" : " (not condensed: " + why + ")")) +
-      (lagged == part.lagged_preconditioner ? ""
-                                            : ", the LU of every Jacobian (cracking concrete)");
+      (overridden ? ", the LU of every Jacobian (cracking concrete)" : "");
   auto solver = std::make_unique<LoadStepSolver>(eq, condense, pc, int(part.refactor_iterations),
                                                  description);
   solver->set_first_tangent(part.first_tangent_converged);
