@@ -43,8 +43,10 @@ import csv
 import json
 import os
 import shutil
+import struct
 import subprocess
 import sys
+import tempfile
 import time
 
 import matplotlib
@@ -253,40 +255,76 @@ MISSING_PARAVIEW = "ParaView's Python module is missing: install python3-paravie
 
 
 class VirtualDisplay:
-    """An Xvfb server on a display number that the server itself found free
-    (-displayfd): a lock-file scan such as xvfb-run's can pick a number whose
-    socket another server (another /tmp, another chroot) already holds, and
-    pvbatch then fails with "bad X server connection". Local clients only."""
+    """A private Xvfb server for pvbatch, local connections only.
+
+    - Its display number is one the server could bind (it reports it through
+      -displayfd; a number in use makes it exit, and the next is tried), not
+      one guessed from lock files as xvfb-run does: those miss a socket that
+      another server (another /tmp, another chroot) holds.
+    - Numbers start at FIRST_DISPLAY: every MPI start probes displays :0 to
+      :9 for GPUs (hwloc), and a pushout run beside a render once connected
+      to a server there and died when the render ended it (XIO fatal error).
+    - It admits only the holder of its cookie (-auth, XAUTHORITY for
+      pvbatch), so no other client of this machine ever connects to it."""
+
+    FIRST_DISPLAY = 100
+    TRIES = 100
 
     def __init__(self):
         self.proc = None
         self.display = None
-        self.log = ""
+        self.folder = None
+
+    def _write_cookie(self):
+        """An Xauthority file of one MIT-MAGIC-COOKIE-1 entry for any
+        display of this machine (FamilyWild, no address, no number)."""
+        self.folder = tempfile.mkdtemp(prefix="pushout-xvfb-")
+        path = os.path.join(self.folder, "Xauthority")
+        field = lambda b: struct.pack(">H", len(b)) + b  # noqa: E731
+        with open(path, "wb") as f:
+            f.write(struct.pack(">H", 0xFFFF) + field(b"") + field(b"")
+                    + field(b"MIT-MAGIC-COOKIE-1") + field(os.urandom(16)))
+        return path
+
+    def _start(self, xvfb, number):
+        """Xvfb on :number; its stderr lines if it did not start, else None."""
+        read_end, write_end = os.pipe()
+        self.proc = subprocess.Popen([xvfb, f":{number}", "-displayfd", str(write_end), "-auth",
+                                      self.auth, "-screen", "0", "1600x1200x24", "-nolisten", "tcp"],
+                                     pass_fds=(write_end,), stdout=subprocess.DEVNULL,
+                                     stderr=subprocess.PIPE, text=True)
+        os.close(write_end)
+        reported = b""
+        # The server writes its display number once it accepts connections;
+        # end of file first means it died.
+        while not reported.endswith(b"\n"):
+            chunk = os.read(read_end, 16)
+            if not chunk:
+                break
+            reported += chunk
+        os.close(read_end)
+        if reported.strip().isdigit():
+            return None
+        self.proc.kill()
+        return self.proc.communicate()[1].strip().splitlines()
 
     def __enter__(self):
         xvfb = shutil.which("Xvfb")
         if not xvfb:
             raise RenderError("Xvfb is missing: install xvfb (scripts/setup.sh does)")
-        read_end, write_end = os.pipe()
-        self.proc = subprocess.Popen([xvfb, "-displayfd", str(write_end), "-screen", "0", "1600x1200x24",
-                                      "-nolisten", "tcp"], pass_fds=(write_end,),
-                                     stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-        os.close(write_end)
-        number = b""
-        # The server writes its display number once it accepts connections;
-        # end of file first means it died.
-        while not number.endswith(b"\n"):
-            chunk = os.read(read_end, 16)
-            if not chunk:
-                break
-            number += chunk
-        os.close(read_end)
-        if not number.strip().isdigit():
-            self.proc.kill()
-            err = self.proc.communicate()[1].strip().splitlines()
-            raise RenderError("Xvfb did not start: " + " | ".join(err[-3:]))
-        self.display = ":" + number.decode().strip()
-        return self
+        self.auth = self._write_cookie()
+        for number in range(self.FIRST_DISPLAY, self.FIRST_DISPLAY + self.TRIES):
+            err = self._start(xvfb, number)
+            if err is None:
+                self.display = f":{number}"
+                return self
+        shutil.rmtree(self.folder, ignore_errors=True)
+        raise RenderError(f"Xvfb did not start on displays :{self.FIRST_DISPLAY} to "
+                          f":{self.FIRST_DISPLAY + self.TRIES - 1}: " + " | ".join(err[-3:]))
+
+    def env(self):
+        """The environment for a client of this server."""
+        return dict(os.environ, DISPLAY=self.display, XAUTHORITY=self.auth)
 
     def __exit__(self, *exc):
         self.proc.terminate()
@@ -295,6 +333,7 @@ class VirtualDisplay:
         except subprocess.TimeoutExpired:
             self.proc.kill()
             self.proc.communicate()
+        shutil.rmtree(self.folder, ignore_errors=True)
         return False
 
 
@@ -313,7 +352,7 @@ def render_interface(folder, png, title):
             p = subprocess.run(cmd, capture_output=True, text=True)
         else:
             with VirtualDisplay() as x:
-                p = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, DISPLAY=x.display))
+                p = subprocess.run(cmd, capture_output=True, text=True, env=x.env())
         if p.returncode == 0 and os.path.exists(png):
             return
         if "No module named 'paraview'" in p.stdout + p.stderr:
