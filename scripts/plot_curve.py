@@ -4,8 +4,10 @@
 push-out: nominal bond stress tau [MPa] against tube displacement delta [um]
 (paper eq. 1); single joint: shear force F_s [N] against shear displacement
 u_s [mm]; corrosion (corrosion.csv): interface pressure p [MPa] and crack
-widths [um] against the corrosion depth x [um].
-Usage: plot_curve.py CSV OUT.png --kind pushout|single_joint|corrosion
+widths [um] against the corrosion depth x [um]; crack pattern
+(crack_pattern.csv, with [cracking]): the slice seen along the tube axis,
+each column of the concrete coloured by its thickness-mean crack opening.
+Usage: plot_curve.py CSV OUT.png --kind pushout|single_joint|corrosion|crack_pattern
        plot_curve.py --serve   (plots named on stdin: what pushout runs)
 """
 import argparse
@@ -37,7 +39,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("csv", nargs="?")
     ap.add_argument("png", nargs="?")
-    ap.add_argument("--kind", default="pushout", choices=["pushout", "single_joint", "corrosion"])
+    ap.add_argument("--kind", default="pushout", choices=["pushout", "single_joint", "corrosion", "crack_pattern"])
     ap.add_argument("--title", default=None)
     ap.add_argument("--serve", action="store_true",
                     help="draw the plots named on stdin, one JSON list [csv, png, kind] per line, "
@@ -88,7 +90,38 @@ def draw(csv_path, png, kind, title):
     fig.savefig(png)
 
 
+def plot_crack_pattern(fig, data, title):
+    """Each column its cell's outline, coloured by its opening on a log
+    scale from 1 um (below: the lightest colour) to the widest."""
+    from matplotlib.collections import PatchCollection
+    from matplotlib.colors import LogNorm
+    from matplotlib.patches import Polygon
+    ax = fig.add_subplot()
+    floor = 1e-3  # mm
+    xs, ys = data.get("x_mm", []), data.get("y_mm", [])
+    opening, size = data.get("opening_mm", []), data.get("size_mm", [])
+    top = max([floor * 10] + opening)
+    outlines = [[(data[f"corner_{k}_x_mm"][i], data[f"corner_{k}_y_mm"][i]) for k in range(4)]
+                for i in range(len(xs))]
+    cells = PatchCollection([Polygon(o) for o in outlines], cmap="inferno_r",
+                            norm=LogNorm(floor, top), linewidths=0)
+    cells.set_array([max(w, floor) for w in opening])
+    ax.add_collection(cells)
+    if xs:
+        ax.set_xlim(min(p[0] for o in outlines for p in o), max(p[0] for o in outlines for p in o))
+        ax.set_ylim(min(p[1] for o in outlines for p in o), max(p[1] for o in outlines for p in o))
+    ax.set_facecolor("0.85")  # where the concrete may not crack, and the tube
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("y [mm]")
+    fig.colorbar(cells, ax=ax, label="crack opening, mean through the thickness [mm]")
+    ax.set_title(f"crack pattern after corrosion: {title}")
+    fig.tight_layout()
+
+
 def plot(fig, data, kind, title):
+    if kind == "crack_pattern":
+        return plot_crack_pattern(fig, data, title)
     ax = fig.add_subplot()
     if kind == "pushout":
         ax.plot([d * 1e3 for d in data.get("delta_mm", [])], data.get("tau_MPa", []), "o-", ms=3)
@@ -106,6 +139,12 @@ def plot(fig, data, kind, title):
                 ax2.plot(x_um, [w * 1e3 for w in data[k]], "s-", ms=2, color=f"C{i + 1}",
                          label=f"crack {k[len('w_crack_'):-3]}")
             ax2.set_ylabel("crack-mouth opening [µm]")
+            ax2.legend(loc="upper left", fontsize=8)
+        elif "cracks_at_surface" in data:  # the concrete's cracks, as a gauge reads them
+            ax2 = ax.twinx()
+            ax2.plot(x_um, [w * 1e3 for w in data.get("crack_width_mm", [])], "s-", ms=2,
+                     color="C1", label="widest surface crack")
+            ax2.set_ylabel("surface crack width [µm]")
             ax2.legend(loc="upper left", fontsize=8)
     else:
         ax.plot(data.get("u_s_mm", []), data.get("F_s_N", []), "o-", ms=3)

@@ -12,6 +12,7 @@ packages=(
   libgmsh-dev                           # mesh generation (C++ API)
   libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   python3-matplotlib                    # curve.png
+  python3-h5py                          # e2e tests read fields.h5
   paraview python3-paraview xvfb       # pvbatch renders the interface maps (Fig. 8);
                                         # its Python module is only a recommended package
   libgtest-dev clang-format             # unit tests; the format test (ctest -R format)

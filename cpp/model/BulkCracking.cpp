@@ -86,10 +86,11 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
                            std::shared_ptr<const fem::Function<double>> u,
                            std::shared_ptr<const fem::Function<double>> alpha,
                            const std::vector<std::int32_t>& material, const Material& concrete,
-                           const CrackingPart& part, std::array<double, 2> axis)
+                           const CrackingPart& part, const Geometry& slice)
     : _mesh(mesh), _band(concrete.E, concrete.nu, envelope_of(part)),
-      _cells(cracking_cells(*mesh, material, part.radius, axis)),
-      _dT(std::make_shared<fem::Constant<double>>(0.0))
+      _cells(cracking_cells(*mesh, material, part.radius, slice.tube_center)),
+      _axis(slice.tube_center), _tube_radius(slice.tube_radius()),
+      _visible_width(part.visible_width), _dT(std::make_shared<fem::Constant<double>>(0.0))
 {
   _d_sigma = quadrature_function(functionspace_form_cracking_L_crack, "d_sigma", mesh);
   _d_C = quadrature_function(functionspace_form_cracking_a_crack, "d_C", mesh);
@@ -128,9 +129,10 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
   _trial = _committed;
   _dissipated.assign(_strength.size(), 0.0);
   _dissipated_trial = _dissipated;
-  _opening.assign(_strength.size(), 0.0);
+  _opening.assign(_strength.size() * 3, 0.0);
   _opening_trial = _opening;
   _strain_values.resize(_strength.size() * voigt);
+  place_cells(slice, positions);
 
   // The size condition of the crack band (bulk/CrackBand.h): the band may
   // be as wide as the cell's bounding-box diagonal (no extent along a
@@ -214,7 +216,7 @@ bool BulkCracking::evaluate()
           old, strain, now, [&](const bulk::Vec3& n) { return band_width(c, n); }, _strength[i]);
       ok = ok && r.status == bulk::CrackBandResult::Status::ok;
       _dissipated_trial[i] = _dissipated[i] + r.dissipation;
-      _opening_trial[i] = r.opening[0];
+      std::copy(r.opening.begin(), r.opening.end(), _opening_trial.begin() + 3 * i);
       const std::span<double> d_sigma = at(*_d_sigma, _cells[c], q, voigt);
       const std::span<double> d_C = at(*_d_C, _cells[c], q, voigt_sq);
       const bulk::Voigt elastic = bulk::multiply(C, strain);
@@ -252,7 +254,7 @@ CrackingTotals BulkCracking::totals()
       if (!s.cracked())
         continue;
       ++t.cracked_points;
-      t.max_opening = std::max(t.max_opening, _opening_trial[i]);
+      t.max_opening = std::max(t.max_opening, _opening_trial[3 * i]);
     }
   t.dissipated = fem::assemble_scalar(*_M);
   MPI_Comm comm = _mesh->comm();
@@ -260,6 +262,7 @@ CrackingTotals BulkCracking::totals()
   MPI_Allreduce(MPI_IN_PLACE, &t.cracked_points, 1, MPI_INT64_T, MPI_SUM, comm);
   MPI_Allreduce(MPI_IN_PLACE, &t.dissipated, 1, MPI_DOUBLE, MPI_SUM, comm);
   MPI_Allreduce(MPI_IN_PLACE, &t.max_opening, 1, MPI_DOUBLE, MPI_MAX, comm);
+  read_surface(t);
   return t;
 }
 } // namespace pushout::model

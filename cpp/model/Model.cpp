@@ -396,13 +396,9 @@ JointLaws JointLaws::of(const Scene& scene)
 
 ModelInput ModelInput::of(const Scene& scene)
 {
-  return {scene.mesh().degree,
-          scene.mesh().nodal_quadrature,
-          scene.steel(),
-          scene.concrete(),
-          JointLaws::of(scene),
-          scene.cracking(),
-          scene.geometry().tube_center};
+  return {scene.mesh().degree, scene.mesh().nodal_quadrature, scene.steel(),
+          scene.concrete(),    JointLaws::of(scene),          scene.cracking(),
+          scene.geometry()};
 }
 
 Model::Model(MPI_Comm comm, const mesh::MeshData& data, const ModelInput& in)
@@ -420,7 +416,7 @@ Model::Model(MPI_Comm comm, const mesh::MeshData& data, const ModelInput& in)
   _u->name = "displacement"; // in fields.xdmf
   if (in.cracking.embedded)
     _bulk_cracking = std::make_unique<BulkCracking>(_mesh, _V, _u, _materials.alpha, data.material,
-                                                    in.concrete, in.cracking, in.tube_axis);
+                                                    in.concrete, in.cracking, in.geometry);
 }
 
 Model::~Model()

@@ -49,8 +49,8 @@ struct ModelInput
   bool nodal_quadrature = false; ///< mesh.interface_quadrature
   Material steel, concrete;
   JointLaws laws;
-  CrackingPart cracking;             ///< [cracking]
-  std::array<double, 2> tube_axis{}; ///< geometry.tube_center [mm]
+  CrackingPart cracking; ///< [cracking]
+  Geometry geometry;     ///< [geometry]: where the concrete's cracks are read
   static ModelInput of(const Scene& scene);
 };
 

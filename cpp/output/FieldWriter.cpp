@@ -2,6 +2,7 @@
 #include "../common/mpi_errors.h"
 #include "elasticity.h"
 #include "xdmf_checked.h"
+#include <basix/finite-element.h>
 #include <dolfinx/fem/utils.h>
 #include <exception>
 #include <functional>
@@ -30,6 +31,23 @@ FieldWriter::FieldWriter(const model::Model& model, const std::filesystem::path&
     _u1 = std::make_shared<fem::Function<double>>(std::make_shared<fem::FunctionSpace>(
         fem::create_functionspace(functionspace_form_elasticity_a, "u", model.mesh())));
     _u1->name = "displacement";
+  }
+
+  if (model.bulk_cracking())
+  {
+    auto cells = [&](int bs, const char* name)
+    {
+      auto f = std::make_shared<fem::Function<double>>(std::make_shared<fem::FunctionSpace>(
+          fem::create_functionspace(model.mesh(),
+                                    basix::create_element(basix::element::family::P,
+                                                          basix::cell::type::hexahedron, 0, true),
+                                    bs)));
+      f->name = name;
+      return f;
+    };
+    _crack_opening = cells(1, "crack_opening");
+    _crack_normal = cells(3, "crack_normal");
+    _crack_damage = cells(1, "crack_damage");
   }
 
   // The joint elements: interface.xdmf has the interface and the crack
@@ -168,15 +186,21 @@ void FieldWriter::write(double t)
   if (_u1)
     _u1->interpolate(_model.displacement());
   const auto& stress = _stress.update();
+  if (const model::BulkCracking* cracking = _model.bulk_cracking())
+    cracking->cell_fields(*_crack_opening, *_crack_normal, *_crack_damage);
   const std::span<const double> u = _model.displacement().x()->array();
   all_of({[&]
           {
-            xdmf_checked(_fields, _fields_file,
-                         [&](dolfinx::io::XDMFFile& f)
-                         {
-                           f.write_function(_u1 ? *_u1 : _model.displacement(), t);
-                           f.write_function(stress, t);
-                         });
+            xdmf_checked(
+                _fields, _fields_file,
+                [&](dolfinx::io::XDMFFile& f)
+                {
+                  f.write_function(_u1 ? *_u1 : _model.displacement(), t);
+                  f.write_function(stress, t);
+                  if (_crack_opening)
+                    for (const auto& field : {_crack_opening, _crack_normal, _crack_damage})
+                      f.write_function(*field, t);
+                });
           },
           [&] { _interface->write(u, t); },
           [&]

@@ -6,7 +6,9 @@
 // and with crack planes cracks.xdmf (per joint element of the cracks: t_n
 // (opening traction), t_s1 (axial), t_s2 (radial) [MPa], w_n (opening),
 // w_s1, w_s2 [mm], damage, and the crack's index), one time step per
-// converged load step.
+// converged load step. With [cracking], fields.xdmf also has per cell the
+// widest crack of its points: crack_opening (normal opening [mm]),
+// crack_normal (unit) and crack_damage.
 #pragma once
 
 #include "../model/Model.h"
@@ -48,6 +50,9 @@ private:
   bool _open = true;
   std::unique_ptr<JointWriter> _interface, _cracks;
   StressProjection _stress;
+  /// [cracking]: per cell, its widest crack's normal opening [mm], unit
+  /// normal and damage (model/BulkCracking.h); null without.
+  std::shared_ptr<dolfinx::fem::Function<double>> _crack_opening, _crack_normal, _crack_damage;
   /// mesh.degree = 2: the displacement interpolated to the trilinear space
   /// of the mesh for XDMF (which stores fields at the mesh's nodes).
   std::shared_ptr<dolfinx::fem::Function<double>> _u1;

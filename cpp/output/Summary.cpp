@@ -8,11 +8,19 @@ void Summary::write(const std::filesystem::path& file) const
 {
   nlohmann::json crack_list = nlohmann::json::array();
   for (const Crack& c : cracks)
-    crack_list.push_back({{"angle_deg", c.angle_deg},
-                          {"snapped", c.snapped},
-                          {"mouth_opening_mm", c.mouth_opening_mm},
-                          {"max_opening_mm", c.max_opening_mm},
-                          {"max_damage", c.max_damage}});
+    if (c.plane)
+      crack_list.push_back({{"source", "plane"},
+                            {"angle_deg", c.angle_deg},
+                            {"width_mm", c.width_mm},
+                            {"snapped", c.snapped},
+                            {"mouth_opening_mm", c.mouth_opening_mm},
+                            {"max_opening_mm", c.max_opening_mm},
+                            {"max_damage", c.max_damage}});
+    else
+      crack_list.push_back({{"source", "concrete"},
+                            {"angle_deg", c.angle_deg},
+                            {"width_mm", c.width_mm},
+                            {"length_mm", c.length_mm}});
   nlohmann::json damage_list = nlohmann::json::array();
   for (const LayerDamage& d : initial_damage)
     damage_list.push_back({{"layer", d.layer}, {"mean", d.mean}, {"max", d.max}});

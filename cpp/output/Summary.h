@@ -53,15 +53,21 @@ struct Summary
   /// its factorisation; 0: not condensed), also where it was not trusted
   /// and the whole model ran instead.
   double condensation_asymmetry = 0;
-  /// A crack plane ([[crack]]) at the start of the push (after the thermal
-  /// step and the corrosion stage).
+  /// A crack at the start of the push (after the thermal step and the
+  /// corrosion stage): a crack plane ([[crack]]), or a crack of the concrete
+  /// ([cracking]) that reaches an outer face as wide as
+  /// cracking.visible_width (model/SurfaceCracks.h).
   struct Crack
   {
-    double angle_deg = 0;        ///< direction used (after "nearest_face" or snapping)
-    bool snapped = false;        ///< moved onto a block corner of the mesh
-    double mouth_opening_mm = 0; ///< mean opening at the slice's outer face
-    double max_opening_mm = 0;   ///< largest opening w_n at a quadrature point
-    double max_damage = 0;       ///< largest damage at a quadrature point
+    bool plane = true; ///< a crack plane (else a crack of the concrete)
+    double angle_deg =
+        0; ///< direction from the tube axis (a plane's after "nearest_face" or snapping)
+    double width_mm = 0;         ///< at the outer face: a plane's mouth opening, a gauge's reading
+    double length_mm = 0;        ///< the concrete's: how far it runs in from the face
+    bool snapped = false;        ///< plane: moved onto a block corner of the mesh
+    double mouth_opening_mm = 0; ///< plane: mean opening at the slice's outer face
+    double max_opening_mm = 0;   ///< plane: largest opening w_n at a quadrature point
+    double max_damage = 0;       ///< plane: largest damage at a quadrature point
   };
   std::vector<Crack> cracks;
   /// The damage of a damage layer of the interface at the start of the push

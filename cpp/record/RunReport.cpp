@@ -82,6 +82,11 @@ double RunReport::seconds() const
   return std::chrono::duration<double>(Clock::now() - _start).count();
 }
 
+void RunReport::plot_also(const std::string& stem, const std::string& kind)
+{
+  _more_plots.push_back({stem, kind});
+}
+
 output::Summary RunReport::finish()
 {
   // A stopped run draws nothing: it stops within the time a launcher gives
@@ -93,10 +98,13 @@ output::Summary RunReport::finish()
     _plotter->draw(_out / "curve.csv", _out / "curve.png", _summary.model_type);
     if (_summary.corrosion_steps > 0)
       _plotter->draw(_out / "corrosion.csv", _out / "corrosion.png", "corrosion");
+    for (const auto& [stem, kind] : _more_plots)
+      _plotter->draw(_out / (stem + ".csv"), _out / (stem + ".png"), kind);
     std::string why;
     if (!_plotter->finish(why))
       std::cerr << "pushout: warning: no curve.png"
-                << (_summary.corrosion_steps > 0 ? " or corrosion.png" : "") << ": " << why
+                << (_summary.corrosion_steps > 0 ? " or corrosion.png" : "")
+                << (_more_plots.empty() ? "" : " or " + _more_plots[0][0] + ".png") << ": " << why
                 << std::endl;
     _plotter.reset();
   }

@@ -9,6 +9,7 @@
 #include "../output/Summary.h"
 #include "../output/plot.h"
 #include "../scene/Scene.h"
+#include <array>
 #include <chrono>
 #include <filesystem>
 #include <mpi.h>
@@ -39,7 +40,12 @@ public:
   /// Seconds since the run started.
   double seconds() const;
 
-  /// The end of the run: curve.png (and corrosion.png) if it draws them,
+  /// Asks finish() to draw `stem`.png from `stem`.csv of the output folder
+  /// too, as plot `kind` of scripts/plot_curve.py (if the run draws plots).
+  void plot_also(const std::string& stem, const std::string& kind);
+
+  /// The end of the run: curve.png (and corrosion.png, and those of
+  /// plot_also) if it draws them,
   /// the wall time and the largest peak memory of the processes,
   /// summary.json (rank 0; throws if it cannot be written). An interrupted
   /// run draws no plot. Collective. Returns the summary.
@@ -69,7 +75,8 @@ private:
   std::mutex _published_mutex;
   output::Summary _published; ///< guarded by _published_mutex
   interrupt::ReportOnStop _on_stop;
-  std::optional<output::CurvePlotter> _plotter; ///< rank 0, if the run draws its curve
+  std::optional<output::CurvePlotter> _plotter;        ///< rank 0, if the run draws its curve
+  std::vector<std::array<std::string, 2>> _more_plots; ///< plot_also's [stem, kind]
 };
 
 /// Peak resident memory of this process so far [MB].

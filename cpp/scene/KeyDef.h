@@ -34,6 +34,10 @@ struct KeyDef
 /// (cpp/scene/keys.cpp).
 const std::vector<KeyDef>& scene_keys();
 
+/// The keys of the [cracking] section (cpp/scene/keys_cracking.cpp), part
+/// of scene_keys().
+std::vector<KeyDef> cracking_keys();
+
 /// The declaration of the key at `path`, or nullptr.
 const KeyDef* find_key(const std::string& path);
 } // namespace pushout

@@ -86,6 +86,7 @@ void Scene::fill_parts()
   _cracking.strength_cov = number("cracking.strength_cov");
   _cracking.correlation_length = number("cracking.correlation_length");
   _cracking.seed = integer("cracking.seed");
+  _cracking.visible_width = number("cracking.visible_width");
 
   _solver.lagged_preconditioner = string("solver.preconditioner") == "lagged";
   using Condensation = SolverPart::Condensation;

@@ -120,6 +120,7 @@ struct CrackingPart
   double strength_cov{};       ///< coefficient of variation of f_t [-]
   double correlation_length{}; ///< of the strength field [mm]
   std::int64_t seed{};
+  double visible_width{}; ///< a surface crack counts from this gauge reading [mm]
 };
 
 /// [solver].

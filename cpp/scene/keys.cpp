@@ -2,6 +2,7 @@
 // range and doc. docs/scene-reference.md is printed from this table by
 // `pushout keys`. Interface-layer keys are declared by each law (cpp/laws/).
 #include "KeyDef.h"
+#include <algorithm>
 
 namespace pushout
 {
@@ -13,7 +14,7 @@ std::vector<KeyDef> make_keys()
 {
   using K = KeyType;
   using A = Applies;
-  return {
+  std::vector<KeyDef> keys = {
       {"model.type",
        K::string,
        std::string("pushout"),
@@ -402,107 +403,6 @@ std::vector<KeyDef> make_keys()
        {},
        A::pushout},
 
-      // Cracks anywhere in the concrete (docs/cracking.md): a crack band at
-      // each quadrature point of the concrete near the tube (bulk/CrackBand.h),
-      // with a random tensile strength (bulk/StrengthField.h). In progress:
-      // off unless cracking.model = "embedded".
-      {"cracking.model",
-       K::string,
-       std::string("none"),
-       "",
-       "none: the concrete stays linear elastic; embedded: a cohesive crack may open at any "
-       "quadrature point of the concrete within cracking.radius (a crack band: docs/cracking.md)",
-       -inf,
-       inf,
-       false,
-       {"none", "embedded"},
-       A::pushout},
-      {"cracking.law",
-       K::string,
-       std::string("exponential_softening"),
-       "",
-       "mode-I softening of the concrete's cracks (the envelope of that interface law): "
-       "G_F = f_t / c (exponential) or f_t w_c2 / 2 (linear)",
-       -inf,
-       inf,
-       false,
-       {"exponential_softening", "linear_softening"},
-       A::pushout},
-      {"cracking.f_t",
-       K::number,
-       3.0,
-       "MPa",
-       "tensile strength of the concrete: a crack opens where the largest principal stress "
-       "reaches it (its mean, with a random field)",
-       0,
-       inf,
-       true,
-       {},
-       A::pushout},
-      {"cracking.c",
-       K::number,
-       30.0,
-       "1/mm",
-       "exponential_softening: decay of the crack's traction, sigma = f_t exp(-c w)",
-       0,
-       inf,
-       true,
-       {},
-       A::pushout},
-      {"cracking.w_c2",
-       K::number,
-       0.1,
-       "mm",
-       "linear_softening: the opening at which the crack's traction reaches zero",
-       0,
-       inf,
-       true,
-       {},
-       A::pushout},
-      {"cracking.radius",
-       K::number,
-       0.0,
-       "mm",
-       "the concrete may crack within this distance from the tube axis (element centres); 0: "
-       "all of it. Outside, it stays linear elastic",
-       0,
-       inf,
-       false,
-       {},
-       A::pushout},
-      {"cracking.strength_cov",
-       K::number,
-       0.0,
-       "-",
-       "coefficient of variation of the tensile strength over the concrete (a lognormal, "
-       "spatially correlated field); 0: uniform",
-       0,
-       1,
-       false,
-       {},
-       A::pushout},
-      {"cracking.correlation_length",
-       K::number,
-       5.0,
-       "mm",
-       "correlation length l of the strength field: correlation exp(-(r/l)^2) at distance r",
-       0,
-       inf,
-       true,
-       {},
-       A::pushout},
-      {"cracking.seed",
-       K::integer,
-       std::int64_t(1),
-       "",
-       "seed of the strength field: the same seed gives the same field on any number of "
-       "processes",
-       0,
-       9007199254740992.0,
-       false,
-       {},
-       A::pushout},
-
       // Solver (PETSc options from the command line refine it).
       {"solver.preconditioner",
        K::string,
@@ -569,6 +469,12 @@ std::vector<KeyDef> make_keys()
       {"output.plot", K::boolean, true, "",
        "write curve.png next to curve.csv (needs python3-matplotlib)"},
   };
+  // The [cracking] section (keys_cracking.cpp), before the solver's.
+  const std::vector<KeyDef> cracking = cracking_keys();
+  const auto solver = std::find_if(
+      keys.begin(), keys.end(), [](const KeyDef& k) { return k.path == "solver.preconditioner"; });
+  keys.insert(solver, cracking.begin(), cracking.end());
+  return keys;
 }
 } // namespace
 

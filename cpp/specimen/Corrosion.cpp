@@ -1,5 +1,6 @@
 #include "Corrosion.h"
 #include "../common/mpi_errors.h"
+#include "../output/OutputFiles.h"
 #include "../record/NonFinite.h"
 #include <algorithm>
 #include <iomanip>
@@ -14,7 +15,7 @@ namespace pushout::specimen
 Corrosion::Corrosion(const CorrosionPart& corrosion, const CrackDirections& cracks,
                      bool bulk_cracking, const std::filesystem::path& out,
                      record::RunReport& report, MPI_Comm comm)
-    : _report(report), _comm(comm)
+    : _out(out), _report(report), _comm(comm)
 {
   _x_final = corrosion.penetration;
   _steps = int(corrosion.steps);
@@ -32,7 +33,8 @@ Corrosion::Corrosion(const CorrosionPart& corrosion, const CrackDirections& crac
   for (std::size_t i = 0; i < cracks.angles.size(); ++i)
     columns.push_back("w_crack_" + std::to_string(i) + "_mm");
   if (bulk_cracking) // the concrete's own cracks (docs/cracking.md)
-    columns.insert(columns.end(), {"cracked_points", "concrete_dissipation_Nmm"});
+    columns.insert(columns.end(),
+                   {"cracks_at_surface", "cracked_points", "concrete_dissipation_Nmm"});
   columns.insert(columns.end(), {"newton_iterations", "cuts", "wall_s"});
   int rank = 0;
   MPI_Comm_rank(_comm, &rank);
@@ -58,15 +60,23 @@ void Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iterati
   const double x = penetration_at(s);
   const double p = mean_pressure(model.interface(), _comm);
   const std::vector<double> widths = model.crack_mouth_openings();
-  const double crack_width = widths.empty() ? 0.0 : *std::max_element(widths.begin(), widths.end());
-  std::vector<double> values = {x, p, crack_width};
-  values.insert(values.end(), widths.begin(), widths.end());
+  double crack_width = widths.empty() ? 0.0 : *std::max_element(widths.begin(), widths.end());
   model::CrackingTotals bulk;
+  int at_surface = 0; // cracks as wide as cracking.visible_width at the outer faces
   if (model::BulkCracking* cracking = eq.model().bulk_cracking())
   {
     bulk = cracking->totals();
-    values.insert(values.end(), {double(bulk.cracked_points), bulk.dissipated});
+    for (double w : widths)
+      at_surface += w >= cracking->visible_width();
+    for (const model::SurfaceCrack& c : bulk.surface)
+      at_surface += c.width_mm >= cracking->visible_width();
+    if (!bulk.surface.empty()) // widest first
+      crack_width = std::max(crack_width, bulk.surface.front().width_mm);
   }
+  std::vector<double> values = {x, p, crack_width};
+  values.insert(values.end(), widths.begin(), widths.end());
+  if (model.bulk_cracking())
+    values.insert(values.end(), {double(at_surface), double(bulk.cracked_points), bulk.dissipated});
   record::refuse_non_finite(values, {"penetration_mm", "p_MPa", "crack_width_mm"},
                             "corrosion step " + std::to_string(step), _comm);
   values.insert(values.end(), {double(iterations), double(cuts), _report.seconds()});
@@ -84,11 +94,11 @@ void Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iterati
   if (numbered)
     line << "/" << _steps;
   line << "  x = " << x * 1e3 << " um  p = " << p << " MPa";
-  if (!widths.empty())
+  if (!widths.empty() || model.bulk_cracking())
     line << "  crack width = " << crack_width * 1e3 << " um";
   if (model.bulk_cracking())
-    line << "  cracked points " << bulk.cracked_points << "/" << bulk.points << " (widest "
-         << bulk.max_opening * 1e3 << " um)";
+    line << " (" << at_surface << " at the surface)  cracked points " << bulk.cracked_points << "/"
+         << bulk.points << " (widest inside " << bulk.max_opening * 1e3 << " um)";
   line << "  (newton " << iterations << (cuts ? ", cuts " + std::to_string(cuts) : "") << ", "
        << std::fixed << std::setprecision(2) << _report.seconds() << " s)";
   std::cout << line.str() << std::endl;
@@ -113,8 +123,13 @@ void Corrosion::describe_cracks(solver::Equilibrium& eq, Vec state, output::Summ
         largest[1] = std::max(largest[1], o.damage[0]);
       }
     MPI_Allreduce(MPI_IN_PLACE, largest, 2, MPI_DOUBLE, MPI_MAX, _comm);
-    summary.cracks.push_back({_directions.angles[i] * 180 / std::numbers::pi,
-                              bool(_directions.snapped[i]), mouth[i], largest[0], largest[1]});
+    output::Summary::Crack c;
+    c.angle_deg = _directions.angles[i] * 180 / std::numbers::pi;
+    c.snapped = _directions.snapped[i];
+    c.width_mm = c.mouth_opening_mm = mouth[i];
+    c.max_opening_mm = largest[0];
+    c.max_damage = largest[1];
+    summary.cracks.push_back(c);
   }
   for (std::size_t i = 0; i < model.num_cracks(); ++i)
     if (const int image = model.crack_image(i); image >= 0) // cut away by symmetry
@@ -122,6 +137,48 @@ void Corrosion::describe_cracks(solver::Equilibrium& eq, Vec state, output::Summ
       summary.cracks[i].max_opening_mm = summary.cracks[std::size_t(image)].max_opening_mm;
       summary.cracks[i].max_damage = summary.cracks[std::size_t(image)].max_damage;
     }
+  if (model::BulkCracking* cracking = eq.model().bulk_cracking())
+  {
+    const model::CrackingTotals bulk = cracking->totals();
+    for (const model::SurfaceCrack& s : bulk.surface)
+      if (s.width_mm >= cracking->visible_width())
+      {
+        output::Summary::Crack c;
+        c.plane = false;
+        c.angle_deg = s.angle_deg;
+        c.width_mm = s.width_mm;
+        c.length_mm = s.length_mm;
+        summary.cracks.push_back(c);
+      }
+    write_crack_pattern(bulk.columns);
+  }
+}
+
+void Corrosion::write_crack_pattern(const std::vector<model::CrackColumn>& columns) const
+{
+  int rank = 0;
+  MPI_Comm_rank(_comm, &rank);
+  mpi::collectively(_comm,
+                    [&]
+                    {
+                      if (rank != 0)
+                        return;
+                      std::ostringstream csv;
+                      csv.precision(10);
+                      csv << "x_mm,y_mm,opening_mm,size_mm";
+                      for (int k = 0; k < 4; ++k)
+                        csv << ",corner_" << k << "_x_mm,corner_" << k << "_y_mm";
+                      csv << "\n";
+                      for (const model::CrackColumn& c : columns)
+                      {
+                        csv << c.x << "," << c.y << "," << c.opening << "," << c.size;
+                        for (double v : c.outline)
+                          csv << "," << v;
+                        csv << "\n";
+                      }
+                      output::write_file(_out / "crack_pattern.csv", csv.str());
+                    });
+  _report.plot_also("crack_pattern", "crack_pattern");
 }
 
 double Corrosion::expansion_force(const interface::Interface& itf, double s) const

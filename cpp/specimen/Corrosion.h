@@ -11,8 +11,11 @@
 //   step, penetration_mm, p_MPa, crack_width_mm[, w_crack_I_mm...],
 //   newton_iterations, cuts, wall_s
 // p the mean interface pressure (as in curve.csv), crack_width_mm the
-// largest crack-mouth opening (0 without crack planes), w_crack_I_mm that of
-// crack plane I (Model::crack_mouth_openings).
+// widest crack at the outer faces: the largest crack-mouth opening of the
+// planes, w_crack_I_mm that of crack plane I (Model::crack_mouth_openings),
+// and with [cracking] the widest of the concrete's cracks as a gauge reads
+// it (model/SurfaceCracks.h), then cracks_at_surface (those as wide as
+// cracking.visible_width), cracked_points and concrete_dissipation_Nmm.
 #pragma once
 
 #include "../laws/Oxide.h"
@@ -61,15 +64,23 @@ public:
   /// takes the expansion), from the laws' last evaluation. Collective.
   double expansion_force(const interface::Interface& itf, double s) const;
 
-  /// The crack planes' state now (their direction, mouth and largest
-  /// opening, largest damage) into the summary. Collective.
+  /// The cracks now into the summary: the crack planes' state (direction,
+  /// mouth and largest opening, largest damage) and the concrete's cracks at
+  /// the outer faces ([cracking]), whose pattern also goes to
+  /// crack_pattern.csv (and .png). Collective.
   void describe_cracks(solver::Equilibrium& eq, Vec state, output::Summary& summary) const;
 
 private:
+  /// crack_pattern.csv: the cracking concrete's columns through the
+  /// thickness, their centre, mean widest opening, size and four corners
+  /// (rank 0's `columns`); its plot asked for. Collective.
+  void write_crack_pattern(const std::vector<model::CrackColumn>& columns) const;
+
   double _x_final = 0; ///< [mm]
   int _steps = 1;
   laws::OxideLayer _oxide;
   CrackDirections _directions;
+  std::filesystem::path _out; ///< the output folder
   record::RunReport& _report;
   MPI_Comm _comm;
   std::optional<output::CurveWriter> _csv; ///< rank 0

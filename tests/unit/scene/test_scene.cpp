@@ -92,6 +92,7 @@ radius = 40.0
 strength_cov = 0.15
 correlation_length = 4.0
 seed = 7
+visible_width = 0.02
 [solver]
 preconditioner = "jacobian"
 condensation = "off"
@@ -153,6 +154,7 @@ plot = false
   EXPECT_EQ(k.strength_cov, 0.15);
   EXPECT_EQ(k.correlation_length, 4.0);
   EXPECT_EQ(k.seed, 7);
+  EXPECT_EQ(k.visible_width, 0.02);
   const pushout::SolverPart& v = s.solver();
   EXPECT_FALSE(v.lagged_preconditioner);
   EXPECT_EQ(v.condensation, pushout::SolverPart::Condensation::off);

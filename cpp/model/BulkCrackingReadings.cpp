@@ -1,0 +1,279 @@
+// What the concrete's cracks look like from outside (BulkCracking.h): the
+// cells' places on the slice, the gauge's reading at the outer faces
+// (SurfaceCracks.h) and the per-cell fields of fields.xdmf.
+#include "../laws/CamanhoDavila.h"
+#include "BulkCracking.h"
+#include "cracking.h"
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mpi.h>
+#include <numeric>
+#include <tuple>
+
+namespace pushout::model
+{
+namespace
+{
+constexpr int state = bulk::CrackBand::state_size;
+/// A cell's record: [face (-1: the column), x, y, weight * value, size (a
+/// face's: depth), outline (8)].
+constexpr int record_size = 13;
+
+/// The corners (x, y) of a hexahedron of an extruded mesh seen along z,
+/// counter-clockwise about its centre (x, y); a square of side `size` if
+/// its nodes do not stand on four corners.
+std::array<double, 8> outline_of(std::span<const std::int32_t> nodes, std::span<const double> x,
+                                 double cx, double cy, double size, double tol)
+{
+  std::vector<std::array<double, 2>> corners;
+  for (std::int32_t n : nodes)
+  {
+    const std::array<double, 2> p = {x[3 * n], x[3 * n + 1]};
+    if (std::none_of(corners.begin(), corners.end(),
+                     [&](const auto& q) { return std::hypot(p[0] - q[0], p[1] - q[1]) < tol; }))
+      corners.push_back(p);
+  }
+  if (corners.size() != 4)
+    corners = {{cx - size / 2, cy - size / 2},
+               {cx + size / 2, cy - size / 2},
+               {cx + size / 2, cy + size / 2},
+               {cx - size / 2, cy + size / 2}};
+  std::sort(corners.begin(), corners.end(),
+            [&](const auto& a, const auto& b)
+            { return std::atan2(a[1] - cy, a[0] - cx) < std::atan2(b[1] - cy, b[0] - cx); });
+  std::array<double, 8> outline;
+  for (int k = 0; k < 4; ++k)
+  {
+    outline[2 * k] = corners[k][0];
+    outline[2 * k + 1] = corners[k][1];
+  }
+  return outline;
+}
+
+/// The length of the chord through (px, py) along (tx, ty) of the convex
+/// outline `o` (corners counter-clockwise) [mm].
+double chord(const std::array<double, 8>& o, double px, double py, double tx, double ty)
+{
+  double lo = INFINITY, hi = -INFINITY;
+  for (int k = 0; k < 4; ++k)
+  {
+    const double ax = o[2 * k], ay = o[2 * k + 1];
+    const double ex = o[(2 * k + 2) % 8] - ax, ey = o[(2 * k + 3) % 8] - ay;
+    const double det = ex * ty - ey * tx; // P + s t = A + r e
+    if (std::abs(det) < 1e-14 * (std::abs(ex) + std::abs(ey)))
+      continue; // parallel
+    const double dx = px - ax, dy = py - ay;
+    const double r = (dx * ty - dy * tx) / det, s = (dx * ey - dy * ex) / det;
+    if (r >= -1e-12 && r <= 1 + 1e-12)
+    {
+      lo = std::min(lo, s);
+      hi = std::max(hi, s);
+    }
+  }
+  return hi > lo ? hi - lo : 0.0;
+}
+} // namespace
+
+void BulkCracking::place_cells(const Geometry& slice, const std::vector<double>& positions)
+{
+  const int n_points = expression_cracking_position->num_points;
+  const auto& x_dofmap = _mesh->geometry().dofmap();
+  const std::span<const double> x = _mesh->geometry().x();
+  const double tol = 1e-6 * slice.width; // gmsh places boundary nodes to ~1e-9 of it [mm]
+  _places.assign(_cells.size(), {});
+  for (std::size_t c = 0; c < _cells.size(); ++c)
+  {
+    CellPlace& p = _places[c];
+    const auto nodes = x_dofmap.links(_cells[c]);
+    for (std::int32_t node : nodes)
+    {
+      p.x += x[3 * node] / double(nodes.size());
+      p.y += x[3 * node + 1] / double(nodes.size());
+    }
+    p.weight = band_width(c, {0, 0, 1}) / slice.thickness;
+    p.size = std::max(band_width(c, {1, 0, 0}), band_width(c, {0, 1, 0}));
+    p.outline = outline_of(nodes, x, p.x, p.y, p.size, tol);
+    // A face of the hexahedron (4 of its nodes) on the outer boundary.
+    auto on_face = [&](auto distance)
+    {
+      return std::count_if(nodes.begin(), nodes.end(),
+                           [&](std::int32_t n)
+                           { return std::abs(distance(x[3 * n], x[3 * n + 1])) < tol; }) >= 4;
+    };
+    // Depth below face `index` of a point (x, y): the cell's centre for the
+    // face, its points' for the half of them that the gauge reads.
+    auto depth = [&](int index, double a, double b)
+    {
+      const double W = slice.width;
+      if (slice.circle)
+        return W / 2 - std::hypot(a - _axis[0], b - _axis[1]);
+      return std::array<double, 4>{a, W - a, b, W - b}[std::size_t(index)];
+    };
+    auto add_face = [&](int index, double tx, double ty)
+    {
+      CellPlace::Face f{index, tx, ty, depth(index, p.x, p.y), {}, {}};
+      f.points.resize(std::size_t(n_points));
+      std::iota(f.points.begin(), f.points.end(), 0);
+      auto point_depth = [&](int q)
+      {
+        const std::size_t i = 3 * (c * std::size_t(n_points) + std::size_t(q));
+        return depth(index, positions[i], positions[i + 1]);
+      };
+      std::stable_sort(f.points.begin(), f.points.end(),
+                       [&](int a, int b) { return point_depth(a) < point_depth(b); });
+      f.points.resize(std::size_t(n_points) / 2);
+      for (int q : f.points)
+      {
+        const std::size_t i = 3 * (c * std::size_t(n_points) + std::size_t(q));
+        f.chords.push_back(chord(p.outline, positions[i], positions[i + 1], tx, ty));
+      }
+      p.faces.push_back(f);
+    };
+    const double W = slice.width;
+    if (slice.circle) // centred on the tube axis (meshes/slice.geo)
+    {
+      if (on_face([&](double a, double b)
+                  { return std::hypot(a - _axis[0], b - _axis[1]) - W / 2; }))
+      {
+        const double phi = std::atan2(p.y - _axis[1], p.x - _axis[0]);
+        add_face(0, -std::sin(phi), std::cos(phi));
+      }
+      continue;
+    }
+    if (on_face([](double a, double) { return a; }))
+      add_face(0, 0, 1);
+    if (on_face([&](double a, double) { return a - W; }))
+      add_face(1, 0, 1);
+    if (on_face([](double, double b) { return b; }))
+      add_face(2, 1, 0);
+    if (on_face([&](double, double b) { return b - W; }))
+      add_face(3, 1, 0);
+  }
+}
+
+double BulkCracking::crack_strain_along(std::size_t i, double tx, double ty) const
+{
+  const bulk::CrackState<const double> s(std::span<const double>(_trial.data() + state * i, state));
+  if (!s.cracked())
+    return 0;
+  const bulk::Vec3 n = s.normal(), s1 = s.tangent();
+  const bulk::Vec3 s2 = {n[1] * s1[2] - n[2] * s1[1], n[2] * s1[0] - n[0] * s1[2],
+                         n[0] * s1[1] - n[1] * s1[0]};
+  const double* w = _opening_trial.data() + 3 * i; // crack frame [n, s1, s2]
+  double w_t = 0;
+  for (int k = 0; k < 2; ++k)
+    w_t += (w[0] * n[k] + w[1] * s1[k] + w[2] * s2[k]) * (k == 0 ? tx : ty);
+  return w_t * (n[0] * tx + n[1] * ty) / s.band_width();
+}
+
+void BulkCracking::read_surface(CrackingTotals& t) const
+{
+  const int n_points = expression_cracking_strain->num_points;
+  std::vector<double> mine;
+  for (std::size_t c = 0; c < _cells.size(); ++c)
+  {
+    const CellPlace& p = _places[c];
+    double widest = 0; // the cell's widest normal opening [mm]
+    for (int q = 0; q < n_points; ++q)
+    {
+      const std::size_t i = c * std::size_t(n_points) + q;
+      if (bulk::CrackState<const double>(std::span<const double>(_trial.data() + state * i, state))
+              .cracked())
+        widest = std::max(widest, _opening_trial[3 * i]);
+    }
+    mine.insert(mine.end(), {-1.0, p.x, p.y, p.weight * widest, p.size});
+    mine.insert(mine.end(), p.outline.begin(), p.outline.end());
+    for (const CellPlace::Face& f : p.faces)
+    {
+      double gauge = 0; // the crack strain along the face over the chord, at the points nearest it
+      for (std::size_t k = 0; k < f.points.size(); ++k)
+        gauge +=
+            crack_strain_along(c * std::size_t(n_points) + std::size_t(f.points[k]), f.tx, f.ty) *
+            f.chords[k] / double(f.points.size());
+      mine.insert(mine.end(), {double(f.index), p.x, p.y, p.weight * gauge, f.depth});
+      mine.insert(mine.end(), p.outline.begin(), p.outline.end());
+    }
+  }
+
+  // Process 0 sums the cells of each column (same face, same centre).
+  MPI_Comm comm = _mesh->comm();
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  int count = int(mine.size());
+  std::vector<int> counts(rank == 0 ? size : 0), offsets(counts.size(), 0);
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
+  for (std::size_t r = 1; r < counts.size(); ++r)
+    offsets[r] = offsets[r - 1] + counts[r - 1];
+  std::vector<double> all(rank == 0 ? std::size_t(offsets.back() + counts.back()) : 0);
+  MPI_Gatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE,
+              0, comm);
+  std::vector<double> flat; // the surface cracks, 3 numbers each
+  if (rank == 0)
+  {
+    // Cells of a column share their (x, y) (the mesh is extruded): keyed to 1e-6 mm.
+    std::map<std::tuple<int, long long, long long>, CrackColumn> sums;
+    for (std::size_t r = 0; r < all.size(); r += record_size)
+    {
+      const auto key = std::make_tuple(int(all[r]), std::llround(all[r + 1] * 1e6),
+                                       std::llround(all[r + 2] * 1e6));
+      CrackColumn column{all[r + 1], all[r + 2], 0.0, all[r + 4]};
+      std::copy_n(all.begin() + std::ptrdiff_t(r) + 5, 8, column.outline.begin());
+      sums.try_emplace(key, column).first->second.opening += all[r + 3];
+    }
+    std::vector<FaceColumn> faces;
+    for (const auto& [key, c] : sums) // a face column's opening is its gauge, its size its depth
+      if (std::get<0>(key) < 0)
+        t.columns.push_back(c);
+      else
+        faces.push_back({std::atan2(c.y - _axis[1], c.x - _axis[0]), c.x, c.y, c.opening, c.size});
+    t.surface = surface_cracks(faces, t.columns, _axis, _tube_radius, _visible_width / 10);
+    for (const SurfaceCrack& s : t.surface)
+      flat.insert(flat.end(), {s.angle_deg, s.width_mm, s.length_mm});
+  }
+  int n_flat = int(flat.size());
+  MPI_Bcast(&n_flat, 1, MPI_INT, 0, comm);
+  flat.resize(std::size_t(n_flat));
+  MPI_Bcast(flat.data(), n_flat, MPI_DOUBLE, 0, comm);
+  t.surface.clear();
+  for (std::size_t k = 0; k < flat.size(); k += 3)
+    t.surface.push_back({flat[k], flat[k + 1], flat[k + 2]});
+}
+
+void BulkCracking::cell_fields(dolfinx::fem::Function<double>& opening,
+                               dolfinx::fem::Function<double>& normal,
+                               dolfinx::fem::Function<double>& damage) const
+{
+  const int n_points = expression_cracking_strain->num_points;
+  std::span<double> w = opening.x()->mutable_array(), n = normal.x()->mutable_array(),
+                    d = damage.x()->mutable_array();
+  std::fill(w.begin(), w.end(), 0.0);
+  std::fill(n.begin(), n.end(), 0.0);
+  std::fill(d.begin(), d.end(), 0.0);
+  for (std::size_t c = 0; c < _cells.size(); ++c)
+  {
+    const std::int32_t dof = opening.function_space()->dofmap()->cell_dofs(_cells[c])[0];
+    const std::int32_t vector_dof = normal.function_space()->dofmap()->cell_dofs(_cells[c])[0];
+    double widest = -INFINITY; // normal opening of the cell's widest cracked point [mm]
+    for (int q = 0; q < n_points; ++q)
+    {
+      const std::size_t i = c * std::size_t(n_points) + q;
+      const bulk::CrackState<const double> s(
+          std::span<const double>(_trial.data() + state * i, state));
+      if (!s.cracked())
+        continue;
+      d[dof] = std::max(d[dof], laws::DamageHistory<const double>(s.law_state()).damage());
+      if (!(_opening_trial[3 * i] > widest))
+        continue;
+      widest = _opening_trial[3 * i];
+      w[dof] = std::max(widest, 0.0); // closed: 0
+      const bulk::Vec3 normal_q = s.normal();
+      std::copy(normal_q.begin(), normal_q.end(), n.begin() + 3 * std::size_t(vector_dof));
+    }
+  }
+  opening.x()->scatter_fwd();
+  normal.x()->scatter_fwd();
+  damage.x()->scatter_fwd();
+}
+} // namespace pushout::model

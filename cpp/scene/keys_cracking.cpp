@@ -1,0 +1,127 @@
+// The scene keys of the [cracking] section: cracks anywhere in the concrete
+// (docs/cracking.md), declared as those of cpp/scene/keys.cpp.
+#include "KeyDef.h"
+
+namespace pushout
+{
+std::vector<KeyDef> cracking_keys()
+{
+  using K = KeyType;
+  using A = Applies;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  return {
+      // Cracks anywhere in the concrete (docs/cracking.md): a crack band at
+      // each quadrature point of the concrete near the tube (bulk/CrackBand.h),
+      // with a random tensile strength (bulk/StrengthField.h). In progress:
+      // off unless cracking.model = "embedded".
+      {"cracking.model",
+       K::string,
+       std::string("none"),
+       "",
+       "none: the concrete stays linear elastic; embedded: a cohesive crack may open at any "
+       "quadrature point of the concrete within cracking.radius (a crack band: docs/cracking.md)",
+       -inf,
+       inf,
+       false,
+       {"none", "embedded"},
+       A::pushout},
+      {"cracking.law",
+       K::string,
+       std::string("exponential_softening"),
+       "",
+       "mode-I softening of the concrete's cracks (the envelope of that interface law): "
+       "G_F = f_t / c (exponential) or f_t w_c2 / 2 (linear)",
+       -inf,
+       inf,
+       false,
+       {"exponential_softening", "linear_softening"},
+       A::pushout},
+      {"cracking.f_t",
+       K::number,
+       3.0,
+       "MPa",
+       "tensile strength of the concrete: a crack opens where the largest principal stress "
+       "reaches it (its mean, with a random field)",
+       0,
+       inf,
+       true,
+       {},
+       A::pushout},
+      {"cracking.c",
+       K::number,
+       30.0,
+       "1/mm",
+       "exponential_softening: decay of the crack's traction, sigma = f_t exp(-c w)",
+       0,
+       inf,
+       true,
+       {},
+       A::pushout},
+      {"cracking.w_c2",
+       K::number,
+       0.1,
+       "mm",
+       "linear_softening: the opening at which the crack's traction reaches zero",
+       0,
+       inf,
+       true,
+       {},
+       A::pushout},
+      {"cracking.radius",
+       K::number,
+       0.0,
+       "mm",
+       "the concrete may crack within this distance from the tube axis (element centres); 0: "
+       "all of it. Outside, it stays linear elastic",
+       0,
+       inf,
+       false,
+       {},
+       A::pushout},
+      {"cracking.strength_cov",
+       K::number,
+       0.0,
+       "-",
+       "coefficient of variation of the tensile strength over the concrete (a lognormal, "
+       "spatially correlated field); 0: uniform",
+       0,
+       1,
+       false,
+       {},
+       A::pushout},
+      {"cracking.correlation_length",
+       K::number,
+       5.0,
+       "mm",
+       "correlation length l of the strength field: correlation exp(-(r/l)^2) at distance r",
+       0,
+       inf,
+       true,
+       {},
+       A::pushout},
+      {"cracking.seed",
+       K::integer,
+       std::int64_t(1),
+       "",
+       "seed of the strength field: the same seed gives the same field on any number of "
+       "processes",
+       0,
+       9007199254740992.0,
+       false,
+       {},
+       A::pushout},
+      {"cracking.visible_width",
+       K::number,
+       0.05,
+       "mm",
+       "a crack at the slice's outer faces counts (corrosion.csv cracks_at_surface, "
+       "summary.json cracks) from this width, as a crack-width gauge reads it there; the "
+       "gauge resolves a tenth of it",
+       0,
+       inf,
+       true,
+       {},
+       A::pushout},
+  };
+}
+} // namespace pushout

@@ -1,0 +1,119 @@
+"""The concrete's own cracks read at the slice's outer faces ([cracking]
+model = "embedded", docs/cracking.md "Reading the cracks"), on the corroded
+demo's specimen (tube 15 mm from the face y = 0) on a coarse mesh, with a
+random strength field and no crack planes:
+
+1. The material picks the cover crack: the widest surface crack runs from
+   the tube towards the nearest face (270 degrees, within the angle one face
+   cell subtends), through the cover (its length that of the line from the
+   face to the tube in its direction, within the face cell's height).
+2. The gauge reads what the displacement says: its width differs from the
+   jump of u_x across the crack's face cell at the face (fields.xdmf, the
+   thickness mean of the nodes) by less than that jump changes over the
+   cell's height (the gauge reads at the points nearest the face, inside
+   the cell), plus the cell's elastic stretch (|sigma| <= the strongest
+   point's f_t along the crack's normal).
+3. corrosion.csv: crack_width_mm never negative, the widest crack grows
+   with x once it is visible, and cracks_at_surface counts it; summary.json
+   lists it; crack_pattern.csv and crack_pattern.png are written; fields.xdmf
+   has crack_opening, crack_normal and crack_damage.
+4. The same surface cracks on 1 and 2 processes (the columns are gathered
+   from both): widths and lengths within Newton's tolerance."""
+
+import csv
+import math
+import os
+
+import h5py
+import numpy as np
+
+from common import SOURCE, check, corrosion, out_dir, run, summary
+
+f_t, cov, E = 3.0, 0.15, 30000.0  # MPa; concrete.E's default
+axis = (50.0, 25.0)  # the tube axis of the demo [mm]
+with open(os.path.join(SOURCE, "demo", "pushout_corroded.toml")) as f:
+    demo = f.read()
+scene = demo[:demo.index("[[crack]]")] + demo[demo.index("[loading]"):]
+scene = (scene.replace("elements_per_quarter = 16", "elements_per_quarter = 8")
+         .replace("elements_through_thickness = 8", "elements_through_thickness = 2")
+         .replace("penetration = 0.05", "penetration = 0.03").replace("steps = 25", "steps = 10")
+         .replace("steps = 40", "steps = 1").replace("push_displacement = 0.2",
+                                                     "push_displacement = 0.005")
+         .replace("xdmf = false", "xdmf = true"))
+scene += (f'\n[cracking]\nmodel = "embedded"\nf_t = {f_t}\nc = 30.0\nstrength_cov = {cov}\n'
+          "correlation_length = 5.0\nseed = 1\n")
+one = out_dir("cover_crack_1")
+run(scene, one)
+s = summary(one)
+concrete = [c for c in s["cracks"] if c["source"] == "concrete"]
+check(concrete, f"summary.json lists {len(concrete)} surface crack(s) of the concrete")
+widest = max(concrete, key=lambda c: c["width_mm"])
+
+# 1. The cover crack.
+with open(os.path.join(one, "crack_pattern.csv"), newline="") as f:
+    columns = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+corners = lambda c: [(c[f"corner_{k}_x_mm"], c[f"corner_{k}_y_mm"]) for k in range(4)]
+face_cells = [c for c in columns if sum(abs(y) < 1e-6 for _, y in corners(c)) == 2]
+x_face = axis[0] + axis[1] * math.tan(math.radians(widest["angle_deg"] - 270))
+cell = next(c for c in face_cells
+            if min(x for x, y in corners(c) if abs(y) < 1e-6) <= x_face
+            <= max(x for x, y in corners(c) if abs(y) < 1e-6))
+bottom = sorted((x, y) for x, y in corners(cell) if abs(y) < 1e-6)
+top = sorted((x, y) for x, y in corners(cell) if abs(y) >= 1e-6)
+half_angle = math.degrees(math.atan2(bottom[1][0] - bottom[0][0], 2 * axis[1]))
+check(abs(widest["angle_deg"] - 270) <= half_angle + 1e-9,
+      f"the widest surface crack at {widest['angle_deg']:.1f} deg: towards the nearest face "
+      f"(270 +- {half_angle:.1f} deg, one face cell)")
+reach = axis[1] / math.cos(math.radians(widest["angle_deg"] - 270)) - 10  # face to tube [mm]
+height = min(y for _, y in top)  # of the face cell [mm]
+check(abs(widest["length_mm"] - reach) <= height,
+      f"it runs through the cover: {widest['length_mm']:.2f} mm (from the face to the tube "
+      f"along its direction {reach:.2f} mm, within the face cell's height {height:.2f} mm)")
+
+# 2. The gauge against the displacement jump across the crack's face cell.
+with h5py.File(os.path.join(one, "fields.h5"), "r") as h5:
+    X = h5["Mesh/mesh/geometry"][()]
+    u = h5["Function/displacement/0"][()]  # the start of the push: after corrosion
+
+
+def u_x(p):
+    at = (np.abs(X[:, 0] - p[0]) < 1e-6) & (np.abs(X[:, 1] - p[1]) < 1e-6)
+    return u[at, 0].mean()  # the thickness mean, as the gauge's
+
+
+jump_face = u_x(bottom[1]) - u_x(bottom[0])
+jump_top = u_x(top[1]) - u_x(top[0])
+elastic = (bottom[1][0] - bottom[0][0]) * f_t * (1 + 4 * cov) / E  # the strongest of ~1000 points
+w = widest["width_mm"]
+check(abs(w - jump_face) <= abs(jump_top - jump_face) + elastic,
+      f"the gauge reads {w * 1e3:.2f} um; u_x jumps {jump_face * 1e3:.2f} um across the cell at "
+      f"the face and {jump_top * 1e3:.2f} um at its top (bound "
+      f"{(abs(jump_top - jump_face) + elastic) * 1e3:.2f} um)")
+
+# 3. The columns and files.
+rows = corrosion(one)
+widths = [r["crack_width_mm"] for r in rows]
+visible = [i for i, r in enumerate(rows) if r["cracks_at_surface"] > 0]
+check(min(widths) >= 0, f"crack_width_mm never negative (least {min(widths):.2e} mm)")
+check(visible and all(b >= a for a, b in zip(widths[visible[0]:], widths[visible[0] + 1:])),
+      f"the first visible crack at x = {rows[visible[0]]['penetration_mm'] * 1e3:.0f} um, "
+      f"growing after: {[round(v * 1e3, 1) for v in widths[visible[0]:]]} um")
+check(abs(widths[-1] - w) <= 1e-12 and rows[-1]["cracks_at_surface"] == len(concrete),
+      "the last row's width and count are summary.json's")
+with open(os.path.join(one, "fields.xdmf")) as f:
+    xdmf = f.read()
+check(all(f'Name="{n}"' in xdmf for n in ("crack_opening", "crack_normal", "crack_damage"))
+      and os.path.getsize(os.path.join(one, "crack_pattern.png")) > 0,
+      "fields.xdmf has the cells' cracks; crack_pattern.png drawn")
+
+# 4. Two processes.
+two = out_dir("cover_crack_2")
+run(scene, two, mpirun=2)
+concrete2 = [c for c in summary(two)["cracks"] if c["source"] == "concrete"]
+# Newton stops at |F| <= 1e-10 |F0|: openings of ~0.1 mm move by far less
+# than 1e-6 mm between runs that sum in another order.
+TOL = 1e-6  # mm
+same = len(concrete2) == len(concrete) and all(
+    abs(a["width_mm"] - b["width_mm"]) < TOL and abs(a["length_mm"] - b["length_mm"]) < TOL
+    and abs(a["angle_deg"] - b["angle_deg"]) < 1e-6 for a, b in zip(concrete, concrete2))
+check(same, f"1 and 2 processes: the same {len(concrete)} surface crack(s)")

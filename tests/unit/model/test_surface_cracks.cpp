@@ -1,0 +1,125 @@
+// Reading the concrete's cracks at the slice's outer faces
+// (model/SurfaceCracks.h), on hand-made columns of a 100 mm square slice
+// with 2 mm cells and the tube (R = 10 mm) 15 mm from the face y = 0.
+#include "model/SurfaceCracks.h"
+#include <cmath>
+#include <gtest/gtest.h>
+#include <numbers>
+
+using namespace pushout::model;
+
+namespace
+{
+constexpr std::array<double, 2> axis = {50, 25}; // [mm]
+constexpr double R = 10, cell = 2, resolution = 0.005;
+
+/// The bottom face's columns (y = 1), gauge `gauge(x)`.
+template <typename Gauge> std::vector<FaceColumn> bottom_face(Gauge gauge)
+{
+  std::vector<FaceColumn> faces;
+  for (double x = 1; x < 100; x += cell)
+    faces.push_back({std::atan2(1 - axis[1], x - axis[0]), x, 1, gauge(x), 1});
+  return faces;
+}
+
+/// The concrete's columns, cracked (0.02 mm) on the line x = 49..51 from
+/// the face up to y = `reach`.
+std::vector<CrackColumn> concrete(double reach)
+{
+  std::vector<CrackColumn> columns;
+  for (double x = 1; x < 100; x += cell)
+    for (double y = 1; y < 100; y += cell)
+      if (std::hypot(x - axis[0], y - axis[1]) > R)
+        columns.push_back({x, y, (std::abs(x - 50) <= 1 && y <= reach) ? 0.02 : 0.0, cell});
+  return columns;
+}
+} // namespace
+
+TEST(SurfaceCracks, ACrackOverTwoBandsReadsWhole)
+{
+  // Two bands of 0.03 mm at x = 49 and 51; a third column below the
+  // gauge's resolution at x = 81 is no crack.
+  const auto faces =
+      bottom_face([](double x) { return std::abs(x - 50) <= 1 ? 0.03 : (x == 81 ? 0.004 : 0.0); });
+  const std::vector<SurfaceCrack> cracks =
+      surface_cracks(faces, concrete(100), axis, R, resolution);
+  ASSERT_EQ(cracks.size(), 1u);
+  EXPECT_NEAR(cracks[0].width_mm, 0.06, 1e-15);
+  // Its widest column is at x = 49 or 51, y = 1: about 270 degrees.
+  EXPECT_NEAR(cracks[0].angle_deg, 270, std::atan(1.0 / 24) * 180 / std::numbers::pi + 1e-12);
+  // Cracked from the face to the tube: at x = 49 from y = 0 to the tube's
+  // surface at y = 25 - sqrt(R^2 - 1), through column centres 2 mm apart;
+  // the last 0.05 mm to the tube is measured radially (3e-4 mm off here).
+  EXPECT_NEAR(cracks[0].length_mm, 25 - std::sqrt(R * R - 1), 1e-3);
+}
+
+TEST(SurfaceCracks, LengthStopsWhereTheConcreteIsWhole)
+{
+  const auto faces = bottom_face([](double x) { return x == 49 ? 0.05 : 0.0; });
+  for (double reach : {3.0, 7.0, 11.0})
+  {
+    const std::vector<SurfaceCrack> cracks =
+        surface_cracks(faces, concrete(reach), axis, R, resolution);
+    ASSERT_EQ(cracks.size(), 1u);
+    // The last cracked column's centre is at y = reach, its cell ends at
+    // reach + 1: the tip is within that cell.
+    EXPECT_GE(cracks[0].length_mm, reach - 1 - 1e-12);
+    EXPECT_LE(cracks[0].length_mm, reach + 1 + 1e-12);
+  }
+}
+
+TEST(SurfaceCracks, SeparateCracksWidestFirst)
+{
+  const auto faces = bottom_face(
+      [](double x) { return x == 21 ? 0.01 : (x == 49 ? 0.08 : (x == 79 ? 0.02 : 0.0)); });
+  const std::vector<SurfaceCrack> cracks =
+      surface_cracks(faces, concrete(100), axis, R, resolution);
+  ASSERT_EQ(cracks.size(), 3u);
+  EXPECT_EQ(cracks[0].width_mm, 0.08);
+  EXPECT_EQ(cracks[1].width_mm, 0.02);
+  EXPECT_EQ(cracks[2].width_mm, 0.01);
+  // Only the one at x = 49 meets cracked concrete inside.
+  EXPECT_GT(cracks[0].length_mm, 10);
+  EXPECT_LT(cracks[1].length_mm, 1e-12);
+}
+
+TEST(SurfaceCracks, ARunAcrossTheAnglesWrapIsOneCrack)
+{
+  // Columns all round a circle of radius 40 about the axis, 5 degrees
+  // apart; a crack on the three columns at -5, 0 and +5 degrees.
+  std::vector<FaceColumn> faces;
+  for (int k = 0; k < 72; ++k)
+  {
+    const double a = (k * 5 - 180) * std::numbers::pi / 180; // [-pi, pi)
+    const bool cracked = k == 35 || k == 36 || k == 37;
+    faces.push_back({a, axis[0] + 40 * std::cos(a), axis[1] + 40 * std::sin(a),
+                     cracked ? (k == 36 ? 0.05 : 0.01) : 0.0, 1});
+  }
+  std::vector<SurfaceCrack> cracks = surface_cracks(faces, {}, axis, R, resolution);
+  ASSERT_EQ(cracks.size(), 1u);
+  EXPECT_NEAR(cracks[0].width_mm, 0.07, 1e-15);
+  EXPECT_NEAR(cracks[0].angle_deg, 0, 1e-9);
+  // The same crack where the angles wrap (at +-180 degrees).
+  for (FaceColumn& f : faces)
+  {
+    f.angle = f.angle + std::numbers::pi;
+    f.angle -= f.angle >= std::numbers::pi ? 2 * std::numbers::pi : 0;
+    f.x = 2 * axis[0] - f.x;
+    f.y = 2 * axis[1] - f.y;
+  }
+  cracks = surface_cracks(faces, {}, axis, R, resolution);
+  ASSERT_EQ(cracks.size(), 1u);
+  EXPECT_NEAR(cracks[0].width_mm, 0.07, 1e-15);
+  EXPECT_NEAR(cracks[0].angle_deg, 180, 1e-9);
+}
+
+TEST(SurfaceCracks, NoneOrAllRound)
+{
+  EXPECT_TRUE(
+      surface_cracks(bottom_face([](double) { return 0.001; }), {}, axis, R, resolution).empty());
+  EXPECT_TRUE(surface_cracks({}, {}, axis, R, resolution).empty());
+  const std::vector<SurfaceCrack> all =
+      surface_cracks(bottom_face([](double) { return 0.01; }), {}, axis, R, resolution);
+  ASSERT_EQ(all.size(), 1u);
+  EXPECT_NEAR(all[0].width_mm, 0.01 * 50, 1e-12);
+}
