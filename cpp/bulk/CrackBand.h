@@ -68,6 +68,20 @@ public:
   Vec3 normal() const { return {_s[1], _s[2], _s[3]}; }
   /// Unit tangent s1 of the crack plane; s2 = n x s1.
   Vec3 tangent() const { return {_s[4], _s[5], _s[6]}; }
+  /// The crack frame: rows n, s1, s2 = n x s1 (right-handed).
+  Mat3 frame() const
+  {
+    const Vec3 n = normal(), s1 = tangent();
+    return {n[0],
+            n[1],
+            n[2],
+            s1[0],
+            s1[1],
+            s1[2],
+            n[1] * s1[2] - n[2] * s1[1],
+            n[2] * s1[0] - n[0] * s1[2],
+            n[0] * s1[1] - n[1] * s1[0]};
+  }
   /// Band width: the element's size along n [mm].
   T& band_width() const { return _s[7]; }
   /// The cohesive law's history [kappa, D] (laws::DamageHistory).
@@ -206,10 +220,8 @@ private:
         : h(state.band_width()), law(band.cohesive_law(h, strength)), law_old(law_old),
           law_now(state.law_state()), _dt(dt)
     {
-      const Vec3 n = state.normal(), s1 = state.tangent();
-      const Vec3 s2 = {n[1] * s1[2] - n[2] * s1[1], n[2] * s1[0] - n[0] * s1[2],
-                       n[0] * s1[1] - n[1] * s1[0]};
-      R = {n[0], n[1], n[2], s1[0], s1[1], s1[2], s2[0], s2[1], s2[2]};
+      const Vec3 n = state.normal();
+      R = state.frame();
       // C P (6 x 3, column k: the stress of a unit opening along e_k over a
       // unit band) and A / h = P^T C P / h.
       for (int k = 0; k < 3; ++k)

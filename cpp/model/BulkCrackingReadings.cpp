@@ -157,13 +157,12 @@ double BulkCracking::crack_strain_along(std::size_t i, double tx, double ty) con
   const bulk::CrackState<const double> s(std::span<const double>(_trial.data() + state * i, state));
   if (!s.cracked())
     return 0;
-  const bulk::Vec3 n = s.normal(), s1 = s.tangent();
-  const bulk::Vec3 s2 = {n[1] * s1[2] - n[2] * s1[1], n[2] * s1[0] - n[0] * s1[2],
-                         n[0] * s1[1] - n[1] * s1[0]};
-  const double* w = _opening_trial.data() + 3 * i; // crack frame [n, s1, s2]
-  double w_t = 0;
-  for (int k = 0; k < 2; ++k)
-    w_t += (w[0] * n[k] + w[1] * s1[k] + w[2] * s2[k]) * (k == 0 ? tx : ty);
+  const bulk::Mat3 R = s.frame();                  // rows n, s1, s2
+  const double* w = _opening_trial.data() + 3 * i; // in the crack frame
+  double w_t = 0;                                  // w . t, t = (tx, ty, 0)
+  for (int k = 0; k < 3; ++k)
+    w_t += w[k] * (R[3 * k] * tx + R[3 * k + 1] * ty);
+  const bulk::Vec3 n = s.normal();
   return w_t * (n[0] * tx + n[1] * ty) / s.band_width();
 }
 
