@@ -46,7 +46,7 @@ d_C = Coefficient(T)      # C_t - C at the points, 6 x 6 row-major [MPa]
 alpha = Coefficient(Q)    # thermal expansion coefficient per cell [1/degC]
 dT = Constant(mesh)       # temperature change of the thermal step [degC]
 u_h = Coefficient(V)      # displacement [mm]
-dissipated = Coefficient(P)  # energy the cracks dissipated per unit volume [N mm/mm^3]
+point_value = Coefficient(P)  # a value per point, to integrate (the energy dissipated per volume)
 
 u = TrialFunction(V)
 v = TestFunction(V)
@@ -63,14 +63,17 @@ REGION = 1
 at_points = dx(REGION, metadata={"quadrature_degree": DEGREE, "quadrature_rule": "default"})
 d_C_matrix = as_matrix([[d_C[6 * i + j] for j in range(6)] for i in range(6)])
 
+# L_crack also gives the gradient of the energy the cracks release
+# (dissipation control), with d_sigma its density per point.
 L_crack = inner(d_sigma, voigt_strain(v)) * at_points
 a_crack = inner(dot(d_C_matrix, voigt_strain(u)), voigt_strain(v)) * at_points
-# The energy the concrete's cracks dissipated [N mm].
-M_dissipated = dissipated * at_points
+# The integral of a value per point: the energy the concrete's cracks
+# dissipated or release [N mm].
+M_points = point_value * at_points
 
 points, _ = basix.make_quadrature(basix.CellType.hexahedron, DEGREE)
 strain = voigt_strain(u_h) - alpha * dT * as_vector([1.0, 1.0, 1.0, 0.0, 0.0, 0.0])
 position = SpatialCoordinate(mesh)
 
-forms = [L_crack, a_crack, M_dissipated]
+forms = [L_crack, a_crack, M_points]
 expressions = [(strain, points), (position, points)]

@@ -20,6 +20,10 @@ constexpr int region_tag = 1; ///< REGION of forms/cracking.py
 constexpr int voigt = 6;      ///< strain and stress components
 constexpr int voigt_sq = 36;  ///< tangent components
 constexpr int state = bulk::CrackBand::state_size;
+/// The relative size of the step beyond the committed strain at which a
+/// crack's loading tangent is taken where the strain has not moved
+/// (BulkCracking::loading_tangent; as interface::Interface::loading_probe).
+constexpr double probe = 1e-9;
 
 /// Values of a Quadrature function at (cell, point), `bs` per point.
 std::span<double> at(fem::Function<double>& f, std::int32_t cell, int point, int bs)
@@ -87,14 +91,15 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
                            std::shared_ptr<const fem::Function<double>> alpha,
                            const std::vector<std::int32_t>& material, const Material& concrete,
                            const CrackingPart& part, const Geometry& slice)
-    : _mesh(mesh), _band(concrete.E, concrete.nu, envelope_of(part)),
+    : _mesh(mesh), _band(concrete.E, concrete.nu, envelope_of(part), part.viscosity),
       _cells(cracking_cells(*mesh, material, part.radius, slice.tube_center)),
       _axis(slice.tube_center), _tube_radius(slice.tube_radius()),
       _visible_width(part.visible_width), _dT(std::make_shared<fem::Constant<double>>(0.0))
 {
   _d_sigma = quadrature_function(functionspace_form_cracking_L_crack, "d_sigma", mesh);
   _d_C = quadrature_function(functionspace_form_cracking_a_crack, "d_C", mesh);
-  _d_dissipated = quadrature_function(functionspace_form_cracking_M_dissipated, "dissipated", mesh);
+  _release_gradient = quadrature_function(functionspace_form_cracking_L_crack, "d_sigma", mesh);
+  _point_value = quadrature_function(functionspace_form_cracking_M_points, "point_value", mesh);
   _region = std::make_shared<dolfinx::mesh::MeshTags<std::int32_t>>(
       mesh, 3, std::vector<std::int32_t>(_cells),
       std::vector<std::int32_t>(_cells.size(), region_tag));
@@ -104,8 +109,10 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
       *form_cracking_L_crack, {V}, {{"d_sigma", _d_sigma}}, {}, subdomains));
   _a = std::make_shared<fem::Form<double>>(
       fem::create_form<double>(*form_cracking_a_crack, {V, V}, {{"d_C", _d_C}}, {}, subdomains));
+  _L_release = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+      *form_cracking_L_crack, {V}, {{"d_sigma", _release_gradient}}, {}, subdomains));
   _M = std::make_shared<fem::Form<double>>(fem::create_form<double>(
-      *form_cracking_M_dissipated, {}, {{"dissipated", _d_dissipated}}, {}, subdomains, mesh));
+      *form_cracking_M_points, {}, {{"point_value", _point_value}}, {}, subdomains, mesh));
   _strain = std::make_unique<fem::Expression<double>>(fem::create_expression<double>(
       *expression_cracking_strain, {{"u_h", u}, {"alpha", alpha}}, {{"dT", _dT}}, mesh));
 
@@ -129,10 +136,21 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
   _trial = _committed;
   _dissipated.assign(_strength.size(), 0.0);
   _dissipated_trial = _dissipated;
+  _dissipated_step = _dissipated;
   _opening.assign(_strength.size() * 3, 0.0);
   _opening_trial = _opening;
   _strain_values.resize(_strength.size() * voigt);
+  _loading.assign(_strength.size(), false);
+  _stress_trial.assign(_strength.size() * voigt, 0.0);
+  _stress_committed = _stress_trial;
+  _strain_committed = _stress_trial;
   place_cells(slice, positions);
+  const auto [cx, cy] = slice.tube_center;
+  const double W = slice.width;
+  double cover = (slice.circle ? W / 2 : std::min({cx, W - cx, cy, W - cy})) - _tube_radius;
+  if (part.radius > 0)
+    cover = std::min(cover, part.radius - _tube_radius);
+  _nominal_fracture_energy = _band.envelope().softening_energy() * slice.thickness * cover;
 
   // The size condition of the crack band (bulk/CrackBand.h): the band may
   // be as wide as the cell's bounding-box diagonal (no extent along a
@@ -172,7 +190,14 @@ double BulkCracking::band_width(std::size_t cell, const bulk::Vec3& n) const
 
 void BulkCracking::commit()
 {
+  for (std::size_t i = 0; i < _loading.size(); ++i)
+    _loading[i] =
+        bulk::CrackState<const double>(std::span(_trial.data() + state * i, state)).law_state()[0] >
+        bulk::CrackState<const double>(std::span(_committed.data() + state * i, state))
+            .law_state()[0];
   _committed = _trial;
+  _stress_committed = _stress_trial;
+  _strain_committed = _strain_values;
   _dissipated = _dissipated_trial;
   _opening = _opening_trial;
 }
@@ -189,6 +214,9 @@ void BulkCracking::reset()
   std::fill(_committed.begin(), _committed.end(), 0.0);
   std::fill(_dissipated.begin(), _dissipated.end(), 0.0);
   std::fill(_opening.begin(), _opening.end(), 0.0);
+  std::fill(_loading.begin(), _loading.end(), false);
+  std::fill(_stress_committed.begin(), _stress_committed.end(), 0.0);
+  std::fill(_strain_committed.begin(), _strain_committed.end(), 0.0);
   revert();
 }
 
@@ -212,10 +240,14 @@ bool BulkCracking::evaluate()
       std::copy_n(_strain_values.begin() + voigt * i, voigt, strain.begin());
       const std::span<const double> old(_committed.data() + state * i, state);
       const std::span<double> now(_trial.data() + state * i, state);
-      const bulk::CrackBandResult r = _band.update(
-          old, strain, now, [&](const bulk::Vec3& n) { return band_width(c, n); }, _strength[i]);
+      auto width = [&](const bulk::Vec3& n) { return band_width(c, n); };
+      bulk::CrackBandResult r = _band.update(old, strain, now, width, _strength[i], _dt);
+      if (_loading[i] && at_committed_strain(i, strain))
+        r.tangent = loading_tangent(i, strain, width);
       ok = ok && r.status == bulk::CrackBandResult::Status::ok;
+      _dissipated_step[i] = r.dissipation;
       _dissipated_trial[i] = _dissipated[i] + r.dissipation;
+      std::copy(r.stress.begin(), r.stress.end(), _stress_trial.begin() + voigt * i);
       std::copy(r.opening.begin(), r.opening.end(), _opening_trial.begin() + 3 * i);
       const std::span<double> d_sigma = at(*_d_sigma, _cells[c], q, voigt);
       const std::span<double> d_C = at(*_d_C, _cells[c], q, voigt_sq);
@@ -226,6 +258,78 @@ bool BulkCracking::evaluate()
         d_C[k] = r.tangent[k] - C[k];
     }
   return ok;
+}
+
+bool BulkCracking::at_committed_strain(std::size_t i, const bulk::Voigt& strain) const
+{
+  const double* eps0 = _strain_committed.data() + voigt * i;
+  double change = 0, size = 0;
+  for (int k = 0; k < voigt; ++k)
+  {
+    change = std::max(change, std::abs(strain[k] - eps0[k]));
+    size = std::max(size, std::abs(eps0[k]));
+  }
+  return change <= probe * size;
+}
+
+template <typename BandWidth>
+bulk::Voigt66 BulkCracking::loading_tangent(std::size_t i, const bulk::Voigt& strain,
+                                            BandWidth&& width) const
+{
+  bulk::Voigt probed;
+  for (int k = 0; k < voigt; ++k)
+    probed[k] = strain[k] * (1 + probe);
+  std::array<double, state> scratch;
+  return _band
+      .update(std::span<const double>(_committed.data() + state * i, state), probed, scratch, width,
+              _strength[i], _dt)
+      .tangent;
+}
+
+bool BulkCracking::energy_release(std::span<double> gradient, double& G)
+{
+  const bool ok = evaluate();
+  const int n_points = expression_cracking_strain->num_points;
+  const bulk::Voigt66& C = _band.stiffness();
+  std::vector<double> release(_strength.size());
+  for (std::size_t c = 0; c < _cells.size(); ++c)
+    for (int q = 0; q < n_points; ++q)
+    {
+      const std::size_t i = c * std::size_t(n_points) + q;
+      const double* eps = _strain_values.data() + voigt * i;
+      const double* eps0 = _strain_committed.data() + voigt * i;
+      const double* sigma = _stress_trial.data() + voigt * i;
+      const double* sigma0 = _stress_committed.data() + voigt * i;
+      release[i] = 0;
+      for (int k = 0; k < voigt; ++k)
+        release[i] += 0.5 * (sigma0[k] * eps[k] - sigma[k] * eps0[k]);
+      const std::span<const double> d_C = at(*_d_C, _cells[c], q, voigt_sq);
+      // dG/d eps_e = 1/2 (sigma_0 - C_t^T eps_e0)
+      const std::span<double> g = at(*_release_gradient, _cells[c], q, voigt);
+      for (int k = 0; k < voigt; ++k)
+      {
+        g[k] = 0.5 * sigma0[k];
+        for (int j = 0; j < voigt; ++j)
+          g[k] -= 0.5 * (C[voigt * j + k] + d_C[voigt * j + k]) * eps0[j];
+      }
+    }
+  G = integrate([&](std::size_t i) { return release[i]; });
+  fem::assemble_vector(gradient, *_L_release);
+  return ok;
+}
+
+double BulkCracking::dissipation()
+{
+  return integrate([&](std::size_t i) { return _dissipated_step[i]; });
+}
+
+double BulkCracking::integrate(const std::function<double(std::size_t)>& value_at_point)
+{
+  const int n_points = expression_cracking_strain->num_points;
+  for (std::size_t c = 0; c < _cells.size(); ++c)
+    for (int q = 0; q < n_points; ++q)
+      at(*_point_value, _cells[c], q, 1)[0] = value_at_point(c * std::size_t(n_points) + q);
+  return fem::assemble_scalar(*_M);
 }
 
 void BulkCracking::add_forces(std::span<double> f) const
@@ -241,22 +345,18 @@ void BulkCracking::add_tangent(Mat A) const
 CrackingTotals BulkCracking::totals()
 {
   evaluate(); // a failure was the converged step's, and is not one
-  const int n_points = expression_cracking_strain->num_points;
   CrackingTotals t;
   t.points = std::int64_t(_strength.size());
-  for (std::size_t c = 0; c < _cells.size(); ++c)
-    for (int q = 0; q < n_points; ++q)
-    {
-      const std::size_t i = c * std::size_t(n_points) + q;
-      at(*_d_dissipated, _cells[c], q, 1)[0] = _dissipated_trial[i];
-      const bulk::CrackState<const double> s(
-          std::span<const double>(_trial.data() + state * i, state));
-      if (!s.cracked())
-        continue;
-      ++t.cracked_points;
-      t.max_opening = std::max(t.max_opening, _opening_trial[3 * i]);
-    }
-  t.dissipated = fem::assemble_scalar(*_M);
+  for (std::size_t i = 0; i < _strength.size(); ++i)
+  {
+    const bulk::CrackState<const double> s(
+        std::span<const double>(_trial.data() + state * i, state));
+    if (!s.cracked())
+      continue;
+    ++t.cracked_points;
+    t.max_opening = std::max(t.max_opening, _opening_trial[3 * i]);
+  }
+  t.dissipated = integrate([&](std::size_t i) { return _dissipated_trial[i]; });
   MPI_Comm comm = _mesh->comm();
   MPI_Allreduce(MPI_IN_PLACE, &t.points, 1, MPI_INT64_T, MPI_SUM, comm);
   MPI_Allreduce(MPI_IN_PLACE, &t.cracked_points, 1, MPI_INT64_T, MPI_SUM, comm);

@@ -28,6 +28,7 @@
 #include <dolfinx/fem/FunctionSpace.h>
 #include <dolfinx/mesh/Mesh.h>
 #include <dolfinx/mesh/MeshTags.h>
+#include <functional>
 #include <memory>
 #include <petscmat.h>
 #include <span>
@@ -68,6 +69,9 @@ public:
 
   /// The temperature change whose free strain the stress does not see [degC].
   void set_temperature_change(double dT);
+  /// The step's pseudo-time increment, for the cracks' damage viscosity
+  /// (cracking.viscosity) [mm of push].
+  void set_time_increment(double dt) { _dt = dt; }
 
   /// The crack band at every point, from the committed state to the strain
   /// of the model's displacement (ghosts up to date): the trial state, and
@@ -80,6 +84,30 @@ public:
   /// Adds the tangent of the last evaluate() to A (before its final
   /// assembly) [N/mm].
   void add_tangent(Mat A) const;
+
+  /// The energy the cracks release from the committed state to the
+  /// model's displacement [N mm], this process's cells, in the form of
+  /// Gutierrez (2004) at each point (Interface::energy_release for the
+  /// joints): G = int 1/2 (sigma_0 : eps_e - sigma(eps_e) : eps_e0) dV,
+  /// sigma_0 and eps_e0 the committed stress and strain. The linear part of
+  /// sigma cancels (C is symmetric), and with the crack band's secant
+  /// unloading it is 1/2 eps_e0 : (C_s0 - C_s) : eps_e, the cracks'
+  /// dissipation to second order in the step, 0 where no crack grows.
+  /// Evaluates the points as evaluate() does (trial state); adds dG/du =
+  /// int 1/2 (sigma_0 - C_t^T eps_e0) : eps(v) dV to `gradient` (local with
+  /// ghosts, as add_forces), C_t evaluate()'s (the loading tangent of a
+  /// crack that grew in the last step, where the strain has not moved:
+  /// loading_tangent). False if a point failed.
+  bool energy_release(std::span<double> gradient, double& G);
+  /// The energy the cracks dissipated from the committed state to the last
+  /// evaluation, this process's cells [N mm] (the band's own account,
+  /// CrackBandResult::dissipation).
+  double dissipation();
+  /// A crack through the cover: G_F times the slice's thickness times the
+  /// cover (the tube's surface to the nearest outer face) [N mm]. The
+  /// energy of the first brittle event of a corroded slice, the scale of
+  /// dissipation control's steps (stepping/DissipationControl.cpp).
+  double nominal_fracture_energy() const { return _nominal_fracture_energy; }
 
   /// The trial state becomes the committed one (a converged step).
   void commit();
@@ -132,6 +160,23 @@ private:
   /// into `t`. Collective.
   void read_surface(CrackingTotals& t) const;
 
+  /// Whether `strain` is point i's committed strain (to a relative 1e-9).
+  bool at_committed_strain(std::size_t i, const bulk::Voigt& strain) const;
+  /// The tangent of point i just beyond `strain` along itself: where a
+  /// crack that grew in the last step starts the next one at its committed
+  /// strain, its law's tangent is the secant (nothing loads yet), and a
+  /// Newton step from it sees none of the softening ahead. The loading
+  /// tangent instead keeps the first iteration of every step (and the
+  /// gradient of energy_release()) on the path, as the joints' energy
+  /// release does (interface::Interface::loading_probe). The probe's trial
+  /// state is thrown away.
+  template <typename BandWidth>
+  bulk::Voigt66 loading_tangent(std::size_t i, const bulk::Voigt& strain, BandWidth&& width) const;
+
+  /// The integral over this process's cracking cells of a value per point
+  /// [value's unit times mm^3].
+  double integrate(const std::function<double(std::size_t)>& value_at_point);
+
   /// Band width of a cracking cell along a unit normal n: the extent of its
   /// vertices along n [mm] (bulk/CrackBand.h).
   double band_width(std::size_t cell, const bulk::Vec3& n) const;
@@ -143,17 +188,29 @@ private:
   std::vector<double> _committed, _trial; ///< [cell][point][CrackBand::state_size]
   std::vector<double> _dissipated;        ///< [cell][point] committed energy density [N mm/mm^3]
   std::vector<double> _dissipated_trial;
+  /// [cell][point] the crack grew (kappa) in the last committed step
+  std::vector<bool> _loading;
+  std::vector<double> _dissipated_step; ///< [cell][point] of the last evaluate() [N mm/mm^3]
+  /// [cell][point][6] stress [MPa] and strain eps_e [-] of the last
+  /// evaluate() and of the committed state (energy_release)
+  std::vector<double> _stress_trial, _stress_committed, _strain_committed;
   /// [cell][point][3] crack opening in the crack's frame [n, s1, s2] [mm]
   std::vector<double> _opening, _opening_trial;
-  std::vector<CellPlace> _places; ///< [cell]
-  std::array<double, 2> _axis{};  ///< the tube axis (x, y) [mm]
-  double _tube_radius = 0;        ///< [mm]
-  double _visible_width = 0;      ///< cracking.visible_width [mm]
+  std::vector<CellPlace> _places;      ///< [cell]
+  std::array<double, 2> _axis{};       ///< the tube axis (x, y) [mm]
+  double _tube_radius = 0;             ///< [mm]
+  double _visible_width = 0;           ///< cracking.visible_width [mm]
+  double _nominal_fracture_energy = 0; ///< [N mm]
+  double _dt = 0;                      ///< set_time_increment [mm of push]
   std::shared_ptr<dolfinx::fem::Constant<double>> _dT;
-  std::shared_ptr<dolfinx::fem::Function<double>> _d_sigma, _d_C, _d_dissipated;
+  std::shared_ptr<dolfinx::fem::Function<double>> _d_sigma, _d_C;
+  /// energy_release()'s dG/du density (on _d_sigma's space) and a scalar
+  /// per point (integrate())
+  std::shared_ptr<dolfinx::fem::Function<double>> _release_gradient, _point_value;
   std::unique_ptr<dolfinx::fem::Expression<double>> _strain;
   std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>> _region;
-  std::shared_ptr<dolfinx::fem::Form<double>> _L, _a, _M;
+  /// _L_release: L_crack on _release_gradient; _M: the integral of _point_value
+  std::shared_ptr<dolfinx::fem::Form<double>> _L, _a, _M, _L_release;
   std::vector<double> _strain_values; ///< [cell][point][6], of the last evaluate()
 };
 } // namespace pushout::model

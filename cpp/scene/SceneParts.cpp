@@ -87,6 +87,7 @@ void Scene::fill_parts()
   _cracking.correlation_length = number("cracking.correlation_length");
   _cracking.seed = integer("cracking.seed");
   _cracking.visible_width = number("cracking.visible_width");
+  _cracking.viscosity = number("cracking.viscosity");
 
   _solver.lagged_preconditioner = string("solver.preconditioner") == "lagged";
   using Condensation = SolverPart::Condensation;

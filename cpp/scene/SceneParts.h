@@ -121,6 +121,7 @@ struct CrackingPart
   double correlation_length{}; ///< of the strength field [mm]
   std::int64_t seed{};
   double visible_width{}; ///< a surface crack counts from this gauge reading [mm]
+  double viscosity{};     ///< damage viscosity eta [mm of push]; 0: none
 };
 
 /// [solver].

@@ -119,6 +119,12 @@ bool Equilibrium::energy_release(Vec x, double& G, Vec gradient)
     ok = joints->energy_release(_model.displacement().x()->array(), g, G_set) && ok;
     G += G_set;
   }
+  if (model::BulkCracking* cracking = _model.bulk_cracking())
+  {
+    double G_bulk;
+    ok = cracking->energy_release(g, G_bulk) && ok;
+    G += G_bulk;
+  }
   _g_energy.scatter_rev(std::plus<double>());
   double* a;
   check(VecGetArray(gradient, &a), "VecGetArray");

@@ -448,11 +448,6 @@ void PushOut::check_cracking(const Scene& scene)
   const CrackingPart& cracking = scene.cracking();
   if (!cracking.embedded)
     return;
-  const Loading::Control control = scene.loading().control;
-  if (control == Loading::Control::dissipation || control == Loading::Control::automatic)
-    throw SceneError("'cracking.model' = \"embedded\" runs under 'loading.control' = "
-                     "\"displacement\" or \"arc_length\" for now: dissipation control does not "
-                     "count the energy of the concrete's cracks yet");
   if (scene.mesh().degree != 1)
     throw SceneError("'cracking.model' = \"embedded\" needs 'mesh.degree' = 1 (the crack band's "
                      "forms are on the trilinear bulk)");

@@ -30,19 +30,22 @@ constexpr double min_probe_increment = 1.0 / 16;
 constexpr double released_to_return = 0.25;
 
 /// The energy released by the joints to full softening, summed over the
-/// processes [N mm].
+/// processes, plus that of a crack through the cover if the concrete
+/// cracks (model::BulkCracking::nominal_fracture_energy) [N mm].
 double fracture_energy(model::Model& model)
 {
   double local = 0, total = 0;
   for (const interface::Interface* joints : model.joints())
     local += joints->fracture_energy();
   MPI_Allreduce(&local, &total, 1, MPI_DOUBLE, MPI_SUM, model.comm());
+  if (const model::BulkCracking* cracking = model.bulk_cracking())
+    total += cracking->nominal_fracture_energy();
   return total;
 }
 
-/// The energy the joints dissipated from the committed state to the last
-/// evaluation, summed over the processes [N mm]: all layers, softening
-/// layers.
+/// The energy the joints and the concrete's cracks dissipated from the
+/// committed state to the last evaluation, summed over the processes
+/// [N mm]: all layers, softening layers (the cracks soften).
 std::array<double, 2> dissipation(model::Model& model)
 {
   std::array<double, 2> local = {0, 0}, total;
@@ -50,6 +53,12 @@ std::array<double, 2> dissipation(model::Model& model)
   {
     local[0] += joints->dissipation();
     local[1] += joints->dissipation(true);
+  }
+  if (model::BulkCracking* cracking = model.bulk_cracking())
+  {
+    const double cracks = cracking->dissipation();
+    local[0] += cracks;
+    local[1] += cracks;
   }
   MPI_Allreduce(local.data(), total.data(), 2, MPI_DOUBLE, MPI_SUM, model.comm());
   return total;

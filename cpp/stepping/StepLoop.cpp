@@ -136,6 +136,8 @@ void StepLoop::set_time_increment(double dt)
 {
   for (interface::Interface* joints : _equilibrium.model().joints())
     joints->set_time_increment(dt);
+  if (model::BulkCracking* cracking = _equilibrium.model().bulk_cracking())
+    cracking->set_time_increment(dt);
 }
 
 void StepLoop::commit()

@@ -93,6 +93,7 @@ strength_cov = 0.15
 correlation_length = 4.0
 seed = 7
 visible_width = 0.02
+viscosity = 0.3
 [solver]
 preconditioner = "jacobian"
 condensation = "off"
@@ -155,6 +156,7 @@ plot = false
   EXPECT_EQ(k.correlation_length, 4.0);
   EXPECT_EQ(k.seed, 7);
   EXPECT_EQ(k.visible_width, 0.02);
+  EXPECT_EQ(k.viscosity, 0.3);
   const pushout::SolverPart& v = s.solver();
   EXPECT_FALSE(v.lagged_preconditioner);
   EXPECT_EQ(v.condensation, pushout::SolverPart::Condensation::off);
