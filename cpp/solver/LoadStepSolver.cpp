@@ -24,7 +24,7 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
   const bool lagged = part.lagged_preconditioner && !overridden;
   const auto pc =
       lagged ? NewtonSolver::Preconditioner::lagged : NewtonSolver::Preconditioner::jacobian;
-  NewtonSolver::set_default_options(pc);
+  NewtonSolver::set_default_options(pc, eq.model().bulk_cracking() != nullptr);
 
   int processes = 1;
   MPI_Comm_size(eq.model().comm(), &processes);

@@ -108,10 +108,10 @@ std::string factorization_failure(KSP ksp)
   return factor_failure_text(PCFailedReason(worst));
 }
 
-void NewtonSolver::set_default_options(Preconditioner pc)
+void NewtonSolver::set_default_options(Preconditioner pc, bool cracking_bulk)
 {
   set_default("-snes_type", "newtonls");
-  set_default("-snes_linesearch_type", "bt");
+  set_default("-snes_linesearch_type", cracking_bulk ? "l2" : "bt");
   set_default("-snes_rtol", "1e-10");
   set_default("-snes_atol", "1e-10");
   set_default("-snes_stol", "1e-14");

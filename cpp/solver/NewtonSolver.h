@@ -73,7 +73,11 @@ public:
 
   /// Sets PETSc's options database defaults for pushout (MUMPS LU, tight
   /// tolerances) where the user did not set them. Call before NewtonSolver.
-  static void set_default_options(Preconditioner pc);
+  /// The line search backtracks (bt), or, if the concrete cracks
+  /// (`cracking_bulk`), minimises |F|^2 along the Newton direction (l2):
+  /// backtracking from a full step that cracks many points stalled on the
+  /// crack band's kinks (docs/cracking.md, "Newton").
+  static void set_default_options(Preconditioner pc, bool cracking_bulk = false);
 
   /// Whether the Newton systems are factored (-pc_type lu, the default, or
   /// cholesky) rather than preconditioned iteratively (-pc_type gamg, ...).
