@@ -45,6 +45,8 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
   auto solver = std::make_unique<LoadStepSolver>(eq, condense, pc, int(part.refactor_iterations),
                                                  description);
   solver->set_first_tangent(part.first_tangent_converged);
+  if (eq.model().bulk_cracking()) // l2 first (set_default_options), then backtracking
+    solver->_whole.set_fallback_line_search("bt");
   solver->_single_precision = part.mixed_precision;
   solver->_condense_required = required;
   return solver;

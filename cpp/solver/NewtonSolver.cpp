@@ -272,6 +272,32 @@ SolveReport NewtonSolver::solve(Vec x)
   _tangent_converged = _tangent_converged && !_policy.refresh_due() &&
                        _tangent_constraints == _problem.constraint_version() &&
                        _tangent_evaluation == _problem.tangent_evaluations();
+  Vec copy;
+  check(VecDuplicate(x, &copy), "VecDuplicate");
+  const Vector start(copy); // destroyed on every way out
+  check(VecCopy(x, start), "VecCopy");
+  SolveReport r = attempt_from_tangents(x, start);
+  if (r.converged || _fallback_line_search.empty())
+    return r;
+  // The same step again with the other line search, before the step loop
+  // cuts it (set_fallback_line_search).
+  check(VecCopy(start, x), "VecCopy");
+  _tangent_converged = false;
+  SNESLineSearch search;
+  check(SNESGetLineSearch(_snes, &search), "SNESGetLineSearch");
+  SNESLineSearchType type;
+  check(SNESLineSearchGetType(search, &type), "SNESLineSearchGetType");
+  const std::string usual = type;
+  check(SNESLineSearchSetType(search, _fallback_line_search.c_str()), "SNESLineSearchSetType");
+  const int before = r.iterations;
+  r = attempt(x);
+  r.iterations += before;
+  check(SNESLineSearchSetType(search, usual.c_str()), "SNESLineSearchSetType");
+  return r;
+}
+
+SolveReport NewtonSolver::attempt_from_tangents(Vec x, Vec start)
+{
   if (!(_previous_tangent && _tangent_converged))
     return attempt(x);
   // The first iteration takes the last converged tangent. Where it predicts
@@ -280,10 +306,6 @@ SolveReport NewtonSolver::solve(Vec x)
   // step again from the tangent at its initial guess, before the step loop
   // cuts it (k = 1e6 N/mm^3, mu = 1, nodal quadrature, 1000 steps of the
   // stress matrix: 78 cuts and 7 519 Newton iterations without the retry).
-  Vec copy;
-  check(VecDuplicate(x, &copy), "VecDuplicate");
-  const Vector start(copy); // destroyed on every way out
-  check(VecCopy(x, start), "VecCopy");
   SolveReport r = attempt(x);
   if (!r.converged)
   {

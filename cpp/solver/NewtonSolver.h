@@ -66,6 +66,12 @@ public:
   /// Solves F(x) = 0 from the initial guess x (constraints already in x).
   SolveReport solve(Vec x);
 
+  /// A solve that fails is tried once more from its initial guess with this
+  /// PETSc line search type (SNESLineSearchType, e.g. "bt"); "" (the
+  /// default): none. With cracks in the concrete neither l2 nor bt passes
+  /// every step the other passes (docs/cracking.md, "Newton").
+  void set_fallback_line_search(std::string type) { _fallback_line_search = std::move(type); }
+
   /// Times one linear solve J(x) dx = -F(x) with the solver configured for
   /// the Newton systems (a fresh KSP from the same options, the first
   /// factorisation included) [s]. Leaves x and the committed state alone.
@@ -90,10 +96,11 @@ private:
   PreconditionerPolicy _policy;
   Mat _J = nullptr, _P = nullptr;
   Vec _F = nullptr;
-  bool _previous_tangent = true;   ///< a step's first iteration takes the last converged tangent
-  bool _tangent_converged = false; ///< the last solve converged (its tangent is at hand)
-  int _tangent_constraints = -1;   ///< the constraint version of that solve
-  int _tangent_evaluation = -1;    ///< the problem's tangent count after it
+  std::string _fallback_line_search; ///< set_fallback_line_search
+  bool _previous_tangent = true;     ///< a step's first iteration takes the last converged tangent
+  bool _tangent_converged = false;   ///< the last solve converged (its tangent is at hand)
+  int _tangent_constraints = -1;     ///< the constraint version of that solve
+  int _tangent_evaluation = -1;      ///< the problem's tangent count after it
 
 public:
   /// Numeric factorisations so far (for the summary).
@@ -113,6 +120,9 @@ private:
   /// One SNES solve from x (solve() retries it once from the tangent at the
   /// initial guess when the last converged tangent's try failed).
   SolveReport attempt(Vec x);
+  /// attempt(), from the last converged tangent if it is to be taken, then
+  /// once more from the tangent at the initial guess `start` if that failed.
+  SolveReport attempt_from_tangents(Vec x, Vec start);
   static PetscErrorCode jacobian_callback(SNES snes, Vec x, Mat J, Mat P, void* ctx);
   static PetscErrorCode convergence_test(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm,
                                          PetscReal fnorm, SNESConvergedReason* reason, void* ctx);

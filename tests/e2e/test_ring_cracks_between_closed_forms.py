@@ -22,10 +22,13 @@ planes: the ring of the closed forms (scripts/analytic.py).
    damage: p above the rate-independent ring's once it cracks, less
    energy dissipated.
 6. Mesh objectivity: on 12, 16 and 24 elements per quarter (cells 1.3 and
-   2 times apart) the corrosion curve through the peak and the energy the
-   cracks dissipate agree within 5 % (a crack band dissipates G_F per unit
-   crack area whatever the element's size; without it the energy would
-   scale with the size).
+   2 times apart) the corrosion curve to x = 24 um (every point cracked,
+   just before the peak) and the energy the cracks dissipate agree within
+   5 % (a crack band dissipates G_F per unit crack area whatever the
+   element's size; without it the energy would scale with the size).
+   Beyond, the uniform ring's smeared cracks localise, a bifurcation that
+   round-off breaks, and Newton does not pass it on every mesh
+   (docs/cracking.md, "Newton").
 7. What it does not do yet is refused with exit 2: the quadratic bulk, a
    symmetric cut of a random field."""
 
@@ -105,9 +108,10 @@ check(all(rows[i]["p_MPa"] > p[i] for i in cracked[1:]) and
 curves = {16: corrosion(peak_run)}
 for n in (12, 24):
     out = out_dir(f"ring_mesh_{n}")
-    run(corroded_ring(MESH.replace("= 16", f"= {n}"), 0.03, 30, push=0.001, push_steps=1)
+    run(corroded_ring(MESH.replace("= 16", f"= {n}"), 0.024, 24, push=0.001, push_steps=1)
         + CRACKING, out)
     curves[n] = corrosion(out)
+curves[16] = [r for r in curves[16] if r["penetration_mm"] <= 0.024 + 1e-12]
 for n in (12, 24):
     # The same x (a cut step adds rows between the nominal ones).
     at_x = {round(r["penetration_mm"], 9): r for r in curves[n]}

@@ -1,0 +1,97 @@
+#!/usr/bin/python3
+"""The cost of cracks anywhere in the concrete against the one-plane
+corroded demo, side by side in one run (docs/cracking.md, "Speed").
+
+Cases (the paper's mesh 16/8, one thread each, one after the other):
+
+  plane           demo/pushout_corroded.toml as it is: one crack plane to the
+                  nearest face, 25 corrosion steps to x = 50 um, a 40-step
+                  push (half model, bulk condensed: the defaults);
+  embedded        the same specimen with [cracking] model = "embedded"
+                  instead of its crack plane (f_t 3 MPa, c 30 1/mm as the
+                  plane's; strength_cov 0.15, seed 1: the whole slice),
+                  displacement control (the default);
+  embedded_auto   the same under loading.control = "auto" (dissipation).
+
+For each: wall time, dofs, Newton iterations, factorizations, cuts, and the
+seconds of each phase (step 0 with the retraction, the corrosion stage, the
+push) from the wall_s columns of corrosion.csv and curve.csv; the ratio of
+wall times to the plane's. Writes bench/results/cracking_speed.csv and .md.
+
+  bench/cracking_speed.py [--reuse] [--only CASE ...]
+"""
+import argparse
+import os
+import time
+
+from common import PUSHOUT, ROOT, curve, markdown_table, pushout_runs, run, summary, write_csv
+
+RESULTS = os.path.join(ROOT, "bench", "results")
+CRACKING = ('[cracking]\nmodel = "embedded"\nf_t = 3.0\nc = 30.0\nstrength_cov = 0.15\n'
+            "correlation_length = 5.0\nseed = 1\n")
+
+
+def embedded_demo(path):
+    """The corroded demo with [cracking] instead of its crack plane."""
+    pushout_runs.corroded_demo(path, ())
+    with open(path, "a") as f:
+        f.write("\n" + CRACKING)
+    return path
+
+
+def phases(out):
+    """Seconds of step 0, the corrosion stage and the push."""
+    corr = pushout_runs.corrosion(out)
+    push = curve(out)
+    t0, t_corr, t_end = corr[0]["wall_s"], corr[-1]["wall_s"], push[-1]["wall_s"]
+    return round(t0, 2), round(t_corr - t0, 2), round(t_end - t_corr, 2)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--pushout", default=PUSHOUT)
+    ap.add_argument("--out", default=os.path.join(ROOT, "results", "bench_cracking_speed"))
+    ap.add_argument("--reuse", action="store_true")
+    ap.add_argument("--only", nargs="*", default=None)
+    args = ap.parse_args()
+    embedded = embedded_demo(os.path.join(args.out, "pushout_corroded_embedded.toml"))
+    cases = {
+        "plane": (os.path.join(ROOT, "demo", "pushout_corroded.toml"), []),
+        "embedded": (embedded, []),
+        "embedded_auto": (embedded, ["loading.control=auto"]),
+    }
+    rows = []
+    for name, (scene, sets) in cases.items():
+        if args.only and name not in args.only:
+            continue
+        out = os.path.join(args.out, name)
+        start = time.time()
+        code = run(args.pushout, scene, out, sets, reuse=args.reuse, check=False)
+        print(f"{name}: exit {code}, {time.time() - start:.1f} s", flush=True)
+        s = summary(out)
+        step0, corrosion, push = phases(out)
+        rows.append({"case": name, "wall_s": round(s["wall_s"], 2), "converged": s["converged"],
+                     "symmetry": s["symmetry"], "dofs": s["dofs"],
+                     "condensed_dofs": s["condensed_dofs"],
+                     "newton_iterations": s["newton_iterations"],
+                     "factorizations": s["factorizations"], "cuts": s["cuts"],
+                     "dissipation_steps": s["dissipation_steps"], "step0_s": step0,
+                     "corrosion_s": corrosion, "push_s": push,
+                     "s_per_iteration": round(s["wall_s"] / max(s["newton_iterations"], 1), 3),
+                     "tau_last_MPa": round(curve(out)[-1]["tau_MPa"], 4)})
+    plane = next((r["wall_s"] for r in rows if r["case"] == "plane"), None)
+    for r in rows:
+        r["ratio_to_plane"] = round(r["wall_s"] / plane, 1) if plane else ""
+    os.makedirs(RESULTS, exist_ok=True)
+    write_csv(os.path.join(RESULTS, "cracking_speed.csv"), rows)
+    with open(os.path.join(RESULTS, "cracking_speed.md"), "w") as f:
+        f.write("# Cracks anywhere: cost against the one-plane corroded demo\n\n"
+                "Made by `bench/cracking_speed.py` (one thread per run, this machine, one "
+                "run each).\n\n")
+        f.write(markdown_table(list(rows[0].keys()), rows))
+    print(markdown_table(list(rows[0].keys()), rows))
+
+
+if __name__ == "__main__":
+    main()
