@@ -73,6 +73,26 @@ oxide_bulk = {oxide_bulk}
 """
 
 
+def cracking_corroded_demo(x, steps, f_t=3.0, cov=0.15, seed=None, xdmf=False):
+    """demo/pushout_corroded.toml on a coarse mesh (8 per quarter, 2 through
+    the thickness) with [cracking] model = "embedded" (f_t [MPa], c 30 1/mm,
+    strength_cov `cov`, correlation length 5 mm) instead of its crack plane,
+    corroded to x [mm] in `steps`, then pushed 5 um in one step (TOML text;
+    test_cover_crack_read_at_the_face, test_corroded_slice_picks_its_cover_crack)."""
+    with open(os.path.join(SOURCE, "demo", "pushout_corroded.toml")) as f:
+        demo = f.read()
+    scene = demo[:demo.index("[[crack]]")] + demo[demo.index("[loading]"):]
+    scene = (scene.replace("elements_per_quarter = 16", "elements_per_quarter = 8")
+             .replace("elements_through_thickness = 8", "elements_through_thickness = 2")
+             .replace("penetration = 0.05", f"penetration = {x}")
+             .replace("steps = 25", f"steps = {steps}").replace("steps = 40", "steps = 1")
+             .replace("push_displacement = 0.2", "push_displacement = 0.005")
+             .replace("xdmf = false", f"xdmf = {'true' if xdmf else 'false'}"))
+    return scene + (f'\n[cracking]\nmodel = "embedded"\nf_t = {f_t}\nc = 30.0\n'
+                    f"strength_cov = {cov}\ncorrelation_length = 5.0\n"
+                    + (f"seed = {seed}\n" if seed is not None else ""))
+
+
 # Newton's tolerances (NewtonSolver::set_default_options): a step converges
 # when |F|_2 <= snes_atol [N] or <= snes_rtol |F0|_2, F0 the residual the
 # step started with.

@@ -18,20 +18,11 @@ import csv
 import math
 import os
 
-from common import SOURCE, check, out_dir, run, summary
+from common import check, cracking_corroded_demo, out_dir, run, summary
 
 axis = (50.0, 25.0)  # the tube axis of the demo [mm]
 SEEDS = range(1, 6)
-with open(os.path.join(SOURCE, "demo", "pushout_corroded.toml")) as f:
-    demo = f.read()
-scene = demo[:demo.index("[[crack]]")] + demo[demo.index("[loading]"):]
-scene = (scene.replace("elements_per_quarter = 16", "elements_per_quarter = 8")
-         .replace("elements_through_thickness = 8", "elements_through_thickness = 2")
-         .replace("penetration = 0.05", "penetration = 0.02").replace("steps = 25", "steps = 5")
-         .replace("steps = 40", "steps = 1").replace("push_displacement = 0.2",
-                                                     "push_displacement = 0.005"))
-scene += ('\n[cracking]\nmodel = "embedded"\nf_t = 3.0\nc = 30.0\nstrength_cov = 0.15\n'
-          "correlation_length = 5.0\n")
+scene = cracking_corroded_demo(0.02, 5)
 
 
 def angle(x, y):

@@ -27,21 +27,11 @@ import os
 import h5py
 import numpy as np
 
-from common import SOURCE, check, corrosion, out_dir, run, summary
+from common import check, corrosion, cracking_corroded_demo, out_dir, run, summary
 
 f_t, cov, E = 3.0, 0.15, 30000.0  # MPa; concrete.E's default
 axis = (50.0, 25.0)  # the tube axis of the demo [mm]
-with open(os.path.join(SOURCE, "demo", "pushout_corroded.toml")) as f:
-    demo = f.read()
-scene = demo[:demo.index("[[crack]]")] + demo[demo.index("[loading]"):]
-scene = (scene.replace("elements_per_quarter = 16", "elements_per_quarter = 8")
-         .replace("elements_through_thickness = 8", "elements_through_thickness = 2")
-         .replace("penetration = 0.05", "penetration = 0.03").replace("steps = 25", "steps = 10")
-         .replace("steps = 40", "steps = 1").replace("push_displacement = 0.2",
-                                                     "push_displacement = 0.005")
-         .replace("xdmf = false", "xdmf = true"))
-scene += (f'\n[cracking]\nmodel = "embedded"\nf_t = {f_t}\nc = 30.0\nstrength_cov = {cov}\n'
-          "correlation_length = 5.0\nseed = 1\n")
+scene = cracking_corroded_demo(0.03, 10, f_t, cov, seed=1, xdmf=True)
 one = out_dir("cover_crack_1")
 run(scene, one)
 s = summary(one)
