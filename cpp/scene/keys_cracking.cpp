@@ -4,16 +4,16 @@
 
 namespace pushout
 {
-std::vector<KeyDef> cracking_keys()
+namespace
+{
+/// The crack and its law: whether the concrete cracks, the softening law,
+/// its damage viscosity.
+std::vector<KeyDef> law_keys()
 {
   using K = KeyType;
   using A = Applies;
   constexpr double inf = std::numeric_limits<double>::infinity();
   return {
-      // Cracks anywhere in the concrete (docs/cracking.md): a crack band at
-      // each quadrature point of the concrete near the tube (bulk/CrackBand.h),
-      // with a random tensile strength (bulk/StrengthField.h). In progress:
-      // off unless cracking.model = "embedded".
       {"cracking.model",
        K::string,
        std::string("none"),
@@ -67,6 +67,27 @@ std::vector<KeyDef> cracking_keys()
        true,
        {},
        A::pushout},
+      {"cracking.viscosity",
+       K::number,
+       0.0,
+       "mm",
+       "damage viscosity of the concrete's cracks, as the damage laws' eta: pseudo-time "
+       "constant in mm of push (a corrosion step takes a push step's); 0: rate independent",
+       0,
+       inf,
+       false,
+       {},
+       A::pushout},
+  };
+}
+
+/// Where it may crack, and the random field of its tensile strength.
+std::vector<KeyDef> field_keys()
+{
+  using K = KeyType;
+  using A = Applies;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  return {
       {"cracking.radius",
        K::number,
        0.0,
@@ -110,17 +131,16 @@ std::vector<KeyDef> cracking_keys()
        false,
        {},
        A::pushout},
-      {"cracking.viscosity",
-       K::number,
-       0.0,
-       "mm",
-       "damage viscosity of the concrete's cracks, as the damage laws' eta: pseudo-time "
-       "constant in mm of push (a corrosion step takes a push step's); 0: rate independent",
-       0,
-       inf,
-       false,
-       {},
-       A::pushout},
+  };
+}
+
+/// How the cracks are read at the slice's outer faces.
+std::vector<KeyDef> reading_keys()
+{
+  using K = KeyType;
+  using A = Applies;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  return {
       {"cracking.visible_width",
        K::number,
        0.05,
@@ -134,5 +154,22 @@ std::vector<KeyDef> cracking_keys()
        {},
        A::pushout},
   };
+}
+
+} // namespace
+
+std::vector<KeyDef> cracking_keys()
+{
+  // Cracks anywhere in the concrete (docs/cracking.md): a crack band at
+  // each quadrature point of the concrete near the tube (bulk/CrackBand.h),
+  // with a random tensile strength (bulk/StrengthField.h). In progress:
+  // off unless cracking.model = "embedded".
+  std::vector<KeyDef> keys = law_keys();
+  for (auto part : {field_keys, reading_keys})
+  {
+    std::vector<KeyDef> more = part();
+    keys.insert(keys.end(), more.begin(), more.end());
+  }
+  return keys;
 }
 } // namespace pushout
