@@ -90,17 +90,18 @@ def draw(csv_path, png, kind, title):
     fig.savefig(png)
 
 
-def plot_crack_pattern(fig, data, title):
-    """Each column its cell's outline, coloured by its opening on a log
-    scale from 1 um (below: the lightest colour) to the widest."""
+def draw_crack_pattern(ax, data, top=None):
+    """The slice seen along the tube axis on `ax`: each column its cell's
+    outline, coloured by its opening on a log scale from 1 um (below: the
+    lightest colour) to `top` [mm] (default: the widest). Returns the
+    coloured collection (for a colour bar)."""
     from matplotlib.collections import PatchCollection
     from matplotlib.colors import LogNorm
     from matplotlib.patches import Polygon
-    ax = fig.add_subplot()
     floor = 1e-3  # mm
-    xs, ys = data.get("x_mm", []), data.get("y_mm", [])
-    opening, size = data.get("opening_mm", []), data.get("size_mm", [])
-    top = max([floor * 10] + opening)
+    xs = data.get("x_mm", [])
+    opening = data.get("opening_mm", [])
+    top = top or max([floor * 10] + opening)
     outlines = [[(data[f"corner_{k}_x_mm"][i], data[f"corner_{k}_y_mm"][i]) for k in range(4)]
                 for i in range(len(xs))]
     cells = PatchCollection([Polygon(o) for o in outlines], cmap="inferno_r",
@@ -112,6 +113,13 @@ def plot_crack_pattern(fig, data, title):
         ax.set_ylim(min(p[1] for o in outlines for p in o), max(p[1] for o in outlines for p in o))
     ax.set_facecolor("0.85")  # where the concrete may not crack, and the tube
     ax.set_aspect("equal")
+    return cells
+
+
+def plot_crack_pattern(fig, data, title):
+    """The crack pattern of one run (draw_crack_pattern) with its colour bar."""
+    ax = fig.add_subplot()
+    cells = draw_crack_pattern(ax, data)
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("y [mm]")
     fig.colorbar(cells, ax=ax, label="crack opening, mean through the thickness [mm]")

@@ -1,0 +1,193 @@
+"""The corroded study on cracks anywhere in the concrete (scripts/studies.py
+--only corroded_embedded; docs/corrosion.md).
+
+demo/pushout_corroded.toml with [cracking] model = "embedded" instead of its
+crack plane (f_t 3 MPa, c 30 1/mm as the plane's: G_F 0.1 N/mm; a random
+strength field of cov 0.15 and correlation length 5 mm): the tube centred
+or 15 mm from a face, beta 2 or 3, seeds 1-5, corroded to x = 0, 12.5, 25,
+50 um in steps of 2.5 um, then pushed 0.2 mm, under loading.control =
+"auto" (dissipation control where a crack snaps back). Per run: the pressure and the
+widest surface crack after corrosion, the bond's peak and the residual at
+0.2 mm; per group of seeds: their mean and range (the error bars); the
+crack patterns after corrosion to 50 um, one per seed.
+"""
+import csv
+import os
+import statistics
+
+import plot_curve
+import pushout_runs
+
+SEEDS = (1, 2, 3, 4, 5)
+DEPTHS_UM = (0.0, 12.5, 25.0, 50.0)
+WHERE = (("centred", "[50.0, 50.0]"), ("cover15", "[50.0, 25.0]"))
+BETAS = (2.0, 3.0)
+SCENE = "pushout_corroded_embedded.toml"
+CRACKING = ('[cracking]\nmodel = "embedded"\nf_t = 3.0\nc = 30.0\nstrength_cov = 0.15\n'
+            "correlation_length = 5.0\nseed = 1\n")
+VISIBLE_UM = 50.0  # the [cracking] visible_width default: a surface crack counts from here
+
+
+def write_scene(out):
+    """OUT/pushout_corroded_embedded.toml: the corroded demo, [cracking] for its plane."""
+    path = pushout_runs.corroded_demo(os.path.join(out, SCENE), ())
+    with open(path, "a") as f:
+        f.write("\n" + CRACKING)
+    return path
+
+
+def cases(quick):
+    """(name, scene, --set list) of every run; --quick: seeds 1 and 2 only."""
+    out = []
+    for where, centre in WHERE:
+        for beta in BETAS:
+            for seed in SEEDS[:2] if quick else SEEDS:
+                for x_um in DEPTHS_UM:
+                    sets = [f"geometry.tube_center={centre}", f"corrosion.beta={beta}",
+                            f"corrosion.penetration={x_um / 1e3}",
+                            f"corrosion.steps={max(1, round(x_um / 2.5))}",
+                            f"loading.steps={10 if quick else 20}", f"cracking.seed={seed}",
+                            # The centred tube's cover snaps back past the peak
+                            # pressure, which control of x alone cannot pass.
+                            "loading.control=auto"]
+                    out.append((f"{where}_beta{beta:g}_seed{seed}_x{x_um:g}", SCENE, sets))
+    return out
+
+
+def parse(name):
+    where, beta, seed, x = name.split("_")
+    return where, float(beta[4:]), int(seed[4:]), float(x[1:])
+
+
+def first_visible_um(corr):
+    """The corrosion depth [um] at which a surface crack first reads
+    visible_width (None: not within the run)."""
+    for r in corr:
+        if r["cracks_at_surface"] >= 1:
+            return 1e3 * r["penetration_mm"]
+    return None
+
+
+def run_table(out, runs):
+    """One row per converged run; the failed ones are named on stdout."""
+    table = []
+    for name in sorted(n for (study, n) in runs if study == "corroded_embedded"):
+        folder = os.path.join(out, "corroded_embedded", name)
+        rows = runs[("corroded_embedded", name)]
+        s = pushout_runs.summary(folder)
+        if not s["converged"] or not rows:
+            print(f"corroded_embedded {name}: did not converge: {s['message']}")
+            continue
+        where, beta, seed, x = parse(name)
+        # x = 0: no corrosion stage, no corrosion.csv; the push starts uncracked.
+        has_corrosion = os.path.exists(os.path.join(folder, "corrosion.csv"))
+        corr = pushout_runs.corrosion(folder) if has_corrosion else []
+        concrete = [c for c in s.get("cracks", []) if c["source"] == "concrete"]
+        widest = max(concrete, key=lambda c: c["width_mm"]) if concrete else None
+        table.append({"case": name, "tube": where, "beta": beta, "seed": seed, "x_um": x,
+                      "p_after_corrosion_MPa": rows[0]["p_MPa"],
+                      "surface_crack_um": 1e3 * corr[-1]["crack_width_mm"] if corr else 0.0,
+                      "cracks_at_surface": int(corr[-1]["cracks_at_surface"]) if corr else 0,
+                      "widest_angle_deg": widest["angle_deg"] if widest else None,
+                      "first_visible_x_um": first_visible_um(corr),
+                      "tau_peak_MPa": max(r["tau_MPa"] for r in rows),
+                      "tau_residual_MPa": rows[-1]["tau_MPa"],
+                      "newton_iterations": s.get("newton_iterations")})
+    return table
+
+
+def spread(values):
+    return statistics.mean(values), min(values), max(values)
+
+
+def group_table(table):
+    """Per tube, beta and x: the seeds' mean, min and max."""
+    groups = {}
+    for r in table:
+        groups.setdefault((r["tube"], r["beta"], r["x_um"]), []).append(r)
+    out = []
+    for (tube, beta, x), rs in sorted(groups.items()):
+        row = {"tube": tube, "beta": beta, "x_um": x, "seeds": len(rs)}
+        for key in ("p_after_corrosion_MPa", "surface_crack_um", "tau_peak_MPa", "tau_residual_MPa"):
+            mean, lo, hi = spread([r[key] for r in rs])
+            row.update({f"{key}_mean": mean, f"{key}_min": lo, f"{key}_max": hi})
+        row["cover_crack_seeds"] = sum(r["cracks_at_surface"] >= 1 for r in rs)
+        out.append(row)
+    return out
+
+
+def plot_bond(plt, out, groups, table):
+    """Residual bond stress against x and against the surface crack width,
+    the seeds' mean with their range as error bars (and each seed)."""
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.5), dpi=120, sharey=True)
+    for (where, _), style in zip(WHERE, ("o-", "s--")):
+        for beta, color in zip(BETAS, ("tab:blue", "tab:red")):
+            sel = [g for g in groups if g["tube"] == where and g["beta"] == beta]
+            mean = [g["tau_residual_MPa_mean"] for g in sel]
+            err = [[m - g["tau_residual_MPa_min"] for m, g in zip(mean, sel)],
+                   [g["tau_residual_MPa_max"] - m for m, g in zip(mean, sel)]]
+            axes[0].errorbar([g["x_um"] for g in sel], mean, yerr=err, fmt=style, color=color,
+                             ms=4, capsize=3, label=f"{where}, $\\beta$ {beta:g}")
+            seeds = [r for r in table if r["tube"] == where and r["beta"] == beta]
+            axes[1].plot([r["surface_crack_um"] for r in seeds],
+                         [r["tau_residual_MPa"] for r in seeds], style[0], color=color, ms=4,
+                         mfc="none" if where == "centred" else color)
+    axes[0].set(xlabel="corrosion depth $x$ [µm]", ylabel="residual bond stress at 0.2 mm [MPa]")
+    axes[1].set(xlabel="widest surface crack after corrosion [µm] (each seed)")
+    axes[1].axvline(VISIBLE_UM, color="0.5", lw=0.8, ls=":")
+    for ax in axes:
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize=8)
+    fig.suptitle("Corroded push-out, cracks anywhere (5 seeds of a cov 0.15 strength field: "
+                 "mean and range)")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "corroded_embedded_residual_bond.png"))
+    plt.close(fig)
+
+
+def plot_patterns(plt, out, table):
+    """The crack patterns after corrosion to the largest x: a row per tube
+    and beta, a column per seed, one colour scale."""
+    x = max(DEPTHS_UM)
+    done = {(r["tube"], r["beta"], r["seed"]) for r in table if r["x_um"] == x}
+    seeds = sorted({s for (_, _, s) in done})
+    rows = [(w, b) for w, _ in WHERE for b in BETAS]
+    if not seeds:
+        return
+    fig, axes = plt.subplots(len(rows), len(seeds), figsize=(2.2 * len(seeds) + 1.5, 2.3 * len(rows) + 0.6),
+                             dpi=110, squeeze=False, layout="constrained")
+    cells = None
+    for i, (where, beta) in enumerate(rows):
+        for j, seed in enumerate(seeds):
+            ax = axes[i][j]
+            ax.set_xticks([])
+            ax.set_yticks([])
+            if (where, beta, seed) not in done:
+                ax.set_title("did not converge", fontsize=8)
+                continue
+            name = f"{where}_beta{beta:g}_seed{seed}_x{x:g}"
+            data = plot_curve.read(os.path.join(out, "corroded_embedded", name, "crack_pattern.csv"))
+            cells = plot_curve.draw_crack_pattern(ax, data, top=0.5)
+            ax.set_title(f"{where}, β {beta:g}, seed {seed}", fontsize=8)
+    if cells is not None:
+        fig.colorbar(cells, ax=axes, shrink=0.6, label="crack opening [mm]")
+    fig.suptitle(f"Crack patterns at x = {x:g} µm, seen along the tube", fontsize=10)
+    fig.savefig(os.path.join(out, "corroded_embedded_patterns.png"))
+    plt.close(fig)
+
+
+def report(plt, out, runs):
+    """Writes OUT/corroded_embedded.csv (per run), OUT/corroded_embedded_groups.csv
+    (per group of seeds) and the two figures; returns the group rows."""
+    table = run_table(out, runs)
+    if not table:
+        return []
+    groups = group_table(table)
+    for path, rows in (("corroded_embedded.csv", table), ("corroded_embedded_groups.csv", groups)):
+        with open(os.path.join(out, path), "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=list(rows[0]))
+            w.writeheader()
+            w.writerows(rows)
+    plot_bond(plt, out, groups, table)
+    plot_patterns(plt, out, table)
+    return groups
