@@ -340,7 +340,17 @@ void Condensation::compute_Z()
   check(MatFactorGetSchurComplement(_factor, &S, &status),
         "MatFactorGetSchurComplement"); // factored; the factor owns it
   check(MatCreateSeqDense(PETSC_COMM_SELF, n_gamma, n, nullptr, &_Z), "MatCreateSeqDense");
-  check(MatMatSolve(S, B, _Z), "MatMatSolve");
+  try
+  {
+    check(MatMatSolve(S, B, _Z), "MatMatSolve");
+  }
+  catch (...) // B and the borrowed Schur complement go back before the error does
+  {
+    petsc::check_nothrow(MatFactorRestoreSchurComplement(_factor, &S, status),
+                         "MatFactorRestoreSchurComplement");
+    petsc::check_nothrow(MatDestroy(&B), "MatDestroy");
+    throw;
+  }
   check(MatFactorRestoreSchurComplement(_factor, &S, status), "MatFactorRestoreSchurComplement");
   check(MatDestroy(&B), "MatDestroy");
 }

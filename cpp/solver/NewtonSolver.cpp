@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <set>
+#include <string>
 
 namespace pushout::solver
 {
@@ -56,12 +58,19 @@ void test_non_finite(Vec x)
   check(VecAssemblyEnd(x), "VecAssemblyEnd");
 }
 
+/// Sets a PETSc option unless the user set it (on the command line). A
+/// default set here for one run is replaced by the next run's default (the
+/// runs of a sweep share one process: a case with cracks must not leave its
+/// line search to the next case without).
 void set_default(const char* name, const char* value)
 {
+  static std::set<std::string> ours; // the options that hold a default of ours
   PetscBool set = PETSC_FALSE;
   check(PetscOptionsHasName(nullptr, nullptr, name, &set), "PetscOptionsHasName");
-  if (!set)
-    check(PetscOptionsSetValue(nullptr, name, value), "PetscOptionsSetValue");
+  if (set && !ours.contains(name))
+    return;
+  check(PetscOptionsSetValue(nullptr, name, value), "PetscOptionsSetValue");
+  ours.insert(name);
 }
 
 /// A failed factorisation in words.
