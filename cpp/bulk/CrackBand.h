@@ -161,6 +161,18 @@ public:
     return slope > 0 ? _lame[1] / slope : INFINITY;
   }
 
+  /// The response of an uncracked point held so whatever its stress (a
+  /// predictor that lets no crack in): the committed state, C : strain.
+  CrackBandResult held_uncracked(std::span<const double> old, const Voigt& strain,
+                                 std::span<double> now) const
+  {
+    std::copy(old.begin(), old.begin() + state_size, now.begin());
+    CrackBandResult r;
+    r.stress = multiply(_C, strain);
+    r.tangent = _C;
+    return r;
+  }
+
   /// The update from the committed state `old` at the strain `strain`;
   /// writes the trial state `now` (same size). `band_width(n)` gives the
   /// element's size along a unit normal n [mm] (called when a crack is

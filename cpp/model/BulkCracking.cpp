@@ -241,7 +241,9 @@ bool BulkCracking::evaluate()
       const std::span<const double> old(_committed.data() + state * i, state);
       const std::span<double> now(_trial.data() + state * i, state);
       auto width = [&](const bulk::Vec3& n) { return band_width(c, n); };
-      bulk::CrackBandResult r = _band.update(old, strain, now, width, _strength[i], _dt);
+      bulk::CrackBandResult r = _new_cracks || bulk::CrackState<const double>(old).cracked()
+                                    ? _band.update(old, strain, now, width, _strength[i], _dt)
+                                    : _band.held_uncracked(old, strain, now);
       if (_loading[i] && at_committed_strain(i, strain))
         r.tangent = loading_tangent(i, strain, width);
       ok = ok && r.status == bulk::CrackBandResult::Status::ok;

@@ -73,6 +73,11 @@ public:
   /// (cracking.viscosity) [mm of push].
   void set_time_increment(double dt) { _dt = dt; }
 
+  /// Whether a point uncracked in the committed state may crack (true; false:
+  /// it answers elastically, whatever its stress: the predictor of a step,
+  /// LoadStepSolver::solve).
+  void allow_new_cracks(bool allow) { _new_cracks = allow; }
+
   /// The crack band at every point, from the committed state to the strain
   /// of the model's displacement (ghosts up to date): the trial state, and
   /// the forms' coefficients. False if a point failed (its equilibrium did
@@ -201,6 +206,7 @@ private:
   double _tube_radius = 0;             ///< [mm]
   double _visible_width = 0;           ///< cracking.visible_width [mm]
   double _nominal_fracture_energy = 0; ///< [N mm]
+  bool _new_cracks = true;             ///< allow_new_cracks
   double _dt = 0;                      ///< set_time_increment [mm of push]
   std::shared_ptr<dolfinx::fem::Constant<double>> _dT;
   std::shared_ptr<dolfinx::fem::Function<double>> _d_sigma, _d_C;

@@ -43,6 +43,13 @@ public:
   /// NewtonSolver::set_first_tangent).
   void set_first_tangent(bool converged);
   bool first_tangent_converged() const { return _first_tangent_converged; }
+  /// With cracking concrete: each solve is first made with no new cracks
+  /// (BulkCracking::allow_new_cracks), and continued from its solution with
+  /// them. For a step from the unloaded slice, whose first full Newton step
+  /// cracks a great many points that the solution does not crack
+  /// (StepLoop::initial_step); elsewhere it costs a few iterations more.
+  void set_crack_free_predictor(bool on) { _crack_free_predictor = on; }
+  bool crack_free_predictor() const { return _crack_free_predictor; }
   /// The next step starts from the tangent at its initial guess (the state
   /// of the last converged solve was reverted).
   void forget_tangent()
@@ -119,6 +126,7 @@ private:
   NewtonSolver::Preconditioner _pc;
   int _refactor_iterations;
   bool _first_tangent_converged = true;
+  bool _crack_free_predictor = false;
   bool _single_precision = true;   ///< solver.precision = "mixed" (Condensation)
   bool _condense_required = false; ///< solver.condensation = "on"
   bool _talk = false;
@@ -126,6 +134,8 @@ private:
   std::string _description;
   bool _bulk_needed = true;
   NewtonSolver _whole;
+  /// The whole model's solve (set_crack_free_predictor).
+  SolveReport solve_whole(Vec x);
   std::unique_ptr<Condensation> _condensation;
   std::unique_ptr<NewtonSolver> _newton; ///< on the condensation
   int _constraint_version = 0;           ///< of the constraints it was built for

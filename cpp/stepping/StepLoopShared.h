@@ -62,4 +62,18 @@ struct StartTangent
   StartTangent(const StartTangent&) = delete;
   StartTangent& operator=(const StartTangent&) = delete;
 };
+/// Solves with the crack-free predictor (LoadStepSolver::
+/// set_crack_free_predictor) while it lives.
+struct CrackFreePredictor
+{
+  solver::LoadStepSolver& solver;
+  const bool was = solver.crack_free_predictor();
+  explicit CrackFreePredictor(solver::LoadStepSolver& s) : solver(s)
+  {
+    solver.set_crack_free_predictor(true);
+  }
+  ~CrackFreePredictor() { solver.set_crack_free_predictor(was); }
+  CrackFreePredictor(const CrackFreePredictor&) = delete;
+  CrackFreePredictor& operator=(const CrackFreePredictor&) = delete;
+};
 } // namespace pushout::stepping::detail

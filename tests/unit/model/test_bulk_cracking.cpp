@@ -242,3 +242,39 @@ TEST_F(CrackedSlice, EnergyReleasedIsTheDissipationToFirstOrder)
   for (Vec* w : {&x1, &step, &g})
     VecDestroy(w);
 }
+
+TEST_F(CrackedSlice, WithoutNewCracksOnlyTheCommittedOnesAnswer)
+{
+  // Held (the predictor of a step from the unloaded slice, LoadStepSolver::
+  // set_crack_free_predictor), a point uncracked in the committed state
+  // answers elastically whatever its stress; a committed crack as ever.
+  // From the unloaded slice, the fixture's stretch: nothing cracks when
+  // held, most points otherwise.
+  cracking().reset();
+  Vec F_held;
+  VecDuplicate(x, &F_held);
+  cracking().allow_new_cracks(false);
+  ASSERT_TRUE(eq->internal_forces(x, F_held));
+  EXPECT_EQ(cracking().totals().cracked_points, 0);
+  cracking().allow_new_cracks(true);
+  ASSERT_TRUE(eq->internal_forces(x, F));
+  const model::CrackingTotals t = cracking().totals();
+  EXPECT_GT(t.cracked_points, t.points / 2);
+  // The held slice is the linear one: its forces differ where cracks open.
+  double norm, diff;
+  VecNorm(F, NORM_2, &norm);
+  VecAXPY(F_held, -1.0, F);
+  VecNorm(F_held, NORM_2, &diff);
+  EXPECT_GT(diff, 0.1 * norm);
+  // The committed cracks answer when held: the same forces as allowed, up
+  // to each crack's own equilibrium (solved to 1e-10 f_t, now from the
+  // committed opening).
+  cracking().commit();
+  cracking().allow_new_cracks(false);
+  ASSERT_TRUE(eq->internal_forces(x, F_held));
+  VecAXPY(F_held, -1.0, F);
+  VecNorm(F_held, NORM_2, &diff);
+  EXPECT_LT(diff, 1e-9 * norm);
+  cracking().allow_new_cracks(true);
+  VecDestroy(&F_held);
+}
