@@ -145,15 +145,13 @@ def plot_bond(plt, out, groups, table):
     plt.close(fig)
 
 
-def plot_patterns(plt, out, table):
+def plot_patterns(plt, out, table, seeds):
     """The crack patterns after corrosion to the largest x: a row per tube
-    and beta, a column per seed, one colour scale."""
+    and beta, a column per seed (a run that did not converge: its title
+    says so), one colour scale."""
     x = max(DEPTHS_UM)
     done = {(r["tube"], r["beta"], r["seed"]) for r in table if r["x_um"] == x}
-    seeds = sorted({s for (_, _, s) in done})
     rows = [(w, b) for w, _ in WHERE for b in BETAS]
-    if not seeds:
-        return
     fig, axes = plt.subplots(len(rows), len(seeds), figsize=(2.2 * len(seeds) + 1.5, 2.3 * len(rows) + 0.6),
                              dpi=110, squeeze=False, layout="constrained")
     cells = None
@@ -163,7 +161,7 @@ def plot_patterns(plt, out, table):
             ax.set_xticks([])
             ax.set_yticks([])
             if (where, beta, seed) not in done:
-                ax.set_title("did not converge", fontsize=8)
+                ax.set_title(f"{where}, β {beta:g}, seed {seed}: did not converge", fontsize=7)
                 continue
             name = f"{where}_beta{beta:g}_seed{seed}_x{x:g}"
             data = plot_curve.read(os.path.join(out, "corroded_embedded", name, "crack_pattern.csv"))
@@ -182,6 +180,7 @@ def report(plt, out, runs):
     table = run_table(out, runs)
     if not table:
         return []
+    seeds = sorted({parse(n)[2] for (study, n) in runs if study == "corroded_embedded"})
     groups = group_table(table)
     for path, rows in (("corroded_embedded.csv", table), ("corroded_embedded_groups.csv", groups)):
         with open(os.path.join(out, path), "w", newline="") as f:
@@ -189,5 +188,5 @@ def report(plt, out, runs):
             w.writeheader()
             w.writerows(rows)
     plot_bond(plt, out, groups, table)
-    plot_patterns(plt, out, table)
+    plot_patterns(plt, out, table, seeds)
     return groups
