@@ -133,7 +133,7 @@ def plot_bond(plt, out, groups, table):
                          [r["tau_residual_MPa"] for r in seeds], style[0], color=color, ms=4,
                          mfc="none" if where == "centred" else color)
     axes[0].set(xlabel="corrosion depth $x$ [µm]", ylabel="residual bond stress at 0.2 mm [MPa]")
-    axes[1].set(xlabel="widest surface crack after corrosion [µm] (each seed)")
+    axes[1].set(xlabel="widest surface crack after corrosion [µm] (each seed; open: centred)")
     axes[1].axvline(VISIBLE_UM, color="0.5", lw=0.8, ls=":")
     for ax in axes:
         ax.grid(alpha=0.3)
