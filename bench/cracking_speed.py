@@ -27,16 +27,6 @@ import time
 from common import PUSHOUT, ROOT, curve, markdown_table, pushout_runs, run, summary, write_csv
 
 RESULTS = os.path.join(ROOT, "bench", "results")
-CRACKING = ('[cracking]\nmodel = "embedded"\nf_t = 3.0\nc = 30.0\nstrength_cov = 0.15\n'
-            "correlation_length = 5.0\nseed = 1\n")
-
-
-def embedded_demo(path):
-    """The corroded demo with [cracking] instead of its crack plane."""
-    pushout_runs.corroded_demo(path, ())
-    with open(path, "a") as f:
-        f.write("\n" + CRACKING)
-    return path
 
 
 def phases(out):
@@ -55,7 +45,8 @@ def main():
     ap.add_argument("--reuse", action="store_true")
     ap.add_argument("--only", nargs="*", default=None)
     args = ap.parse_args()
-    embedded = embedded_demo(os.path.join(args.out, "pushout_corroded_embedded.toml"))
+    embedded = pushout_runs.embedded_corroded_demo(
+        os.path.join(args.out, "pushout_corroded_embedded.toml"))
     cases = {
         "plane": (os.path.join(ROOT, "demo", "pushout_corroded.toml"), []),
         "embedded": (embedded, []),

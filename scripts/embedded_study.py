@@ -23,17 +23,12 @@ DEPTHS_UM = (0.0, 12.5, 25.0, 50.0)
 WHERE = (("centred", "[50.0, 50.0]"), ("cover15", "[50.0, 25.0]"))
 BETAS = (2.0, 3.0)
 SCENE = "pushout_corroded_embedded.toml"
-CRACKING = ('[cracking]\nmodel = "embedded"\nf_t = 3.0\nc = 30.0\nstrength_cov = 0.15\n'
-            "correlation_length = 5.0\nseed = 1\n")
 VISIBLE_UM = 50.0  # the [cracking] visible_width default: a surface crack counts from here
 
 
 def write_scene(out):
     """OUT/pushout_corroded_embedded.toml: the corroded demo, [cracking] for its plane."""
-    path = pushout_runs.corroded_demo(os.path.join(out, SCENE), ())
-    with open(path, "a") as f:
-        f.write("\n" + CRACKING)
-    return path
+    return pushout_runs.embedded_corroded_demo(os.path.join(out, SCENE))
 
 
 def cases(quick):

@@ -33,6 +33,22 @@ def corroded_demo(path, angles):
     return path
 
 
+# The corroded demo's crack plane as cracks anywhere in the concrete: the
+# plane's law (f_t 3 MPa, c 30 1/mm), a random strength field (cov 0.15,
+# correlation length 5 mm), seed 1 (docs/cracking.md).
+EMBEDDED_CRACKING = ('[cracking]\nmodel = "embedded"\nf_t = 3.0\nc = 30.0\nstrength_cov = 0.15\n'
+                     "correlation_length = 5.0\nseed = 1\n")
+
+
+def embedded_corroded_demo(path):
+    """Writes demo/pushout_corroded.toml to `path` with EMBEDDED_CRACKING
+    instead of its crack plane; returns path."""
+    corroded_demo(path, ())
+    with open(path, "a") as f:
+        f.write("\n" + EMBEDDED_CRACKING)
+    return path
+
+
 def command(pushout, scene, out, sets=(), petsc=(), quiet=True):
     """The command line of `pushout run`: --set overrides, then PETSc options."""
     cmd = [pushout, "run", scene, "--out", out] + (["--quiet"] if quiet else [])

@@ -75,7 +75,7 @@ public:
 
   /// Whether a point uncracked in the committed state may crack (true; false:
   /// it answers elastically, whatever its stress: the predictor of a step,
-  /// LoadStepSolver::solve).
+  /// LoadStepSolver::set_crack_free_predictor).
   void allow_new_cracks(bool allow) { _new_cracks = allow; }
 
   /// The crack band at every point, from the committed state to the strain

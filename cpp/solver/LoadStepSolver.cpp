@@ -1,6 +1,7 @@
 #include "LoadStepSolver.h"
 #include "../common/petsc_check.h"
 #include "../scene/SceneError.h"
+#include "Vector.h"
 #include <iostream>
 
 namespace pushout::solver
@@ -169,18 +170,27 @@ SolveReport LoadStepSolver::solve_whole(Vec x)
   model::BulkCracking* bulk = _eq.model().bulk_cracking();
   if (!bulk || !_crack_free_predictor)
     return _whole.solve(x);
-  Vec start;
-  check(VecDuplicate(x, &start), "VecDuplicate");
+  Vec copy;
+  check(VecDuplicate(x, &copy), "VecDuplicate");
+  const Vector start(copy); // destroyed on every way out
   check(VecCopy(x, start), "VecCopy");
   bulk->allow_new_cracks(false);
-  SolveReport first = _whole.solve(x);
+  SolveReport first;
+  try
+  {
+    first = _whole.solve(x);
+  }
+  catch (...) // the concrete may crack again whatever happens next
+  {
+    bulk->allow_new_cracks(true);
+    throw;
+  }
   bulk->allow_new_cracks(true);
   if (!first.converged) // from the step's start, as without the predictor
   {
     check(VecCopy(start, x), "VecCopy");
     _whole.forget_tangent();
   }
-  check(VecDestroy(&start), "VecDestroy");
   SolveReport r = _whole.solve(x);
   r.iterations += first.iterations;
   return r;
