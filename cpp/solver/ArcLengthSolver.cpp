@@ -2,6 +2,7 @@
 #include "../common/Interrupt.h"
 #include "../common/mpi_errors.h"
 #include "../common/petsc_check.h"
+#include "Stall.h"
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -9,31 +10,6 @@
 
 namespace pushout::solver
 {
-namespace
-{
-/// A step whose Newton iterations do not halve the smallest |F| so far in
-/// this many iterations fails (DIVERGED_NO_PROGRESS).
-constexpr std::ptrdiff_t stall_iterations = 10;
-
-/// Whether Newton iterations whose |F| so far are `fnorms` have lost their
-/// way: they have not halved the smallest |F| in stall_iterations
-/// iterations (near a brittle event the bordered iterates can wander for all
-/// of -snes_max_it; the step is cut now rather than after the last
-/// iteration). Slower than that (a factor 0.93 per iteration) no step
-/// converges within -snes_max_it; a slow but steady one is left alone. Never
-/// once |F| meets its tolerance (`small`): the control equation may still be
-/// converging.
-bool stalled(const std::vector<double>& fnorms, bool small)
-{
-  const auto n = std::ptrdiff_t(fnorms.size());
-  if (n <= stall_iterations + 1 || small)
-    return false;
-  const auto recent = fnorms.end() - stall_iterations;
-  return *std::min_element(recent, fnorms.end()) >
-         0.5 * *std::min_element(fnorms.begin() + 1, recent);
-}
-} // namespace
-
 using petsc::check;
 
 LinearConstraint::LinearConstraint(Vec a)
@@ -292,7 +268,9 @@ SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
     if (it == _max_it)
       return fail("DIVERGED_MAX_IT");
     fnorms.push_back(fnorm);
-    if (stalled(fnorms, small))
+    // Never once |F| meets its tolerance: the control equation may still be
+    // converging.
+    if (!small && stalled(fnorms))
       return fail("DIVERGED_NO_PROGRESS (|F| not halved in " + std::to_string(stall_iterations) +
                   " iterations)");
     if (!mpi::all(comm_of(x), !interrupt::received())) // a signal on any process

@@ -2,6 +2,7 @@
 #include "../common/Interrupt.h"
 #include "../common/mpi_errors.h"
 #include "../common/petsc_check.h"
+#include "Stall.h"
 #include "Vector.h"
 #include <algorithm>
 #include <cmath>
@@ -186,6 +187,12 @@ PetscErrorCode NewtonSolver::jacobian_callback(SNES snes, Vec x, Mat J, Mat P, v
           check(KSPSetReusePreconditioner(ksp, PETSC_TRUE), "KSPSetReusePreconditioner");
           return;
         }
+        if (self->in_linear_tail(iteration))
+        {
+          // The factorisation at hand, as it is (set_tail_reuse).
+          check(KSPSetReusePreconditioner(ksp, PETSC_TRUE), "KSPSetReusePreconditioner");
+          return;
+        }
         if (!mpi::collectively(comm_of(snes), [&] { return self->_problem.jacobian(x, J); }))
           check(SNESSetJacobianDomainError(snes), "SNESSetJacobianDomainError");
         PetscInt its = 0;
@@ -197,11 +204,32 @@ PetscErrorCode NewtonSolver::jacobian_callback(SNES snes, Vec x, Mat J, Mat P, v
       });
 }
 
+bool NewtonSolver::halfway(SNES snes) const
+{
+  PetscReal atol = 0, rtol = 0, stol = 0;
+  PetscInt max_it = 0, max_f = 0;
+  check(SNESGetTolerances(snes, &atol, &rtol, &stol, &max_it, &max_f), "SNESGetTolerances");
+  const double start = _fnorms.front();
+  const double tolerance = std::max(atol, rtol * start);
+  return *std::min_element(_fnorms.begin(), _fnorms.end()) <= std::sqrt(start * tolerance);
+}
+
+bool NewtonSolver::in_linear_tail(PetscInt iteration) const
+{
+  if (_tail_ratio <= 0 || _policy.lagged() || iteration < 2 ||
+      _fnorms.size() <= std::size_t(iteration))
+    return false;
+  const std::size_t k = std::size_t(iteration);
+  return _fnorms[k] <= _tail_ratio * _fnorms[k - 1] &&
+         _fnorms[k - 1] <= _tail_ratio * _fnorms[k - 2];
+}
+
 // PETSc's test (-snes_atol, -snes_rtol, -snes_stol, -snes_max_it), and one
 // more: ||F|| at the round-off floor of the residual (NonlinearProblem::
 // residual_floor) has converged, whatever the tolerances ask. Below it ||F||
 // is noise: a full Newton step no longer lowers it, the line search fails,
-// and a step would be cut back for nothing (-snes_atol 1e-30).
+// and a step would be cut back for nothing (-snes_atol 1e-30). With
+// set_stop_when_stalled, iterations that stall fail (Stall.h).
 PetscErrorCode NewtonSolver::convergence_test(SNES snes, PetscInt it, PetscReal xnorm,
                                               PetscReal snorm, PetscReal fnorm,
                                               SNESConvergedReason* reason, void* ctx)
@@ -211,13 +239,24 @@ PetscErrorCode NewtonSolver::convergence_test(SNES snes, PetscInt it, PetscReal 
       {
         check(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, nullptr),
               "SNESConvergedDefault");
+        auto* self = static_cast<NewtonSolver*>(ctx);
+        if (it == 0) // ||F|| of each iteration of this solve (tail, stall)
+          self->_fnorms.clear();
+        self->_fnorms.resize(std::size_t(it) + 1);
+        self->_fnorms[it] = fnorm;
+        self->_stalled = false;
         if (*reason > 0 || !std::isfinite(fnorm))
           return;
-        auto* self = static_cast<NewtonSolver*>(ctx);
         Vec x;
         check(SNESGetSolution(snes, &x), "SNESGetSolution");
         if (fnorm <= self->_problem.residual_floor(x))
           *reason = SNES_CONVERGED_FNORM_ABS;
+        else if (*reason == SNES_CONVERGED_ITERATING && self->_stop_when_stalled &&
+                 stalled(self->_fnorms) && !self->halfway(snes))
+        {
+          self->_stalled = true;
+          *reason = SNES_DIVERGED_DTOL; // reported as DIVERGED_NO_PROGRESS (attempt)
+        }
       });
 }
 
@@ -362,7 +401,9 @@ SolveReport NewtonSolver::attempt(Vec x)
     _policy.solved(its);
   }
   r.iterations = int(its);
-  r.reason = SNESConvergedReasons[reason];
+  r.reason = _stalled ? "DIVERGED_NO_PROGRESS (|F| not halved in " +
+                            std::to_string(stall_iterations) + " iterations)"
+                      : SNESConvergedReasons[reason];
   if (r.converged)
     test_non_finite(x);
   if (r.converged && !finite(x))

@@ -32,6 +32,7 @@
 #include "PreconditionerPolicy.h"
 #include <petscsnes.h>
 #include <string>
+#include <vector>
 
 namespace pushout::solver
 {
@@ -72,6 +73,27 @@ public:
   /// every step the other passes (docs/cracking.md, "Newton").
   void set_fallback_line_search(std::string type) { _fallback_line_search = std::move(type); }
 
+  /// Keeps the factorisation at hand (no new Jacobian) for an iteration
+  /// whose last two iterations each cut ||F|| by at least 1/`ratio`: in a
+  /// linear tail, where the tangent is not exact anyway, a factorisation
+  /// bought little. Concrete that cracks: a new crack's normal follows the
+  /// strain and its tangent does not, so Newton's tails are linear (rates
+  /// 0.05 to 0.25, docs/cracking.md "Newton"). 0 (the default): a new
+  /// Jacobian in every iteration. Only for Preconditioner::jacobian.
+  void set_tail_reuse(double ratio) { _tail_ratio = ratio; }
+
+  /// Whether a solve fails as soon as its iterations stall (Stall.h:
+  /// DIVERGED_NO_PROGRESS) rather than at -snes_max_it, unless |F| has come
+  /// halfway to its tolerance in decades (there iterates that creep are at
+  /// the floor of the crack band's own equilibria, and converge: the uniform
+  /// ring at its peak crept from 7e-8 to 1e-8 N in 20 iterations). With
+  /// cracking concrete, a step past a brittle event (the cover crack of the
+  /// corroded demo, at x = 12 to 14 um) hovered at |F| = 0.2 to 0.3 N (from
+  /// 150 N) for all 50 iterations of each of its three attempts (the two
+  /// tangents and the fallback line search), then passed in halves. Off by
+  /// default.
+  void set_stop_when_stalled(bool stop) { _stop_when_stalled = stop; }
+
   /// Times one linear solve J(x) dx = -F(x) with the solver configured for
   /// the Newton systems (a fresh KSP from the same options, the first
   /// factorisation included) [s]. Leaves x and the committed state alone.
@@ -101,6 +123,10 @@ private:
   bool _tangent_converged = false;   ///< the last solve converged (its tangent is at hand)
   int _tangent_constraints = -1;     ///< the constraint version of that solve
   int _tangent_evaluation = -1;      ///< the problem's tangent count after it
+  double _tail_ratio = 0;            ///< set_tail_reuse
+  std::vector<double> _fnorms;       ///< ||F|| of each iteration of the current solve
+  bool _stop_when_stalled = false;   ///< set_stop_when_stalled
+  bool _stalled = false;             ///< the current solve stalled
 
 public:
   /// Numeric factorisations so far (for the summary).
@@ -123,6 +149,11 @@ private:
   /// attempt(), from the last converged tangent if it is to be taken, then
   /// once more from the tangent at the initial guess `start` if that failed.
   SolveReport attempt_from_tangents(Vec x, Vec start);
+  /// Whether the smallest |F| of this solve is halfway, in decades, from
+  /// the first to the tolerance of `snes` (set_stop_when_stalled).
+  bool halfway(SNES snes) const;
+  /// Whether Newton's `iteration` keeps the factorisation (set_tail_reuse).
+  bool in_linear_tail(PetscInt iteration) const;
   static PetscErrorCode jacobian_callback(SNES snes, Vec x, Mat J, Mat P, void* ctx);
   static PetscErrorCode convergence_test(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm,
                                          PetscReal fnorm, SNESConvergedReason* reason, void* ctx);

@@ -46,7 +46,7 @@ bool StepLoop::push_by_displacement()
 bool StepLoop::nominal_steps(const Stage& stage)
 {
   const int steps = stage.steps;
-  Stepper stepper(_max_cuts, easy_iterations);
+  Stepper stepper(_max_cuts, easy_tries(_equilibrium.model()));
   const Words fraction = [](double increment)
   {
     std::ostringstream s;

@@ -192,7 +192,8 @@ StepLoop::DissipationSteps::DissipationSteps(StepLoop& loop, const DissipationSt
       _path(solver::PathFollower::by_energy(loop._solver, stage.control)),
       _step_words(sized(stage.increment_words, _h_nominal, "mm")),
       _energy_words(sized("a release of", dG_nominal, "N mm")),
-      _by_lambda(loop._max_cuts, easy_iterations), _energy(loop._max_cuts, easy_bordered_iterations)
+      _by_lambda(loop._max_cuts, easy_tries(loop._equilibrium.model())),
+      _energy(loop._max_cuts, easy_tries(loop._equilibrium.model(), true))
 {
   _path.set_load_difference(stage.load_difference);
   _jump = mean_jump();
@@ -237,7 +238,7 @@ StepLoop::DissipationSteps::Try StepLoop::DissipationSteps::try_step(const std::
       _loop.revert();
       t.energy_step = _by_energy = false;
       overshot = true;
-      _by_lambda = Stepper(_loop._max_cuts, easy_iterations); // a whole step
+      _by_lambda = Stepper(_loop._max_cuts, easy_tries(_loop._equilibrium.model())); // a whole step
       const std::string& lambda = _stage.path.symbol;
       say(name + ": a step of energy would move " + lambda + " by more than a step of " + lambda +
           "; displacement control");
@@ -332,7 +333,7 @@ void StepLoop::DissipationSteps::accept(int k, const std::string& name, const Tr
     {
       // The event is over: whole steps of lambda again (cut if they fail).
       _by_energy = false;
-      _by_lambda = Stepper(_loop._max_cuts, easy_iterations);
+      _by_lambda = Stepper(_loop._max_cuts, easy_tries(_loop._equilibrium.model()));
       say(name + ": the softening layers released little in the step; displacement control");
     }
   }

@@ -39,7 +39,7 @@ bool StepLoop::path_following()
   const double lambda_final = p.lambda_final, h_nominal = p.h_nominal; // [mm]
   const auto set_load = [&](double lambda) { _scenario.apply_load_factor(lambda, _equilibrium); };
   const auto length = sized("a length of", h_nominal, "mm");
-  Stepper stepper(_max_cuts, easy_bordered_iterations);
+  Stepper stepper(_max_cuts, easy_tries(_equilibrium.model(), true));
   double lambda = 0.0, slip = path.control(_x);
   double d_lambda_prev = 0.0, d_slip_prev = 0.0; // the last converged step
   int cuts = 0;

@@ -4,6 +4,7 @@
 // Internal to cpp/stepping/.
 #pragma once
 
+#include "../model/Model.h"
 #include "../output/Summary.h"
 #include "../solver/LoadStepSolver.h"
 #include "../solver/PathFollower.h"
@@ -22,6 +23,19 @@ constexpr int easy_iterations = 4;
 /// StartTangent), so an easy one takes a few more (arc length on brittle
 /// adhesion: 5 per step). With 4, a step cut once never grew back.
 constexpr int easy_bordered_iterations = 6;
+/// What concrete that cracks adds to an easy try: its Newton converges
+/// linearly (a new crack's normal follows the strain, and its tangent does
+/// not: tails at rates 0.05 to 0.25, docs/cracking.md "Newton"), so even a
+/// small step takes about ten iterations. With 4, the corroded demo with
+/// [cracking] cut one step twice and took every later step in four tries
+/// of 8 to 14 iterations each.
+constexpr int cracking_tail_iterations = 10;
+/// easy_iterations, or easy_bordered_iterations if `bordered`, for `model`.
+inline int easy_tries(const model::Model& model, bool bordered = false)
+{
+  return (bordered ? easy_bordered_iterations : easy_iterations) +
+         (model.bulk_cracking() ? cracking_tail_iterations : 0);
+}
 /// The load parameter reaches a nominal step within this tolerance.
 constexpr double step_tolerance = 1e-12;
 /// Path following: snap-back makes the path longer than the final push, so
