@@ -36,7 +36,8 @@ bool StepLoop::corrode()
                         },
                         [&](double s0, double s1) { return (s1 - s0) * step_time; },
                         [&](int iterations, int cuts, int k, double s)
-                        { record_corrosion(iterations, cuts, k, s, true); }});
+                        { record_corrosion(iterations, cuts, k, s, true); },
+                        false, extrapolation([](double s) { return s; })});
 }
 
 void StepLoop::record_corrosion(int iterations, int cuts, int k, double s, bool numbered)

@@ -5,6 +5,7 @@
 // run the same steps. An unloading segment of the push that ends where the
 // force falls to zero (docs/results.md, "Unload and reload") ends at the
 // load parameter ZeroForceSearch.h finds; its tries are solved here.
+#include "../common/petsc_check.h"
 #include "StepLoop.h"
 #include "StepLoopShared.h"
 #include "ZeroForceSearch.h"
@@ -37,7 +38,7 @@ bool StepLoop::push_by_displacement()
          _recorder.record(_x, iterations, cuts, k, steps);
          ++_summary.steps;
        },
-       true});
+       true, extrapolation([&](double s) { return _scenario.prescribed_at(s); })});
 }
 
 /// Each nominal step is tried whole and cut in halves (from the committed
@@ -58,6 +59,12 @@ bool StepLoop::nominal_steps(const Stage& stage)
   const model::Model& model = _equilibrium.model();
   double P = stage.zero_force_ends ? _scenario.load_force(model) : 0.0, P_peak = std::abs(P);
   double s = 0.0;
+  // Stage::extrapolate_by: the committed state before the last converged
+  // step, and that step's increment of the load (0: none to extrapolate).
+  solver::Vector before_last;
+  double d_load_last = 0;
+  if (stage.extrapolate_by)
+    before_last = _x.duplicate();
   for (int k = 1; k <= steps; ++k)
   {
     int cuts = 0;
@@ -68,6 +75,9 @@ bool StepLoop::nominal_steps(const Stage& stage)
       const double s_try = stepper.next(s, double(k));
       stage.apply(s_try);
       set_time_increment(stage.duration(s, s_try));
+      if (d_load_last != 0)
+        extrapolate(before_last,
+                    (stage.extrapolate_by(s_try) - stage.extrapolate_by(s)) / d_load_last);
       _equilibrium.apply_constraints(_x);
       const solver::SolveReport rep = _solver.solve(_x);
       _summary.newton_iterations += rep.iterations;
@@ -89,6 +99,7 @@ bool StepLoop::nominal_steps(const Stage& stage)
             std::cout << "step " << k << ": the push force fell to zero at delta = " << delta * 1e3
                       << " um (permanent displacement); the unloading ends there" << std::endl;
           s = _scenario.end_segment_at(k, s_zero);
+          d_load_last = 0; // a new segment: nothing to extrapolate
           k = int(std::lround(s));
           P = _scenario.load_force(model);
           break;
@@ -99,6 +110,11 @@ bool StepLoop::nominal_steps(const Stage& stage)
       if (rep.converged)
       {
         stage.record(rep.iterations, cuts, k, s_try); // before the commit: StepRecorder.h
+        if (stage.extrapolate_by)
+        {
+          before_last.copy_from(_x_committed);
+          d_load_last = stage.extrapolate_by(s_try) - stage.extrapolate_by(s);
+        }
         commit();
         s = s_try;
         stepper.converged(rep.iterations);
@@ -167,5 +183,23 @@ bool StepLoop::zero_force_step(const Stage& stage, int k, int cuts, double s0, d
                        "not found in " + std::to_string(zero.tries) + " tries; stopped";
     return false;
   }
+}
+
+std::function<double(double)> StepLoop::extrapolation(std::function<double(double)> load) const
+{
+  if (!_equilibrium.model().bulk_cracking())
+    return {};
+  return load;
+}
+
+void StepLoop::extrapolate(const solver::Vector& before_last, double ratio)
+{
+  // Only forwards: where the load turns back (an unloading segment) the
+  // last increment predicts nothing.
+  if (!(ratio > 0) || !std::isfinite(ratio))
+    return;
+  // x = x_c + r (x_c - x_before)
+  _x.copy_from(_x_committed);
+  petsc::check(VecAXPBY(_x, -ratio, 1 + ratio, before_last), "VecAXPBY");
 }
 } // namespace pushout::stepping

@@ -115,8 +115,20 @@ private:
     /// Whether unloading segments may end where the scenario's load force
     /// falls to zero (Scenario::ends_at_zero_force): the push's stage.
     bool zero_force_ends = false;
+    /// If set, the stage's load at s (x [mm] of corrosion, the push's
+    /// prescribed displacement [mm]), and a try starts from the committed
+    /// state plus the last converged step's increment scaled by the ratio of
+    /// the loads' increments (a linear extrapolation; none where the load
+    /// turns back): with cracking concrete (docs/cracking.md, "Newton").
+    std::function<double(double s)> extrapolate_by = nullptr;
   };
   bool push_by_displacement();
+  /// `load` as a Stage's extrapolate_by where the concrete cracks (Newton
+  /// converges linearly there, and a good start saves iterations), else none.
+  std::function<double(double)> extrapolation(std::function<double(double)> load) const;
+  /// The trial state from the committed one plus `ratio` times the last
+  /// converged step's increment (from `before_last`); nothing unless ratio > 0.
+  void extrapolate(const solver::Vector& before_last, double ratio);
   /// Nominal steps, each tried whole and cut in halves when Newton fails.
   bool nominal_steps(const Stage& stage);
   /// After a converged try of step k from the committed state at s0 (force
