@@ -2,7 +2,7 @@
 #include "../common/Interrupt.h"
 #include "../common/mpi_errors.h"
 #include "../common/petsc_check.h"
-#include "Stall.h"
+#include "NewtonHistory.h"
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>

@@ -2,7 +2,7 @@
 #include "../common/Interrupt.h"
 #include "../common/mpi_errors.h"
 #include "../common/petsc_check.h"
-#include "Stall.h"
+#include "NewtonHistory.h"
 #include "Vector.h"
 #include <algorithm>
 #include <cmath>
@@ -216,12 +216,9 @@ bool NewtonSolver::halfway(SNES snes) const
 
 bool NewtonSolver::in_linear_tail(PetscInt iteration) const
 {
-  if (_tail_ratio <= 0 || _policy.lagged() || iteration < 2 ||
-      _fnorms.size() <= std::size_t(iteration))
-    return false;
-  const std::size_t k = std::size_t(iteration);
-  return _fnorms[k] <= _tail_ratio * _fnorms[k - 1] &&
-         _fnorms[k - 1] <= _tail_ratio * _fnorms[k - 2];
+  // _fnorms holds iterations 0 to `iteration` (the convergence test runs first)
+  return !_policy.lagged() && iteration >= 2 && _fnorms.size() == std::size_t(iteration) + 1 &&
+         solver::in_linear_tail(_fnorms, _tail_ratio);
 }
 
 // PETSc's test (-snes_atol, -snes_rtol, -snes_stol, -snes_max_it), and one
@@ -229,7 +226,7 @@ bool NewtonSolver::in_linear_tail(PetscInt iteration) const
 // residual_floor) has converged, whatever the tolerances ask. Below it ||F||
 // is noise: a full Newton step no longer lowers it, the line search fails,
 // and a step would be cut back for nothing (-snes_atol 1e-30). With
-// set_stop_when_stalled, iterations that stall fail (Stall.h).
+// set_stop_when_stalled, iterations that stall fail (NewtonHistory.h).
 PetscErrorCode NewtonSolver::convergence_test(SNES snes, PetscInt it, PetscReal xnorm,
                                               PetscReal snorm, PetscReal fnorm,
                                               SNESConvergedReason* reason, void* ctx)

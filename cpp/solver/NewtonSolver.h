@@ -82,7 +82,7 @@ public:
   /// Jacobian in every iteration. Only for Preconditioner::jacobian.
   void set_tail_reuse(double ratio) { _tail_ratio = ratio; }
 
-  /// Whether a solve fails as soon as its iterations stall (Stall.h:
+  /// Whether a solve fails as soon as its iterations stall (NewtonHistory.h:
   /// DIVERGED_NO_PROGRESS) rather than at -snes_max_it, unless |F| has come
   /// halfway to its tolerance in decades (there iterates that creep are at
   /// the floor of the crack band's own equilibria, and converge: the uniform

@@ -11,7 +11,7 @@
 //   -snes_max_it (50).
 #include "common/petsc_check.h"
 #include "solver/NewtonSolver.h"
-#include "solver/Stall.h"
+#include "solver/NewtonHistory.h"
 #include <array>
 #include <cmath>
 #include <gtest/gtest.h>
