@@ -5,6 +5,7 @@
 // controlled by c(x) = x2 = lambda^2 + lambda^3.
 #include "common/petsc_check.h"
 #include "solver/ArcLengthSolver.h"
+#include "two_unknowns.h"
 #include <cmath>
 #include <gtest/gtest.h>
 
@@ -13,61 +14,20 @@ using petsc::check;
 
 namespace
 {
-class CubicPath : public solver::NonlinearProblem
+class CubicPath : public unit::TwoUnknowns
 {
 public:
   double lambda = 0;         ///< set by the path follower's set_load
   double jacobian_scale = 1; ///< the Jacobian given, times the true one
 
-  Mat create_matrix() const override
+  std::array<double, 2> F(const std::array<double, 2>& x) override
   {
-    Mat J;
-    check(MatCreateSeqAIJ(PETSC_COMM_SELF, 2, 2, 2, nullptr, &J), "MatCreateSeqAIJ");
-    return J;
+    return {x[0] - lambda * lambda, x[1] - x[0] - lambda * lambda * lambda};
   }
-  Vec create_vector() const override
+  std::array<double, 4> J(const std::array<double, 2>&) override
   {
-    Vec v;
-    check(VecCreateSeq(PETSC_COMM_SELF, 2, &v), "VecCreateSeq");
-    return v;
+    return {jacobian_scale, 0, -jacobian_scale, jacobian_scale};
   }
-  bool residual(Vec x, Vec F) override
-  {
-    const PetscScalar* xa;
-    PetscScalar* Fa;
-    check(VecGetArrayRead(x, &xa), "VecGetArrayRead");
-    check(VecGetArray(F, &Fa), "VecGetArray");
-    Fa[0] = xa[0] - lambda * lambda;
-    Fa[1] = xa[1] - xa[0] - lambda * lambda * lambda;
-    check(VecRestoreArray(F, &Fa), "VecRestoreArray");
-    check(VecRestoreArrayRead(x, &xa), "VecRestoreArrayRead");
-    return true;
-  }
-  bool residual(Vec x, Vec F, double& reaction_norm) override
-  {
-    reaction_norm = 1.0;
-    return residual(x, F);
-  }
-  bool jacobian(Vec, Mat J) override
-  {
-    check(MatZeroEntries(J), "MatZeroEntries");
-    const PetscInt rows[2] = {0, 1};
-    const PetscScalar values[4] = {jacobian_scale, 0, -jacobian_scale, jacobian_scale};
-    check(MatSetValues(J, 2, rows, 2, rows, values, INSERT_VALUES), "MatSetValues");
-    check(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-    check(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-    return true;
-  }
-  bool energy_release(Vec, double&, Vec) override { return false; }
-  double residual_floor(Vec) override { return 0.0; }
-  void configure(KSP ksp) const override
-  {
-    PC pc;
-    check(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
-    check(KSPGetPC(ksp, &pc), "KSPGetPC");
-    check(PCSetType(pc, PCLU), "PCSetType");
-  }
-  void forget_trial_state() override {}
 };
 
 /// One step of control increment d_eta from the equilibrium at lambda0 with

@@ -10,8 +10,9 @@
 //   solve fails after about ten iterations (DIVERGED_NO_PROGRESS), not at
 //   -snes_max_it (50).
 #include "common/petsc_check.h"
-#include "solver/NewtonSolver.h"
 #include "solver/NewtonHistory.h"
+#include "solver/NewtonSolver.h"
+#include "two_unknowns.h"
 #include <array>
 #include <cmath>
 #include <gtest/gtest.h>
@@ -23,66 +24,22 @@ namespace
 {
 constexpr std::array<double, 2> b = {1.0, 3.0};
 
-class InexactJacobian : public solver::NonlinearProblem
+class InexactJacobian : public unit::TwoUnknowns
 {
 public:
   double scale = 1;  ///< the Jacobian given, times the true one
   double cube = 0.1; ///< the coefficient of x_i^3 in F
   int jacobians = 0; ///< Jacobian evaluations
 
-  Mat create_matrix() const override
+  std::array<double, 2> F(const std::array<double, 2>& x) override
   {
-    Mat J;
-    check(MatCreateSeqAIJ(PETSC_COMM_SELF, 2, 2, 1, nullptr, &J), "MatCreateSeqAIJ");
-    return J;
+    return {x[0] + cube * x[0] * x[0] * x[0] - b[0], x[1] + cube * x[1] * x[1] * x[1] - b[1]};
   }
-  Vec create_vector() const override
-  {
-    Vec v;
-    check(VecCreateSeq(PETSC_COMM_SELF, 2, &v), "VecCreateSeq");
-    return v;
-  }
-  bool residual(Vec x, Vec F) override
-  {
-    const PetscScalar* xa;
-    PetscScalar* Fa;
-    check(VecGetArrayRead(x, &xa), "VecGetArrayRead");
-    check(VecGetArray(F, &Fa), "VecGetArray");
-    for (int i = 0; i < 2; ++i)
-      Fa[i] = xa[i] + cube * xa[i] * xa[i] * xa[i] - b[i];
-    check(VecRestoreArray(F, &Fa), "VecRestoreArray");
-    check(VecRestoreArrayRead(x, &xa), "VecRestoreArrayRead");
-    return true;
-  }
-  bool residual(Vec x, Vec F, double& reaction_norm) override
-  {
-    reaction_norm = 1.0;
-    return residual(x, F);
-  }
-  bool jacobian(Vec x, Mat J) override
+  std::array<double, 4> J(const std::array<double, 2>& x) override
   {
     ++jacobians;
-    const PetscScalar* xa;
-    check(VecGetArrayRead(x, &xa), "VecGetArrayRead");
-    check(MatZeroEntries(J), "MatZeroEntries");
-    for (PetscInt i = 0; i < 2; ++i)
-      check(MatSetValue(J, i, i, scale * (1 + 3 * cube * xa[i] * xa[i]), INSERT_VALUES),
-            "MatSetValue");
-    check(VecRestoreArrayRead(x, &xa), "VecRestoreArrayRead");
-    check(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-    check(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-    return true;
+    return {scale * (1 + 3 * cube * x[0] * x[0]), 0, 0, scale * (1 + 3 * cube * x[1] * x[1])};
   }
-  bool energy_release(Vec, double&, Vec) override { return false; }
-  double residual_floor(Vec) override { return 0.0; }
-  void configure(KSP ksp) const override
-  {
-    PC pc;
-    check(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
-    check(KSPGetPC(ksp, &pc), "KSPGetPC");
-    check(PCSetType(pc, PCLU), "PCSetType");
-  }
-  void forget_trial_state() override {}
 };
 
 struct Solve
@@ -118,10 +75,7 @@ Solve solve(double ratio, double scale = 1.25, bool stop_stalled = false, double
     s.factorizations = newton.factorizations();
   }
   s.jacobians = problem.jacobians;
-  const PetscScalar* xa;
-  check(VecGetArrayRead(x, &xa), "VecGetArrayRead");
-  s.x = {xa[0], xa[1]};
-  check(VecRestoreArrayRead(x, &xa), "VecRestoreArrayRead");
+  s.x = InexactJacobian::values(x);
   check(VecDestroy(&x), "VecDestroy");
   return s;
 }
