@@ -89,9 +89,8 @@ public:
   /// ring at its peak crept from 7e-8 to 1e-8 N in 20 iterations). With
   /// cracking concrete, a step past a brittle event (the cover crack of the
   /// corroded demo, at x = 12 to 14 um) hovered at |F| = 0.2 to 0.3 N (from
-  /// 150 N) for all 50 iterations of each of its three attempts (the two
-  /// tangents and the fallback line search), then passed in halves. Off by
-  /// default.
+  /// 150 N) through its three attempts (50 iterations from each tangent, 39
+  /// with the fallback line search), then passed in halves. Off by default.
   void set_stop_when_stalled(bool stop) { _stop_when_stalled = stop; }
 
   /// Times one linear solve J(x) dx = -F(x) with the solver configured for
