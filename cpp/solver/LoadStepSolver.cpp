@@ -59,9 +59,9 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
   {
     // l2 first (set_default_options), then backtracking.
     solver->_whole.set_fallback_line_search("bt");
-    // Linear tails keep their factorisation: the corroded demo with cracks
-    // to x = 8 um, 85 -> 58 factorisations for 90 -> 100 iterations, 24 %
-    // less time (ratios 0.15 and 0.5: 11 % and 20 %; docs/cracking.md).
+    // Linear tails keep their factorisation: the bench's corroded demo with
+    // cracks, 150 s against 185 s without (334 against 471 factorisations;
+    // docs/cracking.md, "Newton"). A stalled solve stops early.
     solver->_whole.set_tail_reuse(tail_reuse_ratio);
     solver->_whole.set_stop_when_stalled(true);
   }
