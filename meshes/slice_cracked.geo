@@ -30,6 +30,7 @@ R = D / 2; Ri = Di / 2; Rs = Ds / 2;
 h = Pi / 2 * R / nq;                 // interface element size
 
 // Radial divisions: slice.geo's, line for line.
+q_max = 1.6;
 nr1 = Floor((Rs - R) / h + 0.5);
 If (nr1 < 1)
   nr1 = 1;
@@ -48,9 +49,27 @@ q = 1;
 nr2 = Ceil(Lr / h);
 If (ratio > 1 && he < Lr)
   q0 = (Lr - h) / (Lr - he);
-  nr2 = Floor(Log(ratio) / Log(q0) + 1.5);
-  If (nr2 < 2) nr2 = 2; EndIf
-  q = Exp(Log(ratio) / (nr2 - 1));
+  If (q0 <= q_max)
+    nr2 = Floor(Log(ratio) / Log(q0) + 1.5);
+    If (nr2 < 2) nr2 = 2; EndIf
+    q = Exp(Log(ratio) / (nr2 - 1));
+  Else
+    // Reaching ratio * h within Lr would take elements growing by more than
+    // q_max (down to one element of about Lr when he nears Lr): grow by
+    // q_max at most instead, nr2 elements from h that fill Lr, and q
+    // (bisection) so that h (q^nr2 - 1) / (q - 1) = Lr.
+    nr2 = Ceil(Log(1 + Lr * (q_max - 1) / h) / Log(q_max));
+    lo = 1; hi = q_max;
+    For i In {1:60}
+      q = (lo + hi) / 2;
+      If (h * (Exp(nr2 * Log(q)) - 1) / (q - 1) < Lr)
+        lo = q;
+      Else
+        hi = q;
+      EndIf
+    EndFor
+    q = (lo + hi) / 2;
+  EndIf
 EndIf
 If (nr2 < 1) nr2 = 1; EndIf
 

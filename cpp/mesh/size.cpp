@@ -30,8 +30,11 @@ SliceDivisions slice_divisions(const MeshInput& in)
   if (ratio > 1 && he < Lr)
   {
     const double q0 = (Lr - h) / (Lr - he);
-    d.graded =
-        std::max<std::int64_t>(std::int64_t(std::floor(std::log(ratio) / std::log(q0) + 1.5)), 2);
+    d.graded = q0 <= graded_growth_max
+                   ? std::max<std::int64_t>(
+                         std::int64_t(std::floor(std::log(ratio) / std::log(q0) + 1.5)), 2)
+                   : std::int64_t(std::ceil(std::log(1 + Lr * (graded_growth_max - 1) / h) /
+                                            std::log(graded_growth_max)));
   }
   d.graded = std::max<std::int64_t>(d.graded, 1);
   return d;

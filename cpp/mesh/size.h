@@ -35,6 +35,12 @@ struct SliceDivisions
 };
 SliceDivisions slice_divisions(const MeshInput& in);
 
+/// The most the graded block's elements grow from one to the next (q_max of
+/// meshes/slice.geo): where reaching outer_size_ratio times the interface
+/// size within the block would take more, they grow by this much at most
+/// and stay smaller.
+inline constexpr double graded_growth_max = 1.6;
+
 /// The size of the scene's mesh and model (push-out or single joint).
 MeshSize predict_size(const MeshInput& in);
 } // namespace pushout::mesh

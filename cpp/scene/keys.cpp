@@ -160,7 +160,9 @@ std::vector<KeyDef> make_keys()
        K::number,
        10.0,
        "",
-       "outer concrete element size / interface element size",
+       "outer concrete element size / interface element size (at most: the elements grow "
+       "by 1.6 at most from one to the next, so a short way to the boundary, e.g. a thin cover, "
+       "keeps smaller ones)",
        1,
        inf,
        false,
