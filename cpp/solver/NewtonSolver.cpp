@@ -322,7 +322,7 @@ SolveReport NewtonSolver::solve(Vec x)
   const Vector start(copy); // destroyed on every way out
   check(VecCopy(x, start), "VecCopy");
   SolveReport r = attempt_from_tangents(x, start);
-  if (r.converged || _fallback_line_search.empty())
+  if (r.converged || r.stalled || _fallback_line_search.empty())
     return r;
   // The same step again with the other line search, before the step loop
   // cuts it (set_fallback_line_search).
@@ -352,7 +352,7 @@ SolveReport NewtonSolver::attempt_from_tangents(Vec x, Vec start)
   // cuts it (k = 1e6 N/mm^3, mu = 1, nodal quadrature, 1000 steps of the
   // stress matrix: 78 cuts and 7 519 Newton iterations without the retry).
   SolveReport r = attempt(x);
-  if (!r.converged)
+  if (!r.converged && !r.stalled)
   {
     check(VecCopy(start, x), "VecCopy");
     _tangent_converged = false;
@@ -398,6 +398,7 @@ SolveReport NewtonSolver::attempt(Vec x)
     _policy.solved(its);
   }
   r.iterations = int(its);
+  r.stalled = _stalled;
   r.reason = _stalled ? "DIVERGED_NO_PROGRESS (|F| not halved in " +
                             std::to_string(stall_iterations) + " iterations)"
                       : SNESConvergedReasons[reason];

@@ -53,9 +53,10 @@ struct Solve
 /// One Newton solve from x = 0 with the Jacobian times `scale`, keeping the
 /// factorisation in tails below `ratio` (0: never), failing when stalled if
 /// `stop_stalled`; F's cube times `cube`; PETSc's line search `line_search`
-/// instead of the default (bt).
+/// instead of the default (bt), and `fallback` for a second attempt
+/// (NewtonSolver::set_fallback_line_search; none by default).
 Solve solve(double ratio, double scale = 1.25, bool stop_stalled = false, double cube = 0.1,
-            const char* line_search = nullptr)
+            const char* line_search = nullptr, const char* fallback = nullptr)
 {
   solver::NewtonSolver::set_default_options(solver::NewtonSolver::Preconditioner::jacobian);
   if (line_search)
@@ -71,6 +72,8 @@ Solve solve(double ratio, double scale = 1.25, bool stop_stalled = false, double
     solver::NewtonSolver newton(problem, solver::NewtonSolver::Preconditioner::jacobian);
     newton.set_tail_reuse(ratio);
     newton.set_stop_when_stalled(stop_stalled);
+    if (fallback)
+      newton.set_fallback_line_search(fallback);
     s.report = newton.solve(x);
     s.factorizations = newton.factorizations();
   }
@@ -124,8 +127,23 @@ TEST(StallStop, SwingingIteratesStopEarly)
   // Iteration 0, the first (which may raise |F|), then ten that do not halve
   // the smallest since.
   EXPECT_LE(stopped.report.iterations, solver::stall_iterations + 2);
+  EXPECT_TRUE(stopped.report.stalled);
   EXPECT_FALSE(not_stopped.report.converged);
   EXPECT_EQ(not_stopped.report.iterations, 50) << not_stopped.report.reason; // -snes_max_it
+  EXPECT_FALSE(not_stopped.report.stalled);
+}
+
+TEST(StallStop, AStalledSolveIsNotTriedAgain)
+{
+  // As above, with a fallback line search: a solve that runs to -snes_max_it
+  // is tried again with it, a stalled one is not (the step loop cuts it).
+  const Solve stopped = solve(0.0, 0.5, true, 0.0, "basic", "basic"),
+              not_stopped = solve(0.0, 0.5, false, 0.0, "basic", "basic");
+  solver::NewtonSolver::set_default_options(solver::NewtonSolver::Preconditioner::jacobian);
+  EXPECT_TRUE(stopped.report.stalled);
+  EXPECT_LE(stopped.report.iterations, solver::stall_iterations + 2);
+  EXPECT_FALSE(not_stopped.report.converged);
+  EXPECT_EQ(not_stopped.report.iterations, 2 * 50) << not_stopped.report.reason;
 }
 
 TEST(StallStop, ASteadyTailIsLeftAlone)
