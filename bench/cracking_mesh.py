@@ -1,0 +1,117 @@
+#!/usr/bin/python3
+"""Cracks anywhere in the concrete on finer and finer meshes: one case of the
+corroded study (docs/corrosion.md, scripts/embedded_study.py) on four
+meshes, to see whether its answer converges (docs/cracking.md, "Mesh
+objectivity").
+
+The case: the tube 15 mm from a face, beta 2, strength field seed 1,
+corroded to x = 50 um in 20 steps, pushed 0.2 mm in 20 steps, loading.control
+= "auto", with the study's scene and keys; meshes (elements per quarter /
+through the thickness) 12/4 (the study's), 12/8, 16/8 (the paper's) and
+24/8. The random strength field is a function of position, the same on
+every mesh.
+
+For each: the oxide's pressure after corrosion, the widest surface crack and
+its angle, the energy the concrete's cracks dissipated, the bond's peak and
+its residual at 0.2 mm, and each one's difference from the finest mesh;
+Newton iterations and wall time (one thread each, one after the other).
+Writes bench/results/cracking_mesh.csv, .md and .png (the corrosion and
+push curves of every mesh).
+
+  bench/cracking_mesh.py [--reuse] [--only MESH ...]     (MESH as 16x8)
+"""
+import argparse
+import os
+import sys
+import time
+
+from common import PUSHOUT, ROOT, curve, markdown_table, pushout_runs, run, summary, write_csv
+
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+import embedded_study  # noqa: E402
+
+RESULTS = os.path.join(ROOT, "bench", "results")
+CASE = "cover15_beta2_seed1_x50"
+MESHES = ((12, 4), (12, 8), (16, 8), (24, 8))
+
+
+def study_sets():
+    """The study's --set list of CASE."""
+    return next(sets for (name, _, sets) in embedded_study.cases(quick=False) if name == CASE)
+
+
+def row(out, mesh, wall_s):
+    s = summary(out)
+    corr = pushout_runs.corrosion(out)
+    push = curve(out)
+    concrete = [c for c in s.get("cracks", []) if c["source"] == "concrete"]
+    widest = max(concrete, key=lambda c: c["width_mm"]) if concrete else None
+    return {"mesh": f"{mesh[0]}/{mesh[1]}", "converged": s["converged"], "dofs": s["dofs"],
+            "p_after_corrosion_MPa": round(push[0]["p_MPa"], 3),
+            "surface_crack_um": round(1e3 * corr[-1]["crack_width_mm"], 1),
+            "widest_angle_deg": round(widest["angle_deg"], 1) if widest else "",
+            "concrete_dissipation_Nmm": round(corr[-1]["concrete_dissipation_Nmm"], 1),
+            "tau_peak_MPa": round(max(r["tau_MPa"] for r in push), 3),
+            "tau_residual_MPa": round(push[-1]["tau_MPa"], 3),
+            "newton_iterations": s["newton_iterations"], "wall_s": round(wall_s, 1)}
+
+
+def plot(rows, folders):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.2), dpi=110)
+    for r, out in zip(rows, folders):
+        corr = pushout_runs.corrosion(out)
+        push = curve(out)
+        a.plot([1e3 * c["penetration_mm"] for c in corr], [c["p_MPa"] for c in corr], label=r["mesh"])
+        b.plot([1e3 * p["delta_mm"] for p in push], [p["tau_MPa"] for p in push], label=r["mesh"])
+    a.set(xlabel="corrosion depth x [um]", ylabel="oxide pressure p [MPa]",
+          title="corrosion (cover 15 mm, beta 2, seed 1)")
+    b.set(xlabel="slip delta [um]", ylabel="bond stress tau [MPa]", title="push after x = 50 um")
+    for ax in (a, b):
+        ax.grid(alpha=0.3)
+        ax.legend(title="per quarter / thickness")
+    fig.tight_layout()
+    fig.savefig(os.path.join(RESULTS, "cracking_mesh.png"))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--pushout", default=PUSHOUT)
+    ap.add_argument("--out", default=os.path.join(ROOT, "results", "bench_cracking_mesh"))
+    ap.add_argument("--reuse", action="store_true")
+    ap.add_argument("--only", nargs="*", default=None)
+    args = ap.parse_args()
+    scene = embedded_study.write_scene(args.out)
+    rows, folders = [], []
+    for mesh in MESHES:
+        if args.only and f"{mesh[0]}x{mesh[1]}" not in args.only:
+            continue
+        out = os.path.join(args.out, f"{mesh[0]}x{mesh[1]}")
+        sets = study_sets() + [f"mesh.elements_per_quarter={mesh[0]}",
+                               f"mesh.elements_through_thickness={mesh[1]}"]
+        start = time.time()
+        code = run(args.pushout, scene, out, sets, reuse=args.reuse, check=False)
+        print(f"{mesh}: exit {code}, {time.time() - start:.1f} s", flush=True)
+        rows.append(row(out, mesh, summary(out)["wall_s"]))
+        folders.append(out)
+    finest = rows[-1]
+    for r in rows:
+        for key in ("p_after_corrosion_MPa", "concrete_dissipation_Nmm", "tau_residual_MPa"):
+            r[key.rsplit("_", 1)[0] + "_vs_finest"] = f"{r[key] / finest[key] - 1:+.1%}"
+    os.makedirs(RESULTS, exist_ok=True)
+    write_csv(os.path.join(RESULTS, "cracking_mesh.csv"), rows)
+    plot(rows, folders)
+    with open(os.path.join(RESULTS, "cracking_mesh.md"), "w") as f:
+        f.write("# Cracks anywhere: one case of the corroded study on four meshes\n\n"
+                "Made by `bench/cracking_mesh.py` (one thread per run, this machine, one run "
+                f"each): {CASE} with the study's scene and keys; the mesh is elements per quarter "
+                "/ through the thickness, the differences are from the finest.\n\n")
+        f.write(markdown_table(list(rows[0].keys()), rows))
+        f.write("\n![curves](cracking_mesh.png)\n")
+
+
+if __name__ == "__main__":
+    main()
