@@ -1,5 +1,6 @@
 """What the bench scripts share: running build/pushout on a scene and reading
 its outputs (scripts/pushout_runs.py), writing result tables."""
+import argparse
 import os
 import sys
 
@@ -30,3 +31,15 @@ def markdown_table(header, rows):
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     lines += ["| " + " | ".join(str(v) for v in r.values()) + " |" for r in rows]
     return "\n".join(lines) + "\n"
+
+
+def arguments(doc, out_folder):
+    """The options of a bench that runs cases into results/OUT_FOLDER:
+    --pushout, --out, --reuse (keep runs that have a summary) and --only
+    (the cases to run); `doc` is the script's docstring (its --help)."""
+    ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--pushout", default=PUSHOUT)
+    ap.add_argument("--out", default=os.path.join(ROOT, "results", out_folder))
+    ap.add_argument("--reuse", action="store_true")
+    ap.add_argument("--only", nargs="*", default=None)
+    return ap.parse_args()

@@ -20,12 +20,11 @@ push curves of every mesh).
 
   bench/cracking_mesh.py [--reuse] [--only MESH ...]     (MESH as 16x8)
 """
-import argparse
 import os
 import sys
 import time
 
-from common import PUSHOUT, ROOT, curve, markdown_table, pushout_runs, run, summary, write_csv
+from common import ROOT, arguments, curve, markdown_table, pushout_runs, run, summary, write_csv
 
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 import embedded_study  # noqa: E402
@@ -77,13 +76,7 @@ def plot(rows, folders):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--pushout", default=PUSHOUT)
-    ap.add_argument("--out", default=os.path.join(ROOT, "results", "bench_cracking_mesh"))
-    ap.add_argument("--reuse", action="store_true")
-    ap.add_argument("--only", nargs="*", default=None)
-    args = ap.parse_args()
+    args = arguments(__doc__, "bench_cracking_mesh")
     scene = embedded_study.write_scene(args.out)
     rows, folders = [], []
     for mesh in MESHES:

@@ -20,11 +20,10 @@ wall times to the plane's. Writes bench/results/cracking_speed.csv and .md.
 
   bench/cracking_speed.py [--reuse] [--only CASE ...]
 """
-import argparse
 import os
 import time
 
-from common import PUSHOUT, ROOT, curve, markdown_table, pushout_runs, run, summary, write_csv
+from common import ROOT, arguments, curve, markdown_table, pushout_runs, run, summary, write_csv
 
 RESULTS = os.path.join(ROOT, "bench", "results")
 
@@ -38,13 +37,7 @@ def phases(out):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--pushout", default=PUSHOUT)
-    ap.add_argument("--out", default=os.path.join(ROOT, "results", "bench_cracking_speed"))
-    ap.add_argument("--reuse", action="store_true")
-    ap.add_argument("--only", nargs="*", default=None)
-    args = ap.parse_args()
+    args = arguments(__doc__, "bench_cracking_speed")
     embedded = pushout_runs.embedded_corroded_demo(
         os.path.join(args.out, "pushout_corroded_embedded.toml"))
     cases = {
