@@ -37,6 +37,7 @@ void Summary::write(const std::filesystem::path& file) const
       {"steps", steps},
       {"corrosion_steps", corrosion_steps},
       {"dissipation_steps", dissipation_steps},
+      {"loose_steps", loose_steps},
       {"penetration_mm", penetration_mm},
       {"permanent_displacements_mm", permanent_displacements_mm},
       {"cracks", crack_list},

@@ -17,6 +17,10 @@ struct Summary
   int steps = 0;             ///< converged load steps (rows after step 0)
   int corrosion_steps = 0;   ///< converged corrosion steps (corrosion.csv rows after step 0)
   int dissipation_steps = 0; ///< corrosion and push steps controlled by the energy released
+  /// Of those, the steps whose Newton iterations stalled and that ended at
+  /// their best iterate, |F| within 1e-5 of the reactions and the energy
+  /// released within 1 % of the step's (solver/ArcLengthSolver.h, step).
+  int loose_steps = 0;
   double penetration_mm = 0; ///< corrosion depth x reached [mm]
   /// Where each unloading of the push ended at zero force
   /// (loading.unload_to = "zero_force"): the tube's permanent displacement.

@@ -43,6 +43,7 @@
 #include <functional>
 #include <petscksp.h>
 #include <string>
+#include <vector>
 
 namespace pushout::solver
 {
@@ -120,8 +121,33 @@ public:
   /// change of lambda of each Newton iteration (a trust region for a control
   /// whose linearisation at the start sees few of the points that will
   /// dissipate; 0: none).
+  ///
+  /// With `loose`, a step whose iterations stall (NewtonHistory.h) ends at
+  /// its best iterate if that is nearly in equilibrium: |F| at most `loose_rtol` of
+  /// the reactions, the control within `loose_control` of the step's
+  /// increment (SolveReport::loose; loose_convergence). That happens where
+  /// cracks sit on the kink between their loading and their secant
+  /// unloading (docs/cracking.md, "Still to come" 3): a piecewise smooth
+  /// system whose Newton iterates take the kinks' sides in turn, in cycles
+  /// of 2 to 8 iterates whose |F| halves with the step, so no cut passes.
   SolveReport step(Vec x, double& lambda, double d_eta, const std::function<void(double)>& set_load,
-                   double max_dlambda = 0);
+                   double max_dlambda = 0, bool loose = false);
+
+  /// |F| over the norm of the reactions at which a stalled step's best
+  /// iterate ends it (step): 1e-5, 1e5 times -snes_rtol, and a millionth
+  /// of the push force on the study's meshes (the reactions' 2-norm is
+  /// about a tenth of it), far below the discretisation's error (~1 %).
+  static constexpr double loose_rtol = 1e-5;
+  /// |c(x) - eta| over the step's control increment at which it does: 1 %.
+  /// The control only picks where along the equilibrium path the step
+  /// ends, and the next step measures its control from there.
+  static constexpr double loose_control = 1e-2;
+  /// Why an iterate of |F| `fnorm` [N], with reactions of norm `reactions`
+  /// [N] and its control off by `control_error` from a step's increment
+  /// `d_eta`, ends a stalled step ("CONVERGED_AT_STALL ..."), or "" if it
+  /// does not.
+  static std::string loose_convergence(double fnorm, double reactions, double control_error,
+                                       double d_eta);
 
   /// The load factor enters F nonlinearly (through the laws, not only the
   /// constraints): e by a forward difference of step `h` (> 0, in lambda's

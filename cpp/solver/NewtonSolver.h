@@ -42,6 +42,7 @@ struct SolveReport
   int iterations = 0;
   std::string reason;   ///< PETSc's converged/diverged reason
   bool stalled = false; ///< failed as its iterates stalled (set_stop_when_stalled)
+  bool loose = false;   ///< a stalled step ended at its best iterate (ArcLengthSolver::step)
 };
 
 class NewtonSolver

@@ -35,9 +35,11 @@ void PathFollower::set_slip_weight(double beta)
 }
 
 SolveReport PathFollower::step(Vec x, double& lambda, double d_control,
-                               const std::function<void(double)>& set_load, double max_dlambda)
+                               const std::function<void(double)>& set_load, double max_dlambda,
+                               bool loose)
 {
-  SolveReport report = _arc->step(_solver.to_problem(x), lambda, d_control, set_load, max_dlambda);
+  SolveReport report =
+      _arc->step(_solver.to_problem(x), lambda, d_control, set_load, max_dlambda, loose);
   if (report.converged)
   {
     _solver.from_problem(x);

@@ -36,9 +36,10 @@ public:
   /// (x, lambda); on success x (whole model) and lambda hold the next
   /// equilibrium; on failure x is left at an iterate (the caller restores
   /// it). `set_load(lambda)` puts the constraints of load factor lambda;
-  /// `max_dlambda`: ArcLengthSolver::step.
+  /// `max_dlambda` and `loose`: ArcLengthSolver::step.
   SolveReport step(Vec x, double& lambda, double d_control,
-                   const std::function<void(double)>& set_load, double max_dlambda = 0);
+                   const std::function<void(double)>& set_load, double max_dlambda = 0,
+                   bool loose = false);
 
   /// The control value at the whole model's x (a . x; the energy released
   /// since the last commit).
