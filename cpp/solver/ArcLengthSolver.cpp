@@ -218,6 +218,28 @@ std::string ArcLengthSolver::loose_convergence(double fnorm, double reactions, d
   return s.str();
 }
 
+std::string ArcLengthSolver::iterate(Vec x, double lam, const std::function<void(double)>& set_load,
+                                     double& reactions, double& fnorm, double& c)
+{
+  // F at (x, lam), and e where it moves with the iterate.
+  bool evaluated;
+  if (_fd_step > 0)
+    evaluated = load_direction(x, lam, set_load, reactions);
+  else
+  {
+    set_load(lam);
+    evaluated = residual(x, reactions);
+  }
+  if (!evaluated)
+    return "an interface law failed";
+  check(VecNorm(_F, NORM_2, &fnorm), "VecNorm");
+  if (!std::isfinite(fnorm))
+    return "residual not finite";
+  if (!constraint(x, c)) // c(x) and its gradient _a
+    return "an interface law failed";
+  return "";
+}
+
 SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
                                   const std::function<void(double)>& set_load, double max_dlambda,
                                   bool loose)
@@ -256,23 +278,9 @@ SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
   double best_fnorm = INFINITY, best_lambda = lam, best_control_error = 0;
   for (PetscInt it = 0;; ++it)
   {
-    // F at (x, lam), and e where it moves with the iterate.
-    bool evaluated;
-    if (_fd_step > 0)
-      evaluated = load_direction(x, lam, set_load, reactions);
-    else
-    {
-      set_load(lam);
-      evaluated = residual(x, reactions);
-    }
-    if (!evaluated)
-      return fail("an interface law failed");
     double fnorm, c;
-    check(VecNorm(_F, NORM_2, &fnorm), "VecNorm");
-    if (!std::isfinite(fnorm))
-      return fail("residual not finite");
-    if (!constraint(x, c)) // c(x) and its gradient _a
-      return fail("an interface law failed");
+    if (std::string why = iterate(x, lam, set_load, reactions, fnorm, c); !why.empty())
+      return fail(why);
     if (_monitor)
       check(PetscPrintf(PetscObjectComm(reinterpret_cast<PetscObject>(x)),
                         "  arc %d: |F| %.6e N (tol %.3e), lambda %.9e mm, control - target %.3e\n",

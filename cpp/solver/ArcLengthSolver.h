@@ -183,6 +183,11 @@ private:
   /// the load of lambda set; false if a law failed.
   bool load_direction(Vec x, double lambda, const std::function<void(double)>& set_load,
                       double& reactions);
+  /// An iterate (x, lam): F into _F (e into _e where it moves with the
+  /// iterate), the load of lam set, |F| into `fnorm`, the control into `c`
+  /// and its gradient into _a; "" or why it failed.
+  std::string iterate(Vec x, double lam, const std::function<void(double)>& set_load,
+                      double& reactions, double& fnorm, double& c);
 
   NonlinearProblem& _problem;
   PathConstraint& _control;
