@@ -216,24 +216,77 @@ public:
     return r;
   }
 
+  /// IMPL-EX (Oliver, Huespe & Cante 2008; docs/cracking.md, "IMPL-EX"):
+  /// the response at `strain` of a point whose crack, if the committed
+  /// state `old` has one, holds the damage of the history `kappa` [mm] (the
+  /// committed history extrapolated over the step; never less than the
+  /// committed one): a secant spring, closed by the penalty in compression.
+  /// The stress is linear in the strain on either side of closure, and the
+  /// tangent symmetric. An uncracked point is elastic whatever its stress:
+  /// onset is found after the step, by update() at the converged strain.
+  /// The state stays; nothing is dissipated.
+  CrackBandResult secant_response(std::span<const double> old, const Voigt& strain, double kappa,
+                                  double strength = 1) const
+  {
+    const CrackState<const double> state(old);
+    CrackBandResult r;
+    const Voigt sigma0 = multiply(_C, strain);
+    r.stress = sigma0;
+    r.tangent = _C;
+    if (!state.cracked())
+      return r;
+    const CrackPlane plane(*this, state, sigma0);
+    const laws::CamanhoDavila law = cohesive_law(plane.h, strength);
+    kappa = std::max(kappa, laws::DamageHistory<const double>(state.law_state()).kappa());
+    const double g = law.secant(kappa);
+    // J = R^T diag(k_n, g, g) R + A / h = g I + (k_n - g) n n + A / h, with
+    // k_n = g open, k_p closed. The crack's energy is convex in w, so one of
+    // the two is consistent: open if its w . n > 0, else closed.
+    Vec3 w{};
+    Mat3 J{};
+    for (const double k_n : {g, law.k()})
+    {
+      J = plane.A_h;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          J[3 * i + j] += (i == j ? g : 0.0) + (k_n - g) * plane.R[i] * plane.R[j];
+      if (!solve3(J, plane.s0, w))
+      {
+        r.status = CrackBandResult::Status::not_converged;
+        return r;
+      }
+      if (plane.R[0] * w[0] + plane.R[1] * w[1] + plane.R[2] * w[2] > 0)
+        break;
+    }
+    std::array<Vec3, 3> Jinv; // columns of J^-1
+    for (int k = 0; k < 3; ++k)
+    {
+      Vec3 e{};
+      e[k] = 1;
+      if (!solve3(J, e, Jinv[k]))
+      {
+        r.status = CrackBandResult::Status::not_converged;
+        return r;
+      }
+    }
+    point_response(plane, sigma0, w, Jinv, r);
+    r.opening = rotate(plane.R, w);
+    r.damage = law.damage(kappa);
+    return r;
+  }
+
 private:
   static constexpr std::array<double, 2> zero_history = {0, 0};
 
-  /// The equilibrium of a crack at one update: the residual
-  /// r(w) = R^T t(R w) + A w / h - s0 of its opening w (global frame) and its
-  /// Jacobian, from the cohesive law's update, which writes the law's trial
-  /// history.
-  class CrackEquilibrium
+  /// A crack's plane at a point of stress sigma_0 = C : epsilon: its frame,
+  /// C P, A / h, and the traction of sigma_0 on it.
+  struct CrackPlane
   {
-  public:
-    CrackEquilibrium(const CrackBand& band, std::span<const double> law_old,
-                     const CrackState<double>& state, const Voigt& sigma0, double strength,
-                     double dt)
-        : h(state.band_width()), law(band.cohesive_law(h, strength)), law_old(law_old),
-          law_now(state.law_state()), _dt(dt)
+    template <typename T>
+    CrackPlane(const CrackBand& band, const CrackState<T>& state, const Voigt& sigma0)
+        : h(state.band_width()), R(state.frame())
     {
       const Vec3 n = state.normal();
-      R = state.frame();
       // C P (6 x 3, column k: the stress of a unit opening along e_k over a
       // unit band) and A / h = P^T C P / h.
       for (int k = 0; k < 3; ++k)
@@ -246,6 +299,28 @@ private:
           A_h[3 * i + k] = a[i] / h;
       }
       s0 = traction(sigma0, n);
+    }
+
+    double h;                ///< band width [mm]
+    Mat3 R;                  ///< rows n, s1, s2
+    std::array<Voigt, 3> CP; ///< C P by columns [MPa]
+    Mat3 A_h{};              ///< A / h [N/mm^3]
+    Vec3 s0;                 ///< traction of the uncracked stress on the crack [MPa]
+  };
+
+  /// The equilibrium of a crack at one update: the residual
+  /// r(w) = R^T t(R w) + A w / h - s0 of its opening w (global frame) and its
+  /// Jacobian, from the cohesive law's update, which writes the law's trial
+  /// history.
+  class CrackEquilibrium : public CrackPlane
+  {
+  public:
+    CrackEquilibrium(const CrackBand& band, std::span<const double> law_old,
+                     const CrackState<double>& state, const Voigt& sigma0, double strength,
+                     double dt)
+        : CrackPlane(band, state, sigma0), law(band.cohesive_law(h, strength)), law_old(law_old),
+          law_now(state.law_state()), _dt(dt)
+    {
     }
 
     /// r(w) into `res`; returns its largest component [MPa].
@@ -314,19 +389,33 @@ private:
       return norm <= tol && cohesive.status == laws::LawStatus::ok;
     }
 
-    double h; ///< band width [mm]
     laws::CamanhoDavila law;
     std::span<const double> law_old;
     std::span<double> law_now;
-    Mat3 R;                   ///< rows n, s1, s2
-    std::array<Voigt, 3> CP;  ///< C P by columns [MPa]
-    Mat3 A_h{};               ///< A / h [N/mm^3]
-    Vec3 s0;                  ///< traction of the uncracked stress on the crack [MPa]
     laws::LawResult cohesive; ///< of the last residual()
 
   private:
     double _dt;
   };
+
+  /// The point's stress and tangent from its crack's opening w (global
+  /// frame) and the columns of J^-1: sigma = C (epsilon - P w / h),
+  /// d sigma / d epsilon = C - (1/h) (C P) J^-1 (C P)^T.
+  void point_response(const CrackPlane& plane, const Voigt& sigma0, const Vec3& w,
+                      const std::array<Vec3, 3>& Jinv, CrackBandResult& r) const
+  {
+    const double h = plane.h;
+    r.stress = sigma0;
+    r.tangent = _C;
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < 6; ++i)
+        r.stress[i] -= plane.CP[k][i] * w[k] / h;
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < 6; ++j)
+        for (int k = 0; k < 3; ++k)
+          for (int l = 0; l < 3; ++l)
+            r.tangent[6 * i + j] -= plane.CP[k][i] * Jinv[l][k] * plane.CP[l][j] / h;
+  }
 
   /// The crack's equilibrium and the point's stress and tangent.
   void solve_crack(std::span<const double> law_old, const CrackState<double>& state,
@@ -353,19 +442,7 @@ private:
       r.status = CrackBandResult::Status::not_converged;
       return;
     }
-    // sigma = C (epsilon - P w / h); d sigma / d epsilon = C - (1/h) (C P)
-    // J^-1 (C P)^T.
-    const double h = eq.h;
-    r.stress = sigma0;
-    for (int k = 0; k < 3; ++k)
-      for (int i = 0; i < 6; ++i)
-        r.stress[i] -= eq.CP[k][i] * w[k] / h;
-    r.tangent = _C;
-    for (int i = 0; i < 6; ++i)
-      for (int j = 0; j < 6; ++j)
-        for (int k = 0; k < 3; ++k)
-          for (int l = 0; l < 3; ++l)
-            r.tangent[6 * i + j] -= eq.CP[k][i] * Jinv[l][k] * eq.CP[l][j] / h;
+    point_response(eq, sigma0, w, Jinv, r);
     r.opening = rotate(eq.R, w);
     const laws::DamageHistory<double> now(eq.law_now);
     r.damage = now.damage();
@@ -377,7 +454,7 @@ private:
         (_eta > 0 ? eq.cohesive.dissipation
                   : dissipated(eq.law, now.kappa()) -
                         dissipated(eq.law, laws::DamageHistory<const double>(law_old).kappa())) /
-        h;
+        eq.h;
   }
 
   /// The energy per unit crack area a crack has dissipated when its history

@@ -25,6 +25,15 @@ constexpr int state = bulk::CrackBand::state_size;
 /// (BulkCracking::loading_tangent; as interface::Interface::loading_probe).
 constexpr double probe = 1e-9;
 
+/// The history kappa of point i's crack in `states` ([point][state]) [mm].
+double kappa_of(const std::vector<double>& states, std::size_t i)
+{
+  return laws::DamageHistory<const double>(
+             bulk::CrackState<const double>(std::span(states.data() + state * i, state))
+                 .law_state())
+      .kappa();
+}
+
 /// Values of a Quadrature function at (cell, point), `bs` per point.
 std::span<double> at(fem::Function<double>& f, std::int32_t cell, int point, int bs)
 {
@@ -94,7 +103,9 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
     : _mesh(mesh), _band(concrete.E, concrete.nu, envelope_of(part), part.viscosity),
       _cells(cracking_cells(*mesh, material, part.radius, slice.tube_center)),
       _axis(slice.tube_center), _tube_radius(slice.tube_radius()),
-      _visible_width(part.visible_width), _dT(std::make_shared<fem::Constant<double>>(0.0))
+      _visible_width(part.visible_width), _implex(part.implex),
+      _implex_tolerance(part.implex_tolerance), _E(concrete.E), _nu(concrete.nu),
+      _dT(std::make_shared<fem::Constant<double>>(0.0))
 {
   _d_sigma = quadrature_function(functionspace_form_cracking_L_crack, "d_sigma", mesh);
   _d_C = quadrature_function(functionspace_form_cracking_a_crack, "d_C", mesh);
@@ -141,6 +152,7 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
   _opening_trial = _opening;
   _strain_values.resize(_strength.size() * voigt);
   _loading.assign(_strength.size(), false);
+  _kappa_step.assign(_strength.size(), 0.0);
   _stress_trial.assign(_strength.size() * voigt, 0.0);
   _stress_committed = _stress_trial;
   _strain_committed = _stress_trial;
@@ -190,11 +202,18 @@ double BulkCracking::band_width(std::size_t cell, const bulk::Vec3& n) const
 
 void BulkCracking::commit()
 {
+  if (_implex)
+  {
+    // What the step's cracks did at its converged strain: the crack band's
+    // own update (onset, the history), and the growth of the history that
+    // the next step extrapolates.
+    implicit_update();
+    for (std::size_t i = 0; i < _kappa_step.size(); ++i)
+      _kappa_step[i] = kappa_of(_trial, i) - kappa_of(_committed, i);
+  }
   for (std::size_t i = 0; i < _loading.size(); ++i)
-    _loading[i] =
-        bulk::CrackState<const double>(std::span(_trial.data() + state * i, state)).law_state()[0] >
-        bulk::CrackState<const double>(std::span(_committed.data() + state * i, state))
-            .law_state()[0];
+    _loading[i] = kappa_of(_trial, i) > kappa_of(_committed, i);
+  _trial_implicit = false;
   _committed = _trial;
   _stress_committed = _stress_trial;
   _strain_committed = _strain_values;
@@ -204,6 +223,7 @@ void BulkCracking::commit()
 
 void BulkCracking::revert()
 {
+  _trial_implicit = false;
   _trial = _committed;
   _dissipated_trial = _dissipated;
   _opening_trial = _opening;
@@ -215,6 +235,7 @@ void BulkCracking::reset()
   std::fill(_dissipated.begin(), _dissipated.end(), 0.0);
   std::fill(_opening.begin(), _opening.end(), 0.0);
   std::fill(_loading.begin(), _loading.end(), false);
+  std::fill(_kappa_step.begin(), _kappa_step.end(), 0.0);
   std::fill(_stress_committed.begin(), _stress_committed.end(), 0.0);
   std::fill(_strain_committed.begin(), _strain_committed.end(), 0.0);
   revert();
@@ -227,6 +248,7 @@ void BulkCracking::set_temperature_change(double dT)
 
 bool BulkCracking::evaluate()
 {
+  _trial_implicit = false;
   const int n_points = expression_cracking_strain->num_points;
   Rows rows{_strain_values.data(), std::size_t(n_points) * voigt};
   _strain->eval(std::span<const std::int32_t>(_cells), rows);
@@ -236,15 +258,19 @@ bool BulkCracking::evaluate()
     for (int q = 0; q < n_points; ++q)
     {
       const std::size_t i = c * std::size_t(n_points) + q;
-      bulk::Voigt strain;
-      std::copy_n(_strain_values.begin() + voigt * i, voigt, strain.begin());
+      const bulk::Voigt strain = strain_at(i);
       const std::span<const double> old(_committed.data() + state * i, state);
       const std::span<double> now(_trial.data() + state * i, state);
       auto width = [&](const bulk::Vec3& n) { return band_width(c, n); };
-      bulk::CrackBandResult r = _new_cracks || bulk::CrackState<const double>(old).cracked()
-                                    ? _band.update(old, strain, now, width, _strength[i], _dt)
-                                    : _band.held_uncracked(old, strain, now);
-      if (_loading[i] && at_committed_strain(i, strain))
+      bulk::CrackBandResult r;
+      if (_implex)
+        r = _band.secant_response(
+            old, strain, kappa_of(_committed, i) + _extrapolation * _kappa_step[i], _strength[i]);
+      else if (_new_cracks || bulk::CrackState<const double>(old).cracked())
+        r = _band.update(old, strain, now, width, _strength[i], _dt);
+      else
+        r = _band.held_uncracked(old, strain, now);
+      if (!_implex && _loading[i] && at_committed_strain(i, strain))
         r.tangent = loading_tangent(i, strain, width);
       ok = ok && r.status == bulk::CrackBandResult::Status::ok;
       _dissipated_step[i] = r.dissipation;
@@ -260,6 +286,71 @@ bool BulkCracking::evaluate()
         d_C[k] = r.tangent[k] - C[k];
     }
   return ok;
+}
+
+bulk::Voigt BulkCracking::strain_at(std::size_t i) const
+{
+  bulk::Voigt strain;
+  std::copy_n(_strain_values.begin() + voigt * i, voigt, strain.begin());
+  return strain;
+}
+
+void BulkCracking::implicit_update()
+{
+  if (_trial_implicit) // since the last evaluate(): the same displacement
+    return;
+  _trial_implicit = true;
+  const int n_points = expression_cracking_strain->num_points;
+  Rows rows{_strain_values.data(), std::size_t(n_points) * voigt};
+  _strain->eval(std::span<const std::int32_t>(_cells), rows);
+  for (std::size_t c = 0; c < _cells.size(); ++c)
+    for (int q = 0; q < n_points; ++q)
+    {
+      const std::size_t i = c * std::size_t(n_points) + q;
+      const bulk::CrackBandResult r = _band.update(
+          std::span<const double>(_committed.data() + state * i, state), strain_at(i),
+          std::span<double>(_trial.data() + state * i, state),
+          [&](const bulk::Vec3& n) { return band_width(c, n); }, _strength[i], _dt);
+      // A point whose crack's equilibrium fails keeps its committed state
+      // (the step converged on the extrapolated cracks; the next step
+      // takes it again).
+      if (r.status != bulk::CrackBandResult::Status::ok)
+      {
+        std::copy_n(_committed.begin() + state * i, state, _trial.begin() + state * i);
+        continue;
+      }
+      _dissipated_step[i] = r.dissipation;
+      _dissipated_trial[i] = _dissipated[i] + r.dissipation;
+      std::copy(r.stress.begin(), r.stress.end(), _stress_trial.begin() + voigt * i);
+      std::copy(r.opening.begin(), r.opening.end(), _opening_trial.begin() + 3 * i);
+    }
+}
+
+double BulkCracking::implex_error()
+{
+  // The stress the step converged with, before the update replaces it.
+  const std::vector<double> stepped = _stress_trial;
+  implicit_update();
+  const auto stress = [](const std::vector<double>& s, std::size_t i)
+  {
+    bulk::Voigt v;
+    std::copy_n(s.begin() + voigt * i, voigt, v.begin());
+    return v;
+  };
+  double sums[2] = {
+      integrate(
+          [&](std::size_t i)
+          {
+            bulk::Voigt d = stress(_stress_trial, i);
+            const bulk::Voigt e = stress(stepped, i);
+            for (int k = 0; k < voigt; ++k)
+              d[k] -= e[k];
+            return bulk::complementary_energy(d, _E, _nu);
+          }),
+      integrate([&](std::size_t i)
+                { return bulk::complementary_energy(stress(_stress_trial, i), _E, _nu); })};
+  MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, _mesh->comm());
+  return sums[1] > 0 ? std::sqrt(sums[0] / sums[1]) : 0.0;
 }
 
 bool BulkCracking::at_committed_strain(std::size_t i, const bulk::Voigt& strain) const
@@ -346,7 +437,12 @@ void BulkCracking::add_tangent(Mat A) const
 
 CrackingTotals BulkCracking::totals()
 {
-  evaluate(); // a failure was the converged step's, and is not one
+  // A failure was the converged step's, and is not one. IMPL-EX: the
+  // state the step commits, the crack band's own at the converged strain.
+  if (_implex)
+    implicit_update();
+  else
+    evaluate();
   CrackingTotals t;
   t.points = std::int64_t(_strength.size());
   for (std::size_t i = 0; i < _strength.size(); ++i)

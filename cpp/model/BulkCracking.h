@@ -73,6 +73,29 @@ public:
   /// (cracking.viscosity) [mm of push].
   void set_time_increment(double dt) { _dt = dt; }
 
+  /// Whether the cracks are integrated by IMPL-EX (cracking.integration =
+  /// "implex"; docs/cracking.md, "IMPL-EX"): in a step each crack holds the
+  /// damage of its history extrapolated from the last committed step
+  /// (CrackBand::secant_response) and no point cracks, so that the bulk is
+  /// linear but for closure; after the step the crack band's own update at
+  /// the converged strain (onset, the history, the dissipation) is what is
+  /// committed.
+  bool implex() const { return _implex; }
+  /// IMPL-EX: the extrapolation of this try, the ratio of its load
+  /// increment to the last committed step's (0: none, the committed
+  /// history: a stage's first step, a load that turns back). The history
+  /// a crack holds is kappa_n + ratio (kappa_n - kappa_n-1).
+  void set_extrapolation(double ratio) { _extrapolation = ratio > 0 ? ratio : 0.0; }
+  /// IMPL-EX: how far the converged step's stress is from the crack band's
+  /// own at its strain, the energy norm of the difference over the
+  /// cracking concrete's: sqrt(int ds : C^-1 : ds / int s : C^-1 : s), s the
+  /// crack band's stress, ds the difference [-]. Leaves the crack band's
+  /// update as the trial state (what commit() commits). Collective.
+  double implex_error();
+  /// cracking.implex_tolerance: a step whose implex_error() exceeds it is
+  /// cut [-].
+  double implex_tolerance() const { return _implex_tolerance; }
+
   /// Whether a point uncracked in the committed state may crack (true; false:
   /// it answers elastically, whatever its stress: the predictor of a step,
   /// LoadStepSolver::set_crack_free_predictor).
@@ -165,6 +188,14 @@ private:
   /// into `t`. Collective.
   void read_surface(CrackingTotals& t) const;
 
+  /// IMPL-EX: the crack band's own update of every point from the committed
+  /// state to the strain of the model's displacement, into the trial state
+  /// (no forms' coefficients); once per converged step (the displacement
+  /// does not move between the step's check, record and commit).
+  void implicit_update();
+  /// Point i's strain of the last evaluate() (Voigt).
+  bulk::Voigt strain_at(std::size_t i) const;
+
   /// Whether `strain` is point i's committed strain (to a relative 1e-9).
   bool at_committed_strain(std::size_t i, const bulk::Voigt& strain) const;
   /// The tangent of point i just beyond `strain` along itself: where a
@@ -208,6 +239,15 @@ private:
   double _nominal_fracture_energy = 0; ///< [N mm]
   bool _new_cracks = true;             ///< allow_new_cracks
   double _dt = 0;                      ///< set_time_increment [mm of push]
+  bool _implex = false;                ///< cracking.integration = "implex"
+  double _implex_tolerance = 0;        ///< cracking.implex_tolerance
+  double _E = 0, _nu = 0;              ///< the concrete's [MPa], [-]
+  double _extrapolation = 0;           ///< set_extrapolation
+  /// IMPL-EX: the trial state is implicit_update()'s, and no evaluate()
+  /// came after it
+  bool _trial_implicit = false;
+  /// [point] IMPL-EX: the growth of kappa in the last committed step [mm]
+  std::vector<double> _kappa_step;
   std::shared_ptr<dolfinx::fem::Constant<double>> _dT;
   std::shared_ptr<dolfinx::fem::Function<double>> _d_sigma, _d_C;
   /// energy_release()'s dG/du density (on _d_sigma's space) and a scalar

@@ -21,6 +21,12 @@ struct Summary
   /// their best iterate, |F| within 1e-5 of the reactions and the energy
   /// released within 1 % of the step's (solver/ArcLengthSolver.h, step).
   int loose_steps = 0;
+  /// IMPL-EX cracks (cracking.integration = "implex"): the largest error of
+  /// a committed step (model::BulkCracking::implex_error) [-].
+  double implex_error_max = 0;
+  /// Of its steps, those taken above the tolerance: the cracks snapped back
+  /// under the load's control, and no smaller step met it.
+  int implex_jumps = 0;
   double penetration_mm = 0; ///< corrosion depth x reached [mm]
   /// Where each unloading of the push ended at zero force
   /// (loading.unload_to = "zero_force"): the tube's permanent displacement.

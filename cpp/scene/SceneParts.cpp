@@ -88,6 +88,8 @@ void Scene::fill_parts()
   _cracking.seed = integer("cracking.seed");
   _cracking.visible_width = number("cracking.visible_width");
   _cracking.viscosity = number("cracking.viscosity");
+  _cracking.implex = string("cracking.integration") == "implex";
+  _cracking.implex_tolerance = number("cracking.implex_tolerance");
 
   _solver.lagged_preconditioner = string("solver.preconditioner") == "lagged";
   using Condensation = SolverPart::Condensation;

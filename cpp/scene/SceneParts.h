@@ -120,8 +120,10 @@ struct CrackingPart
   double strength_cov{};       ///< coefficient of variation of f_t [-]
   double correlation_length{}; ///< of the strength field [mm]
   std::int64_t seed{};
-  double visible_width{}; ///< a surface crack counts from this gauge reading [mm]
-  double viscosity{};     ///< damage viscosity eta [mm of push]; 0: none
+  double visible_width{};    ///< a surface crack counts from this gauge reading [mm]
+  double viscosity{};        ///< damage viscosity eta [mm of push]; 0: none
+  bool implex{};             ///< integration: implex (else implicit)
+  double implex_tolerance{}; ///< IMPL-EX: the largest error of a step [-]
 };
 
 /// [solver].

@@ -67,6 +67,32 @@ std::vector<KeyDef> law_keys()
        true,
        {},
        A::pushout},
+      {"cracking.integration",
+       K::string,
+       std::string("implicit"),
+       "",
+       "implicit: each step solves the cracks' own update (Newton through every onset and "
+       "kink); implex: in a step each crack holds the damage extrapolated from the last steps "
+       "and new cracks open after it (Oliver, Huespe & Cante 2008), so a step's bulk is linear "
+       "but for closure: faster and never stuck, with an error of the order of the step "
+       "(loading.control = \"displacement\" only; docs/cracking.md, \"IMPL-EX\")",
+       -inf,
+       inf,
+       false,
+       {"implicit", "implex"},
+       A::pushout},
+      {"cracking.implex_tolerance",
+       K::number,
+       0.01,
+       "-",
+       "implex: a step is cut (and retried in halves) when its stress differs from the crack "
+       "band's own at its strain by more than this, in the energy norm over the cracking "
+       "concrete (docs/cracking.md, \"IMPL-EX\")",
+       0,
+       inf,
+       true,
+       {},
+       A::pushout},
       {"cracking.viscosity",
        K::number,
        0.0,

@@ -30,11 +30,15 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
   // with cracks (paper's mesh, to x = 10 um) it took 74 factorisations
   // instead of 288 but 6 cuts and twice the time (docs/cracking.md, "Newton").
   // It takes the Jacobian's LU whatever solver.preconditioner says.
-  const bool overridden = part.lagged_preconditioner && eq.model().bulk_cracking();
+  // IMPL-EX cracks leave a step's bulk linear but for closure
+  // (BulkCracking::implex): the solver of a linear bulk.
+  const model::BulkCracking* bulk = eq.model().bulk_cracking();
+  const bool nonsmooth_bulk = bulk && !bulk->implex();
+  const bool overridden = part.lagged_preconditioner && nonsmooth_bulk;
   const bool lagged = part.lagged_preconditioner && !overridden;
   const auto pc =
       lagged ? NewtonSolver::Preconditioner::lagged : NewtonSolver::Preconditioner::jacobian;
-  NewtonSolver::set_default_options(pc, eq.model().bulk_cracking() != nullptr);
+  NewtonSolver::set_default_options(pc, nonsmooth_bulk);
 
   int processes = 1;
   MPI_Comm_size(eq.model().comm(), &processes);
@@ -55,7 +59,7 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
   auto solver = std::make_unique<LoadStepSolver>(eq, condense, pc, int(part.refactor_iterations),
                                                  description);
   solver->set_first_tangent(part.first_tangent_converged);
-  if (eq.model().bulk_cracking())
+  if (nonsmooth_bulk)
   {
     // l2 first (set_default_options), then backtracking.
     solver->_whole.set_fallback_line_search("bt");

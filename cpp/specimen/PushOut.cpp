@@ -455,6 +455,14 @@ void PushOut::check_cracking(const Scene& scene)
     throw SceneError("'solver.condensation' = \"on\" condenses a linear bulk, and "
                      "'cracking.model' = \"embedded\" makes the concrete nonlinear: leave it at "
                      "\"auto\" (the whole model is solved)");
+  if (cracking.implex && scene.loading().control != Loading::Control::displacement)
+    throw SceneError("'cracking.integration' = \"implex\" steps the load with "
+                     "'loading.control' = \"displacement\" only: its steps never snap back "
+                     "(each is linear in the cracks), and the energy a step releases is not yet "
+                     "counted under it");
+  if (cracking.implex && cracking.viscosity > 0)
+    throw SceneError("'cracking.integration' = \"implex\" extrapolates the cracks' damage, and "
+                     "'cracking.viscosity' > 0 delays it: use one or the other");
   if (scene.model().symmetry == ModelPart::Symmetry::symmetric && cracking.strength_cov > 0)
     throw SceneError("'model.symmetry' = \"symmetric\" cuts the slice, and a random strength "
                      "field ('cracking.strength_cov' > 0) is not symmetric: leave it at \"auto\"");

@@ -24,6 +24,10 @@ namespace
 /// Unloading at zero force (loading.unload_to): the force's zero is found
 /// to this fraction of the largest push force so far (ZeroForceSearch.h).
 constexpr double zero_force_tolerance = 1e-6;
+/// IMPL-EX: a cut whose error stays above this fraction of the error before
+/// it (a first-order error halves) finds a jump of the state
+/// (StepLoop::check_implex).
+constexpr double jump_error_fall = 0.75;
 } // namespace
 
 /// Displacement control of the push.
@@ -75,12 +79,22 @@ bool StepLoop::nominal_steps(const Stage& stage)
       const double s_try = stepper.next(s, double(k));
       stage.apply(s_try);
       set_time_increment(stage.duration(s, s_try));
-      if (d_load_last != 0)
-        extrapolate(before_last,
-                    (stage.extrapolate_by(s_try) - stage.extrapolate_by(s)) / d_load_last);
+      const double ratio =
+          d_load_last != 0 ? (stage.extrapolate_by(s_try) - stage.extrapolate_by(s)) / d_load_last
+                           : 0.0;
+      if (ratio != 0)
+        extrapolate(before_last, ratio);
+      set_crack_extrapolation(ratio);
       _equilibrium.apply_constraints(_x);
-      const solver::SolveReport rep = _solver.solve(_x);
+      solver::SolveReport rep = _solver.solve(_x);
       _summary.newton_iterations += rep.iterations;
+      // IMPL-EX's error is first order in the step: a step that missed its
+      // tolerance is cut at once to one that should meet it (0.8 of the
+      // ratio), and one whose error would not stay under it at twice the
+      // increment does not grow, unless it jumped (smaller steps do not
+      // help there).
+      const ImplexCheck implex =
+          rep.converged ? check_implex(rep, stepper.smallest()) : ImplexCheck{};
       if (rep.converged && stage.zero_force_ends)
       {
         const double P_try = _scenario.load_force(model);
@@ -117,13 +131,14 @@ bool StepLoop::nominal_steps(const Stage& stage)
         }
         commit();
         s = s_try;
-        stepper.converged(rep.iterations);
+        stepper.converged(rep.iterations, implex.ratio <= 0.5 || implex.jump);
         continue;
       }
       revert();
       const std::string what =
           steps == 1 ? stage.step_name : stage.step_name + " " + std::to_string(k);
-      if (!cut_back(stepper, cuts, what, rep.reason, fraction))
+      if (!cut_back(stepper, cuts, what, rep.reason, fraction,
+                    implex.ratio > 1 ? std::min(0.5, 0.8 / implex.ratio) : 0.5))
         return false;
     }
   }
@@ -152,6 +167,7 @@ bool StepLoop::zero_force_step(const Stage& stage, int k, int cuts, double s0, d
     }
     stage.apply(s_try);
     set_time_increment(stage.duration(s_committed, s_try));
+    set_crack_extrapolation(0); // the push turned back: nothing to extrapolate
     _equilibrium.apply_constraints(_x);
     rep = _solver.solve(_x);
     _summary.newton_iterations += rep.iterations;
@@ -190,6 +206,48 @@ std::function<double(double)> StepLoop::extrapolation(std::function<double(doubl
   if (!_equilibrium.model().bulk_cracking())
     return {};
   return load;
+}
+
+StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, bool smallest)
+{
+  model::BulkCracking* bulk = _equilibrium.model().bulk_cracking();
+  if (!bulk || !bulk->implex())
+    return {};
+  const double error = bulk->implex_error();
+  ImplexCheck c{error / bulk->implex_tolerance(), false};
+  // The error is first order in the step, but where the cracks snap back
+  // under this control no step is small enough: the state jumps, and
+  // IMPL-EX takes the jump (summary.json implex_jumps) once a cut did not
+  // cut the error by a quarter, or the step cannot be cut.
+  c.jump =
+      c.ratio > 1 && (smallest || (_implex_missed > 0 && error > jump_error_fall * _implex_missed));
+  if (c.ratio <= 1 || c.jump)
+  {
+    if (c.jump)
+    {
+      ++_summary.implex_jumps;
+      if (_report.talk())
+        std::cout << "IMPL-EX error " << error << " (" << _implex_missed
+                  << " before the last cut): the cracks snap back under this control; the "
+                     "step is taken"
+                  << std::endl;
+    }
+    _implex_missed = 0;
+    _summary.implex_error_max = std::max(_summary.implex_error_max, error);
+    return c;
+  }
+  _implex_missed = error;
+  std::ostringstream why;
+  why << "IMPL-EX error " << error << " > cracking.implex_tolerance " << bulk->implex_tolerance();
+  rep.converged = false;
+  rep.reason = why.str();
+  return c;
+}
+
+void StepLoop::set_crack_extrapolation(double ratio)
+{
+  if (model::BulkCracking* bulk = _equilibrium.model().bulk_cracking())
+    bulk->set_extrapolation(ratio);
 }
 
 void StepLoop::extrapolate(const solver::Vector& before_last, double ratio)

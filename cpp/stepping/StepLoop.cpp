@@ -167,11 +167,11 @@ void StepLoop::revert()
 }
 
 bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
-                        const std::string& reason, const Words& size)
+                        const std::string& reason, const Words& size, double factor)
 {
   if (stop_requested())
     return false;
-  if (!stepper.failed())
+  if (!stepper.failed(factor))
   {
     _summary.message = what + " did not converge with " + std::to_string(cuts) + " cuts, down to " +
                        size(stepper.increment()) + " (" + reason + "); stopped";

@@ -75,10 +75,11 @@ private:
   using Words = std::function<std::string(double increment)>;
   /// After a failed try (reverted): false (with the summary's message) if
   /// the step cannot be cut again or a signal stops the run; otherwise
-  /// halves the increment, counts the cut and says so. `what` names the
+  /// halves the increment (until it is at most `factor` times what it
+  /// was: Stepper::failed), counts the cut and says so. `what` names the
   /// step, `size(increment)` words its size.
   bool cut_back(Stepper& stepper, int& cuts, const std::string& what, const std::string& reason,
-                const Words& size);
+                const Words& size, double factor = 0.5);
   /// Whether a signal asked to stop (agreed on by all processes); first an
   /// error of any process since the last agreement is thrown on all.
   bool stop_requested();
@@ -129,6 +130,20 @@ private:
   /// The trial state from the committed one plus `ratio` times the last
   /// converged step's increment (from `before_last`); nothing unless ratio > 0.
   void extrapolate(const solver::Vector& before_last, double ratio);
+  /// IMPL-EX cracks (model::BulkCracking::set_extrapolation) extrapolate
+  /// their history by `ratio` in the next try (0: none).
+  void set_crack_extrapolation(double ratio);
+  /// What check_implex found.
+  struct ImplexCheck
+  {
+    double ratio = 0;  ///< the step's error over cracking.implex_tolerance (0: no IMPL-EX)
+    bool jump = false; ///< taken above the tolerance: no smaller step meets it
+  };
+  /// IMPL-EX cracks: the error of a converged step against its tolerance;
+  /// a step that misses it fails (`rep`, its reason), to be cut, unless it
+  /// is a jump: the last cut did not cut the error, or `smallest` (the
+  /// step cannot be cut).
+  ImplexCheck check_implex(solver::SolveReport& rep, bool smallest);
   /// Nominal steps, each tried whole and cut in halves when Newton fails.
   bool nominal_steps(const Stage& stage);
   /// After a converged try of step k from the committed state at s0 (force
@@ -196,5 +211,8 @@ private:
   int _dissipation_steps;
   MPI_Comm _comm;                  ///< the run's processes
   solver::Vector _x, _x_committed; ///< whole-model displacement [mm]: trial and committed
+  /// IMPL-EX: the error of the last try that missed its tolerance (0 after
+  /// a step taken; check_implex)
+  double _implex_missed = 0;
 };
 } // namespace pushout::stepping

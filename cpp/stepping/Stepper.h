@@ -24,10 +24,12 @@ public:
   /// Load parameter to try next from committed s towards nominal target.
   double next(double s, double target) const { return std::min(s + _ds, target); }
 
-  /// After a converged try.
-  void converged(int iterations)
+  /// After a converged try; `may_grow` false: it does not count as easy
+  /// whatever its iterations (an IMPL-EX step whose error would exceed its
+  /// tolerance at twice the increment).
+  void converged(int iterations, bool may_grow = true)
   {
-    _easy = iterations <= _easy_iterations ? _easy + 1 : 0;
+    _easy = iterations <= _easy_iterations && may_grow ? _easy + 1 : 0;
     if (_easy >= 2 && _ds < 1.0)
     {
       _ds = std::min(2 * _ds, 1.0);
@@ -35,16 +37,24 @@ public:
     }
   }
 
-  /// After a failed try: halves the increment; false if it is already the
-  /// smallest allowed.
-  bool failed()
+  /// After a failed try: halves the increment, or halves it until it is at
+  /// most `factor` times what it was (an error that says by how much);
+  /// false if it is already the smallest allowed.
+  bool failed(double factor = 0.5)
   {
     _easy = 0;
-    if (_ds <= std::ldexp(1.0, -_max_cuts))
+    const double smallest = std::ldexp(1.0, -_max_cuts);
+    if (_ds <= smallest)
       return false;
-    _ds /= 2;
+    const double target = factor * _ds;
+    do
+      _ds /= 2;
+    while (_ds > target && _ds > smallest);
     return true;
   }
+
+  /// Whether the increment is the smallest allowed.
+  bool smallest() const { return _ds <= std::ldexp(1.0, -_max_cuts); }
 
   /// Current increment, in nominal steps.
   double increment() const { return _ds; }

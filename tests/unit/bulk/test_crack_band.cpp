@@ -296,3 +296,115 @@ TEST(CrackBand, ABandWiderThanTheSizeConditionIsRefused)
   const CrackBandResult r = law.update(s, {1e-3, 0, 0, 0, 0, 0}, t, wide);
   EXPECT_EQ(r.status, CrackBandResult::Status::band_too_wide);
 }
+
+// IMPL-EX's response (CrackBand::secant_response): a crack holding the
+// damage of a given history is a secant spring. At the committed history it
+// is what update() gives wherever update() unloads or recloses; a longer
+// history softens it; an uncracked point stays elastic; the stress is
+// linear in the strain on either side of closure, and the tangent is its
+// derivative and symmetric.
+TEST(CrackBand, SecantResponseIsUpdatesUnloadingBranchWithTheHistoryHeld)
+{
+  const CrackBand law(E, nu, exponential);
+  const double h = 2.0;
+  const auto width = [&](const Vec3&) { return h; };
+  Path path{law, h};
+  const double onset = f_t / (lambda + 2 * mu); // uniaxial strain at f_t
+  for (int k = 1; k <= 12; ++k)
+    path.step({k * 0.5 * onset, 0, 0, 0, 0, 0});
+  ASSERT_NE(path.state[0], 0.0);
+  const double kappa = path.state[8];
+  ASSERT_GT(kappa, 0.0);
+  State trial(path.state.size());
+  // Unloading, reclosure and shear from the committed state: update() runs
+  // secant (no history grows), and so does secant_response at kappa.
+  const std::vector<Voigt> strains = {{3 * onset, 0, 0, 0, 0, 0},
+                                      {1.5 * onset, 0.2 * onset, 0, 0, 0.3 * onset, 0},
+                                      {-2 * onset, 0, 0, 0, 0, 0},
+                                      {-0.5 * onset, 0.1 * onset, 0, 0, 0, 0.2 * onset}};
+  for (const Voigt& strain : strains)
+  {
+    const CrackBandResult implicit = law.update(path.state, strain, trial, width);
+    ASSERT_EQ(implicit.status, CrackBandResult::Status::ok);
+    ASSERT_NEAR(trial[8], kappa, 1e-15); // it did not load
+    const CrackBandResult secant = law.secant_response(path.state, strain, kappa);
+    ASSERT_EQ(secant.status, CrackBandResult::Status::ok);
+    for (int i = 0; i < 6; ++i)
+      EXPECT_NEAR(secant.stress[i], implicit.stress[i], 1e-9 * f_t);
+    for (int i = 0; i < 36; ++i)
+      EXPECT_NEAR(secant.tangent[i], implicit.tangent[i], 1e-9 * (lambda + 2 * mu));
+    EXPECT_DOUBLE_EQ(secant.dissipation, 0.0);
+  }
+  // A longer history softens the crack: less tension at the same strain.
+  const Voigt pulled = {3 * onset, 0, 0, 0, 0, 0};
+  const double held = law.secant_response(path.state, pulled, kappa).stress[0];
+  const double extrapolated = law.secant_response(path.state, pulled, 2 * kappa).stress[0];
+  EXPECT_LT(extrapolated, held);
+  EXPECT_GT(extrapolated, 0.0);
+  // A history shorter than the committed one is the committed one.
+  EXPECT_DOUBLE_EQ(law.secant_response(path.state, pulled, 0.5 * kappa).stress[0], held);
+  // An uncracked point is elastic whatever its stress (onset comes after
+  // the step, from update()).
+  const State virgin(CrackBand::state_size, 0.0);
+  const CrackBandResult elastic = law.secant_response(virgin, {10 * onset, 0, 0, 0, 0, 0}, 0.0);
+  EXPECT_NEAR(elastic.stress[0], 10 * f_t, 1e-9 * f_t);
+}
+
+TEST(CrackBand, SecantResponseIsLinearEachSideOfClosureWithSymmetricTangent)
+{
+  const CrackBand law(E, nu, exponential);
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> U(-1, 1);
+  const double h = 2.0;
+  double worst_fd = 0, worst_symmetry = 0, worst_linear = 0;
+  int tried = 0;
+  for (int trial = 0; trial < 200; ++trial)
+  {
+    Path path{law, h};
+    path.step({2e-4 * (U(gen) + 1.5), 1e-4 * U(gen), 1e-4 * U(gen), 1e-4 * U(gen), 1e-4 * U(gen),
+               1e-4 * U(gen)});
+    if (path.state[0] == 0)
+      continue;
+    ++tried;
+    const double kappa = path.state[8] * (1 + U(gen) + 1); // extrapolated: 1 to 3 times
+    Voigt strain;
+    for (int i = 0; i < 6; ++i)
+      strain[i] = 3e-4 * U(gen);
+    const CrackBandResult r = law.secant_response(path.state, strain, kappa);
+    ASSERT_EQ(r.status, CrackBandResult::Status::ok);
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < 6; ++j)
+        worst_symmetry =
+            std::max(worst_symmetry,
+                     std::abs(r.tangent[6 * i + j] - r.tangent[6 * j + i]) / (lambda + 2 * mu));
+    const double step = 1e-9;
+    for (int j = 0; j < 6; ++j)
+    {
+      Voigt plus = strain, minus = strain;
+      plus[j] += step;
+      minus[j] -= step;
+      const CrackBandResult rp = law.secant_response(path.state, plus, kappa);
+      const CrackBandResult rm = law.secant_response(path.state, minus, kappa);
+      for (int i = 0; i < 6; ++i)
+        worst_fd = std::max(
+            worst_fd, std::abs((rp.stress[i] - rm.stress[i]) / (2 * step) - r.tangent[6 * i + j]) /
+                          (lambda + 2 * mu));
+    }
+    // Linear: the stress at a strain scaled by 2 (the same side of closure)
+    // is twice the stress.
+    Voigt doubled;
+    for (int i = 0; i < 6; ++i)
+      doubled[i] = 2 * strain[i];
+    const CrackBandResult r2 = law.secant_response(path.state, doubled, kappa);
+    for (int i = 0; i < 6; ++i)
+      worst_linear = std::max(worst_linear, std::abs(r2.stress[i] - 2 * r.stress[i]) / f_t);
+  }
+  EXPECT_GT(tried, 100);
+  // Central differences of a piecewise linear map: round-off only, except
+  // at the closure kink (w . n = 0), which random strains hit with
+  // probability ~1e-5.
+  EXPECT_LT(worst_fd, 1e-6);
+  // J and the tangent are symmetric up to the round-off of their sums.
+  EXPECT_LT(worst_symmetry, 1e-12);
+  EXPECT_LT(worst_linear, 1e-10);
+}

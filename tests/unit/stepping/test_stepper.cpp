@@ -82,3 +82,32 @@ TEST(Stepper, NextClampsAtTheTarget)
   EXPECT_EQ(stepper.next(2.5, 3.0), 2.75);
   EXPECT_EQ(stepper.next(2.75, 3.0), 3.0);
 }
+
+// An error that says by how much a try missed (IMPL-EX's, first order in
+// the step) cuts at once to the power of two below that fraction, never
+// below the smallest increment; a try that may not grow is not easy.
+TEST(Stepper, AFailureByAKnownFactorCutsAtOnce)
+{
+  Stepper stepper(5, easy);
+  EXPECT_TRUE(stepper.failed(0.8 / 17)); // 1 -> 1/32 (1/16 > 0.047)
+  EXPECT_EQ(stepper.increment(), 1.0 / 32);
+  EXPECT_FALSE(stepper.failed(0.1)); // already the smallest
+  EXPECT_EQ(stepper.increment(), 1.0 / 32);
+
+  Stepper other(5, easy);
+  EXPECT_TRUE(other.failed(0.01)); // clamped at the smallest, 2^-5
+  EXPECT_EQ(other.increment(), 1.0 / 32);
+  EXPECT_TRUE(Stepper(5, easy).failed(0.7)); // at least one halving
+}
+
+TEST(Stepper, ATryThatMayNotGrowIsNotEasy)
+{
+  Stepper stepper(5, easy);
+  stepper.failed();
+  stepper.converged(1, false);
+  stepper.converged(1, false);
+  EXPECT_EQ(stepper.increment(), 0.5);
+  stepper.converged(1);
+  stepper.converged(1);
+  EXPECT_EQ(stepper.increment(), 1.0);
+}
