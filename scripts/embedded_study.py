@@ -23,6 +23,7 @@ DEPTHS_UM = (0.0, 12.5, 25.0, 50.0)
 WHERE = (("centred", "[50.0, 50.0]"), ("cover15", "[50.0, 25.0]"))
 BETAS = (2.0, 3.0)
 SCENE = "pushout_corroded_embedded.toml"
+STUDIES = ("corroded_embedded", "corroded_embedded_implex")
 VISIBLE_UM = 50.0  # the [cracking] visible_width default: a surface crack counts from here
 
 
@@ -31,8 +32,9 @@ def write_scene(out):
     return pushout_runs.embedded_corroded_demo(os.path.join(out, SCENE))
 
 
-def cases(quick):
-    """(name, scene, --set list) of every run; --quick: seeds 1 and 2 only."""
+def cases(quick, study="corroded_embedded"):
+    """(name, scene, --set list) of every run of `study` (STUDIES); --quick:
+    seeds 1 and 2 only."""
     out = []
     for where, centre in WHERE:
         for beta in BETAS:
@@ -41,10 +43,13 @@ def cases(quick):
                     sets = [f"geometry.tube_center={centre}", f"corrosion.beta={beta}",
                             f"corrosion.penetration={x_um / 1e3}",
                             f"corrosion.steps={max(1, round(x_um / 2.5))}",
-                            f"loading.steps={10 if quick else 20}", f"cracking.seed={seed}",
-                            # The centred tube's cover snaps back past the peak
-                            # pressure, which control of x alone cannot pass.
-                            "loading.control=auto"]
+                            f"loading.steps={10 if quick else 20}", f"cracking.seed={seed}"]
+                    if study.endswith("implex"):  # its steps jump where the cover snaps back
+                        sets.append("cracking.integration=implex")
+                    else:
+                        # The centred tube's cover snaps back past the peak
+                        # pressure, which control of x alone cannot pass.
+                        sets.append("loading.control=auto")
                     out.append((f"{where}_beta{beta:g}_seed{seed}_x{x_um:g}", SCENE, sets))
     return out
 
@@ -63,15 +68,15 @@ def first_visible_um(corr):
     return None
 
 
-def run_table(out, runs):
-    """One row per converged run; the failed ones are named on stdout."""
+def run_table(out, runs, study):
+    """One row per converged run of `study`; the failed ones are named on stdout."""
     table = []
-    for name in sorted(n for (study, n) in runs if study == "corroded_embedded"):
-        folder = os.path.join(out, "corroded_embedded", name)
-        rows = runs[("corroded_embedded", name)]
+    for name in sorted(n for (s_, n) in runs if s_ == study):
+        folder = os.path.join(out, study, name)
+        rows = runs[(study, name)]
         s = pushout_runs.summary(folder)
         if not s["converged"] or not rows:
-            print(f"corroded_embedded {name}: did not converge: {s['message']}")
+            print(f"{study} {name}: did not converge: {s['message']}")
             continue
         where, beta, seed, x = parse(name)
         # x = 0: no corrosion stage, no corrosion.csv; the push starts uncracked.
@@ -111,7 +116,7 @@ def group_table(table):
     return out
 
 
-def plot_bond(plt, out, groups, table):
+def plot_bond(plt, out, groups, table, study):
     """Residual bond stress against x and against the surface crack width,
     the seeds' mean with their range as error bars (and each seed)."""
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.5), dpi=120, sharey=True)
@@ -133,14 +138,15 @@ def plot_bond(plt, out, groups, table):
     for ax in axes:
         ax.grid(alpha=0.3)
     axes[0].legend(fontsize=8)
-    fig.suptitle("Corroded push-out, cracks anywhere (5 seeds of a cov 0.15 strength field: "
-                 "mean and range)")
+    fig.suptitle("Corroded push-out, cracks anywhere" +
+                 (" (IMPL-EX)" if study.endswith("implex") else "") +
+                 " (5 seeds of a cov 0.15 strength field: mean and range)")
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "corroded_embedded_residual_bond.png"))
+    fig.savefig(os.path.join(out, f"{study}_residual_bond.png"))
     plt.close(fig)
 
 
-def plot_patterns(plt, out, table, seeds):
+def plot_patterns(plt, out, table, seeds, study):
     """The crack patterns after corrosion to the largest x: a row per tube
     and beta, a column per seed (a run that did not converge: its title
     says so), one colour scale."""
@@ -159,29 +165,29 @@ def plot_patterns(plt, out, table, seeds):
                 ax.set_title(f"{where}, β {beta:g}, seed {seed}: did not converge", fontsize=7)
                 continue
             name = f"{where}_beta{beta:g}_seed{seed}_x{x:g}"
-            data = plot_curve.read(os.path.join(out, "corroded_embedded", name, "crack_pattern.csv"))
+            data = plot_curve.read(os.path.join(out, study, name, "crack_pattern.csv"))
             cells = plot_curve.draw_crack_pattern(ax, data, top=0.5)
             ax.set_title(f"{where}, β {beta:g}, seed {seed}", fontsize=8)
     if cells is not None:
         fig.colorbar(cells, ax=axes, shrink=0.6, label="crack opening [mm]")
     fig.suptitle(f"Crack patterns at x = {x:g} µm, seen along the tube", fontsize=10)
-    fig.savefig(os.path.join(out, "corroded_embedded_patterns.png"))
+    fig.savefig(os.path.join(out, f"{study}_patterns.png"))
     plt.close(fig)
 
 
-def report(plt, out, runs):
-    """Writes OUT/corroded_embedded.csv (per run), OUT/corroded_embedded_groups.csv
-    (per group of seeds) and the two figures; returns the group rows."""
-    table = run_table(out, runs)
+def report(plt, out, runs, study="corroded_embedded"):
+    """Writes OUT/<study>.csv (per run), OUT/<study>_groups.csv (per group of
+    seeds) and the two figures; returns the group rows."""
+    table = run_table(out, runs, study)
     if not table:
         return []
-    seeds = sorted({parse(n)[2] for (study, n) in runs if study == "corroded_embedded"})
+    seeds = sorted({parse(n)[2] for (s_, n) in runs if s_ == study})
     groups = group_table(table)
-    for path, rows in (("corroded_embedded.csv", table), ("corroded_embedded_groups.csv", groups)):
+    for path, rows in ((f"{study}.csv", table), (f"{study}_groups.csv", groups)):
         with open(os.path.join(out, path), "w", newline="") as f:
             w = csv.DictWriter(f, fieldnames=list(rows[0]))
             w.writeheader()
             w.writerows(rows)
-    plot_bond(plt, out, groups, table)
-    plot_patterns(plt, out, table, seeds)
+    plot_bond(plt, out, groups, table, study)
+    plot_patterns(plt, out, table, seeds, study)
     return groups

@@ -39,6 +39,8 @@ Studies (each run keeps its resolved scene.toml next to its curve.csv):
               residual bond with the seeds' range as error bars, and the crack
               patterns at x = 50 um (scripts/embedded_study.py; not in the
               defaults: --only corroded_embedded).
+  corroded_embedded_implex  the same with IMPL-EX cracks under displacement
+              control (cracking.integration = "implex"; not in the defaults).
 --quick runs the same studies on a coarse mesh with few steps (the test
 suite uses it). Writes OUT/<study>/<case>/ run folders, OUT/*.png figures,
 OUT/plateaus.csv (friction plateau vs mu p) and OUT/timing.json.
@@ -92,11 +94,11 @@ def finish_pair(fig, axes, title, png):
     fig.savefig(png)
 
 def mesh_sets(study, quick):
-    if quick and study == "corroded_embedded":  # the crack band's size condition
+    if quick and study in embedded_study.STUDIES:  # the crack band's size condition
         return ["mesh.elements_per_quarter=8", "mesh.elements_through_thickness=2"]
     if quick:
         return ["mesh.elements_per_quarter=4", "mesh.elements_through_thickness=2"]
-    if study in ("corroded", "corroded_embedded"):  # the full model (no symmetry, no condensation)
+    if study == "corroded" or study in embedded_study.STUDIES:  # the full model (no symmetry, no condensation)
         return ["mesh.elements_per_quarter=12", "mesh.elements_through_thickness=4"]
     return []  # the paper's mesh: 16 per quarter, 8 through the thickness
 
@@ -143,8 +145,8 @@ def cases(study, quick):
                         sets += [f"crack.{i}.eta={CRACK_ETA}" for i in range(1 if cracks == "one" else 4)]
                         scene = "pushout_corroded.toml" if cracks == "one" else FOUR_CRACKS
                         out.append((f"{where}_{cracks}_beta{beta:g}_x{x_um:g}", scene, sets))
-    elif study == "corroded_embedded":
-        out = embedded_study.cases(quick)
+    elif study in embedded_study.STUDIES:
+        out = embedded_study.cases(quick, study)
     elif study == "unload_reload":
         per = 6 if quick else 20
         out.append(("loops", "pushout_friction_adhesion.toml",
@@ -535,7 +537,7 @@ def main():
     os.makedirs(args.out, exist_ok=True)
     if "corroded" in args.only:
         four_cracks_scene(args.out)
-    if "corroded_embedded" in args.only:
+    if any(s in args.only for s in embedded_study.STUDIES):
         embedded_study.write_scene(args.out)
     if "laws" in args.only:
         law_scenes(args.out)
@@ -573,9 +575,9 @@ def main():
         for r in plot_corroded(args.out, runs):
             print(f"corroded {r['case']}: p {r['p_after_corrosion_MPa']:.2f} MPa, crack "
                   f"{r['crack_width_um']:.1f} um, residual tau {r['tau_residual_MPa']:.3f} MPa")
-    if "corroded_embedded" in args.only:
-        for g in embedded_study.report(plt, args.out, runs):
-            print(f"corroded_embedded {g['tube']} beta {g['beta']:g} x {g['x_um']:g} um "
+    for study in (s for s in embedded_study.STUDIES if s in args.only):
+        for g in embedded_study.report(plt, args.out, runs, study):
+            print(f"{study} {g['tube']} beta {g['beta']:g} x {g['x_um']:g} um "
                   f"({g['seeds']} seeds): residual tau {g['tau_residual_MPa_mean']:.3f} "
                   f"[{g['tau_residual_MPa_min']:.3f}, {g['tau_residual_MPa_max']:.3f}] MPa, "
                   f"surface crack {g['surface_crack_um_mean']:.1f} um")

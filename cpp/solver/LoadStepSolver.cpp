@@ -188,8 +188,9 @@ SolveReport LoadStepSolver::solve(Vec x)
 
 SolveReport LoadStepSolver::solve_whole(Vec x)
 {
+  // IMPL-EX cracks open only after a step: nothing to hold back.
   model::BulkCracking* bulk = _eq.model().bulk_cracking();
-  if (!bulk || !_crack_free_predictor)
+  if (!bulk || !_crack_free_predictor || bulk->implex())
     return _whole.solve(x);
   Vec copy;
   check(VecDuplicate(x, &copy), "VecDuplicate");

@@ -19,7 +19,11 @@ a face), corroded to x = 30 um in 15 steps and pushed 5 um:
    cut for it) the cover's cracking lags by a step and p overshoots its
    peak by far more than with the tolerance.
 3. What IMPL-EX does not do yet is refused with exit 2: dissipation or arc
-   length control, a damage viscosity."""
+   length control, a damage viscosity.
+4. The same steps, cracked points and p(x) on 1 and 2 processes, to
+   Newton's tolerance (a step's error is a sum over the processes' points:
+   its cut or not differs only if it lands within round-off of the
+   tolerance)."""
 
 from common import check, corrosion, cracking_corroded_demo, out_dir, run
 
@@ -59,3 +63,17 @@ for sets, why in ((["loading.control=auto"], "dissipation control"),
             check=False)
     check(p.returncode == 2 and "cracking.integration" in p.stderr,
           f"implex with {why}: exit {p.returncode} ({p.stderr.strip()[:120]})")
+
+# 4. One and two processes.
+one, two = out_dir("implex_np1"), out_dir("implex_np2")
+sets = ["cracking.integration=implex", "corrosion.penetration=0.016", "corrosion.steps=8"]
+run(scene, one, sets=sets)
+run(scene, two, sets=sets, mpirun=2)
+r1, r2 = corrosion(one), corrosion(two)
+# Newton's tolerance on a p of a few MPa (SNES_RTOL on the residual, as the
+# ring's test): two runs that converge alike agree far below it.
+dp = max(abs(a["p_MPa"] - b["p_MPa"]) for a, b in zip(r1, r2))
+check(len(r1) == len(r2) and dp < 1e-6 and
+      all(a["cracked_points"] == b["cracked_points"] for a, b in zip(r1, r2)),
+      f"1 and 2 processes: {len(r1)} and {len(r2)} rows, the same cracked points, p within "
+      f"{dp:.1e} MPa")
