@@ -48,7 +48,6 @@ inline Voigt multiply(const Voigt66& A, const Voigt& x)
   return y;
 }
 
-/// The symmetric tensor of a Voigt stress as a 3 x 3 matrix.
 /// The complementary energy density 1/2 s : C^-1 : s of a stress s in an
 /// isotropic material (E [MPa], nu) [N mm/mm^3].
 inline double complementary_energy(const Voigt& s, double E, double nu)
@@ -59,6 +58,7 @@ inline double complementary_energy(const Voigt& s, double E, double nu)
   return 0.5 * ((1 + nu) * squares - nu * trace * trace) / E;
 }
 
+/// The symmetric tensor of a Voigt stress as a 3 x 3 matrix.
 inline Mat3 stress_tensor(const Voigt& s)
 {
   return {s[0], s[5], s[4], s[5], s[1], s[3], s[4], s[3], s[2]};

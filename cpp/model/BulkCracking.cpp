@@ -273,10 +273,13 @@ bool BulkCracking::evaluate()
       if (!_implex && _loading[i] && at_committed_strain(i, strain))
         r.tangent = loading_tangent(i, strain, width);
       ok = ok && r.status == bulk::CrackBandResult::Status::ok;
-      _dissipated_step[i] = r.dissipation;
-      _dissipated_trial[i] = _dissipated[i] + r.dissipation;
       std::copy(r.stress.begin(), r.stress.end(), _stress_trial.begin() + voigt * i);
-      std::copy(r.opening.begin(), r.opening.end(), _opening_trial.begin() + 3 * i);
+      if (!_implex) // IMPL-EX: the readings are implicit_update()'s
+      {
+        _dissipated_step[i] = r.dissipation;
+        _dissipated_trial[i] = _dissipated[i] + r.dissipation;
+        std::copy(r.opening.begin(), r.opening.end(), _opening_trial.begin() + 3 * i);
+      }
       const std::span<double> d_sigma = at(*_d_sigma, _cells[c], q, voigt);
       const std::span<double> d_C = at(*_d_C, _cells[c], q, voigt_sq);
       const bulk::Voigt elastic = bulk::multiply(C, strain);
@@ -300,6 +303,7 @@ void BulkCracking::implicit_update()
   if (_trial_implicit) // since the last evaluate(): the same displacement
     return;
   _trial_implicit = true;
+  _implicit_failures = 0;
   const int n_points = expression_cracking_strain->num_points;
   Rows rows{_strain_values.data(), std::size_t(n_points) * voigt};
   _strain->eval(std::span<const std::int32_t>(_cells), rows);
@@ -311,12 +315,12 @@ void BulkCracking::implicit_update()
           std::span<const double>(_committed.data() + state * i, state), strain_at(i),
           std::span<double>(_trial.data() + state * i, state),
           [&](const bulk::Vec3& n) { return band_width(c, n); }, _strength[i], _dt);
-      // A point whose crack's equilibrium fails keeps its committed state
-      // (the step converged on the extrapolated cracks; the next step
-      // takes it again).
+      // A point whose crack's equilibrium fails keeps its committed state,
+      // counted: implex_error() says so, and the step is cut.
       if (r.status != bulk::CrackBandResult::Status::ok)
       {
         std::copy_n(_committed.begin() + state * i, state, _trial.begin() + state * i);
+        ++_implicit_failures;
         continue;
       }
       _dissipated_step[i] = r.dissipation;
@@ -326,7 +330,7 @@ void BulkCracking::implicit_update()
     }
 }
 
-double BulkCracking::implex_error()
+double BulkCracking::implex_error(std::int64_t& failed_points)
 {
   // The stress the step converged with, before the update replaces it.
   const std::vector<double> stepped = _stress_trial;
@@ -350,6 +354,7 @@ double BulkCracking::implex_error()
       integrate([&](std::size_t i)
                 { return bulk::complementary_energy(stress(_stress_trial, i), _E, _nu); })};
   MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, _mesh->comm());
+  MPI_Allreduce(&_implicit_failures, &failed_points, 1, MPI_INT64_T, MPI_SUM, _mesh->comm());
   return sums[1] > 0 ? std::sqrt(sums[0] / sums[1]) : 0.0;
 }
 

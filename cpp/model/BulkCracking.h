@@ -90,8 +90,11 @@ public:
   /// own at its strain, the energy norm of the difference over the
   /// cracking concrete's: sqrt(int ds : C^-1 : ds / int s : C^-1 : s), s the
   /// crack band's stress, ds the difference [-]. Leaves the crack band's
-  /// update as the trial state (what commit() commits). Collective.
-  double implex_error();
+  /// update as the trial state (what commit() commits); the points whose
+  /// crack's equilibrium failed there (they keep their committed state)
+  /// into `failed_points`. Call right after the step's solve (its last
+  /// evaluate() at the converged displacement). Collective.
+  double implex_error(std::int64_t& failed_points);
   /// cracking.implex_tolerance: a step whose implex_error() exceeds it is
   /// cut [-].
   double implex_tolerance() const { return _implex_tolerance; }
@@ -246,6 +249,8 @@ private:
   /// IMPL-EX: the trial state is implicit_update()'s, and no evaluate()
   /// came after it
   bool _trial_implicit = false;
+  /// IMPL-EX: points whose update failed in the last implicit_update()
+  std::int64_t _implicit_failures = 0;
   /// [point] IMPL-EX: the growth of kappa in the last committed step [mm]
   std::vector<double> _kappa_step;
   std::shared_ptr<dolfinx::fem::Constant<double>> _dT;

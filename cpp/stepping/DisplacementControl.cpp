@@ -94,7 +94,7 @@ bool StepLoop::nominal_steps(const Stage& stage)
       // increment does not grow, unless it jumped (smaller steps do not
       // help there).
       const ImplexCheck implex =
-          rep.converged ? check_implex(rep, stepper.smallest()) : ImplexCheck{};
+          rep.converged ? check_implex(rep, s_try - s, stepper.smallest()) : ImplexCheck{};
       if (rep.converged && stage.zero_force_ends)
       {
         const double P_try = _scenario.load_force(model);
@@ -127,7 +127,9 @@ bool StepLoop::nominal_steps(const Stage& stage)
         if (stage.extrapolate_by)
         {
           before_last.copy_from(_x_committed);
-          d_load_last = stage.extrapolate_by(s_try) - stage.extrapolate_by(s);
+          // After a jump the last increment predicts nothing (its cracks'
+          // growth is the snap's).
+          d_load_last = implex.jump ? 0.0 : stage.extrapolate_by(s_try) - stage.extrapolate_by(s);
         }
         commit();
         s = s_try;
@@ -208,37 +210,50 @@ std::function<double(double)> StepLoop::extrapolation(std::function<double(doubl
   return load;
 }
 
-StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, bool smallest)
+StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, double increment,
+                                             bool smallest)
 {
   model::BulkCracking* bulk = _equilibrium.model().bulk_cracking();
   if (!bulk || !bulk->implex())
     return {};
-  const double error = bulk->implex_error();
+  std::int64_t failed_points = 0;
+  const double error = bulk->implex_error(failed_points);
   ImplexCheck c{error / bulk->implex_tolerance(), false};
-  // The error is first order in the step, but where the cracks snap back
-  // under this control no step is small enough: the state jumps, and
-  // IMPL-EX takes the jump (summary.json implex_jumps) once a cut did not
-  // cut the error by a quarter, or the step cannot be cut.
-  c.jump =
-      c.ratio > 1 && (smallest || (_implex_missed > 0 && error > jump_error_fall * _implex_missed));
-  if (c.ratio <= 1 || c.jump)
-  {
-    if (c.jump)
-    {
-      ++_summary.implex_jumps;
-      if (_report.talk())
-        std::cout << "IMPL-EX error " << error << " (" << _implex_missed
-                  << " before the last cut): the cracks snap back under this control; the "
-                     "step is taken"
-                  << std::endl;
-    }
-    _implex_missed = 0;
-    _summary.implex_error_max = std::max(_summary.implex_error_max, error);
-    return c;
-  }
-  _implex_missed = error;
   std::ostringstream why;
-  why << "IMPL-EX error " << error << " > cracking.implex_tolerance " << bulk->implex_tolerance();
+  if (failed_points > 0)
+  {
+    // The crack band's own update failed there: cut the step (as the
+    // implicit cracks would), never take it.
+    why << "IMPL-EX: the crack band's update failed at " << failed_points << " points";
+    c.ratio = 2;
+  }
+  else
+  {
+    // The error is first order in the step, but where the cracks snap back
+    // under this control no step is small enough: the state jumps, and
+    // IMPL-EX takes the jump (summary.json implex_jumps) once a smaller
+    // try than the last that missed did not cut the error by a quarter, or
+    // the step cannot be cut.
+    const bool smaller = _implex_missed > 0 && increment < 0.99 * _implex_missed_increment;
+    c.jump = c.ratio > 1 && (smallest || (smaller && error > jump_error_fall * _implex_missed));
+    if (c.ratio <= 1 || c.jump)
+    {
+      if (c.jump && _report.talk())
+      {
+        std::cout << "IMPL-EX error " << error;
+        if (smaller)
+          std::cout << " (" << _implex_missed << " before the last cut)";
+        std::cout << ": the cracks snap back under this control; the step is taken" << std::endl;
+      }
+      _summary.implex_jumps += c.jump ? 1 : 0;
+      _implex_missed = 0;
+      _summary.implex_error_max = std::max(_summary.implex_error_max, error);
+      return c;
+    }
+    _implex_missed = error;
+    _implex_missed_increment = increment;
+    why << "IMPL-EX error " << error << " > cracking.implex_tolerance " << bulk->implex_tolerance();
+  }
   rep.converged = false;
   rep.reason = why.str();
   return c;

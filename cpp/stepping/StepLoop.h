@@ -139,11 +139,13 @@ private:
     double ratio = 0;  ///< the step's error over cracking.implex_tolerance (0: no IMPL-EX)
     bool jump = false; ///< taken above the tolerance: no smaller step meets it
   };
-  /// IMPL-EX cracks: the error of a converged step against its tolerance;
-  /// a step that misses it fails (`rep`, its reason), to be cut, unless it
-  /// is a jump: the last cut did not cut the error, or `smallest` (the
-  /// step cannot be cut).
-  ImplexCheck check_implex(solver::SolveReport& rep, bool smallest);
+  /// IMPL-EX cracks: the error of a converged step of `increment` (of the
+  /// stage's parameter) against its tolerance; a step that misses it fails
+  /// (`rep`, its reason), to be cut, unless it is a jump: a smaller try
+  /// than the last that missed did not cut the error, or `smallest` (the
+  /// step cannot be cut). A step whose crack band update failed at a point
+  /// fails.
+  ImplexCheck check_implex(solver::SolveReport& rep, double increment, bool smallest);
   /// Nominal steps, each tried whole and cut in halves when Newton fails.
   bool nominal_steps(const Stage& stage);
   /// After a converged try of step k from the committed state at s0 (force
@@ -214,5 +216,6 @@ private:
   /// IMPL-EX: the error of the last try that missed its tolerance (0 after
   /// a step taken; check_implex)
   double _implex_missed = 0;
+  double _implex_missed_increment = 0; ///< that try's increment of its stage's parameter
 };
 } // namespace pushout::stepping
