@@ -259,15 +259,10 @@ public:
         break;
     }
     std::array<Vec3, 3> Jinv; // columns of J^-1
-    for (int k = 0; k < 3; ++k)
+    if (!inverse_columns(J, Jinv))
     {
-      Vec3 e{};
-      e[k] = 1;
-      if (!solve3(J, e, Jinv[k]))
-      {
-        r.status = CrackBandResult::Status::not_converged;
-        return r;
-      }
+      r.status = CrackBandResult::Status::not_converged;
+      return r;
     }
     point_response(plane, sigma0, w, Jinv, r);
     r.opening = rotate(plane.R, w);
@@ -398,6 +393,19 @@ private:
     double _dt;
   };
 
+  /// The columns of J^-1 into `Jinv`; false if J is singular.
+  static bool inverse_columns(const Mat3& J, std::array<Vec3, 3>& Jinv)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      Vec3 e{};
+      e[k] = 1;
+      if (!solve3(J, e, Jinv[k]))
+        return false;
+    }
+    return true;
+  }
+
   /// The point's stress and tangent from its crack's opening w (global
   /// frame) and the columns of J^-1: sigma = C (epsilon - P w / h),
   /// d sigma / d epsilon = C - (1/h) (C P) J^-1 (C P)^T.
@@ -429,14 +437,7 @@ private:
                  1e-14 * (std::abs(eq.s0[0]) + std::abs(eq.s0[1]) + std::abs(eq.s0[2])));
     Vec3 w{};
     std::array<Vec3, 3> Jinv; // columns of J^-1 at w
-    bool ok = eq.solve(w, tol);
-    const Mat3 J = eq.jacobian();
-    for (int k = 0; k < 3 && ok; ++k)
-    {
-      Vec3 e{};
-      e[k] = 1;
-      ok = solve3(J, e, Jinv[k]);
-    }
+    const bool ok = eq.solve(w, tol) && inverse_columns(eq.jacobian(), Jinv);
     if (!ok)
     {
       r.status = CrackBandResult::Status::not_converged;

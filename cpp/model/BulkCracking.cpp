@@ -34,6 +34,14 @@ double kappa_of(const std::vector<double>& states, std::size_t i)
       .kappa();
 }
 
+/// Point i's six Voigt components in `values` ([point][6]).
+bulk::Voigt voigt_at(const std::vector<double>& values, std::size_t i)
+{
+  bulk::Voigt v;
+  std::copy_n(values.begin() + voigt * i, voigt, v.begin());
+  return v;
+}
+
 /// Values of a Quadrature function at (cell, point), `bs` per point.
 std::span<double> at(fem::Function<double>& f, std::int32_t cell, int point, int bs)
 {
@@ -246,19 +254,24 @@ void BulkCracking::set_temperature_change(double dT)
   _dT->value = {dT};
 }
 
+void BulkCracking::evaluate_strains()
+{
+  Rows rows{_strain_values.data(), std::size_t(expression_cracking_strain->num_points) * voigt};
+  _strain->eval(std::span<const std::int32_t>(_cells), rows);
+}
+
 bool BulkCracking::evaluate()
 {
   _trial_implicit = false;
   const int n_points = expression_cracking_strain->num_points;
-  Rows rows{_strain_values.data(), std::size_t(n_points) * voigt};
-  _strain->eval(std::span<const std::int32_t>(_cells), rows);
+  evaluate_strains();
   const bulk::Voigt66& C = _band.stiffness();
   bool ok = true;
   for (std::size_t c = 0; c < _cells.size(); ++c)
     for (int q = 0; q < n_points; ++q)
     {
       const std::size_t i = c * std::size_t(n_points) + q;
-      const bulk::Voigt strain = strain_at(i);
+      const bulk::Voigt strain = voigt_at(_strain_values, i);
       const std::span<const double> old(_committed.data() + state * i, state);
       const std::span<double> now(_trial.data() + state * i, state);
       auto width = [&](const bulk::Vec3& n) { return band_width(c, n); };
@@ -291,13 +304,6 @@ bool BulkCracking::evaluate()
   return ok;
 }
 
-bulk::Voigt BulkCracking::strain_at(std::size_t i) const
-{
-  bulk::Voigt strain;
-  std::copy_n(_strain_values.begin() + voigt * i, voigt, strain.begin());
-  return strain;
-}
-
 void BulkCracking::implicit_update()
 {
   if (_trial_implicit) // since the last evaluate(): the same displacement
@@ -305,15 +311,14 @@ void BulkCracking::implicit_update()
   _trial_implicit = true;
   _implicit_failures = 0;
   const int n_points = expression_cracking_strain->num_points;
-  Rows rows{_strain_values.data(), std::size_t(n_points) * voigt};
-  _strain->eval(std::span<const std::int32_t>(_cells), rows);
+  evaluate_strains();
   for (std::size_t c = 0; c < _cells.size(); ++c)
     for (int q = 0; q < n_points; ++q)
     {
       const std::size_t i = c * std::size_t(n_points) + q;
       const bulk::CrackBandResult r = _band.update(
-          std::span<const double>(_committed.data() + state * i, state), strain_at(i),
-          std::span<double>(_trial.data() + state * i, state),
+          std::span<const double>(_committed.data() + state * i, state),
+          voigt_at(_strain_values, i), std::span<double>(_trial.data() + state * i, state),
           [&](const bulk::Vec3& n) { return band_width(c, n); }, _strength[i], _dt);
       // A point whose crack's equilibrium fails keeps its committed state,
       // counted: implex_error() says so, and the step is cut.
@@ -335,24 +340,18 @@ double BulkCracking::implex_error(std::int64_t& failed_points)
   // The stress the step converged with, before the update replaces it.
   const std::vector<double> stepped = _stress_trial;
   implicit_update();
-  const auto stress = [](const std::vector<double>& s, std::size_t i)
-  {
-    bulk::Voigt v;
-    std::copy_n(s.begin() + voigt * i, voigt, v.begin());
-    return v;
-  };
   double sums[2] = {
       integrate(
           [&](std::size_t i)
           {
-            bulk::Voigt d = stress(_stress_trial, i);
-            const bulk::Voigt e = stress(stepped, i);
+            bulk::Voigt d = voigt_at(_stress_trial, i);
+            const bulk::Voigt e = voigt_at(stepped, i);
             for (int k = 0; k < voigt; ++k)
               d[k] -= e[k];
             return bulk::complementary_energy(d, _E, _nu);
           }),
       integrate([&](std::size_t i)
-                { return bulk::complementary_energy(stress(_stress_trial, i), _E, _nu); })};
+                { return bulk::complementary_energy(voigt_at(_stress_trial, i), _E, _nu); })};
   MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, _mesh->comm());
   MPI_Allreduce(&_implicit_failures, &failed_points, 1, MPI_INT64_T, MPI_SUM, _mesh->comm());
   return sums[1] > 0 ? std::sqrt(sums[0] / sums[1]) : 0.0;

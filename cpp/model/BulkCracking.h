@@ -196,8 +196,9 @@ private:
   /// (no forms' coefficients); once per converged step (the displacement
   /// does not move between the step's check, record and commit).
   void implicit_update();
-  /// Point i's strain of the last evaluate() (Voigt).
-  bulk::Voigt strain_at(std::size_t i) const;
+  /// The strain at every point from the model's displacement, into
+  /// _strain_values.
+  void evaluate_strains();
 
   /// Whether `strain` is point i's committed strain (to a relative 1e-9).
   bool at_committed_strain(std::size_t i, const bulk::Voigt& strain) const;
