@@ -109,6 +109,9 @@ struct CrackBandResult
   /// Energy dissipated per unit volume from the committed state to the
   /// trial one [N mm/mm^3]: the crack's dissipation per unit area over h.
   double dissipation = 0;
+  /// secant_response(): the crack is closed (its normal stiffness the
+  /// closure penalty)
+  bool closed = false;
   enum class Status
   {
     ok,
@@ -255,6 +258,7 @@ public:
         r.status = CrackBandResult::Status::not_converged;
         return r;
       }
+      r.closed = k_n != g;
       if (plane.R[0] * w[0] + plane.R[1] * w[1] + plane.R[2] * w[2] > 0)
         break;
     }

@@ -161,6 +161,7 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
   _strain_values.resize(_strength.size() * voigt);
   _loading.assign(_strength.size(), false);
   _kappa_step.assign(_strength.size(), 0.0);
+  _closed.assign(_strength.size(), 0);
   _stress_trial.assign(_strength.size() * voigt, 0.0);
   _stress_committed = _stress_trial;
   _strain_committed = _stress_trial;
@@ -210,6 +211,7 @@ double BulkCracking::band_width(std::size_t cell, const bulk::Vec3& n) const
 
 void BulkCracking::commit()
 {
+  ++_tangent_version;
   if (_implex)
   {
     // What the step's cracks did at its converged strain: the crack band's
@@ -244,6 +246,7 @@ void BulkCracking::reset()
   std::fill(_opening.begin(), _opening.end(), 0.0);
   std::fill(_loading.begin(), _loading.end(), false);
   std::fill(_kappa_step.begin(), _kappa_step.end(), 0.0);
+  ++_tangent_version;
   std::fill(_stress_committed.begin(), _stress_committed.end(), 0.0);
   std::fill(_strain_committed.begin(), _strain_committed.end(), 0.0);
   revert();
@@ -267,6 +270,7 @@ bool BulkCracking::evaluate()
   evaluate_strains();
   const bulk::Voigt66& C = _band.stiffness();
   bool ok = true;
+  bool tangent_changed = !_implex;
   for (std::size_t c = 0; c < _cells.size(); ++c)
     for (int q = 0; q < n_points; ++q)
     {
@@ -286,6 +290,11 @@ bool BulkCracking::evaluate()
       if (!_implex && _loading[i] && at_committed_strain(i, strain))
         r.tangent = loading_tangent(i, strain, width);
       ok = ok && r.status == bulk::CrackBandResult::Status::ok;
+      if (_implex && r.closed != bool(_closed[i]))
+      {
+        _closed[i] = r.closed;
+        tangent_changed = true;
+      }
       std::copy(r.stress.begin(), r.stress.end(), _stress_trial.begin() + voigt * i);
       if (!_implex) // IMPL-EX: the readings are implicit_update()'s
       {
@@ -301,6 +310,8 @@ bool BulkCracking::evaluate()
       for (int k = 0; k < voigt_sq; ++k)
         d_C[k] = r.tangent[k] - C[k];
     }
+  if (tangent_changed)
+    ++_tangent_version;
   return ok;
 }
 

@@ -85,7 +85,20 @@ public:
   /// increment to the last committed step's (0: none, the committed
   /// history: a stage's first step, a load that turns back). The history
   /// a crack holds is kappa_n + ratio (kappa_n - kappa_n-1).
-  void set_extrapolation(double ratio) { _extrapolation = ratio > 0 ? ratio : 0.0; }
+  void set_extrapolation(double ratio)
+  {
+    const double r = ratio > 0 ? ratio : 0.0;
+    if (r != _extrapolation)
+      ++_tangent_version;
+    _extrapolation = r;
+  }
+  /// A number that changes whenever the tangent of the next evaluate() at
+  /// another displacement may differ from the last one's. With IMPL-EX it
+  /// holds while no crack opens or closes and nothing is committed or
+  /// extrapolated anew (a step's tangent is the same at every iteration,
+  /// Equilibrium::jacobian keeps it); otherwise it changes at every
+  /// evaluate().
+  std::uint64_t tangent_version() const { return _tangent_version; }
   /// IMPL-EX: how far the converged step's stress is from the crack band's
   /// own at its strain, the energy norm of the difference over the
   /// cracking concrete's: sqrt(int ds : C^-1 : ds / int s : C^-1 : s), s the
@@ -254,6 +267,9 @@ private:
   std::int64_t _implicit_failures = 0;
   /// [point] IMPL-EX: the growth of kappa in the last committed step [mm]
   std::vector<double> _kappa_step;
+  /// [point] IMPL-EX: the crack was closed at the last evaluate()
+  std::vector<std::uint8_t> _closed;
+  std::uint64_t _tangent_version = 0; ///< tangent_version()
   std::shared_ptr<dolfinx::fem::Constant<double>> _dT;
   std::shared_ptr<dolfinx::fem::Function<double>> _d_sigma, _d_C;
   /// energy_release()'s dG/du density (on _d_sigma's space) and a scalar

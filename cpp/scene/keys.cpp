@@ -442,8 +442,8 @@ std::vector<KeyDef> make_keys()
        "tangent; a step that fails from it is tried again from the current one before it is "
        "cut); current: the tangent at the step's start, where the laws are at their "
        "committed state (always under dissipation control, whose steps must stay on the "
-       "committed state's branch, and in the thermal step). The converged solution is the "
-       "same",
+       "committed state's branch, in the thermal step, and with IMPL-EX cracks, whose step's "
+       "tangent is known at its start). The converged solution is the same",
        -inf,
        inf,
        false,
@@ -452,10 +452,12 @@ std::vector<KeyDef> make_keys()
        K::string,
        std::string("mixed"),
        "",
-       "condensed bulk: mixed: flexible GMRES applies C and the lagged preconditioner's LU in "
-       "single precision, to a relative tolerance of at least 1e-7 (half the memory traffic; "
-       "the residual, and so the solution and the Newton tolerances, stay in double); double: "
-       "everything in double, GMRES to -ksp_rtol",
+       "mixed: condensed bulk: flexible GMRES applies C and the lagged preconditioner's LU in "
+       "single precision, to a relative tolerance of at least 1e-7; whole model on one "
+       "process (lagged MUMPS LU): the LU factored and applied in single precision by "
+       "MUMPS, flexible GMRES to -ksp_rtol (half the memory traffic; the residual, and so "
+       "the solution and the Newton tolerances, stay in double); double: everything in "
+       "double, GMRES to -ksp_rtol",
        -inf,
        inf,
        false,

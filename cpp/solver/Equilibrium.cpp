@@ -1,14 +1,30 @@
 #include "Equilibrium.h"
 #include "../common/petsc_check.h"
 #include "RigidBodyModes.h"
+#include "SinglePrecisionSparse.h"
 #include <cmath>
+#include <cstdlib>
 #include <dolfinx/common/IndexMap.h>
 #include <dolfinx/la/petsc.h>
 #include <limits>
+#include <petscksp.h>
+#include <string>
 
 namespace pushout::solver
 {
 using petsc::check;
+
+namespace
+{
+/// Test hook, not a scene key (tests/e2e/test_implex_tends_to_implicit.py):
+/// with PUSHOUT_TEST_NO_TANGENT_CACHE set, IMPL-EX cracks' tangent is
+/// assembled afresh at every Newton iteration, as for implicit cracks.
+bool test_no_tangent_cache()
+{
+  static const bool set = std::getenv("PUSHOUT_TEST_NO_TANGENT_CACHE") != nullptr;
+  return set;
+}
+} // namespace
 
 Equilibrium::Equilibrium(model::Model& model)
     : _model(model), _f_interface(model.space()->dofmap()->index_map, model.block_size()),
@@ -20,6 +36,8 @@ Equilibrium::Equilibrium(model::Model& model)
 
 Equilibrium::~Equilibrium()
 {
+  if (_bulk_tangent)
+    petsc::check_nothrow(MatDestroy(&_bulk_tangent), "MatDestroy");
   if (_f_thermal)
     petsc::check_nothrow(VecDestroy(&_f_thermal), "VecDestroy");
   petsc::check_nothrow(VecDestroy(&_f_external), "VecDestroy");
@@ -69,7 +87,7 @@ void Equilibrium::update_displacement(Vec x)
   _model.displacement().x()->scatter_fwd();
 }
 
-bool Equilibrium::assemble_joints(std::span<double> f, Mat A)
+bool Equilibrium::assemble_joints(std::span<double> f, Mat A, bool crack_tangent)
 {
   bool ok = true;
   for (interface::Interface* joints : _model.joints())
@@ -78,10 +96,29 @@ bool Equilibrium::assemble_joints(std::span<double> f, Mat A)
   {
     ok = cracking->evaluate() && ok;
     cracking->add_forces(f);
-    if (A)
+    if (A && crack_tangent)
       cracking->add_tangent(A);
   }
   return ok;
+}
+
+Mat Equilibrium::bulk_tangent()
+{
+  const model::BulkCracking* cracking = _model.bulk_cracking();
+  // Stale on one process, rebuilt on all: the assembly is collective.
+  int stale = !_bulk_tangent || cracking->tangent_version() != _bulk_tangent_version;
+  MPI_Allreduce(MPI_IN_PLACE, &stale, 1, MPI_INT, MPI_MAX, _model.comm());
+  if (!stale)
+    return _bulk_tangent;
+  if (!_bulk_tangent)
+    _bulk_tangent = create_matrix();
+  else
+    check(MatCopy(_model.stiffness(), _bulk_tangent, SAME_NONZERO_PATTERN), "MatCopy");
+  cracking->add_tangent(_bulk_tangent);
+  check(MatAssemblyBegin(_bulk_tangent, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(_bulk_tangent, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  _bulk_tangent_version = cracking->tangent_version();
+  return _bulk_tangent;
 }
 
 bool Equilibrium::internal_forces(Vec x, Vec F)
@@ -89,7 +126,7 @@ bool Equilibrium::internal_forces(Vec x, Vec F)
   update_displacement(x);
   std::span<double> fi = _f_interface.mutable_array();
   std::fill(fi.begin(), fi.end(), 0.0);
-  const bool ok = assemble_joints(fi, nullptr);
+  const bool ok = assemble_joints(fi, nullptr, false);
   _f_interface.scatter_rev(std::plus<double>());
 
   check(MatMult(_model.stiffness(), x, F), "MatMult");
@@ -232,15 +269,60 @@ bool Equilibrium::jacobian(Vec x, Mat J)
 {
   count_tangent();
   update_displacement(x);
-  check(MatCopy(_model.stiffness(), J, SAME_NONZERO_PATTERN), "MatCopy");
   std::span<double> fi = _f_interface.mutable_array();
   std::fill(fi.begin(), fi.end(), 0.0);
-  const bool ok = assemble_joints(fi, J);
+  bool ok = true;
+  model::BulkCracking* cracking = _model.bulk_cracking();
+  if (cracking && cracking->implex() && !test_no_tangent_cache())
+  {
+    // The cracks' secant tangent is the step's at every iteration but where
+    // a crack opens or closes (BulkCracking::tangent_version): K plus it is
+    // kept, and only the joints' tangent is added afresh. The crack band is
+    // evaluated first (it may open or close a crack).
+    ok = cracking->evaluate();
+    check(MatCopy(bulk_tangent(), J, SAME_NONZERO_PATTERN), "MatCopy");
+    for (interface::Interface* joints : _model.joints())
+      ok = joints->assemble(_model.displacement().x()->array(), fi, J) && ok;
+  }
+  else
+  {
+    check(MatCopy(_model.stiffness(), J, SAME_NONZERO_PATTERN), "MatCopy");
+    ok = assemble_joints(fi, J, true);
+  }
   check(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   check(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
   static_assert(sizeof(PetscInt) == sizeof(std::int32_t), "PETSc with 32-bit indices expected");
   check(MatZeroRowsLocal(J, PetscInt(_bc.dofs.size()), _bc.dofs.data(), 1.0, nullptr, nullptr),
         "MatZeroRowsLocal");
   return ok;
+}
+
+void Equilibrium::configure(KSP ksp) const
+{
+  if (!_single_precision)
+    return;
+  int processes = 1;
+  MPI_Comm_size(PetscObjectComm(reinterpret_cast<PetscObject>(ksp)), &processes);
+  KSPType type;
+  check(KSPGetType(ksp, &type), "KSPGetType");
+  PC pc;
+  check(KSPGetPC(ksp, &pc), "KSPGetPC");
+  PCType pc_type;
+  check(PCGetType(pc, &pc_type), "PCGetType");
+  if (processes != 1 || std::string(type) != KSPGMRES || !pc_type || std::string(pc_type) != PCLU)
+    return;
+  MatSolverType factor_type = nullptr;
+  check(PCFactorGetMatSolverType(pc, &factor_type), "PCFactorGetMatSolverType");
+  if (!factor_type || std::string(factor_type) != MATSOLVERMUMPS)
+    return; // another LU the user asked for
+  // GMRES on a lagged LU (solver.preconditioner = "lagged"): the LU only
+  // steers it. Flexible GMRES: its residual is the Jacobian's own, whatever
+  // the rounding of the preconditioner (SinglePrecisionSparse.h); the
+  // tolerance stays.
+  use_single_precision_sparse_lu(pc);
+  PetscInt restart;
+  check(KSPGMRESGetRestart(ksp, &restart), "KSPGMRESGetRestart");
+  check(KSPSetType(ksp, KSPFGMRES), "KSPSetType");
+  check(KSPGMRESSetRestart(ksp, restart), "KSPGMRESSetRestart");
 }
 } // namespace pushout::solver

@@ -76,6 +76,14 @@ public:
       cracking->revert();
   }
   int constraint_version() const override { return _constraint_version; }
+  /// GMRES on a lagged MUMPS LU, on one process, with solver.precision =
+  /// "mixed": that LU in single precision, and flexible GMRES
+  /// (SinglePrecisionSparse.h). Any other solver as the options say.
+  void configure(KSP ksp) const override;
+
+  /// Whether configure() may take the lagged LU in single precision
+  /// (solver.precision = "mixed"). Set before a solver is made.
+  void set_single_precision(bool single) { _single_precision = single; }
 
   /// Copies x into the model's displacement (ghosts updated).
   void update_displacement(Vec x);
@@ -83,8 +91,13 @@ public:
 private:
   /// Adds the forces of every set of joint elements (interface, crack
   /// planes) and of the concrete's cracks at the model's displacement to f,
-  /// and their tangents to A if given. False if a law failed.
-  bool assemble_joints(std::span<double> f, Mat A);
+  /// and the joints' tangents to A if given (the cracks' too if
+  /// `crack_tangent`). False if a law failed.
+  bool assemble_joints(std::span<double> f, Mat A, bool crack_tangent);
+  /// IMPL-EX cracks: K plus the cracks' tangent of the last evaluate(),
+  /// assembled again only when that tangent changed
+  /// (BulkCracking::tangent_version). Collective.
+  Mat bulk_tangent();
 
   model::Model& _model;
   Vec _f_thermal = nullptr, _f_external = nullptr;
@@ -95,5 +108,8 @@ private:
   dolfinx::la::Vector<double> _f_interface;
   dolfinx::la::Vector<double> _g_energy; ///< dG/du of energy_release(), local with ghosts
   double _K_norm = -1;                   ///< ||K||_inf, once needed [N/mm]
+  bool _single_precision = false;
+  Mat _bulk_tangent = nullptr;             ///< bulk_tangent()
+  std::uint64_t _bulk_tangent_version = 0; ///< of the cracks' tangent in it
 };
 } // namespace pushout::solver

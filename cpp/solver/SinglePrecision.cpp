@@ -1,6 +1,7 @@
 #include "SinglePrecision.h"
 #include "../common/petsc_check.h"
 #include "../common/vector_clones.h"
+#include "ShellPreconditioner.h"
 #include <algorithm>
 #include <petscblaslapack.h>
 #include <petscmat.h>
@@ -122,24 +123,11 @@ PetscErrorCode apply(PC pc, Vec x, Vec y)
         check(VecRestoreArray(y, &ya), "VecRestoreArray");
       });
 }
-
-PetscErrorCode destroy(PC pc)
-{
-  Factors* f = nullptr;
-  const PetscErrorCode code = PCShellGetContext(pc, &f);
-  delete f;
-  return code;
-}
 } // namespace
 
 void use_single_precision_lu(PC pc)
 {
-  check(PCSetType(pc, PCSHELL), "PCSetType");
-  check(PCShellSetDestroy(pc, destroy), "PCShellSetDestroy"); // first: it owns the context
-  check(PCShellSetContext(pc, new Factors), "PCShellSetContext");
-  check(PCShellSetSetUp(pc, set_up), "PCShellSetSetUp");
-  check(PCShellSetApply(pc, apply), "PCShellSetApply");
-  check(PCShellSetName(pc, "LU factored in double, applied in single precision (pushout)"),
-        "PCShellSetName");
+  make_shell_preconditioner<Factors>(
+      pc, set_up, apply, "LU factored in double, applied in single precision (pushout)");
 }
 } // namespace pushout::solver

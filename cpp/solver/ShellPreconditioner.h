@@ -1,0 +1,31 @@
+// A PCSHELL that owns its context: the single-precision LU preconditioners
+// (SinglePrecision.h, SinglePrecisionSparse.h) are made this way.
+#pragma once
+
+#include "../common/petsc_check.h"
+#include <petscpc.h>
+
+namespace pushout::solver
+{
+/// Makes `pc` a PCSHELL with a new Context, deleted with the PC, that PETSc
+/// sets up with `set_up` (on new operators) and applies with `apply`.
+template <typename Context>
+void make_shell_preconditioner(PC pc, PetscErrorCode (*set_up)(PC),
+                               PetscErrorCode (*apply)(PC, Vec, Vec), const char* name)
+{
+  using petsc::check;
+  PetscErrorCode (*destroy)(PC) = [](PC shell) -> PetscErrorCode
+  {
+    Context* context = nullptr;
+    const PetscErrorCode code = PCShellGetContext(shell, &context);
+    delete context;
+    return code;
+  };
+  check(PCSetType(pc, PCSHELL), "PCSetType");
+  check(PCShellSetDestroy(pc, destroy), "PCShellSetDestroy"); // first: it owns the context
+  check(PCShellSetContext(pc, new Context), "PCShellSetContext");
+  check(PCShellSetSetUp(pc, set_up), "PCShellSetSetUp");
+  check(PCShellSetApply(pc, apply), "PCShellSetApply");
+  check(PCShellSetName(pc, name), "PCShellSetName");
+}
+} // namespace pushout::solver

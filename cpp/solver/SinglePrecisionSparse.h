@@ -1,0 +1,35 @@
+// Single precision for GMRES on the whole model (one process): the sparse
+// LU of the lagged preconditioner factored and applied by MUMPS in single
+// precision (smumps), the whole model's counterpart of SinglePrecision.h.
+//
+// Why: on the whole model of the paper's mesh with cracking concrete
+// (25 920 dofs) the LU factors hold 22 million entries (MUMPS, PORD
+// ordering): every back-solve streams them once, and GMRES on the lagged LU
+// takes about 8 back-solves per Newton iteration. In single precision the
+// factors are half the bytes, and the factorisation's dense kernels run on
+// twice the numbers per vector instruction (docs/solver.md, "Mixed
+// precision on the whole model").
+//
+// What it changes: only the preconditioner. The whole model's Jacobian is
+// less well conditioned than a condensed one (condition ~1e6 on that mesh),
+// so that a single-precision LU alone solves to a few per cent; that
+// rounding depends on the right-hand side, so the preconditioner is not
+// quite linear and GMRES must be flexible (FGMRES, right preconditioning:
+// its residual is the Jacobian's own, applied in double). The Krylov
+// tolerance, the Newton iterates' residuals and every Newton tolerance stay
+// as in double precision; the curve differs by Newton's tolerance.
+#pragma once
+
+#include <petscpc.h>
+
+namespace pushout::solver
+{
+/// Makes `pc` (of a sequential KSP whose preconditioning matrix is a
+/// sequential AIJ matrix) a PCSHELL that factors that matrix with MUMPS in
+/// single precision whenever PETSc sets the preconditioner up (the
+/// analysis once per nonzero pattern) and applies the factors. A failed
+/// factorisation is reported as PETSc's own are (PCGetFailedReason: a zero
+/// pivot, out of memory; the Newton solve fails with DIVERGED_LINEAR_SOLVE
+/// and the step is cut).
+void use_single_precision_sparse_lu(PC pc);
+} // namespace pushout::solver

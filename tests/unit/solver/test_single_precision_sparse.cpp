@@ -1,0 +1,120 @@
+// The single-precision sparse LU preconditioner of the whole model
+// (solver/SinglePrecisionSparse.h): on a matrix too ill-conditioned for a
+// single-precision LU to solve by itself, flexible GMRES preconditioned by
+// it converges to 1e-11 on the double-precision operator; new values on the
+// same pattern are factored again (the analysis kept); a singular matrix is
+// a failed preconditioner (zero pivot), not an error.
+#include "common/petsc_check.h"
+#include "solver/SinglePrecisionSparse.h"
+#include "zero_pivot.h"
+#include <cmath>
+#include <gtest/gtest.h>
+#include <petscksp.h>
+
+using namespace pushout;
+using petsc::check;
+
+namespace
+{
+//// A chain of n springs fixed at its first node, stiffnesses from 1 to
+/// `contrast` [N/mm] (a penalty beside a soft crack), with a non-symmetric
+/// coupling c of each node to the next (friction makes the Jacobian so):
+/// condition ~ contrast n^2.
+Mat chain(PetscInt n, double contrast, double c)
+{
+  Mat A;
+  check(MatCreateSeqAIJ(PETSC_COMM_SELF, n, n, 3, nullptr, &A), "MatCreateSeqAIJ");
+  for (PetscInt e = 0; e < n; ++e) // spring e between nodes e - 1 and e
+  {
+    const double k = std::pow(contrast, double(e % 7) / 6.0);
+    check(MatSetValue(A, e, e, k, ADD_VALUES), "MatSetValue");
+    if (e > 0)
+    {
+      check(MatSetValue(A, e - 1, e - 1, k, ADD_VALUES), "MatSetValue");
+      check(MatSetValue(A, e - 1, e, -k + c, ADD_VALUES), "MatSetValue");
+      check(MatSetValue(A, e, e - 1, -k, ADD_VALUES), "MatSetValue");
+    }
+  }
+  check(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  return A;
+}
+
+double relative_residual(Mat A, Vec x, Vec b)
+{
+  Vec r;
+  check(VecDuplicate(b, &r), "VecDuplicate");
+  check(MatMult(A, x, r), "MatMult");
+  check(VecAXPY(r, -1.0, b), "VecAXPY");
+  double rn, bn;
+  check(VecNorm(r, NORM_2, &rn), "VecNorm");
+  check(VecNorm(b, NORM_2, &bn), "VecNorm");
+  check(VecDestroy(&r), "VecDestroy");
+  return rn / bn;
+}
+
+KSP flexible_gmres(Mat A)
+{
+  KSP ksp;
+  check(KSPCreate(PETSC_COMM_SELF, &ksp), "KSPCreate");
+  check(KSPSetType(ksp, KSPFGMRES), "KSPSetType"); // as Equilibrium::configure
+  check(KSPSetOperators(ksp, A, A), "KSPSetOperators");
+  check(KSPSetTolerances(ksp, 1e-12, 1e-30, PETSC_DEFAULT, 100), "KSPSetTolerances");
+  PC pc;
+  check(KSPGetPC(ksp, &pc), "KSPGetPC");
+  solver::use_single_precision_sparse_lu(pc);
+  return ksp;
+}
+} // namespace
+
+TEST(SinglePrecisionSparse, FlexibleGmresConvergesInDouble)
+{
+  const PetscInt n = 400;
+  Mat A = chain(n, 1e3, 0.3);
+  KSP ksp = flexible_gmres(A);
+  Vec b, x;
+  check(MatCreateVecs(A, &x, &b), "MatCreateVecs");
+  check(VecSetRandom(b, nullptr), "VecSetRandom");
+
+  // The preconditioner alone: a single-precision solve, far from 1e-11
+  // (condition ~1e8 here: 1e3 n^2), so the test below is GMRES's doing.
+  PC pc;
+  check(KSPGetPC(ksp, &pc), "KSPGetPC");
+  check(KSPSetUp(ksp), "KSPSetUp");
+  check(PCApply(pc, b, x), "PCApply");
+  const double alone = relative_residual(A, x, b);
+  EXPECT_GT(alone, 1e-9);
+
+  for (int values = 0; values < 2; ++values)
+  {
+    if (values == 1)
+    {
+      // New values on the same pattern (a new Jacobian): factored again.
+      check(MatScale(A, 3.0), "MatScale");
+      check(MatShift(A, 1.0), "MatShift");
+      check(KSPSetOperators(ksp, A, A), "KSPSetOperators");
+    }
+    check(VecSet(x, 0.0), "VecSet");
+    check(KSPSolve(ksp, b, x), "KSPSolve");
+    KSPConvergedReason reason;
+    check(KSPGetConvergedReason(ksp, &reason), "KSPGetConvergedReason");
+    PetscInt its;
+    check(KSPGetIterationNumber(ksp, &its), "KSPGetIterationNumber");
+    EXPECT_GT(reason, 0) << "values " << values;
+    EXPECT_LE(its, 20) << "values " << values;
+    EXPECT_LT(relative_residual(A, x, b), 1e-11) << "values " << values;
+  }
+  for (Vec* v : {&b, &x})
+    check(VecDestroy(v), "VecDestroy");
+  check(KSPDestroy(&ksp), "KSPDestroy");
+  check(MatDestroy(&A), "MatDestroy");
+}
+
+TEST(SinglePrecisionSparse, SingularMatrixIsAFailedPreconditioner)
+{
+  // A node whose row holds nothing (a dof that no element stiffens).
+  const PetscInt n = 10, last = n - 1;
+  Mat A = chain(n, 1.0, 0.0);
+  check(MatZeroRows(A, 1, &last, 0.0, nullptr, nullptr), "MatZeroRows");
+  unit::expect_zero_pivot_failure(flexible_gmres(A), A);
+}
