@@ -120,6 +120,24 @@ struct CrackBandResult
   } status = Status::ok;
 };
 
+/// IMPL-EX: a cracked point's secant response (CrackBand::secant_response)
+/// at a fixed history as linear maps of the strain, one on each side of
+/// closure, and the functional whose sign picks the side: what every
+/// evaluation of a step needs, computed once per step
+/// (CrackBand::secant_operator, applied by CrackBand::secant_apply).
+struct SecantOperator
+{
+  bool cracked = false;
+  /// d sigma / d epsilon with the crack open [0] and closed [1] [MPa]
+  std::array<Voigt66, 2> tangent{};
+  /// That side's crack equilibrium J is regular (else its response fails).
+  std::array<bool, 2> regular{true, true};
+  /// n . w of the open crack per unit strain [mm]: the crack is open where
+  /// closing . epsilon > 0.
+  Voigt closing{};
+  double damage = 0; ///< the crack's damage at the history [-]
+};
+
 class CrackBand
 {
 public:
@@ -242,17 +260,14 @@ public:
     const laws::CamanhoDavila law = cohesive_law(plane.h, strength);
     kappa = std::max(kappa, laws::DamageHistory<const double>(state.law_state()).kappa());
     const double g = law.secant(kappa);
-    // J = R^T diag(k_n, g, g) R + A / h = g I + (k_n - g) n n + A / h, with
-    // k_n = g open, k_p closed. The crack's energy is convex in w, so one of
-    // the two is consistent: open if its w . n > 0, else closed.
+    // J with k_n = g open, the penalty closed (secant_jacobian). The crack's
+    // energy is convex in w, so one of the two is consistent: open if its
+    // w . n > 0, else closed.
     Vec3 w{};
     Mat3 J{};
     for (const double k_n : {g, law.k()})
     {
-      J = plane.A_h;
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-          J[3 * i + j] += (i == j ? g : 0.0) + (k_n - g) * plane.R[i] * plane.R[j];
+      J = secant_jacobian(plane, g, k_n);
       if (!solve3(J, plane.s0, w))
       {
         r.status = CrackBandResult::Status::not_converged;
@@ -271,6 +286,76 @@ public:
     point_response(plane, sigma0, w, Jinv, r);
     r.opening = rotate(plane.R, w);
     r.damage = law.damage(kappa);
+    return r;
+  }
+
+  /// secant_response() of the committed state `old` at the history `kappa`
+  /// [mm] as linear maps of the strain (SecantOperator): secant_apply() of
+  /// it at a strain is secant_response() there.
+  SecantOperator secant_operator(std::span<const double> old, double kappa,
+                                 double strength = 1) const
+  {
+    const CrackState<const double> state(old);
+    SecantOperator op;
+    if (!state.cracked())
+      return op;
+    op.cracked = true;
+    const CrackPlane plane(*this, state, Voigt{});
+    const laws::CamanhoDavila law = cohesive_law(plane.h, strength);
+    kappa = std::max(kappa, laws::DamageHistory<const double>(state.law_state()).kappa());
+    const double g = law.secant(kappa);
+    op.damage = law.damage(kappa);
+    const std::array<double, 2> k_n = {g, law.k()};
+    for (int side = 0; side < 2; ++side)
+    {
+      std::array<Vec3, 3> Jinv;
+      op.regular[side] = inverse_columns(secant_jacobian(plane, g, k_n[side]), Jinv);
+      if (!op.regular[side])
+        continue;
+      op.tangent[side] = tangent_of(plane, Jinv);
+      if (side == 1)
+        continue;
+      // n . w = n . J^-1 s0(epsilon), s0 the traction of C epsilon: column
+      // j of C is the stress of the unit strain e_j.
+      for (int j = 0; j < 6; ++j)
+      {
+        Voigt column;
+        for (int i = 0; i < 6; ++i)
+          column[i] = _C[6 * i + j];
+        const Vec3 s0 = traction(column, plane.R_n());
+        for (int i = 0; i < 3; ++i)
+          for (int k = 0; k < 3; ++k)
+            op.closing[j] += plane.R[i] * Jinv[k][i] * s0[k];
+      }
+    }
+    return op;
+  }
+
+  /// The stress and tangent of secant_operator() `op` at `strain`, and
+  /// whether the crack is closed there (as secant_response(): no opening,
+  /// no dissipation).
+  CrackBandResult secant_apply(const SecantOperator& op, const Voigt& strain) const
+  {
+    CrackBandResult r;
+    if (!op.cracked)
+    {
+      r.stress = multiply(_C, strain);
+      r.tangent = _C;
+      return r;
+    }
+    double opening = 0;
+    for (int j = 0; j < 6; ++j)
+      opening += op.closing[j] * strain[j];
+    const int side = op.regular[0] && opening > 0 ? 0 : 1;
+    r.closed = side == 1;
+    if (!op.regular[0] || !op.regular[side])
+    {
+      r.status = CrackBandResult::Status::not_converged;
+      return r;
+    }
+    r.tangent = op.tangent[side];
+    r.stress = multiply(r.tangent, strain);
+    r.damage = op.damage;
     return r;
   }
 
@@ -299,6 +384,9 @@ private:
       }
       s0 = traction(sigma0, n);
     }
+
+    /// The crack's normal n (R's first row).
+    Vec3 R_n() const { return {R[0], R[1], R[2]}; }
 
     double h;                ///< band width [mm]
     Mat3 R;                  ///< rows n, s1, s2
@@ -416,17 +504,35 @@ private:
   void point_response(const CrackPlane& plane, const Voigt& sigma0, const Vec3& w,
                       const std::array<Vec3, 3>& Jinv, CrackBandResult& r) const
   {
-    const double h = plane.h;
     r.stress = sigma0;
-    r.tangent = _C;
     for (int k = 0; k < 3; ++k)
       for (int i = 0; i < 6; ++i)
-        r.stress[i] -= plane.CP[k][i] * w[k] / h;
+        r.stress[i] -= plane.CP[k][i] * w[k] / plane.h;
+    r.tangent = tangent_of(plane, Jinv);
+  }
+
+  /// d sigma / d epsilon = C - (1/h) (C P) J^-1 (C P)^T, J^-1 by columns.
+  Voigt66 tangent_of(const CrackPlane& plane, const std::array<Vec3, 3>& Jinv) const
+  {
+    Voigt66 T = _C;
     for (int i = 0; i < 6; ++i)
       for (int j = 0; j < 6; ++j)
         for (int k = 0; k < 3; ++k)
           for (int l = 0; l < 3; ++l)
-            r.tangent[6 * i + j] -= plane.CP[k][i] * Jinv[l][k] * plane.CP[l][j] / h;
+            T[6 * i + j] -= plane.CP[k][i] * Jinv[l][k] * plane.CP[l][j] / plane.h;
+    return T;
+  }
+
+  /// The crack equilibrium's J of a secant spring g with normal stiffness
+  /// k_n (g open, the penalty closed): R^T diag(k_n, g, g) R + A / h =
+  /// g I + (k_n - g) n n + A / h.
+  static Mat3 secant_jacobian(const CrackPlane& plane, double g, double k_n)
+  {
+    Mat3 J = plane.A_h;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        J[3 * i + j] += (i == j ? g : 0.0) + (k_n - g) * plane.R[i] * plane.R[j];
+    return J;
   }
 
   /// The crack's equilibrium and the point's stress and tangent.

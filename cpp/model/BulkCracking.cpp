@@ -162,6 +162,8 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
   _loading.assign(_strength.size(), false);
   _kappa_step.assign(_strength.size(), 0.0);
   _closed.assign(_strength.size(), 0);
+  if (_implex)
+    _secant.resize(_strength.size());
   _stress_trial.assign(_strength.size() * voigt, 0.0);
   _stress_committed = _stress_trial;
   _strain_committed = _stress_trial;
@@ -212,6 +214,7 @@ double BulkCracking::band_width(std::size_t cell, const bulk::Vec3& n) const
 void BulkCracking::commit()
 {
   ++_tangent_version;
+  _secant_current = false;
   if (_implex)
   {
     // What the step's cracks did at its converged strain: the crack band's
@@ -247,6 +250,7 @@ void BulkCracking::reset()
   std::fill(_loading.begin(), _loading.end(), false);
   std::fill(_kappa_step.begin(), _kappa_step.end(), 0.0);
   ++_tangent_version;
+  _secant_current = false;
   std::fill(_stress_committed.begin(), _stress_committed.end(), 0.0);
   std::fill(_strain_committed.begin(), _strain_committed.end(), 0.0);
   revert();
@@ -271,6 +275,14 @@ bool BulkCracking::evaluate()
   const bulk::Voigt66& C = _band.stiffness();
   bool ok = true;
   bool tangent_changed = !_implex;
+  if (_implex && !_secant_current)
+  {
+    for (std::size_t i = 0; i < _secant.size(); ++i)
+      _secant[i] = _band.secant_operator(
+          std::span<const double>(_committed.data() + state * i, state),
+          kappa_of(_committed, i) + _extrapolation * _kappa_step[i], _strength[i]);
+    _secant_current = true;
+  }
   for (std::size_t c = 0; c < _cells.size(); ++c)
     for (int q = 0; q < n_points; ++q)
     {
@@ -281,8 +293,7 @@ bool BulkCracking::evaluate()
       auto width = [&](const bulk::Vec3& n) { return band_width(c, n); };
       bulk::CrackBandResult r;
       if (_implex)
-        r = _band.secant_response(
-            old, strain, kappa_of(_committed, i) + _extrapolation * _kappa_step[i], _strength[i]);
+        r = _band.secant_apply(_secant[i], strain);
       else if (_new_cracks || bulk::CrackState<const double>(old).cracked())
         r = _band.update(old, strain, now, width, _strength[i], _dt);
       else

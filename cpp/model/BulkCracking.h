@@ -89,7 +89,10 @@ public:
   {
     const double r = ratio > 0 ? ratio : 0.0;
     if (r != _extrapolation)
+    {
       ++_tangent_version;
+      _secant_current = false;
+    }
     _extrapolation = r;
   }
   /// A number that changes whenever the tangent of the next evaluate() at
@@ -269,6 +272,12 @@ private:
   std::vector<double> _kappa_step;
   /// [point] IMPL-EX: the crack was closed at the last evaluate()
   std::vector<std::uint8_t> _closed;
+  /// [point] IMPL-EX: the response at the committed state and the
+  /// extrapolated history as linear maps (CrackBand::secant_operator), the
+  /// same at every evaluation of a step; current unless something was
+  /// committed or extrapolated anew since they were computed
+  std::vector<bulk::SecantOperator> _secant;
+  bool _secant_current = false;
   std::uint64_t _tangent_version = 0; ///< tangent_version()
   std::shared_ptr<dolfinx::fem::Constant<double>> _dT;
   std::shared_ptr<dolfinx::fem::Function<double>> _d_sigma, _d_C;

@@ -11,6 +11,7 @@
 using pushout::bulk::CrackBand;
 using pushout::bulk::CrackBandResult;
 using pushout::bulk::Mat3;
+using pushout::bulk::SecantOperator;
 using pushout::bulk::Vec3;
 using pushout::bulk::Voigt;
 using pushout::laws::Envelope;
@@ -407,4 +408,49 @@ TEST(CrackBand, SecantResponseIsLinearEachSideOfClosureWithSymmetricTangent)
   // J and the tangent are symmetric up to the round-off of their sums.
   EXPECT_LT(worst_symmetry, 1e-12);
   EXPECT_LT(worst_linear, 1e-10);
+}
+
+// IMPL-EX's evaluations within a step (BulkCracking::evaluate): the secant
+// response as linear maps computed once (CrackBand::secant_operator) and
+// applied at each strain (secant_apply) is secant_response itself, on
+// either side of closure, to the round-off of the different sums.
+TEST(CrackBand, SecantOperatorAppliedIsTheSecantResponse)
+{
+  const CrackBand law(E, nu, exponential);
+  std::mt19937 gen(7);
+  std::uniform_real_distribution<double> U(-1, 1);
+  double worst_stress = 0, worst_tangent = 0;
+  int tried = 0, closed = 0, open = 0;
+  for (int trial = 0; trial < 200; ++trial)
+  {
+    Path path{law, 2.0};
+    path.step({2e-4 * (U(gen) + 1.5), 1e-4 * U(gen), 1e-4 * U(gen), 1e-4 * U(gen), 1e-4 * U(gen),
+               1e-4 * U(gen)});
+    const double kappa = path.state[8] * (2 + U(gen));
+    const SecantOperator op = law.secant_operator(path.state, kappa);
+    EXPECT_EQ(op.cracked, path.state[0] != 0);
+    ++tried;
+    for (int k = 0; k < 5; ++k)
+    {
+      Voigt strain;
+      for (int i = 0; i < 6; ++i)
+        strain[i] = 3e-4 * U(gen);
+      const CrackBandResult direct = law.secant_response(path.state, strain, kappa);
+      const CrackBandResult applied = law.secant_apply(op, strain);
+      ASSERT_EQ(applied.status, direct.status);
+      EXPECT_EQ(applied.closed, direct.closed);
+      (direct.closed ? closed : open) += op.cracked;
+      EXPECT_DOUBLE_EQ(applied.damage, direct.damage);
+      for (int i = 0; i < 6; ++i)
+        worst_stress = std::max(worst_stress, std::abs(applied.stress[i] - direct.stress[i]) / f_t);
+      for (int i = 0; i < 36; ++i)
+        worst_tangent = std::max(worst_tangent, std::abs(applied.tangent[i] - direct.tangent[i]) /
+                                                    (lambda + 2 * mu));
+    }
+  }
+  EXPECT_EQ(tried, 200);
+  EXPECT_GT(closed, 50); // both sides of closure were met
+  EXPECT_GT(open, 50);
+  EXPECT_LT(worst_stress, 1e-10);
+  EXPECT_LT(worst_tangent, 1e-12);
 }
