@@ -117,6 +117,7 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
 {
   _d_sigma = quadrature_function(functionspace_form_cracking_L_crack, "d_sigma", mesh);
   _d_C = quadrature_function(functionspace_form_cracking_a_crack, "d_C", mesh);
+  _d_C_change = quadrature_function(functionspace_form_cracking_a_crack, "d_C", mesh);
   _release_gradient = quadrature_function(functionspace_form_cracking_L_crack, "d_sigma", mesh);
   _point_value = quadrature_function(functionspace_form_cracking_M_points, "point_value", mesh);
   _region = std::make_shared<dolfinx::mesh::MeshTags<std::int32_t>>(
@@ -459,6 +460,53 @@ void BulkCracking::add_forces(std::span<double> f) const
 void BulkCracking::add_tangent(Mat A) const
 {
   fem::assemble_matrix(dolfinx::la::petsc::Matrix::set_block_fn(A, ADD_VALUES), *_a, {});
+}
+
+void BulkCracking::add_tangent_change(Mat A, std::vector<double>& assembled)
+{
+  const std::span<const double> now = _d_C->x()->array();
+  if (assembled.empty())
+  {
+    add_tangent(A);
+    assembled.assign(now.begin(), now.end());
+    return;
+  }
+  // The cells with a point whose tangent changed, and the change there.
+  const std::span<double> change = _d_C_change->x()->mutable_array();
+  const int n_points = expression_cracking_strain->num_points;
+  std::vector<std::int32_t> changed;
+  for (const std::int32_t cell : _cells)
+  {
+    bool differs = false;
+    for (int q = 0; q < n_points && !differs; ++q)
+    {
+      const std::size_t first = std::size_t(at(*_d_C, cell, q, voigt_sq).data() - now.data());
+      differs = !std::equal(now.begin() + first, now.begin() + first + voigt_sq,
+                            assembled.begin() + first);
+    }
+    if (!differs)
+      continue;
+    changed.push_back(cell);
+    for (int q = 0; q < n_points; ++q)
+    {
+      const std::size_t first = std::size_t(at(*_d_C, cell, q, voigt_sq).data() - now.data());
+      for (std::size_t k = first; k < first + voigt_sq; ++k)
+      {
+        change[k] = now[k] - assembled[k];
+        assembled[k] = now[k];
+      }
+    }
+  }
+  if (changed.empty())
+    return;
+  // The tangent's form on those cells (_cells is sorted, so is `changed`).
+  std::vector<std::int32_t> tag_values(changed.size(), region_tag);
+  const dolfinx::mesh::MeshTags<std::int32_t> tags(_mesh, 3, std::move(changed),
+                                                   std::move(tag_values));
+  const fem::Form<double> form =
+      fem::create_form<double>(*form_cracking_a_crack, _a->function_spaces(),
+                               {{"d_C", _d_C_change}}, {}, {{fem::IntegralType::cell, &tags}});
+  fem::assemble_matrix(dolfinx::la::petsc::Matrix::set_block_fn(A, ADD_VALUES), form, {});
 }
 
 CrackingTotals BulkCracking::totals()

@@ -131,6 +131,14 @@ public:
   /// Adds the tangent of the last evaluate() to A (before its final
   /// assembly) [N/mm].
   void add_tangent(Mat A) const;
+  /// Adds to A what the tangent of the last evaluate() adds beyond
+  /// `assembled`, the tangent's point values last added to A (empty: none,
+  /// the whole tangent), integrated over the cells where it changed only;
+  /// `assembled` becomes the last evaluate()'s. So A keeps K plus the
+  /// current tangent from call to call at the cost of the cells whose
+  /// cracks changed (IMPL-EX: on the bench's corroded demo, a quarter of
+  /// the cracking cells per step; Equilibrium::bulk_tangent).
+  void add_tangent_change(Mat A, std::vector<double>& assembled);
 
   /// The energy the cracks release from the committed state to the
   /// model's displacement [N mm], this process's cells, in the form of
@@ -281,6 +289,8 @@ private:
   std::uint64_t _tangent_version = 0; ///< tangent_version()
   std::shared_ptr<dolfinx::fem::Constant<double>> _dT;
   std::shared_ptr<dolfinx::fem::Function<double>> _d_sigma, _d_C;
+  /// add_tangent_change()'s difference of d_C (on the changed cells)
+  std::shared_ptr<dolfinx::fem::Function<double>> _d_C_change;
   /// energy_release()'s dG/du density (on _d_sigma's space) and a scalar
   /// per point (integrate())
   std::shared_ptr<dolfinx::fem::Function<double>> _release_gradient, _point_value;

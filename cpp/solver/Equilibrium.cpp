@@ -104,17 +104,18 @@ bool Equilibrium::assemble_joints(std::span<double> f, Mat A, bool crack_tangent
 
 Mat Equilibrium::bulk_tangent()
 {
-  const model::BulkCracking* cracking = _model.bulk_cracking();
+  model::BulkCracking* cracking = _model.bulk_cracking();
   // Stale on one process, rebuilt on all: the assembly is collective.
   int stale = !_bulk_tangent || cracking->tangent_version() != _bulk_tangent_version;
   MPI_Allreduce(MPI_IN_PLACE, &stale, 1, MPI_INT, MPI_MAX, _model.comm());
   if (!stale)
     return _bulk_tangent;
   if (!_bulk_tangent)
-    _bulk_tangent = create_matrix();
-  else
-    check(MatCopy(_model.stiffness(), _bulk_tangent, SAME_NONZERO_PATTERN), "MatCopy");
-  cracking->add_tangent(_bulk_tangent);
+  {
+    _bulk_tangent = create_matrix(); // K
+    _bulk_assembled.clear();
+  }
+  cracking->add_tangent_change(_bulk_tangent, _bulk_assembled);
   check(MatAssemblyBegin(_bulk_tangent, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   check(MatAssemblyEnd(_bulk_tangent, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
   _bulk_tangent_version = cracking->tangent_version();

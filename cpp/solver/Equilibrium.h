@@ -111,5 +111,7 @@ private:
   bool _single_precision = false;
   Mat _bulk_tangent = nullptr;             ///< bulk_tangent()
   std::uint64_t _bulk_tangent_version = 0; ///< of the cracks' tangent in it
+  /// The cracks' tangent in _bulk_tangent (BulkCracking::add_tangent_change)
+  std::vector<double> _bulk_assembled;
 };
 } // namespace pushout::solver
