@@ -347,12 +347,15 @@ public:
     for (int j = 0; j < 6; ++j)
       opening += op.closing[j] * strain[j];
     const int side = op.regular[0] && opening > 0 ? 0 : 1;
-    r.closed = side == 1;
     if (!op.regular[0] || !op.regular[side])
     {
+      // As secant_response() fails: elastic, not closed, not converged.
+      r.stress = multiply(_C, strain);
+      r.tangent = _C;
       r.status = CrackBandResult::Status::not_converged;
       return r;
     }
+    r.closed = side == 1;
     r.tangent = op.tangent[side];
     r.stress = multiply(r.tangent, strain);
     r.damage = op.damage;

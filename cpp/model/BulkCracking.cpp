@@ -472,7 +472,6 @@ void BulkCracking::add_tangent_change(Mat A, std::vector<double>& assembled)
     return;
   }
   // The cells with a point whose tangent changed, and the change there.
-  const std::span<double> change = _d_C_change->x()->mutable_array();
   const int n_points = expression_cracking_strain->num_points;
   std::vector<std::int32_t> changed;
   for (const std::int32_t cell : _cells)
@@ -490,10 +489,11 @@ void BulkCracking::add_tangent_change(Mat A, std::vector<double>& assembled)
     for (int q = 0; q < n_points; ++q)
     {
       const std::size_t first = std::size_t(at(*_d_C, cell, q, voigt_sq).data() - now.data());
-      for (std::size_t k = first; k < first + voigt_sq; ++k)
+      const std::span<double> change = at(*_d_C_change, cell, q, voigt_sq);
+      for (int k = 0; k < voigt_sq; ++k)
       {
-        change[k] = now[k] - assembled[k];
-        assembled[k] = now[k];
+        change[k] = now[first + k] - assembled[first + k];
+        assembled[first + k] = now[first + k];
       }
     }
   }

@@ -310,7 +310,8 @@ void Equilibrium::configure(KSP ksp) const
   check(KSPGetPC(ksp, &pc), "KSPGetPC");
   PCType pc_type;
   check(PCGetType(pc, &pc_type), "PCGetType");
-  if (processes != 1 || std::string(type) != KSPGMRES || !pc_type || std::string(pc_type) != PCLU)
+  if (processes != 1 || !type || std::string(type) != KSPGMRES || !pc_type ||
+      std::string(pc_type) != PCLU)
     return;
   MatSolverType factor_type = nullptr;
   check(PCFactorGetMatSolverType(pc, &factor_type), "PCFactorGetMatSolverType");

@@ -18,8 +18,8 @@ namespace
 constexpr MUMPS_INT job_init = -1, job_end = -2, job_analyse = 1, job_factor = 2, job_solve = 3;
 constexpr int icntl_error_stream = 0, icntl_diagnostic_stream = 1, icntl_global_stream = 2,
               icntl_print_level = 3, icntl_workspace_percent = 13;
-/// INFOG(1) of a numerically singular matrix.
-constexpr MUMPS_INT error_singular = -10;
+/// INFOG(1) of a numerically and of a structurally singular matrix.
+constexpr MUMPS_INT error_singular = -10, error_structurally_singular = -6;
 /// INFOG(1) of the workspace errors that a larger ICNTL(14) cures.
 constexpr MUMPS_INT workspace_errors[] = {-8, -9, -11, -12, -14, -15, -17, -20};
 /// How often a factorisation short of workspace is tried again, each with
@@ -31,7 +31,10 @@ struct Factors
   SMUMPS_STRUC_C id{};
   bool initialised = false;
   bool factored = false;
-  PetscObjectState pattern = -1;     ///< the nonzero state of the analysed matrix
+  /// The analysed matrix (its id and nonzero state); -1: none
+  PetscInt64 matrix = -1;
+  PetscObjectState pattern = -1;
+  MUMPS_INT workspace_percent = 0;   ///< ICNTL(14) as MUMPS set it
   std::vector<MUMPS_INT> rows, cols; ///< 1-based coordinates, in the matrix's CSR order
   std::vector<float> values, rhs;
 
@@ -61,14 +64,18 @@ void initialise(Factors& f)
   f.id.icntl[icntl_diagnostic_stream] = -1;
   f.id.icntl[icntl_global_stream] = -1;
   f.id.icntl[icntl_print_level] = 0;
+  f.workspace_percent = f.id.icntl[icntl_workspace_percent];
 }
 
 /// The pattern of P as MUMPS's coordinates, and its analysis (ordering,
-/// symbolic factorisation) once per nonzero pattern; then its values.
-void load(Factors& f, Mat P)
+/// symbolic factorisation) once per matrix and nonzero pattern; then its
+/// values. Whether the analysis of P's pattern is at hand.
+bool load(Factors& f, Mat P)
 {
   PetscObjectState state;
   check(MatGetNonzeroState(P, &state), "MatGetNonzeroState");
+  PetscObjectId id;
+  check(PetscObjectGetId(reinterpret_cast<PetscObject>(P), &id), "PetscObjectGetId");
   PetscInt n;
   const PetscInt *ia, *ja;
   PetscBool done;
@@ -78,7 +85,7 @@ void load(Factors& f, Mat P)
                              "structure (a sequential AIJ matrix is needed)");
   const PetscInt rows = n; // MatRestoreRowIJ clears n
   const std::size_t nnz = std::size_t(ia[n]);
-  const bool new_pattern = state != f.pattern;
+  const bool new_pattern = state != f.pattern || PetscInt64(id) != f.matrix;
   if (new_pattern)
   {
     f.rows.resize(nnz);
@@ -107,8 +114,12 @@ void load(Factors& f, Mat P)
   {
     f.id.job = job_analyse;
     smumps_c(&f.id);
-    f.pattern = f.id.infog[0] < 0 ? -1 : state;
+    const bool analysed = f.id.infog[0] >= 0;
+    f.pattern = analysed ? state : -1;
+    f.matrix = analysed ? PetscInt64(id) : -1;
+    return analysed;
   }
+  return true;
 }
 
 bool workspace_error(MUMPS_INT info)
@@ -126,6 +137,8 @@ PCFailedReason failed_reason(MUMPS_INT info)
     return PC_NOERROR;
   if (info == error_singular)
     return PC_FACTOR_NUMERIC_ZEROPIVOT;
+  if (info == error_structurally_singular)
+    return PC_FACTOR_STRUCT_ZEROPIVOT;
   if (workspace_error(info) || info == -13) // -13: an allocation failed
     return PC_FACTOR_OUTMEMORY;
   return PC_FACTOR_OTHER;
@@ -143,9 +156,11 @@ PetscErrorCode set_up(PC pc)
         Mat P;
         check(PCGetOperators(pc, nullptr, &P), "PCGetOperators");
         f->factored = false;
-        load(*f, P);
-        if (f->id.infog[0] >= 0)
+        // An earlier failure (its INFOG(1) still there) does not stop this
+        // factorisation: only the analysis of this pattern must be at hand.
+        if (load(*f, P))
         {
+          f->id.icntl[icntl_workspace_percent] = f->workspace_percent;
           f->id.job = job_factor;
           smumps_c(&f->id);
           for (int retry = 0; retry < workspace_retries && workspace_error(f->id.infog[0]); ++retry)

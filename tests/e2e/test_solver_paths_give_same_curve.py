@@ -28,7 +28,12 @@ for name, sets in (("lagged", ["solver.condensation=off"]),
                    ("condensed lagged double", ["solver.precision=double"]),
                    ("condensed lagged current tangent", ["solver.first_tangent=current"])):
     out = out_dir("solver_" + name.replace(" (default)", "").replace(" ", "_"))
-    run(scene, out, sets=sets)
+    # -ksp_view: which preconditioner the whole model's GMRES had.
+    p = run(scene, out, sets=sets, extra=["-ksp_view"] if "condensed" not in name else [])
+    if "condensed" not in name:
+        single = "sparse LU in single precision" in p.stdout
+        check(single == ("double" not in name),
+              f"{name}: the whole model's LU {'in single' if single else 'in double'} precision")
     a = curve(out)
     check(len(a) == 11, f"{name}: converged through 10 steps")
     for key in ("P_N", "p_MPa", "slip_mm"):

@@ -3,7 +3,8 @@
 // single-precision LU to solve by itself, flexible GMRES preconditioned by
 // it converges to 1e-11 on the double-precision operator; new values on the
 // same pattern are factored again (the analysis kept); a singular matrix is
-// a failed preconditioner (zero pivot), not an error.
+// a failed preconditioner (zero pivot), not an error, and the next regular
+// values on its pattern are factored again.
 #include "common/petsc_check.h"
 #include "solver/SinglePrecisionSparse.h"
 #include "zero_pivot.h"
@@ -117,4 +118,36 @@ TEST(SinglePrecisionSparse, SingularMatrixIsAFailedPreconditioner)
   Mat A = chain(n, 1.0, 0.0);
   check(MatZeroRows(A, 1, &last, 0.0, nullptr, nullptr), "MatZeroRows");
   unit::expect_zero_pivot_failure(flexible_gmres(A), A);
+}
+
+TEST(SinglePrecisionSparse, AFailedFactorisationIsTriedAgainOnNewValues)
+{
+  // The singular chain above, then its last node stiffened again: the same
+  // pattern (the zero row's entries stay), regular values.
+  const PetscInt n = 10, last = n - 1;
+  Mat A = chain(n, 1.0, 0.0);
+  check(MatSetOption(A, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE), "MatSetOption");
+  check(MatZeroRows(A, 1, &last, 0.0, nullptr, nullptr), "MatZeroRows");
+  KSP ksp = flexible_gmres(A);
+  Vec b, x;
+  check(MatCreateVecs(A, &x, &b), "MatCreateVecs");
+  check(VecSet(b, 1.0), "VecSet");
+  check(KSPSolve(ksp, b, x), "KSPSolve");
+  KSPConvergedReason reason;
+  check(KSPGetConvergedReason(ksp, &reason), "KSPGetConvergedReason");
+  ASSERT_EQ(reason, KSP_DIVERGED_PC_FAILED);
+  check(MatSetValue(A, last, last, 1.0, INSERT_VALUES), "MatSetValue");
+  check(MatSetValue(A, last, last - 1, -1.0, INSERT_VALUES), "MatSetValue");
+  check(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  check(KSPSetOperators(ksp, A, A), "KSPSetOperators");
+  check(VecSet(x, 0.0), "VecSet");
+  check(KSPSolve(ksp, b, x), "KSPSolve");
+  check(KSPGetConvergedReason(ksp, &reason), "KSPGetConvergedReason");
+  EXPECT_GT(reason, 0);
+  EXPECT_LT(relative_residual(A, x, b), 1e-11);
+  for (Vec* v : {&b, &x})
+    check(VecDestroy(v), "VecDestroy");
+  check(KSPDestroy(&ksp), "KSPDestroy");
+  check(MatDestroy(&A), "MatDestroy");
 }
