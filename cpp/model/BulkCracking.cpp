@@ -214,8 +214,7 @@ double BulkCracking::band_width(std::size_t cell, const bulk::Vec3& n) const
 
 void BulkCracking::commit()
 {
-  ++_tangent_version;
-  _secant_current = false;
+  history_changed();
   if (_implex)
   {
     // What the step's cracks did at its converged strain: the crack band's
@@ -250,8 +249,7 @@ void BulkCracking::reset()
   std::fill(_opening.begin(), _opening.end(), 0.0);
   std::fill(_loading.begin(), _loading.end(), false);
   std::fill(_kappa_step.begin(), _kappa_step.end(), 0.0);
-  ++_tangent_version;
-  _secant_current = false;
+  history_changed();
   std::fill(_stress_committed.begin(), _stress_committed.end(), 0.0);
   std::fill(_strain_committed.begin(), _strain_committed.end(), 0.0);
   revert();

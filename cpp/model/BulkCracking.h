@@ -89,10 +89,7 @@ public:
   {
     const double r = ratio > 0 ? ratio : 0.0;
     if (r != _extrapolation)
-    {
-      ++_tangent_version;
-      _secant_current = false;
-    }
+      history_changed();
     _extrapolation = r;
   }
   /// A number that changes whenever the tangent of the next evaluate() at
@@ -223,6 +220,13 @@ private:
   /// The strain at every point from the model's displacement, into
   /// _strain_values.
   void evaluate_strains();
+  /// What a step's cracks hold changed (a commit, a reset, a new
+  /// extrapolation): their tangent and secant maps are to be made again.
+  void history_changed()
+  {
+    ++_tangent_version;
+    _secant_current = false;
+  }
 
   /// Whether `strain` is point i's committed strain (to a relative 1e-9).
   bool at_committed_strain(std::size_t i, const bulk::Voigt& strain) const;

@@ -87,16 +87,22 @@ void Equilibrium::update_displacement(Vec x)
   _model.displacement().x()->scatter_fwd();
 }
 
-bool Equilibrium::assemble_joints(std::span<double> f, Mat A, bool crack_tangent)
+bool Equilibrium::assemble_interfaces(std::span<double> f, Mat A)
 {
   bool ok = true;
   for (interface::Interface* joints : _model.joints())
     ok = joints->assemble(_model.displacement().x()->array(), f, A) && ok;
+  return ok;
+}
+
+bool Equilibrium::assemble_joints(std::span<double> f, Mat A)
+{
+  bool ok = assemble_interfaces(f, A);
   if (model::BulkCracking* cracking = _model.bulk_cracking())
   {
     ok = cracking->evaluate() && ok;
     cracking->add_forces(f);
-    if (A && crack_tangent)
+    if (A)
       cracking->add_tangent(A);
   }
   return ok;
@@ -127,7 +133,7 @@ bool Equilibrium::internal_forces(Vec x, Vec F)
   update_displacement(x);
   std::span<double> fi = _f_interface.mutable_array();
   std::fill(fi.begin(), fi.end(), 0.0);
-  const bool ok = assemble_joints(fi, nullptr, false);
+  const bool ok = assemble_joints(fi, nullptr);
   _f_interface.scatter_rev(std::plus<double>());
 
   check(MatMult(_model.stiffness(), x, F), "MatMult");
@@ -282,13 +288,12 @@ bool Equilibrium::jacobian(Vec x, Mat J)
     // evaluated first (it may open or close a crack).
     ok = cracking->evaluate();
     check(MatCopy(bulk_tangent(), J, SAME_NONZERO_PATTERN), "MatCopy");
-    for (interface::Interface* joints : _model.joints())
-      ok = joints->assemble(_model.displacement().x()->array(), fi, J) && ok;
+    ok = assemble_interfaces(fi, J) && ok;
   }
   else
   {
     check(MatCopy(_model.stiffness(), J, SAME_NONZERO_PATTERN), "MatCopy");
-    ok = assemble_joints(fi, J, true);
+    ok = assemble_joints(fi, J);
   }
   check(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   check(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");

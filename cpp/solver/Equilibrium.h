@@ -90,10 +90,11 @@ public:
 
 private:
   /// Adds the forces of every set of joint elements (interface, crack
-  /// planes) and of the concrete's cracks at the model's displacement to f,
-  /// and the joints' tangents to A if given (the cracks' too if
-  /// `crack_tangent`). False if a law failed.
-  bool assemble_joints(std::span<double> f, Mat A, bool crack_tangent);
+  /// planes) at the model's displacement to f, and their tangents to A if
+  /// given. False if a law failed.
+  bool assemble_interfaces(std::span<double> f, Mat A);
+  /// The same, and the concrete's cracks' forces and tangent too.
+  bool assemble_joints(std::span<double> f, Mat A);
   /// IMPL-EX cracks: K plus the cracks' tangent of the last evaluate(),
   /// assembled again only when that tangent changed
   /// (BulkCracking::tangent_version). Collective.
