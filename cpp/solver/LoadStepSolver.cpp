@@ -38,7 +38,10 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
   const bool lagged = part.lagged_preconditioner && !overridden;
   const auto pc =
       lagged ? NewtonSolver::Preconditioner::lagged : NewtonSolver::Preconditioner::jacobian;
-  NewtonSolver::set_default_options(pc, nonsmooth_bulk);
+  using Concrete = NewtonSolver::Concrete;
+  NewtonSolver::set_default_options(pc, !bulk            ? Concrete::linear
+                                        : bulk->implex() ? Concrete::implex_cracks
+                                                         : Concrete::cracks);
 
   int processes = 1;
   MPI_Comm_size(eq.model().comm(), &processes);

@@ -118,11 +118,12 @@ std::string factorization_failure(KSP ksp)
   return factor_failure_text(PCFailedReason(worst));
 }
 
-void NewtonSolver::set_default_options(Preconditioner pc, bool cracking_bulk)
+void NewtonSolver::set_default_options(Preconditioner pc, Concrete concrete)
 {
+  const bool implex = concrete == Concrete::implex_cracks;
   set_default("-snes_type", "newtonls");
-  set_default("-snes_linesearch_type", cracking_bulk ? "l2" : "bt");
-  set_default("-snes_rtol", "1e-10");
+  set_default("-snes_linesearch_type", concrete == Concrete::cracks ? "l2" : "bt");
+  set_default("-snes_rtol", implex ? implex_rtol : "1e-10");
   set_default("-snes_atol", "1e-10");
   set_default("-snes_stol", "1e-14");
   set_default("-snes_max_it", "50");
@@ -130,7 +131,7 @@ void NewtonSolver::set_default_options(Preconditioner pc, bool cracking_bulk)
   {
     set_default("-ksp_type", "gmres");
     set_default("-ksp_gmres_restart", "200");
-    set_default("-ksp_rtol", "1e-10");
+    set_default("-ksp_rtol", implex ? implex_rtol : "1e-10");
     set_default("-ksp_max_it", "1000");
   }
   else

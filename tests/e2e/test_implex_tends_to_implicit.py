@@ -23,18 +23,26 @@ a face), corroded to x = 30 um in 15 steps and pushed 5 um:
 4. The same steps, cracked points and p(x) on 1 and 2 processes, to
    Newton's tolerance (a step's error is a sum over the processes' points:
    its cut or not differs only if it lands within round-off of the
-   tolerance).
+   tolerance). Both at SNES_RTOL (common.TIGHT_NEWTON): at IMPL-EX's default
+   1e-6 a point whose stress lands within it of its strength may crack on
+   one and not the other.
 5. A step's tangent is kept from one Newton iteration to the next until a
    crack opens or closes (Equilibrium::jacobian): the same p(x) and Newton
    iterations as with the tangent assembled at every iteration. A kept
    tangent that missed a crack closing would not move the converged p, but
    GMRES would solve with a wrong Jacobian and Newton would need more
    iterations; the sums of additions differ in order (the joints' and the
-   cracks' tangents), so the counts may differ by round-off, by one."""
+   cracks' tangents), so the counts may differ by round-off, by one (both
+   at SNES_RTOL, as 4).
+6. IMPL-EX's own Newton tolerance (common.IMPLEX_RTOL, the default) against
+   SNES_RTOL: p(x) within the bound of Newton's tolerance on the two runs
+   (common.newton_bound at IMPLEX_RTOL; a tolerance that did not hold, or a
+   far looser one, would fail it), with the same steps."""
 
 import os
 
-from common import check, corrosion, cracking_corroded_demo, out_dir, run
+from common import (IMPLEX_RTOL, TIGHT_NEWTON, check, corrosion, cracking_corroded_demo,
+                    newton_bound, out_dir, run, summary)
 
 scene = cracking_corroded_demo(0.03, 15, seed=1)
 implicit, controlled, fixed = out_dir("implex_ref"), out_dir("implex_tol"), out_dir("implex_fixed")
@@ -76,8 +84,8 @@ for sets, why in ((["loading.control=auto"], "dissipation control"),
 # 4. One and two processes.
 one, two = out_dir("implex_np1"), out_dir("implex_np2")
 sets = ["cracking.integration=implex", "corrosion.penetration=0.016", "corrosion.steps=8"]
-run(scene, one, sets=sets)
-run(scene, two, sets=sets, mpirun=2)
+run(scene, one, sets=sets, extra=TIGHT_NEWTON)
+run(scene, two, sets=sets, extra=TIGHT_NEWTON, mpirun=2)
 r1, r2 = corrosion(one), corrosion(two)
 # Newton's tolerance on a p of a few MPa (SNES_RTOL on the residual, as the
 # ring's test): two runs that converge alike agree far below it.
@@ -91,7 +99,7 @@ check(len(r1) == len(r2) and dp < 1e-6 and
 fresh = out_dir("implex_fresh_tangent")
 os.environ["PUSHOUT_TEST_NO_TANGENT_CACHE"] = "1"
 try:
-    run(scene, fresh, sets=sets)
+    run(scene, fresh, sets=sets, extra=TIGHT_NEWTON)
 finally:
     del os.environ["PUSHOUT_TEST_NO_TANGENT_CACHE"]
 rf = corrosion(fresh)
@@ -101,3 +109,14 @@ its_fresh = sum(r["newton_iterations"] for r in rf)
 check(len(r1) == len(rf) and dp < 1e-6 and abs(its_kept - its_fresh) <= 1,
       f"tangent kept within a step: p within {dp:.1e} MPa of the tangent of every iteration, "
       f"{its_kept} Newton iterations against {its_fresh}")
+
+# 6. The default Newton tolerance of IMPL-EX against SNES_RTOL.
+default = out_dir("implex_default_rtol")
+run(scene, default, sets=sets)
+rd = corrosion(default)
+scale = max(abs(r["p_MPa"]) for r in r1)
+bound = newton_bound(len(r1), summary(one)["dofs"], IMPLEX_RTOL)
+dp = max(abs(a["p_MPa"] - b["p_MPa"]) for a, b in zip(r1, rd)) / scale
+check(len(r1) == len(rd) and dp <= bound,
+      f"Newton to {IMPLEX_RTOL:g} (the default) against to 1e-10: p within {dp:.1e} of its "
+      f"largest value (bound {bound:.1e}), {len(rd)} and {len(r1)} rows")

@@ -12,26 +12,49 @@ using pushout::solver::NewtonSolver;
 
 namespace
 {
-std::string line_search()
+/// The value of a PETSc option, "" if it is not set.
+std::string option(const char* name)
 {
   char value[64] = "";
   PetscBool set = PETSC_FALSE;
-  check(
-      PetscOptionsGetString(nullptr, nullptr, "-snes_linesearch_type", value, sizeof(value), &set),
-      "PetscOptionsGetString");
+  check(PetscOptionsGetString(nullptr, nullptr, name, value, sizeof(value), &set),
+        "PetscOptionsGetString");
   return set ? value : "";
+}
+
+std::string line_search()
+{
+  return option("-snes_linesearch_type");
 }
 } // namespace
 
 TEST(NewtonDefaults, EachRunGetsItsOwnLineSearch)
 {
   const auto pc = NewtonSolver::Preconditioner::jacobian;
-  NewtonSolver::set_default_options(pc, true);
+  NewtonSolver::set_default_options(pc, NewtonSolver::Concrete::cracks);
   EXPECT_EQ(line_search(), "l2");
-  NewtonSolver::set_default_options(pc, false);
+  NewtonSolver::set_default_options(pc, NewtonSolver::Concrete::linear);
   EXPECT_EQ(line_search(), "bt");
-  NewtonSolver::set_default_options(pc, true);
+  NewtonSolver::set_default_options(pc, NewtonSolver::Concrete::cracks);
   EXPECT_EQ(line_search(), "l2");
-  NewtonSolver::set_default_options(pc, false); // as the other tests expect
+  NewtonSolver::set_default_options(pc,
+                                    NewtonSolver::Concrete::linear); // as the other tests expect
   EXPECT_EQ(line_search(), "bt");
+}
+
+// IMPL-EX cracks stop Newton and GMRES at NewtonSolver::implex_rtol, and the
+// next run without them is back at 1e-10 (a sweep's cases share a process).
+TEST(NewtonDefaults, ImplexCracksGetTheirOwnTolerances)
+{
+  const auto pc = NewtonSolver::Preconditioner::lagged;
+  NewtonSolver::set_default_options(pc, NewtonSolver::Concrete::implex_cracks);
+  EXPECT_EQ(option("-snes_rtol"), NewtonSolver::implex_rtol);
+  EXPECT_EQ(option("-ksp_rtol"), NewtonSolver::implex_rtol);
+  EXPECT_EQ(option("-snes_linesearch_type"), "bt");
+  NewtonSolver::set_default_options(pc, NewtonSolver::Concrete::cracks);
+  EXPECT_EQ(option("-snes_rtol"), "1e-10");
+  EXPECT_EQ(option("-ksp_rtol"), "1e-10");
+  NewtonSolver::set_default_options(NewtonSolver::Preconditioner::jacobian,
+                                    NewtonSolver::Concrete::linear); // as the other tests expect
+  EXPECT_EQ(option("-snes_rtol"), "1e-10");
 }
