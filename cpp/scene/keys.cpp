@@ -454,7 +454,8 @@ std::vector<KeyDef> make_keys()
        "",
        "mixed: condensed bulk: flexible GMRES applies C and the lagged preconditioner's LU in "
        "single precision, to a relative tolerance of at least 1e-7; whole model on one "
-       "process (lagged MUMPS LU): the LU factored and applied in single precision by "
+       "process (lagged MUMPS LU, or the LU of every Jacobian of implicit cracks): the LU "
+       "factored and applied in single precision by "
        "MUMPS, flexible GMRES to -ksp_rtol (half the memory traffic; the residual, and so "
        "the solution and the Newton tolerances, stay in double); double: everything in "
        "double, GMRES to -ksp_rtol",

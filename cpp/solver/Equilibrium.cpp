@@ -322,8 +322,9 @@ void Equilibrium::configure(KSP ksp) const
   check(PCFactorGetMatSolverType(pc, &factor_type), "PCFactorGetMatSolverType");
   if (!factor_type || std::string(factor_type) != MATSOLVERMUMPS)
     return; // another LU the user asked for
-  // GMRES on a lagged LU (solver.preconditioner = "lagged"): the LU only
-  // steers it. Flexible GMRES: its residual is the Jacobian's own, whatever
+  // GMRES on a lagged LU (solver.preconditioner = "lagged"), or on the LU of
+  // every Jacobian of implicit cracks (NewtonSolver::set_default_options):
+  // the LU only steers it. Flexible GMRES: its residual is the Jacobian's own, whatever
   // the rounding of the preconditioner (SinglePrecisionSparse.h); the
   // tolerance stays.
   use_single_precision_sparse_lu(pc);

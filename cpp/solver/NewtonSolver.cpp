@@ -127,7 +127,10 @@ void NewtonSolver::set_default_options(Preconditioner pc, Concrete concrete)
   set_default("-snes_atol", "1e-10");
   set_default("-snes_stol", "1e-14");
   set_default("-snes_max_it", "50");
-  if (pc == Preconditioner::lagged)
+  // The implicit cracks factor every Jacobian (LoadStepSolver::make), and
+  // GMRES on that LU lets it be factored in single precision
+  // (Equilibrium::configure; in double GMRES converges in one iteration).
+  if (pc == Preconditioner::lagged || concrete == Concrete::cracks)
   {
     set_default("-ksp_type", "gmres");
     set_default("-ksp_gmres_restart", "200");

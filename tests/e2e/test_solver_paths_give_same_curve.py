@@ -10,9 +10,13 @@ precision agree to the bound of Newton's tolerance on the two runs
 (common.newton_bound: single precision changes the iterates, and each run
 is exact only to Newton's tolerance). A stiff stick-slip push (k = 1e6 N/mm^3, mu = 1,
 nodal quadrature, 1000 steps) needs no cut: a step that fails from the last
-converged tangent is retried from the current one."""
-from common import (COARSE_MESH, EXP_SOFT, FRICTION_2, THROUGH_PEAK, check, curve, newton_bound, out_dir,
-                    run, solved_unknowns, summary)
+converged tangent is retried from the current one. Implicit cracks in the
+concrete (the LU of every Jacobian, GMRES on it) factor in single precision
+too, and their corrosion curve is the double-precision one to the bound of
+Newton's tolerance, with the same cracked points."""
+from common import (COARSE_MESH, EXP_SOFT, FRICTION_2, THROUGH_PEAK, check, corrosion,
+                    cracking_corroded_demo, curve, newton_bound, out_dir, run, solved_unknowns,
+                    summary)
 
 scene = COARSE_MESH + FRICTION_2 + EXP_SOFT + THROUGH_PEAK
 plain = out_dir("solver_plain")
@@ -92,3 +96,24 @@ s = max(abs(r["P_N"]) for r in b)
 diff = max(abs(x["P_N"] - y["P_N"]) for x, y in zip(a, b))
 check(len(a) == len(b) == 1001 and diff <= 1e-6 * s,
       f"stiff stick-slip: converged against current tangent: max |P difference| {diff:.2e} <= 1e-6 x {s:.4g}")
+
+# Implicit cracks: the LU of every Jacobian, in single precision (mixed)
+# or in double, under GMRES.
+cracks = cracking_corroded_demo(0.012, 6, seed=2)
+rows = {}
+for precision in ("mixed", "double"):
+    out = out_dir("solver_cracks_" + precision)
+    p = run(cracks, out, sets=[f"solver.precision={precision}"], extra=["-ksp_view"])
+    single = "sparse LU in single precision" in p.stdout
+    check(single == (precision == "mixed"),
+          f"implicit cracks, {precision}: the LU {'in single' if single else 'in double'} precision")
+    rows[precision] = corrosion(out)
+mixed, double = rows["mixed"], rows["double"]
+tol = newton_bound(len(double), summary(out)["dofs"])
+s = max(abs(r["p_MPa"]) for r in double)
+diff = max(abs(x["p_MPa"] - y["p_MPa"]) for x, y in zip(mixed, double))
+check(len(mixed) == len(double) and diff <= tol * s and double[-1]["cracked_points"] > 0 and
+      all(x["cracked_points"] == y["cracked_points"] for x, y in zip(mixed, double)),
+      f"implicit cracks: mixed against double precision: max |p difference| {diff:.2e} <= "
+      f"{tol:.1e} x {s:.4g} MPa, the same cracked points ({int(double[-1]['cracked_points'])} "
+      f"at the end)")
