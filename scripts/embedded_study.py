@@ -49,7 +49,7 @@ def cases(quick, study="corroded_embedded"):
                     else:
                         # The centred tube's cover snaps back past the peak
                         # pressure, which control of x alone cannot pass.
-                        sets.append("loading.control=auto")
+                        sets += ["loading.control=auto", "cracking.integration=implicit"]
                     out.append((f"{where}_beta{beta:g}_seed{seed}_x{x_um:g}", SCENE, sets))
     return out
 

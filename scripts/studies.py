@@ -37,10 +37,12 @@ Studies (each run keeps its resolved scene.toml next to its curve.csv):
               ([cracking] model = "embedded", f_t 3, c 30, strength cov 0.15,
               correlation length 5 mm) instead of crack planes, seeds 1-5:
               residual bond with the seeds' range as error bars, and the crack
-              patterns at x = 50 um (scripts/embedded_study.py; not in the
-              defaults: --only corroded_embedded).
+              patterns at x = 50 um, the implicit cracks under
+              loading.control = "auto" (scripts/embedded_study.py; not in the
+              studies run by default: --only corroded_embedded).
   corroded_embedded_implex  the same with IMPL-EX cracks under displacement
-              control (cracking.integration = "implex"; not in the defaults).
+              control (cracking.integration = "implex", what its default
+              "auto" takes there; not in the studies run by default).
 --quick runs the same studies on a coarse mesh with few steps (the test
 suite uses it). Writes OUT/<study>/<case>/ run folders, OUT/*.png figures,
 OUT/plateaus.csv (friction plateau vs mu p) and OUT/timing.json.

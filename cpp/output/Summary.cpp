@@ -38,6 +38,7 @@ void Summary::write(const std::filesystem::path& file) const
       {"corrosion_steps", corrosion_steps},
       {"dissipation_steps", dissipation_steps},
       {"loose_steps", loose_steps},
+      {"cracking_integration", cracking_integration},
       {"implex_error_max", implex_error_max},
       {"implex_jumps", implex_jumps},
       {"penetration_mm", penetration_mm},

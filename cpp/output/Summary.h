@@ -21,6 +21,9 @@ struct Summary
   /// their best iterate, |F| within 1e-5 of the reactions and the energy
   /// released within 1 % of the step's (solver/ArcLengthSolver.h, step).
   int loose_steps = 0;
+  /// How the concrete's cracks were integrated: "implex" or "implicit"
+  /// (cracking.integration, "auto" resolved), "none" without [cracking].
+  std::string cracking_integration = "none";
   /// IMPL-EX cracks (cracking.integration = "implex"): the largest error of
   /// a committed step (model::BulkCracking::implex_error) [-].
   double implex_error_max = 0;

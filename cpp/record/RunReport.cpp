@@ -62,6 +62,8 @@ RunReport::RunReport(const Scene& scene, const std::filesystem::path& out, bool 
   int size = 1;
   MPI_Comm_size(comm, &size);
   _summary.model_type = scene.model().name();
+  if (scene.cracking().embedded)
+    _summary.cracking_integration = scene.cracking().implex ? "implex" : "implicit";
   _summary.processes = size;
   _summary.run_id = output::run_id();
   if (_rank == 0)

@@ -88,7 +88,12 @@ void Scene::fill_parts()
   _cracking.seed = integer("cracking.seed");
   _cracking.visible_width = number("cracking.visible_width");
   _cracking.viscosity = number("cracking.viscosity");
-  _cracking.implex = string("cracking.integration") == "implex";
+  // auto: IMPL-EX where it applies (displacement control, no viscosity),
+  // the implicit cracks elsewhere (keys_cracking.cpp).
+  const std::string integration = string("cracking.integration");
+  _cracking.implex =
+      integration == "implex" || (integration == "auto" && _cracking.viscosity == 0 &&
+                                  _loading.control == Loading::Control::displacement);
   _cracking.implex_tolerance = number("cracking.implex_tolerance");
 
   _solver.lagged_preconditioner = string("solver.preconditioner") == "lagged";

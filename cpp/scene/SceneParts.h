@@ -122,7 +122,7 @@ struct CrackingPart
   std::int64_t seed{};
   double visible_width{};    ///< a surface crack counts from this gauge reading [mm]
   double viscosity{};        ///< damage viscosity eta [mm of push]; 0: none
-  bool implex{};             ///< integration: implex (else implicit)
+  bool implex{};             ///< integration: implex, or auto that chose it (else implicit)
   double implex_tolerance{}; ///< IMPL-EX: the largest error of a step [-]
 };
 

@@ -69,17 +69,19 @@ std::vector<KeyDef> law_keys()
        A::pushout},
       {"cracking.integration",
        K::string,
-       std::string("implicit"),
+       std::string("auto"),
        "",
        "implicit: each step solves the cracks' own update (Newton through every onset and "
        "kink); implex: in a step each crack holds the damage extrapolated from the last steps "
        "and new cracks open after it (Oliver, Huespe & Cante 2008), so a step's bulk is linear "
-       "but for closure: faster and never stuck, with an error of the order of the step "
-       "(loading.control = \"displacement\" only; docs/cracking.md, \"IMPL-EX\")",
+       "but for closure: faster and never stuck, with an error of the order of the step held "
+       "to implex_tolerance (loading.control = \"displacement\" and no viscosity only); auto: "
+       "implex where it applies, implicit elsewhere (summary.json cracking_integration says "
+       "which; docs/cracking.md, \"IMPL-EX\")",
        -inf,
        inf,
        false,
-       {"implicit", "implex"},
+       {"auto", "implicit", "implex"},
        A::pushout},
       {"cracking.implex_tolerance",
        K::number,

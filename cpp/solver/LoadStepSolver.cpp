@@ -54,11 +54,14 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
   const bool required = part.condensation == SolverPart::Condensation::on;
   if (!condense && required)
     throw SceneError("solver.condensation = \"on\" is not possible here: " + why);
+  const std::string cracks = !bulk            ? ""
+                             : bulk->implex() ? "; IMPL-EX cracks (cracking.integration)"
+                                              : "; implicit cracks (cracking.integration)";
   const std::string description =
       (condense ? "the " + std::to_string(Condensation::unknowns(eq.model())) +
                       " interface jumps (bulk condensed)"
                 : "the whole model" + (why.empty() ? "" : " (not condensed: " + why + ")")) +
-      (overridden ? ", the LU of every Jacobian (cracking concrete)" : "");
+      cracks + (overridden ? ", the LU of every Jacobian" : "");
   eq.set_single_precision(part.mixed_precision); // before the solvers configure their KSP
   auto solver = std::make_unique<LoadStepSolver>(eq, condense, pc, int(part.refactor_iterations),
                                                  description);

@@ -19,7 +19,9 @@ a face), corroded to x = 30 um in 15 steps and pushed 5 um:
    cut for it) the cover's cracking lags by a step and p overshoots its
    peak by far more than with the tolerance.
 3. What IMPL-EX does not do yet is refused with exit 2: dissipation or arc
-   length control, a damage viscosity.
+   length control, a damage viscosity. The default, integration = "auto",
+   takes IMPL-EX under displacement control and the implicit cracks where
+   IMPL-EX does not apply (summary.json cracking_integration).
 4. The same steps, cracked points and p(x) on 1 and 2 processes, to
    Newton's tolerance (a step's error is a sum over the processes' points:
    its cut or not differs only if it lands within round-off of the
@@ -46,7 +48,7 @@ from common import (IMPLEX_RTOL, TIGHT_NEWTON, check, corrosion, cracking_corrod
 
 scene = cracking_corroded_demo(0.03, 15, seed=1)
 implicit, controlled, fixed = out_dir("implex_ref"), out_dir("implex_tol"), out_dir("implex_fixed")
-run(scene, implicit, sets=["corrosion.steps=60"])
+run(scene, implicit, sets=["corrosion.steps=60", "cracking.integration=implicit"])
 run(scene, controlled, sets=["cracking.integration=implex", "cracking.implex_tolerance=0.005"])
 run(scene, fixed, sets=["cracking.integration=implex", "cracking.implex_tolerance=1"])
 
@@ -80,6 +82,12 @@ for sets, why in ((["loading.control=auto"], "dissipation control"),
             check=False)
     check(p.returncode == 2 and "cracking.integration" in p.stderr,
           f"implex with {why}: exit {p.returncode} ({p.stderr.strip()[:120]})")
+for sets, integration in (([], "implex"), (["loading.control=auto"], "implicit"),
+                          (["cracking.viscosity=0.01"], "implicit")):
+    out = out_dir("implex_auto")
+    run(scene, out, sets=sets + ["corrosion.penetration=0.002", "corrosion.steps=1"])
+    chosen = summary(out)["cracking_integration"]
+    check(chosen == integration, f"integration auto with {sets or 'the defaults'}: {chosen}")
 
 # 4. One and two processes.
 one, two = out_dir("implex_np1"), out_dir("implex_np2")

@@ -30,14 +30,20 @@ planes: the ring of the closed forms (scripts/analytic.py).
    round-off breaks, and Newton does not pass it on every mesh
    (docs/cracking.md, "Newton").
 7. What it does not do yet is refused with exit 2: the quadratic bulk, a
-   symmetric cut of a random field."""
+   symmetric cut of a random field.
+8. 1 to 7 run the implicit cracks (integration = "implicit"), so that the
+   two controls of 5 integrate alike; the default, "auto", takes IMPL-EX
+   under displacement control, and its ring meets the closed forms of 2
+   and 3 as well (its new cracks open after the step that reaches f_t: the
+   same bracket)."""
 
-from common import check, corroded_ring, corrosion, out_dir, run
+from common import check, corroded_ring, corrosion, out_dir, run, summary
 import analytic
 
 R, b, f_t, c = 10.0, 50.0, 3.0, 20.0
 MESH = "[mesh]\nelements_per_quarter = 16\nelements_through_thickness = 1\n"
-CRACKING = f'[cracking]\nmodel = "embedded"\nf_t = {f_t}\nc = {c}\n'
+DEFAULT_CRACKING = f'[cracking]\nmodel = "embedded"\nf_t = {f_t}\nc = {c}\n'
+CRACKING = DEFAULT_CRACKING + 'integration = "implicit"\n'
 p_cr = analytic.cracking_onset_pressure(f_t, R, b)
 # Newton's tolerance on a p of a few MPa (common.SNES_RTOL on the residual):
 # the curves of two runs that converge alike agree far below this.
@@ -56,25 +62,38 @@ check(dp < P_TOL and all(r["cracked_points"] == 0 for r in corrosion(strong)),
 
 # 2. Onset, in steps of x of 2 % of p_cr (p grows linearly with x before it).
 x_cr = 0.004 * p_cr / corrosion(linear)[-1]["p_MPa"]
-onset = out_dir("ring_onset")
-run(ring(1.1 * x_cr, 55), onset)
-rows = corrosion(onset)
-first = next(i for i, r in enumerate(rows) if r["cracked_points"] > 0)
-below, above = rows[first - 1]["p_MPa"], rows[first]["p_MPa"]
-check(below / p_cr > 0.97 and above / p_cr < 1.03,
-      f"first crack between p = {below:.3f} and {above:.3f} MPa: p_cr {p_cr:.3f} MPa "
-      f"({100 * (below / p_cr - 1):+.1f} %, {100 * (above / p_cr - 1):+.1f} %)")
+tepfers, plastic = f_t * b / (3.33 * R), f_t * (b - R) / R
+
+
+def check_onset(name, cracking=CRACKING):
+    onset = out_dir(name)
+    run(ring(1.1 * x_cr, 55, cracking), onset)
+    rows = corrosion(onset)
+    first = next(i for i, r in enumerate(rows) if r["cracked_points"] > 0)
+    below, above = rows[first - 1]["p_MPa"], rows[first]["p_MPa"]
+    check(below / p_cr > 0.97 and above / p_cr < 1.03,
+          f"{name}: first crack between p = {below:.3f} and {above:.3f} MPa: p_cr {p_cr:.3f} MPa "
+          f"({100 * (below / p_cr - 1):+.1f} %, {100 * (above / p_cr - 1):+.1f} %)")
+
 
 # 3. Peak between Tepfers and the plastic limit, softening after.
-tepfers, plastic = f_t * b / (3.33 * R), f_t * (b - R) / R
-peak_run = out_dir("ring_peak")
-run(ring(0.03, 30), peak_run)
-p = [r["p_MPa"] for r in corrosion(peak_run)]
-peak = max(p)
-check(tepfers < peak < plastic,
-      f"peak p {peak:.2f} MPa between Tepfers {tepfers:.2f} and the plastic limit {plastic:.2f} MPa")
-check(p[-1] < peak and p.index(peak) < len(p) - 1, f"softening after the peak: {p[-1]:.2f} MPa")
-check(corrosion(peak_run)[-1]["concrete_dissipation_Nmm"] > 0, "the cracks dissipate energy")
+def check_peak(name, cracking=CRACKING):
+    """The run's folder and its p at each row."""
+    out = out_dir(name)
+    run(ring(0.03, 30, cracking), out)
+    p = [r["p_MPa"] for r in corrosion(out)]
+    peak = max(p)
+    check(tepfers < peak < plastic,
+          f"{name}: peak p {peak:.2f} MPa between Tepfers {tepfers:.2f} and the plastic limit "
+          f"{plastic:.2f} MPa")
+    check(p[-1] < peak and p.index(peak) < len(p) - 1,
+          f"{name}: softening after the peak: {p[-1]:.2f} MPa")
+    check(corrosion(out)[-1]["concrete_dissipation_Nmm"] > 0, f"{name}: the cracks dissipate energy")
+    return out, p
+
+
+check_onset("ring_onset")
+peak_run, p = check_peak("ring_peak")
 
 # 4. One and two processes, a random field.
 field = CRACKING + "strength_cov = 0.15\ncorrelation_length = 5.0\nseed = 3\n"
@@ -132,3 +151,10 @@ for sets, words in ((["mesh.degree=2"], "mesh.degree"),
     out = out_dir("ring_refused")
     p = run(ring(0.001, 1), out, sets=sets, check=False)
     check(p.returncode == 2 and words in p.stderr, f"{' '.join(sets)}: exit 2 naming {words}")
+
+# 8. The default integration (IMPL-EX here) against the closed forms of 2 and 3.
+check_onset("ring_onset_auto", DEFAULT_CRACKING)
+auto_run, _ = check_peak("ring_peak_auto", DEFAULT_CRACKING)
+check(summary(auto_run)["cracking_integration"] == "implex" and
+      summary(peak_run)["cracking_integration"] == "implicit",
+      "integration auto took IMPL-EX under displacement control")

@@ -103,7 +103,8 @@ cracks = cracking_corroded_demo(0.012, 6, seed=2)
 rows = {}
 for precision in ("mixed", "double"):
     out = out_dir("solver_cracks_" + precision)
-    p = run(cracks, out, sets=[f"solver.precision={precision}"], extra=["-ksp_view"])
+    p = run(cracks, out, sets=[f"solver.precision={precision}", "cracking.integration=implicit"],
+            extra=["-ksp_view"])
     single = "sparse LU in single precision" in p.stdout
     check(single == (precision == "mixed"),
           f"implicit cracks, {precision}: the LU {'in single' if single else 'in double'} precision")
