@@ -6,6 +6,7 @@
 #include "../common/petsc_check.h"
 #include "Condensation.h"
 #include "DenseArray.h"
+#include "ShellPreconditioner.h"
 #include "Vector.h"
 #include <algorithm>
 #include <cmath>
@@ -53,12 +54,7 @@ void Condensation::configure(KSP ksp) const
     // step.
     use_single_precision_lu(pc);
     if (std::string(type) == KSPGMRES)
-    {
-      PetscInt restart;
-      check(KSPGMRESGetRestart(ksp, &restart), "KSPGMRESGetRestart");
-      check(KSPSetType(ksp, KSPFGMRES), "KSPSetType");
-      check(KSPGMRESSetRestart(ksp, restart), "KSPGMRESSetRestart");
-    }
+      make_gmres_flexible(ksp);
     PetscReal rtol, abstol, dtol;
     PetscInt max_it;
     check(KSPGetTolerances(ksp, &rtol, &abstol, &dtol, &max_it), "KSPGetTolerances");

@@ -1,6 +1,7 @@
 #include "Equilibrium.h"
 #include "../common/petsc_check.h"
 #include "RigidBodyModes.h"
+#include "ShellPreconditioner.h"
 #include "SinglePrecisionSparse.h"
 #include <cmath>
 #include <cstdlib>
@@ -328,9 +329,6 @@ void Equilibrium::configure(KSP ksp) const
   // the rounding of the preconditioner (SinglePrecisionSparse.h); the
   // tolerance stays.
   use_single_precision_sparse_lu(pc);
-  PetscInt restart;
-  check(KSPGMRESGetRestart(ksp, &restart), "KSPGMRESGetRestart");
-  check(KSPSetType(ksp, KSPFGMRES), "KSPSetType");
-  check(KSPGMRESSetRestart(ksp, restart), "KSPGMRESSetRestart");
+  make_gmres_flexible(ksp);
 }
 } // namespace pushout::solver

@@ -1,8 +1,11 @@
 // A PCSHELL that owns its context: the single-precision LU preconditioners
-// (SinglePrecision.h, SinglePrecisionSparse.h) are made this way.
+// (SinglePrecision.h, SinglePrecisionSparse.h) are made this way; and the
+// flexible GMRES that such a preconditioner needs (its rounding depends on
+// the right-hand side, so it is not quite linear).
 #pragma once
 
 #include "../common/petsc_check.h"
+#include <petscksp.h>
 #include <petscpc.h>
 
 namespace pushout::solver
@@ -27,5 +30,23 @@ void make_shell_preconditioner(PC pc, PetscErrorCode (*set_up)(PC),
   check(PCShellSetSetUp(pc, set_up), "PCShellSetSetUp");
   check(PCShellSetApply(pc, apply), "PCShellSetApply");
   check(PCShellSetName(pc, name), "PCShellSetName");
+}
+
+/// Makes a GMRES `ksp` flexible (FGMRES, right preconditioning) with the
+/// GMRES options it had, the user's -ksp_gmres_* among them: the restart,
+/// the orthogonalisation and its refinement. The tolerances stay.
+inline void make_gmres_flexible(KSP ksp)
+{
+  using petsc::check;
+  PetscInt restart;
+  PetscErrorCode (*orthogonalize)(KSP, PetscInt);
+  KSPGMRESCGSRefinementType refinement;
+  check(KSPGMRESGetRestart(ksp, &restart), "KSPGMRESGetRestart");
+  check(KSPGMRESGetOrthogonalization(ksp, &orthogonalize), "KSPGMRESGetOrthogonalization");
+  check(KSPGMRESGetCGSRefinementType(ksp, &refinement), "KSPGMRESGetCGSRefinementType");
+  check(KSPSetType(ksp, KSPFGMRES), "KSPSetType");
+  check(KSPGMRESSetRestart(ksp, restart), "KSPGMRESSetRestart");
+  check(KSPGMRESSetOrthogonalization(ksp, orthogonalize), "KSPGMRESSetOrthogonalization");
+  check(KSPGMRESSetCGSRefinementType(ksp, refinement), "KSPGMRESSetCGSRefinementType");
 }
 } // namespace pushout::solver

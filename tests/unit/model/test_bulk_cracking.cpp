@@ -39,7 +39,8 @@ protected:
     const Scene scene = Scene::parse("[mesh]\nelements_per_quarter = 4\n"
                                      "elements_through_thickness = 2\n"
                                      "[[interface]]\nlaw = \"elastic\"\nk = 1000.0\n"
-                                     "[cracking]\nmodel = \"embedded\"\nf_t = 3.0\nc = 30.0\n",
+                                     "[cracking]\nmodel = \"embedded\"\nf_t = 3.0\nc = 30.0\n"
+                                     "integration = \"implicit\"\n",
                                      {});
     bool reused = false;
     const pushout::mesh::MeshData data = pushout::mesh::generate(

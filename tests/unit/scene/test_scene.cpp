@@ -183,6 +183,19 @@ plot = false
   EXPECT_EQ(j.to_toml().find("width"), std::string::npos);
 }
 
+// cracking.integration = "auto" (the default) is IMPL-EX under displacement
+// control without a damage viscosity, the implicit cracks otherwise.
+TEST(Scene, AutoIntegrationIsImplexWhereItApplies)
+{
+  const std::string cracks = "[cracking]\nmodel = \"embedded\"\n";
+  EXPECT_TRUE(Scene::parse(cracks).cracking().implex);
+  EXPECT_FALSE(Scene::parse(cracks, {{"loading.control", "auto"}}).cracking().implex);
+  EXPECT_FALSE(Scene::parse(cracks, {{"loading.control", "arc_length"}}).cracking().implex);
+  EXPECT_FALSE(Scene::parse(cracks, {{"cracking.viscosity", "0.01"}}).cracking().implex);
+  EXPECT_FALSE(Scene::parse(cracks, {{"cracking.integration", "implicit"}}).cracking().implex);
+  EXPECT_TRUE(Scene::parse(cracks, {{"cracking.integration", "implex"}}).cracking().implex);
+}
+
 TEST(Scene, OverridesReachTablesAndLayers)
 {
   const Scene s = Scene::parse(

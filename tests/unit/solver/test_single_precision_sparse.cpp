@@ -6,6 +6,7 @@
 // a failed preconditioner (zero pivot), not an error, and the next regular
 // values on its pattern are factored again.
 #include "common/petsc_check.h"
+#include "solver/ShellPreconditioner.h"
 #include "solver/SinglePrecisionSparse.h"
 #include "zero_pivot.h"
 #include <cmath>
@@ -150,4 +151,33 @@ TEST(SinglePrecisionSparse, AFailedFactorisationIsTriedAgainOnNewValues)
     check(VecDestroy(v), "VecDestroy");
   check(KSPDestroy(&ksp), "KSPDestroy");
   check(MatDestroy(&A), "MatDestroy");
+}
+
+// GMRES made flexible for a single-precision LU keeps the GMRES options it
+// had: the restart, the orthogonalisation and its refinement (a user's
+// -ksp_gmres_* options).
+TEST(SinglePrecisionSparse, FlexibleGmresKeepsTheGmresOptions)
+{
+  KSP ksp;
+  check(KSPCreate(PETSC_COMM_SELF, &ksp), "KSPCreate");
+  check(KSPSetType(ksp, KSPGMRES), "KSPSetType");
+  check(KSPGMRESSetRestart(ksp, 37), "KSPGMRESSetRestart");
+  check(KSPGMRESSetOrthogonalization(ksp, KSPGMRESModifiedGramSchmidtOrthogonalization),
+        "KSPGMRESSetOrthogonalization");
+  check(KSPGMRESSetCGSRefinementType(ksp, KSP_GMRES_CGS_REFINE_ALWAYS),
+        "KSPGMRESSetCGSRefinementType");
+  solver::make_gmres_flexible(ksp);
+  KSPType type;
+  PetscInt restart = 0;
+  PetscErrorCode (*orthogonalize)(KSP, PetscInt) = nullptr;
+  KSPGMRESCGSRefinementType refinement;
+  check(KSPGetType(ksp, &type), "KSPGetType");
+  check(KSPGMRESGetRestart(ksp, &restart), "KSPGMRESGetRestart");
+  check(KSPGMRESGetOrthogonalization(ksp, &orthogonalize), "KSPGMRESGetOrthogonalization");
+  check(KSPGMRESGetCGSRefinementType(ksp, &refinement), "KSPGMRESGetCGSRefinementType");
+  EXPECT_STREQ(type, KSPFGMRES);
+  EXPECT_EQ(restart, 37);
+  EXPECT_EQ(orthogonalize, &KSPGMRESModifiedGramSchmidtOrthogonalization);
+  EXPECT_EQ(refinement, KSP_GMRES_CGS_REFINE_ALWAYS);
+  check(KSPDestroy(&ksp), "KSPDestroy");
 }
