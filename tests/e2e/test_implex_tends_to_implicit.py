@@ -35,7 +35,8 @@ a face), corroded to x = 30 um in 15 steps and pushed 5 um:
    GMRES would solve with a wrong Jacobian and Newton would need more
    iterations; the sums of additions differ in order (the joints' and the
    cracks' tangents), so the counts may differ by round-off, by one (both
-   at SNES_RTOL, as 4).
+   at SNES_RTOL, as 4). PETSc's log shows the test hook at work: the kept
+   tangent's own assemblies.
 6. IMPL-EX's own Newton tolerance (common.IMPLEX_RTOL, the default) against
    SNES_RTOL: p(x) within the bound of Newton's tolerance on the two runs
    (common.newton_bound at IMPLEX_RTOL; a tolerance that did not hold, or a
@@ -92,7 +93,7 @@ for sets, integration in (([], "implex"), (["loading.control=auto"], "implicit")
 # 4. One and two processes.
 one, two = out_dir("implex_np1"), out_dir("implex_np2")
 sets = ["cracking.integration=implex", "corrosion.penetration=0.016", "corrosion.steps=8"]
-run(scene, one, sets=sets, extra=TIGHT_NEWTON)
+p_one = run(scene, one, sets=sets, extra=TIGHT_NEWTON + ["-log_view"])
 run(scene, two, sets=sets, extra=TIGHT_NEWTON, mpirun=2)
 r1, r2 = corrosion(one), corrosion(two)
 # Newton's tolerance on a p of a few MPa (SNES_RTOL on the residual, as the
@@ -107,9 +108,23 @@ check(len(r1) == len(r2) and dp < 1e-6 and
 fresh = out_dir("implex_fresh_tangent")
 os.environ["PUSHOUT_TEST_NO_TANGENT_CACHE"] = "1"
 try:
-    run(scene, fresh, sets=sets, extra=TIGHT_NEWTON)
+    p_fresh = run(scene, fresh, sets=sets, extra=TIGHT_NEWTON + ["-log_view"])
 finally:
     del os.environ["PUSHOUT_TEST_NO_TANGENT_CACHE"]
+
+
+def assemblies(p):
+    """PETSc's count of matrix assemblies (MatAssemblyEnd) in a run's -log_view."""
+    return next(int(line.split()[1]) for line in p.stdout.splitlines()
+                if line.startswith("MatAssemblyEnd "))
+
+
+# The hook took effect: the kept tangent is a matrix of its own, assembled
+# once per change of the cracks' tangent and copied into each Jacobian; the
+# fresh one is assembled into the Jacobian itself (the same Jacobians).
+check(assemblies(p_one) > assemblies(p_fresh),
+      f"the test hook took effect: {assemblies(p_one)} matrix assemblies against "
+      f"{assemblies(p_fresh)}")
 rf = corrosion(fresh)
 dp = max(abs(a["p_MPa"] - b["p_MPa"]) for a, b in zip(r1, rf))
 its_kept = sum(r["newton_iterations"] for r in r1)
