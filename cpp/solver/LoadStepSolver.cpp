@@ -38,13 +38,13 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
   const bool lagged = part.lagged_preconditioner && !overridden;
   const auto pc =
       lagged ? NewtonSolver::Preconditioner::lagged : NewtonSolver::Preconditioner::jacobian;
-  using Concrete = NewtonSolver::Concrete;
-  NewtonSolver::set_default_options(pc, !bulk            ? Concrete::linear
-                                        : bulk->implex() ? Concrete::implex_cracks
-                                                         : Concrete::cracks);
-
   int processes = 1;
   MPI_Comm_size(eq.model().comm(), &processes);
+  using Concrete = NewtonSolver::Concrete;
+  const Concrete concrete = !bulk            ? Concrete::linear
+                            : bulk->implex() ? Concrete::implex_cracks
+                                             : Concrete::cracks;
+  NewtonSolver::set_default_options(pc, concrete, part.mixed_precision && processes == 1);
   const std::int64_t interface_dofs = Condensation::interface_dofs(eq.model());
   std::string why;
   // Condensation::possible(eq) says why not when the concrete may crack.
@@ -54,9 +54,10 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
   const bool required = part.condensation == SolverPart::Condensation::on;
   if (!condense && required)
     throw SceneError("solver.condensation = \"on\" is not possible here: " + why);
-  const std::string cracks = !bulk            ? ""
-                             : bulk->implex() ? "; IMPL-EX cracks (cracking.integration)"
-                                              : "; implicit cracks (cracking.integration)";
+  const std::string cracks = concrete == Concrete::linear ? ""
+                             : concrete == Concrete::implex_cracks
+                                 ? "; IMPL-EX cracks (cracking.integration)"
+                                 : "; implicit cracks (cracking.integration)";
   const std::string description =
       (condense ? "the " + std::to_string(Condensation::unknowns(eq.model())) +
                       " interface jumps (bulk condensed)"

@@ -63,15 +63,28 @@ void test_non_finite(Vec x)
 /// default set here for one run is replaced by the next run's default (the
 /// runs of a sweep share one process: a case with cracks must not leave its
 /// line search to the next case without).
+std::set<std::string>& ours()
+{
+  static std::set<std::string> names; // the options that hold a default of ours
+  return names;
+}
+
 void set_default(const char* name, const char* value)
 {
-  static std::set<std::string> ours; // the options that hold a default of ours
   PetscBool set = PETSC_FALSE;
   check(PetscOptionsHasName(nullptr, nullptr, name, &set), "PetscOptionsHasName");
-  if (set && !ours.contains(name))
+  if (set && !ours().contains(name))
     return;
   check(PetscOptionsSetValue(nullptr, name, value), "PetscOptionsSetValue");
-  ours.insert(name);
+  ours().insert(name);
+}
+
+/// Removes a default that an earlier run set (set_default), so that this
+/// run has PETSc's own or the user's value.
+void clear_default(const char* name)
+{
+  if (ours().erase(name) > 0)
+    check(PetscOptionsClearValue(nullptr, name), "PetscOptionsClearValue");
 }
 
 /// A failed factorisation in words.
@@ -118,7 +131,8 @@ std::string factorization_failure(KSP ksp)
   return factor_failure_text(PCFailedReason(worst));
 }
 
-void NewtonSolver::set_default_options(Preconditioner pc, Concrete concrete)
+void NewtonSolver::set_default_options(Preconditioner pc, Concrete concrete,
+                                       bool single_precision_lu)
 {
   const bool implex = concrete == Concrete::implex_cracks;
   set_default("-snes_type", "newtonls");
@@ -127,18 +141,23 @@ void NewtonSolver::set_default_options(Preconditioner pc, Concrete concrete)
   set_default("-snes_atol", "1e-10");
   set_default("-snes_stol", "1e-14");
   set_default("-snes_max_it", "50");
-  // The implicit cracks factor every Jacobian (LoadStepSolver::make), and
-  // GMRES on that LU lets it be factored in single precision
-  // (Equilibrium::configure; in double GMRES converges in one iteration).
-  if (pc == Preconditioner::lagged || concrete == Concrete::cracks)
+  // The implicit cracks factor every Jacobian (LoadStepSolver::make): GMRES
+  // on that LU lets it be factored in single precision
+  // (Equilibrium::configure); in double the LU is the solver.
+  const char* krylov[] = {"-ksp_gmres_restart", "-ksp_rtol", "-ksp_max_it"};
+  if (pc == Preconditioner::lagged || (concrete == Concrete::cracks && single_precision_lu))
   {
     set_default("-ksp_type", "gmres");
-    set_default("-ksp_gmres_restart", "200");
-    set_default("-ksp_rtol", implex ? implex_rtol : "1e-10");
-    set_default("-ksp_max_it", "1000");
+    set_default(krylov[0], "200");
+    set_default(krylov[1], implex ? implex_rtol : "1e-10");
+    set_default(krylov[2], "1000");
   }
   else
+  {
     set_default("-ksp_type", "preonly");
+    for (const char* name : krylov) // an earlier run's, in a sweep
+      clear_default(name);
+  }
   set_default("-pc_type", "lu");
   set_default("-pc_factor_mat_solver_type", "mumps");
 }

@@ -59,8 +59,8 @@ public:
   enum class Concrete
   {
     linear,       ///< no [cracking]
-    cracks,       ///< cracks solved in every iteration (cracking.integration = "implicit")
-    implex_cracks ///< cracks that hold their extrapolated damage (= "implex")
+    cracks,       ///< cracks solved in every iteration (cracking.integration resolved to implicit)
+    implex_cracks ///< cracks that hold their extrapolated damage (resolved to implex)
   };
 
   NewtonSolver(NonlinearProblem& problem, Preconditioner pc, int refactor_iterations = 10);
@@ -117,13 +117,17 @@ public:
 
   /// Sets PETSc's options database defaults for pushout (MUMPS LU, tight
   /// tolerances) where the user did not set them. Call before NewtonSolver.
-  /// The line search backtracks (bt), or, if the concrete's cracks are
-  /// solved in every iteration (Concrete::cracks), minimises |F|^2 along
-  /// the Newton direction (l2): backtracking from a full step that cracks
-  /// many points stalled on the crack band's kinks (docs/cracking.md,
-  /// "Newton"). Newton and GMRES stop at implex_rtol instead of 1e-10 for
-  /// IMPL-EX cracks.
-  static void set_default_options(Preconditioner pc, Concrete concrete = Concrete::linear);
+  /// The LU is the solver (KSP preonly), or preconditions GMRES: lagged, or
+  /// the LU of every Jacobian of implicit cracks when it is factored in
+  /// single precision (`single_precision_lu`: solver.precision = "mixed" on
+  /// one process; Equilibrium::configure). The line search backtracks (bt),
+  /// or, if the concrete's cracks are solved in every iteration
+  /// (Concrete::cracks), minimises |F|^2 along the Newton direction (l2):
+  /// backtracking from a full step that cracks many points stalled on the
+  /// crack band's kinks (docs/cracking.md, "Newton"). Newton and GMRES stop
+  /// at implex_rtol instead of 1e-10 for IMPL-EX cracks.
+  static void set_default_options(Preconditioner pc, Concrete concrete = Concrete::linear,
+                                  bool single_precision_lu = false);
 
   /// -snes_rtol and -ksp_rtol of IMPL-EX cracks: a step's error is of the
   /// order of cracking.implex_tolerance (1e-2 by default), and a Newton

@@ -32,9 +32,10 @@ void make_shell_preconditioner(PC pc, PetscErrorCode (*set_up)(PC),
   check(PCShellSetName(pc, name), "PCShellSetName");
 }
 
-/// Makes a GMRES `ksp` flexible (FGMRES, right preconditioning) with the
-/// GMRES options it had, the user's -ksp_gmres_* among them: the restart,
-/// the orthogonalisation and its refinement. The tolerances stay.
+/// Makes a GMRES `ksp` flexible (FGMRES, right preconditioning) keeping
+/// what PETSc lets us read of its GMRES options (a user's -ksp_gmres_*):
+/// the restart, the orthogonalisation and its refinement; not
+/// -ksp_gmres_preallocate nor -ksp_gmres_haptol. The tolerances stay.
 inline void make_gmres_flexible(KSP ksp)
 {
   using petsc::check;

@@ -1,7 +1,9 @@
 """The corroded specimen picks its own crack ([cracking] model = "embedded",
 docs/cracking.md): the corroded demo's specimen (tube 15 mm from the face y
 = 0) on a coarse mesh, no crack planes, a random strength field (cov 0.15),
-corroded to x = 20 um, for seeds 1 to 5. For every seed:
+corroded to x = 20 um, for seeds 1 to 5, with the default integration of
+the cracks (IMPL-EX here: cracking.integration = "auto" under displacement
+control). For every seed:
 
 1. The widest surface crack runs from the tube towards the nearest face
    (270 degrees, within the angle one face cell subtends from the axis)

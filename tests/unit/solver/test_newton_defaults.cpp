@@ -43,7 +43,8 @@ TEST(NewtonDefaults, EachRunGetsItsOwnLineSearch)
 }
 
 // IMPL-EX cracks stop Newton and GMRES at NewtonSolver::implex_rtol, and the
-// next run without them is back at 1e-10 (a sweep's cases share a process).
+// next run without them is back at 1e-10 (a sweep's cases share a process);
+// a run whose LU is the solver keeps no GMRES default of an earlier one.
 TEST(NewtonDefaults, ImplexCracksGetTheirOwnTolerances)
 {
   const auto pc = NewtonSolver::Preconditioner::lagged;
@@ -54,7 +55,20 @@ TEST(NewtonDefaults, ImplexCracksGetTheirOwnTolerances)
   NewtonSolver::set_default_options(pc, NewtonSolver::Concrete::cracks);
   EXPECT_EQ(option("-snes_rtol"), "1e-10");
   EXPECT_EQ(option("-ksp_rtol"), "1e-10");
-  NewtonSolver::set_default_options(NewtonSolver::Preconditioner::jacobian,
-                                    NewtonSolver::Concrete::linear); // as the other tests expect
+  // The LU of every Jacobian: under GMRES only where it is single precision;
+  // otherwise the LU is the solver, and no GMRES default of an earlier run
+  // stays behind.
+  const auto jacobian = NewtonSolver::Preconditioner::jacobian;
+  NewtonSolver::set_default_options(jacobian, NewtonSolver::Concrete::cracks, true);
+  EXPECT_EQ(option("-ksp_type"), "gmres");
+  EXPECT_EQ(option("-ksp_rtol"), "1e-10");
+  NewtonSolver::set_default_options(jacobian, NewtonSolver::Concrete::cracks, false);
+  EXPECT_EQ(option("-ksp_type"), "preonly");
+  EXPECT_EQ(option("-ksp_rtol"), "");
+  NewtonSolver::set_default_options(pc, NewtonSolver::Concrete::implex_cracks);
+  NewtonSolver::set_default_options(jacobian,
+                                    NewtonSolver::Concrete::linear); // as the others expect
   EXPECT_EQ(option("-snes_rtol"), "1e-10");
+  EXPECT_EQ(option("-ksp_type"), "preonly");
+  EXPECT_EQ(option("-ksp_rtol"), "");
 }
