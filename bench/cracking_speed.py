@@ -25,7 +25,8 @@ seconds of each phase (step 0 with the retraction, the corrosion stage, the
 push) from the wall_s columns of corrosion.csv and curve.csv; the ratio of
 wall times to the plane's; the peak pressure and the pressure after the
 corrosion stage, the residual bond stress at 0.2 mm, and, where
-embedded_fine ran, the relative error of those three against it. Writes
+embedded_fine ran, the relative error of those three against it; and when
+each run was made (--reuse keeps the runs already in the folder). Writes
 bench/results/cracking_speed.csv and .md.
 
   bench/cracking_speed.py [--reuse] [--only CASE ...]
@@ -79,7 +80,11 @@ def main():
                      "s_per_iteration": round(s["wall_s"] / max(s["newton_iterations"], 1), 3),
                      "p_peak_MPa": round(max(r["p_MPa"] for r in pushout_runs.corrosion(out)), 4),
                      "p_corroded_MPa": round(pushout_runs.corrosion(out)[-1]["p_MPa"], 4),
-                     "tau_last_MPa": round(curve(out)[-1]["tau_MPa"], 4)})
+                     "tau_last_MPa": round(curve(out)[-1]["tau_MPa"], 4),
+                     # When the row's run was made: with --reuse, an earlier
+                     # run's (an earlier build's) results may stand beside today's.
+                     "ran_utc": time.strftime("%Y-%m-%d %H:%M", time.gmtime(
+                         os.path.getmtime(os.path.join(out, "summary.json"))))})
     plane = next((r["wall_s"] for r in rows if r["case"] == "plane"), None)
     fine = next((r for r in rows if r["case"] == "embedded_fine"), None)
     for r in rows:
@@ -94,7 +99,8 @@ def main():
         f.write("# Cracks anywhere: cost against the one-plane corroded demo\n\n"
                 "Made by `bench/cracking_speed.py " + " ".join(sys.argv[1:]) +
                 "` (one thread per run, this machine, one run each; the error columns "
-                "against embedded_fine).\n\n")
+                "against embedded_fine; ran_utc: when each row's run was made, as --reuse "
+                "keeps earlier runs).\n\n")
         f.write(markdown_table(list(rows[0].keys()), rows))
     print(markdown_table(list(rows[0].keys()), rows))
 
