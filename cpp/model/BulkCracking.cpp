@@ -475,25 +475,20 @@ void BulkCracking::add_tangent_change(Mat A, std::vector<double>& assembled)
   for (const std::int32_t cell : _cells)
   {
     bool differs = false;
-    for (int q = 0; q < n_points && !differs; ++q)
-    {
-      const std::size_t first = std::size_t(at(*_d_C, cell, q, voigt_sq).data() - now.data());
-      differs = !std::equal(now.begin() + first, now.begin() + first + voigt_sq,
-                            assembled.begin() + first);
-    }
-    if (!differs)
-      continue;
-    changed.push_back(cell);
     for (int q = 0; q < n_points; ++q)
     {
-      const std::size_t first = std::size_t(at(*_d_C, cell, q, voigt_sq).data() - now.data());
+      const std::span<const double> point = at(*_d_C, cell, q, voigt_sq);
+      const std::size_t first = std::size_t(point.data() - now.data()); // in d_C's array
       const std::span<double> change = at(*_d_C_change, cell, q, voigt_sq);
       for (int k = 0; k < voigt_sq; ++k)
       {
-        change[k] = now[first + k] - assembled[first + k];
-        assembled[first + k] = now[first + k];
+        change[k] = point[k] - assembled[first + k];
+        differs = differs || change[k] != 0.0;
+        assembled[first + k] = point[k];
       }
     }
+    if (differs)
+      changed.push_back(cell);
   }
   if (changed.empty())
     return;

@@ -73,10 +73,11 @@ public:
   /// (cracking.viscosity) [mm of push].
   void set_time_increment(double dt) { _dt = dt; }
 
-  /// Whether the cracks are integrated by IMPL-EX (cracking.integration =
-  /// "implex"; docs/cracking.md, "IMPL-EX"): in a step each crack holds the
-  /// damage of its history extrapolated from the last committed step
-  /// (CrackBand::secant_response) and no point cracks, so that the bulk is
+  /// Whether the cracks are integrated by IMPL-EX (cracking.integration
+  /// resolved to "implex"; docs/cracking.md, "IMPL-EX"): in a step each
+  /// crack holds the damage of its history extrapolated from the last
+  /// committed step (CrackBand::secant_response, as the linear maps of
+  /// CrackBand::secant_operator) and no point cracks, so that the bulk is
   /// linear but for closure; after the step the crack band's own update at
   /// the converged strain (onset, the history, the dissipation) is what is
   /// committed.

@@ -32,18 +32,18 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
   // It takes the Jacobian's LU whatever solver.preconditioner says.
   // IMPL-EX cracks leave a step's bulk linear but for closure
   // (BulkCracking::implex): the solver of a linear bulk.
+  using Concrete = NewtonSolver::Concrete;
   const model::BulkCracking* bulk = eq.model().bulk_cracking();
-  const bool nonsmooth_bulk = bulk && !bulk->implex();
+  const Concrete concrete = !bulk            ? Concrete::linear
+                            : bulk->implex() ? Concrete::implex_cracks
+                                             : Concrete::cracks;
+  const bool nonsmooth_bulk = concrete == Concrete::cracks;
   const bool overridden = part.lagged_preconditioner && nonsmooth_bulk;
   const bool lagged = part.lagged_preconditioner && !overridden;
   const auto pc =
       lagged ? NewtonSolver::Preconditioner::lagged : NewtonSolver::Preconditioner::jacobian;
   int processes = 1;
   MPI_Comm_size(eq.model().comm(), &processes);
-  using Concrete = NewtonSolver::Concrete;
-  const Concrete concrete = !bulk            ? Concrete::linear
-                            : bulk->implex() ? Concrete::implex_cracks
-                                             : Concrete::cracks;
   NewtonSolver::set_default_options(pc, concrete, part.mixed_precision && processes == 1);
   const std::int64_t interface_dofs = Condensation::interface_dofs(eq.model());
   std::string why;
@@ -70,7 +70,7 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
   // extrapolated damage), and the last step's is not it; from it a step
   // without a crack that closes converges in one iteration (the bench's
   // corroded demo: 342 iterations against 412, docs/cracking.md "Speed").
-  solver->set_first_tangent(part.first_tangent_converged && !(bulk && bulk->implex()));
+  solver->set_first_tangent(part.first_tangent_converged && concrete != Concrete::implex_cracks);
   if (nonsmooth_bulk)
   {
     // l2 first (set_default_options), then backtracking.

@@ -59,16 +59,17 @@ void test_non_finite(Vec x)
   check(VecAssemblyEnd(x), "VecAssemblyEnd");
 }
 
+/// The PETSc options that hold a default of ours (set_default).
+std::set<std::string>& ours()
+{
+  static std::set<std::string> names;
+  return names;
+}
+
 /// Sets a PETSc option unless the user set it (on the command line). A
 /// default set here for one run is replaced by the next run's default (the
 /// runs of a sweep share one process: a case with cracks must not leave its
 /// line search to the next case without).
-std::set<std::string>& ours()
-{
-  static std::set<std::string> names; // the options that hold a default of ours
-  return names;
-}
-
 void set_default(const char* name, const char* value)
 {
   PetscBool set = PETSC_FALSE;
