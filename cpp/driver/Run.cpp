@@ -153,6 +153,7 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, record::R
       specimen::make_scenario(scene, _data, *_model);
   scenario->apply_load(0.0, *_equilibrium);
   const int factorizations_before = _solver->factorizations();
+  const std::int64_t linear_before = _solver->linear_iterations();
 
   // Outputs and load steps.
   stepping::StepRecorder recorder(scene.output(), opt.out, *scenario, *_equilibrium, report);
@@ -189,6 +190,7 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, record::R
   phase.emplace("writing outputs", -1);
   summary.solve_s = report.seconds() - t0 - summary.output_s;
   summary.factorizations += _solver->factorizations() - factorizations_before;
+  summary.linear_iterations += _solver->linear_iterations() - linear_before;
   recorder.close();
 }
 

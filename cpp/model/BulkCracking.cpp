@@ -42,12 +42,27 @@ bulk::Voigt voigt_at(const std::vector<double>& values, std::size_t i)
   return v;
 }
 
-/// Values of a Quadrature function at (cell, point), `bs` per point.
-std::span<double> at(fem::Function<double>& f, std::int32_t cell, int point, int bs)
+/// The values of a Quadrature function at (cell, point), `bs` per point.
+/// Made once per loop over the points: the dofmap and the array are looked
+/// up here, not at each point (two shared_ptr copies a point cost 4 % of
+/// an IMPL-EX run).
+class PointValues
 {
-  const std::int32_t dof = f.function_space()->dofmap()->cell_dofs(cell)[point];
-  return f.x()->mutable_array().subspan(std::size_t(dof) * bs, bs);
-}
+public:
+  PointValues(fem::Function<double>& f, int bs)
+      : _dofs(f.function_space()->dofmap()->list()), _values(f.x()->mutable_array()), _bs(bs)
+  {
+  }
+  std::span<double> operator()(std::int32_t cell, int point) const
+  {
+    return _values.subspan(std::size_t(_dofs.links(cell)[point]) * _bs, _bs);
+  }
+
+private:
+  const dolfinx::graph::AdjacencyList<std::int32_t>& _dofs; // f's space's, alive with f
+  std::span<double> _values;
+  std::size_t _bs;
+};
 
 /// A function on the Quadrature space that `form`'s coefficient `name`
 /// lives on (forms/cracking.py).
@@ -227,6 +242,7 @@ void BulkCracking::commit()
   for (std::size_t i = 0; i < _loading.size(); ++i)
     _loading[i] = kappa_of(_trial, i) > kappa_of(_committed, i);
   _trial_implicit = false;
+  ++_trial_version;
   _committed = _trial;
   _stress_committed = _stress_trial;
   _strain_committed = _strain_values;
@@ -237,6 +253,7 @@ void BulkCracking::commit()
 void BulkCracking::revert()
 {
   _trial_implicit = false;
+  ++_trial_version;
   _trial = _committed;
   _dissipated_trial = _dissipated;
   _opening_trial = _opening;
@@ -258,6 +275,7 @@ void BulkCracking::reset()
 void BulkCracking::set_temperature_change(double dT)
 {
   _dT->value = {dT};
+  ++_trial_version;
 }
 
 void BulkCracking::evaluate_strains()
@@ -274,7 +292,10 @@ bool BulkCracking::evaluate()
   const bulk::Voigt66& C = _band.stiffness();
   bool ok = true;
   bool tangent_changed = !_implex;
-  if (_implex && !_secant_current)
+  // IMPL-EX: a point's tangent (d_C) is written when its secant maps are
+  // made anew or its crack opens or closes; it holds otherwise.
+  const bool new_secants = _implex && !_secant_current;
+  if (new_secants)
   {
     for (std::size_t i = 0; i < _secant.size(); ++i)
       _secant[i] = _band.secant_operator(
@@ -282,6 +303,7 @@ bool BulkCracking::evaluate()
           kappa_of(_committed, i) + _extrapolation * _kappa_step[i], _strength[i]);
     _secant_current = true;
   }
+  const PointValues d_sigma_at(*_d_sigma, voigt), d_C_at(*_d_C, voigt_sq);
   for (std::size_t c = 0; c < _cells.size(); ++c)
     for (int q = 0; q < n_points; ++q)
     {
@@ -300,10 +322,13 @@ bool BulkCracking::evaluate()
       if (!_implex && _loading[i] && at_committed_strain(i, strain))
         r.tangent = loading_tangent(i, strain, width);
       ok = ok && r.status == bulk::CrackBandResult::Status::ok;
-      if (_implex && r.closed != bool(_closed[i]))
+      bool write_tangent = !_implex || new_secants;
+      // The side of closure whose map answered (a failed one answers C).
+      const std::uint8_t side = r.status != bulk::CrackBandResult::Status::ok ? 2 : r.closed;
+      if (_implex && side != _closed[i])
       {
-        _closed[i] = r.closed;
-        tangent_changed = true;
+        _closed[i] = side;
+        tangent_changed = write_tangent = true;
       }
       std::copy(r.stress.begin(), r.stress.end(), _stress_trial.begin() + voigt * i);
       if (!_implex) // IMPL-EX: the readings are implicit_update()'s
@@ -312,16 +337,20 @@ bool BulkCracking::evaluate()
         _dissipated_trial[i] = _dissipated[i] + r.dissipation;
         std::copy(r.opening.begin(), r.opening.end(), _opening_trial.begin() + 3 * i);
       }
-      const std::span<double> d_sigma = at(*_d_sigma, _cells[c], q, voigt);
-      const std::span<double> d_C = at(*_d_C, _cells[c], q, voigt_sq);
+      const std::span<double> d_sigma = d_sigma_at(_cells[c], q);
       const bulk::Voigt elastic = bulk::multiply(C, strain);
       for (int k = 0; k < voigt; ++k)
         d_sigma[k] = r.stress[k] - elastic[k];
-      for (int k = 0; k < voigt_sq; ++k)
-        d_C[k] = r.tangent[k] - C[k];
+      if (write_tangent)
+      {
+        const std::span<double> d_C = d_C_at(_cells[c], q);
+        for (int k = 0; k < voigt_sq; ++k)
+          d_C[k] = r.tangent[k] - C[k];
+      }
     }
   if (tangent_changed)
     ++_tangent_version;
+  ++_trial_version;
   return ok;
 }
 
@@ -330,6 +359,7 @@ void BulkCracking::implicit_update()
   if (_trial_implicit) // since the last evaluate(): the same displacement
     return;
   _trial_implicit = true;
+  ++_trial_version;
   _implicit_failures = 0;
   const int n_points = expression_cracking_strain->num_points;
   evaluate_strains();
@@ -410,6 +440,7 @@ bool BulkCracking::energy_release(std::span<double> gradient, double& G)
   const int n_points = expression_cracking_strain->num_points;
   const bulk::Voigt66& C = _band.stiffness();
   std::vector<double> release(_strength.size());
+  const PointValues d_C_at(*_d_C, voigt_sq), gradient_at(*_release_gradient, voigt);
   for (std::size_t c = 0; c < _cells.size(); ++c)
     for (int q = 0; q < n_points; ++q)
     {
@@ -421,9 +452,9 @@ bool BulkCracking::energy_release(std::span<double> gradient, double& G)
       release[i] = 0;
       for (int k = 0; k < voigt; ++k)
         release[i] += 0.5 * (sigma0[k] * eps[k] - sigma[k] * eps0[k]);
-      const std::span<const double> d_C = at(*_d_C, _cells[c], q, voigt_sq);
+      const std::span<const double> d_C = d_C_at(_cells[c], q);
       // dG/d eps_e = 1/2 (sigma_0 - C_t^T eps_e0)
-      const std::span<double> g = at(*_release_gradient, _cells[c], q, voigt);
+      const std::span<double> g = gradient_at(_cells[c], q);
       for (int k = 0; k < voigt; ++k)
       {
         g[k] = 0.5 * sigma0[k];
@@ -444,9 +475,10 @@ double BulkCracking::dissipation()
 double BulkCracking::integrate(const std::function<double(std::size_t)>& value_at_point)
 {
   const int n_points = expression_cracking_strain->num_points;
+  const PointValues value_at(*_point_value, 1);
   for (std::size_t c = 0; c < _cells.size(); ++c)
     for (int q = 0; q < n_points; ++q)
-      at(*_point_value, _cells[c], q, 1)[0] = value_at_point(c * std::size_t(n_points) + q);
+      value_at(_cells[c], q)[0] = value_at_point(c * std::size_t(n_points) + q);
   return fem::assemble_scalar(*_M);
 }
 
@@ -472,14 +504,15 @@ void BulkCracking::add_tangent_change(Mat A, std::vector<double>& assembled)
   // The cells with a point whose tangent changed, and the change there.
   const int n_points = expression_cracking_strain->num_points;
   std::vector<std::int32_t> changed;
+  const PointValues d_C_at(*_d_C, voigt_sq), change_at(*_d_C_change, voigt_sq);
   for (const std::int32_t cell : _cells)
   {
     bool differs = false;
     for (int q = 0; q < n_points; ++q)
     {
-      const std::span<const double> point = at(*_d_C, cell, q, voigt_sq);
+      const std::span<const double> point = d_C_at(cell, q);
       const std::size_t first = std::size_t(point.data() - now.data()); // in d_C's array
-      const std::span<double> change = at(*_d_C_change, cell, q, voigt_sq);
+      const std::span<double> change = change_at(cell, q);
       for (int k = 0; k < voigt_sq; ++k)
       {
         change[k] = point[k] - assembled[first + k];

@@ -71,7 +71,11 @@ public:
   void set_temperature_change(double dT);
   /// The step's pseudo-time increment, for the cracks' damage viscosity
   /// (cracking.viscosity) [mm of push].
-  void set_time_increment(double dt) { _dt = dt; }
+  void set_time_increment(double dt)
+  {
+    _dt = dt;
+    ++_trial_version;
+  }
 
   /// Whether the cracks are integrated by IMPL-EX (cracking.integration
   /// resolved to "implex"; docs/cracking.md, "IMPL-EX"): in a step each
@@ -100,6 +104,11 @@ public:
   /// Equilibrium::jacobian keeps it); otherwise it changes at every
   /// evaluate().
   std::uint64_t tangent_version() const { return _tangent_version; }
+  /// A number that changes at every evaluate() and at whatever may change
+  /// the next one's result at the same displacement (a commit, a revert, a
+  /// setting): Equilibrium::jacobian does not evaluate again at the
+  /// displacement of the residual before it if this has not changed.
+  std::uint64_t trial_version() const { return _trial_version; }
   /// IMPL-EX: how far the converged step's stress is from the crack band's
   /// own at its strain, the energy norm of the difference over the
   /// cracking concrete's: sqrt(int ds : C^-1 : ds / int s : C^-1 : s), s the
@@ -116,7 +125,11 @@ public:
   /// Whether a point uncracked in the committed state may crack (true; false:
   /// it answers elastically, whatever its stress: the predictor of a step,
   /// LoadStepSolver::set_crack_free_predictor).
-  void allow_new_cracks(bool allow) { _new_cracks = allow; }
+  void allow_new_cracks(bool allow)
+  {
+    _new_cracks = allow;
+    ++_trial_version;
+  }
 
   /// The crack band at every point, from the committed state to the strain
   /// of the model's displacement (ghosts up to date): the trial state, and
@@ -226,6 +239,7 @@ private:
   void history_changed()
   {
     ++_tangent_version;
+    ++_trial_version;
     _secant_current = false;
   }
 
@@ -283,7 +297,9 @@ private:
   std::int64_t _implicit_failures = 0;
   /// [point] IMPL-EX: the growth of kappa in the last committed step [mm]
   std::vector<double> _kappa_step;
-  /// [point] IMPL-EX: the crack was closed at the last evaluate()
+  /// [point] IMPL-EX: the side of closure of the last evaluate(): 0 open,
+  /// 1 closed, 2 neither (its map failed, elastic); its tangent changes
+  /// with it
   std::vector<std::uint8_t> _closed;
   /// [point] IMPL-EX: the response at the committed state and the
   /// extrapolated history as linear maps (CrackBand::secant_operator), the
@@ -292,6 +308,7 @@ private:
   std::vector<bulk::SecantOperator> _secant;
   bool _secant_current = false;
   std::uint64_t _tangent_version = 0; ///< tangent_version()
+  std::uint64_t _trial_version = 0;   ///< trial_version()
   std::shared_ptr<dolfinx::fem::Constant<double>> _dT;
   std::shared_ptr<dolfinx::fem::Function<double>> _d_sigma, _d_C;
   /// add_tangent_change()'s difference of d_C (on the changed cells)

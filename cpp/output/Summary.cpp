@@ -48,6 +48,7 @@ void Summary::write(const std::filesystem::path& file) const
       {"newton_iterations", newton_iterations},
       {"cuts", cuts},
       {"factorizations", factorizations},
+      {"linear_iterations", linear_iterations},
       {"wall_s", wall_s},
       {"time_s", {{"mesh", mesh_s}, {"setup", setup_s}, {"solve", solve_s}, {"output", output_s}}},
       {"linear_solve_s", linear_solve_s},

@@ -102,6 +102,7 @@ void Scene::fill_parts()
       string("solver.condensation"),
       {{"auto", Condensation::automatic}, {"on", Condensation::on}, {"off", Condensation::off}});
   _solver.refactor_iterations = integer("solver.refactor_iterations");
+  _solver.inexact_newton = boolean("solver.inexact_newton");
   _solver.first_tangent_converged = string("solver.first_tangent") == "converged";
   _solver.mixed_precision = string("solver.precision") == "mixed";
   _solver.time_linear_solve = boolean("solver.time_linear_solve");

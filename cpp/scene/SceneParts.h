@@ -138,6 +138,7 @@ struct SolverPart
   bool lagged_preconditioner{}; ///< preconditioner: lagged (else jacobian)
   Condensation condensation{};
   std::int64_t refactor_iterations{};
+  bool inexact_newton{};          ///< GMRES to what Newton needs (NewtonSolver::set_inexact)
   bool first_tangent_converged{}; ///< first_tangent: converged (else current)
   bool mixed_precision{};         ///< precision: mixed (else double)
   bool time_linear_solve{};

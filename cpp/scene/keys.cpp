@@ -433,6 +433,13 @@ std::vector<KeyDef> make_keys()
        "lagged: refactor from the current Jacobian when the last linear solve took more "
        "GMRES iterations than this",
        1, 1e9, false},
+      {"solver.inexact_newton", K::boolean, true, "",
+       "lagged: from a load step's second Newton iteration on, GMRES stops at half the "
+       "residual that Newton's test still asks for (Kelley's safeguard on the forcing term), "
+       "not at -ksp_rtol's relative reduction, which it never goes below; the first "
+       "iteration solves to -ksp_rtol. Where GMRES measures the true residual (flexible "
+       "GMRES: solver.precision = mixed on one process). The converged solution is the same "
+       "to Newton's tolerance. false: every linear solve to -ksp_rtol"},
       {"solver.first_tangent",
        K::string,
        std::string("converged"),

@@ -149,6 +149,7 @@ std::string ArcLengthSolver::solve(Vec b, Vec y)
     check(KSPGetConvergedReason(_ksp, &reason), "KSPGetConvergedReason");
     PetscInt its;
     check(KSPGetIterationNumber(_ksp, &its), "KSPGetIterationNumber");
+    _linear_iterations += its;
     _policy.solved(its);
     if (reason > 0)
       return "";

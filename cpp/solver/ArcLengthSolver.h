@@ -161,6 +161,8 @@ public:
 
   /// Numeric factorisations so far (for the summary).
   int factorizations() const { return _policy.factorizations(); }
+  /// Krylov iterations of its linear solves so far (for the summary).
+  std::int64_t linear_iterations() const { return _linear_iterations; }
 
 private:
   /// F(x) into _F on every process's say; the norm of the reactions into
@@ -192,6 +194,7 @@ private:
   NonlinearProblem& _problem;
   PathConstraint& _control;
   PreconditionerPolicy _policy;
+  std::int64_t _linear_iterations = 0; ///< linear_iterations()
   KSP _ksp = nullptr;
   Mat _J = nullptr, _P = nullptr;
   Vec _a = nullptr, _e = nullptr, _F = nullptr, _v1 = nullptr, _v2 = nullptr;

@@ -71,6 +71,8 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
   // without a crack that closes converges in one iteration (the bench's
   // corroded demo: 342 iterations against 412, docs/cracking.md "Speed").
   solver->set_first_tangent(part.first_tangent_converged && concrete != Concrete::implex_cracks);
+  solver->_inexact = part.inexact_newton;
+  solver->_whole.set_inexact(part.inexact_newton);
   if (nonsmooth_bulk)
   {
     // l2 first (set_default_options), then backtracking.
@@ -106,7 +108,10 @@ void LoadStepSolver::update()
   if (!_condense || (_condensation && _eq.constraint_version() == _constraint_version))
     return;
   if (_condensation)
+  {
     _retired_factorizations += 1 + _newton->factorizations();
+    _retired_linear_iterations += _newton->linear_iterations();
+  }
   _newton.reset();
   _condensation.reset();
   if (_x)
@@ -132,6 +137,7 @@ void LoadStepSolver::update()
   _condensation->set_single_precision(_single_precision);
   _newton = std::make_unique<NewtonSolver>(*_condensation, _pc, _refactor_iterations);
   _newton->set_first_tangent(_first_tangent_converged);
+  _newton->set_inexact(_inexact);
   _constraint_version = _eq.constraint_version();
   _x = _condensation->create_vector();
 }
@@ -228,6 +234,12 @@ SolveReport LoadStepSolver::solve_whole(Vec x)
   SolveReport r = _whole.solve(x);
   r.iterations += first.iterations;
   return r;
+}
+
+std::int64_t LoadStepSolver::linear_iterations() const
+{
+  return _whole.linear_iterations() + _retired_linear_iterations +
+         (_newton ? _newton->linear_iterations() : 0);
 }
 
 int LoadStepSolver::factorizations() const

@@ -104,6 +104,8 @@ public:
   double condensation_asymmetry() const { return _asymmetry; }
   /// Numeric factorisations so far (whole, condensed and J0 factors).
   int factorizations() const;
+  /// Krylov iterations of the Newton systems so far (whole and condensed).
+  std::int64_t linear_iterations() const;
   /// The next solve starts as the first solve of a run: its preconditioner
   /// and load directions afresh (a new run on the same set-up:
   /// driver/Run.h Simulation).
@@ -126,6 +128,7 @@ private:
   NewtonSolver::Preconditioner _pc;
   int _refactor_iterations;
   bool _first_tangent_converged = true;
+  bool _inexact = false; ///< solver.inexact_newton
   bool _crack_free_predictor = false;
   bool _single_precision = true;   ///< solver.precision = "mixed" (Condensation)
   bool _condense_required = false; ///< solver.condensation = "on"
@@ -137,9 +140,10 @@ private:
   /// The whole model's solve (set_crack_free_predictor).
   SolveReport solve_whole(Vec x);
   std::unique_ptr<Condensation> _condensation;
-  std::unique_ptr<NewtonSolver> _newton; ///< on the condensation
-  int _constraint_version = 0;           ///< of the constraints it was built for
-  Vec _x = nullptr;                      ///< interface entries of x
-  int _retired_factorizations = 0;       ///< of condensations built before
+  std::unique_ptr<NewtonSolver> _newton;       ///< on the condensation
+  int _constraint_version = 0;                 ///< of the constraints it was built for
+  Vec _x = nullptr;                            ///< interface entries of x
+  std::int64_t _retired_linear_iterations = 0; ///< of condensations built before
+  int _retired_factorizations = 0;             ///< of condensations built before
 };
 } // namespace pushout::solver

@@ -192,6 +192,50 @@ NewtonSolver::NewtonSolver(NonlinearProblem& problem, Preconditioner pc, int ref
   KSP ksp;
   check(SNESGetKSP(_snes, &ksp), "SNESGetKSP");
   problem.configure(ksp);
+  PetscBool ew = PETSC_FALSE;
+  check(SNESKSPGetUseEW(_snes, &ew), "SNESKSPGetUseEW");
+  if (!ew) // Eisenstat-Walker (-snes_ksp_ew) sets the tolerances itself (set_inexact)
+  {
+    check(KSPGetTolerances(ksp, &_ksp_rtol, nullptr, nullptr, nullptr), "KSPGetTolerances");
+    check(KSPSetPreSolve(ksp, linear_tolerance, this), "KSPSetPreSolve");
+  }
+}
+
+// Kelley's safeguard on the forcing term (Kelley 1995, Iterative Methods
+// for Linear and Nonlinear Equations, SIAM, §6.3.2): from the second
+// iteration on, the linear residual need not go below half of what Newton's
+// test still asks, max(-snes_atol, -snes_rtol ||F_0||), for the next
+// iterate to pass it; -ksp_rtol stays the floor, and 0.1 the ceiling. Only
+// where the KSP's norm is the true residual's (FGMRES, the single-precision
+// LU's; right preconditioning): a preconditioned norm may be far from it.
+PetscErrorCode NewtonSolver::linear_tolerance(KSP ksp, Vec b, Vec, void* ctx)
+{
+  return petsc::callback(
+      [&]
+      {
+        auto* self = static_cast<NewtonSolver*>(ctx);
+        PetscInt iteration = 0;
+        check(SNESGetIterationNumber(self->_snes, &iteration), "SNESGetIterationNumber");
+        double rtol = self->_ksp_rtol;
+        KSPNormType norm = KSP_NORM_DEFAULT;
+        check(KSPGetNormType(ksp, &norm), "KSPGetNormType");
+        if (self->_inexact && iteration > 0 && !self->_fnorms.empty() &&
+            norm == KSP_NORM_UNPRECONDITIONED)
+        {
+          PetscReal atol = 0, snes_rtol = 0, stol = 0;
+          PetscInt max_it = 0, max_f = 0;
+          check(SNESGetTolerances(self->_snes, &atol, &snes_rtol, &stol, &max_it, &max_f),
+                "SNESGetTolerances");
+          PetscReal fnorm = 0; // ||F_k||: b is F (SNES solves J y = F, x -= y)
+          check(VecNorm(b, NORM_2, &fnorm), "VecNorm");
+          const double needed = std::max(atol, snes_rtol * self->_fnorms.front());
+          if (fnorm > 0)
+            rtol = std::clamp(0.5 * needed / fnorm, self->_ksp_rtol,
+                              std::max(self->_ksp_rtol, PetscReal(0.1)));
+        }
+        check(KSPSetTolerances(ksp, rtol, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT),
+              "KSPSetTolerances");
+      });
 }
 
 PetscErrorCode NewtonSolver::jacobian_callback(SNES snes, Vec x, Mat J, Mat P, void* ctx)
@@ -394,7 +438,14 @@ SolveReport NewtonSolver::attempt(Vec x)
   // the step loop cuts the step back, as for any diverged solve: MUMPS and
   // PETSc's sparse LU record a failed reason (DIVERGED_LINEAR_SOLVE), a
   // dense LU (condensed systems, one process) raises a zero-pivot error.
+  KSP ksp;
+  check(SNESGetKSP(_snes, &ksp), "SNESGetKSP");
+  PetscInt linear_before = 0, linear_after = 0;
+  check(KSPGetTotalIterations(ksp, &linear_before), "KSPGetTotalIterations");
   const PetscErrorCode code = SNESSolve(_snes, nullptr, x);
+  // Every Krylov iteration, those of a failed linear solve too.
+  check(KSPGetTotalIterations(ksp, &linear_after), "KSPGetTotalIterations");
+  _linear_iterations += linear_after - linear_before;
   if (zero_pivot_error(code) && !petsc::callback_failed())
   {
     r.reason = "DIVERGED_LINEAR_SOLVE (zero pivot)";
@@ -415,8 +466,6 @@ SolveReport NewtonSolver::attempt(Vec x)
     // The last linear solve's iterations: the lagged preconditioner is
     // refreshed before the next solve if it slowed down (the Jacobian
     // callback counts the others).
-    KSP ksp;
-    check(SNESGetKSP(_snes, &ksp), "SNESGetKSP");
     PetscInt its = 0;
     check(KSPGetIterationNumber(ksp, &its), "KSPGetIterationNumber");
     _policy.solved(its);
@@ -437,8 +486,6 @@ SolveReport NewtonSolver::attempt(Vec x)
   }
   if (reason == SNES_DIVERGED_LINEAR_SOLVE)
   {
-    KSP ksp;
-    check(SNESGetKSP(_snes, &ksp), "SNESGetKSP");
     if (const std::string why = factorization_failure(ksp); !why.empty())
       r.reason += " (" + why + ")";
   }

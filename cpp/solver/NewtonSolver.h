@@ -110,6 +110,21 @@ public:
   /// factorisations. Off by default.
   void set_stop_when_stalled(bool stop) { _stop_when_stalled = stop; }
 
+  /// Whether GMRES on a lagged LU stops where more accuracy cannot show in
+  /// Newton's test (solver.inexact_newton): from a solve's second iteration
+  /// on, at half the residual that the test still asks for (Kelley's
+  /// safeguard), never below -ksp_rtol. The first iteration solves to
+  /// -ksp_rtol, so that a step that is linear converges in one. On the
+  /// bench's corroded demo with IMPL-EX cracks: 1 688 back-solves instead of
+  /// 2 103, the same Newton iterations, τ within 2e-6 of its value
+  /// (docs/cracking.md, "Speed of a step"). Only with
+  /// Preconditioner::lagged (elsewhere every iteration has its own LU),
+  /// where GMRES measures the true residual (flexible GMRES, as with the
+  /// LU in single precision on one process; a preconditioned norm may be
+  /// far from it), and without -snes_ksp_ew, which sets the tolerances
+  /// itself. Off by default.
+  void set_inexact(bool inexact) { _inexact = inexact && _policy.lagged(); }
+
   /// Times one linear solve J(x) dx = -F(x) with the solver configured for
   /// the Newton systems (a fresh KSP from the same options, the first
   /// factorisation included) [s]. Leaves x and the committed state alone.
@@ -159,10 +174,16 @@ private:
   std::vector<double> _fnorms;       ///< ||F|| of each iteration of the current solve
   bool _stop_when_stalled = false;   ///< set_stop_when_stalled
   bool _stalled = false;             ///< the current solve stalled
+  PetscReal _ksp_rtol = 1e-10;       ///< -ksp_rtol, the linear solves' floor
+  bool _inexact = false;             ///< set_inexact
+  std::int64_t _linear_iterations = 0; ///< linear_iterations()
 
 public:
   /// Numeric factorisations so far (for the summary).
   int factorizations() const { return _policy.factorizations(); }
+  /// Krylov iterations of the Newton systems so far (an application of the
+  /// LU each; a direct solve counts one).
+  std::int64_t linear_iterations() const { return _linear_iterations; }
   /// The next solve starts as the first solve of a run (a new run on the
   /// same set-up: the same iterates, bit for bit).
   void restart()
@@ -186,6 +207,9 @@ private:
   bool halfway(SNES snes) const;
   /// Whether Newton's `iteration` keeps the factorisation (set_tail_reuse).
   bool in_linear_tail(PetscInt iteration) const;
+  /// KSP pre-solve hook: the tolerance of this iteration's linear solve
+  /// (set_inexact).
+  static PetscErrorCode linear_tolerance(KSP ksp, Vec b, Vec x, void* ctx);
   static PetscErrorCode jacobian_callback(SNES snes, Vec x, Mat J, Mat P, void* ctx);
   static PetscErrorCode convergence_test(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm,
                                          PetscReal fnorm, SNESConvergedReason* reason, void* ctx);

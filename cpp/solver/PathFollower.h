@@ -47,6 +47,8 @@ public:
 
   /// Numeric factorisations so far.
   int factorizations() const { return _arc->factorizations(); }
+  /// Krylov iterations of its linear solves so far.
+  std::int64_t linear_iterations() const { return _arc->linear_iterations(); }
 
 private:
   PathFollower(LoadStepSolver& solver, std::unique_ptr<PathConstraint> control);

@@ -116,7 +116,7 @@ private:
   const double _dG_nominal;               ///< [N mm]
   /// Controls the energy released + beta times the mean jump.
   solver::PathFollower _path;
-  const FactorizationCount _count{_loop._summary, _path};
+  const SolverCounts _count{_loop._summary, _path};
   const Words _step_words, _energy_words;
   Stepper _by_lambda, _energy;
   bool _by_energy = false;       ///< the kind of the next step

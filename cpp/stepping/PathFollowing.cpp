@@ -35,7 +35,7 @@ bool StepLoop::path_following()
     return false;
   const solver::Vector a(_equilibrium.model().mean_axial_slip_functional());
   solver::PathFollower path(_solver, a);
-  const FactorizationCount count{_summary, path};
+  const SolverCounts count{_summary, path};
   const double lambda_final = p.lambda_final, h_nominal = p.h_nominal; // [mm]
   const auto set_load = [&](double lambda) { _scenario.apply_load_factor(lambda, _equilibrium); };
   const auto length = sized("a length of", h_nominal, "mm");

@@ -56,13 +56,17 @@ inline std::function<std::string(double)> sized(std::string what, double scale, 
   };
 }
 
-/// Adds a path follower's factorisations to the summary on every way out of
+/// Adds a path follower's factorisations and linear iterations to the summary on every way out of
 /// a loop that uses it.
-struct FactorizationCount
+struct SolverCounts
 {
   output::Summary& summary;
   const solver::PathFollower& path;
-  ~FactorizationCount() { summary.factorizations += path.factorizations(); }
+  ~SolverCounts()
+  {
+    summary.factorizations += path.factorizations();
+    summary.linear_iterations += path.linear_iterations();
+  }
 };
 
 /// While it lives, each Newton solve starts from the tangent at its initial

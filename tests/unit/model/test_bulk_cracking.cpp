@@ -30,17 +30,21 @@ namespace
 using namespace pushout;
 
 /// A coarse push-out whose concrete cracks anywhere; the cracks' points
-/// committed at a stretch of `hoop_strain` about the tube axis.
+/// committed at a stretch of `hoop_strain` about the tube axis. The
+/// implicit cracks (ImplexCrackedSlice: IMPL-EX).
 class CrackedSlice : public ::testing::Test
 {
 protected:
-  void SetUp() override
+  void SetUp() override { set_up("implicit"); }
+
+  void set_up(const std::string& integration)
   {
     const Scene scene = Scene::parse("[mesh]\nelements_per_quarter = 4\n"
                                      "elements_through_thickness = 2\n"
                                      "[[interface]]\nlaw = \"elastic\"\nk = 1000.0\n"
                                      "[cracking]\nmodel = \"embedded\"\nf_t = 3.0\nc = 30.0\n"
-                                     "integration = \"implicit\"\n",
+                                     "integration = \"" +
+                                         integration + "\"\n",
                                      {});
     bool reused = false;
     const pushout::mesh::MeshData data = pushout::mesh::generate(
@@ -137,6 +141,29 @@ double worst_relative_error(Vec space, Vec result, Exact&& exact, Difference&& d
     VecDestroy(w);
   return worst;
 }
+
+/// worst_relative_error of the assembled tangent J at `at` against the
+/// central differences of the assembled residual there.
+double tangent_error(solver::Equilibrium& eq, Mat J, Vec at)
+{
+  Vec xp, xm, Fm;
+  for (Vec* w : {&xp, &xm, &Fm})
+    VecDuplicate(at, w);
+  const double error = worst_relative_error(
+      at, at, [&](Vec v, Vec Jv) { MatMult(J, v, Jv); },
+      [&](double h, Vec v, Vec d)
+      {
+        VecWAXPY(xp, h, v, at);
+        VecWAXPY(xm, -h, v, at);
+        eq.internal_forces(xp, d);
+        eq.internal_forces(xm, Fm);
+        VecAXPY(d, -1.0, Fm);
+        VecScale(d, 1.0 / (2 * h));
+      });
+  for (Vec* w : {&xp, &xm, &Fm})
+    VecDestroy(w);
+  return error;
+}
 } // namespace
 
 TEST_F(CrackedSlice, MostPointsCrack)
@@ -154,25 +181,100 @@ TEST_F(CrackedSlice, AssembledTangentMatchesFiniteDifferences)
   Mat J;
   MatDuplicate(model->stiffness(), MAT_COPY_VALUES, &J);
   ASSERT_TRUE(eq->jacobian(x1, J));
-  Vec xp, xm, Fm;
-  for (Vec* w : {&xp, &xm, &Fm})
-    VecDuplicate(x, w);
-  const double error = worst_relative_error(
-      x, x, [&](Vec v, Vec Jv) { MatMult(J, v, Jv); },
-      [&](double h, Vec v, Vec d)
-      {
-        VecWAXPY(xp, h, v, x1);
-        VecWAXPY(xm, -h, v, x1);
-        eq->internal_forces(xp, d);
-        eq->internal_forces(xm, Fm);
-        VecAXPY(d, -1.0, Fm);
-        VecScale(d, 1.0 / (2 * h));
-      });
   // No constraints are set: every row is compared. Central differences of
   // a smooth residual: truncation ~h^2 and round-off ~1e-16 |F| / h, far
   // below this (as test_jacobian.cpp).
-  EXPECT_LT(error, 1e-6);
-  for (Vec* w : {&xp, &xm, &Fm, &x1})
+  EXPECT_LT(tangent_error(*eq, J, x1), 1e-6);
+  VecDestroy(&x1);
+  MatDestroy(&J);
+}
+
+class ImplexCrackedSlice : public CrackedSlice
+{
+protected:
+  void SetUp() override { set_up("implex"); }
+};
+
+/// The largest |entry| of A - B.
+static double max_difference(Mat A, Mat B)
+{
+  Mat D;
+  MatDuplicate(A, MAT_COPY_VALUES, &D);
+  MatAXPY(D, -1.0, B, SAME_NONZERO_PATTERN);
+  double largest = 0;
+  MatNorm(D, NORM_MAX, &largest);
+  MatDestroy(&D);
+  return largest;
+}
+
+TEST_F(CrackedSlice, JacobianKeepsTheResidualsEvaluationOnlyWhereItHolds)
+{
+  // Equilibrium::evaluate_cracks: the Jacobian at the residual's
+  // displacement takes the residual's evaluation of the crack band; after
+  // anything that changes the cracks' trial state (here a commit) or at
+  // another displacement, it evaluates again. Each Jacobian is compared
+  // with one made right after an evaluation elsewhere, which cannot keep it.
+  Vec x1, x2;
+  VecDuplicate(x, &x1);
+  VecDuplicate(x, &x2);
+  stretch(x1, 2.2e-4, 1e-5, 11); // the cracks load
+  stretch(x2, 2.4e-4, 1e-5, 12);
+  Mat kept, fresh;
+  MatDuplicate(model->stiffness(), MAT_COPY_VALUES, &kept);
+  MatDuplicate(model->stiffness(), MAT_COPY_VALUES, &fresh);
+  auto fresh_at = [&](Vec y)
+  {
+    ASSERT_TRUE(eq->internal_forces(x2, F));
+    ASSERT_TRUE(eq->jacobian(y, fresh));
+  };
+  ASSERT_TRUE(eq->internal_forces(x1, F));
+  const std::uint64_t evaluated = cracking().trial_version();
+  ASSERT_TRUE(eq->jacobian(x1, kept));
+  EXPECT_EQ(cracking().trial_version(), evaluated) << "the Jacobian evaluated again";
+  fresh_at(x1);
+  EXPECT_EQ(max_difference(kept, fresh), 0.0);
+  // A commit at x1: the cracks that grew are at their committed strain
+  // now, and their tangent is another (BulkCracking::loading_tangent).
+  Mat before_commit;
+  MatDuplicate(kept, MAT_COPY_VALUES, &before_commit);
+  ASSERT_TRUE(eq->internal_forces(x1, F));
+  cracking().commit();
+  ASSERT_TRUE(eq->jacobian(x1, kept));
+  fresh_at(x1);
+  EXPECT_EQ(max_difference(kept, fresh), 0.0);
+  EXPECT_GT(max_difference(kept, before_commit), 0.0) << "the commit changed no tangent";
+  for (Mat* m : {&kept, &fresh, &before_commit})
+    MatDestroy(m);
+  for (Vec* w : {&x1, &x2})
+    VecDestroy(w);
+}
+
+TEST_F(ImplexCrackedSlice, TangentIsTheResidualsDerivativeAfterCracksCloseAndReopen)
+{
+  // IMPL-EX keeps K plus the cracks' secant tangent between Jacobians and
+  // adds only what changed (Equilibrium::bulk_tangent); a point's tangent
+  // is written only where its secant maps are new or its crack changes
+  // side of closure (BulkCracking::evaluate). After a Jacobian with the
+  // cracks closed and residuals that reopen them, the Jacobian must be the
+  // derivative of the residual, which is linear but for closure within a
+  // step (central differences as above).
+  Vec x1, xc, x2;
+  for (Vec* w : {&x1, &xc, &x2})
+    VecDuplicate(x, w);
+  stretch(x1, 2.2e-4, 1e-5, 11);
+  ASSERT_TRUE(eq->internal_forces(x1, F));
+  cracking().commit(); // the cracks grew: a history to extrapolate
+  cracking().set_extrapolation(1.0);
+  Mat J;
+  MatDuplicate(model->stiffness(), MAT_COPY_VALUES, &J);
+  stretch(xc, -1e-4, 1e-5, 13); // the slice squeezed: the cracks close
+  ASSERT_TRUE(eq->internal_forces(xc, F));
+  ASSERT_TRUE(eq->jacobian(xc, J));
+  stretch(x2, 2.3e-4, 1e-5, 11); // and open again
+  ASSERT_TRUE(eq->internal_forces(x2, F));
+  ASSERT_TRUE(eq->jacobian(x2, J));
+  EXPECT_LT(tangent_error(*eq, J, x2), 1e-6);
+  for (Vec* w : {&x1, &xc, &x2})
     VecDestroy(w);
   MatDestroy(&J);
 }
