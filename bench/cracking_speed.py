@@ -20,7 +20,9 @@ Cases (the paper's mesh 16/8, one thread each, one after the other):
   embedded_fine   the implicit cracks at four times the steps (100 corrosion,
                   160 push): the reference of the error columns.
 
-For each: wall time, dofs, Newton iterations, factorizations, cuts, and the
+For each: wall time, dofs, Newton iterations, factorizations, GMRES iterations
+(linear_iterations: one LU application each; blank for a run made before it
+was counted), cuts, and the
 seconds of each phase (step 0 with the retraction, the corrosion stage, the
 push) from the wall_s columns of corrosion.csv and curve.csv; the ratio of
 wall times to the plane's; the peak pressure and the pressure after the
@@ -74,7 +76,8 @@ def main():
                      "symmetry": s["symmetry"], "dofs": s["dofs"],
                      "condensed_dofs": s["condensed_dofs"],
                      "newton_iterations": s["newton_iterations"],
-                     "factorizations": s["factorizations"], "cuts": s["cuts"],
+                     "factorizations": s["factorizations"],
+                     "linear_iterations": s.get("linear_iterations", ""), "cuts": s["cuts"],
                      "dissipation_steps": s["dissipation_steps"], "step0_s": step0,
                      "corrosion_s": corrosion, "push_s": push,
                      "s_per_iteration": round(s["wall_s"] / max(s["newton_iterations"], 1), 3),
