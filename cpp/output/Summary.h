@@ -37,8 +37,8 @@ struct Summary
   int newton_iterations = 0;
   int cuts = 0;           ///< step cut-backs
   int factorizations = 0; ///< LU factorisations of the Newton systems
-  /// Krylov iterations of the Newton systems (an application of the LU
-  /// each; a direct solve counts one)
+  /// Krylov iterations of the Newton systems and of the path followers'
+  /// solves (an application of an LU each; a direct solve counts one)
   std::int64_t linear_iterations = 0;
   double wall_s = 0;
   double mesh_s = 0, setup_s = 0, solve_s = 0, output_s = 0;

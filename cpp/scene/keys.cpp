@@ -463,7 +463,8 @@ std::vector<KeyDef> make_keys()
        "single precision, to a relative tolerance of at least 1e-7; whole model on one "
        "process (lagged MUMPS LU, or the LU of every Jacobian of implicit cracks): the LU "
        "factored and applied in single precision by "
-       "MUMPS, flexible GMRES to -ksp_rtol (half the memory traffic; the residual, and so "
+       "MUMPS, flexible GMRES to -ksp_rtol (or to what Newton needs: solver.inexact_newton) "
+       "(half the memory traffic; the residual, and so "
        "the solution and the Newton tolerances, stay in double); double: everything in "
        "double, GMRES to -ksp_rtol",
        -inf,

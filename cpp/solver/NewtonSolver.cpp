@@ -201,13 +201,25 @@ NewtonSolver::NewtonSolver(NonlinearProblem& problem, Preconditioner pc, int ref
   }
 }
 
-// Kelley's safeguard on the forcing term (Kelley 1995, Iterative Methods
-// for Linear and Nonlinear Equations, SIAM, §6.3.2): from the second
+// The safeguard on the forcing term of inexact Newton (C. T. Kelley,
+// Iterative Methods for Linear and Nonlinear Equations, SIAM 1995, ch. 6;
+// docs/cracking.md "Speed of a step"): from the second
 // iteration on, the linear residual need not go below half of what Newton's
 // test still asks, max(-snes_atol, -snes_rtol ||F_0||), for the next
 // iterate to pass it; -ksp_rtol stays the floor, and 0.1 the ceiling. Only
 // where the KSP's norm is the true residual's (FGMRES, the single-precision
 // LU's; right preconditioning): a preconditioned norm may be far from it.
+// The hook sets the tolerance of every solve, -ksp_rtol where it does not
+// loosen it (so a loosened one never carries over).
+double NewtonSolver::inexact_rtol(double snes_atol, double snes_rtol, double F0, double Fk,
+                                  double ksp_rtol)
+{
+  if (!(Fk > 0))
+    return ksp_rtol;
+  const double needed = std::max(snes_atol, snes_rtol * F0);
+  return std::clamp(0.5 * needed / Fk, ksp_rtol, std::max(ksp_rtol, 0.1));
+}
+
 PetscErrorCode NewtonSolver::linear_tolerance(KSP ksp, Vec b, Vec, void* ctx)
 {
   return petsc::callback(
@@ -228,10 +240,7 @@ PetscErrorCode NewtonSolver::linear_tolerance(KSP ksp, Vec b, Vec, void* ctx)
                 "SNESGetTolerances");
           PetscReal fnorm = 0; // ||F_k||: b is F (SNES solves J y = F, x -= y)
           check(VecNorm(b, NORM_2, &fnorm), "VecNorm");
-          const double needed = std::max(atol, snes_rtol * self->_fnorms.front());
-          if (fnorm > 0)
-            rtol = std::clamp(0.5 * needed / fnorm, self->_ksp_rtol,
-                              std::max(self->_ksp_rtol, PetscReal(0.1)));
+          rtol = inexact_rtol(atol, snes_rtol, self->_fnorms.front(), fnorm, self->_ksp_rtol);
         }
         check(KSPSetTolerances(ksp, rtol, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT),
               "KSPSetTolerances");

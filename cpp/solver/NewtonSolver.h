@@ -125,6 +125,13 @@ public:
   /// itself. Off by default.
   void set_inexact(bool inexact) { _inexact = inexact && _policy.lagged(); }
 
+  /// set_inexact's relative tolerance of a linear solve at ||F_k|| = Fk [N]
+  /// in a Newton solve that started at ||F_0|| = F0 [N]: half of what
+  /// Newton's test still asks for, max(snes_atol, snes_rtol F0), relative
+  /// to Fk, between ksp_rtol and max(ksp_rtol, 0.1).
+  static double inexact_rtol(double snes_atol, double snes_rtol, double F0, double Fk,
+                             double ksp_rtol);
+
   /// Times one linear solve J(x) dx = -F(x) with the solver configured for
   /// the Newton systems (a fresh KSP from the same options, the first
   /// factorisation included) [s]. Leaves x and the committed state alone.

@@ -144,7 +144,9 @@ def inexact_against_exact(name, scene, out, sets, key, table, rtol, extra=()):
 
 
 inexact_against_exact("lagged whole model", scene, outs["lagged"], ["solver.condensation=off"],
-                      "P_N", curve, 1e-10)
+                      "P_N", curve, SNES_RTOL)
+inexact_against_exact("condensed lagged", scene, outs["condensed lagged (default)"], [], "P_N",
+                      curve, SNES_RTOL)
 # IMPL-EX at Newton's tight tolerance: at its own (IMPLEX_RTOL) a point
 # whose stress is within the tolerance of its strength may crack in one run
 # and not the other, and a step be cut in one only (common.TIGHT_NEWTON).

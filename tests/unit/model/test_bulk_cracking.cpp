@@ -22,6 +22,7 @@
 #include "scene/Scene.h"
 #include "solver/Equilibrium.h"
 #include <cmath>
+#include <functional>
 #include <gtest/gtest.h>
 #include <random>
 
@@ -224,14 +225,14 @@ TEST_F(CrackedSlice, JacobianKeepsTheResidualsEvaluationOnlyWhereItHolds)
   MatDuplicate(model->stiffness(), MAT_COPY_VALUES, &fresh);
   auto fresh_at = [&](Vec y)
   {
-    ASSERT_TRUE(eq->internal_forces(x2, F));
+    ASSERT_TRUE(eq->internal_forces(y == x2 ? x1 : x2, F)); // elsewhere
     ASSERT_TRUE(eq->jacobian(y, fresh));
   };
   ASSERT_TRUE(eq->internal_forces(x1, F));
   const std::uint64_t evaluated = cracking().trial_version();
   ASSERT_TRUE(eq->jacobian(x1, kept));
   EXPECT_EQ(cracking().trial_version(), evaluated) << "the Jacobian evaluated again";
-  fresh_at(x1);
+  ASSERT_NO_FATAL_FAILURE(fresh_at(x1));
   EXPECT_EQ(max_difference(kept, fresh), 0.0);
   // A commit at x1: the cracks that grew are at their committed strain
   // now, and their tangent is another (BulkCracking::loading_tangent).
@@ -240,9 +241,35 @@ TEST_F(CrackedSlice, JacobianKeepsTheResidualsEvaluationOnlyWhereItHolds)
   ASSERT_TRUE(eq->internal_forces(x1, F));
   cracking().commit();
   ASSERT_TRUE(eq->jacobian(x1, kept));
-  fresh_at(x1);
+  ASSERT_NO_FATAL_FAILURE(fresh_at(x1));
   EXPECT_EQ(max_difference(kept, fresh), 0.0);
   EXPECT_GT(max_difference(kept, before_commit), 0.0) << "the commit changed no tangent";
+  // Without new cracks (from the unloaded slice, as the crack-free
+  // predictor) the points stay elastic at x2: a Jacobian there after
+  // allowing them again must evaluate again, and they crack.
+  Mat held;
+  MatDuplicate(kept, MAT_COPY_VALUES, &held);
+  cracking().reset();
+  cracking().allow_new_cracks(false);
+  ASSERT_TRUE(eq->internal_forces(x2, F));
+  ASSERT_TRUE(eq->jacobian(x2, held));
+  cracking().allow_new_cracks(true);
+  ASSERT_TRUE(eq->jacobian(x2, kept));
+  ASSERT_NO_FATAL_FAILURE(fresh_at(x2));
+  EXPECT_EQ(max_difference(kept, fresh), 0.0);
+  EXPECT_GT(max_difference(kept, held), 0.0) << "no point cracked anew at x2";
+  // Whatever else may change the next evaluation changes the version.
+  for (const auto& change :
+       std::vector<std::function<void()>>{[&] { cracking().revert(); },
+                                          [&] { cracking().set_time_increment(0.01); },
+                                          [&] { cracking().set_temperature_change(-10.0); },
+                                          [&] { cracking().allow_new_cracks(true); }})
+  {
+    const std::uint64_t before = cracking().trial_version();
+    change();
+    EXPECT_NE(cracking().trial_version(), before);
+  }
+  MatDestroy(&held);
   for (Mat* m : {&kept, &fresh, &before_commit})
     MatDestroy(m);
   for (Vec* w : {&x1, &x2})
@@ -270,8 +297,10 @@ TEST_F(ImplexCrackedSlice, TangentIsTheResidualsDerivativeAfterCracksCloseAndReo
   stretch(xc, -1e-4, 1e-5, 13); // the slice squeezed: the cracks close
   ASSERT_TRUE(eq->internal_forces(xc, F));
   ASSERT_TRUE(eq->jacobian(xc, J));
+  const std::uint64_t closed = cracking().tangent_version();
   stretch(x2, 2.3e-4, 1e-5, 11); // and open again
   ASSERT_TRUE(eq->internal_forces(x2, F));
+  EXPECT_NE(cracking().tangent_version(), closed) << "no crack opened again";
   ASSERT_TRUE(eq->jacobian(x2, J));
   EXPECT_LT(tangent_error(*eq, J, x2), 1e-6);
   for (Vec* w : {&x1, &xc, &x2})

@@ -72,3 +72,22 @@ TEST(NewtonDefaults, ImplexCracksGetTheirOwnTolerances)
   EXPECT_EQ(option("-ksp_type"), "preonly");
   EXPECT_EQ(option("-ksp_rtol"), "");
 }
+
+// solver.inexact_newton's tolerance of a linear solve (NewtonSolver::
+// inexact_rtol): half of what Newton's test still needs relative to the
+// residual at hand, never below -ksp_rtol nor above 0.1 (or -ksp_rtol).
+TEST(NewtonDefaults, InexactToleranceIsWhatNewtonStillNeeds)
+{
+  const double atol = 1e-10, rtol = 1e-6, F0 = 100.0; // [N]
+  // The push's second iteration: ||F|| at 5e-4 of F0; Newton needs 1e-4 N.
+  EXPECT_DOUBLE_EQ(NewtonSolver::inexact_rtol(atol, rtol, F0, 5e-2, 1e-6), 1e-3);
+  // At F0 itself: no looser than -ksp_rtol.
+  EXPECT_DOUBLE_EQ(NewtonSolver::inexact_rtol(atol, rtol, F0, F0, 1e-6), 1e-6);
+  // Close to the test: at most 0.1.
+  EXPECT_DOUBLE_EQ(NewtonSolver::inexact_rtol(atol, rtol, F0, 2e-4, 1e-6), 0.1);
+  // The absolute tolerance where it is the larger.
+  EXPECT_DOUBLE_EQ(NewtonSolver::inexact_rtol(1e-3, rtol, F0, 1e-1, 1e-10), 5e-3);
+  // A -ksp_rtol above 0.1 is kept; a zero residual asks for -ksp_rtol.
+  EXPECT_DOUBLE_EQ(NewtonSolver::inexact_rtol(atol, rtol, F0, 1e-5, 0.5), 0.5);
+  EXPECT_DOUBLE_EQ(NewtonSolver::inexact_rtol(atol, rtol, F0, 0.0, 1e-6), 1e-6);
+}
