@@ -104,10 +104,10 @@ public:
   /// Equilibrium::jacobian keeps it); otherwise it changes at every
   /// evaluate().
   std::uint64_t tangent_version() const { return _tangent_version; }
-  /// A number that changes at every evaluate() and at whatever may change
-  /// the next one's result at the same displacement (a commit, a revert, a
-  /// setting): Equilibrium::jacobian does not evaluate again at the
-  /// displacement of the residual before it if this has not changed.
+  /// A number that changes at every evaluate() that evaluates and at
+  /// whatever may change the next one's result at the same displacement (a
+  /// commit, a revert, an update, a setting): evaluate() at the displacement
+  /// of the last one keeps its result while this has not changed.
   std::uint64_t trial_version() const { return _trial_version; }
   /// IMPL-EX: how far the converged step's stress is from the crack band's
   /// own at its strain, the energy norm of the difference over the
@@ -134,7 +134,9 @@ public:
   /// The crack band at every point, from the committed state to the strain
   /// of the model's displacement (ghosts up to date): the trial state, and
   /// the forms' coefficients. False if a point failed (its equilibrium did
-  /// not converge): the step is to be cut.
+  /// not converge): the step is to be cut. At the displacement of the last
+  /// evaluation, with trial_version() unchanged, that evaluation stands.
+  /// Local to the process.
   bool evaluate();
   /// Adds the forces of the last evaluate() to f (local with ghosts; the
   /// caller sums the ghosts into their owners) [N].
@@ -265,6 +267,7 @@ private:
   double band_width(std::size_t cell, const bulk::Vec3& n) const;
 
   std::shared_ptr<dolfinx::mesh::Mesh> _mesh;
+  std::shared_ptr<const dolfinx::fem::Function<double>> _u; ///< the model's displacement [mm]
   bulk::CrackBand _band;
   std::vector<std::int32_t> _cells;       ///< cracking cells (local, owned), sorted
   std::vector<double> _strength;          ///< [cell][point] f_t factor of the field
@@ -309,6 +312,13 @@ private:
   bool _secant_current = false;
   std::uint64_t _tangent_version = 0; ///< tangent_version()
   std::uint64_t _trial_version = 0;   ///< trial_version()
+  struct Evaluated
+  {
+    bool valid = false;              ///< an evaluation was made
+    std::uint64_t trial_version = 0; ///< trial_version() after it
+    std::vector<double> u;           ///< its displacement (with ghosts) [mm]
+    bool ok = false;                 ///< its result
+  } _evaluated;                      ///< evaluate()'s last evaluation
   std::shared_ptr<dolfinx::fem::Constant<double>> _dT;
   std::shared_ptr<dolfinx::fem::Function<double>> _d_sigma, _d_C;
   /// add_tangent_change()'s difference of d_C (on the changed cells)

@@ -3,7 +3,6 @@
 #include "RigidBodyModes.h"
 #include "ShellPreconditioner.h"
 #include "SinglePrecisionSparse.h"
-#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <dolfinx/common/IndexMap.h>
@@ -97,25 +96,12 @@ bool Equilibrium::assemble_interfaces(std::span<double> f, Mat A)
   return ok;
 }
 
-bool Equilibrium::evaluate_cracks(model::BulkCracking& cracking)
-{
-  const std::span<const double> u = _model.displacement().x()->array();
-  if (_cracks_evaluated.valid && cracking.trial_version() == _cracks_evaluated.trial_version &&
-      std::equal(u.begin(), u.end(), _cracks_evaluated.u.begin(), _cracks_evaluated.u.end()))
-    return _cracks_evaluated.ok;
-  _cracks_evaluated.valid = true;
-  _cracks_evaluated.ok = cracking.evaluate();
-  _cracks_evaluated.trial_version = cracking.trial_version();
-  _cracks_evaluated.u.assign(u.begin(), u.end());
-  return _cracks_evaluated.ok;
-}
-
 bool Equilibrium::assemble_joints(std::span<double> f, Mat A)
 {
   bool ok = assemble_interfaces(f, A);
   if (model::BulkCracking* cracking = _model.bulk_cracking())
   {
-    ok = evaluate_cracks(*cracking) && ok;
+    ok = cracking->evaluate() && ok;
     cracking->add_forces(f);
     if (A)
       cracking->add_tangent(A);
@@ -301,7 +287,7 @@ bool Equilibrium::jacobian(Vec x, Mat J)
     // a crack opens or closes (BulkCracking::tangent_version): K plus it is
     // kept, and only the joints' tangent is added afresh. The crack band is
     // evaluated first (it may open or close a crack).
-    ok = evaluate_cracks(*cracking);
+    ok = cracking->evaluate();
     check(MatCopy(bulk_tangent(), J, SAME_NONZERO_PATTERN), "MatCopy");
     ok = assemble_interfaces(fi, J) && ok;
   }

@@ -95,12 +95,6 @@ private:
   bool assemble_interfaces(std::span<double> f, Mat A);
   /// The same, and the concrete's cracks' forces and tangent too.
   bool assemble_joints(std::span<double> f, Mat A);
-  /// The crack band at the model's displacement: evaluated, unless the
-  /// last evaluation here was at the same displacement, bit for bit (the
-  /// residual's, before the Jacobian at the same iterate), and nothing
-  /// changed the cracks' trial state since (BulkCracking::trial_version).
-  /// False if a point failed. Local to the process.
-  bool evaluate_cracks(model::BulkCracking& cracking);
   /// IMPL-EX cracks: K plus the cracks' tangent of the last evaluate(),
   /// assembled again only when that tangent changed
   /// (BulkCracking::tangent_version). Collective.
@@ -120,12 +114,5 @@ private:
   std::uint64_t _bulk_tangent_version = 0; ///< of the cracks' tangent in it
   /// The cracks' tangent in _bulk_tangent (BulkCracking::add_tangent_change)
   std::vector<double> _bulk_assembled;
-  struct CracksEvaluated
-  {
-    bool valid = false;    ///< an evaluation was made
-    std::vector<double> u; ///< its displacement (with ghosts) [mm]
-    std::uint64_t trial_version = 0;
-    bool ok = false;
-  } _cracks_evaluated; ///< evaluate_cracks()'s last evaluation
 };
 } // namespace pushout::solver

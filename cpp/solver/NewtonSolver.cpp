@@ -211,16 +211,14 @@ NewtonSolver::NewtonSolver(NonlinearProblem& problem, Preconditioner pc, int ref
 // LU's; right preconditioning): a preconditioned norm may be far from it.
 // The hook sets the tolerance of every solve, -ksp_rtol where it does not
 // loosen it (so a loosened one never carries over).
-double NewtonSolver::inexact_rtol(double snes_atol, double snes_rtol, double F0, double Fk,
-                                  double ksp_rtol)
+double NewtonSolver::inexact_rtol(double needed, double Fk, double ksp_rtol)
 {
   if (!(Fk > 0))
     return ksp_rtol;
-  const double needed = std::max(snes_atol, snes_rtol * F0);
   return std::clamp(0.5 * needed / Fk, ksp_rtol, std::max(ksp_rtol, 0.1));
 }
 
-PetscErrorCode NewtonSolver::linear_tolerance(KSP ksp, Vec b, Vec, void* ctx)
+PetscErrorCode NewtonSolver::linear_tolerance(KSP ksp, Vec, Vec, void* ctx)
 {
   return petsc::callback(
       [&]
@@ -231,17 +229,11 @@ PetscErrorCode NewtonSolver::linear_tolerance(KSP ksp, Vec b, Vec, void* ctx)
         double rtol = self->_ksp_rtol;
         KSPNormType norm = KSP_NORM_DEFAULT;
         check(KSPGetNormType(ksp, &norm), "KSPGetNormType");
-        if (self->_inexact && iteration > 0 && !self->_fnorms.empty() &&
+        // _fnorms holds ||F|| of iterations 0 to `iteration` (the
+        // convergence test runs before the solve): ||b|| = ||F_k||.
+        if (self->_inexact && iteration > 0 && self->_fnorms.size() == std::size_t(iteration) + 1 &&
             norm == KSP_NORM_UNPRECONDITIONED)
-        {
-          PetscReal atol = 0, snes_rtol = 0, stol = 0;
-          PetscInt max_it = 0, max_f = 0;
-          check(SNESGetTolerances(self->_snes, &atol, &snes_rtol, &stol, &max_it, &max_f),
-                "SNESGetTolerances");
-          PetscReal fnorm = 0; // ||F_k||: b is F (SNES solves J y = F, x -= y)
-          check(VecNorm(b, NORM_2, &fnorm), "VecNorm");
-          rtol = inexact_rtol(atol, snes_rtol, self->_fnorms.front(), fnorm, self->_ksp_rtol);
-        }
+          rtol = inexact_rtol(self->tolerance(self->_snes), self->_fnorms.back(), self->_ksp_rtol);
         check(KSPSetTolerances(ksp, rtol, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT),
               "KSPSetTolerances");
       });
@@ -281,14 +273,18 @@ PetscErrorCode NewtonSolver::jacobian_callback(SNES snes, Vec x, Mat J, Mat P, v
       });
 }
 
-bool NewtonSolver::halfway(SNES snes) const
+double NewtonSolver::tolerance(SNES snes) const
 {
   PetscReal atol = 0, rtol = 0, stol = 0;
   PetscInt max_it = 0, max_f = 0;
   check(SNESGetTolerances(snes, &atol, &rtol, &stol, &max_it, &max_f), "SNESGetTolerances");
+  return newton_tolerance(atol, rtol, _fnorms.front());
+}
+
+bool NewtonSolver::halfway(SNES snes) const
+{
   const double start = _fnorms.front();
-  const double tolerance = std::max(atol, rtol * start);
-  return *std::min_element(_fnorms.begin(), _fnorms.end()) <= std::sqrt(start * tolerance);
+  return *std::min_element(_fnorms.begin(), _fnorms.end()) <= std::sqrt(start * tolerance(snes));
 }
 
 bool NewtonSolver::in_linear_tail(PetscInt iteration) const

@@ -30,6 +30,7 @@
 
 #include "NonlinearProblem.h"
 #include "PreconditionerPolicy.h"
+#include <algorithm>
 #include <petscsnes.h>
 #include <string>
 #include <vector>
@@ -126,11 +127,15 @@ public:
   void set_inexact(bool inexact) { _inexact = inexact && _policy.lagged(); }
 
   /// set_inexact's relative tolerance of a linear solve at ||F_k|| = Fk [N]
-  /// in a Newton solve that started at ||F_0|| = F0 [N]: half of what
-  /// Newton's test still asks for, max(snes_atol, snes_rtol F0), relative
-  /// to Fk, between ksp_rtol and max(ksp_rtol, 0.1).
-  static double inexact_rtol(double snes_atol, double snes_rtol, double F0, double Fk,
-                             double ksp_rtol);
+  /// when Newton's test asks for ||F|| <= `needed` [N] (tolerance()): half
+  /// of that relative to Fk, between ksp_rtol and max(ksp_rtol, 0.1).
+  static double inexact_rtol(double needed, double Fk, double ksp_rtol);
+  /// The |F| [N] at which a solve that started at |F_0| = F0 [N] passes
+  /// PETSc's test: max(snes_atol, snes_rtol F0).
+  static double newton_tolerance(double snes_atol, double snes_rtol, double F0)
+  {
+    return std::max(snes_atol, snes_rtol * F0);
+  }
 
   /// Times one linear solve J(x) dx = -F(x) with the solver configured for
   /// the Newton systems (a fresh KSP from the same options, the first
@@ -209,6 +214,8 @@ private:
   /// attempt(), from the last converged tangent if it is to be taken, then
   /// once more from the tangent at the initial guess `start` if that failed.
   SolveReport attempt_from_tangents(Vec x, Vec start);
+  /// newton_tolerance() of this solve with the tolerances of `snes`.
+  double tolerance(SNES snes) const;
   /// Whether the smallest |F| of this solve is halfway, in decades, from
   /// the first to the tolerance of `snes` (set_stop_when_stalled).
   bool halfway(SNES snes) const;

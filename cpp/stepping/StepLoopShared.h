@@ -56,8 +56,8 @@ inline std::function<std::string(double)> sized(std::string what, double scale, 
   };
 }
 
-/// Adds a path follower's factorisations and linear iterations to the summary on every way out of
-/// a loop that uses it.
+/// Adds a path follower's factorisations and linear iterations to the
+/// summary on every way out of a loop that uses it.
 struct SolverCounts
 {
   output::Summary& summary;

@@ -210,7 +210,7 @@ static double max_difference(Mat A, Mat B)
 
 TEST_F(CrackedSlice, JacobianKeepsTheResidualsEvaluationOnlyWhereItHolds)
 {
-  // Equilibrium::evaluate_cracks: the Jacobian at the residual's
+  // BulkCracking::evaluate: the Jacobian at the residual's
   // displacement takes the residual's evaluation of the crack band; after
   // anything that changes the cracks' trial state (here a commit) or at
   // another displacement, it evaluates again. Each Jacobian is compared

@@ -78,16 +78,20 @@ TEST(NewtonDefaults, ImplexCracksGetTheirOwnTolerances)
 // residual at hand, never below -ksp_rtol nor above 0.1 (or -ksp_rtol).
 TEST(NewtonDefaults, InexactToleranceIsWhatNewtonStillNeeds)
 {
-  const double atol = 1e-10, rtol = 1e-6, F0 = 100.0; // [N]
-  // The push's second iteration: ||F|| at 5e-4 of F0; Newton needs 1e-4 N.
-  EXPECT_DOUBLE_EQ(NewtonSolver::inexact_rtol(atol, rtol, F0, 5e-2, 1e-6), 1e-3);
-  // At F0 itself: no looser than -ksp_rtol.
-  EXPECT_DOUBLE_EQ(NewtonSolver::inexact_rtol(atol, rtol, F0, F0, 1e-6), 1e-6);
+  // Newton asks for 1e-4 N (-snes_rtol 1e-6 of 100 N).
+  const double needed = NewtonSolver::newton_tolerance(1e-10, 1e-6, 100.0); // [N]
+  EXPECT_DOUBLE_EQ(needed, 1e-4);
+  // The push's second iteration: ||F|| at 5e-2 N.
+  EXPECT_DOUBLE_EQ(NewtonSolver::inexact_rtol(needed, 5e-2, 1e-6), 1e-3);
+  // At the first residual: no looser than -ksp_rtol.
+  EXPECT_DOUBLE_EQ(NewtonSolver::inexact_rtol(needed, 100.0, 1e-6), 1e-6);
   // Close to the test: at most 0.1.
-  EXPECT_DOUBLE_EQ(NewtonSolver::inexact_rtol(atol, rtol, F0, 2e-4, 1e-6), 0.1);
+  EXPECT_DOUBLE_EQ(NewtonSolver::inexact_rtol(needed, 2e-4, 1e-6), 0.1);
   // The absolute tolerance where it is the larger.
-  EXPECT_DOUBLE_EQ(NewtonSolver::inexact_rtol(1e-3, rtol, F0, 1e-1, 1e-10), 5e-3);
+  EXPECT_DOUBLE_EQ(
+      NewtonSolver::inexact_rtol(NewtonSolver::newton_tolerance(1e-3, 1e-6, 100.0), 1e-1, 1e-10),
+      5e-3);
   // A -ksp_rtol above 0.1 is kept; a zero residual asks for -ksp_rtol.
-  EXPECT_DOUBLE_EQ(NewtonSolver::inexact_rtol(atol, rtol, F0, 1e-5, 0.5), 0.5);
-  EXPECT_DOUBLE_EQ(NewtonSolver::inexact_rtol(atol, rtol, F0, 0.0, 1e-6), 1e-6);
+  EXPECT_DOUBLE_EQ(NewtonSolver::inexact_rtol(needed, 1e-5, 0.5), 0.5);
+  EXPECT_DOUBLE_EQ(NewtonSolver::inexact_rtol(needed, 0.0, 1e-6), 1e-6);
 }
