@@ -1,6 +1,7 @@
 #include "SinglePrecisionSparse.h"
 #include "../common/petsc_check.h"
 #include "ShellPreconditioner.h"
+#include "SingleColumnBlas.h"
 #include <cmath>
 #include <petscmat.h>
 #include <smumps_c.h>
@@ -214,7 +215,11 @@ PetscErrorCode apply(PC pc, Vec x, Vec y)
 
 void use_single_precision_sparse_lu(PC pc)
 {
-  make_shell_preconditioner<Factors>(pc, set_up, apply,
-                                     "sparse LU in single precision (MUMPS, pushout)");
+  make_shell_preconditioner<Factors>(
+      pc, set_up, apply,
+      single_column_blas_bound()
+          ? "sparse LU in single precision (MUMPS, pushout; its one-column BLAS calls by "
+            "sgemv/strsv)"
+          : "sparse LU in single precision (MUMPS, pushout)");
 }
 } // namespace pushout::solver
