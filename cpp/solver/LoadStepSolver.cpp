@@ -1,7 +1,9 @@
 #include "LoadStepSolver.h"
+#include "../common/mpi_errors.h"
 #include "../common/petsc_check.h"
 #include "../scene/SceneError.h"
 #include "Vector.h"
+#include <cmath>
 #include <iostream>
 
 namespace pushout::solver
@@ -184,11 +186,11 @@ Vec LoadStepSolver::functional(Vec a)
   return v;
 }
 
-SolveReport LoadStepSolver::solve(Vec x)
+SolveReport LoadStepSolver::solve(Vec x, Vec unpredicted)
 {
   update(); // may find the condensation untrusted, and turn it off
   if (!_condense)
-    return solve_whole(x);
+    return solve_whole(x, unpredicted ? residual_norm(unpredicted) : 0.0);
   Vec xp = to_problem(x);
   SolveReport r = _newton->solve(xp);
   if (r.converged)
@@ -204,12 +206,24 @@ SolveReport LoadStepSolver::solve(Vec x)
   return r;
 }
 
-SolveReport LoadStepSolver::solve_whole(Vec x)
+double LoadStepSolver::residual_norm(Vec unpredicted)
+{
+  Vec F = _eq.create_vector();
+  const Vector owned(F); // destroyed on every way out
+  const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(unpredicted));
+  const bool ok =
+      mpi::all(comm, mpi::collectively(comm, [&] { return _eq.residual(unpredicted, F); }));
+  PetscReal norm = 0;
+  check(VecNorm(F, NORM_2, &norm), "VecNorm");
+  return ok && std::isfinite(norm) ? double(norm) : 0.0;
+}
+
+SolveReport LoadStepSolver::solve_whole(Vec x, double reference)
 {
   // IMPL-EX cracks open only after a step: nothing to hold back.
   model::BulkCracking* bulk = _eq.model().bulk_cracking();
   if (!bulk || !_crack_free_predictor || bulk->implex())
-    return _whole.solve(x);
+    return _whole.solve(x, reference);
   Vec copy;
   check(VecDuplicate(x, &copy), "VecDuplicate");
   const Vector start(copy); // destroyed on every way out
@@ -218,7 +232,7 @@ SolveReport LoadStepSolver::solve_whole(Vec x)
   SolveReport first;
   try
   {
-    first = _whole.solve(x);
+    first = _whole.solve(x, reference);
   }
   catch (...) // the concrete may crack again whatever happens next
   {
@@ -231,7 +245,7 @@ SolveReport LoadStepSolver::solve_whole(Vec x)
     check(VecCopy(start, x), "VecCopy");
     _whole.forget_tangent();
   }
-  SolveReport r = _whole.solve(x);
+  SolveReport r = _whole.solve(x, reference);
   r.iterations += first.iterations;
   return r;
 }

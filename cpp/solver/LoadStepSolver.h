@@ -71,7 +71,14 @@ public:
   LoadStepSolver& operator=(const LoadStepSolver&) = delete;
 
   /// Solves the current load step from x (whole model, constraints in x).
-  SolveReport solve(Vec x);
+  /// `unpredicted`: where x is a prediction (extrapolated from the last
+  /// steps), the step's start without it, the last converged state with
+  /// the constraints in it; Newton's relative tolerance is then relative to
+  /// the residual there where that is the larger (NewtonSolver::solve's
+  /// reference). Only on the whole model: the condensed system's residual
+  /// lives on the jumps (no prediction is made for it: only cracking
+  /// concrete extrapolates, and it is not condensed).
+  SolveReport solve(Vec x, Vec unpredicted = nullptr);
 
   /// The problem the Newton systems are solved on, for the current
   /// constraints.
@@ -138,7 +145,10 @@ private:
   bool _bulk_needed = true;
   NewtonSolver _whole;
   /// The whole model's solve (set_crack_free_predictor).
-  SolveReport solve_whole(Vec x);
+  SolveReport solve_whole(Vec x, double reference);
+  /// ||F|| at `unpredicted` on the whole model [N] (0 where a law failed
+  /// there on any process: no reference).
+  double residual_norm(Vec unpredicted);
   std::unique_ptr<Condensation> _condensation;
   std::unique_ptr<NewtonSolver> _newton;       ///< on the condensation
   int _constraint_version = 0;                 ///< of the constraints it was built for

@@ -204,9 +204,10 @@ NewtonSolver::NewtonSolver(NonlinearProblem& problem, Preconditioner pc, int ref
 // The safeguard on the forcing term of inexact Newton (C. T. Kelley,
 // Iterative Methods for Linear and Nonlinear Equations, SIAM 1995, ch. 6;
 // docs/cracking.md "Speed of a step"): from the second
-// iteration on, the linear residual need not go below half of what Newton's
-// test still asks, max(-snes_atol, -snes_rtol ||F_0||), for the next
-// iterate to pass it; -ksp_rtol stays the floor, and 0.1 the ceiling. Only
+// iteration on (from the first where a prediction made ||F_0|| smaller than
+// solve()'s reference), the linear residual need not go below half of what
+// Newton's test still asks, tolerance(), for the next iterate to pass it;
+// -ksp_rtol stays the floor, and 0.1 the ceiling. Only
 // where the KSP's norm is the true residual's (FGMRES, the single-precision
 // LU's; right preconditioning): a preconditioned norm may be far from it.
 // The hook sets the tolerance of every solve, -ksp_rtol where it does not
@@ -231,8 +232,12 @@ PetscErrorCode NewtonSolver::linear_tolerance(KSP ksp, Vec, Vec, void* ctx)
         check(KSPGetNormType(ksp, &norm), "KSPGetNormType");
         // _fnorms holds ||F|| of iterations 0 to `iteration` (the
         // convergence test runs before the solve): ||b|| = ||F_k||.
-        if (self->_inexact && iteration > 0 && self->_fnorms.size() == std::size_t(iteration) + 1 &&
-            norm == KSP_NORM_UNPRECONDITIONED)
+        // The first iteration solves to -ksp_rtol (a linear step converges
+        // in one), unless a prediction made ||F_0|| smaller than what the
+        // step's loads make: the test then asks for less than -ksp_rtol's.
+        const bool known = self->_fnorms.size() == std::size_t(iteration) + 1;
+        const bool loosened = known && (iteration > 0 || self->_reference > self->_fnorms.front());
+        if (self->_inexact && loosened && norm == KSP_NORM_UNPRECONDITIONED)
           rtol = inexact_rtol(self->tolerance(self->_snes), self->_fnorms.back(), self->_ksp_rtol);
         check(KSPSetTolerances(ksp, rtol, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT),
               "KSPSetTolerances");
@@ -278,7 +283,7 @@ double NewtonSolver::tolerance(SNES snes) const
   PetscReal atol = 0, rtol = 0, stol = 0;
   PetscInt max_it = 0, max_f = 0;
   check(SNESGetTolerances(snes, &atol, &rtol, &stol, &max_it, &max_f), "SNESGetTolerances");
-  return newton_tolerance(atol, rtol, _fnorms.front());
+  return newton_tolerance(atol, rtol, std::max(_fnorms.front(), _reference));
 }
 
 bool NewtonSolver::halfway(SNES snes) const
@@ -315,6 +320,11 @@ PetscErrorCode NewtonSolver::convergence_test(SNES snes, PetscInt it, PetscReal 
         self->_fnorms.resize(std::size_t(it) + 1);
         self->_fnorms[it] = fnorm;
         self->_stalled = false;
+        // PETSc's relative test is of ||F_0||; with a prediction, of the
+        // larger reference (solve()).
+        if (*reason == SNES_CONVERGED_ITERATING && std::isfinite(fnorm) &&
+            self->_reference > self->_fnorms.front() && fnorm <= self->tolerance(snes))
+          *reason = SNES_CONVERGED_FNORM_RELATIVE;
         if (*reason > 0 || !std::isfinite(fnorm))
           return;
         Vec x;
@@ -370,8 +380,9 @@ double NewtonSolver::time_linear_solve(Vec x)
   return t;
 }
 
-SolveReport NewtonSolver::solve(Vec x)
+SolveReport NewtonSolver::solve(Vec x, double reference)
 {
+  _reference = reference;
   _policy.check_constraints(_problem);
   if (_policy.lagged() && !_policy.has_P())
   {

@@ -77,7 +77,13 @@ public:
   void set_first_tangent(bool converged) { _previous_tangent = converged; }
 
   /// Solves F(x) = 0 from the initial guess x (constraints already in x).
-  SolveReport solve(Vec x);
+  /// `reference` [N]: where x is a prediction (extrapolated from the last
+  /// steps), ||F|| at the step's start without it (the last converged state
+  /// with this step's loads and constraints); Newton's relative test
+  /// (-snes_rtol) and the inexact tolerances (set_inexact) are then relative
+  /// to the larger of it and ||F_0||, so that a good prediction saves
+  /// iterations instead of asking for a smaller ||F||. 0: ||F_0||.
+  SolveReport solve(Vec x, double reference = 0);
 
   /// A solve that fails is tried once more from its initial guess with this
   /// PETSc line search type (SNESLineSearchType, e.g. "bt"); "" (the
@@ -115,7 +121,9 @@ public:
   /// Newton's test (solver.inexact_newton): from a solve's second iteration
   /// on, at half the residual that the test still asks for (Kelley's
   /// safeguard), never below -ksp_rtol. The first iteration solves to
-  /// -ksp_rtol, so that a step that is linear converges in one. On the
+  /// -ksp_rtol, so that a step that is linear converges in one, unless a
+  /// prediction made ||F_0|| smaller than solve()'s reference (then at what
+  /// the test asks for, too). On the
   /// bench's corroded demo with IMPL-EX cracks: 1 688 back-solves instead of
   /// 2 103, the same Newton iterations, τ within 2e-6 of its value
   /// (docs/cracking.md, "Speed of a step"). Only with
@@ -184,6 +192,7 @@ private:
   int _tangent_evaluation = -1;      ///< the problem's tangent count after it
   double _tail_ratio = 0;            ///< set_tail_reuse
   std::vector<double> _fnorms;       ///< ||F|| of each iteration of the current solve
+  double _reference = 0;             ///< solve()'s reference of the current solve [N]
   bool _stop_when_stalled = false;   ///< set_stop_when_stalled
   bool _stalled = false;             ///< the current solve stalled
   PetscReal _ksp_rtol = 1e-10;       ///< -ksp_rtol, the linear solves' floor
@@ -214,7 +223,8 @@ private:
   /// attempt(), from the last converged tangent if it is to be taken, then
   /// once more from the tangent at the initial guess `start` if that failed.
   SolveReport attempt_from_tangents(Vec x, Vec start);
-  /// newton_tolerance() of this solve with the tolerances of `snes`.
+  /// newton_tolerance() of this solve with the tolerances of `snes`, of the
+  /// larger of ||F_0|| and solve()'s reference.
   double tolerance(SNES snes) const;
   /// Whether the smallest |F| of this solve is halfway, in decades, from
   /// the first to the tolerance of `snes` (set_stop_when_stalled).

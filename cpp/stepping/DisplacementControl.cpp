@@ -65,10 +65,15 @@ bool StepLoop::nominal_steps(const Stage& stage)
   double s = 0.0;
   // Stage::extrapolate_by: the committed state before the last converged
   // step, and that step's increment of the load (0: none to extrapolate).
-  solver::Vector before_last;
+  // The step's start without the prediction, for Newton's relative test
+  // (LoadStepSolver::solve).
+  solver::Vector before_last, unpredicted;
   double d_load_last = 0;
   if (stage.extrapolate_by)
+  {
     before_last = _x.duplicate();
+    unpredicted = _x.duplicate();
+  }
   for (int k = 1; k <= steps; ++k)
   {
     int cuts = 0;
@@ -82,11 +87,15 @@ bool StepLoop::nominal_steps(const Stage& stage)
       const double ratio =
           d_load_last != 0 ? (stage.extrapolate_by(s_try) - stage.extrapolate_by(s)) / d_load_last
                            : 0.0;
-      if (ratio != 0)
-        extrapolate(before_last, ratio);
       set_crack_extrapolation(ratio);
+      const bool predicted = extrapolate(before_last, ratio);
       _equilibrium.apply_constraints(_x);
-      solver::SolveReport rep = _solver.solve(_x);
+      if (predicted)
+      {
+        unpredicted.copy_from(_x_committed);
+        _equilibrium.apply_constraints(unpredicted);
+      }
+      solver::SolveReport rep = _solver.solve(_x, predicted ? Vec(unpredicted) : nullptr);
       _summary.newton_iterations += rep.iterations;
       // IMPL-EX's error is first order in the step: a step that missed its
       // tolerance is cut at once to one that should meet it (0.8 of the
@@ -265,14 +274,15 @@ void StepLoop::set_crack_extrapolation(double ratio)
     bulk->set_extrapolation(ratio);
 }
 
-void StepLoop::extrapolate(const solver::Vector& before_last, double ratio)
+bool StepLoop::extrapolate(const solver::Vector& before_last, double ratio)
 {
   // Only forwards: where the load turns back (an unloading segment) the
   // last increment predicts nothing.
   if (!(ratio > 0) || !std::isfinite(ratio))
-    return;
+    return false;
   // x = x_c + r (x_c - x_before)
   _x.copy_from(_x_committed);
   petsc::check(VecAXPBY(_x, -ratio, 1 + ratio, before_last), "VecAXPBY");
+  return true;
 }
 } // namespace pushout::stepping

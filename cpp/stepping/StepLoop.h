@@ -129,7 +129,8 @@ private:
   std::function<double(double)> extrapolation(std::function<double(double)> load) const;
   /// The trial state from the committed one plus `ratio` times the last
   /// converged step's increment (from `before_last`); nothing unless ratio > 0.
-  void extrapolate(const solver::Vector& before_last, double ratio);
+  /// Whether it predicted.
+  bool extrapolate(const solver::Vector& before_last, double ratio);
   /// IMPL-EX cracks (model::BulkCracking::set_extrapolation) extrapolate
   /// their history by `ratio` in the next try (0: none).
   void set_crack_extrapolation(double ratio);

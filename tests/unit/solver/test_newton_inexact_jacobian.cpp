@@ -9,6 +9,8 @@
 //   the other side and the iterates swing without getting closer; with set_stop_when_stalled the
 //   solve fails after about ten iterations (DIVERGED_NO_PROGRESS), not at
 //   -snes_max_it (50).
+// - A predicted start (NewtonSolver::solve's reference): Newton's relative
+//   test is of the step's own residual, not of the prediction's.
 #include "common/petsc_check.h"
 #include "solver/NewtonHistory.h"
 #include "solver/NewtonSolver.h"
@@ -152,4 +154,74 @@ TEST(StallStop, ASteadyTailIsLeftAlone)
   const Solve stopping = solve(0.0, 1.25, true), not_stopping = solve(0.0, 1.25, false);
   ASSERT_TRUE(stopping.report.converged) << stopping.report.reason;
   EXPECT_EQ(stopping.report.iterations, not_stopping.report.iterations);
+}
+
+namespace
+{
+struct Predicted
+{
+  solver::SolveReport report;
+  double F_start = 0; ///< ||F|| at the start [N]
+  double F_end = 0;   ///< ||F|| at the solution [N]
+};
+
+/// One solve of the linear F (no cube; its root is b) with 1.25 times its
+/// Jacobian, so that each iteration cuts ||F|| to 0.2 of itself, from the
+/// prediction x = b (1 + `error`), with NewtonSolver::solve's `reference`.
+Predicted solve_predicted(double error, double reference)
+{
+  solver::NewtonSolver::set_default_options(solver::NewtonSolver::Preconditioner::jacobian);
+  // Only the relative test: -snes_atol (1e-10 by default) out of the way,
+  // for this solve only.
+  check(PetscOptionsSetValue(nullptr, "-snes_atol", "1e-30"), "PetscOptionsSetValue");
+  InexactJacobian problem;
+  problem.scale = 1.25;
+  problem.cube = 0.0;
+  Vec x = problem.create_vector();
+  PetscScalar* xa;
+  check(VecGetArray(x, &xa), "VecGetArray");
+  for (int i = 0; i < 2; ++i)
+    xa[i] = b[i] * (1 + error);
+  check(VecRestoreArray(x, &xa), "VecRestoreArray");
+  const auto norm = [&](Vec v)
+  {
+    const std::array<double, 2> f = problem.F(InexactJacobian::values(v));
+    return std::hypot(f[0], f[1]);
+  };
+  Predicted p;
+  p.F_start = norm(x);
+  {
+    solver::NewtonSolver newton(problem, solver::NewtonSolver::Preconditioner::jacobian);
+    p.report = newton.solve(x, reference);
+  }
+  p.F_end = norm(x);
+  check(VecDestroy(&x), "VecDestroy");
+  check(PetscOptionsClearValue(nullptr, "-snes_atol"), "PetscOptionsClearValue");
+  return p;
+}
+} // namespace
+
+TEST(PredictedStart, TheTestIsRelativeToTheStepsOwnResidual)
+{
+  // The step's own residual, at x = 0 without the prediction: |b|. The
+  // prediction's is 1e-3 of it. -snes_rtol is 1e-10.
+  const double step = std::hypot(b[0], b[1]);
+  const Predicted alone = solve_predicted(1e-3, 0.0), referred = solve_predicted(1e-3, step);
+  ASSERT_TRUE(alone.report.converged) << alone.report.reason;
+  ASSERT_TRUE(referred.report.converged) << referred.report.reason;
+  EXPECT_NEAR(alone.F_start, 1e-3 * step, 1e-9 * step);
+  // Without the reference: 1e-10 of the prediction's residual, about 15
+  // iterations at 0.2 each; with it, 1e-10 of the step's, about 10.
+  EXPECT_LE(alone.F_end, 1e-10 * alone.F_start);
+  EXPECT_LE(referred.F_end, 1e-10 * step);
+  EXPECT_GT(referred.F_end, 1e-10 * alone.F_start); // it did stop earlier
+  EXPECT_LE(referred.report.iterations + 3, alone.report.iterations);
+  // A reference below the prediction's residual changes nothing.
+  const Predicted below = solve_predicted(1e-3, 1e-4 * step);
+  EXPECT_EQ(below.report.iterations, alone.report.iterations);
+  EXPECT_EQ(below.F_end, alone.F_end);
+  // A prediction already within the step's tolerance takes no iteration.
+  const Predicted within = solve_predicted(5e-11, step);
+  ASSERT_TRUE(within.report.converged) << within.report.reason;
+  EXPECT_EQ(within.report.iterations, 0);
 }
