@@ -189,6 +189,8 @@ Vec LoadStepSolver::functional(Vec a)
 SolveReport LoadStepSolver::solve(Vec x, Vec unpredicted)
 {
   update(); // may find the condensation untrusted, and turn it off
+  // The reference is the residual with new cracks allowed; the crack-free
+  // predictor (solve_whole) runs only in step 0, which is never predicted.
   if (!_condense)
     return solve_whole(x, unpredicted ? residual_norm(unpredicted) : 0.0);
   Vec xp = to_problem(x);

@@ -320,11 +320,23 @@ PetscErrorCode NewtonSolver::convergence_test(SNES snes, PetscInt it, PetscReal 
         self->_fnorms.resize(std::size_t(it) + 1);
         self->_fnorms[it] = fnorm;
         self->_stalled = false;
-        // PETSc's relative test is of ||F_0||; with a prediction, of the
-        // larger reference (solve()).
-        if (*reason == SNES_CONVERGED_ITERATING && std::isfinite(fnorm) &&
-            self->_reference > self->_fnorms.front() && fnorm <= self->tolerance(snes))
-          *reason = SNES_CONVERGED_FNORM_RELATIVE;
+        // PETSc's relative and divergence tests are of ||F_0||; with a
+        // prediction, of the larger reference (solve()): a prediction
+        // within the tolerance takes no iteration (unless
+        // -snes_force_iteration), and an iterate is not diverged while
+        // within -snes_divergence_tolerance of the reference.
+        if (self->_reference > self->_fnorms.front() && std::isfinite(fnorm))
+        {
+          PetscBool force = PETSC_FALSE;
+          check(SNESGetForceIteration(snes, &force), "SNESGetForceIteration");
+          PetscReal divtol = 0;
+          check(SNESGetDivergenceTolerance(snes, &divtol), "SNESGetDivergenceTolerance");
+          if (*reason == SNES_DIVERGED_DTOL && fnorm <= divtol * self->_reference)
+            *reason = SNES_CONVERGED_ITERATING;
+          if (*reason == SNES_CONVERGED_ITERATING && (it > 0 || !force) &&
+              fnorm <= self->tolerance(snes))
+            *reason = SNES_CONVERGED_FNORM_RELATIVE;
+        }
         if (*reason > 0 || !std::isfinite(fnorm))
           return;
         Vec x;
@@ -478,13 +490,14 @@ SolveReport NewtonSolver::attempt(Vec x)
   _tangent_converged = r.converged;
   _tangent_constraints = _problem.constraint_version();
   _tangent_evaluation = _problem.tangent_evaluations();
+  if (its > 0) // a solve with no iteration (a prediction within the tolerance) made none
   {
     // The last linear solve's iterations: the lagged preconditioner is
     // refreshed before the next solve if it slowed down (the Jacobian
     // callback counts the others).
-    PetscInt its = 0;
-    check(KSPGetIterationNumber(ksp, &its), "KSPGetIterationNumber");
-    _policy.solved(its);
+    PetscInt linear_its = 0;
+    check(KSPGetIterationNumber(ksp, &linear_its), "KSPGetIterationNumber");
+    _policy.solved(linear_its);
   }
   r.iterations = int(its);
   r.stalled = _stalled;

@@ -1,8 +1,11 @@
 #include "SingleColumnBlas.h"
+#include <atomic>
 #include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <dlfcn.h>
+#include <stdexcept>
 
 // The Fortran BLAS interface, as gfortran calls it: every argument by
 // address, then the lengths of the character arguments.
@@ -30,22 +33,32 @@ extern "C"
 
 namespace
 {
-using gemm_function = decltype(&sgemm_);
-using trsm_function = decltype(&strsm_);
-
-/// The BLAS library's own definition of `name`, the next after this
-/// program's. Called from Fortran, so a failure cannot be thrown: it stops
-/// the process with a message (it would mean that no BLAS is loaded).
-template <typename Function> Function blas_library(const char* name)
+/// The BLAS library's own sgemm_ and strsm_, the next definitions after
+/// this program's (null if there is none: single_column_blas_bound() says
+/// so before MUMPS runs).
+struct Library
 {
-  void* f = dlsym(RTLD_NEXT, name);
-  if (f == nullptr)
-  {
-    std::fprintf(stderr, "pushout: the BLAS library's %s was not found (%s)\n", name, dlerror());
-    std::abort();
-  }
-  return reinterpret_cast<Function>(f);
+  decltype(&sgemm_) gemm = nullptr;
+  decltype(&strsm_) trsm = nullptr;
+};
+
+const Library& library()
+{
+  static const Library l{reinterpret_cast<decltype(&sgemm_)>(dlsym(RTLD_NEXT, "sgemm_")),
+                         reinterpret_cast<decltype(&strsm_)>(dlsym(RTLD_NEXT, "strsm_"))};
+  return l;
 }
+
+/// Called from Fortran, so a failure cannot be thrown: a call that only the
+/// library can make, without the library, stops the process with a message.
+void missing(const char* name)
+{
+  std::fprintf(stderr, "pushout: the BLAS library's %s was not found\n", name);
+  std::abort();
+}
+
+/// single_column_calls()
+std::atomic<std::int64_t> single_columns{0};
 
 bool transposed(const char* trans)
 {
@@ -74,11 +87,13 @@ extern "C"
         sgemv_("T", k, m, alpha, a, lda, b, &incx, beta, c, &incy, 1);
       else // A is m x k
         sgemv_("N", m, k, alpha, a, lda, b, &incx, beta, c, &incy, 1);
+      single_columns.fetch_add(1, std::memory_order_relaxed);
       return;
     }
-    static const gemm_function library = blas_library<gemm_function>("sgemm_");
-    library(transa, transb, m, n, k, alpha, a, lda, b, ldb, beta, c, ldc, transa_length,
-            transb_length);
+    if (!library().gemm)
+      missing("sgemm_");
+    library().gemm(transa, transb, m, n, k, alpha, a, lda, b, ldb, beta, c, ldc, transa_length,
+                   transb_length);
   }
 
   /// op(A) X = alpha B (side L) or X op(A) = alpha B (side R), B m x n
@@ -97,6 +112,7 @@ extern "C"
       const int size = column ? *m : *n, stride = column ? 1 : *ldb;
       // A row's solve is with op(A) transposed.
       const bool solve_transposed = column ? transposed(transa) : !transposed(transa);
+      single_columns.fetch_add(1, std::memory_order_relaxed);
       if (*alpha == 0.0f) // strsm does not read A then
       {
         for (int i = 0; i < size; ++i)
@@ -108,9 +124,10 @@ extern "C"
       strsv_(uplo, solve_transposed ? "T" : "N", diag, &size, a, lda, b, &stride, 1, 1, 1);
       return;
     }
-    static const trsm_function library = blas_library<trsm_function>("strsm_");
-    library(side, uplo, transa, diag, m, n, alpha, a, lda, b, ldb, side_length, uplo_length,
-            transa_length, diag_length);
+    if (!library().trsm)
+      missing("strsm_");
+    library().trsm(side, uplo, transa, diag, m, n, alpha, a, lda, b, ldb, side_length, uplo_length,
+                   transa_length, diag_length);
   }
 }
 
@@ -118,7 +135,15 @@ namespace pushout::solver
 {
 bool single_column_blas_bound()
 {
+  if (!library().gemm || !library().trsm)
+    throw std::runtime_error("the BLAS library's sgemm_ and strsm_ were not found after "
+                             "pushout's own (cpp/solver/SingleColumnBlas.h): is a BLAS linked?");
   return dlsym(RTLD_DEFAULT, "sgemm_") == reinterpret_cast<void*>(&sgemm_) &&
          dlsym(RTLD_DEFAULT, "strsm_") == reinterpret_cast<void*>(&strsm_);
+}
+
+std::int64_t single_column_calls()
+{
+  return single_columns.load(std::memory_order_relaxed);
 }
 } // namespace pushout::solver

@@ -8,7 +8,7 @@
 // matrix kernel and, in strsm, a packed copy of each front's triangle made
 // before it is used once. The same operations as sgemv and strsv stream
 // each factor entry once. On the bench's IMPL-EX case (docs/cracking.md,
-// "Speed of a step") a back-solve took 12.0 ms instead of 15.3 ms.
+// "Speed of a step") a back-solve took about 12 ms instead of 15.3 ms.
 //
 // How: SingleColumnBlas.cpp defines sgemm_ and strsm_ in the program. The
 // dynamic linker binds MUMPS's calls (and any other caller's) to the
@@ -20,9 +20,18 @@
 // which are left alone.
 #pragma once
 
+#include <cstdint>
+
 namespace pushout::solver
 {
 /// Whether the BLAS's sgemm_ and strsm_ seen by the libraries of this
-/// process are the single-column ones of SingleColumnBlas.cpp.
+/// process are the single-column ones of SingleColumnBlas.cpp. Throws
+/// std::runtime_error if the BLAS library's own, which they pass the other
+/// calls to, cannot be found (called before MUMPS runs: a missing routine
+/// found in a call from Fortran could only abort).
 bool single_column_blas_bound();
+
+/// The calls with one column (or one row of a right solve) done by sgemv /
+/// strsv in this process so far.
+std::int64_t single_column_calls();
 } // namespace pushout::solver

@@ -225,3 +225,64 @@ TEST(PredictedStart, TheTestIsRelativeToTheStepsOwnResidual)
   ASSERT_TRUE(within.report.converged) << within.report.reason;
   EXPECT_EQ(within.report.iterations, 0);
 }
+
+namespace
+{
+/// The linear F with its own Jacobian on a lagged LU under flexible GMRES
+/// (whose norm is the true residual's, as with the single-precision LU),
+/// keeping its KSP to read the tolerance of the last linear solve.
+class FlexibleLagged : public InexactJacobian
+{
+public:
+  mutable KSP ksp = nullptr;
+  void configure(KSP k) const override
+  {
+    ksp = k;
+    PC pc;
+    check(KSPSetType(k, KSPFGMRES), "KSPSetType");
+    check(KSPGetPC(k, &pc), "KSPGetPC");
+    check(PCSetType(pc, PCLU), "PCSetType");
+  }
+};
+
+/// The relative tolerance of the first (and only) linear solve of an
+/// inexact Newton solve from the prediction x = b (1 + 1e-3), with
+/// NewtonSolver::solve's `reference`.
+double first_linear_rtol(double reference)
+{
+  solver::NewtonSolver::set_default_options(solver::NewtonSolver::Preconditioner::lagged);
+  check(PetscOptionsSetValue(nullptr, "-snes_atol", "1e-30"), "PetscOptionsSetValue");
+  FlexibleLagged problem;
+  problem.scale = 1.0;
+  problem.cube = 0.0;
+  Vec x = problem.create_vector();
+  PetscScalar* xa;
+  check(VecGetArray(x, &xa), "VecGetArray");
+  for (int i = 0; i < 2; ++i)
+    xa[i] = b[i] * (1 + 1e-3);
+  check(VecRestoreArray(x, &xa), "VecRestoreArray");
+  PetscReal rtol = 0;
+  {
+    solver::NewtonSolver newton(problem, solver::NewtonSolver::Preconditioner::lagged);
+    newton.set_inexact(true);
+    const solver::SolveReport r = newton.solve(x, reference);
+    EXPECT_TRUE(r.converged) << r.reason;
+    EXPECT_EQ(r.iterations, 1); // F linear, its own Jacobian
+    check(KSPGetTolerances(problem.ksp, &rtol, nullptr, nullptr, nullptr), "KSPGetTolerances");
+  }
+  check(VecDestroy(&x), "VecDestroy");
+  check(PetscOptionsClearValue(nullptr, "-snes_atol"), "PetscOptionsClearValue");
+  solver::NewtonSolver::set_default_options(solver::NewtonSolver::Preconditioner::jacobian);
+  return rtol;
+}
+} // namespace
+
+TEST(PredictedStart, TheFirstLinearSolveStopsAtWhatTheStepsTestNeeds)
+{
+  // -ksp_rtol 1e-10 and -snes_rtol 1e-10. Without a reference the first
+  // solve goes to -ksp_rtol (a linear step converges in one); with the
+  // step's own residual |b|, 1e3 times the prediction's, Newton asks for
+  // 1e-10 |b| and GMRES stops at half of it: 0.5 x 1e-10 |b| / (1e-3 |b|).
+  EXPECT_DOUBLE_EQ(first_linear_rtol(0.0), 1e-10);
+  EXPECT_NEAR(first_linear_rtol(std::hypot(b[0], b[1])), 5e-8, 1e-12);
+}

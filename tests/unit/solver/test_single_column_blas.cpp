@@ -3,11 +3,13 @@
 // with several (the BLAS library's own) both give the product and the
 // triangular solve that the BLAS defines, for every transposition, side,
 // triangle, unit diagonal and scaling, with a stride where the BLAS allows
-// one, and beta = 0 does not read C.
+// one, and beta = 0 does not read C; a call with one column is counted as
+// done by sgemv / strsv (single_column_calls), one with several is not.
 #include "solver/SingleColumnBlas.h"
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <gtest/gtest.h>
 #include <limits>
 #include <string>
@@ -208,8 +210,11 @@ TEST(SingleColumnBlas, GemmIsTheBlasProductForOneColumnAndSeveral)
               for (int j = 0; j < n; ++j)
                 std::fill_n(c.begin() + j * ldc, m, std::numeric_limits<float>::quiet_NaN());
             const char tas[2] = {ta, 0}, tbs[2] = {tb, 0};
+            const std::int64_t before = pushout::solver::single_column_calls();
             sgemm_(tas, tbs, &m, &n, &k, &alpha, a.data(), &lda, b.data(), &ldb, &beta, c.data(),
                    &ldc, 1, 1);
+            // One column by sgemv, several by the library.
+            EXPECT_EQ(pushout::solver::single_column_calls() - before, n == 1 ? 1 : 0);
             EXPECT_LT(difference(c, expected), tolerance)
                 << "n " << n << " transa " << ta << " transb " << tb << " alpha " << alpha
                 << " beta " << beta;
@@ -236,10 +241,65 @@ TEST(SingleColumnBlas, TrsmIsTheBlasSolveForOneColumnOrRowAndSeveral)
                   trsm_reference(side, uplo, trans, diag, m, n, alpha, a, lda, b, ldb);
               const char sides[2] = {side, 0}, uplos[2] = {uplo, 0}, transes[2] = {trans, 0},
                          diags[2] = {diag, 0};
+              const std::int64_t before = pushout::solver::single_column_calls();
               strsm_(sides, uplos, transes, diags, &m, &n, &alpha, a.data(), &lda, b.data(), &ldb,
                      1, 1, 1, 1);
+              EXPECT_EQ(pushout::solver::single_column_calls() - before, columns == 1 ? 1 : 0);
               EXPECT_LT(difference(b, expected), tolerance)
                   << "side " << side << " columns " << columns << " uplo " << uplo << " trans "
                   << trans << " diag " << diag << " alpha " << alpha;
             }
+}
+
+TEST(SingleColumnBlas, LowerCaseConjugateEmptyAndZeroScaleAreTheBlas)
+{
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const int m = 4, k = 3, one = 1, zero = 0, lda = 4, ldb = 5, ldc = 4;
+  const std::vector<float> a = numbers(std::size_t(lda * 4), 6),
+                           b = numbers(std::size_t(ldb * 4), 7);
+  // Lower case, and 'C' (a real matrix's conjugate transpose is its
+  // transpose).
+  for (const char* ta : {"n", "t", "C", "c"})
+    for (const char* tb : {"n", "t", "C"})
+    {
+      const float alpha = 0.7f, beta = 0.2f;
+      std::vector<float> c = numbers(std::size_t(ldc), 8);
+      const std::vector<double> expected =
+          gemm_reference(ta[0] == 'n' ? 'N' : 'T', tb[0] == 'n' ? 'N' : 'T', m, 1, k, alpha, a, lda,
+                         b, ldb, beta, c, ldc);
+      sgemm_(ta, tb, &m, &one, &k, &alpha, a.data(), &lda, b.data(), &ldb, &beta, c.data(), &ldc, 1,
+             1);
+      EXPECT_LT(difference(c, expected), tolerance) << "transa " << ta << " transb " << tb;
+    }
+  // alpha = 0: A and B are not read (a NaN there stays out of C); C = beta C.
+  {
+    const std::vector<float> a_nan(std::size_t(lda * k), nan), b_nan(std::size_t(ldb), nan);
+    const float alpha = 0.0f, beta = 0.5f;
+    std::vector<float> c = {1.0f, 2.0f, 3.0f, 4.0f};
+    sgemm_("N", "N", &m, &one, &k, &alpha, a_nan.data(), &lda, b_nan.data(), &ldb, &beta, c.data(),
+           &ldc, 1, 1);
+    EXPECT_EQ(c, (std::vector<float>{0.5f, 1.0f, 1.5f, 2.0f}));
+  }
+  // k = 0: C = beta C (the library's); m = 0: nothing.
+  {
+    const float alpha = 1.0f, beta = 2.0f;
+    std::vector<float> c = {1.0f, 2.0f, 3.0f, 4.0f};
+    sgemm_("N", "N", &m, &one, &zero, &alpha, a.data(), &lda, b.data(), &ldb, &beta, c.data(), &ldc,
+           1, 1);
+    EXPECT_EQ(c, (std::vector<float>{2.0f, 4.0f, 6.0f, 8.0f}));
+    sgemm_("N", "N", &zero, &one, &k, &alpha, a.data(), &lda, b.data(), &ldb, &beta, c.data(), &ldc,
+           1, 1);
+    EXPECT_EQ(c, (std::vector<float>{2.0f, 4.0f, 6.0f, 8.0f}));
+  }
+  // strsm in lower case.
+  {
+    const int s = 4, lda_t = 6;
+    const std::vector<float> t = regular(s, lda_t, 9);
+    std::vector<float> x = numbers(std::size_t(s), 10);
+    const float alpha = 1.5f;
+    const std::vector<double> expected =
+        trsm_reference('L', 'L', 'T', 'N', s, 1, alpha, t, lda_t, x, s);
+    strsm_("l", "l", "t", "n", &s, &one, &alpha, t.data(), &lda_t, x.data(), &s, 1, 1, 1, 1);
+    EXPECT_LT(difference(x, expected), tolerance);
+  }
 }
