@@ -165,6 +165,19 @@ struct Predicted
   double F_end = 0;   ///< ||F|| at the solution [N]
 };
 
+/// x = b (1 + `error`): a prediction of the root b of the linear F (no
+/// cube), a new vector of `problem`'s.
+Vec prediction(const InexactJacobian& problem, double error)
+{
+  Vec x = problem.create_vector();
+  PetscScalar* xa;
+  check(VecGetArray(x, &xa), "VecGetArray");
+  for (int i = 0; i < 2; ++i)
+    xa[i] = b[i] * (1 + error);
+  check(VecRestoreArray(x, &xa), "VecRestoreArray");
+  return x;
+}
+
 /// One solve of the linear F (no cube; its root is b) with 1.25 times its
 /// Jacobian, so that each iteration cuts ||F|| to 0.2 of itself, from the
 /// prediction x = b (1 + `error`), with NewtonSolver::solve's `reference`.
@@ -177,12 +190,7 @@ Predicted solve_predicted(double error, double reference)
   InexactJacobian problem;
   problem.scale = 1.25;
   problem.cube = 0.0;
-  Vec x = problem.create_vector();
-  PetscScalar* xa;
-  check(VecGetArray(x, &xa), "VecGetArray");
-  for (int i = 0; i < 2; ++i)
-    xa[i] = b[i] * (1 + error);
-  check(VecRestoreArray(x, &xa), "VecRestoreArray");
+  Vec x = prediction(problem, error);
   const auto norm = [&](Vec v)
   {
     const std::array<double, 2> f = problem.F(InexactJacobian::values(v));
@@ -255,12 +263,7 @@ double first_linear_rtol(double reference)
   FlexibleLagged problem;
   problem.scale = 1.0;
   problem.cube = 0.0;
-  Vec x = problem.create_vector();
-  PetscScalar* xa;
-  check(VecGetArray(x, &xa), "VecGetArray");
-  for (int i = 0; i < 2; ++i)
-    xa[i] = b[i] * (1 + 1e-3);
-  check(VecRestoreArray(x, &xa), "VecRestoreArray");
+  Vec x = prediction(problem, 1e-3);
   PetscReal rtol = 0;
   {
     solver::NewtonSolver newton(problem, solver::NewtonSolver::Preconditioner::lagged);
