@@ -308,6 +308,30 @@ TEST_F(ImplexCrackedSlice, TangentIsTheResidualsDerivativeAfterCracksCloseAndReo
   MatDestroy(&J);
 }
 
+TEST_F(ImplexCrackedSlice, TangentIsTheResidualsDerivativeAfterANewExtrapolation)
+{
+  // A step's first evaluation makes its secant maps anew (here after a
+  // commit and another extrapolation), and every point's tangent must be
+  // written then, not only where a crack changes side of closure: the
+  // cracks keep opening here, so none does.
+  Vec x1, x2;
+  for (Vec* w : {&x1, &x2})
+    VecDuplicate(x, w);
+  stretch(x1, 2.2e-4, 1e-5, 11);
+  ASSERT_TRUE(eq->internal_forces(x1, F));
+  cracking().commit(); // the cracks grew: a history to extrapolate
+  cracking().set_extrapolation(1.0);
+  Mat J;
+  MatDuplicate(model->stiffness(), MAT_COPY_VALUES, &J);
+  stretch(x2, 2.3e-4, 1e-5, 11);
+  ASSERT_TRUE(eq->internal_forces(x2, F));
+  ASSERT_TRUE(eq->jacobian(x2, J));
+  EXPECT_LT(tangent_error(*eq, J, x2), 1e-6);
+  for (Vec* w : {&x1, &x2})
+    VecDestroy(w);
+  MatDestroy(&J);
+}
+
 TEST_F(CrackedSlice, EnergyReleaseGradientMatchesFiniteDifferences)
 {
   Vec x1, g, gp;
