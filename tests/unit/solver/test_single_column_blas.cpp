@@ -137,30 +137,21 @@ std::vector<double> trsm_reference(char side, char uplo, char trans, char diag, 
                                    const std::vector<float>& b, int ldb)
 {
   std::vector<double> r(b.begin(), b.end());
-  if (side == 'L')
+  // A left solve takes B's columns one at a time, a right one its rows
+  // (X op(A) = alpha B: op(A)^T x = alpha b for each row).
+  const bool left = side == 'L';
+  const int s = left ? m : n, lines = left ? n : m;
+  const std::vector<double> t =
+      triangle(uplo, left == transposed(trans) ? 'T' : 'N', diag, s, a, lda);
+  const auto at = [&](int line, int k) { return left ? k + line * ldb : line + k * ldb; };
+  for (int line = 0; line < lines; ++line)
   {
-    const std::vector<double> t = triangle(uplo, trans, diag, m, a, lda);
-    for (int j = 0; j < n; ++j)
-    {
-      std::vector<double> y(static_cast<std::size_t>(m));
-      for (int i = 0; i < m; ++i)
-        y[i] = alpha * double(b[i + j * ldb]);
-      const std::vector<double> x = solve(t, y);
-      for (int i = 0; i < m; ++i)
-        r[i + j * ldb] = x[i];
-    }
-    return r;
-  }
-  // X op(A) = alpha B: op(A)^T x = alpha b for each row of B.
-  const std::vector<double> t = triangle(uplo, transposed(trans) ? 'N' : 'T', diag, n, a, lda);
-  for (int i = 0; i < m; ++i)
-  {
-    std::vector<double> y(static_cast<std::size_t>(n));
-    for (int j = 0; j < n; ++j)
-      y[j] = alpha * double(b[i + j * ldb]);
+    std::vector<double> y(static_cast<std::size_t>(s));
+    for (int k = 0; k < s; ++k)
+      y[k] = alpha * double(b[at(line, k)]);
     const std::vector<double> x = solve(t, y);
-    for (int j = 0; j < n; ++j)
-      r[i + j * ldb] = x[j];
+    for (int k = 0; k < s; ++k)
+      r[at(line, k)] = x[k];
   }
   return r;
 }
