@@ -7,9 +7,10 @@ Cases (the paper's mesh 16/8, one thread each, one after the other):
   plane           demo/pushout_corroded.toml as it is: one crack plane to the
                   nearest face, 25 corrosion steps to x = 50 um, a 40-step
                   push (half model, bulk condensed: the defaults);
-  embedded        the same specimen with [cracking] model = "embedded"
-                  instead of its crack plane (f_t 3 MPa, c 30 1/mm as the
-                  plane's; strength_cov 0.15, seed 1: the whole slice),
+  embedded        demo/pushout_corroded_cracking.toml: the same specimen
+                  with [cracking] model = "embedded" instead of its crack
+                  plane (f_t 3 MPa, c 30 1/mm as the plane's; strength_cov
+                  0.15, seed 1: the whole slice),
                   displacement control (the default), the implicit cracks
                   (cracking.integration = "implicit");
   embedded_auto   the same under loading.control = "auto" (dissipation;

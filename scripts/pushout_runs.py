@@ -9,6 +9,7 @@ where the tests, the benches and the scripts do it (standard library only).
 import csv
 import json
 import os
+import shutil
 import subprocess
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -33,19 +34,12 @@ def corroded_demo(path, angles):
     return path
 
 
-# The corroded demo's crack plane as cracks anywhere in the concrete: the
-# plane's law (f_t 3 MPa, c 30 1/mm), a random strength field (cov 0.15,
-# correlation length 5 mm), seed 1 (docs/cracking.md).
-EMBEDDED_CRACKING = ('[cracking]\nmodel = "embedded"\nf_t = 3.0\nc = 30.0\nstrength_cov = 0.15\n'
-                     "correlation_length = 5.0\nseed = 1\n")
-
-
 def embedded_corroded_demo(path):
-    """Writes demo/pushout_corroded.toml to `path` with EMBEDDED_CRACKING
-    instead of its crack plane; returns path."""
-    corroded_demo(path, ())
-    with open(path, "a") as f:
-        f.write("\n" + EMBEDDED_CRACKING)
+    """Writes demo/pushout_corroded_cracking.toml (the corroded demo with
+    cracks anywhere in the concrete instead of its crack plane) to `path`;
+    returns path."""
+    os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
+    shutil.copyfile(os.path.join(ROOT, "demo", "pushout_corroded_cracking.toml"), path)
     return path
 
 
