@@ -5,10 +5,11 @@
 // Why: on the whole model of the paper's mesh with cracking concrete
 // (25 920 dofs) the LU factors hold 22 million entries (MUMPS, PORD
 // ordering): every back-solve streams them once, and GMRES on the lagged LU
-// takes about 8 back-solves per Newton iteration. In single precision the
-// factors are half the bytes, and the factorisation's dense kernels run on
-// twice the numbers per vector instruction (docs/solver.md, "Mixed
-// precision on the whole model").
+// takes 5 to 6 back-solves per Newton iteration (the bench's IMPL-EX case:
+// 1 400 for 248). In single precision the factors are half the bytes, and
+// the factorisation's dense kernels run on twice the numbers per vector
+// instruction (docs/performance.md, "Otherwise, Newton on the whole
+// model").
 //
 // What it changes: only the preconditioner. The whole model's Jacobian is
 // less well conditioned than a condensed one (condition ~1e6 on that mesh),
