@@ -46,6 +46,8 @@ void print_keys()
   for (const KeyDef& k : scene_keys())
   {
     std::string doc = k.doc;
+    if (std::isfinite(k.min) || std::isfinite(k.max))
+      doc += " (" + range_text(k.min, k.max, k.open, k.type == KeyType::integer) + ")";
     if (!k.choices.empty())
     {
       doc += " (";

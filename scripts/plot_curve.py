@@ -123,7 +123,7 @@ def plot_crack_pattern(fig, data, title):
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("y [mm]")
     fig.colorbar(cells, ax=ax, label="crack opening, mean through the thickness [mm]")
-    ax.set_title(f"crack pattern after corrosion: {title}")
+    ax.set_title(f"crack pattern at the start of the push: {title}")
     fig.tight_layout()
 
 

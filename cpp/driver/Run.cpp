@@ -23,6 +23,16 @@ namespace pushout::driver
 {
 namespace
 {
+/// What the scene sets that nothing reads (Scene::unread_keys), before
+/// the run's first line: a key of a switched-off part is most likely a
+/// slip, but not an error.
+void note_unread_keys(const Scene& scene, record::RunReport& report)
+{
+  if (report.talk())
+    for (const std::string& note : scene.unread_keys())
+      std::cout << "pushout: note: " << note << std::endl;
+}
+
 /// Before meshing: the size guard (throws TooLarge unless the run fits or
 /// --force), its estimate into the summary and the first progress line.
 void guard_size(const mesh::MeshInput& shape, const SolverPart& solver, const RunOptions& opt,
@@ -70,6 +80,9 @@ void describe_model(const mesh::MeshInput& shape, const mesh::MeshData& data,
           << " mm";
     cut = " (half model by symmetry about " + plane.str() + "; " + why + ")";
   }
+  if (symmetry.copies() > 1 && shape.bulk_cracking) // docs/cracking.md, "Reading the cracks"
+    cut += " (the concrete's cracks are read on the cut model: a crack on a symmetry plane "
+           "reads half its width)";
   else if (s.model_type == "pushout" && !why.empty())
     cut = " (full model: " + why + ")";
   std::cout << "pushout: " << s.model_type << ", " << s.cells << " cells, " << s.dofs << " dofs, "
@@ -229,6 +242,7 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
 {
   specimen::check_scene(scene);
   record::RunReport report(scene, opt.out, opt.quiet, opt.comm, opt.plot);
+  note_unread_keys(scene, report);
   return reporting_errors(report,
                           [&]
                           {
@@ -265,6 +279,7 @@ RunOutcome run_case(const std::filesystem::path& scene_file, const std::vector<s
           }
           specimen::check_scene(scene);
           record::RunReport report(scene, opt.out, opt.quiet, opt.comm, opt.plot);
+          note_unread_keys(scene, report);
           return reporting_errors(report,
                                   [&]
                                   {

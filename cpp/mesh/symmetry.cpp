@@ -94,7 +94,8 @@ Symmetry model_symmetry(const MeshInput& in, std::string& why)
   if (in.bulk_cracking && in.symmetry == ModelPart::Symmetry::automatic)
   {
     why = "the concrete may crack anywhere ([cracking]): a crack may open on one side of a "
-          "symmetry plane only (model.symmetry = \"symmetric\" cuts there)";
+          "symmetry plane only (with a uniform strength, model.symmetry = \"symmetric\" cuts "
+          "there)";
     return {};
   }
   if (in.fields)

@@ -130,6 +130,18 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
       _implex_tolerance(part.implex_tolerance), _E(concrete.E), _nu(concrete.nu),
       _dT(std::make_shared<fem::Constant<double>>(0.0))
 {
+  // A radius that takes in no concrete would leave it linear without a
+  // word: refused, the same on every process (the count is summed).
+  std::int64_t n_cells = std::int64_t(_cells.size());
+  MPI_Allreduce(MPI_IN_PLACE, &n_cells, 1, MPI_INT64_T, MPI_SUM, mesh->comm());
+  if (n_cells == 0)
+  {
+    std::ostringstream why;
+    why << "'cracking.radius' = " << part.radius << " mm takes in no concrete element (their "
+        << "centres lie farther from the tube axis; the tube's radius is " << _tube_radius
+        << " mm): raise it, or 0 for all the concrete";
+    throw SceneError(why.str());
+  }
   _d_sigma = quadrature_function(functionspace_form_cracking_L_crack, "d_sigma", mesh);
   _d_C = quadrature_function(functionspace_form_cracking_a_crack, "d_C", mesh);
   _d_C_change = quadrature_function(functionspace_form_cracking_a_crack, "d_C", mesh);
@@ -207,7 +219,8 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
   why << "cracking: a concrete element is " << worst
       << " times the widest band its crack can soften over without snapping back (mu / |d "
          "sigma / d w|, docs/cracking.md): refine the mesh (mesh.elements_per_quarter) or lower "
-         "cracking.f_t or raise cracking.w_c2 / lower cracking.c";
+         "cracking.f_t or "
+      << (part.linear_softening ? "raise cracking.w_c2" : "lower cracking.c");
   // The same value on every process: all refuse the scene together (exit 2).
   if (worst >= 1)
     throw SceneError(why.str());

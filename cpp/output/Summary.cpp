@@ -21,6 +21,8 @@ void Summary::write(const std::filesystem::path& file) const
                             {"angle_deg", c.angle_deg},
                             {"width_mm", c.width_mm},
                             {"length_mm", c.length_mm}});
+  // IMPL-EX's readings only where its cracks ran (null elsewhere: no step measured).
+  const bool implex = cracking_integration == "implex";
   nlohmann::json damage_list = nlohmann::json::array();
   for (const LayerDamage& d : initial_damage)
     damage_list.push_back({{"layer", d.layer}, {"mean", d.mean}, {"max", d.max}});
@@ -39,8 +41,8 @@ void Summary::write(const std::filesystem::path& file) const
       {"dissipation_steps", dissipation_steps},
       {"loose_steps", loose_steps},
       {"cracking_integration", cracking_integration},
-      {"implex_error_max", implex_error_max},
-      {"implex_jumps", implex_jumps},
+      {"implex_error_max", implex ? nlohmann::json(implex_error_max) : nlohmann::json()},
+      {"implex_jumps", implex ? nlohmann::json(implex_jumps) : nlohmann::json()},
       {"penetration_mm", penetration_mm},
       {"permanent_displacements_mm", permanent_displacements_mm},
       {"cracks", crack_list},

@@ -38,6 +38,11 @@ const std::vector<KeyDef>& scene_keys();
 /// of scene_keys().
 std::vector<KeyDef> cracking_keys();
 
+/// The values min .. max allow ("> 0", ">= 0 and <= 1"; open: both bounds
+/// exclusive; integer: the bounds written as integers), "finite" if both
+/// are infinite: what a scene's error and `pushout keys` say.
+std::string range_text(double min, double max, bool open, bool integer = false);
+
 /// The declaration of the key at `path`, or nullptr.
 const KeyDef* find_key(const std::string& path);
 } // namespace pushout

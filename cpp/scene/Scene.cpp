@@ -150,30 +150,19 @@ Value convert(const toml::node& node, KeyType type, const std::string& path)
   throw bad();
 }
 
-std::string range_text(double min, double max, bool open)
-{
-  std::ostringstream s;
-  if (std::isfinite(min))
-    s << (open ? "> " : ">= ") << min;
-  if (std::isfinite(min) && std::isfinite(max))
-    s << " and ";
-  if (std::isfinite(max))
-    s << (open ? "< " : "<= ") << max;
-  if (!std::isfinite(min) && !std::isfinite(max))
-    s << "finite";
-  return s.str();
-}
-
 /// Throws unless min <= x <= max (open: min < x < max) and x is finite.
 void check_range(double x, double min, double max, bool open, const std::string& path,
-                 const std::string& unit)
+                 const std::string& unit, bool integer = false)
 {
+  if (!std::isfinite(x))
+    throw SceneError("'" + path + "' = " + std::to_string(x) +
+                     " is not a finite number: it must be " + range_text(min, max, open, integer));
   const bool inside = open ? (x > min && x < max) : (x >= min && x <= max);
-  if (!inside || !std::isfinite(x))
+  if (!inside)
   {
     std::ostringstream s;
     s << "'" << path << "' = " << x << (unit.empty() || unit == "-" ? "" : " " + unit)
-      << " is out of range: it must be " << range_text(min, max, open);
+      << " is out of range: it must be " << range_text(min, max, open, integer);
     throw SceneError(s.str());
   }
 }
@@ -183,7 +172,7 @@ void check_value(const KeyDef& def, const Value& v)
   if (const auto* d = std::get_if<double>(&v))
     check_range(*d, def.min, def.max, def.open, def.path, def.unit);
   else if (const auto* i = std::get_if<std::int64_t>(&v))
-    check_range(double(*i), def.min, def.max, def.open, def.path, def.unit);
+    check_range(double(*i), def.min, def.max, def.open, def.path, def.unit, true);
   else if (const auto* a = std::get_if<std::vector<double>>(&v))
   {
     // Every number of an array as a scalar of the key would be.
@@ -436,6 +425,10 @@ Scene Scene::parse(const std::string& toml_text, const std::vector<Override>& ov
     const auto* tbl = section.as_table();
     if (!tbl)
     {
+      const std::string known = known_keys_in(sname);
+      if (!known.empty()) // a section's name given a value ([[cracking]], --set cracking=...)
+        throw SceneError("'" + sname + "'" + where(section) + " must be the table [" + sname +
+                         "] of its keys: " + known);
       throw SceneError("unknown key '" + sname + "'" + where(section) +
                        ": top-level keys must be sections such as [geometry]");
     }

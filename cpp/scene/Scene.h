@@ -65,6 +65,12 @@ public:
   /// The fully resolved scene as TOML (every key, defaults included).
   std::string to_toml() const;
 
+  /// Keys set to other than their default that nothing reads, one line
+  /// each for the run's progress output (SceneParts.cpp): the [cracking]
+  /// keys while cracking.model = "none", the other law's parameter of
+  /// cracking.law. Not errors: a scene turned off by --set keeps its keys.
+  std::vector<std::string> unread_keys() const;
+
 private:
   /// The typed parts from the validated values (SceneParts.cpp).
   void fill_parts();

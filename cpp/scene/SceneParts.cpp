@@ -112,4 +112,40 @@ void Scene::fill_parts()
 
   _crack_directions = pushout::crack_directions(_geometry, _mesh.elements_per_quarter, _cracks);
 }
+
+std::vector<std::string> Scene::unread_keys() const
+{
+  // The keys among `paths` whose value is not their default.
+  auto changed = [&](std::initializer_list<const char*> paths)
+  {
+    std::string list;
+    for (const char* path : paths)
+      if (const KeyDef* def = find_key(path);
+          def && find(path) && *find(path) != def->default_value)
+        list += (list.empty() ? "" : ", ") + std::string(path);
+    return list;
+  };
+  std::vector<std::string> notes;
+  if (!_model.pushout())
+    return notes;
+  if (!_cracking.embedded)
+  {
+    const std::string keys =
+        changed({"cracking.law", "cracking.f_t", "cracking.c", "cracking.w_c2", "cracking.radius",
+                 "cracking.strength_cov", "cracking.correlation_length", "cracking.seed",
+                 "cracking.visible_width", "cracking.viscosity", "cracking.integration",
+                 "cracking.implex_tolerance"});
+    if (!keys.empty())
+      notes.push_back(keys + " not read: cracking.model = \"none\" keeps the concrete linear "
+                             "(\"embedded\" lets it crack)");
+  }
+  else if (const std::string key =
+               changed({_cracking.linear_softening ? "cracking.c" : "cracking.w_c2"});
+           !key.empty())
+    notes.push_back(key + " not read by cracking.law = \"" +
+                    (_cracking.linear_softening ? "linear_softening" : "exponential_softening") +
+                    "\" (it takes " +
+                    (_cracking.linear_softening ? "cracking.w_c2" : "cracking.c") + ")");
+  return notes;
+}
 } // namespace pushout

@@ -3,6 +3,8 @@
 // `pushout keys`. Interface-layer keys are declared by each law (cpp/laws/).
 #include "KeyDef.h"
 #include <algorithm>
+#include <cmath>
+#include <sstream>
 
 namespace pushout
 {
@@ -496,6 +498,27 @@ const std::vector<KeyDef>& scene_keys()
   static const std::vector<KeyDef> keys = make_keys();
   return keys;
 }
+std::string range_text(double min, double max, bool open, bool integer)
+{
+  auto bound = [&](double v)
+  {
+    std::ostringstream s;
+    if (integer)
+      s << std::int64_t(v);
+    else
+      s << v;
+    return s.str();
+  };
+  std::string text;
+  if (std::isfinite(min))
+    text += (open ? "> " : ">= ") + bound(min);
+  if (std::isfinite(min) && std::isfinite(max))
+    text += " and ";
+  if (std::isfinite(max))
+    text += (open ? "< " : "<= ") + bound(max);
+  return text.empty() ? "finite" : text;
+}
+
 const KeyDef* find_key(const std::string& path)
 {
   for (const KeyDef& k : scene_keys())

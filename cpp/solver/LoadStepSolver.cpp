@@ -60,11 +60,18 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
                              : concrete == Concrete::implex_cracks
                                  ? "; IMPL-EX cracks (cracking.integration)"
                                  : "; implicit cracks (cracking.integration)";
+  // The whole model's linear solver (PETSc options may still change it):
+  // single precision under GMRES (NewtonSolver::set_default_options).
+  const bool single = part.mixed_precision && processes == 1 && (lagged || nonsmooth_bulk);
+  const std::string linear =
+      condense ? ""
+               : std::string(lagged ? ", GMRES on a lagged LU" : ", the LU of every Jacobian") +
+                     (single ? " in single precision" : "");
   const std::string description =
       (condense ? "the " + std::to_string(Condensation::unknowns(eq.model())) +
                       " interface jumps (bulk condensed)"
                 : "the whole model" + (why.empty() ? "" : " (not condensed: " + why + ")")) +
-      cracks + (overridden ? ", the LU of every Jacobian" : "");
+      cracks + linear;
   eq.set_single_precision(part.mixed_precision); // before the solvers configure their KSP
   auto solver = std::make_unique<LoadStepSolver>(eq, condense, pc, int(part.refactor_iterations),
                                                  description);

@@ -456,10 +456,11 @@ void PushOut::check_cracking(const Scene& scene)
                      "'cracking.model' = \"embedded\" makes the concrete nonlinear: leave it at "
                      "\"auto\" (the whole model is solved)");
   if (cracking.implex && scene.loading().control != Loading::Control::displacement)
-    throw SceneError("'cracking.integration' = \"implex\" steps the load with "
-                     "'loading.control' = \"displacement\" only: its steps never snap back "
-                     "(each is linear in the cracks), and the energy a step releases is not yet "
-                     "counted under it");
+    throw SceneError("'cracking.integration' = \"implex\" runs under 'loading.control' = "
+                     "\"displacement\" only (the energy its steps release is not yet written "
+                     "for dissipation or arc-length control): set loading.control = "
+                     "\"displacement\" (where the cracks snap back, its steps jump), or "
+                     "cracking.integration = \"auto\" (the implicit cracks under this control)");
   if (cracking.implex && cracking.viscosity > 0)
     throw SceneError("'cracking.integration' = \"implex\" extrapolates the cracks' damage, and "
                      "'cracking.viscosity' > 0 delays it: use one or the other");

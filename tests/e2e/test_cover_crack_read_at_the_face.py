@@ -16,7 +16,9 @@ random strength field and no crack planes:
 3. corrosion.csv: crack_width_mm never negative, the widest crack grows
    with x once it is visible, and cracks_at_surface counts it; summary.json
    lists it; crack_pattern.csv and crack_pattern.png are written; fields.xdmf
-   has crack_opening, crack_normal and crack_damage.
+   has crack_opening, crack_normal and crack_damage. A crack that counts
+   only from 1 mm (cracking.visible_width) reads the same widths and counts
+   none.
 4. The same surface cracks on 1 and 2 processes (the columns are gathered
    from both): widths and lengths within Newton's tolerance, both runs at
    1e-10 (common.TIGHT_NEWTON: the default integration here is IMPL-EX,
@@ -98,6 +100,15 @@ with open(os.path.join(one, "fields.xdmf")) as f:
 check(all(f'Name="{n}"' in xdmf for n in ("crack_opening", "crack_normal", "crack_damage"))
       and os.path.getsize(os.path.join(one, "crack_pattern.png")) > 0,
       "fields.xdmf has the cells' cracks; crack_pattern.png drawn")
+
+# The same run but for the reading's threshold (the same operations in the
+# same order on this machine, processes and threads): the same widths.
+wide = out_dir("cover_crack_1_visible_1mm")
+run(scene, wide, sets=["cracking.visible_width=1"])
+check([r["crack_width_mm"] for r in corrosion(wide)] == widths and
+      all(r["cracks_at_surface"] == 0 for r in corrosion(wide)) and
+      not [c for c in summary(wide)["cracks"] if c["source"] == "concrete"],
+      "visible from 1 mm: the same widths (the gauge resolves 5 um still), none counted")
 
 # 4. Two processes.
 tight, two = out_dir("cover_crack_1_tight"), out_dir("cover_crack_2")

@@ -53,6 +53,20 @@ TEST(SurfaceCracks, ACrackOverTwoBandsReadsWhole)
   EXPECT_NEAR(cracks[0].length_mm, 25 - std::sqrt(R * R - 1), 1e-3);
 }
 
+TEST(SurfaceCracks, ALargerVisibleWidthReadsTheSameWidths)
+{
+  // The gauge resolves a tenth of the visible width, at most 5 um: a crack
+  // that counts only from 1 mm still reads the two bands of 0.03 mm whole.
+  EXPECT_DOUBLE_EQ(gauge_resolution(0.05), 0.005);
+  EXPECT_DOUBLE_EQ(gauge_resolution(0.02), 0.002);
+  EXPECT_DOUBLE_EQ(gauge_resolution(1.0), 0.005);
+  const auto faces = bottom_face([](double x) { return std::abs(x - 50) <= 1 ? 0.03 : 0.0; });
+  const std::vector<SurfaceCrack> cracks =
+      surface_cracks(faces, concrete(100), axis, R, gauge_resolution(1.0));
+  ASSERT_EQ(cracks.size(), 1u);
+  EXPECT_NEAR(cracks[0].width_mm, 0.06, 1e-15);
+}
+
 TEST(SurfaceCracks, LengthStopsWhereTheConcreteIsWhole)
 {
   const auto faces = bottom_face([](double x) { return x == 49 ? 0.05 : 0.0; });

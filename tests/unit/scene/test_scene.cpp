@@ -196,6 +196,28 @@ TEST(Scene, AutoIntegrationIsImplexWhereItApplies)
   EXPECT_TRUE(Scene::parse(cracks, {{"cracking.integration", "implex"}}).cracking().implex);
 }
 
+// Keys that nothing reads are named (a note, not an error): [cracking]
+// keys while cracking.model = "none", the other softening law's parameter.
+TEST(Scene, UnreadCrackingKeysAreNamed)
+{
+  EXPECT_TRUE(Scene::parse("").unread_keys().empty());
+  const std::vector<std::string> off =
+      Scene::parse("[cracking]\nstrength_cov = 0.15\nf_t = 3.0\n").unread_keys();
+  ASSERT_EQ(off.size(), 1u);
+  EXPECT_NE(off[0].find("cracking.strength_cov"), std::string::npos);
+  EXPECT_EQ(off[0].find("cracking.f_t"), std::string::npos); // its default: nothing lost
+  const std::string cracks = "[cracking]\nmodel = \"embedded\"\n";
+  EXPECT_TRUE(Scene::parse(cracks, {{"cracking.c", "50"}}).unread_keys().empty());
+  const std::vector<std::string> linear =
+      Scene::parse(cracks, {{"cracking.law", "linear_softening"}, {"cracking.c", "50"}})
+          .unread_keys();
+  ASSERT_EQ(linear.size(), 1u);
+  EXPECT_NE(linear[0].find("cracking.c "), std::string::npos);
+  EXPECT_EQ(Scene::parse(cracks, {{"cracking.w_c2", "0.25"}}).unread_keys().size(), 1u);
+  // The resolved scene of a run without cracks reads back without a note.
+  EXPECT_TRUE(Scene::parse(Scene::parse("").to_toml()).unread_keys().empty());
+}
+
 TEST(Scene, OverridesReachTablesAndLayers)
 {
   const Scene s = Scene::parse(
