@@ -100,7 +100,9 @@ std::vector<KeyDef> law_keys()
        0.0,
        "mm",
        "damage viscosity of the concrete's cracks, as the damage laws' eta: pseudo-time "
-       "constant in mm of push (a corrosion step takes a push step's); 0: rate independent",
+       "constant in mm of push; a corrosion step lasts a push step's pseudo-time "
+       "(push_displacement / loading.steps), so the corrosion stage's cracks depend on "
+       "loading.steps too; 0: rate independent",
        0,
        inf,
        false,
