@@ -31,11 +31,12 @@ STUDIES = {
     "corroded_embedded_implex": ("implex", False),
     "corroded_embedded_paper_mesh": ("implex", True),
 }
+VISIBLE_UM = 50.0  # the [cracking] visible_width default: a surface crack counts from here
 
 
 def on_paper_mesh(study):
+    """Whether `study` (STUDIES) runs on the paper's mesh."""
     return STUDIES[study][1]
-VISIBLE_UM = 50.0  # the [cracking] visible_width default: a surface crack counts from here
 
 
 def write_scene(out):

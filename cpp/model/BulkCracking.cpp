@@ -92,15 +92,16 @@ laws::Envelope envelope_of(const CrackingPart& part)
 
 /// The owned concrete cells whose centre (vertex mean) is within `radius`
 /// of the tube axis (all owned concrete cells for radius 0), sorted.
-std::vector<std::int32_t> cracking_cells(const dolfinx::mesh::Mesh& mesh,
-                                         const std::vector<std::int32_t>& material, double radius,
-                                         std::array<double, 2> axis)
+/// Calls f(cell, distance [mm] of its centre from the tube `axis`) for each
+/// owned concrete cell.
+template <typename F>
+void for_concrete_cells(const dolfinx::mesh::Mesh& mesh, const std::vector<std::int32_t>& material,
+                        std::array<double, 2> axis, F f)
 {
   const auto& original = mesh.topology().original_cell_index;
   const std::int32_t n_owned = mesh.topology().index_map(3)->size_local();
   const auto& x_dofmap = mesh.geometry().dofmap();
   const std::span<const double> x = mesh.geometry().x();
-  std::vector<std::int32_t> cells;
   for (std::int32_t c = 0; c < n_owned; ++c)
   {
     if (material[original[c]] != mesh::concrete)
@@ -110,10 +111,34 @@ std::vector<std::int32_t> cracking_cells(const dolfinx::mesh::Mesh& mesh,
     for (std::int32_t node : nodes)
       for (int d = 0; d < 2; ++d)
         centre[d] += x[3 * node + d] / double(nodes.size());
-    if (radius <= 0 || std::hypot(centre[0] - axis[0], centre[1] - axis[1]) <= radius)
-      cells.push_back(c);
+    f(c, std::hypot(centre[0] - axis[0], centre[1] - axis[1]));
   }
+}
+
+std::vector<std::int32_t> cracking_cells(const dolfinx::mesh::Mesh& mesh,
+                                         const std::vector<std::int32_t>& material, double radius,
+                                         std::array<double, 2> axis)
+{
+  std::vector<std::int32_t> cells;
+  for_concrete_cells(mesh, material, axis,
+                     [&](std::int32_t c, double r)
+                     {
+                       if (radius <= 0 || r <= radius)
+                         cells.push_back(c);
+                     });
   return cells;
+}
+
+/// The least distance of an owned concrete cell's centre from the tube
+/// `axis` [mm] (infinity if none).
+double nearest_concrete_centre(const dolfinx::mesh::Mesh& mesh,
+                               const std::vector<std::int32_t>& material,
+                               std::array<double, 2> axis)
+{
+  double nearest = INFINITY;
+  for_concrete_cells(mesh, material, axis,
+                     [&](std::int32_t, double r) { nearest = std::min(nearest, r); });
+  return nearest;
 }
 } // namespace
 
@@ -131,15 +156,18 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
       _dT(std::make_shared<fem::Constant<double>>(0.0))
 {
   // A radius that takes in no concrete would leave it linear without a
-  // word: refused, the same on every process (the count is summed).
+  // word: refused, the same on every process (the count is summed, the
+  // nearest centre the least of the processes').
   std::int64_t n_cells = std::int64_t(_cells.size());
   MPI_Allreduce(MPI_IN_PLACE, &n_cells, 1, MPI_INT64_T, MPI_SUM, mesh->comm());
   if (n_cells == 0)
   {
+    double nearest = nearest_concrete_centre(*mesh, material, slice.tube_center); // [mm]
+    MPI_Allreduce(MPI_IN_PLACE, &nearest, 1, MPI_DOUBLE, MPI_MIN, mesh->comm());
     std::ostringstream why;
-    why << "'cracking.radius' = " << part.radius << " mm takes in no concrete element (their "
-        << "centres lie farther from the tube axis; the tube's radius is " << _tube_radius
-        << " mm): raise it, or 0 for all the concrete";
+    why << "'cracking.radius' = " << part.radius << " mm takes in no concrete element: the "
+        << "nearest element centre is " << nearest << " mm from the tube axis; raise it, or 0 "
+        << "for all the concrete";
     throw SceneError(why.str());
   }
   _d_sigma = quadrature_function(functionspace_form_cracking_L_crack, "d_sigma", mesh);

@@ -55,13 +55,16 @@ struct SurfaceCrack
   double length_mm = 0; ///< how far it runs in from the face towards the tube axis
 };
 
+/// The finest the gauge resolves whatever the visible width [mm].
+constexpr double max_gauge_resolution = 0.005;
+
 /// The gauge's resolution [mm] when a crack counts as visible from
 /// `visible_width` [mm] (cracking.visible_width): a tenth of it, at most
-/// 5 um (a tenth of the default). Raising the visible width counts fewer
-/// cracks; it does not make the narrower ones vanish from the readings.
+/// max_gauge_resolution. Raising the visible width counts fewer cracks; it
+/// does not make the narrower ones vanish from the readings.
 inline double gauge_resolution(double visible_width)
 {
-  return (visible_width < 0.05 ? visible_width : 0.05) / 10;
+  return visible_width / 10 < max_gauge_resolution ? visible_width / 10 : max_gauge_resolution;
 }
 
 /// The surface cracks of the `faces` columns (any order; their angles

@@ -116,13 +116,13 @@ void Scene::fill_parts()
 std::vector<std::string> Scene::unread_keys() const
 {
   // The keys among `paths` whose value is not their default.
-  auto changed = [&](std::initializer_list<const char*> paths)
+  auto changed = [&](const std::vector<std::string>& paths)
   {
     std::string list;
-    for (const char* path : paths)
+    for (const std::string& path : paths)
       if (const KeyDef* def = find_key(path);
           def && find(path) && *find(path) != def->default_value)
-        list += (list.empty() ? "" : ", ") + std::string(path);
+        list += (list.empty() ? "" : ", ") + path;
     return list;
   };
   std::vector<std::string> notes;
@@ -130,12 +130,11 @@ std::vector<std::string> Scene::unread_keys() const
     return notes;
   if (!_cracking.embedded)
   {
-    const std::string keys =
-        changed({"cracking.law", "cracking.f_t", "cracking.c", "cracking.w_c2", "cracking.radius",
-                 "cracking.strength_cov", "cracking.correlation_length", "cracking.seed",
-                 "cracking.visible_width", "cracking.viscosity", "cracking.integration",
-                 "cracking.implex_tolerance"});
-    if (!keys.empty())
+    std::vector<std::string> others; // every [cracking] key but the switch
+    for (const KeyDef& def : cracking_keys())
+      if (def.path != "cracking.model")
+        others.push_back(def.path);
+    if (const std::string keys = changed(others); !keys.empty())
       notes.push_back(keys + " not read: cracking.model = \"none\" keeps the concrete linear "
                              "(\"embedded\" lets it crack)");
   }

@@ -175,8 +175,9 @@ std::vector<KeyDef> reading_keys()
        K::number,
        0.05,
        "mm",
-       "a crack at the slice's outer faces counts (corrosion.csv cracks_at_surface, "
-       "summary.json cracks) from this width, as a crack-width gauge reads it there; the "
+       "a crack at the slice's outer faces counts (corrosion.csv cracks_at_surface: the "
+       "planes' mouths too; the concrete's entries of summary.json cracks) from this width, "
+       "as a crack-width gauge reads it there; the "
        "gauge resolves a tenth of it, at most 5 um (corrosion.csv crack_width_mm, the widest "
        "crack, does not depend on it above 0.05 mm)",
        0,

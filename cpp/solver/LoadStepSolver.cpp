@@ -60,13 +60,16 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
                              : concrete == Concrete::implex_cracks
                                  ? "; IMPL-EX cracks (cracking.integration)"
                                  : "; implicit cracks (cracking.integration)";
-  // The whole model's linear solver (PETSc options may still change it):
-  // single precision under GMRES (NewtonSolver::set_default_options).
+  // The whole model's linear solver as NewtonSolver::set_default_options
+  // and Equilibrium::configure make it (the LU in single precision under
+  // GMRES on one process), unless the user's PETSc options chose another.
   const bool single = part.mixed_precision && processes == 1 && (lagged || nonsmooth_bulk);
   const std::string linear =
-      condense ? ""
-               : std::string(lagged ? ", GMRES on a lagged LU" : ", the LU of every Jacobian") +
-                     (single ? " in single precision" : "");
+      condense                                     ? ""
+      : NewtonSolver::linear_solver_from_options() ? ", the linear solver of the PETSc options"
+      : lagged ? std::string(", GMRES on a lagged LU") + (single ? " in single precision" : "")
+      : single ? ", GMRES on the single-precision LU of every Jacobian"
+               : ", the LU of every Jacobian";
   const std::string description =
       (condense ? "the " + std::to_string(Condensation::unknowns(eq.model())) +
                       " interface jumps (bulk condensed)"

@@ -172,6 +172,18 @@ bool NewtonSolver::direct_factorization()
   return !set || std::string(pc_type) == "lu" || std::string(pc_type) == "cholesky";
 }
 
+bool NewtonSolver::linear_solver_from_options()
+{
+  for (const char* name : {"-ksp_type", "-pc_type", "-pc_factor_mat_solver_type"})
+  {
+    PetscBool set = PETSC_FALSE;
+    check(PetscOptionsHasName(nullptr, nullptr, name, &set), "PetscOptionsHasName");
+    if (set && !ours().contains(name))
+      return true;
+  }
+  return false;
+}
+
 NewtonSolver::NewtonSolver(NonlinearProblem& problem, Preconditioner pc, int refactor_iterations)
     : _problem(problem), _policy(pc == Preconditioner::lagged, refactor_iterations)
 {

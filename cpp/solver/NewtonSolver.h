@@ -179,6 +179,11 @@ public:
   /// Reads PETSc's options database.
   static bool direct_factorization();
 
+  /// Whether the user's PETSc options choose the linear solver
+  /// (-ksp_type, -pc_type or -pc_factor_mat_solver_type, not ours:
+  /// set_default_options), so that the run does not describe its own.
+  static bool linear_solver_from_options();
+
 private:
   NonlinearProblem& _problem;
   SNES _snes = nullptr;

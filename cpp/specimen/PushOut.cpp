@@ -451,6 +451,14 @@ void PushOut::check_cracking(const Scene& scene)
   if (scene.mesh().degree != 1)
     throw SceneError("'cracking.model' = \"embedded\" needs 'mesh.degree' = 1 (the crack band's "
                      "forms are on the trilinear bulk)");
+  if (cracking.radius > 0 && cracking.radius <= scene.geometry().tube_radius())
+  {
+    std::ostringstream s;
+    s << "'cracking.radius' = " << cracking.radius << " mm lies within the tube (its radius is "
+      << scene.geometry().tube_radius() << " mm): no concrete could crack; raise it, or 0 for "
+      << "all the concrete";
+    throw SceneError(s.str());
+  }
   if (scene.solver().condensation == SolverPart::Condensation::on)
     throw SceneError("'solver.condensation' = \"on\" condenses a linear bulk, and "
                      "'cracking.model' = \"embedded\" makes the concrete nonlinear: leave it at "

@@ -142,3 +142,5 @@ check(sl["newton_iterations"] <= sd["newton_iterations"],
 said = re.search(r"Newton on the (\d+) interface jumps", p.stdout)
 check(said and int(said.group(1)) == sl["condensed_dofs"] == sd["condensed_dofs"],
       f"one_crack: {said.group(1) if said else '?'} jumps said, {sl['condensed_dofs']} condensed")
+check("(half model by symmetry about" in p.stdout and "full model" not in p.stdout,
+      "one_crack: the progress line says the half model")
