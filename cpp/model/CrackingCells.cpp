@@ -1,0 +1,59 @@
+#include "CrackingCells.h"
+#include "../mesh/MeshData.h"
+#include <algorithm>
+#include <cmath>
+#include <dolfinx/common/IndexMap.h>
+#include <dolfinx/mesh/Topology.h>
+
+namespace pushout::model
+{
+namespace
+{
+/// Calls f(cell, distance [mm] of its centre from the tube `axis`) for each
+/// owned concrete cell.
+template <typename F>
+void for_concrete_cells(const dolfinx::mesh::Mesh& mesh, const std::vector<std::int32_t>& material,
+                        std::array<double, 2> axis, F f)
+{
+  const auto& original = mesh.topology().original_cell_index;
+  const std::int32_t n_owned = mesh.topology().index_map(3)->size_local();
+  const auto& x_dofmap = mesh.geometry().dofmap();
+  const std::span<const double> x = mesh.geometry().x();
+  for (std::int32_t c = 0; c < n_owned; ++c)
+  {
+    if (material[original[c]] != mesh::concrete)
+      continue;
+    double centre[2] = {0, 0};
+    auto nodes = x_dofmap.links(c);
+    for (std::int32_t node : nodes)
+      for (int d = 0; d < 2; ++d)
+        centre[d] += x[3 * node + d] / double(nodes.size());
+    f(c, std::hypot(centre[0] - axis[0], centre[1] - axis[1]));
+  }
+}
+} // namespace
+
+std::vector<std::int32_t> cracking_cells(const dolfinx::mesh::Mesh& mesh,
+                                         const std::vector<std::int32_t>& material, double radius,
+                                         std::array<double, 2> axis)
+{
+  std::vector<std::int32_t> cells;
+  for_concrete_cells(mesh, material, axis,
+                     [&](std::int32_t c, double r)
+                     {
+                       if (radius <= 0 || r <= radius)
+                         cells.push_back(c);
+                     });
+  return cells;
+}
+
+double nearest_concrete_centre(const dolfinx::mesh::Mesh& mesh,
+                               const std::vector<std::int32_t>& material,
+                               std::array<double, 2> axis)
+{
+  double nearest = INFINITY;
+  for_concrete_cells(mesh, material, axis,
+                     [&](std::int32_t, double r) { nearest = std::min(nearest, r); });
+  return nearest;
+}
+} // namespace pushout::model
