@@ -83,8 +83,8 @@ void describe_model(const mesh::MeshInput& shape, const mesh::MeshData& data,
   else if (s.model_type == "pushout" && !why.empty())
     cut = " (full model: " + why + ")";
   if (symmetry.copies() > 1 && shape.bulk_cracking) // docs/cracking.md, "Reading the cracks"
-    cut += " (the concrete's cracks are read on the cut model: a crack on a symmetry plane "
-           "reads half its width)";
+    cut += " (the surface cracks read are the modelled part's, one on a symmetry plane whole "
+           "with its mirror image)";
   std::cout << "pushout: " << s.model_type << ", " << s.cells << " cells, " << s.dofs << " dofs, "
             << s.interface_pairs << " joint elements" << cut
             << (s.mesh_reused ? " (mesh from cache)" : "") << "; Newton on " << solver.description()

@@ -99,11 +99,11 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
                            std::shared_ptr<const fem::Function<double>> u,
                            std::shared_ptr<const fem::Function<double>> alpha,
                            const std::vector<std::int32_t>& material, const Material& concrete,
-                           const CrackingPart& part, const Geometry& slice)
+                           const CrackingPart& part, const Geometry& slice, bool cut_by_symmetry)
     : _mesh(mesh), _u(u), _band(concrete.E, concrete.nu, envelope_of(part), part.viscosity),
       _cells(cracking_cells(*mesh, material, part.radius, slice.tube_center)),
       _axis(slice.tube_center), _tube_radius(slice.tube_radius()),
-      _visible_width(part.visible_width), _implex(part.implex),
+      _visible_width(part.visible_width), _cut(cut_by_symmetry), _implex(part.implex),
       _implex_tolerance(part.implex_tolerance), _E(concrete.E), _nu(concrete.nu),
       _dT(std::make_shared<fem::Constant<double>>(0.0))
 {

@@ -62,7 +62,7 @@ public:
                std::shared_ptr<const dolfinx::fem::Function<double>> u,
                std::shared_ptr<const dolfinx::fem::Function<double>> alpha,
                const std::vector<std::int32_t>& material, const Material& concrete,
-               const CrackingPart& part, const Geometry& slice);
+               const CrackingPart& part, const Geometry& slice, bool cut_by_symmetry = false);
 
   /// cracking.visible_width: a surface crack counts from this width [mm].
   double visible_width() const { return _visible_width; }
@@ -282,10 +282,11 @@ private:
   std::vector<double> _stress_trial, _stress_committed, _strain_committed;
   /// [cell][point][3] crack opening in the crack's frame [n, s1, s2] [mm]
   std::vector<double> _opening, _opening_trial;
-  std::vector<CellPlace> _places;      ///< [cell]
-  std::array<double, 2> _axis{};       ///< the tube axis (x, y) [mm]
-  double _tube_radius = 0;             ///< [mm]
-  double _visible_width = 0;           ///< cracking.visible_width [mm]
+  std::vector<CellPlace> _places; ///< [cell]
+  std::array<double, 2> _axis{};  ///< the tube axis (x, y) [mm]
+  double _tube_radius = 0;        ///< [mm]
+  double _visible_width = 0;      ///< cracking.visible_width [mm]
+  bool _cut = false; ///< the mesh is cut by symmetry: its faces do not close round the slice
   double _nominal_fracture_energy = 0; ///< [N mm]
   bool _new_cracks = true;             ///< allow_new_cracks
   double _dt = 0;                      ///< set_time_increment [mm of push]

@@ -227,8 +227,8 @@ void BulkCracking::read_surface(CrackingTotals& t) const
         t.columns.push_back(c);
       else
         faces.push_back({std::atan2(c.y - _axis[1], c.x - _axis[0]), c.x, c.y, c.opening, c.size});
-    t.surface =
-        surface_cracks(faces, t.columns, _axis, _tube_radius, gauge_resolution(_visible_width));
+    t.surface = surface_cracks(faces, t.columns, _axis, _tube_radius,
+                               gauge_resolution(_visible_width), _cut);
     for (const SurfaceCrack& s : t.surface)
       flat.insert(flat.end(), {s.angle_deg, s.width_mm, s.length_mm});
   }

@@ -415,8 +415,9 @@ Model::Model(MPI_Comm comm, const mesh::MeshData& data, const ModelInput& in)
 {
   _u->name = "displacement"; // in fields.xdmf
   if (in.cracking.embedded)
-    _bulk_cracking = std::make_unique<BulkCracking>(_mesh, _V, _u, _materials.alpha, data.material,
-                                                    in.concrete, in.cracking, in.geometry);
+    _bulk_cracking = std::make_unique<BulkCracking>(
+        _mesh, _V, _u, _materials.alpha, data.material, in.concrete, in.cracking, in.geometry,
+        data.symmetry_planes[0] || data.symmetry_planes[1]);
 }
 
 Model::~Model()

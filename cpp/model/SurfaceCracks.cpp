@@ -48,7 +48,7 @@ double length_from(const FaceColumn& start, const std::vector<CrackColumn>& colu
 std::vector<SurfaceCrack> surface_cracks(std::vector<FaceColumn> faces,
                                          const std::vector<CrackColumn>& columns,
                                          std::array<double, 2> axis, double tube_radius,
-                                         double resolution)
+                                         double resolution, bool cut)
 {
   std::vector<SurfaceCrack> cracks;
   const std::size_t n = faces.size();
@@ -57,7 +57,9 @@ std::vector<SurfaceCrack> surface_cracks(std::vector<FaceColumn> faces,
   std::sort(faces.begin(), faces.end(),
             [](const FaceColumn& a, const FaceColumn& b) { return a.angle < b.angle; });
   auto reads = [&](std::size_t i) { return faces[i % n].gauge >= resolution; };
-  auto add_run = [&](std::size_t first, std::size_t end) // columns [first, end), cyclic
+  // A run of columns [first, end) (cyclic); `mirrored`: it reaches a
+  // symmetry plane, whose mirror image completes it.
+  auto add_run = [&](std::size_t first, std::size_t end, bool mirrored)
   {
     double width = 0;
     std::size_t widest = first % n;
@@ -68,30 +70,69 @@ std::vector<SurfaceCrack> surface_cracks(std::vector<FaceColumn> faces,
         widest = i % n;
     }
     const FaceColumn& w = faces[widest];
-    double angle = std::atan2(w.y - axis[1], w.x - axis[0]) * 180 / std::numbers::pi;
+    const double degrees = 180 / std::numbers::pi;
+    double angle = std::atan2(w.y - axis[1], w.x - axis[0]) * degrees;
+    if (mirrored) // along the plane at the run's end: planes through the axis, along x or y
+    {
+      const FaceColumn& at = faces[(first == 0 ? first : end - 1) % n];
+      angle = 90 * std::round(std::atan2(at.y - axis[1], at.x - axis[0]) * degrees / 90);
+    }
     if (angle < 0)
       angle += 360;
-    cracks.push_back({angle, width, length_from(w, columns, axis, tube_radius, resolution)});
+    cracks.push_back({angle, (mirrored ? 2 : 1) * width,
+                      length_from(w, columns, axis, tube_radius, resolution)});
   };
-  // Scan the closed perimeter once from a column that reads nothing, so that
-  // no run is cut where the angles wrap around.
-  std::size_t start = 0;
-  while (start < n && reads(start))
-    ++start;
-  if (start == n) // cracked all round: one run
-    add_run(0, n);
-  for (std::size_t k = start; start < n && k < start + n;)
+  if (cut)
   {
-    if (!reads(k))
+    // Start after the widest gap between neighbours (the cut) and scan once.
+    std::size_t after = 0;
+    double widest_gap = -1;
+    for (std::size_t i = 0; i < n; ++i)
     {
-      ++k;
-      continue;
+      const double next = i + 1 < n ? faces[i + 1].angle : faces[0].angle + 2 * std::numbers::pi;
+      if (next - faces[i].angle > widest_gap)
+      {
+        widest_gap = next - faces[i].angle;
+        after = (i + 1) % n;
+      }
     }
-    std::size_t end = k;
-    while (reads(end)) // ends at the latest at start + n, which reads nothing
-      ++end;
-    add_run(k, end);
-    k = end;
+    std::rotate(faces.begin(), faces.begin() + std::ptrdiff_t(after), faces.end());
+    for (std::size_t k = 0; k < n;)
+    {
+      if (!reads(k))
+      {
+        ++k;
+        continue;
+      }
+      std::size_t end = k;
+      while (end < n && reads(end))
+        ++end;
+      add_run(k, end, k == 0 || end == n);
+      k = end;
+    }
+  }
+  else
+  {
+    // Scan the closed perimeter once from a column that reads nothing, so
+    // that no run is cut where the angles wrap around.
+    std::size_t start = 0;
+    while (start < n && reads(start))
+      ++start;
+    if (start == n) // cracked all round: one run
+      add_run(0, n, false);
+    for (std::size_t k = start; start < n && k < start + n;)
+    {
+      if (!reads(k))
+      {
+        ++k;
+        continue;
+      }
+      std::size_t end = k;
+      while (reads(end)) // ends at the latest at start + n, which reads nothing
+        ++end;
+      add_run(k, end, false);
+      k = end;
+    }
   }
   std::sort(cracks.begin(), cracks.end(),
             [](const SurfaceCrack& a, const SurfaceCrack& b) { return a.width_mm > b.width_mm; });

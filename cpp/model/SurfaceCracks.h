@@ -20,6 +20,8 @@
 // path from the face inwards through the cracked columns of the concrete
 // (mean opening above the resolution): from each column to the widest
 // cracked neighbour nearer the tube axis, to the crack's tip or the tube.
+// On a model cut by symmetry no run crosses the cut, and a run that reaches
+// a symmetry plane is completed by its mirror image.
 //
 // Pure functions of their inputs: rank 0 calls them on the gathered columns.
 #pragma once
@@ -71,9 +73,14 @@ inline double gauge_resolution(double visible_width)
 /// close the perimeter cyclically), widest first. `resolution` the smallest
 /// increment a gauge reads [mm]; `columns` the cracking concrete's columns,
 /// through which lengths are followed towards `axis` (the tube axis) up to
-/// the tube's surface at `tube_radius` [mm].
+/// the tube's surface at `tube_radius` [mm]. `cut`: the model is cut by
+/// symmetry (its planes through the axis, along x or y), so the columns do
+/// not close round the slice: the widest angular gap between neighbours is
+/// the cut, no run crosses it, and a run that reaches it is half of a crack
+/// that its mirror image completes (its width doubled, its direction the
+/// plane's). The cracks are those of the part modelled.
 std::vector<SurfaceCrack> surface_cracks(std::vector<FaceColumn> faces,
                                          const std::vector<CrackColumn>& columns,
                                          std::array<double, 2> axis, double tube_radius,
-                                         double resolution);
+                                         double resolution, bool cut = false);
 } // namespace pushout::model

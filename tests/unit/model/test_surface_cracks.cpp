@@ -128,6 +128,36 @@ TEST(SurfaceCracks, ARunAcrossTheAnglesWrapIsOneCrack)
   EXPECT_NEAR(cracks[0].angle_deg, 180, 1e-9);
 }
 
+TEST(SurfaceCracks, ACutModelReadsItsPlanesCracksWhole)
+{
+  // A half model about x = 50 (x >= 50): columns 40 mm from the axis every
+  // 5 degrees from -87.5 to 87.5. A crack on the plane at 90 degrees (two
+  // columns of 0.02 mm), one on the plane at 270 (a column of 0.03 mm) and
+  // one inside at 0 (0.05 mm).
+  std::vector<FaceColumn> faces;
+  for (double deg = -87.5; deg < 90; deg += 5)
+  {
+    const double a = deg * std::numbers::pi / 180;
+    const double gauge = deg > 80 ? 0.02 : deg < -85 ? 0.03 : std::abs(deg - 2.5) < 1 ? 0.05 : 0;
+    faces.push_back({a, axis[0] + 40 * std::cos(a), axis[1] + 40 * std::sin(a), gauge, 1});
+  }
+  // Cut: the planes' cracks read whole (their mirror images), along the
+  // planes; the one inside as it is.
+  const std::vector<SurfaceCrack> cut = surface_cracks(faces, {}, axis, R, resolution, true);
+  ASSERT_EQ(cut.size(), 3u);
+  EXPECT_NEAR(cut[0].width_mm, 0.08, 1e-15);
+  EXPECT_DOUBLE_EQ(cut[0].angle_deg, 90);
+  EXPECT_NEAR(cut[1].width_mm, 0.06, 1e-15);
+  EXPECT_DOUBLE_EQ(cut[1].angle_deg, 270);
+  EXPECT_NEAR(cut[2].width_mm, 0.05, 1e-15);
+  EXPECT_NEAR(cut[2].angle_deg, 2.5, 1e-9);
+  // Read as a closed perimeter the two planes' cracks would be one, across
+  // the 185 degrees that the cut takes away.
+  const std::vector<SurfaceCrack> closed = surface_cracks(faces, {}, axis, R, resolution);
+  ASSERT_EQ(closed.size(), 2u);
+  EXPECT_NEAR(closed[0].width_mm, 0.07, 1e-15);
+}
+
 TEST(SurfaceCracks, NoneOrAllRound)
 {
   EXPECT_TRUE(
