@@ -90,8 +90,6 @@ laws::Envelope envelope_of(const CrackingPart& part)
   return {laws::Envelope::Kind::exponential, part.f_t, 0.0, 0.0, part.c};
 }
 
-/// The owned concrete cells whose centre (vertex mean) is within `radius`
-/// of the tube axis (all owned concrete cells for radius 0), sorted.
 } // namespace
 
 BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,

@@ -57,9 +57,9 @@ std::vector<SurfaceCrack> surface_cracks(std::vector<FaceColumn> faces,
   std::sort(faces.begin(), faces.end(),
             [](const FaceColumn& a, const FaceColumn& b) { return a.angle < b.angle; });
   auto reads = [&](std::size_t i) { return faces[i % n].gauge >= resolution; };
-  // A run of columns [first, end) (cyclic); `mirrored`: it reaches a
-  // symmetry plane, whose mirror image completes it.
-  auto add_run = [&](std::size_t first, std::size_t end, bool mirrored)
+  // A run of columns [first, end) (cyclic); `plane`: its column at a
+  // symmetry plane, whose mirror image completes it (null: none).
+  auto add_run = [&](std::size_t first, std::size_t end, const FaceColumn* plane)
   {
     double width = 0;
     std::size_t widest = first % n;
@@ -72,20 +72,20 @@ std::vector<SurfaceCrack> surface_cracks(std::vector<FaceColumn> faces,
     const FaceColumn& w = faces[widest];
     const double degrees = 180 / std::numbers::pi;
     double angle = std::atan2(w.y - axis[1], w.x - axis[0]) * degrees;
-    if (mirrored) // along the plane at the run's end: planes through the axis, along x or y
-    {
-      const FaceColumn& at = faces[(first == 0 ? first : end - 1) % n];
-      angle = 90 * std::round(std::atan2(at.y - axis[1], at.x - axis[0]) * degrees / 90);
-    }
+    if (plane) // along the plane: planes through the axis, along x or y
+      angle = 90 * std::round(std::atan2(plane->y - axis[1], plane->x - axis[0]) * degrees / 90);
     if (angle < 0)
       angle += 360;
-    cracks.push_back({angle, (mirrored ? 2 : 1) * width,
-                      length_from(w, columns, axis, tube_radius, resolution)});
+    cracks.push_back(
+        {angle, (plane ? 2 : 1) * width, length_from(w, columns, axis, tube_radius, resolution)});
   };
+  // One scan of the perimeter from `start`: on a cut model the column after
+  // the widest gap between neighbours (the cut), which no run crosses; on a
+  // closed one a column that reads nothing, so that no run is cut where the
+  // angles wrap around.
+  std::size_t start = 0;
   if (cut)
   {
-    // Start after the widest gap between neighbours (the cut) and scan once.
-    std::size_t after = 0;
     double widest_gap = -1;
     for (std::size_t i = 0; i < n; ++i)
     {
@@ -93,34 +93,17 @@ std::vector<SurfaceCrack> surface_cracks(std::vector<FaceColumn> faces,
       if (next - faces[i].angle > widest_gap)
       {
         widest_gap = next - faces[i].angle;
-        after = (i + 1) % n;
+        start = (i + 1) % n;
       }
-    }
-    std::rotate(faces.begin(), faces.begin() + std::ptrdiff_t(after), faces.end());
-    for (std::size_t k = 0; k < n;)
-    {
-      if (!reads(k))
-      {
-        ++k;
-        continue;
-      }
-      std::size_t end = k;
-      while (end < n && reads(end))
-        ++end;
-      add_run(k, end, k == 0 || end == n);
-      k = end;
     }
   }
   else
-  {
-    // Scan the closed perimeter once from a column that reads nothing, so
-    // that no run is cut where the angles wrap around.
-    std::size_t start = 0;
     while (start < n && reads(start))
       ++start;
-    if (start == n) // cracked all round: one run
-      add_run(0, n, false);
-    for (std::size_t k = start; start < n && k < start + n;)
+  if (!cut && start == n) // cracked all round: one run
+    add_run(0, n, nullptr);
+  else
+    for (std::size_t k = start; k < start + n;)
     {
       if (!reads(k))
       {
@@ -128,12 +111,15 @@ std::vector<SurfaceCrack> surface_cracks(std::vector<FaceColumn> faces,
         continue;
       }
       std::size_t end = k;
-      while (reads(end)) // ends at the latest at start + n, which reads nothing
+      while (end < start + n && reads(end))
         ++end;
-      add_run(k, end, false);
+      const FaceColumn* plane = !cut               ? nullptr
+                                : k == start       ? &faces[k % n]
+                                : end == start + n ? &faces[(end - 1) % n]
+                                                   : nullptr;
+      add_run(k, end, plane);
       k = end;
     }
-  }
   std::sort(cracks.begin(), cracks.end(),
             [](const SurfaceCrack& a, const SurfaceCrack& b) { return a.width_mm > b.width_mm; });
   return cracks;

@@ -498,6 +498,7 @@ const std::vector<KeyDef>& scene_keys()
   static const std::vector<KeyDef> keys = make_keys();
   return keys;
 }
+
 std::string range_text(double min, double max, bool open, bool integer)
 {
   auto bound = [&](double v)

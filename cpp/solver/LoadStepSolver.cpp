@@ -220,8 +220,9 @@ SolveReport LoadStepSolver::solve(Vec x, Vec unpredicted)
 
 double LoadStepSolver::residual_norm(Vec unpredicted)
 {
-  Vec F = _eq.create_vector();
-  const Vector owned(F); // destroyed on every way out
+  if (!_residual_work.get()) // the whole model's layout, once
+    _residual_work = Vector(_eq.create_vector());
+  Vec F = _residual_work;
   const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(unpredicted));
   const bool ok =
       mpi::all(comm, mpi::collectively(comm, [&] { return _eq.residual(unpredicted, F); }));

@@ -14,6 +14,7 @@
 #include "../scene/SceneParts.h"
 #include "Condensation.h"
 #include "NewtonSolver.h"
+#include "Vector.h"
 #include <memory>
 #include <string>
 
@@ -149,6 +150,7 @@ private:
   /// ||F|| at `unpredicted` on the whole model [N] (0 where a law failed
   /// there on any process: no reference).
   double residual_norm(Vec unpredicted);
+  Vector _residual_work; ///< residual_norm's F
   std::unique_ptr<Condensation> _condensation;
   std::unique_ptr<NewtonSolver> _newton;       ///< on the condensation
   int _constraint_version = 0;                 ///< of the constraints it was built for

@@ -8,10 +8,10 @@
 #include "../common/petsc_check.h"
 #include "StepLoop.h"
 #include "StepLoopShared.h"
+#include "TestHooks.h"
 #include "ZeroForceSearch.h"
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <iostream>
 #include <optional>
 #include <sstream>
@@ -29,16 +29,6 @@ constexpr double zero_force_tolerance = 1e-6;
 /// it (a first-order error halves) finds a jump of the state
 /// (StepLoop::check_implex).
 constexpr double jump_error_fall = 0.75;
-
-/// Test hook, not a scene key (tests/e2e/test_solver_paths_give_same_curve.py):
-/// with PUSHOUT_TEST_NO_PREDICTION_REFERENCE set, Newton's relative test is
-/// of the prediction's own residual (LoadStepSolver::solve without
-/// `unpredicted`).
-bool test_no_prediction_reference()
-{
-  static const bool set = std::getenv("PUSHOUT_TEST_NO_PREDICTION_REFERENCE") != nullptr;
-  return set;
-}
 } // namespace
 
 /// Displacement control of the push.

@@ -52,4 +52,10 @@ void test_hooks_after_agreement(int steps, MPI_Comm comm)
   if (steps == 2)
     test_failure("collective", comm);
 }
+
+bool test_no_prediction_reference()
+{
+  static const bool set = std::getenv("PUSHOUT_TEST_NO_PREDICTION_REFERENCE") != nullptr;
+  return set;
+}
 } // namespace pushout::stepping

@@ -11,7 +11,9 @@
 // after abandon_after_s). With PUSHOUT_TEST_SLOW_STEP_S=t, from the third
 // load step on, each step spends t seconds without looking at signals, as
 // a long factorisation does (the tests of a stop that cannot wait for the
-// step).
+// step). With PUSHOUT_TEST_NO_PREDICTION_REFERENCE set, Newton's relative
+// test of a predicted step is of the prediction's own residual
+// (tests/e2e/test_solver_paths_give_same_curve.py).
 #pragma once
 
 #include <mpi.h>
@@ -29,4 +31,8 @@ void test_hooks_before_agreement(int steps, MPI_Comm comm);
 
 /// After that agreement: PUSHOUT_TEST_FAIL_AT=collective.
 void test_hooks_after_agreement(int steps, MPI_Comm comm);
+
+/// PUSHOUT_TEST_NO_PREDICTION_REFERENCE: a predicted step is solved
+/// without the residual of its unpredicted start (LoadStepSolver::solve).
+bool test_no_prediction_reference();
 } // namespace pushout::stepping
