@@ -19,8 +19,10 @@ every solve to -ksp_rtol, to the bound of Newton's tolerance, in fewer
 GMRES iterations: on the lagged whole model and with IMPL-EX cracks. Where
 a step starts from a prediction (cracking concrete), Newton's relative
 test of the step's own residual gives the curve of the test of the
-prediction's, to the same bound, in fewer GMRES iterations."""
+prediction's, to the same bound, and lets Newton stop where the
+prediction's own test would not."""
 import os
+import re
 
 from common import (COARSE_MESH, EXP_SOFT, FRICTION_2, SNES_RTOL, THROUGH_PEAK, TIGHT_NEWTON,
                     check, corrosion, cracking_corroded_demo, curve, newton_bound, out_dir, run,
@@ -153,8 +155,11 @@ inexact_against_exact("condensed lagged", scene, outs["condensed lagged (default
 # IMPL-EX at Newton's tight tolerance: at its own (IMPLEX_RTOL) a point
 # whose stress is within the tolerance of its strength may crack in one run
 # and not the other, and a step be cut in one only (common.TIGHT_NEWTON).
+# -snes_monitor and -snes_converged_reason: for the test of the reference
+# below.
+MONITOR = ["-snes_monitor", "-snes_converged_reason"]
 implex = out_dir("solver_implex")
-run(cracks, implex, extra=TIGHT_NEWTON)
+p_implex = run(cracks, implex, extra=TIGHT_NEWTON + MONITOR)
 check(summary(implex)["cracking_integration"] == "implex", "the cracks run IMPL-EX by default")
 inexact_against_exact("IMPL-EX cracks", cracks, implex, [], "p_MPa", corrosion, SNES_RTOL,
                       TIGHT_NEWTON)
@@ -164,22 +169,51 @@ inexact_against_exact("IMPL-EX cracks", cracks, implex, [], "p_MPa", corrosion, 
 # extrapolated), and -snes_rtol is of the residual the step's loads make at
 # the committed state, not of the prediction's own, which is smaller.
 # Against the test of the prediction's residual (a test hook): the curve to
-# newton_bound, the same cuts, and fewer Newton or GMRES iterations, or the
-# reference did not reach Newton.
+# newton_bound and the same cuts; and Newton's own record (-snes_monitor,
+# -snes_converged_reason) shows the reference reaching it: a solve that
+# converged by the relative test with ||F|| above -snes_rtol x ||F_0|| (F_0
+# the prediction's residual) is one that only the reference lets stop
+# (NewtonSolver::convergence_test). The hook's run can have none (PETSc's
+# own test is ||F|| <= rtol ||F_0||); the default's has one in most predicted
+# steps (24 of 64 solves here). Counts of iterations are not compared: they
+# differ by about 1 % (713 against 723 GMRES iterations), which another
+# machine's rounding of the single-precision LU could tie.
+
+
+def stopped_by_reference(stdout):
+    """The solves in a run's -snes_monitor / -snes_converged_reason output
+    that converged by the relative test with ||F|| > SNES_RTOL ||F_0||, and
+    the number of solves."""
+    norms, above, solves = [], 0, 0
+    for line in stdout.splitlines():
+        m = re.match(r"\s*(\d+) SNES Function norm (\S+)", line)
+        if m:
+            norms = [] if m.group(1) == "0" else norms
+            norms.append(float(m.group(2)))
+        elif "Nonlinear solve" in line:
+            solves += 1
+            # 1e-9: the monitor prints 13 digits
+            above += ("CONVERGED_FNORM_RELATIVE" in line and
+                      norms[-1] > SNES_RTOL * norms[0] * (1 + 1e-9))
+    return above, solves
+
+
+referred, p_referred = implex, p_implex
 os.environ["PUSHOUT_TEST_NO_PREDICTION_REFERENCE"] = "1"
 try:
     unreferred = out_dir("solver_implex_no_reference")
-    run(cracks, unreferred, extra=TIGHT_NEWTON)
+    p_unreferred = run(cracks, unreferred, extra=TIGHT_NEWTON + MONITOR)
 finally:
     del os.environ["PUSHOUT_TEST_NO_PREDICTION_REFERENCE"]
-a, b = corrosion(implex), corrosion(unreferred)
+a, b = corrosion(referred), corrosion(unreferred)
 tol = newton_bound(len(b), solved_unknowns(summary(unreferred)), SNES_RTOL)
 s = max(abs(r["p_MPa"]) for r in b)
 diff = max(abs(x["p_MPa"] - y["p_MPa"]) for x, y in zip(a, b))
-its = [summary(o)["newton_iterations"] for o in (implex, unreferred)]
-linear = [summary(o)["linear_iterations"] for o in (implex, unreferred)]
-check(len(a) == len(b) and diff <= tol * s and summary(implex)["cuts"] == summary(unreferred)["cuts"]
-      and its[0] <= its[1] and linear[0] < linear[1],
+check(len(a) == len(b) and diff <= tol * s and summary(referred)["cuts"] == summary(unreferred)["cuts"],
       f"IMPL-EX cracks: Newton's test of the step's residual against the prediction's: max |p "
-      f"difference| {diff:.2e} <= {tol:.1e} x {s:.4g} MPa; {its[0]} Newton iterations against "
-      f"{its[1]}, {linear[0]} GMRES iterations against {linear[1]}")
+      f"difference| {diff:.2e} <= {tol:.1e} x {s:.4g} MPa, the same cuts")
+(by_reference, solves), (without, solves_without) = (stopped_by_reference(p.stdout)
+                                                     for p in (p_referred, p_unreferred))
+check(solves > 0 and by_reference > 0 and solves_without > 0 and without == 0,
+      f"IMPL-EX cracks: {by_reference} of {solves} solves stopped above -snes_rtol x ||F_0|| by "
+      f"the step's own residual; {without} of {solves_without} without it")
