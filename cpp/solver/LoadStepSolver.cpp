@@ -64,17 +64,16 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
   // and Equilibrium::configure make it (the LU in single precision under
   // GMRES on one process), unless the user's PETSc options chose another.
   const bool single = part.mixed_precision && processes == 1 && (lagged || nonsmooth_bulk);
-  const std::string linear =
-      condense                                     ? ""
-      : NewtonSolver::linear_solver_from_options() ? ", the linear solver of the PETSc options"
+  const std::string whole_linear =
+      NewtonSolver::linear_solver_from_options() ? ", the linear solver of the PETSc options"
       : lagged ? std::string(", GMRES on a lagged LU") + (single ? " in single precision" : "")
       : single ? ", GMRES on the single-precision LU of every Jacobian"
                : ", the LU of every Jacobian";
   const std::string description =
-      (condense ? "the " + std::to_string(Condensation::unknowns(eq.model())) +
-                      " interface jumps (bulk condensed)"
-                : "the whole model" + (why.empty() ? "" : " (not condensed: " + why + ")")) +
-      cracks + linear;
+      condense ? "the " + std::to_string(Condensation::unknowns(eq.model())) +
+                     " interface jumps (bulk condensed)" + cracks
+               : "the whole model" + (why.empty() ? "" : " (not condensed: " + why + ")") + cracks +
+                     whole_linear;
   eq.set_single_precision(part.mixed_precision); // before the solvers configure their KSP
   auto solver = std::make_unique<LoadStepSolver>(eq, condense, pc, int(part.refactor_iterations),
                                                  description);
@@ -96,6 +95,7 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
     solver->_whole.set_tail_reuse(tail_reuse_ratio);
     solver->_whole.set_stop_when_stalled(true);
   }
+  solver->_whole_linear = whole_linear;
   solver->_single_precision = part.mixed_precision;
   solver->_condense_required = required;
   return solver;
@@ -141,9 +141,10 @@ void LoadStepSolver::update()
     ++_retired_factorizations;
     _condensation.reset();
     _condense = false;
-    _description = "the whole model (not condensed: " + why + ")";
+    _description = "the whole model (not condensed: " + why + ")" + _whole_linear;
     if (_talk)
-      std::cout << "pushout: " << why << "; Newton on the whole model" << std::endl;
+      std::cout << "pushout: " << why << "; Newton on the whole model" << _whole_linear
+                << std::endl;
     return;
   }
   _condensation->set_single_precision(_single_precision);

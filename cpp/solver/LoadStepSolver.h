@@ -143,6 +143,7 @@ private:
   bool _talk = false;
   double _asymmetry = 0; ///< condensation_asymmetry()
   std::string _description;
+  std::string _whole_linear; ///< ", GMRES on a lagged LU ...": the whole model's linear solver
   bool _bulk_needed = true;
   NewtonSolver _whole;
   /// The whole model's solve (set_crack_free_predictor).
