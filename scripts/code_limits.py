@@ -10,6 +10,7 @@
   scripts/code_limits.py [--list N]   (--list N: the N longest functions)
 Exits 1 if a limit is broken, naming the file, line and size.
 """
+import os
 import re
 import sys
 from pathlib import Path
@@ -94,6 +95,20 @@ def functions(path: Path):
     return found
 
 
+def project_files():
+    """The files under ROOT but .git and the build folder. Those two are
+    pruned before they are read: ctest runs this beside the tests that
+    write and delete folders under build/ (os.walk passes over a folder
+    that vanishes; ROOT.rglob raised FileNotFoundError)."""
+    for folder, subfolders, files in os.walk(ROOT):
+        if Path(folder) == ROOT:
+            subfolders[:] = [d for d in subfolders if d not in (".git", "build")]
+        elif ".git" in subfolders:
+            subfolders.remove(".git")
+        for name in files:
+            yield Path(folder) / name
+
+
 def main():
     problems = []
     sources = sorted(p for p in (ROOT / "cpp").rglob("*") if p.suffix in (".h", ".cpp"))
@@ -115,9 +130,8 @@ def main():
                 if m:
                     problems.append(f"{rel}:{k}: looks up the scene key {m.group(0)[1:]} "
                                     "(take the typed part, scene/SceneParts.h)")
-    tracked = [p for p in ROOT.rglob("*") if p.is_file() and ".git" not in p.parts
-               and "build" not in p.relative_to(ROOT).parts[:1]
-               and p.suffix in (".h", ".cpp", ".py", ".md", ".txt", ".sh", ".toml", ".geo")
+    tracked = [p for p in project_files()
+               if p.suffix in (".h", ".cpp", ".py", ".md", ".txt", ".sh", ".toml", ".geo")
                and p.resolve() != Path(__file__).resolve()]
     for path in sorted(tracked):
         for k, text_line in enumerate(path.read_text(errors="replace").splitlines(), 1):

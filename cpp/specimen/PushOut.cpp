@@ -463,12 +463,11 @@ void PushOut::check_cracking(const Scene& scene)
     throw SceneError("'solver.condensation' = \"on\" condenses a linear bulk, and "
                      "'cracking.model' = \"embedded\" makes the concrete nonlinear: leave it at "
                      "\"auto\" (the whole model is solved)");
-  if (cracking.implex && scene.loading().control != Loading::Control::displacement)
+  if (cracking.implex && scene.loading().control == Loading::Control::arc_length)
     throw SceneError("'cracking.integration' = \"implex\" runs under 'loading.control' = "
-                     "\"displacement\" only (the energy its steps release is not yet written "
-                     "for dissipation or arc-length control): set loading.control = "
-                     "\"displacement\" (where the cracks snap back, its steps jump), or "
-                     "cracking.integration = \"auto\" (the implicit cracks under this control)");
+                     "\"displacement\" or \"dissipation\" only (arc length does not "
+                     "extrapolate the cracks yet): set one of them, or cracking.integration = "
+                     "\"auto\" (the implicit cracks under arc length)");
   if (cracking.implex && cracking.viscosity > 0)
     throw SceneError("'cracking.integration' = \"implex\" extrapolates the cracks' damage, and "
                      "'cracking.viscosity' > 0 delays it: use one or the other");

@@ -143,6 +143,7 @@ bool StepLoop::nominal_steps(const Stage& stage)
           // growth is the snap's).
           d_load_last = implex.jump ? 0.0 : stage.extrapolate_by(s_try) - stage.extrapolate_by(s);
         }
+        count_implex(implex);
         commit();
         s = s_try;
         stepper.converged(rep.iterations, implex.ratio <= 0.5 || implex.jump);
@@ -223,14 +224,14 @@ std::function<double(double)> StepLoop::extrapolation(std::function<double(doubl
 }
 
 StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, double increment,
-                                             bool smallest)
+                                             bool smallest, const char* why_taken)
 {
   model::BulkCracking* bulk = _equilibrium.model().bulk_cracking();
   if (!bulk || !bulk->implex())
     return {};
   std::int64_t failed_points = 0;
   const double error = bulk->implex_error(failed_points);
-  ImplexCheck c{error / bulk->implex_tolerance(), false};
+  ImplexCheck c{error / bulk->implex_tolerance(), false, error};
   std::ostringstream why;
   if (failed_points > 0)
   {
@@ -255,11 +256,9 @@ StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, double in
         std::cout << "IMPL-EX error " << error;
         if (smaller)
           std::cout << " (" << _implex_missed << " before the last cut)";
-        std::cout << ": the cracks snap back under this control; the step is taken" << std::endl;
+        std::cout << ": " << why_taken << "; the step is taken" << std::endl;
       }
-      _summary.implex_jumps += c.jump ? 1 : 0;
       _implex_missed = 0;
-      _summary.implex_error_max = std::max(_summary.implex_error_max, error);
       return c;
     }
     _implex_missed = error;
@@ -269,6 +268,14 @@ StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, double in
   rep.converged = false;
   rep.reason = why.str();
   return c;
+}
+
+void StepLoop::count_implex(const ImplexCheck& c)
+{
+  if (!(c.ratio > 0))
+    return;
+  _summary.implex_jumps += c.jump ? 1 : 0;
+  _summary.implex_error_max = std::max(_summary.implex_error_max, c.error);
 }
 
 void StepLoop::set_crack_extrapolation(double ratio)

@@ -10,6 +10,7 @@
 #include "../common/petsc_check.h"
 #include "StepLoop.h"
 #include "StepLoopShared.h"
+#include <algorithm>
 #include <array>
 #include <iostream>
 #include <sstream>
@@ -28,6 +29,13 @@ constexpr double min_probe_increment = 1.0 / 16;
 /// (the slip term of the control did the rest), once the energy steps have
 /// released more than one increment (the event is over, not beginning).
 constexpr double released_to_return = 0.25;
+
+/// IMPL-EX cracks in an energy step: the largest ratio of its increment to
+/// the energy released in the last step by which the cracks' growth in that
+/// step is extrapolated, as a step of lambda grows at most twice its last
+/// (Stepper.h). After a step of lambda that released little the ratio would
+/// be large, and the extrapolated cracks far from the step's own.
+constexpr double max_energy_extrapolation = 2.0;
 
 /// The energy released by the joints to full softening, summed over the
 /// processes, plus that of a crack through the cover if the concrete
@@ -87,6 +95,7 @@ private:
     bool energy_step;             ///< a step of energy (else of lambda)
     double dG_step;               ///< the increment of an energy step [N mm]
     bool too_dissipative = false; ///< a converged step of lambda reverted: it dissipated too much
+    StepLoop::ImplexCheck implex; ///< IMPL-EX cracks: the converged try's error
   };
   /// An energy step if the last steps chose one (a step of lambda instead
   /// if it would move lambda too far), else a step of lambda.
@@ -108,6 +117,10 @@ private:
   void accept(int k, const std::string& name, const Try& t);
   /// The stage's mean jump at the state in _x [mm].
   double mean_jump();
+  /// IMPL-EX cracks: the converged try `t`'s error against the tolerance
+  /// (StepLoop::check_implex; a try that misses it fails, to be cut); the
+  /// error of a step of one kind is not compared with the other's.
+  void check_implex(Try& t);
   void say(const std::string& what);
 
   StepLoop& _loop;
@@ -126,6 +139,15 @@ private:
   double _jump = 0;              ///< the mean jump at the committed state [mm]
   double _jump_rate = 0;         ///< d jump / d lambda of the last step
   int _cuts = 0;                 ///< of the step being tried
+  /// IMPL-EX cracks extrapolate the last committed step's growth of their
+  /// history (BulkCracking::set_extrapolation) by the ratio of the try's
+  /// increment to that step's: of lambda in a step of lambda after one
+  /// (_d_lambda_last [mm]), of the energy released in an energy step
+  /// (_released_last [N mm], by the softening layers and the cracks). 0:
+  /// nothing to extrapolate (the stage's first step, a step of the other
+  /// kind for lambda, a jump).
+  double _d_lambda_last = 0, _released_last = 0;
+  bool _implex_energy = false; ///< the kind of the last try StepLoop::check_implex saw
 };
 
 /// Dissipation control of the push: the push delta is the load factor, the
@@ -225,11 +247,12 @@ bool StepLoop::DissipationSteps::run()
 
 StepLoop::DissipationSteps::Try StepLoop::DissipationSteps::try_step(const std::string& name)
 {
-  Try t{{}, _lambda, _by_energy, _energy.increment() * _dG_nominal};
+  Try t{{}, _lambda, _by_energy, _energy.increment() * _dG_nominal, false, {}};
   bool overshot = false;
   if (_by_energy)
   {
     t.rep = energy_step(t.lambda_new, t.dG_step);
+    check_implex(t);
     if (t.rep.converged && (t.lambda_new > _lambda + _h_nominal || t.lambda_new > _lambda_final))
     {
       // Past a nominal step of lambda (the joints have little left to
@@ -251,6 +274,7 @@ StepLoop::DissipationSteps::Try StepLoop::DissipationSteps::try_step(const std::
       t.lambda_new = _lambda_final;
     t.rep = lambda_step(_lambda, t.lambda_new);
     _loop._summary.newton_iterations += t.rep.iterations;
+    check_implex(t); // before too_dissipative: IMPL-EX's cracks dissipate in its update
     t.too_dissipative = t.rep.converged && !overshot && too_dissipative(name, t.lambda_new);
   }
   return t;
@@ -265,6 +289,8 @@ solver::SolveReport StepLoop::DissipationSteps::energy_step(double& lambda_new, 
   // of the points that will soften, and would overshoot.
   _path.set_slip_weight(_jump_rate > 0 ? _dG_nominal / (_jump_rate * _h_nominal) : 0.0);
   _loop.set_time_increment(_h_nominal * _stage.time_per_lambda);
+  _loop.set_crack_extrapolation(
+      _released_last > 0 ? std::min(dG_step / _released_last, max_energy_extrapolation) : 0.0);
   // A stall nearly in equilibrium ends the step (ArcLengthSolver::step,
   // loose): cuts do not pass it (its |F| shrinks with the step), and a step
   // of the smallest size stuck there took every later step down with it
@@ -281,6 +307,8 @@ solver::SolveReport StepLoop::DissipationSteps::lambda_step(double lambda_from, 
 {
   _stage.set_load(lambda_to);
   _loop.set_time_increment((lambda_to - lambda_from) * _stage.time_per_lambda);
+  _loop.set_crack_extrapolation(_d_lambda_last > 0 ? (lambda_to - lambda_from) / _d_lambda_last
+                                                   : 0.0);
   _loop._equilibrium.apply_constraints(_loop._x);
   return _loop._solver.solve(_loop._x);
 }
@@ -308,16 +336,21 @@ bool StepLoop::DissipationSteps::failed(const std::string& name, const Try& t)
 {
   _loop.revert();
   Stepper& stepper = t.energy_step ? _energy : _by_lambda;
+  // IMPL-EX's error is first order in the step (DisplacementControl.cpp).
+  const double factor = t.implex.ratio > 1 ? std::min(0.5, 0.8 / t.implex.ratio) : 0.5;
   if (!_loop.cut_back(stepper, _cuts, (t.energy_step ? "dissipation-controlled " : "") + name,
-                      t.rep.reason, t.energy_step ? _energy_words : _step_words))
+                      t.rep.reason, t.energy_step ? _energy_words : _step_words, factor))
     return false;
   // A step of lambda that failed short (below min_probe_increment) is
   // retried under dissipation control; a step of energy that nothing along
   // the path dissipates (singular control) under displacement control.
   if (t.energy_step)
     _by_energy = t.rep.reason.find("singular") == std::string::npos;
-  else if (_by_lambda.increment() < min_probe_increment)
+  else if (_by_lambda.increment() < min_probe_increment && !(t.implex.ratio > 1))
   {
+    // (An IMPL-EX error is no sign of an event: its step is cut as under
+    // displacement control, and passes a snap-back by a jump, which
+    // too_dissipative then hands to energy steps.)
     _by_energy = true;
     say(name + ": dissipation control");
   }
@@ -334,11 +367,15 @@ void StepLoop::DissipationSteps::accept(int k, const std::string& name, const Tr
     ++_loop._summary.loose_steps;
     say(name + ": " + t.rep.reason);
   }
+  _loop.count_implex(t.implex);
   _loop.commit();
   (t.energy_step ? _energy : _by_lambda).converged(t.rep.iterations);
+  // After a jump the last step's growth predicts nothing.
+  const double released = dissipation(_loop._equilibrium.model())[1];
+  _released_last = t.implex.jump ? 0.0 : released;
+  _d_lambda_last = t.energy_step || t.implex.jump ? 0.0 : t.lambda_new - _lambda;
   if (t.energy_step)
   {
-    const double released = dissipation(_loop._equilibrium.model())[1];
     _released_in_event += released;
     if (_released_in_event > _dG_nominal && released < released_to_return * t.dG_step)
     {
@@ -357,6 +394,23 @@ void StepLoop::DissipationSteps::accept(int k, const std::string& name, const Tr
   _jump = jump_new;
   _lambda = t.lambda_new;
   _cuts = 0;
+}
+
+void StepLoop::DissipationSteps::check_implex(Try& t)
+{
+  if (!t.rep.converged)
+    return;
+  if (t.energy_step != _implex_energy)
+    _loop._implex_missed = 0;
+  _implex_energy = t.energy_step;
+  Stepper& stepper = t.energy_step ? _energy : _by_lambda;
+  // An energy step's error that a smaller release does not lower is the
+  // floor of IMPL-EX's error where thousands of cracks switch between
+  // loading and unloading (docs/cracking.md "Still to come" 1), not a snap.
+  t.implex = _loop.check_implex(t.rep, t.energy_step ? t.dG_step : t.lambda_new - _lambda,
+                                stepper.smallest(),
+                                t.energy_step ? "a smaller release does not lower it"
+                                              : "the cracks snap back under this control");
 }
 
 double StepLoop::DissipationSteps::mean_jump()
