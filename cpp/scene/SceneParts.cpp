@@ -88,8 +88,10 @@ void Scene::fill_parts()
   _cracking.seed = integer("cracking.seed");
   _cracking.visible_width = number("cracking.visible_width");
   _cracking.viscosity = number("cracking.viscosity");
-  // auto: IMPL-EX where it applies (displacement control, no viscosity),
-  // the implicit cracks elsewhere (keys_cracking.cpp).
+  // auto: IMPL-EX under displacement control without viscosity, the
+  // implicit cracks elsewhere (keys_cracking.cpp); under dissipation
+  // control IMPL-EX is asked for (docs/cracking.md, "Under dissipation
+  // control").
   const std::string integration = string("cracking.integration");
   _cracking.implex =
       integration == "implex" || (integration == "auto" && _cracking.viscosity == 0 &&

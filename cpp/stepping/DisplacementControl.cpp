@@ -231,7 +231,7 @@ StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, double in
     return {};
   std::int64_t failed_points = 0;
   const double error = bulk->implex_error(failed_points);
-  ImplexCheck c{error / bulk->implex_tolerance(), false, error};
+  ImplexCheck c{error / bulk->implex_tolerance(), false, error, {}};
   std::ostringstream why;
   if (failed_points > 0)
   {
@@ -251,12 +251,14 @@ StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, double in
     c.jump = c.ratio > 1 && (smallest || (smaller && error > jump_error_fall * _implex_missed));
     if (c.ratio <= 1 || c.jump)
     {
-      if (c.jump && _report.talk())
+      if (c.jump) // said when the step is committed (count_implex)
       {
-        std::cout << "IMPL-EX error " << error;
+        std::ostringstream said;
+        said << "IMPL-EX error " << error;
         if (smaller)
-          std::cout << " (" << _implex_missed << " before the last cut)";
-        std::cout << ": " << why_taken << "; the step is taken" << std::endl;
+          said << " (" << _implex_missed << " before the last cut)";
+        said << ": " << why_taken << "; the step is taken";
+        c.said = said.str();
       }
       _implex_missed = 0;
       return c;
@@ -276,6 +278,8 @@ void StepLoop::count_implex(const ImplexCheck& c)
     return;
   _summary.implex_jumps += c.jump ? 1 : 0;
   _summary.implex_error_max = std::max(_summary.implex_error_max, c.error);
+  if (!c.said.empty() && _report.talk())
+    std::cout << c.said << std::endl;
 }
 
 void StepLoop::set_crack_extrapolation(double ratio)

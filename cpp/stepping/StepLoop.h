@@ -140,6 +140,7 @@ private:
     double ratio = 0;  ///< the step's error over cracking.implex_tolerance (0: no IMPL-EX)
     bool jump = false; ///< taken above the tolerance: no smaller step meets it
     double error = 0;  ///< the step's error (BulkCracking::implex_error)
+    std::string said;  ///< a jump's progress line, said when it is committed
   };
   /// IMPL-EX cracks: the error of a converged step of `increment` (of the
   /// stage's parameter) against its tolerance; a step that misses it fails
@@ -149,8 +150,9 @@ private:
   /// fails. `why_taken`: what the progress line says of a jump.
   ImplexCheck check_implex(solver::SolveReport& rep, double increment, bool smallest,
                            const char* why_taken = "the cracks snap back under this control");
-  /// summary.json's implex_error_max and implex_jumps: a checked step that
-  /// is committed (a try may still be reverted after its check).
+  /// summary.json's implex_error_max and implex_jumps, and a jump's progress
+  /// line: a checked step that is committed (a try may still be reverted
+  /// after its check).
   void count_implex(const ImplexCheck& c);
   /// Nominal steps, each tried whole and cut in halves when Newton fails.
   bool nominal_steps(const Stage& stage);
