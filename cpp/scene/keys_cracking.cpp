@@ -76,9 +76,8 @@ std::vector<KeyDef> law_keys()
        "and new cracks open after it (Oliver, Huespe & Cante 2008), so a step's bulk is linear "
        "but for closure: faster and never stuck, with an error of the order of the step held "
        "to implex_tolerance (loading.control = \"displacement\", \"dissipation\" or \"auto\", "
-       "and no viscosity); auto: implex under displacement control without viscosity, implicit "
-       "elsewhere (summary.json cracking_integration says which; docs/cracking.md, "
-       "\"IMPL-EX\")",
+       "and no viscosity); auto: implex where it applies, implicit elsewhere (summary.json "
+       "cracking_integration says which; docs/cracking.md, \"IMPL-EX\")",
        -inf,
        inf,
        false,

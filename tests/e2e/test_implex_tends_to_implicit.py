@@ -20,8 +20,8 @@ a face), corroded to x = 30 um in 15 steps and pushed 5 um:
    peak by far more than with the tolerance.
 3. What IMPL-EX does not do yet is refused with exit 2: arc length
    control, a damage viscosity. The default, integration = "auto", takes
-   IMPL-EX under displacement control and the implicit cracks elsewhere
-   (summary.json cracking_integration).
+   IMPL-EX under displacement and dissipation control and the implicit
+   cracks elsewhere (summary.json cracking_integration).
 4. The same steps, cracked points and p(x) on 1 and 2 processes, to
    Newton's tolerance (a step's error is a sum over the processes' points:
    its cut or not differs only if it lands within round-off of the
@@ -88,7 +88,8 @@ for sets, why in ((["loading.control=arc_length"], "arc length"),
             check=False)
     check(p.returncode == 2 and "cracking.integration" in p.stderr,
           f"implex with {why}: exit {p.returncode} ({p.stderr.strip()[:120]})")
-for sets, integration in (([], "implex"), (["loading.control=auto"], "implicit"),
+for sets, integration in (([], "implex"), (["loading.control=auto"], "implex"),
+                          (["loading.control=arc_length"], "implicit"),
                           (["cracking.viscosity=0.01"], "implicit")):
     out = out_dir("implex_auto")
     run(scene, out, sets=sets + ["corrosion.penetration=0.002", "corrosion.steps=1"])

@@ -184,12 +184,14 @@ plot = false
 }
 
 // cracking.integration = "auto" (the default) is IMPL-EX under displacement
-// control without a damage viscosity, the implicit cracks otherwise.
+// and dissipation control without a damage viscosity, the implicit cracks
+// otherwise (arc length, a viscosity).
 TEST(Scene, AutoIntegrationIsImplexWhereItApplies)
 {
   const std::string cracks = "[cracking]\nmodel = \"embedded\"\n";
   EXPECT_TRUE(Scene::parse(cracks).cracking().implex);
-  EXPECT_FALSE(Scene::parse(cracks, {{"loading.control", "auto"}}).cracking().implex);
+  EXPECT_TRUE(Scene::parse(cracks, {{"loading.control", "auto"}}).cracking().implex);
+  EXPECT_TRUE(Scene::parse(cracks, {{"loading.control", "dissipation"}}).cracking().implex);
   EXPECT_FALSE(Scene::parse(cracks, {{"loading.control", "arc_length"}}).cracking().implex);
   EXPECT_FALSE(Scene::parse(cracks, {{"cracking.viscosity", "0.01"}}).cracking().implex);
   EXPECT_FALSE(Scene::parse(cracks, {{"cracking.integration", "implicit"}}).cracking().implex);
