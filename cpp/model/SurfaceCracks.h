@@ -26,6 +26,7 @@
 // Pure functions of their inputs: rank 0 calls them on the gathered columns.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -66,7 +67,7 @@ constexpr double max_gauge_resolution = 0.005;
 /// does not make the narrower ones vanish from the readings.
 inline double gauge_resolution(double visible_width)
 {
-  return visible_width / 10 < max_gauge_resolution ? visible_width / 10 : max_gauge_resolution;
+  return std::min(visible_width / 10, max_gauge_resolution);
 }
 
 /// The surface cracks of the `faces` columns (any order; their angles

@@ -146,14 +146,13 @@ bool StepLoop::nominal_steps(const Stage& stage)
         count_implex(implex);
         commit();
         s = s_try;
-        stepper.converged(rep.iterations, implex.ratio <= 0.5 || implex.jump);
+        stepper.converged(rep.iterations, implex.may_grow());
         continue;
       }
       revert();
       const std::string what =
           steps == 1 ? stage.step_name : stage.step_name + " " + std::to_string(k);
-      if (!cut_back(stepper, cuts, what, rep.reason, fraction,
-                    implex.ratio > 1 ? std::min(0.5, 0.8 / implex.ratio) : 0.5))
+      if (!cut_back(stepper, cuts, what, rep.reason, fraction, implex.cut_factor()))
         return false;
     }
   }
@@ -257,7 +256,8 @@ StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, double in
         said << "IMPL-EX error " << error;
         if (smaller)
           said << " (" << _implex_missed << " before the last cut)";
-        said << ": " << why_taken << "; the step is taken";
+        said << ": " << (why_taken ? why_taken : "the cracks snap back under this control")
+             << "; the step is taken";
         c.said = said.str();
       }
       _implex_missed = 0;

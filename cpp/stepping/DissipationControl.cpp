@@ -343,10 +343,9 @@ bool StepLoop::DissipationSteps::failed(const std::string& name, const Try& t)
 {
   _loop.revert();
   Stepper& stepper = t.energy_step ? _energy : _by_lambda;
-  // IMPL-EX's error is first order in the step (DisplacementControl.cpp).
-  const double factor = t.implex.ratio > 1 ? std::min(0.5, 0.8 / t.implex.ratio) : 0.5;
   if (!_loop.cut_back(stepper, _cuts, (t.energy_step ? "dissipation-controlled " : "") + name,
-                      t.rep.reason, t.energy_step ? _energy_words : _step_words, factor))
+                      t.rep.reason, t.energy_step ? _energy_words : _step_words,
+                      t.implex.cut_factor()))
     return false;
   // A step of lambda that failed short (below min_probe_increment) is
   // retried under dissipation control; a step of energy that nothing along
@@ -376,10 +375,7 @@ void StepLoop::DissipationSteps::accept(int k, const std::string& name, const Tr
   }
   _loop.count_implex(t.implex);
   _loop.commit();
-  // IMPL-EX: a step whose error would miss the tolerance at twice its
-  // increment does not let the next grow (as under displacement control).
-  (t.energy_step ? _energy : _by_lambda)
-      .converged(t.rep.iterations, t.implex.ratio <= 0.5 || t.implex.jump);
+  (t.energy_step ? _energy : _by_lambda).converged(t.rep.iterations, t.implex.may_grow());
   // After a jump of the load the last step's growth predicts nothing; an
   // energy step taken at the floor of IMPL-EX's error released what it was
   // asked for, and its growth is extrapolated as any other's (on the coarse
@@ -422,8 +418,7 @@ void StepLoop::DissipationSteps::check_implex(Try& t)
   // loading and unloading (docs/cracking.md "Still to come" 1), not a snap.
   t.implex = _loop.check_implex(t.rep, t.energy_step ? t.dG_step : t.lambda_new - _lambda,
                                 stepper.smallest(),
-                                t.energy_step ? "a smaller release does not lower it"
-                                              : "the cracks snap back under this control");
+                                t.energy_step ? "a smaller release does not lower it" : nullptr);
 }
 
 double StepLoop::DissipationSteps::mean_jump()

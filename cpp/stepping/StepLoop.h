@@ -27,6 +27,7 @@
 #include "StepRecorder.h"
 #include "Stepper.h"
 #include "TestHooks.h" // test_failure_at_setup, for driver/Run.cpp
+#include <algorithm>
 #include <functional>
 #include <string>
 
@@ -141,15 +142,23 @@ private:
     bool jump = false; ///< taken above the tolerance: no smaller step meets it
     double error = 0;  ///< the step's error (BulkCracking::implex_error)
     std::string said;  ///< a jump's progress line, said when it is committed
+    /// Whether the next step may grow: IMPL-EX's error is first order in
+    /// the step, so one above half the tolerance would miss it at twice the
+    /// increment (a jump: smaller steps did not help there).
+    bool may_grow() const { return ratio <= 0.5 || jump; }
+    /// The fraction of itself a try that missed is cut to: one that should
+    /// meet the tolerance (0.8 of it), in halves at least.
+    double cut_factor() const { return ratio > 1 ? std::min(0.5, 0.8 / ratio) : 0.5; }
   };
   /// IMPL-EX cracks: the error of a converged step of `increment` (of the
   /// stage's parameter) against its tolerance; a step that misses it fails
   /// (`rep`, its reason), to be cut, unless it is a jump: a smaller try
   /// than the last that missed did not cut the error, or `smallest` (the
   /// step cannot be cut). A step whose crack band update failed at a point
-  /// fails. `why_taken`: what the progress line says of a jump.
+  /// fails. `why_taken`: what the progress line says of a jump (null: the
+  /// cracks snap back under the load's control).
   ImplexCheck check_implex(solver::SolveReport& rep, double increment, bool smallest,
-                           const char* why_taken = "the cracks snap back under this control");
+                           const char* why_taken = nullptr);
   /// summary.json's implex_error_max and implex_jumps, and a jump's progress
   /// line: a checked step that is committed (a try may still be reverted
   /// after its check).
