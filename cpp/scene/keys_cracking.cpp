@@ -75,9 +75,9 @@ std::vector<KeyDef> law_keys()
        "kink); implex: in a step each crack holds the damage extrapolated from the last steps "
        "and new cracks open after it (Oliver, Huespe & Cante 2008), so a step's bulk is linear "
        "but for closure: faster and never stuck, with an error of the order of the step held "
-       "to implex_tolerance (loading.control = \"displacement\", \"dissipation\" or \"auto\", "
-       "and no viscosity); auto: implex where it applies, implicit elsewhere (summary.json "
-       "cracking_integration says which; docs/cracking.md, \"IMPL-EX\")",
+       "to implex_tolerance (any loading.control; no viscosity); auto: implex without a "
+       "viscosity, implicit with one (summary.json cracking_integration says which; "
+       "docs/cracking.md, \"IMPL-EX\")",
        -inf,
        inf,
        false,

@@ -463,11 +463,6 @@ void PushOut::check_cracking(const Scene& scene)
     throw SceneError("'solver.condensation' = \"on\" condenses a linear bulk, and "
                      "'cracking.model' = \"embedded\" makes the concrete nonlinear: leave it at "
                      "\"auto\" (the whole model is solved)");
-  if (cracking.implex && scene.loading().control == Loading::Control::arc_length)
-    throw SceneError("'cracking.integration' = \"implex\" runs under 'loading.control' = "
-                     "\"displacement\", \"dissipation\" or \"auto\" only (arc length does "
-                     "not extrapolate the cracks yet): set one of them, or "
-                     "cracking.integration = \"auto\" (the implicit cracks under arc length)");
   if (cracking.implex && cracking.viscosity > 0)
     throw SceneError("'cracking.integration' = \"implex\" extrapolates the cracks' damage, and "
                      "'cracking.viscosity' > 0 delays it: use one or the other");

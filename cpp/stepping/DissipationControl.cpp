@@ -30,14 +30,6 @@ constexpr double min_probe_increment = 1.0 / 16;
 /// released more than one increment (the event is over, not beginning).
 constexpr double released_to_return = 0.25;
 
-/// IMPL-EX cracks: the largest ratio by which a step extrapolates the
-/// cracks' growth in the last committed step, as a step grows at most twice
-/// its last (Stepper.h). An energy step after a step of lambda that released
-/// little, or a whole step of lambda after a short one (a hand-over to
-/// energy steps and back), would take a large ratio, and the extrapolated
-/// cracks would be far from the step's own.
-constexpr double max_extrapolation = 2.0;
-
 /// The energy released by the joints to full softening, summed over the
 /// processes, plus that of a crack through the cover if the concrete
 /// cracks (model::BulkCracking::nominal_fracture_energy) [N mm].

@@ -11,9 +11,11 @@ namespace pushout::stepping
 {
 using namespace detail;
 
-solver::SolveReport StepLoop::load_factor_step(double lambda_from, double lambda_to)
+solver::SolveReport StepLoop::load_factor_step(double lambda_from, double lambda_to,
+                                               double extrapolation)
 {
   _scenario.apply_load_factor(lambda_to, _equilibrium);
+  set_crack_extrapolation(extrapolation);
   set_time_increment(lambda_to - lambda_from);
   _equilibrium.apply_constraints(_x);
   return _solver.solve(_x);
@@ -27,7 +29,12 @@ solver::SolveReport StepLoop::load_factor_step(double lambda_from, double lambda
 /// depends only on converged states (not on the tangent at a kink of the
 /// laws). Failed steps are halved, easy ones grow back (Stepper.h). The step
 /// that would pass lambda_final is replaced by a displacement-controlled step
-/// to exactly lambda_final.
+/// to exactly lambda_final. IMPL-EX cracks (docs/cracking.md) extrapolate
+/// the last committed step's growth by the ratio of the step's increment of
+/// the control (of lambda, for the last step) to that step's, at most
+/// max_extrapolation, and are checked and cut as under displacement control
+/// (check_implex); nothing is extrapolated into the first step (the
+/// corrosion stage's growth is not the push's) nor after a jump.
 bool StepLoop::path_following()
 {
   LoadFactorPath p;
@@ -42,6 +49,9 @@ bool StepLoop::path_following()
   Stepper stepper(_max_cuts, easy_tries(_equilibrium.model(), true));
   double lambda = 0.0, slip = path.control(_x);
   double d_lambda_prev = 0.0, d_slip_prev = 0.0; // the last converged step
+  bool extrapolate_cracks = false;               // from the last converged step (IMPL-EX)
+  const auto ratio = [&](double increment, double last)
+  { return extrapolate_cracks && last > 0 ? std::min(increment / last, max_extrapolation) : 0.0; };
   int cuts = 0;
   for (int k = 1; lambda < lambda_final;)
   {
@@ -53,22 +63,25 @@ bool StepLoop::path_following()
     if (k == 1)
     {
       lambda_new = std::min(h, lambda_final);
-      rep = load_factor_step(lambda, lambda_new);
+      rep = load_factor_step(lambda, lambda_new, 0.0);
     }
     else
     {
       const double d_slip = d_slip_prev * h / std::hypot(d_lambda_prev, d_slip_prev);
       set_time_increment(h);
+      set_crack_extrapolation(ratio(d_slip, d_slip_prev));
       rep = path.step(_x, lambda_new, d_slip, set_load);
       if (rep.converged && lambda_new > lambda_final)
       {
         _summary.newton_iterations += rep.iterations;
         revert();
         lambda_new = lambda_final;
-        rep = load_factor_step(lambda, lambda_new);
+        rep = load_factor_step(lambda, lambda_new, ratio(lambda_final - lambda, d_lambda_prev));
       }
     }
     _summary.newton_iterations += rep.iterations;
+    const ImplexCheck implex =
+        rep.converged ? check_implex(rep, h, stepper.smallest()) : ImplexCheck{};
     if (rep.converged)
     {
       const double slip_new = path.control(_x);
@@ -81,18 +94,21 @@ bool StepLoop::path_following()
       }
       _recorder.record(_x, rep.iterations, cuts, k, 0); // before the commit: StepRecorder.h
       ++_summary.steps;
+      count_implex(implex);
       commit();
       d_lambda_prev = lambda_new - lambda;
       d_slip_prev = slip_new - slip;
       lambda = lambda_new;
       slip = slip_new;
-      stepper.converged(rep.iterations);
+      extrapolate_cracks = !implex.jump; // a jump's growth is the snap's, not the path's
+      stepper.converged(rep.iterations, implex.may_grow());
       cuts = 0;
       ++k;
       continue;
     }
     revert();
-    if (!cut_back(stepper, cuts, "path-following step " + std::to_string(k), rep.reason, length))
+    if (!cut_back(stepper, cuts, "path-following step " + std::to_string(k), rep.reason, length,
+                  implex.cut_factor()))
       return false;
   }
   return true;

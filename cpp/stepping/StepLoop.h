@@ -177,8 +177,9 @@ private:
 
   bool path_following();
   /// A displacement-controlled step of the load factor (pseudo-time: its
-  /// change).
-  solver::SolveReport load_factor_step(double lambda_from, double lambda_to);
+  /// change), IMPL-EX cracks extrapolated by `extrapolation`
+  /// (set_crack_extrapolation).
+  solver::SolveReport load_factor_step(double lambda_from, double lambda_to, double extrapolation);
 
   // --- DissipationControl.cpp ---
 

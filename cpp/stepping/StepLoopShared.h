@@ -36,6 +36,14 @@ inline int easy_tries(const model::Model& model, bool bordered = false)
   return (bordered ? easy_bordered_iterations : easy_iterations) +
          (model.bulk_cracking() ? cracking_tail_iterations : 0);
 }
+/// IMPL-EX cracks under dissipation control and arc length: the largest
+/// ratio by which a step extrapolates the cracks' growth in the last
+/// committed step, as a step grows at most twice its last (Stepper.h). An
+/// energy step after a step of lambda that released little, a whole step of
+/// lambda after a short one (a hand-over to energy steps and back), or the
+/// push's last step after a short one, would take a large ratio, and the
+/// extrapolated cracks would be far from the step's own.
+constexpr double max_extrapolation = 2.0;
 /// The load parameter reaches a nominal step within this tolerance.
 constexpr double step_tolerance = 1e-12;
 /// Path following: snap-back makes the path longer than the final push, so

@@ -192,7 +192,7 @@ TEST(Scene, AutoIntegrationIsImplexWhereItApplies)
   EXPECT_TRUE(Scene::parse(cracks).cracking().implex);
   EXPECT_TRUE(Scene::parse(cracks, {{"loading.control", "auto"}}).cracking().implex);
   EXPECT_TRUE(Scene::parse(cracks, {{"loading.control", "dissipation"}}).cracking().implex);
-  EXPECT_FALSE(Scene::parse(cracks, {{"loading.control", "arc_length"}}).cracking().implex);
+  EXPECT_TRUE(Scene::parse(cracks, {{"loading.control", "arc_length"}}).cracking().implex);
   EXPECT_FALSE(Scene::parse(cracks, {{"cracking.viscosity", "0.01"}}).cracking().implex);
   EXPECT_FALSE(Scene::parse(cracks, {{"cracking.integration", "implicit"}}).cracking().implex);
   EXPECT_TRUE(Scene::parse(cracks, {{"cracking.integration", "implex"}}).cracking().implex);
