@@ -243,7 +243,7 @@ std::string ArcLengthSolver::iterate(Vec x, double lam, const std::function<void
 
 SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
                                   const std::function<void(double)>& set_load, double max_dlambda,
-                                  bool loose)
+                                  bool loose, std::optional<double> eta_from)
 {
   SolveReport rep;
   _policy.check_constraints(_problem);
@@ -261,7 +261,7 @@ SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
     rep.reason = "an interface law failed";
     return rep;
   }
-  const double eta = eta0 + d_eta;
+  const double eta = eta_from.value_or(eta0) + d_eta;
   double lam = lambda;
   const auto fail = [&](std::string why)
   {

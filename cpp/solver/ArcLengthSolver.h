@@ -41,6 +41,7 @@
 #include "NewtonSolver.h"
 #include "NonlinearProblem.h"
 #include <functional>
+#include <optional>
 #include <petscksp.h>
 #include <string>
 #include <vector>
@@ -130,8 +131,13 @@ public:
   /// unloading (docs/cracking.md, "Still to come" 3): a piecewise smooth
   /// system whose Newton iterates take the kinks' sides in turn, in cycles
   /// of 2 to 8 iterates whose |F| halves with the step, so no cut passes.
+  ///
+  /// `eta_from`: where (x, lambda) is a prediction of the step's end, not
+  /// the equilibrium it starts from, the control value of that equilibrium
+  /// (the target is eta_from + d_eta); by default c(x).
   SolveReport step(Vec x, double& lambda, double d_eta, const std::function<void(double)>& set_load,
-                   double max_dlambda = 0, bool loose = false);
+                   double max_dlambda = 0, bool loose = false,
+                   std::optional<double> eta_from = std::nullopt);
 
   /// |F| over the norm of the reactions at which a stalled step's best
   /// iterate ends it (step): 1e-5, 1e5 times -snes_rtol, and a millionth

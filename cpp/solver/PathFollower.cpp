@@ -36,10 +36,10 @@ void PathFollower::set_slip_weight(double beta)
 
 SolveReport PathFollower::step(Vec x, double& lambda, double d_control,
                                const std::function<void(double)>& set_load, double max_dlambda,
-                               bool loose)
+                               bool loose, std::optional<double> control_from)
 {
-  SolveReport report =
-      _arc->step(_solver.to_problem(x), lambda, d_control, set_load, max_dlambda, loose);
+  SolveReport report = _arc->step(_solver.to_problem(x), lambda, d_control, set_load, max_dlambda,
+                                  loose, control_from);
   if (report.converged)
   {
     _solver.from_problem(x);

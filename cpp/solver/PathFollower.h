@@ -36,10 +36,13 @@ public:
   /// (x, lambda); on success x (whole model) and lambda hold the next
   /// equilibrium; on failure x is left at an iterate (the caller restores
   /// it). `set_load(lambda)` puts the constraints of load factor lambda;
-  /// `max_dlambda` and `loose`: ArcLengthSolver::step.
+  /// `max_dlambda` and `loose`: ArcLengthSolver::step. `control_from`:
+  /// where (x, lambda) is a prediction of the step's end, the control value
+  /// of the equilibrium the step starts from (ArcLengthSolver::step's
+  /// eta_from).
   SolveReport step(Vec x, double& lambda, double d_control,
                    const std::function<void(double)>& set_load, double max_dlambda = 0,
-                   bool loose = false);
+                   bool loose = false, std::optional<double> control_from = std::nullopt);
 
   /// The control value at the whole model's x (a . x; the energy released
   /// since the last commit).

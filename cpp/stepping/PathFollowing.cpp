@@ -4,6 +4,7 @@
 // (solver/PathFollower.h; docs/numerics.md, "Path following").
 #include "StepLoop.h"
 #include "StepLoopShared.h"
+#include "TestHooks.h"
 #include <algorithm>
 #include <cmath>
 
@@ -27,7 +28,10 @@ solver::SolveReport StepLoop::load_factor_step(double lambda_from, double lambda
 /// h); each later one prescribes the slip increment of the previous step
 /// scaled to length h,  ds = ds_prev h / |(dlambda_prev, ds_prev)|,  which
 /// depends only on converged states (not on the tangent at a kink of the
-/// laws). Failed steps are halved, easy ones grow back (Stepper.h). The step
+/// laws). Each starts from a secant prediction: the last step's increment
+/// of x and lambda scaled to its length (on the control's target, which is
+/// linear in x); the iterates converge in one or two where the step is
+/// smooth. Failed steps are halved, easy ones grow back (Stepper.h). The step
 /// that would pass lambda_final is replaced by a displacement-controlled step
 /// to exactly lambda_final. IMPL-EX cracks (docs/cracking.md) extrapolate
 /// the last committed step's growth by the ratio of the step's increment of
@@ -49,6 +53,7 @@ bool StepLoop::path_following()
   Stepper stepper(_max_cuts, easy_tries(_equilibrium.model(), true));
   double lambda = 0.0, slip = path.control(_x);
   double d_lambda_prev = 0.0, d_slip_prev = 0.0; // the last converged step
+  solver::Vector before_last = _x.duplicate();   // the committed state before it
   bool extrapolate_cracks = false;               // from the last converged step (IMPL-EX)
   const auto ratio = [&](double increment, double last)
   { return extrapolate_cracks && last > 0 ? std::min(increment / last, max_extrapolation) : 0.0; };
@@ -70,7 +75,13 @@ bool StepLoop::path_following()
       const double d_slip = d_slip_prev * h / std::hypot(d_lambda_prev, d_slip_prev);
       set_time_increment(h);
       set_crack_extrapolation(ratio(d_slip, d_slip_prev));
-      rep = path.step(_x, lambda_new, d_slip, set_load);
+      if (!test_no_step_prediction())
+      {
+        const double r = d_slip / d_slip_prev; // the secant prediction
+        extrapolate(before_last, r);
+        lambda_new = lambda + r * d_lambda_prev;
+      }
+      rep = path.step(_x, lambda_new, d_slip, set_load, 0, false, slip);
       if (rep.converged && lambda_new > lambda_final)
       {
         _summary.newton_iterations += rep.iterations;
@@ -95,6 +106,7 @@ bool StepLoop::path_following()
       _recorder.record(_x, rep.iterations, cuts, k, 0); // before the commit: StepRecorder.h
       ++_summary.steps;
       count_implex(implex);
+      before_last.copy_from(_x_committed);
       commit();
       d_lambda_prev = lambda_new - lambda;
       d_slip_prev = slip_new - slip;

@@ -58,4 +58,10 @@ bool test_no_prediction_reference()
   static const bool set = std::getenv("PUSHOUT_TEST_NO_PREDICTION_REFERENCE") != nullptr;
   return set;
 }
+
+bool test_no_step_prediction()
+{
+  static const bool set = std::getenv("PUSHOUT_TEST_NO_STEP_PREDICTION") != nullptr;
+  return set;
+}
 } // namespace pushout::stepping

@@ -13,7 +13,9 @@
 // a long factorisation does (the tests of a stop that cannot wait for the
 // step). With PUSHOUT_TEST_NO_PREDICTION_REFERENCE set, Newton's relative
 // test of a predicted step is of the prediction's own residual
-// (tests/e2e/test_solver_paths_give_same_curve.py).
+// (tests/e2e/test_solver_paths_give_same_curve.py); with
+// PUSHOUT_TEST_NO_STEP_PREDICTION set, a path-following step starts from
+// the last equilibrium (tests/e2e/test_arc_length_follows_snap_back.py).
 #pragma once
 
 #include <mpi.h>
@@ -35,4 +37,8 @@ void test_hooks_after_agreement(int steps, MPI_Comm comm);
 /// PUSHOUT_TEST_NO_PREDICTION_REFERENCE: a predicted step is solved
 /// without the residual of its unpredicted start (LoadStepSolver::solve).
 bool test_no_prediction_reference();
+
+/// PUSHOUT_TEST_NO_STEP_PREDICTION: a path-following step starts from the
+/// last equilibrium, not from the secant prediction (StepLoop::path_following).
+bool test_no_step_prediction();
 } // namespace pushout::stepping
