@@ -134,7 +134,8 @@ public:
   ///
   /// `eta_from`: where (x, lambda) is a prediction of the step's end, not
   /// the equilibrium it starts from, the control value of that equilibrium
-  /// (the target is eta_from + d_eta); by default c(x).
+  /// (the target is eta_from + d_eta); by default c(x). `max_dlambda` then
+  /// bounds the first correction from the prediction.
   SolveReport step(Vec x, double& lambda, double d_eta, const std::function<void(double)>& set_load,
                    double max_dlambda = 0, bool loose = false,
                    std::optional<double> eta_from = std::nullopt);

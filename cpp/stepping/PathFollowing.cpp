@@ -7,6 +7,8 @@
 #include "TestHooks.h"
 #include <algorithm>
 #include <cmath>
+#include <iostream>
+#include <limits>
 
 namespace pushout::stepping
 {
@@ -33,12 +35,14 @@ solver::SolveReport StepLoop::load_factor_step(double lambda_from, double lambda
 /// linear in x); the iterates converge in one or two where the step is
 /// smooth. Failed steps are halved, easy ones grow back (Stepper.h). The step
 /// that would pass lambda_final is replaced by a displacement-controlled step
-/// to exactly lambda_final. IMPL-EX cracks (docs/cracking.md) extrapolate
-/// the last committed step's growth by the ratio of the step's increment of
-/// the control (of lambda, for the last step) to that step's, at most
+/// to exactly lambda_final; if that fails, steps of delta, cut as it failed,
+/// go on to lambda_final. IMPL-EX cracks (docs/cracking.md) extrapolate the
+/// last committed step's growth by the ratio of the step's slip increment
+/// to that step's (of delta for a step of delta), at most
 /// max_extrapolation, and are checked and cut as under displacement control
-/// (check_implex); nothing is extrapolated into the first step (the
-/// corrosion stage's growth is not the push's) nor after a jump.
+/// (check_implex). Nothing is predicted into the first step (the corrosion
+/// stage's growth is not the push's) nor after a jump (its increment is the
+/// snap's).
 bool StepLoop::path_following()
 {
   LoadFactorPath p;
@@ -51,48 +55,55 @@ bool StepLoop::path_following()
   const auto set_load = [&](double lambda) { _scenario.apply_load_factor(lambda, _equilibrium); };
   const auto length = sized("a length of", h_nominal, "mm");
   Stepper stepper(_max_cuts, easy_tries(_equilibrium.model(), true));
-  double lambda = 0.0, slip = path.control(_x);
-  double d_lambda_prev = 0.0, d_slip_prev = 0.0; // the last converged step
-  solver::Vector before_last = _x.duplicate();   // the committed state before it
-  bool extrapolate_cracks = false;               // from the last converged step (IMPL-EX)
-  const auto ratio = [&](double increment, double last)
-  { return extrapolate_cracks && last > 0 ? std::min(increment / last, max_extrapolation) : 0.0; };
+  double lambda = 0.0, slip = path.control(_x);               // of the committed state [mm]
+  double d_lambda_prev = 0.0, d_slip_prev = 0.0;              // the last converged step [mm]
+  solver::Vector before_last = _x.duplicate();                // the committed state before it
+  bool last_predicts = false;                                 // the last step predicts the next
+  bool by_delta = false;                                      // steps of delta to lambda_final
+  double delta_cap = std::numeric_limits<double>::infinity(); // of a step of delta [mm]
   int cuts = 0;
   for (int k = 1; lambda < lambda_final;)
   {
     if (stop_requested() || !within_step_limit(p, k, lambda, "path following"))
       return false;
-    const double h = stepper.increment() * h_nominal;
+    const double h = stepper.increment() * h_nominal; // [mm]
     double lambda_new = lambda;
+    double increment = h; // of the try's control (check_implex) [mm]
+    bool replaced = false;
     solver::SolveReport rep;
-    if (k == 1)
+    if (k == 1 || by_delta)
     {
-      lambda_new = std::min(h, lambda_final);
-      rep = load_factor_step(lambda, lambda_new, 0.0);
+      lambda_new = std::min({lambda + h, lambda + delta_cap, lambda_final});
+      increment = lambda_new - lambda;
+      rep = load_factor_step(lambda, lambda_new,
+                             last_predicts ? extrapolation_ratio(increment, d_lambda_prev) : 0.0);
     }
     else
     {
-      const double d_slip = d_slip_prev * h / std::hypot(d_lambda_prev, d_slip_prev);
+      const double d_slip = d_slip_prev * h / std::hypot(d_lambda_prev, d_slip_prev); // [mm]
+      const double r = d_slip / d_slip_prev;
       set_time_increment(h);
-      set_crack_extrapolation(ratio(d_slip, d_slip_prev));
-      if (!test_no_step_prediction())
-      {
-        const double r = d_slip / d_slip_prev; // the secant prediction
-        extrapolate(before_last, r);
-        lambda_new = lambda + r * d_lambda_prev;
-      }
+      set_crack_extrapolation(last_predicts ? extrapolation_ratio(d_slip, d_slip_prev) : 0.0);
+      if (last_predicts && !test_no_step_prediction() && extrapolate(before_last, r))
+        lambda_new = lambda + r * d_lambda_prev; // the secant prediction
       rep = path.step(_x, lambda_new, d_slip, set_load, 0, false, slip);
       if (rep.converged && lambda_new > lambda_final)
       {
+        // The fraction f of the try that reaches lambda_final grows the
+        // cracks by about f of the try's extrapolation.
+        const double f = (lambda_final - lambda) / (lambda_new - lambda);
         _summary.newton_iterations += rep.iterations;
         revert();
         lambda_new = lambda_final;
-        rep = load_factor_step(lambda, lambda_new, ratio(lambda_final - lambda, d_lambda_prev));
+        increment = lambda_final - lambda;
+        replaced = true;
+        rep = load_factor_step(lambda, lambda_new,
+                               last_predicts ? extrapolation_ratio(f * d_slip, d_slip_prev) : 0.0);
       }
     }
     _summary.newton_iterations += rep.iterations;
     const ImplexCheck implex =
-        rep.converged ? check_implex(rep, h, stepper.smallest()) : ImplexCheck{};
+        rep.converged ? check_implex(rep, increment, stepper.smallest()) : ImplexCheck{};
     if (rep.converged)
     {
       const double slip_new = path.control(_x);
@@ -112,13 +123,24 @@ bool StepLoop::path_following()
       d_slip_prev = slip_new - slip;
       lambda = lambda_new;
       slip = slip_new;
-      extrapolate_cracks = !implex.jump; // a jump's growth is the snap's, not the path's
+      last_predicts = !implex.jump;
+      delta_cap = std::numeric_limits<double>::infinity();
       stepper.converged(rep.iterations, implex.may_grow());
       cuts = 0;
       ++k;
       continue;
     }
     revert();
+    if (replaced || by_delta)
+    {
+      // A retry of the step to lambda_final would be the same step: steps
+      // of delta from here, the next cut as this one failed.
+      if (!by_delta && _report.talk())
+        std::cout << "path-following step " << k << ": the step to delta = " << lambda_final * 1e3
+                  << " um failed; steps of delta to it" << std::endl;
+      by_delta = true;
+      delta_cap = implex.cut_factor() * increment;
+    }
     if (!cut_back(stepper, cuts, "path-following step " + std::to_string(k), rep.reason, length,
                   implex.cut_factor()))
       return false;

@@ -8,6 +8,7 @@
 #include "../output/Summary.h"
 #include "../solver/LoadStepSolver.h"
 #include "../solver/PathFollower.h"
+#include <algorithm>
 #include <functional>
 #include <sstream>
 #include <string>
@@ -21,7 +22,9 @@ constexpr int easy_iterations = 4;
 /// steps of dissipation control): their Newton iterations close the control
 /// equation too (and energy steps start from the committed state's tangent,
 /// StartTangent), so an easy one takes a few more (arc length on brittle
-/// adhesion: 5 per step). With 4, a step cut once never grew back.
+/// adhesion: 5 per step from the last equilibrium; from the secant
+/// prediction, 1 to 3, and 4 to 5 at the peak). With 4, a step cut once
+/// never grew back.
 constexpr int easy_bordered_iterations = 6;
 /// What concrete that cracks adds to an easy try: its Newton converges
 /// linearly (a new crack's normal follows the strain, and its tangent does
@@ -44,6 +47,13 @@ inline int easy_tries(const model::Model& model, bool bordered = false)
 /// push's last step after a short one, would take a large ratio, and the
 /// extrapolated cracks would be far from the step's own.
 constexpr double max_extrapolation = 2.0;
+/// The ratio by which a step of `increment` extrapolates the cracks' growth
+/// in the last committed step of `last` (of the same parameter): at most
+/// max_extrapolation; 0 if the last did not move it forwards.
+inline double extrapolation_ratio(double increment, double last)
+{
+  return last > 0 ? std::min(increment / last, max_extrapolation) : 0.0;
+}
 /// The load parameter reaches a nominal step within this tolerance.
 constexpr double step_tolerance = 1e-12;
 /// Path following: snap-back makes the path longer than the final push, so

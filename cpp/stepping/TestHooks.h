@@ -14,8 +14,10 @@
 // step). With PUSHOUT_TEST_NO_PREDICTION_REFERENCE set, Newton's relative
 // test of a predicted step is of the prediction's own residual
 // (tests/e2e/test_solver_paths_give_same_curve.py); with
-// PUSHOUT_TEST_NO_STEP_PREDICTION set, a path-following step starts from
-// the last equilibrium (tests/e2e/test_arc_length_follows_snap_back.py).
+// PUSHOUT_TEST_NO_STEP_PREDICTION set, a path-following step, and a step
+// of the load under dissipation control, starts from the last equilibrium
+// (tests/e2e/test_arc_length_follows_snap_back.py,
+// tests/e2e/test_implex_tends_to_implicit.py).
 #pragma once
 
 #include <mpi.h>
@@ -38,7 +40,9 @@ void test_hooks_after_agreement(int steps, MPI_Comm comm);
 /// without the residual of its unpredicted start (LoadStepSolver::solve).
 bool test_no_prediction_reference();
 
-/// PUSHOUT_TEST_NO_STEP_PREDICTION: a path-following step starts from the
-/// last equilibrium, not from the secant prediction (StepLoop::path_following).
+/// PUSHOUT_TEST_NO_STEP_PREDICTION: a path-following step, and a step of
+/// the load under dissipation control, starts from the last equilibrium,
+/// not from the last step's increment extrapolated
+/// (StepLoop::path_following, StepLoop::DissipationSteps::lambda_step).
 bool test_no_step_prediction();
 } // namespace pushout::stepping
