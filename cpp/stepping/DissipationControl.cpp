@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 namespace pushout::stepping
@@ -50,8 +51,9 @@ double fracture_energy(model::Model& model)
   return joints_fracture_energy(model) + (cracking ? cracking->nominal_fracture_energy() : 0.0);
 }
 
-/// Whether a step of lambda may start from the last step's increment
-/// extrapolated: where nothing that softens is solved for implicitly in it.
+/// Whether a step (of lambda, or of energy after one) may start from the
+/// last step's increment extrapolated: where nothing that softens is
+/// solved for implicitly in it.
 /// IMPL-EX cracks hold their history through a step (its bulk is linear but
 /// for closure), so its equilibrium does not depend on Newton's start; a
 /// joint layer that softens has branches, and a start beyond a peak could
@@ -59,7 +61,7 @@ double fracture_energy(model::Model& model)
 /// see (the snap-back slice of e2e_dissipation_control_passes_snap_back:
 /// the peak sampled at 2.167 against 2.257 MPa), where the loop, not
 /// Newton, must pass the event.
-bool predicts_steps_of_lambda(model::Model& model)
+bool predicts_steps(model::Model& model)
 {
   const model::BulkCracking* cracking = model.bulk_cracking();
   return cracking && cracking->implex() && !(joints_fracture_energy(model) > 0);
@@ -161,13 +163,18 @@ private:
   /// nothing to extrapolate (the stage's first step, a step of the other
   /// kind for lambda, a jump).
   double _d_lambda_last = 0, _released_last = 0;
+  /// An energy step after one (not a jump) starts, where
+  /// predicts_steps(), from the last step's increment of x and
+  /// lambda scaled by the ratio of the energy increments asked for: that
+  /// step's increment [N mm] (0: none to predict from) and of lambda [mm].
+  double _dG_last = 0, _d_lambda_energy_last = 0;
   bool _implex_energy = false; ///< the kind of the last try StepLoop::check_implex saw
   /// A step of lambda after one starts from the last step's increment
   /// scaled by the same ratio (StepLoop::extrapolate), as under
-  /// displacement control, where predicts_steps_of_lambda(): the committed
+  /// displacement control, where predicts_steps(): the committed
   /// state before the last committed step, and the step's start without the
   /// prediction (Newton's relative test, LoadStepSolver::solve).
-  const bool _predict = predicts_steps_of_lambda(_loop._equilibrium.model());
+  const bool _predict = predicts_steps(_loop._equilibrium.model());
   solver::Vector _before_last = _loop._x.duplicate(), _unpredicted = _loop._x.duplicate();
 };
 
@@ -322,8 +329,19 @@ solver::SolveReport StepLoop::DissipationSteps::energy_step(double& lambda_new, 
   // (the corroded study's centred tube, beta 2, seed 4, x = 25 um: 17 such
   // steps, then one that was not near equilibrium, against 3 and a whole
   // curve when any step may end so).
+  std::optional<double> control_from; // of the committed state, if predicted
+  if (_predict && _dG_last > 0 && !test_no_step_prediction())
+  {
+    const double r = extrapolation_ratio(dG_step, _dG_last);
+    const double committed = _path.control(_loop._x);
+    if (_loop.extrapolate(_before_last, r))
+    {
+      control_from = committed;
+      lambda_new = _lambda + r * _d_lambda_energy_last;
+    }
+  }
   const solver::SolveReport rep = _path.step(_loop._x, lambda_new, dG_step, _stage.set_load,
-                                             min_probe_increment * _h_nominal, true);
+                                             min_probe_increment * _h_nominal, true, control_from);
   _loop._summary.newton_iterations += rep.iterations;
   return rep;
 }
@@ -409,6 +427,8 @@ void StepLoop::DissipationSteps::accept(int k, const std::string& name, const Tr
   const double released = dissipation(_loop._equilibrium.model())[1];
   _released_last = t.implex.jump && !t.energy_step ? 0.0 : released;
   _d_lambda_last = t.energy_step || t.implex.jump ? 0.0 : t.lambda_new - _lambda;
+  _dG_last = t.energy_step && !t.implex.jump ? t.dG_step : 0.0;
+  _d_lambda_energy_last = t.lambda_new - _lambda;
   if (t.energy_step)
   {
     _released_in_event += released;
