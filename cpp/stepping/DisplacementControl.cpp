@@ -64,17 +64,9 @@ bool StepLoop::nominal_steps(const Stage& stage)
   const model::Model& model = _equilibrium.model();
   double P = stage.zero_force_ends ? _scenario.load_force(model) : 0.0, P_peak = std::abs(P);
   double s = 0.0;
-  // Stage::extrapolate_by: the committed state before the last converged
-  // step, and that step's increment of the load (0: none to extrapolate).
-  // The step's start without the prediction, for Newton's relative test
-  // (LoadStepSolver::solve).
-  solver::Vector before_last, unpredicted;
+  // Stage::extrapolate_by: the last converged step's increment of the load
+  // (0: none to extrapolate).
   double d_load_last = 0;
-  if (stage.extrapolate_by)
-  {
-    before_last = _x.duplicate();
-    unpredicted = _x.duplicate();
-  }
   for (int k = 1; k <= steps; ++k)
   {
     int cuts = 0;
@@ -89,16 +81,7 @@ bool StepLoop::nominal_steps(const Stage& stage)
           d_load_last != 0 ? (stage.extrapolate_by(s_try) - stage.extrapolate_by(s)) / d_load_last
                            : 0.0;
       set_crack_extrapolation(ratio);
-      // Newton's relative test of the step's own residual where the start
-      // is a prediction (LoadStepSolver::solve).
-      const bool predicted = extrapolate(before_last, ratio) && !test_no_prediction_reference();
-      _equilibrium.apply_constraints(_x);
-      if (predicted)
-      {
-        unpredicted.copy_from(_x_committed);
-        _equilibrium.apply_constraints(unpredicted);
-      }
-      solver::SolveReport rep = _solver.solve(_x, predicted ? Vec(unpredicted) : nullptr);
+      solver::SolveReport rep = solve_predicted(ratio);
       _summary.newton_iterations += rep.iterations;
       // IMPL-EX's error is first order in the step: a step that missed its
       // tolerance is cut at once to one that should meet it (0.8 of the
@@ -136,13 +119,10 @@ bool StepLoop::nominal_steps(const Stage& stage)
       if (rep.converged)
       {
         stage.record(rep.iterations, cuts, k, s_try); // before the commit: StepRecorder.h
+        // After a jump the last increment predicts nothing (its cracks'
+        // growth is the snap's).
         if (stage.extrapolate_by)
-        {
-          before_last.copy_from(_x_committed);
-          // After a jump the last increment predicts nothing (its cracks'
-          // growth is the snap's).
           d_load_last = implex.jump ? 0.0 : stage.extrapolate_by(s_try) - stage.extrapolate_by(s);
-        }
         count_implex(implex);
         commit();
         s = s_try;
@@ -288,7 +268,7 @@ void StepLoop::set_crack_extrapolation(double ratio)
     bulk->set_extrapolation(ratio);
 }
 
-bool StepLoop::extrapolate(const solver::Vector& before_last, double ratio)
+bool StepLoop::extrapolate(double ratio)
 {
   // Only forwards: where the load turns back (an unloading segment) the
   // last increment predicts nothing.
@@ -296,7 +276,21 @@ bool StepLoop::extrapolate(const solver::Vector& before_last, double ratio)
     return false;
   // x = x_c + r (x_c - x_before)
   _x.copy_from(_x_committed);
-  petsc::check(VecAXPBY(_x, -ratio, 1 + ratio, before_last), "VecAXPBY");
+  petsc::check(VecAXPBY(_x, -ratio, 1 + ratio, _x_before), "VecAXPBY");
   return true;
+}
+
+solver::SolveReport StepLoop::solve_predicted(double ratio)
+{
+  // Newton's relative test of the step's own residual where the start is a
+  // prediction (LoadStepSolver::solve).
+  const bool predicted = extrapolate(ratio) && !test_no_prediction_reference();
+  _equilibrium.apply_constraints(_x);
+  if (predicted)
+  {
+    _x_unpredicted.copy_from(_x_committed);
+    _equilibrium.apply_constraints(_x_unpredicted);
+  }
+  return _solver.solve(_x, predicted ? Vec(_x_unpredicted) : nullptr);
 }
 } // namespace pushout::stepping

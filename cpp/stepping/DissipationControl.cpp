@@ -170,12 +170,9 @@ private:
   double _dG_last = 0, _d_lambda_energy_last = 0;
   bool _implex_energy = false; ///< the kind of the last try StepLoop::check_implex saw
   /// A step of lambda after one starts from the last step's increment
-  /// scaled by the same ratio (StepLoop::extrapolate), as under
-  /// displacement control, where predicts_steps(): the committed
-  /// state before the last committed step, and the step's start without the
-  /// prediction (Newton's relative test, LoadStepSolver::solve).
+  /// scaled by the same ratio (StepLoop::solve_predicted), as under
+  /// displacement control, where predicts_steps().
   const bool _predict = predicts_steps(_loop._equilibrium.model());
-  solver::Vector _before_last = _loop._x.duplicate(), _unpredicted = _loop._x.duplicate();
 };
 
 /// Dissipation control of the push: the push delta is the load factor, the
@@ -334,7 +331,7 @@ solver::SolveReport StepLoop::DissipationSteps::energy_step(double& lambda_new, 
   {
     const double r = extrapolation_ratio(dG_step, _dG_last);
     const double committed = _path.control(_loop._x);
-    if (_loop.extrapolate(_before_last, r))
+    if (_loop.extrapolate(r))
     {
       control_from = committed;
       lambda_new = _lambda + r * _d_lambda_energy_last;
@@ -352,15 +349,7 @@ solver::SolveReport StepLoop::DissipationSteps::lambda_step(double lambda_from, 
   _loop.set_time_increment((lambda_to - lambda_from) * _stage.time_per_lambda);
   const double ratio = extrapolation_ratio(lambda_to - lambda_from, _d_lambda_last);
   _loop.set_crack_extrapolation(ratio);
-  const bool predicted = _predict && !test_no_step_prediction() &&
-                         _loop.extrapolate(_before_last, ratio) && !test_no_prediction_reference();
-  _loop._equilibrium.apply_constraints(_loop._x);
-  if (predicted)
-  {
-    _unpredicted.copy_from(_loop._x_committed);
-    _loop._equilibrium.apply_constraints(_unpredicted);
-  }
-  return _loop._solver.solve(_loop._x, predicted ? Vec(_unpredicted) : nullptr);
+  return _loop.solve_predicted(_predict && !test_no_step_prediction() ? ratio : 0.0);
 }
 
 bool StepLoop::DissipationSteps::too_dissipative(const std::string& name, double lambda_new)
@@ -417,7 +406,6 @@ void StepLoop::DissipationSteps::accept(int k, const std::string& name, const Tr
     say(name + ": " + t.rep.reason);
   }
   _loop.count_implex(t.implex);
-  _before_last.copy_from(_loop._x_committed);
   _loop.commit();
   (t.energy_step ? _energy : _by_lambda).converged(t.rep.iterations, t.implex.may_grow());
   // After a jump of the load the last step's growth predicts nothing; an

@@ -57,7 +57,6 @@ bool StepLoop::path_following()
   Stepper stepper(_max_cuts, easy_tries(_equilibrium.model(), true));
   double lambda = 0.0, slip = path.control(_x);               // of the committed state [mm]
   double d_lambda_prev = 0.0, d_slip_prev = 0.0;              // the last converged step [mm]
-  solver::Vector before_last = _x.duplicate();                // the committed state before it
   bool last_predicts = false;                                 // the last step predicts the next
   bool by_delta = false;                                      // steps of delta to lambda_final
   double delta_cap = std::numeric_limits<double>::infinity(); // of a step of delta [mm]
@@ -84,7 +83,7 @@ bool StepLoop::path_following()
       const double r = d_slip / d_slip_prev;
       set_time_increment(h);
       set_crack_extrapolation(last_predicts ? extrapolation_ratio(d_slip, d_slip_prev) : 0.0);
-      if (last_predicts && !test_no_step_prediction() && extrapolate(before_last, r))
+      if (last_predicts && !test_no_step_prediction() && extrapolate(r))
         lambda_new = lambda + r * d_lambda_prev; // the secant prediction
       rep = path.step(_x, lambda_new, d_slip, set_load, 0, false, slip);
       if (rep.converged && lambda_new > lambda_final)
@@ -117,7 +116,6 @@ bool StepLoop::path_following()
       _recorder.record(_x, rep.iterations, cuts, k, 0); // before the commit: StepRecorder.h
       ++_summary.steps;
       count_implex(implex);
-      before_last.copy_from(_x_committed);
       commit();
       d_lambda_prev = lambda_new - lambda;
       d_slip_prev = slip_new - slip;

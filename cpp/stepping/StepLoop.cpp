@@ -28,6 +28,9 @@ StepLoop::StepLoop(specimen::Scenario& scenario, specimen::Corrosion& corrosion,
   _x.set(0.0);
   _x_committed = _x.duplicate();
   _x_committed.copy_from(_x);
+  _x_before = _x.duplicate();
+  _x_before.copy_from(_x);
+  _x_unpredicted = _x.duplicate();
 }
 
 void StepLoop::time_linear_solve()
@@ -152,6 +155,7 @@ void StepLoop::commit()
     joints->commit();
   if (model::BulkCracking* cracking = _equilibrium.model().bulk_cracking())
     cracking->commit();
+  _x_before.copy_from(_x_committed);
   _x_committed.copy_from(_x);
   _report.publish();
 }

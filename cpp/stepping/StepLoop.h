@@ -129,9 +129,14 @@ private:
   /// converges linearly there, and a good start saves iterations), else none.
   std::function<double(double)> extrapolation(std::function<double(double)> load) const;
   /// The trial state from the committed one plus `ratio` times the last
-  /// converged step's increment (from `before_last`); nothing unless ratio > 0.
-  /// Whether it predicted.
-  bool extrapolate(const solver::Vector& before_last, double ratio);
+  /// committed step's increment; nothing unless ratio > 0. Whether it
+  /// predicted.
+  bool extrapolate(double ratio);
+  /// A step whose loads are set, solved from the committed state plus
+  /// `ratio` times the last committed step's increment (extrapolate), with
+  /// Newton's relative test of the start without the prediction
+  /// (LoadStepSolver::solve), or from the committed state if ratio <= 0.
+  solver::SolveReport solve_predicted(double ratio);
   /// IMPL-EX cracks (model::BulkCracking::set_extrapolation) extrapolate
   /// their history by `ratio` in the next try (0: none).
   void set_crack_extrapolation(double ratio);
@@ -231,6 +236,8 @@ private:
   int _dissipation_steps;
   MPI_Comm _comm;                  ///< the run's processes
   solver::Vector _x, _x_committed; ///< whole-model displacement [mm]: trial and committed
+  solver::Vector _x_before;        ///< the committed one before the last commit [mm]
+  solver::Vector _x_unpredicted;   ///< solve_predicted's start without the prediction [mm]
   /// IMPL-EX: the error of the last try that missed its tolerance (0 after
   /// a step taken; check_implex)
   double _implex_missed = 0;
