@@ -61,6 +61,11 @@ bool StepLoop::path_following()
   bool by_delta = false;                                      // steps of delta to lambda_final
   double delta_cap = std::numeric_limits<double>::infinity(); // of a step of delta [mm]
   int cuts = 0;
+  // A step of delta for the stepper's increment (the first step, or steps
+  // of delta to lambda_final) [mm].
+  const auto next_delta_step = [&](double increment) {
+    return std::min({increment * h_nominal, delta_cap, lambda_final - lambda});
+  };
   for (int k = 1; lambda < lambda_final;)
   {
     if (stop_requested() || !within_step_limit(p, k, lambda, "path following"))
@@ -72,8 +77,8 @@ bool StepLoop::path_following()
     solver::SolveReport rep;
     if (k == 1 || by_delta)
     {
-      lambda_new = std::min({lambda + h, lambda + delta_cap, lambda_final});
-      increment = lambda_new - lambda;
+      increment = next_delta_step(stepper.increment());
+      lambda_new = increment == lambda_final - lambda ? lambda_final : lambda + increment;
       rep = load_factor_step(lambda, lambda_new,
                              last_predicts ? extrapolation_ratio(increment, d_lambda_prev) : 0.0);
     }
@@ -99,6 +104,11 @@ bool StepLoop::path_following()
         rep = load_factor_step(lambda, lambda_new,
                                last_predicts ? extrapolation_ratio(f * d_slip, d_slip_prev) : 0.0);
       }
+    }
+    if (rep.converged && lambda_new == lambda_final && test_fail_step_to_final())
+    {
+      rep.converged = false;
+      rep.reason = "failed by a test hook (PUSHOUT_TEST_FAIL_TO_FINAL)";
     }
     _summary.newton_iterations += rep.iterations;
     const ImplexCheck implex =
@@ -139,8 +149,11 @@ bool StepLoop::path_following()
       by_delta = true;
       delta_cap = implex.cut_factor() * increment;
     }
-    if (!cut_back(stepper, cuts, "path-following step " + std::to_string(k), rep.reason, length,
-                  implex.cut_factor()))
+    // The next try's size: a length, or the step of delta it takes.
+    const Words step_of_delta = [&](double increment)
+    { return sized("a step of delta of", 1.0, "mm")(next_delta_step(increment)); };
+    if (!cut_back(stepper, cuts, "path-following step " + std::to_string(k), rep.reason,
+                  by_delta ? step_of_delta : Words(length), implex.cut_factor()))
       return false;
   }
   return true;

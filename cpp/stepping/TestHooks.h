@@ -17,7 +17,10 @@
 // PUSHOUT_TEST_NO_STEP_PREDICTION set, a path-following step, and a step
 // of the load under dissipation control, starts from the last equilibrium
 // (tests/e2e/test_arc_length_follows_snap_back.py,
-// tests/e2e/test_implex_tends_to_implicit.py).
+// tests/e2e/test_implex_tends_to_implicit.py); with
+// PUSHOUT_TEST_FAIL_TO_FINAL=n, the first n converged path-following tries
+// that end at the final delta are taken as failed (the fallback of steps of
+// delta, tests/e2e/test_arc_length_follows_snap_back.py).
 #pragma once
 
 #include <mpi.h>
@@ -45,4 +48,9 @@ bool test_no_prediction_reference();
 /// not from the last step's increment extrapolated
 /// (StepLoop::path_following, StepLoop::DissipationSteps::lambda_step).
 bool test_no_step_prediction();
+
+/// PUSHOUT_TEST_FAIL_TO_FINAL=n: true for the first n calls, each for a
+/// converged path-following try that ends at the final delta, which is then
+/// taken as failed (StepLoop::path_following).
+bool test_fail_step_to_final();
 } // namespace pushout::stepping

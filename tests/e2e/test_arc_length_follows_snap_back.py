@@ -32,7 +32,14 @@
    the slice's without cracks to 2 %: they are the joints' (adhesion,
    friction), which the few cracks of the retraction and the push hardly
    change (0.5 % and 0.2 % measured; 2 % leaves room for steps that land
-   elsewhere on the sharp peak)."""
+   elsewhere on the sharp peak).
+6. A failed last step (a test hook fails the try that ends at the final
+   delta, where no scene at the default tolerance was found to): steps of
+   delta take over, each at most half the failed one, and reach the final
+   delta; the final P is 1.'s to 1e-6 relative, the bound that 1. holds
+   between two runs on wholly different steps (the rate-independent joints
+   at the end of a monotonic push), of which this path changes only the
+   last."""
 import csv
 import os
 
@@ -48,6 +55,7 @@ disp, arc = out_dir("arc_fig10_displacement"), out_dir("arc_fig10_arc_length")
 run(fig10, disp)
 run(fig10, arc, sets=["loading.control=arc_length"])
 a, d = curve(arc), curve(disp)
+fig10_arc = a  # for 6.
 check(abs(a[-1]["delta_mm"] - 0.05) < 1e-12, f"arc length ends at delta = {a[-1]['delta_mm']} mm")
 rel = abs(a[-1]["P_N"] - d[-1]["P_N"]) / abs(d[-1]["P_N"])
 check(rel < 1e-6, f"final P: arc {a[-1]['P_N']:.6f} N, displacement {d[-1]['P_N']:.6f} N "
@@ -156,3 +164,27 @@ peak_b = max(r["tau_MPa"] for r in b)
 for what, x, y in (("peak", max(tau), peak_b), ("plateau", tau[-1], b[-1]["tau_MPa"])):
     check(abs(x - y) <= 0.02 * abs(y),
           f"with cracks the {what} tau is the uncracked slice's: {x:.4f} against {y:.4f} MPa")
+
+# 6. The fallback after a failed step to the final delta (scene of 1.).
+failed = out_dir("arc_fig10_failed_last_step")
+os.environ["PUSHOUT_TEST_FAIL_TO_FINAL"] = "1"
+try:
+    run(fig10, failed, sets=["loading.control=arc_length"])
+finally:
+    del os.environ["PUSHOUT_TEST_FAIL_TO_FINAL"]
+a, f, s = fig10_arc, curve(failed), summary(failed)
+check(s["converged"] and s["cuts"] == 1 and abs(f[-1]["delta_mm"] - 0.05) < 1e-12,
+      f"after a failed last step ({s['cuts']} cut), steps of delta reach delta = "
+      f"{f[-1]['delta_mm']} mm")
+# The two runs take the same steps up to the last (the same scene and
+# binary: equal to round-off), then this one's fails and is cut.
+before = f[len(a) - 2]["delta_mm"]
+failed_step = 0.05 - before  # [mm]
+taken = [y["delta_mm"] - x["delta_mm"] for x, y in zip(f[len(a) - 2:], f[len(a) - 1:])]
+check(len(f) == len(a) + 1 and abs(before - a[-2]["delta_mm"]) < 1e-9 and
+      abs(taken[0] - failed_step / 2) < 1e-12 and abs(sum(taken) - failed_step) < 1e-12,
+      f"the failed step of {failed_step * 1e3:.3f} um taken as " +
+      " + ".join(f"{t * 1e3:.3f}" for t in taken) + " um")
+rel = abs(f[-1]["P_N"] - a[-1]["P_N"]) / abs(a[-1]["P_N"])
+check(rel < 1e-6, f"final P after the fallback {f[-1]['P_N']:.6f} N, against "
+      f"{a[-1]['P_N']:.6f} N (relative {rel:.1e})")
