@@ -1,7 +1,11 @@
 #!/usr/bin/python3
 """Draw the curves of a `pushout sweep` overlaid: DIR/sweep.csv names the
 cases and their varied values; each DIR/case_NNN/curve.csv is one curve
-(push-out: tau against delta; single joint: F_s against u_s).
+(push-out: tau against delta; single joint: F_s against u_s). When the sweep
+varies cracking.seed (the random strength field's), the cases that differ
+only in the seed are one group, one colour: each seed's curve thin, and
+where every converged seed's delta only grows, their mean (thick) and the
+band between the lowest and highest (docs/sweeps.md).
 
 Usage: plot_sweep.py DIR OUT.png
 """
@@ -10,6 +14,7 @@ import csv
 import os
 
 import matplotlib
+import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -17,6 +22,39 @@ import matplotlib.pyplot as plt  # noqa: E402
 # The first columns of sweep.csv after `case` are the varied keys, up to the
 # first of the computed ones.
 COMPUTED = ("peak_",)
+SEED = "cracking.seed"
+
+
+def read_curve(folder, row):
+    """(x, y) of a case's curve.csv, and the axis labels; None if it has none."""
+    path = os.path.join(folder, row["case"], "curve.csv")
+    if not os.path.exists(path):
+        return None
+    with open(path, newline="") as f:
+        curve = list(csv.DictReader(f))
+    if not curve:
+        return None
+    if "delta_mm" in curve[0]:
+        return ([float(r["delta_mm"]) * 1e3 for r in curve], [float(r["tau_MPa"]) for r in curve],
+                ("tube displacement $\\delta$ [µm]", "nominal bond stress $\\tau$ [MPa]"))
+    return ([float(r["u_s_mm"]) for r in curve], [float(r["F_s_N"]) for r in curve],
+            ("shear displacement $u_s$ [mm]", "shear force $F_s$ [N]"))
+
+
+def draw_group(ax, curves, color, label):
+    """A seed group: each converged seed thin, and their mean and range where
+    every x only grows (else the thin curves alone)."""
+    for x, y in curves:
+        ax.plot(x, y, "-", lw=0.7, alpha=0.45, color=color)
+    if len(curves) >= 2 and all(np.all(np.diff(x) > 0) for x, _ in curves):
+        lo, hi = max(x[0] for x, _ in curves), min(x[-1] for x, _ in curves)
+        grid = np.unique(np.concatenate([x for x, _ in curves]))
+        grid = grid[(grid >= lo) & (grid <= hi)]
+        ys = np.array([np.interp(grid, x, y) for x, y in curves])
+        ax.fill_between(grid, ys.min(axis=0), ys.max(axis=0), color=color, alpha=0.2, lw=0)
+        ax.plot(grid, ys.mean(axis=0), "-", lw=1.8, color=color, label=label + ": mean, range")
+    elif curves:
+        ax.plot([], [], "-", lw=1.2, color=color, label=label)
 
 
 def main():
@@ -33,30 +71,39 @@ def main():
                 break
             keys.append(k)
     fig, ax = plt.subplots(figsize=(7.5, 4.8), dpi=120)
-    for i, row in enumerate(rows):
-        path = os.path.join(args.folder, row["case"], "curve.csv")
-        if not os.path.exists(path):
-            continue
-        with open(path, newline="") as f:
-            curve = list(csv.DictReader(f))
-        if not curve:
-            continue
-        if "delta_mm" in curve[0]:
-            x = [float(r["delta_mm"]) * 1e3 for r in curve]
-            y = [float(r["tau_MPa"]) for r in curve]
-            ax.set(xlabel="tube displacement $\\delta$ [µm]", ylabel="nominal bond stress $\\tau$ [MPa]")
-        else:
-            x = [float(r["u_s_mm"]) for r in curve]
-            y = [float(r["F_s_N"]) for r in curve]
-            ax.set(xlabel="shear displacement $u_s$ [mm]", ylabel="shear force $F_s$ [N]")
-        label = ", ".join(f"{k.split('.')[-1]} {row[k]}" for k in keys)
-        if row.get("converged") == "0":
-            label += " (stopped)"
-        ax.plot(x, y, "-", lw=1.2, color=plt.cm.viridis(i / max(1, len(rows) - 1)), label=label)
+    seeded = SEED in keys and len({r[SEED] for r in rows}) >= 2
+    others = [k for k in keys if k != SEED] if seeded else keys
+    groups = {}  # the other keys' values -> the group's rows, in order
+    for row in rows:
+        groups.setdefault(tuple(row[k] for k in others), []).append(row)
+    for i, (values, members) in enumerate(groups.items()):
+        # A seed group's band needs a colour that stands out on white.
+        color = (plt.cm.tab10(i) if seeded and len(groups) <= 10
+                 else plt.cm.viridis(i / max(1, len(groups) - 1)))
+        label = ", ".join(f"{k.split('.')[-1]} {v}" for k, v in zip(others, values))
+        curves = []
+        for row in members:
+            read = read_curve(args.folder, row)
+            if read is None:
+                continue
+            x, y, labels = read
+            ax.set(xlabel=labels[0], ylabel=labels[1])
+            if not seeded:
+                stopped = " (stopped)" if row.get("converged") == "0" else ""
+                ax.plot(x, y, "-", lw=1.2, color=color, label=label + stopped)
+            elif row.get("converged") == "0":
+                ax.plot(x, y, ":", lw=0.7, color=color)
+            else:
+                curves.append((np.array(x), np.array(y)))
+        if seeded:
+            seeds = f"{len(curves)} of {len(members)} seeds" if len(curves) < len(members) \
+                else f"{len(members)} seeds"
+            draw_group(ax, curves, color, (label + ", " if label else "") + seeds)
     ax.axhline(0, color="0.6", lw=0.5)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, ncol=2 if len(rows) > 8 else 1)
-    ax.set_title(f"sweep: {len(rows)} cases ({', '.join(keys)})", fontsize=9)
+    ax.legend(fontsize=7, ncol=2 if len(groups) > 8 else 1)
+    ax.set_title(f"sweep: {len(rows)} cases ({', '.join(keys)})"
+                 + ("; the seeds of a case as its range" if seeded else ""), fontsize=9)
     fig.tight_layout()
     fig.savefig(args.png)
 

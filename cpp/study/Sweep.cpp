@@ -1,6 +1,6 @@
 // `pushout sweep` (Sweep.h): its plan (every case's scene read before any
-// runs), the cases run by the process groups, and sweep.csv, sweep.png and
-// the closing line.
+// runs), the cases run by the process groups, and its outputs: the tables
+// (SweepTables.h), sweep.png and the closing line.
 #include "Sweep.h"
 #include "../common/Interrupt.h"
 #include "../common/exit_codes.h"
@@ -10,13 +10,11 @@
 #include "../output/OutputFiles.h"
 #include "../output/plot.h"
 #include "../scene/SceneError.h"
+#include "SweepTables.h"
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
-#include <limits>
 #include <map>
 #include <memory>
 #include <mpi.h>
@@ -32,32 +30,6 @@ using driver::RunOutcome;
 using driver::Simulation;
 namespace
 {
-/// The outcome of one case, as its group's first process knows it.
-struct CaseResult : RunOutcome
-{
-  int index = -1;
-};
-
-/// The curve's abscissa and ordinate of a model type, for sweep.csv: name,
-/// unit.
-struct Axes
-{
-  std::string x, x_unit, y, y_unit;
-};
-Axes axes_of(const std::string& model_type)
-{
-  if (model_type == "single_joint")
-    return {"u_s", "mm", "F_s", "N"};
-  return {"delta", "mm", "tau", "MPa"};
-}
-
-std::string case_name(std::size_t i)
-{
-  std::ostringstream s;
-  s << "case_" << std::setw(3) << std::setfill('0') << i;
-  return s.str();
-}
-
 /// The results of every process's cases on rank 0 (others: empty).
 std::vector<CaseResult> gather(const std::vector<CaseResult>& mine)
 {
@@ -100,84 +72,6 @@ std::vector<CaseResult> gather(const std::vector<CaseResult>& mine)
   return results;
 }
 
-/// Columns of a CSV file of numbers (curve.csv): name -> values.
-std::vector<std::pair<std::string, std::vector<double>>> read_csv(const std::filesystem::path& file)
-{
-  std::vector<std::pair<std::string, std::vector<double>>> columns;
-  std::ifstream in(file);
-  std::string line;
-  if (!std::getline(in, line))
-    return columns;
-  std::stringstream header(line);
-  for (std::string name; std::getline(header, name, ',');)
-    columns.push_back({name, {}});
-  while (std::getline(in, line))
-  {
-    std::stringstream row(line);
-    std::string cell;
-    for (std::size_t c = 0; c < columns.size() && std::getline(row, cell, ','); ++c)
-      columns[c].second.push_back(std::stod(cell));
-  }
-  return columns;
-}
-
-std::string csv_cell(const std::string& s)
-{
-  if (s.find_first_of(",\"\n") == std::string::npos)
-    return s;
-  std::string q = "\"";
-  for (char c : s)
-    q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
-/// sweep.csv (rank 0): one row per case.
-void write_table(const SweepOptions& opt, const std::vector<Variation>& vary,
-                 const std::vector<std::vector<std::string>>& cases,
-                 const std::vector<CaseResult>& results, const Axes& ax)
-{
-  std::ostringstream out;
-  out << "case";
-  for (const Variation& v : vary)
-    out << "," << csv_cell(v.key);
-  out << ",peak_" << ax.y << "_" << ax.y_unit << "," << ax.x << "_at_peak_" << ax.x_unit << ","
-      << ax.y << "_last_" << ax.y_unit << "," << ax.x << "_last_" << ax.x_unit
-      << ",steps,converged,exit_code,wall_s,message\n";
-  out << std::setprecision(12);
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (const CaseResult& r : results)
-  {
-    const std::string name = case_name(std::size_t(r.index));
-    out << name;
-    for (const std::string& set : cases[std::size_t(r.index)])
-      out << "," << csv_cell(set.substr(set.find('=') + 1));
-    double peak = nan, x_peak = nan, y_last = nan, x_last = nan;
-    std::size_t rows = 0;
-    const auto curve = read_csv(opt.out / name / "curve.csv");
-    const auto column = [&](const std::string& c) -> const std::vector<double>*
-    {
-      for (const auto& [n, values] : curve)
-        if (n == c)
-          return &values;
-      return nullptr;
-    };
-    const auto* x = column(ax.x + "_" + ax.x_unit);
-    const auto* y = column(ax.y + "_" + ax.y_unit);
-    if (x && y && !y->empty())
-    {
-      const auto it = std::max_element(y->begin(), y->end());
-      peak = *it;
-      x_peak = (*x)[std::size_t(it - y->begin())];
-      y_last = y->back();
-      x_last = x->back();
-      rows = y->size() - 1;
-    }
-    out << "," << peak << "," << x_peak << "," << y_last << "," << x_last << "," << rows << ","
-        << (r.exit_code == 0 ? 1 : 0) << "," << r.exit_code << "," << r.wall_s << ","
-        << csv_cell(r.message) << "\n";
-  }
-  output::write_file(opt.out / "sweep.csv", out.str());
-}
 } // namespace
 
 Variation parse_variation(const std::string& text)
@@ -426,7 +320,7 @@ int write_sweep(const SweepOptions& opt, const SweepPlan& plan,
   int code = exit_code::done;
   try
   {
-    write_table(opt, plan.vary, cases, results, axes_of(plan.model_type));
+    write_tables(opt.out, plan.model_type, plan.vary, cases, results);
   }
   catch (const std::exception& e)
   {
@@ -450,6 +344,7 @@ int write_sweep(const SweepOptions& opt, const SweepPlan& plan,
                 : "")
         << " in " << std::fixed << std::setprecision(2) << wall
         << " s; table: " << (opt.out / "sweep.csv").string()
+        << (varies_seed(plan.vary) ? ", " + (opt.out / "sweep_seeds.csv").string() : "")
         << (plot ? ", plot: " + (opt.out / "sweep.png").string() : "") << std::endl;
   if (code == exit_code::done && stop_signal != 0)
     code = exit_code::signal(stop_signal);

@@ -12,9 +12,12 @@
 // run` on that many processes: its results equal those of the serial run.
 //
 // At the end rank 0 writes sweep.csv, one row per case: the case, the
-// varied values, the peak of the curve and where it is, the last point,
-// whether it converged, its exit code and wall time; and sweep.png, the
-// curves overlaid.
+// varied values, the peak of the curve and where it is, the last point
+// (a push-out's: also the pressure and the widest surface crack at the
+// push's start), whether it converged, its exit code and wall time; with
+// cracking.seed varied, sweep_seeds.csv, the seeds as error bars
+// (SweepTables.h); and sweep.png, the curves overlaid (a seed group's as a
+// range).
 #pragma once
 
 #include "ManyRuns.h"

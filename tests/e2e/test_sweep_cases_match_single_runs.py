@@ -23,7 +23,15 @@
    that does not divide the processes.
 5. SIGINT during a sweep (paper's mesh, 8 cases of 100 steps, the signal
    after the first cases): exit 130, and sweep.csv lists the cases that ran,
-   the interrupted one with exit 130."""
+   the interrupted one with exit 130.
+6. Seeds as error bars: beta x cracking.seed (2 x 2) on the coarse corroded
+   slice with cracks anywhere: sweep.csv's p_before_push_MPa and
+   crack_width_mm are each case's curve.csv (delta = 0) and corrosion.csv
+   (last row) values, and sweep_seeds.csv has one row per beta with the two
+   seeds' mean, min and max of sweep.csv's numbers (to the 12 digits both
+   print); the seeds give different curves (the field is the seed's); a
+   sweep that does not vary the seed writes no sweep_seeds.csv (1.), and
+   one into the same folder removes the earlier one."""
 import csv
 import os
 import shutil
@@ -31,8 +39,8 @@ import signal
 import subprocess
 import time
 
-from common import (PUSHOUT, SOURCE, check, curve, newton_bound, out_dir, run, solved_unknowns,
-                    summary)
+from common import (PUSHOUT, SOURCE, check, corrosion, cracking_corroded_demo, curve, newton_bound,
+                    out_dir, run, solved_unknowns, summary)
 
 SCENE = os.path.join(SOURCE, "demo", "pushout_friction.toml")
 COARSE = ["--set", "mesh.elements_per_quarter=4", "--set", "mesh.elements_through_thickness=2"]
@@ -119,6 +127,8 @@ run(SCENE, direct, sets=["mesh.elements_per_quarter=4", "mesh.elements_through_t
                          "interface.0.mu=0.4", "loading.temperature_change=-5"])
 d = same_curves(curve(direct), curve(os.path.join(serial, "case_002")))
 check(d < 1e-10, f"case_002 equals pushout run with its values (largest difference {d:.1e})")
+check(not os.path.exists(os.path.join(serial, "sweep_seeds.csv")),
+      "no sweep_seeds.csv where the seed is not varied")
 
 # 2. MPI. Two groups of one process run what the serial sweep runs; a group
 # of two runs the whole model (no condensation on 2 processes), which equals
@@ -180,3 +190,42 @@ rows = table(out)
 check(p.returncode == 130 and 1 <= len(rows) < 8 and rows[-1]["exit_code"] in ("0", "130"),
       f"SIGINT: exit {p.returncode}, sweep.csv with {len(rows)} of 8 cases "
       f"(last: exit {rows[-1]['exit_code']} {rows[-1]['message']})")
+
+# 6. Seeds as error bars.
+out = out_dir("sweep_seeds")
+scene = os.path.join(out + "_scene.toml")
+with open(scene, "w") as f:
+    f.write(cracking_corroded_demo(0.012, 3))
+p = subprocess.run([PUSHOUT, "sweep", scene, "--out", out, "--quiet", "--vary",
+                    "corrosion.beta=2,3", "--vary", "cracking.seed=1,2",
+                    "--set", "loading.push_displacement=0.02", "--set", "loading.steps=4"],
+                   capture_output=True, text=True, timeout=600)
+check(p.returncode == 0, f"seed sweep: exit {p.returncode} {p.stderr[-500:]}")
+rows = table(out)
+for r in rows:
+    c, k = curve(os.path.join(out, r["case"])), corrosion(os.path.join(out, r["case"]))
+    for name, x, y in (("p_before_push_MPa", float(r["p_before_push_MPa"]), c[0]["p_MPa"]),
+                       ("crack_width_mm", float(r["crack_width_mm"]), k[-1]["crack_width_mm"])):
+        check(abs(x - y) <= 1e-10 * abs(y), f"{r['case']}: sweep.csv {name} {x} is the run's {y}")
+with open(os.path.join(out, "sweep_seeds.csv"), newline="") as f:
+    groups = list(csv.DictReader(f))
+check([(g["corrosion.beta"], g["seeds"], g["converged"]) for g in groups]
+      == [("2", "2", "2"), ("3", "2", "2")], "sweep_seeds.csv: one row per beta, 2 seeds each")
+for g in groups:
+    seeds = [r for r in rows if r["corrosion.beta"] == g["corrosion.beta"]]
+    for name in ("peak_tau_MPa", "tau_last_MPa", "p_before_push_MPa", "crack_width_mm"):
+        v = [float(r[name]) for r in seeds]
+        for stat, want in (("mean", sum(v) / len(v)), ("min", min(v)), ("max", max(v))):
+            got = float(g[f"{name}_{stat}"])
+            check(abs(got - want) <= 1e-10 * max(abs(want), 1e-12),
+                  f"beta {g['corrosion.beta']}: {name}_{stat} {got} = {want} over the seeds")
+    check(float(g["tau_last_MPa_min"]) < float(g["tau_last_MPa_max"]),
+          f"beta {g['corrosion.beta']}: the seeds' fields differ: tau_last "
+          f"{g['tau_last_MPa_min']} to {g['tau_last_MPa_max']} MPa")
+check(os.path.getsize(os.path.join(out, "sweep.png")) > 0, "sweep.png drawn with the seed groups")
+# Into the same folder without the seed: the earlier sweep_seeds.csv goes.
+p = subprocess.run([PUSHOUT, "sweep", scene, "--out", out, "--quiet", "--vary", "corrosion.beta=2",
+                    "--set", "loading.push_displacement=0.02", "--set", "loading.steps=1"],
+                   capture_output=True, text=True, timeout=600)
+check(p.returncode == 0 and not os.path.exists(os.path.join(out, "sweep_seeds.csv")),
+      f"a later sweep without the seed leaves no sweep_seeds.csv behind (exit {p.returncode})")

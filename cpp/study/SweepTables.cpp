@@ -1,0 +1,257 @@
+// sweep.csv and sweep_seeds.csv (SweepTables.h).
+#include "SweepTables.h"
+#include "../output/OutputFiles.h"
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <utility>
+
+namespace pushout::study
+{
+namespace
+{
+const double nan = std::numeric_limits<double>::quiet_NaN();
+
+/// The curve's abscissa and ordinate of a model type: name, unit.
+struct Axes
+{
+  std::string x, x_unit, y, y_unit;
+};
+Axes axes_of(const std::string& model_type)
+{
+  if (model_type == "single_joint")
+    return {"u_s", "mm", "F_s", "N"};
+  return {"delta", "mm", "tau", "MPa"};
+}
+
+/// The names of a case's numbers (CaseNumbers) for `model_type`.
+std::vector<std::string> number_names(const std::string& model_type)
+{
+  const Axes ax = axes_of(model_type);
+  std::vector<std::string> names = {"peak_" + ax.y + "_" + ax.y_unit,
+                                    ax.x + "_at_peak_" + ax.x_unit, ax.y + "_last_" + ax.y_unit,
+                                    ax.x + "_last_" + ax.x_unit};
+  if (model_type != "single_joint")
+  {
+    names.push_back("p_before_push_MPa"); // the mean pressure on the tube at delta = 0
+    names.push_back("crack_width_mm");    // the widest surface crack then
+  }
+  return names;
+}
+
+/// Columns of a CSV file of numbers (curve.csv): name -> values.
+std::map<std::string, std::vector<double>> read_csv(const std::filesystem::path& file)
+{
+  std::vector<std::pair<std::string, std::vector<double>>> columns;
+  std::ifstream in(file);
+  std::string line;
+  if (std::getline(in, line))
+  {
+    std::stringstream header(line);
+    for (std::string name; std::getline(header, name, ',');)
+      columns.push_back({name, {}});
+    while (std::getline(in, line))
+    {
+      std::stringstream row(line);
+      std::string cell;
+      for (std::size_t c = 0; c < columns.size() && std::getline(row, cell, ','); ++c)
+        columns[c].second.push_back(std::stod(cell));
+    }
+  }
+  return {columns.begin(), columns.end()};
+}
+
+/// The widest crack on the slice's outer faces at the push's start [mm]:
+/// corrosion.csv's last crack_width_mm (a gauge's reading, however wide),
+/// or without a corrosion stage the widest of summary.json's cracks (the
+/// planes', and the concrete's as wide as cracking.visible_width; 0: none);
+/// NaN if the case has neither file.
+double widest_crack(const std::filesystem::path& folder)
+{
+  const auto corrosion = read_csv(folder / "corrosion.csv");
+  const auto width = corrosion.find("crack_width_mm");
+  if (width != corrosion.end() && !width->second.empty())
+    return width->second.back();
+  std::ifstream in(folder / "summary.json");
+  if (!in)
+    return nan;
+  const nlohmann::json s = nlohmann::json::parse(in, nullptr, false);
+  if (s.is_discarded() || !s.contains("cracks") || !s["cracks"].is_array())
+    return nan;
+  double widest = 0;
+  for (const auto& c : s["cracks"])
+    if (c.contains("width_mm") && c["width_mm"].is_number())
+      widest = std::max(widest, c["width_mm"].get<double>());
+  return widest;
+}
+
+/// A case's numbers (number_names order) from its folder, and the number of
+/// steps of its curve; NaN (0 steps) where it has no curve.
+CaseNumbers case_numbers(const std::filesystem::path& folder, const std::string& model_type,
+                         std::size_t& steps)
+{
+  const Axes ax = axes_of(model_type);
+  CaseNumbers n(number_names(model_type).size(), nan);
+  steps = 0;
+  const auto curve = read_csv(folder / "curve.csv");
+  const auto x = curve.find(ax.x + "_" + ax.x_unit), y = curve.find(ax.y + "_" + ax.y_unit);
+  if (x == curve.end() || y == curve.end() || y->second.empty())
+    return n;
+  const std::vector<double>& ys = y->second;
+  const auto peak = std::max_element(ys.begin(), ys.end());
+  n[0] = *peak;
+  n[1] = x->second[std::size_t(peak - ys.begin())];
+  n[2] = ys.back();
+  n[3] = x->second.back();
+  steps = ys.size() - 1;
+  if (model_type != "single_joint")
+  {
+    const auto p = curve.find("p_MPa");
+    n[4] = p != curve.end() && !p->second.empty() ? p->second.front() : nan;
+    n[5] = widest_crack(folder);
+  }
+  return n;
+}
+
+std::string csv_cell(const std::string& s)
+{
+  if (s.find_first_of(",\"\n") == std::string::npos)
+    return s;
+  std::string q = "\"";
+  for (char c : s)
+    q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+/// The value of a "key=value" override.
+std::string value_of(const std::string& set)
+{
+  return set.substr(set.find('=') + 1);
+}
+
+/// sweep_seeds.csv's text.
+std::string seed_table(const std::vector<Variation>& vary, const std::vector<std::string>& names,
+                       const std::vector<SeedGroup>& groups)
+{
+  std::ostringstream out;
+  for (const Variation& v : vary)
+    if (v.key != seed_key)
+      out << csv_cell(v.key) << ",";
+  out << "seeds,converged";
+  // The last point's abscissa is the run's end, the same for every seed.
+  for (std::size_t k = 0; k < names.size(); ++k)
+    if (k != 3)
+      out << "," << names[k] << "_mean," << names[k] << "_min," << names[k] << "_max";
+  out << "\n" << std::setprecision(12);
+  for (const SeedGroup& g : groups)
+  {
+    for (const std::string& v : g.values)
+      out << csv_cell(v) << ",";
+    out << g.seeds << "," << g.converged;
+    for (std::size_t k = 0; k < names.size(); ++k)
+      if (k != 3)
+        out << "," << g.mean[k] << "," << g.min[k] << "," << g.max[k];
+    out << "\n";
+  }
+  return out.str();
+}
+} // namespace
+
+std::string case_name(std::size_t i)
+{
+  std::ostringstream s;
+  s << "case_" << std::setw(3) << std::setfill('0') << i;
+  return s.str();
+}
+
+bool varies_seed(const std::vector<Variation>& vary)
+{
+  return std::any_of(vary.begin(), vary.end(),
+                     [](const Variation& v) { return v.key == seed_key && v.values.size() >= 2; });
+}
+
+std::vector<SeedGroup> group_seeds(const std::vector<Variation>& vary,
+                                   const std::vector<std::vector<std::string>>& cases,
+                                   const std::vector<CaseNumbers>& numbers,
+                                   const std::vector<bool>& converged)
+{
+  std::vector<SeedGroup> groups;
+  std::map<std::vector<std::string>, std::size_t> group_of; // the other values -> group
+  for (std::size_t i = 0; i < cases.size(); ++i)
+  {
+    std::vector<std::string> others;
+    for (std::size_t k = 0; k < vary.size(); ++k)
+      if (vary[k].key != seed_key)
+        others.push_back(value_of(cases[i][k]));
+    const auto [at, added] = group_of.emplace(others, groups.size());
+    if (added)
+    {
+      const std::size_t n = numbers[i].size();
+      groups.push_back({others, 0, 0, std::vector<double>(n, 0.0),
+                        std::vector<double>(n, std::numeric_limits<double>::infinity()),
+                        std::vector<double>(n, -std::numeric_limits<double>::infinity())});
+    }
+    SeedGroup& g = groups[at->second];
+    ++g.seeds;
+    if (!converged[i])
+      continue;
+    ++g.converged;
+    for (std::size_t k = 0; k < numbers[i].size(); ++k)
+    {
+      g.mean[k] += numbers[i][k];
+      g.min[k] = std::min(g.min[k], numbers[i][k]);
+      g.max[k] = std::max(g.max[k], numbers[i][k]);
+    }
+  }
+  for (SeedGroup& g : groups)
+    for (std::size_t k = 0; k < g.mean.size(); ++k)
+    {
+      if (g.converged == 0)
+        g.mean[k] = g.min[k] = g.max[k] = nan;
+      else
+        g.mean[k] /= g.converged;
+    }
+  return groups;
+}
+
+void write_tables(const std::filesystem::path& out, const std::string& model_type,
+                  const std::vector<Variation>& vary,
+                  const std::vector<std::vector<std::string>>& cases,
+                  const std::vector<CaseResult>& results)
+{
+  const std::vector<std::string> names = number_names(model_type);
+  std::vector<CaseNumbers> numbers(cases.size(), CaseNumbers(names.size(), nan));
+  std::vector<bool> converged(cases.size(), false);
+  std::ostringstream table;
+  table << "case";
+  for (const Variation& v : vary)
+    table << "," << csv_cell(v.key);
+  for (const std::string& name : names)
+    table << "," << name;
+  table << ",steps,converged,exit_code,wall_s,message\n" << std::setprecision(12);
+  for (const CaseResult& r : results)
+  {
+    const auto i = std::size_t(r.index);
+    const std::string name = case_name(i);
+    std::size_t steps = 0;
+    numbers[i] = case_numbers(out / name, model_type, steps);
+    converged[i] = r.exit_code == 0;
+    table << name;
+    for (const std::string& set : cases[i])
+      table << "," << csv_cell(value_of(set));
+    for (double v : numbers[i])
+      table << "," << v;
+    table << "," << steps << "," << (converged[i] ? 1 : 0) << "," << r.exit_code << "," << r.wall_s
+          << "," << csv_cell(r.message) << "\n";
+  }
+  output::write_file(out / "sweep.csv", table.str());
+  if (varies_seed(vary))
+    output::write_file(out / "sweep_seeds.csv",
+                       seed_table(vary, names, group_seeds(vary, cases, numbers, converged)));
+}
+} // namespace pushout::study

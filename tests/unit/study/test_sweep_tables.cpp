@@ -1,0 +1,81 @@
+// The seeds as error bars of `pushout sweep` (study/SweepTables.h): the
+// cases that differ only in cracking.seed are one group, whose statistics
+// count the converged seeds alone.
+#include "../../../cpp/study/SweepTables.h"
+#include <cmath>
+#include <gtest/gtest.h>
+
+using namespace pushout::study;
+
+namespace
+{
+// mu x seed x dT: 2 x 3 x 2 cases, the seed in the middle of the --vary
+// options; case i's numbers are {i, 10 i}.
+struct ThreeKeys : ::testing::Test
+{
+  std::vector<Variation> vary = {{"interface.0.mu", {"0.2", "0.4"}},
+                                 {"cracking.seed", {"1", "2", "3"}},
+                                 {"loading.temperature_change", {"-5", "-25"}}};
+  std::vector<std::vector<std::string>> cases = cartesian_cases(vary);
+  std::vector<CaseNumbers> numbers;
+  std::vector<bool> converged = std::vector<bool>(12, true);
+  ThreeKeys()
+  {
+    for (std::size_t i = 0; i < cases.size(); ++i)
+      numbers.push_back({double(i), 10.0 * double(i)});
+  }
+};
+} // namespace
+
+TEST_F(ThreeKeys, GroupsAreTheOtherKeysValuesInTheOrderOfTheirFirstCase)
+{
+  ASSERT_TRUE(varies_seed(vary));
+  const std::vector<SeedGroup> groups = group_seeds(vary, cases, numbers, converged);
+  ASSERT_EQ(groups.size(), 4u);
+  const std::vector<std::vector<std::string>> expected = {
+      {"0.2", "-5"}, {"0.2", "-25"}, {"0.4", "-5"}, {"0.4", "-25"}};
+  for (std::size_t g = 0; g < 4; ++g)
+  {
+    EXPECT_EQ(groups[g].values, expected[g]);
+    EXPECT_EQ(groups[g].seeds, 3);
+    EXPECT_EQ(groups[g].converged, 3);
+  }
+  // mu 0.2, dT -25: cases 1, 3, 5 (the last key varies fastest).
+  EXPECT_DOUBLE_EQ(groups[1].mean[0], 3.0);
+  EXPECT_DOUBLE_EQ(groups[1].min[0], 1.0);
+  EXPECT_DOUBLE_EQ(groups[1].max[0], 5.0);
+  EXPECT_DOUBLE_EQ(groups[1].mean[1], 30.0);
+  // mu 0.4, dT -5: cases 6, 8, 10.
+  EXPECT_DOUBLE_EQ(groups[2].mean[0], 8.0);
+  EXPECT_DOUBLE_EQ(groups[2].min[1], 60.0);
+  EXPECT_DOUBLE_EQ(groups[2].max[1], 100.0);
+}
+
+TEST_F(ThreeKeys, CasesThatDidNotConvergeAreCountedButNotAveraged)
+{
+  converged[3] = false; // mu 0.2, seed 2, dT -25
+  numbers[3] = {1e9, 1e9};
+  converged[1] = converged[5] = false; // and the group's two others
+  converged[6] = false;                // mu 0.4, seed 1, dT -5
+  const std::vector<SeedGroup> groups = group_seeds(vary, cases, numbers, converged);
+  EXPECT_EQ(groups[1].seeds, 3);
+  EXPECT_EQ(groups[1].converged, 0);
+  EXPECT_TRUE(std::isnan(groups[1].mean[0]) && std::isnan(groups[1].min[0]) &&
+              std::isnan(groups[1].max[1]));
+  EXPECT_EQ(groups[2].converged, 2);
+  EXPECT_DOUBLE_EQ(groups[2].mean[0], 9.0); // cases 8 and 10
+  EXPECT_DOUBLE_EQ(groups[2].min[0], 8.0);
+}
+
+TEST(SweepTables, OneSeedValueOrNoSeedKeyMakesNoGroups)
+{
+  EXPECT_FALSE(varies_seed({{"interface.0.mu", {"0.2", "0.4"}}}));
+  EXPECT_FALSE(varies_seed({{"cracking.seed", {"1"}}, {"interface.0.mu", {"0.2", "0.4"}}}));
+  EXPECT_TRUE(varies_seed({{"cracking.seed", {"1", "2"}}}));
+  // The seed alone: one group with no other values.
+  const std::vector<Variation> vary = {{"cracking.seed", {"1", "2"}}};
+  const auto groups = group_seeds(vary, cartesian_cases(vary), {{1.0}, {2.0}}, {true, true});
+  ASSERT_EQ(groups.size(), 1u);
+  EXPECT_TRUE(groups[0].values.empty());
+  EXPECT_DOUBLE_EQ(groups[0].mean[0], 1.5);
+}
