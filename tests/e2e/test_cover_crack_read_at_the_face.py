@@ -28,7 +28,7 @@ random strength field and no crack planes:
    "symmetric": the half x >= 50 mm) the cover crack lies on the plane:
    read whole (its mirror image added), along the plane (270 degrees), and
    counted; until it localises the whole slice solves the same symmetric
-   problem and reads the same widths."""
+   problem and reads the same widths at the same x."""
 
 import csv
 import math
@@ -135,14 +135,20 @@ check(len(w_wide) == len(w_tight) and max(abs(a - b) for a, b in zip(w_wide, w_t
 # 6. The cover crack on a symmetry plane. Both runs at TIGHT_NEWTON: before
 # the cover crack localises (the whole slice then opens it in one face cell
 # beside the plane, the half model on the plane) the two solve the same
-# problem, and their widths differ by Newton's tolerance, far below 1 %
-# (reading half the crack would be 50 % off).
+# problem, and their widths at the same x differ by Newton's tolerance, far
+# below 1 % (reading half the crack would be 50 % off). The symmetric
+# solution bifurcates once the crack softens: the whole model departs from
+# it, from round-off, at a width of about 16 um (measured: 1e-9 below, 1e-6
+# at 16.3 um, 0.6 % at 19.7 um), so the rows compared are those below
+# 12 um. Where the two runs' steps differ (IMPL-EX cuts them by each
+# model's own error) they are compared at the x both took.
 uniform = cracking_corroded_demo(0.03, 10, f_t, 0.0)
 half, whole = out_dir("cover_crack_half"), out_dir("cover_crack_whole")
 run(uniform, half, sets=["model.symmetry=symmetric"], extra=TIGHT_NEWTON)
 run(uniform, whole, extra=TIGHT_NEWTON)
-pairs = [(a["crack_width_mm"], b["crack_width_mm"]) for a, b in zip(corrosion(half), corrosion(whole))
-         if 0 < b["crack_width_mm"] < 0.04]
+half_at = {round(r["penetration_mm"], 12): r["crack_width_mm"] for r in corrosion(half)}
+pairs = [(half_at[round(b["penetration_mm"], 12)], b["crack_width_mm"]) for b in corrosion(whole)
+         if 0 < b["crack_width_mm"] < 0.012 and round(b["penetration_mm"], 12) in half_at]
 check(summary(half)["symmetry"] == "half" and pairs and
       all(abs(a - b) <= 0.01 * b for a, b in pairs),
       f"cut by symmetry: the cover crack reads whole before it localises ({len(pairs)} rows, "
