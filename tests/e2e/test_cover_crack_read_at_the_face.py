@@ -137,18 +137,20 @@ check(len(w_wide) == len(w_tight) and max(abs(a - b) for a, b in zip(w_wide, w_t
 # beside the plane, the half model on the plane) the two solve the same
 # problem, and their widths at the same x differ by Newton's tolerance, far
 # below 1 % (reading half the crack would be 50 % off). The symmetric
-# solution bifurcates once the crack softens: the whole model departs from
-# it, from round-off, at a width of about 16 um (measured: 1e-9 below, 1e-6
-# at 16.3 um, 0.6 % at 19.7 um), so the rows compared are those below
-# 12 um. Where the two runs' steps differ (IMPL-EX cuts them by each
-# model's own error) they are compared at the x both took.
+# solution bifurcates once the crack softens, and the whole model departs
+# from it, from round-off, where its integration lets it: at the default
+# implex_tolerance not before 40 um of width (1.7e-6 there), at 0.0025 from
+# about 16 um (1e-9 below, 1e-6 at 16.3 um, 0.6 % at 19.7 um); so the rows
+# compared are those below 14 um (3 rows at the default, measured). Where
+# the two runs' steps differ (IMPL-EX cuts them by each model's own error)
+# they are compared at the x both took.
 uniform = cracking_corroded_demo(0.03, 10, f_t, 0.0)
 half, whole = out_dir("cover_crack_half"), out_dir("cover_crack_whole")
 run(uniform, half, sets=["model.symmetry=symmetric"], extra=TIGHT_NEWTON)
 run(uniform, whole, extra=TIGHT_NEWTON)
 half_at = {round(r["penetration_mm"], 12): r["crack_width_mm"] for r in corrosion(half)}
 pairs = [(half_at[round(b["penetration_mm"], 12)], b["crack_width_mm"]) for b in corrosion(whole)
-         if 0 < b["crack_width_mm"] < 0.012 and round(b["penetration_mm"], 12) in half_at]
+         if 0 < b["crack_width_mm"] < 0.014 and round(b["penetration_mm"], 12) in half_at]
 check(summary(half)["symmetry"] == "half" and pairs and
       all(abs(a - b) <= 0.01 * b for a, b in pairs),
       f"cut by symmetry: the cover crack reads whole before it localises ({len(pairs)} rows, "
