@@ -51,6 +51,7 @@ bool test_no_step_prediction();
 
 /// PUSHOUT_TEST_FAIL_TO_FINAL=n: true for the first n calls, each for a
 /// converged path-following try that ends at the final delta, which is then
-/// taken as failed (StepLoop::path_following).
+/// taken as failed (StepLoop::path_following); n in the whole process (a
+/// sweep's first cases only).
 bool test_fail_step_to_final();
 } // namespace pushout::stepping

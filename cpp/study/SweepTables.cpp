@@ -3,6 +3,7 @@
 #include "../output/OutputFiles.h"
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <limits>
@@ -44,6 +45,15 @@ std::vector<std::string> number_names(const std::string& model_type)
   return names;
 }
 
+/// A CSV cell's number; NaN if it is none (a damaged file costs its case's
+/// numbers, not the sweep's tables).
+double number(const std::string& cell)
+{
+  char* end = nullptr;
+  const double v = std::strtod(cell.c_str(), &end);
+  return end != cell.c_str() ? v : nan;
+}
+
 /// Columns of a CSV file of numbers (curve.csv): name -> values.
 std::map<std::string, std::vector<double>> read_csv(const std::filesystem::path& file)
 {
@@ -60,7 +70,7 @@ std::map<std::string, std::vector<double>> read_csv(const std::filesystem::path&
       std::stringstream row(line);
       std::string cell;
       for (std::size_t c = 0; c < columns.size() && std::getline(row, cell, ','); ++c)
-        columns[c].second.push_back(std::stod(cell));
+        columns[c].second.push_back(number(cell));
     }
   }
   return {columns.begin(), columns.end()};
@@ -178,9 +188,10 @@ bool varies_seed(const std::vector<Variation>& vary)
 std::vector<SeedGroup> group_seeds(const std::vector<Variation>& vary,
                                    const std::vector<std::vector<std::string>>& cases,
                                    const std::vector<CaseNumbers>& numbers,
-                                   const std::vector<bool>& converged)
+                                   const std::vector<CaseState>& states)
 {
   std::vector<SeedGroup> groups;
+  std::vector<std::vector<int>> counts;                     // per group, per number
   std::map<std::vector<std::string>, std::size_t> group_of; // the other values -> group
   for (std::size_t i = 0; i < cases.size(); ++i)
   {
@@ -189,32 +200,36 @@ std::vector<SeedGroup> group_seeds(const std::vector<Variation>& vary,
       if (vary[k].key != seed_key)
         others.push_back(value_of(cases[i][k]));
     const auto [at, added] = group_of.emplace(others, groups.size());
+    const std::size_t n = numbers[i].size();
     if (added)
     {
-      const std::size_t n = numbers[i].size();
       groups.push_back({others, 0, 0, std::vector<double>(n, 0.0),
                         std::vector<double>(n, std::numeric_limits<double>::infinity()),
                         std::vector<double>(n, -std::numeric_limits<double>::infinity())});
+      counts.emplace_back(n, 0);
     }
     SeedGroup& g = groups[at->second];
-    ++g.seeds;
-    if (!converged[i])
+    g.seeds += states[i] != CaseState::not_run;
+    if (states[i] != CaseState::converged)
       continue;
     ++g.converged;
-    for (std::size_t k = 0; k < numbers[i].size(); ++k)
-    {
-      g.mean[k] += numbers[i][k];
-      g.min[k] = std::min(g.min[k], numbers[i][k]);
-      g.max[k] = std::max(g.max[k], numbers[i][k]);
-    }
+    for (std::size_t k = 0; k < n; ++k)
+      if (std::isfinite(numbers[i][k]))
+      {
+        ++counts[at->second][k];
+        g.mean[k] += numbers[i][k];
+        g.min[k] = std::min(g.min[k], numbers[i][k]);
+        g.max[k] = std::max(g.max[k], numbers[i][k]);
+      }
   }
-  for (SeedGroup& g : groups)
-    for (std::size_t k = 0; k < g.mean.size(); ++k)
+  for (std::size_t j = 0; j < groups.size(); ++j)
+    for (std::size_t k = 0; k < groups[j].mean.size(); ++k)
     {
-      if (g.converged == 0)
+      SeedGroup& g = groups[j];
+      if (counts[j][k] == 0)
         g.mean[k] = g.min[k] = g.max[k] = nan;
       else
-        g.mean[k] /= g.converged;
+        g.mean[k] /= counts[j][k];
     }
   return groups;
 }
@@ -226,7 +241,7 @@ void write_tables(const std::filesystem::path& out, const std::string& model_typ
 {
   const std::vector<std::string> names = number_names(model_type);
   std::vector<CaseNumbers> numbers(cases.size(), CaseNumbers(names.size(), nan));
-  std::vector<bool> converged(cases.size(), false);
+  std::vector<CaseState> states(cases.size(), CaseState::not_run);
   std::ostringstream table;
   table << "case";
   for (const Variation& v : vary)
@@ -240,18 +255,18 @@ void write_tables(const std::filesystem::path& out, const std::string& model_typ
     const std::string name = case_name(i);
     std::size_t steps = 0;
     numbers[i] = case_numbers(out / name, model_type, steps);
-    converged[i] = r.exit_code == 0;
+    states[i] = r.exit_code == 0 ? CaseState::converged : CaseState::failed;
     table << name;
     for (const std::string& set : cases[i])
       table << "," << csv_cell(value_of(set));
     for (double v : numbers[i])
       table << "," << v;
-    table << "," << steps << "," << (converged[i] ? 1 : 0) << "," << r.exit_code << "," << r.wall_s
-          << "," << csv_cell(r.message) << "\n";
+    table << "," << steps << "," << (r.exit_code == 0 ? 1 : 0) << "," << r.exit_code << ","
+          << r.wall_s << "," << csv_cell(r.message) << "\n";
   }
   output::write_file(out / "sweep.csv", table.str());
   if (varies_seed(vary))
     output::write_file(out / "sweep_seeds.csv",
-                       seed_table(vary, names, group_seeds(vary, cases, numbers, converged)));
+                       seed_table(vary, names, group_seeds(vary, cases, numbers, states)));
 }
 } // namespace pushout::study

@@ -34,25 +34,35 @@ std::string case_name(std::size_t i);
 inline const std::string seed_key = "cracking.seed";
 
 /// The numbers of one case that sweep.csv gives after its varied values
-/// (names in Seeds::names order); NaN where the case has none.
+/// (in the order of its columns); NaN where the case has none.
 using CaseNumbers = std::vector<double>;
+
+/// What became of a case of the sweep.
+enum class CaseState
+{
+  not_run,  ///< a signal stopped the sweep first
+  failed,   ///< ran and did not converge (or was refused)
+  converged ///< ran to its end
+};
 
 /// The cases grouped by their values of every varied key but seed_key.
 struct SeedGroup
 {
-  std::vector<std::string> values;    ///< of the other keys, in --vary order
-  int seeds = 0;                      ///< cases in the group
-  int converged = 0;                  ///< of which converged (the statistics' cases)
-  std::vector<double> mean, min, max; ///< per number; NaN if none converged
+  std::vector<std::string> values; ///< of the other keys, in --vary order
+  int seeds = 0;                   ///< cases of the group that ran
+  int converged = 0;               ///< of which converged (the statistics' cases)
+  /// Per number, over the converged cases where it is a number; NaN where
+  /// there is none.
+  std::vector<double> mean, min, max;
 };
 
 /// The groups of `cases` (cartesian_cases of `vary`, which varies seed_key),
-/// in the order of their first case; `numbers[i]` and `converged[i]` are
-/// case i's (a case that did not run: not converged). Pure.
+/// in the order of their first case; `numbers[i]` and `states[i]` are case
+/// i's. Pure.
 std::vector<SeedGroup> group_seeds(const std::vector<Variation>& vary,
                                    const std::vector<std::vector<std::string>>& cases,
                                    const std::vector<CaseNumbers>& numbers,
-                                   const std::vector<bool>& converged);
+                                   const std::vector<CaseState>& states);
 
 /// Whether `vary` makes seed groups: seed_key with two values or more.
 bool varies_seed(const std::vector<Variation>& vary);

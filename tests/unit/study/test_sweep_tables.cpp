@@ -18,7 +18,7 @@ struct ThreeKeys : ::testing::Test
                                  {"loading.temperature_change", {"-5", "-25"}}};
   std::vector<std::vector<std::string>> cases = cartesian_cases(vary);
   std::vector<CaseNumbers> numbers;
-  std::vector<bool> converged = std::vector<bool>(12, true);
+  std::vector<CaseState> states = std::vector<CaseState>(12, CaseState::converged);
   ThreeKeys()
   {
     for (std::size_t i = 0; i < cases.size(); ++i)
@@ -30,7 +30,7 @@ struct ThreeKeys : ::testing::Test
 TEST_F(ThreeKeys, GroupsAreTheOtherKeysValuesInTheOrderOfTheirFirstCase)
 {
   ASSERT_TRUE(varies_seed(vary));
-  const std::vector<SeedGroup> groups = group_seeds(vary, cases, numbers, converged);
+  const std::vector<SeedGroup> groups = group_seeds(vary, cases, numbers, states);
   ASSERT_EQ(groups.size(), 4u);
   const std::vector<std::vector<std::string>> expected = {
       {"0.2", "-5"}, {"0.2", "-25"}, {"0.4", "-5"}, {"0.4", "-25"}};
@@ -53,18 +53,24 @@ TEST_F(ThreeKeys, GroupsAreTheOtherKeysValuesInTheOrderOfTheirFirstCase)
 
 TEST_F(ThreeKeys, CasesThatDidNotConvergeAreCountedButNotAveraged)
 {
-  converged[3] = false; // mu 0.2, seed 2, dT -25
+  states[3] = CaseState::failed; // mu 0.2, seed 2, dT -25
   numbers[3] = {1e9, 1e9};
-  converged[1] = converged[5] = false; // and the group's two others
-  converged[6] = false;                // mu 0.4, seed 1, dT -5
-  const std::vector<SeedGroup> groups = group_seeds(vary, cases, numbers, converged);
+  states[1] = states[5] = CaseState::failed; // and the group's two others
+  states[6] = CaseState::failed;             // mu 0.4, seed 1, dT -5
+  states[10] = CaseState::not_run;           // mu 0.4, seed 3, dT -5
+  numbers[8][1] = std::nan("");              // mu 0.4, seed 2, dT -5: a number missing
+  const std::vector<SeedGroup> groups = group_seeds(vary, cases, numbers, states);
   EXPECT_EQ(groups[1].seeds, 3);
   EXPECT_EQ(groups[1].converged, 0);
   EXPECT_TRUE(std::isnan(groups[1].mean[0]) && std::isnan(groups[1].min[0]) &&
               std::isnan(groups[1].max[1]));
-  EXPECT_EQ(groups[2].converged, 2);
-  EXPECT_DOUBLE_EQ(groups[2].mean[0], 9.0); // cases 8 and 10
+  // mu 0.4, dT -5: case 6 failed, 8 converged, 10 did not run.
+  EXPECT_EQ(groups[2].seeds, 2);
+  EXPECT_EQ(groups[2].converged, 1);
+  EXPECT_DOUBLE_EQ(groups[2].mean[0], 8.0);
   EXPECT_DOUBLE_EQ(groups[2].min[0], 8.0);
+  EXPECT_TRUE(std::isnan(groups[2].mean[1]) && std::isnan(groups[2].min[1]) &&
+              std::isnan(groups[2].max[1]));
 }
 
 TEST(SweepTables, OneSeedValueOrNoSeedKeyMakesNoGroups)
@@ -74,7 +80,8 @@ TEST(SweepTables, OneSeedValueOrNoSeedKeyMakesNoGroups)
   EXPECT_TRUE(varies_seed({{"cracking.seed", {"1", "2"}}}));
   // The seed alone: one group with no other values.
   const std::vector<Variation> vary = {{"cracking.seed", {"1", "2"}}};
-  const auto groups = group_seeds(vary, cartesian_cases(vary), {{1.0}, {2.0}}, {true, true});
+  const auto groups = group_seeds(vary, cartesian_cases(vary), {{1.0}, {2.0}},
+                                  {CaseState::converged, CaseState::converged});
   ASSERT_EQ(groups.size(), 1u);
   EXPECT_TRUE(groups[0].values.empty());
   EXPECT_DOUBLE_EQ(groups[0].mean[0], 1.5);
