@@ -149,9 +149,12 @@ bool StepLoop::path_following()
       by_delta = true;
       delta_cap = implex.cut_factor() * increment;
     }
-    // The next try's size: a length, or the step of delta it takes.
-    const Words step_of_delta = [&](double increment)
-    { return sized("a step of delta of", 1.0, "mm")(next_delta_step(increment)); };
+    // The size cut_back names: a length, or a step of delta (the next try's
+    // after a cut; the failed try's where the stepper cannot cut further
+    // and its increment stays as it was).
+    const double tried = stepper.increment();
+    const Words step_of_delta = [&](double s)
+    { return sized("a step of delta of", 1.0, "mm")(s < tried ? next_delta_step(s) : increment); };
     if (!cut_back(stepper, cuts, "path-following step " + std::to_string(k), rep.reason,
                   by_delta ? step_of_delta : Words(length), implex.cut_factor()))
       return false;

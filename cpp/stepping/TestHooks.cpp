@@ -64,6 +64,7 @@ bool test_no_step_prediction()
   static const bool set = std::getenv("PUSHOUT_TEST_NO_STEP_PREDICTION") != nullptr;
   return set;
 }
+
 bool test_fail_step_to_final()
 {
   static const char* n = std::getenv("PUSHOUT_TEST_FAIL_TO_FINAL");
