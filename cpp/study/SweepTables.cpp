@@ -67,10 +67,12 @@ std::map<std::string, std::vector<double>> read_csv(const std::filesystem::path&
       columns.push_back({name, {}});
     while (std::getline(in, line))
     {
+      // Every column gets a value per row (NaN where the row is short), so
+      // the columns stay aligned.
       std::stringstream row(line);
       std::string cell;
-      for (std::size_t c = 0; c < columns.size() && std::getline(row, cell, ','); ++c)
-        columns[c].second.push_back(number(cell));
+      for (auto& column : columns)
+        column.second.push_back(std::getline(row, cell, ',') ? number(cell) : nan);
     }
   }
   return {columns.begin(), columns.end()};
