@@ -85,13 +85,13 @@ std::vector<KeyDef> law_keys()
        A::pushout},
       {"cracking.implex_tolerance",
        K::number,
-       0.01,
+       0.0025,
        "-",
        "implex: a step is cut (and retried in halves) when its stress differs from the crack "
        "band's own at its strain by more than this, in the energy norm over the cracking "
-       "concrete; 0.0025 takes up to twice the time and the main crack of a converged "
-       "integration where the concrete localises, but under arc length may stall a brittle "
-       "snap-back (docs/cracking.md, \"IMPL-EX\", \"Accuracy and the tolerance\")",
+       "concrete; at 0.0025 the main crack and the peaks are a converged integration's, 0.01 "
+       "takes half the time but may pick another crack where the concrete localises or miss "
+       "a crack's snap (docs/cracking.md, \"IMPL-EX\", \"Accuracy and the tolerance\")",
        0,
        inf,
        true,

@@ -6,6 +6,7 @@
 #include "Vector.h"
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -66,7 +67,7 @@ ArcLengthSolver::ArcLengthSolver(NonlinearProblem& problem, PathConstraint& cont
     _J = problem.create_matrix();
   _a = problem.create_vector();
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(_a));
-  for (Vec* v : {&_e, &_F, &_v1, &_v2})
+  for (Vec* v : {&_e, &_F, &_v1, &_v2, &_w})
     check(VecDuplicate(_a, v), "VecDuplicate");
   check(KSPCreate(comm, &_ksp), "KSPCreate");
   check(KSPSetFromOptions(_ksp), "KSPSetFromOptions");
@@ -88,7 +89,7 @@ ArcLengthSolver::~ArcLengthSolver()
   petsc::check_nothrow(MatDestroy(&_J), "MatDestroy");
   if (_P)
     petsc::check_nothrow(MatDestroy(&_P), "MatDestroy");
-  for (Vec* v : {&_a, &_e, &_F, &_v1, &_v2})
+  for (Vec* v : {&_a, &_e, &_F, &_v1, &_v2, &_w})
     petsc::check_nothrow(VecDestroy(v), "VecDestroy");
 }
 
@@ -205,6 +206,20 @@ std::string ArcLengthSolver::correction(Vec x, double c_minus_eta, double max_dl
   return "";
 }
 
+double ArcLengthSolver::control_terms(Vec x)
+{
+  check(VecPointwiseMult(_w, _a, x), "VecPointwiseMult");
+  double terms;
+  check(VecNorm(_w, NORM_1, &terms), "VecNorm");
+  return terms;
+}
+
+double ArcLengthSolver::control_tolerance(double d_eta, double terms)
+{
+  return std::max(control_rtol * std::abs(d_eta),
+                  control_round_off * std::numeric_limits<double>::epsilon() * terms);
+}
+
 std::string ArcLengthSolver::loose_convergence(double fnorm, double reactions, double control_error,
                                                double d_eta)
 {
@@ -291,7 +306,7 @@ SolveReport ArcLengthSolver::step(Vec x, double& lambda, double d_eta,
     // they cannot be met (NewtonSolver.h).
     const bool small = fnorm <= std::max(_atol, _rtol * reactions) ||
                        fnorm <= _problem.residual_floor(x); // the same on every process
-    if (it > 0 && small && std::abs(c - eta) <= 1e-8 * std::abs(d_eta))
+    if (it > 0 && small && std::abs(c - eta) <= control_tolerance(d_eta, control_terms(x)))
     {
       rep.converged = true;
       rep.reason = "CONVERGED_FNORM";

@@ -149,6 +149,19 @@ public:
   /// The control only picks where along the equilibrium path the step
   /// ends, and the next step measures its control from there.
   static constexpr double loose_control = 1e-2;
+  /// |c(x) - eta| over the step's control increment at which a step
+  /// converges (with |F| at its tolerance).
+  static constexpr double control_rtol = 1e-8;
+  /// The round-off floor of that test, in machine epsilons of the terms
+  /// that c sums (control_tolerance): a step of a control increment
+  /// within round-off of c can converge (through a snap-back the slip
+  /// increments may fall to 1e-10 of the slip, where control_rtol of them
+  /// is below c's round-off).
+  static constexpr double control_round_off = 1e3;
+  /// The tolerance of |c(x) - eta| for a step of control increment `d_eta`
+  /// whose control sums terms of size `terms` (control_terms): control_rtol
+  /// of d_eta, or control_round_off epsilons of the terms.
+  static double control_tolerance(double d_eta, double terms);
   /// Why an iterate of |F| `fnorm` [N], with reactions of norm `reactions`
   /// [N] and its control off by `control_error` from a step's increment
   /// `d_eta`, ends a stalled step ("CONVERGED_AT_STALL ..."), or "" if it
@@ -186,6 +199,10 @@ private:
   /// `c_minus_eta`: dx into _v1 and d lambda into `dlambda` (at most
   /// `max_dlambda` in size if positive); "" or why it failed.
   std::string correction(Vec x, double c_minus_eta, double max_dlambda, double& dlambda);
+  /// sum |a_i x_i| at the iterate x, whose control gradient a is in _a:
+  /// the size of the terms that c sums (its linearisation's, if c is not
+  /// linear) [c's unit].
+  double control_terms(Vec x);
   /// c(x) into `value`, dc/dx into _a, agreed on by every process.
   bool constraint(Vec x, double& value);
   /// e = -dF/dlambda at (x, lambda) into _e, and F(x, lambda) into _F, with
@@ -205,6 +222,7 @@ private:
   KSP _ksp = nullptr;
   Mat _J = nullptr, _P = nullptr;
   Vec _a = nullptr, _e = nullptr, _F = nullptr, _v1 = nullptr, _v2 = nullptr;
+  Vec _w = nullptr;    ///< scratch (control_tolerance)
   double _fd_step = 0; ///< set_load_difference [lambda's unit]
   double _rtol = 1e-10, _atol = 1e-10, _stol = 1e-14;
   PetscInt _max_it = 50;

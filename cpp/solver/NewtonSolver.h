@@ -165,8 +165,9 @@ public:
                                   bool single_precision_lu = false);
 
   /// -snes_rtol and -ksp_rtol of IMPL-EX cracks: a step's error is of the
-  /// order of cracking.implex_tolerance (1e-2 by default), and a Newton
-  /// tolerance four decades below it does not show in the curve. On the
+  /// order of cracking.implex_tolerance (2.5e-3 by default; 1e-2 when this
+  /// was measured), and a Newton tolerance more than three decades below it
+  /// does not show in the curve. On the
   /// bench's corroded demo (docs/cracking.md, "Speed of a step") τ and p
   /// moved by 7e-7 and 4e-8 of their largest values against 1e-10, in 29
   /// instead of 64 factorisations and 71 s instead of 101 s. The implicit

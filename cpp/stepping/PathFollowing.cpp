@@ -43,6 +43,16 @@ solver::SolveReport StepLoop::load_factor_step(double lambda_from, double lambda
 /// (check_implex). Nothing is predicted into the first step (the corrosion
 /// stage's growth is not the push's) nor after a jump (its increment is the
 /// snap's).
+namespace
+{
+/// The least slip increment of a step, as a share of its length: where the
+/// path turns vertical (delta falls at a nearly constant slip, as while
+/// IMPL-EX cracks relax step by step through a snap), the scaled slip
+/// increment would shrink by the same ratio every step, down to the
+/// slip's round-off.
+constexpr double min_slip_share = 1e-6;
+} // namespace
+
 bool StepLoop::path_following()
 {
   LoadFactorPath p;
@@ -84,7 +94,8 @@ bool StepLoop::path_following()
     }
     else
     {
-      const double d_slip = d_slip_prev * h / std::hypot(d_lambda_prev, d_slip_prev); // [mm]
+      const double d_slip = std::max(d_slip_prev * h / std::hypot(d_lambda_prev, d_slip_prev),
+                                     min_slip_share * h); // [mm]
       const double r = d_slip / d_slip_prev;
       set_time_increment(h);
       set_crack_extrapolation(last_predicts ? extrapolation_ratio(d_slip, d_slip_prev) : 0.0);

@@ -19,22 +19,26 @@
    same cracks on other steps (10 of delta against the arc's): the push's
    step error at 10 steps is 0.2 % (implicit, against 20 steps), so 1 %
    leaves each run twice that; IMPL-EX's steps are each held to its
-   tolerance (1e-2, the stress's error in the energy norm, so of the order
-   of 1 % in tau), and its error does not add up over the steps (each
-   step's cracks are updated implicitly after it): 1 % is that tolerance
-   (0.19 % measured).
+   tolerance (2.5e-3, the stress's error in the energy norm), and its error
+   does not add up over the steps (each step's cracks are updated
+   implicitly after it): 1 % is four times that tolerance (0.18 %
+   measured).
 5. Snap-back with cracks: the slice of 2 on 8 elements per quarter with
    cracks anywhere (random field), by IMPL-EX cracks (the implicit cracks
-   stopped after the peak there, DIVERGED_NO_PROGRESS at delta = 33.8 um,
-   before path following's secant prediction; they pass now, peak 2.374
-   MPa; below the default implex_tolerance IMPL-EX may stall here:
-   docs/cracking.md "Accuracy and the tolerance"): the path goes through
-   the snap-back to the final delta, with cracks open in the concrete at
-   the end (crack_pattern.csv), and the peak and the friction plateau are
-   the slice's without cracks to 2 %: they are the joints' (adhesion,
-   friction), which the few cracks of the retraction and the push hardly
-   change (0.5 % and 0.2 % measured; 2 % leaves room for steps that land
-   elsewhere on the sharp peak).
+   stop after the peak there at 80 steps, DIVERGED_NO_PROGRESS at delta =
+   33.8 um): the path goes through the snap-back to the final delta, with
+   cracks open in the concrete at the end (crack_pattern.csv). A crack
+   snaps at delta of about 21 um, before the adhesion peak (delta falls
+   there: 0.35 to 0.57 um measured), and the slice, more compliant, then carries a
+   peak some 9 % above the uncracked slice's (at least 5 %); at a
+   tolerance 2.5 times finer the path is the same, its peak within 1 %
+   (0.15 % measured: each step's error is held to the tolerance, and the
+   two runs differ in their steps; a tolerance of 0.004 is 2.3 % low, 0.01
+   misses the crack and gives the uncracked peak). That run, at 0.001, is
+   also the one that once stalled (the IMPL-EX cracks relax through the
+   snap at a nearly constant slip, so the slip increments fell below the
+   control's round-off: docs/cracking.md, "Under arc length"). The
+   friction plateau is the uncracked slice's to 2 % (0.1 % measured).
 6. A failed last step (a test hook fails the try that ends at the final
    delta, where no scene at the default tolerance was found to): steps of
    delta take over, each at most half the failed one, and reach the final
@@ -145,27 +149,41 @@ finer = brittle.replace("elements_per_quarter = 4", "elements_per_quarter = 8")
 snap_cracks = (finer + '[cracking]\nmodel = "embedded"\nf_t = 3.0\nc = 30.0\n'
                "strength_cov = 0.15\nseed = 1\n")
 plain, cracked = out_dir("arc_snap_uncracked"), out_dir("arc_snap_cracks")
+finer_tol = out_dir("arc_snap_cracks_0.001")
 run(finer, plain, sets=["loading.control=arc_length"])
 run(snap_cracks, cracked, sets=["loading.control=arc_length"])
-s = summary(cracked)
-a, b = curve(cracked), curve(plain)
-delta = [r["delta_mm"] for r in a]
-tau = [r["tau_MPa"] for r in a]
-i_peak = tau.index(max(tau))
-back = [i for i in range(i_peak + 1, len(a)) if delta[i] < delta[i - 1]]
-check(s["converged"] and s["cracking_integration"] == "implex" and abs(delta[-1] - 0.04) < 1e-12,
-      f"arc length with cracks through the snap-back: {s['cracking_integration']} cracks, "
-      f"delta = {delta[-1]} mm")
-slips = [r["slip_mm"] for r in a]
-check(len(back) >= 1 and all(y > x for x, y in zip(slips[1:], slips[2:])),
-      f"snap-back: delta decreases in {len(back)} steps after the peak; the slip only grows")
-with open(os.path.join(cracked, "crack_pattern.csv")) as f:
-    opened = sum(1 for r in csv.DictReader(f) if float(r["opening_mm"]) > 0)
-check(opened > 0, f"IMPL-EX cracks at work: {opened} cells of the concrete open at the end")
+run(snap_cracks, finer_tol, sets=["loading.control=arc_length", "cracking.implex_tolerance=0.001"])
+b = curve(plain)
 peak_b = max(r["tau_MPa"] for r in b)
-for what, x, y in (("peak", max(tau), peak_b), ("plateau", tau[-1], b[-1]["tau_MPa"])):
-    check(abs(x - y) <= 0.02 * abs(y),
-          f"with cracks the {what} tau is the uncracked slice's: {x:.4f} against {y:.4f} MPa")
+peaks = []
+for out in (cracked, finer_tol):
+    s = summary(out)
+    a = curve(out)
+    delta = [r["delta_mm"] for r in a]
+    tau = [r["tau_MPa"] for r in a]
+    i_peak = tau.index(max(tau))
+    check(s["converged"] and s["cracking_integration"] == "implex" and abs(delta[-1] - 0.04) < 1e-12,
+          f"{out}: arc length with cracks through the snap-back: {s['cracking_integration']} "
+          f"cracks, delta = {delta[-1]} mm")
+    back = [i for i in range(i_peak + 1, len(a)) if delta[i] < delta[i - 1]]
+    slips = [r["slip_mm"] for r in a]
+    check(len(back) >= 1 and all(y > x for x, y in zip(slips[1:], slips[2:])),
+          f"snap-back: delta decreases in {len(back)} steps after the peak; the slip only grows")
+    # The largest fall of delta before the peak (from the highest delta before it).
+    before = max(max(delta[:j + 1]) - delta[j] for j in range(i_peak))
+    check(before > 0, f"a crack snaps before the peak: delta falls by {before * 1e3:.3f} um")
+    with open(os.path.join(out, "crack_pattern.csv")) as f:
+        opened = sum(1 for r in csv.DictReader(f) if float(r["opening_mm"]) > 0)
+    check(opened > 0, f"IMPL-EX cracks at work: {opened} cells of the concrete open at the end")
+    check(abs(tau[-1] - b[-1]["tau_MPa"]) <= 0.02 * abs(b[-1]["tau_MPa"]),
+          f"the friction plateau is the uncracked slice's: {tau[-1]:.4f} against "
+          f"{b[-1]['tau_MPa']:.4f} MPa")
+    peaks.append(max(tau))
+check(min(peaks) >= 1.05 * peak_b,
+      f"the cracked slice's peak is above the uncracked one's: {peaks[0]:.4f} and "
+      f"{peaks[1]:.4f} against {peak_b:.4f} MPa")
+check(abs(peaks[0] - peaks[1]) <= 0.01 * peaks[1],
+      f"the default tolerance's peak is the finer one's: {peaks[0]:.4f} against {peaks[1]:.4f} MPa")
 
 # 6. The fallback after a failed step to the final delta (scene of 1.).
 failed = out_dir("arc_fig10_failed_last_step")

@@ -8,6 +8,7 @@
 #include "two_unknowns.h"
 #include <cmath>
 #include <gtest/gtest.h>
+#include <limits>
 
 using namespace pushout;
 using petsc::check;
@@ -147,4 +148,25 @@ TEST(ArcLength, LooseConvergenceNeedsBothEquilibriumAndControl)
   EXPECT_EQ(ArcLengthSolver::loose_convergence(0.0, 1.0, -0.0101, 1.0), "");
   // Not a number is never near.
   EXPECT_EQ(ArcLengthSolver::loose_convergence(NAN, 1.0, 0.0, 1.0), "");
+}
+
+TEST(ArcLength, TheControlTestHasARoundOffFloor)
+{
+  using solver::ArcLengthSolver;
+  // A step converges with its control within 1e-8 of its increment,
+  EXPECT_DOUBLE_EQ(ArcLengthSolver::control_tolerance(1e-3, 0.05), 1e-11);
+  // but not below c's round-off: the brittle slice with cracks at
+  // implex_tolerance 0.003 (docs/cracking.md, "Under arc length"), whose
+  // slip increments had fallen to 1.25e-13 mm while the IMPL-EX cracks
+  // relaxed through a snap, ran into -snes_max_it at |F| 1e-6 of its
+  // tolerance with its control off by 1e-18 to 3e-18 mm (-arc_monitor),
+  // the round-off of the mean slip's terms (sum |a_i x_i| some 0.02 mm
+  // there). The floor is 1000 machine epsilons of those terms.
+  const double floor = ArcLengthSolver::control_tolerance(1.25e-13, 0.02);
+  EXPECT_GT(floor, 3e-18);
+  EXPECT_DOUBLE_EQ(floor, 1e3 * std::numeric_limits<double>::epsilon() * 0.02);
+  // It stays below 1 % of the least slip increment path following gives a
+  // step (1e-6 of its length, stepping/PathFollowing.cpp: 2e-12 mm there
+  // at the smallest length), so the control still ends where it is told.
+  EXPECT_LT(floor, 0.01 * 1e-6 * 0.002 / 1024);
 }
