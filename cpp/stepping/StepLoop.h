@@ -101,6 +101,10 @@ private:
   bool begin_load_factor_path(const std::string& control, LoadFactorPath& p);
   /// False, with the summary's message, once step k is past the limit.
   bool within_step_limit(const LoadFactorPath& p, int k, double lambda, const std::string& control);
+  /// LoadFactorPath::max_steps of a stage of `nominal_steps`
+  /// (path_step_limit of StepLoopShared.h with this model's IMPL-EX
+  /// tolerance).
+  int path_step_limit(int nominal_steps);
 
   // --- DisplacementControl.cpp ---
 
