@@ -24,25 +24,6 @@ solver::SolveReport StepLoop::load_factor_step(double lambda_from, double lambda
   return _solver.solve(_x);
 }
 
-/// Path following (solver/PathFollower.h) in steps of length
-/// h = lambda_final / steps in the plane (lambda, s) of the push delta and
-/// the mean slip [mm]. The first step is displacement-controlled (delta =
-/// h); each later one prescribes the slip increment of the previous step
-/// scaled to length h,  ds = ds_prev h / |(dlambda_prev, ds_prev)|,  which
-/// depends only on converged states (not on the tangent at a kink of the
-/// laws). Each starts from a secant prediction: the last step's increment
-/// of x and lambda scaled to its length (on the control's target, which is
-/// linear in x); the iterates converge in one or two where the step is
-/// smooth. Failed steps are halved, easy ones grow back (Stepper.h). The step
-/// that would pass lambda_final is replaced by a displacement-controlled step
-/// to exactly lambda_final; if that fails, steps of delta, cut as it failed,
-/// go on to lambda_final. IMPL-EX cracks (docs/cracking.md) extrapolate the
-/// last committed step's growth by the ratio of the step's slip increment
-/// to that step's (of delta for a step of delta), at most
-/// max_extrapolation, and are checked and cut as under displacement control
-/// (check_implex). Nothing is predicted into the first step (the corrosion
-/// stage's growth is not the push's) nor after a jump (its increment is the
-/// snap's).
 namespace
 {
 /// The least slip increment of a step, as a share of its length: where the
@@ -53,6 +34,25 @@ namespace
 constexpr double min_slip_share = 1e-6;
 } // namespace
 
+/// Path following (solver/PathFollower.h) in steps of length
+/// h = lambda_final / steps in the plane (lambda, s) of the push delta and
+/// the mean slip [mm]. The first step is displacement-controlled (delta =
+/// h); each later one prescribes the slip increment of the previous step
+/// scaled to length h,  ds = ds_prev h / |(dlambda_prev, ds_prev)|  (at
+/// least min_slip_share h), which depends only on converged states (not on
+/// the tangent at a kink of the laws). Each starts from a secant
+/// prediction: the last step's increment of x and lambda scaled to its
+/// length (on the control's target, which is linear in x); the iterates
+/// converge in one or two where the step is smooth. Failed steps are
+/// halved, easy ones grow back (Stepper.h). The step that would pass
+/// lambda_final is replaced by a displacement-controlled step to exactly
+/// lambda_final; if that fails, steps of delta, cut as it failed, go on to
+/// lambda_final. IMPL-EX cracks (docs/cracking.md) extrapolate the last
+/// committed step's growth by the ratio of the step's slip increment to
+/// that step's (of delta for a step of delta), at most max_extrapolation,
+/// and are checked and cut as under displacement control (check_implex).
+/// Nothing is predicted into the first step (the corrosion stage's growth
+/// is not the push's) nor after a jump (its increment is the snap's).
 bool StepLoop::path_following()
 {
   LoadFactorPath p;
