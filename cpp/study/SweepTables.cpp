@@ -225,14 +225,16 @@ std::vector<SeedGroup> group_seeds(const std::vector<Variation>& vary,
       }
   }
   for (std::size_t j = 0; j < groups.size(); ++j)
-    for (std::size_t k = 0; k < groups[j].mean.size(); ++k)
+  {
+    SeedGroup& g = groups[j];
+    for (std::size_t k = 0; k < g.mean.size(); ++k)
     {
-      SeedGroup& g = groups[j];
       if (counts[j][k] == 0)
         g.mean[k] = g.min[k] = g.max[k] = nan;
       else
         g.mean[k] /= counts[j][k];
     }
+  }
   return groups;
 }
 

@@ -138,10 +138,10 @@ check(len(w_wide) == len(w_tight) and max(abs(a - b) for a, b in zip(w_wide, w_t
 # problem, and their widths at the same x differ by Newton's tolerance, far
 # below 1 % (reading half the crack would be 50 % off). The symmetric
 # solution bifurcates once the crack softens, and the whole model departs
-# from it, from round-off, where its integration lets it: at the default
-# implex_tolerance not before 40 um of width (1.7e-6 there), at 0.0025 from
-# about 16 um (1e-9 below, 1e-6 at 16.3 um, 0.6 % at 19.7 um); so the rows
-# compared are those below 14 um (3 rows at the default, measured). Where
+# from it, from round-off, where its integration lets it: at implex_tolerance
+# 0.01 not before 40 um of width (1.7e-6 there), at 0.0025 (the default)
+# from about 16 um (1e-9 below, 1e-6 at 16.3 um, 0.6 % at 19.7 um); so the
+# rows compared are those below 14 um (9 rows at the default, measured). Where
 # the two runs' steps differ (IMPL-EX cuts them by each model's own error)
 # they are compared at the x both took.
 uniform = cracking_corroded_demo(0.03, 10, f_t, 0.0)
