@@ -61,7 +61,7 @@ bool StepLoop::corrode_by_dissipation()
 {
   const int steps = _corrosion.steps();
   const double h = _corrosion.penetration_at(1.0); // a nominal step of x [mm]
-  LoadFactorPath p{_corrosion.penetration_at(steps), h, path_step_limit(steps), "corrosion stage",
+  LoadFactorPath p{_corrosion.penetration_at(steps), h, stage_step_limit(steps), "corrosion stage",
                    "x"};
   _scenario.apply_load(0.0, _equilibrium); // the constraints and loads of step 0
   interface::Interface& itf = _equilibrium.model().interface();

@@ -225,11 +225,11 @@ bool StepLoop::begin_load_factor_path(const std::string& control, LoadFactorPath
   // a PathFollower takes the solver's problem.
   _scenario.apply_load_factor(0.0, _equilibrium);
   p.h_nominal = p.lambda_final / _scenario.steps();
-  p.max_steps = path_step_limit(_scenario.steps());
+  p.max_steps = stage_step_limit(_scenario.steps());
   return true;
 }
 
-int StepLoop::path_step_limit(int nominal_steps)
+int StepLoop::stage_step_limit(int nominal_steps) const
 {
   const model::BulkCracking* bulk = _equilibrium.model().bulk_cracking();
   return detail::path_step_limit(nominal_steps,

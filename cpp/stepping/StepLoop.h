@@ -104,7 +104,7 @@ private:
   /// LoadFactorPath::max_steps of a stage of `nominal_steps`
   /// (path_step_limit of StepLoopShared.h with this model's IMPL-EX
   /// tolerance).
-  int path_step_limit(int nominal_steps);
+  int stage_step_limit(int nominal_steps) const;
 
   // --- DisplacementControl.cpp ---
 
