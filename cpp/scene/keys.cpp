@@ -475,8 +475,10 @@ std::vector<KeyDef> make_keys()
        {"mixed", "double"}},
       {"solver.time_linear_solve", K::boolean, false, "",
        "before the run, time one linear solve of the first load step of the whole model with "
-       "the PETSc options' solver, MUMPS LU by default (summary.json linear_solve_s: the floor "
-       "a whole curve is compared with)"},
+       "the PETSc options' solver, MUMPS LU by default (where those are GMRES on MUMPS's LU, "
+       "with solver.precision \"mixed\" on one process: flexible GMRES on the LU in single "
+       "precision, as Newton's solves) (summary.json linear_solve_s: the floor a whole curve is "
+       "compared with)"},
 
       // Output.
       {"output.xdmf", K::boolean, false, "",
