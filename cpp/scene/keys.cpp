@@ -439,8 +439,9 @@ std::vector<KeyDef> make_keys()
        "lagged: from a load step's second Newton iteration on, GMRES stops at half the "
        "residual that Newton's test still asks for (Kelley's safeguard on the forcing term), "
        "not at -ksp_rtol's relative reduction, which it never goes below; the first "
-       "iteration solves to -ksp_rtol. Where GMRES measures the true residual (flexible "
-       "GMRES: solver.precision = mixed on one process). The converged solution is the same "
+       "iteration solves to -ksp_rtol. Where GMRES measures the true residual (right "
+       "preconditioning, the default -ksp_pc_side; flexible GMRES in single precision). The "
+       "converged solution is the same "
        "to Newton's tolerance. false: every linear solve to -ksp_rtol"},
       {"solver.first_tangent",
        K::string,
@@ -468,7 +469,7 @@ std::vector<KeyDef> make_keys()
        "MUMPS, flexible GMRES to -ksp_rtol (or to what Newton needs: solver.inexact_newton) "
        "(half the memory traffic; the residual, and so "
        "the solution and the Newton tolerances, stay in double); double: everything in "
-       "double, GMRES to -ksp_rtol",
+       "double, GMRES (right-preconditioned) to -ksp_rtol or what Newton needs",
        -inf,
        inf,
        false,

@@ -145,13 +145,20 @@ void NewtonSolver::set_default_options(Preconditioner pc, Concrete concrete,
   // The implicit cracks factor every Jacobian (LoadStepSolver::make): GMRES
   // on that LU lets it be factored in single precision
   // (Equilibrium::configure); in double the LU is the solver.
-  const char* krylov[] = {"-ksp_gmres_restart", "-ksp_rtol", "-ksp_max_it"};
+  const char* krylov[] = {"-ksp_gmres_restart", "-ksp_rtol", "-ksp_max_it", "-ksp_pc_side"};
   if (pc == Preconditioner::lagged || (concrete == Concrete::cracks && single_precision_lu))
   {
     set_default("-ksp_type", "gmres");
     set_default(krylov[0], "200");
     set_default(krylov[1], implex ? implex_rtol : "1e-10");
     set_default(krylov[2], "1000");
+    // Right preconditioning: GMRES measures the Jacobian's own residual, so
+    // that solver.inexact_newton can stop it at what Newton's test needs
+    // wherever the LU is in double (two processes or more, or
+    // solver.precision = "double"; flexible GMRES, in single precision, is
+    // right-preconditioned anyway). On the bench's scene on two processes:
+    // 3 075 GMRES iterations and 85 s against 4 010 and 103 s (left).
+    set_default(krylov[3], "right");
   }
   else
   {
