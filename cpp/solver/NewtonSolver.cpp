@@ -157,7 +157,7 @@ void NewtonSolver::set_default_options(Preconditioner pc, Concrete concrete,
     // wherever the LU is in double (two processes or more, or
     // solver.precision = "double"; flexible GMRES, in single precision, is
     // right-preconditioned anyway). On the bench's scene on two processes:
-    // 3 075 GMRES iterations and 85 s against 4 010 and 103 s (left).
+    // 3 188 GMRES iterations and 87 s against 4 010 and 103 s (left).
     set_default(krylov[3], "right");
   }
   else
