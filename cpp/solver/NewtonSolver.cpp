@@ -157,8 +157,13 @@ void NewtonSolver::set_default_options(Preconditioner pc, Concrete concrete,
     // wherever the LU is in double (two processes or more, or
     // solver.precision = "double"; flexible GMRES, in single precision, is
     // right-preconditioned anyway). On the bench's scene on two processes:
-    // 3 188 GMRES iterations and 87 s against 4 010 and 103 s (left).
-    set_default(krylov[3], "right");
+    // 3 188 GMRES iterations and 87 s against 4 010 and 103 s (left). A
+    // solver of the user's PETSc options (-pc_type gamg, ...) keeps PETSc's
+    // own side.
+    if (linear_solver_from_options())
+      clear_default(krylov[3]);
+    else
+      set_default(krylov[3], "right");
   }
   else
   {
