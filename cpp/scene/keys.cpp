@@ -463,10 +463,10 @@ std::vector<KeyDef> make_keys()
        std::string("mixed"),
        "",
        "mixed: condensed bulk: flexible GMRES applies C and the lagged preconditioner's LU in "
-       "single precision, to a relative tolerance of at least 1e-7; whole model on one "
-       "process (lagged MUMPS LU, or the LU of every Jacobian of implicit cracks): the LU "
-       "factored and applied in single precision by "
-       "MUMPS, flexible GMRES to -ksp_rtol (or to what Newton needs: solver.inexact_newton) "
+       "single precision, to a relative tolerance of at least 1e-7; whole model (lagged "
+       "MUMPS LU, or the LU of every Jacobian of implicit cracks): the LU factored and "
+       "applied in single precision by MUMPS (on several processes too, each giving its "
+       "rows), flexible GMRES to -ksp_rtol (or to what Newton needs: solver.inexact_newton) "
        "(half the memory traffic; the residual, and so "
        "the solution and the Newton tolerances, stay in double); double: everything in "
        "double, GMRES (right-preconditioned) to -ksp_rtol or what Newton needs",
@@ -477,7 +477,7 @@ std::vector<KeyDef> make_keys()
       {"solver.time_linear_solve", K::boolean, false, "",
        "before the run, time one linear solve of the first load step of the whole model with "
        "the PETSc options' solver, MUMPS LU by default (where those are GMRES on MUMPS's LU, "
-       "with solver.precision \"mixed\" on one process: flexible GMRES on the LU in single "
+       "with solver.precision \"mixed\": flexible GMRES on the LU in single "
        "precision, as Newton's solves) (summary.json linear_solve_s: the floor a whole curve is "
        "compared with)"},
 

@@ -308,16 +308,13 @@ void Equilibrium::configure(KSP ksp) const
 {
   if (!_single_precision)
     return;
-  int processes = 1;
-  MPI_Comm_size(PetscObjectComm(reinterpret_cast<PetscObject>(ksp)), &processes);
   KSPType type;
   check(KSPGetType(ksp, &type), "KSPGetType");
   PC pc;
   check(KSPGetPC(ksp, &pc), "KSPGetPC");
   PCType pc_type;
   check(PCGetType(pc, &pc_type), "PCGetType");
-  if (processes != 1 || !type || std::string(type) != KSPGMRES || !pc_type ||
-      std::string(pc_type) != PCLU)
+  if (!type || std::string(type) != KSPGMRES || !pc_type || std::string(pc_type) != PCLU)
     return;
   MatSolverType factor_type = nullptr;
   check(PCFactorGetMatSolverType(pc, &factor_type), "PCFactorGetMatSolverType");

@@ -46,7 +46,7 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
       lagged ? NewtonSolver::Preconditioner::lagged : NewtonSolver::Preconditioner::jacobian;
   int processes = 1;
   MPI_Comm_size(eq.model().comm(), &processes);
-  NewtonSolver::set_default_options(pc, concrete, part.mixed_precision && processes == 1);
+  NewtonSolver::set_default_options(pc, concrete, part.mixed_precision);
   const std::int64_t interface_dofs = Condensation::interface_dofs(eq.model());
   std::string why;
   // Condensation::possible(eq) says why not when the concrete may crack.
@@ -63,7 +63,7 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
   // The whole model's linear solver as NewtonSolver::set_default_options
   // and Equilibrium::configure make it (the LU in single precision under
   // GMRES on one process), unless the user's PETSc options chose another.
-  const bool single = part.mixed_precision && processes == 1 && (lagged || nonsmooth_bulk);
+  const bool single = part.mixed_precision && (lagged || nonsmooth_bulk);
   const std::string whole_linear =
       NewtonSolver::linear_solver_from_options() ? ", the linear solver of the PETSc options"
       : lagged ? std::string(", GMRES on a lagged LU") + (single ? " in single precision" : "")

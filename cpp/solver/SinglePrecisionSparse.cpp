@@ -18,7 +18,7 @@ namespace
 // used here (MUMPS 5 users' guide: ICNTL(k) is icntl[k - 1]).
 constexpr MUMPS_INT job_init = -1, job_end = -2, job_analyse = 1, job_factor = 2, job_solve = 3;
 constexpr int icntl_error_stream = 0, icntl_diagnostic_stream = 1, icntl_global_stream = 2,
-              icntl_print_level = 3, icntl_workspace_percent = 13;
+              icntl_print_level = 3, icntl_workspace_percent = 13, icntl_distributed_matrix = 17;
 /// INFOG(1) of a numerically and of a structurally singular matrix.
 constexpr MUMPS_INT error_singular = -10, error_structurally_singular = -6;
 /// INFOG(1) of the workspace errors that a larger ICNTL(14) cures.
@@ -32,12 +32,20 @@ struct Factors
   SMUMPS_STRUC_C id{};
   bool initialised = false;
   bool factored = false;
+  bool distributed = false; ///< more than one process (ICNTL(18) = 3)
   /// The analysed matrix (its id and nonzero state); -1: none
   PetscInt64 matrix = -1;
   PetscObjectState pattern = -1;
-  MUMPS_INT workspace_percent = 0;   ///< ICNTL(14) as MUMPS set it
-  std::vector<MUMPS_INT> rows, cols; ///< 1-based coordinates, in the matrix's CSR order
-  std::vector<float> values, rhs;
+  MUMPS_INT workspace_percent = 0; ///< ICNTL(14) as MUMPS set it
+  /// This process's rows of the matrix: 1-based global coordinates, in
+  /// the matrix's row order, and values
+  std::vector<MUMPS_INT> rows, cols;
+  std::vector<float> values;
+  std::vector<float> rhs; ///< the whole right-hand side on the host; empty elsewhere
+  /// More than one process: the right-hand side gathered on the first
+  /// (MUMPS's host), where MUMPS takes it and leaves the solution.
+  VecScatter to_host = nullptr;
+  Vec on_host = nullptr;
 
   ~Factors()
   {
@@ -46,13 +54,18 @@ struct Factors
       id.job = job_end;
       smumps_c(&id);
     }
+    // Not checked: a destructor does not throw.
+    VecScatterDestroy(&to_host);
+    VecDestroy(&on_host);
   }
 };
 
-void initialise(Factors& f)
+void initialise(Factors& f, MPI_Comm comm)
 {
-  f.id.comm_fortran = MUMPS_INT(MPI_Comm_c2f(PETSC_COMM_SELF));
-  f.id.par = 1; // the host works too (one process)
+  int processes = 1;
+  MPI_Comm_size(comm, &processes);
+  f.id.comm_fortran = MUMPS_INT(MPI_Comm_c2f(comm));
+  f.id.par = 1; // the host (the first process) works too
   f.id.sym = 0; // unsymmetric: friction makes the Jacobian so
   f.id.job = job_init;
   smumps_c(&f.id);
@@ -66,56 +79,117 @@ void initialise(Factors& f)
   f.id.icntl[icntl_global_stream] = -1;
   f.id.icntl[icntl_print_level] = 0;
   f.workspace_percent = f.id.icntl[icntl_workspace_percent];
+  // More than one process: each gives its own rows (ICNTL(18) = 3, the
+  // distributed assembled matrix); the right-hand side and the solution
+  // stay whole on the host (ICNTL(20) = ICNTL(21) = 0, MUMPS's defaults).
+  f.distributed = processes > 1;
+  if (f.distributed)
+    f.id.icntl[icntl_distributed_matrix] = 3;
 }
 
-/// The pattern of P as MUMPS's coordinates, and its analysis (ordering,
-/// symbolic factorisation) once per matrix and nonzero pattern; then its
-/// values. Whether the analysis of P's pattern is at hand.
+/// P's rows on this process as MUMPS's coordinates (1-based, global), in
+/// the order of P's rows, the coordinates only for a new pattern: a
+/// sequential AIJ matrix's through its row structure, a parallel one's row
+/// by row. The values in single precision.
+void read_rows(Factors& f, Mat P, bool new_pattern)
+{
+  if (!f.distributed)
+  {
+    PetscInt n;
+    const PetscInt *ia, *ja;
+    PetscBool done;
+    check(MatGetRowIJ(P, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done), "MatGetRowIJ");
+    if (!done)
+      throw std::runtime_error("single-precision LU: the preconditioning matrix has no row "
+                               "structure (a sequential AIJ matrix is needed)");
+    const std::size_t nnz = std::size_t(ia[n]);
+    if (new_pattern)
+    {
+      f.rows.resize(nnz);
+      f.cols.resize(nnz);
+      for (PetscInt i = 0; i < n; ++i)
+        for (PetscInt k = ia[i]; k < ia[i + 1]; ++k)
+        {
+          f.rows[std::size_t(k)] = MUMPS_INT(i + 1);
+          f.cols[std::size_t(k)] = MUMPS_INT(ja[k] + 1);
+        }
+    }
+    check(MatRestoreRowIJ(P, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done), "MatRestoreRowIJ");
+    const PetscScalar* a;
+    check(MatSeqAIJGetArrayRead(P, &a), "MatSeqAIJGetArrayRead");
+    f.values.resize(nnz);
+    for (std::size_t k = 0; k < nnz; ++k)
+      f.values[k] = float(a[k]);
+    check(MatSeqAIJRestoreArrayRead(P, &a), "MatSeqAIJRestoreArrayRead");
+    return;
+  }
+  PetscInt first, end;
+  check(MatGetOwnershipRange(P, &first, &end), "MatGetOwnershipRange");
+  if (new_pattern)
+  {
+    f.rows.clear();
+    f.cols.clear();
+  }
+  f.values.clear();
+  for (PetscInt i = first; i < end; ++i)
+  {
+    PetscInt count;
+    const PetscInt* cols;
+    const PetscScalar* a;
+    check(MatGetRow(P, i, &count, &cols, &a), "MatGetRow");
+    for (PetscInt k = 0; k < count; ++k)
+    {
+      if (new_pattern)
+      {
+        f.rows.push_back(MUMPS_INT(i + 1));
+        f.cols.push_back(MUMPS_INT(cols[k] + 1));
+      }
+      f.values.push_back(float(a[k]));
+    }
+    check(MatRestoreRow(P, i, &count, &cols, &a), "MatRestoreRow");
+  }
+}
+
+/// P's values, and the analysis of its pattern (ordering, symbolic
+/// factorisation) once per matrix and nonzero pattern, agreed on by every
+/// process (the analysis is collective). Whether the analysis of P's
+/// pattern is at hand.
 bool load(Factors& f, Mat P)
 {
   PetscObjectState state;
   check(MatGetNonzeroState(P, &state), "MatGetNonzeroState");
   PetscObjectId id;
   check(PetscObjectGetId(reinterpret_cast<PetscObject>(P), &id), "PetscObjectGetId");
-  PetscInt n;
-  const PetscInt *ia, *ja;
-  PetscBool done;
-  check(MatGetRowIJ(P, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done), "MatGetRowIJ");
-  if (!done)
-    throw std::runtime_error("single-precision LU: the preconditioning matrix has no row "
-                             "structure (a sequential AIJ matrix is needed)");
-  const PetscInt rows = n; // MatRestoreRowIJ clears n
-  const std::size_t nnz = std::size_t(ia[n]);
-  const bool new_pattern = state != f.pattern || PetscInt64(id) != f.matrix;
-  if (new_pattern)
-  {
-    f.rows.resize(nnz);
-    f.cols.resize(nnz);
-    for (PetscInt i = 0; i < n; ++i)
-      for (PetscInt k = ia[i]; k < ia[i + 1]; ++k)
-      {
-        f.rows[std::size_t(k)] = MUMPS_INT(i + 1);
-        f.cols[std::size_t(k)] = MUMPS_INT(ja[k] + 1);
-      }
-  }
-  check(MatRestoreRowIJ(P, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done), "MatRestoreRowIJ");
-  const PetscScalar* a;
-  check(MatSeqAIJGetArrayRead(P, &a), "MatSeqAIJGetArrayRead");
-  f.values.resize(nnz);
-  for (std::size_t k = 0; k < nnz; ++k)
-    f.values[k] = float(a[k]);
-  check(MatSeqAIJRestoreArrayRead(P, &a), "MatSeqAIJRestoreArrayRead");
+  int new_pattern = state != f.pattern || PetscInt64(id) != f.matrix;
+  MPI_Allreduce(MPI_IN_PLACE, &new_pattern, 1, MPI_INT, MPI_LOR,
+                PetscObjectComm(reinterpret_cast<PetscObject>(P)));
+  read_rows(f, P, new_pattern);
+  PetscInt rows;
+  check(MatGetSize(P, &rows, nullptr), "MatGetSize");
   f.id.n = MUMPS_INT(rows);
-  f.id.nnz = MUMPS_INT8(nnz);
-  f.id.irn = f.rows.data();
-  f.id.jcn = f.cols.data();
-  f.id.a = f.values.data();
-  f.rhs.resize(std::size_t(rows));
+  if (f.distributed)
+  {
+    f.id.nnz_loc = MUMPS_INT8(f.values.size());
+    f.id.irn_loc = f.rows.data();
+    f.id.jcn_loc = f.cols.data();
+    f.id.a_loc = f.values.data();
+  }
+  else
+  {
+    f.id.nnz = MUMPS_INT8(f.values.size());
+    f.id.irn = f.rows.data();
+    f.id.jcn = f.cols.data();
+    f.id.a = f.values.data();
+    f.rhs.resize(std::size_t(rows));
+  }
   if (new_pattern)
   {
+    // Another matrix may have another layout: the gather is made anew.
+    check(VecScatterDestroy(&f.to_host), "VecScatterDestroy");
+    check(VecDestroy(&f.on_host), "VecDestroy");
     f.id.job = job_analyse;
     smumps_c(&f.id);
-    const bool analysed = f.id.infog[0] >= 0;
+    const bool analysed = f.id.infog[0] >= 0; // INFOG: the same on every process
     f.pattern = analysed ? state : -1;
     f.matrix = analysed ? PetscInt64(id) : -1;
     return analysed;
@@ -153,7 +227,7 @@ PetscErrorCode set_up(PC pc)
         Factors* f;
         check(PCShellGetContext(pc, &f), "PCShellGetContext");
         if (!f->initialised)
-          initialise(*f);
+          initialise(*f, PetscObjectComm(reinterpret_cast<PetscObject>(pc)));
         Mat P;
         check(PCGetOperators(pc, nullptr, &P), "PCGetOperators");
         f->factored = false;
@@ -176,6 +250,41 @@ PetscErrorCode set_up(PC pc)
       });
 }
 
+/// Solves with the factors in place (collective): the host's `rhs` becomes
+/// the solution. Whether MUMPS solved.
+bool solve(Factors& f)
+{
+  f.id.rhs = f.rhs.data();
+  f.id.nrhs = 1;
+  f.id.lrhs = MUMPS_INT(f.rhs.size());
+  f.id.job = job_solve;
+  smumps_c(&f.id);
+  return f.id.infog[0] >= 0; // INFOG: the same on every process
+}
+
+/// x's entries on this process in single precision.
+void to_single(const Vec x, std::vector<float>& out)
+{
+  PetscInt n;
+  check(VecGetLocalSize(x, &n), "VecGetLocalSize");
+  out.resize(std::size_t(n));
+  const double* xa;
+  check(VecGetArrayRead(x, &xa), "VecGetArrayRead");
+  for (std::size_t i = 0; i < out.size(); ++i)
+    out[i] = float(xa[i]);
+  check(VecRestoreArrayRead(x, &xa), "VecRestoreArrayRead");
+}
+
+/// y's entries on this process from single precision.
+void from_single(const std::vector<float>& in, Vec y)
+{
+  double* ya;
+  check(VecGetArray(y, &ya), "VecGetArray");
+  for (std::size_t i = 0; i < in.size(); ++i)
+    ya[i] = double(in[i]);
+  check(VecRestoreArray(y, &ya), "VecRestoreArray");
+}
+
 PetscErrorCode apply(PC pc, Vec x, Vec y)
 {
   return petsc::callback(
@@ -188,27 +297,32 @@ PetscErrorCode apply(PC pc, Vec x, Vec y)
           check(VecSetInf(y), "VecSetInf");
           return;
         }
-        const std::size_t n = f->rhs.size();
-        const double* xa;
-        check(VecGetArrayRead(x, &xa), "VecGetArrayRead");
-        for (std::size_t i = 0; i < n; ++i)
-          f->rhs[i] = float(xa[i]);
-        check(VecRestoreArrayRead(x, &xa), "VecRestoreArrayRead");
-        f->id.rhs = f->rhs.data();
-        f->id.nrhs = 1;
-        f->id.lrhs = MUMPS_INT(n);
-        f->id.job = job_solve;
-        smumps_c(&f->id);
-        if (f->id.infog[0] < 0)
+        if (!f->distributed)
+        {
+          to_single(x, f->rhs);
+          if (solve(*f))
+            from_single(f->rhs, y);
+          else
+            check(VecSetInf(y), "VecSetInf");
+          return;
+        }
+        if (!f->to_host)
+          check(VecScatterCreateToZero(x, &f->to_host, &f->on_host), "VecScatterCreateToZero");
+        check(VecScatterBegin(f->to_host, x, f->on_host, INSERT_VALUES, SCATTER_FORWARD),
+              "VecScatterBegin");
+        check(VecScatterEnd(f->to_host, x, f->on_host, INSERT_VALUES, SCATTER_FORWARD),
+              "VecScatterEnd");
+        to_single(f->on_host, f->rhs); // empty but on the host
+        if (!solve(*f))
         {
           check(VecSetInf(y), "VecSetInf");
           return;
         }
-        double* ya;
-        check(VecGetArray(y, &ya), "VecGetArray");
-        for (std::size_t i = 0; i < n; ++i)
-          ya[i] = double(f->rhs[i]);
-        check(VecRestoreArray(y, &ya), "VecRestoreArray");
+        from_single(f->rhs, f->on_host);
+        check(VecScatterBegin(f->to_host, f->on_host, y, INSERT_VALUES, SCATTER_REVERSE),
+              "VecScatterBegin");
+        check(VecScatterEnd(f->to_host, f->on_host, y, INSERT_VALUES, SCATTER_REVERSE),
+              "VecScatterEnd");
       });
 }
 } // namespace

@@ -1,6 +1,9 @@
-// Single precision for GMRES on the whole model (one process): the sparse
-// LU of the lagged preconditioner factored and applied by MUMPS in single
-// precision (smumps), the whole model's counterpart of SinglePrecision.h.
+// Single precision for GMRES on the whole model: the sparse LU of the
+// lagged preconditioner factored and applied by MUMPS in single precision
+// (smumps), the whole model's counterpart of SinglePrecision.h. On several
+// processes each gives MUMPS its own rows (ICNTL(18) = 3) and the
+// right-hand side is gathered on the first, MUMPS's host, which holds the
+// solution after the solve and scatters it back.
 //
 // Why: on the whole model of the paper's mesh with cracking concrete
 // (25 920 dofs) the LU factors hold 22 million entries (MUMPS, PORD
@@ -25,8 +28,8 @@
 
 namespace pushout::solver
 {
-/// Makes `pc` (of a sequential KSP whose preconditioning matrix is a
-/// sequential AIJ matrix) a PCSHELL that factors that matrix with MUMPS in
+/// Makes `pc` (whose preconditioning matrix is an AIJ matrix, sequential or
+/// parallel) a PCSHELL that factors that matrix with MUMPS in
 /// single precision whenever PETSc sets the preconditioner up (the
 /// analysis once per nonzero pattern) and applies the factors. A failed
 /// factorisation is reported as PETSc's own are (PCGetFailedReason: a zero

@@ -16,8 +16,10 @@ too, and their corrosion curve is the double-precision one to the bound of
 Newton's tolerance, with the same cracked points. GMRES stopped at what
 Newton's test needs (solver.inexact_newton, the default) gives the curve of
 every solve to -ksp_rtol, to the bound of Newton's tolerance, in fewer
-GMRES iterations: on the lagged whole model (its LU in single precision,
-in double, and on two processes) and with IMPL-EX cracks. Where
+GMRES iterations: on the lagged whole model (its LU in single precision
+and in double, on one process and on two) and with IMPL-EX cracks. On two
+processes the whole model's LU is in single precision too, and its curve
+the one-process double-precision one to the bound of Newton's tolerance. Where
 a step starts from a prediction (cracking concrete), Newton's relative
 test of the step's own residual gives the curve of the test of the
 prediction's, to the same bound, and lets Newton stop where the
@@ -154,18 +156,40 @@ inexact_against_exact("lagged whole model", scene, outs["lagged"], ["solver.cond
                       "P_N", curve, SNES_RTOL)
 inexact_against_exact("condensed lagged", scene, outs["condensed lagged (default)"], [], "P_N",
                       curve, SNES_RTOL)
-# GMRES on the LU in double (solver.precision = "double", or two processes,
-# where the single-precision LU does not run) is right-preconditioned by
-# default, so that it measures the true residual and stops early too (left,
-# its norm would be the preconditioned residual's, and every solve would go
-# to -ksp_rtol).
+# GMRES on the LU in double (solver.precision = "double") is
+# right-preconditioned by default, so that it measures the true residual
+# and stops early too (left, its norm would be the preconditioned
+# residual's, and every solve would go to -ksp_rtol).
 inexact_against_exact("lagged whole model, LU in double", scene, outs["lagged double"],
                       ["solver.condensation=off", "solver.precision=double"], "P_N", curve,
                       SNES_RTOL)
+# Two processes: the whole model's LU in single precision too (MUMPS given
+# each process's rows, the right-hand side gathered on the first), its curve
+# the double-precision one's to the bound of Newton's tolerance, as on one
+# process; inexact Newton fewer GMRES iterations there, and with the LU in
+# double on two processes.
 two = out_dir("solver_lagged_two_processes")
-run(scene, two, sets=["solver.condensation=off"], mpirun=2)
+p = run(scene, two, sets=["solver.condensation=off"], mpirun=2, extra=["-ksp_view"])
+check("sparse LU in single precision" in p.stdout,
+      "two processes: the whole model's LU in single precision")
+mixed, double = curve(two), curve(outs["lagged double"])
+tol = newton_bound(len(double), max(solved_unknowns(summary(d)) for d in (two, outs["lagged double"])))
+for key in ("P_N", "p_MPa", "slip_mm"):
+    s = max(abs(r[key]) for r in double)
+    diff = max(abs(x[key] - y[key]) for x, y in zip(mixed, double))
+    check(len(mixed) == len(double) and diff <= tol * s,
+          f"two processes, single-precision LU: against one process in double: max |{key}| "
+          f"difference {diff:.2e} <= {tol:.1e} x {s:.4g}")
 inexact_against_exact("lagged whole model on two processes", scene, two,
                       ["solver.condensation=off"], "P_N", curve, SNES_RTOL, mpirun=2)
+two_double = out_dir("solver_lagged_double_two_processes")
+p = run(scene, two_double, sets=["solver.condensation=off", "solver.precision=double"], mpirun=2,
+        extra=["-ksp_view"])
+check("sparse LU in single precision" not in p.stdout,
+      "two processes, solver.precision = double: the whole model's LU in double")
+inexact_against_exact("lagged whole model, LU in double, on two processes", scene, two_double,
+                      ["solver.condensation=off", "solver.precision=double"], "P_N", curve,
+                      SNES_RTOL, mpirun=2)
 # IMPL-EX at Newton's tight tolerance: at its own (IMPLEX_RTOL) a point
 # whose stress is within the tolerance of its strength may crack in one run
 # and not the other, and a step be cut in one only (common.TIGHT_NEWTON).
