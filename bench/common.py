@@ -9,12 +9,15 @@ import pushout_runs  # noqa: E402
 from pushout_runs import PUSHOUT, ROOT, curve, summary, write_csv  # noqa: E402,F401
 
 
-def run(pushout, scene, out, sets=(), petsc=(), reuse=False, timeout=None, check=True):
-    """Runs a scene (one thread, quiet) unless `reuse` and out/ has a summary.
-    Returns the exit code (0 when reused) or None if it ran out of time."""
+def run(pushout, scene, out, sets=(), petsc=(), reuse=False, timeout=None, check=True,
+        mpirun=None):
+    """Runs a scene (one thread per process, quiet; `mpirun`: on that many
+    processes) unless `reuse` and out/ has a summary. Returns the exit code
+    (0 when reused) or None if it ran out of time."""
     if reuse and os.path.exists(os.path.join(out, "summary.json")):
         return 0
-    p = pushout_runs.run(pushout, scene, out, sets, petsc, one_thread=True, timeout=timeout, check=check)
+    p = pushout_runs.run(pushout, scene, out, sets, petsc, one_thread=True, timeout=timeout,
+                         check=check, mpirun=mpirun)
     return None if p is None else p.returncode
 
 

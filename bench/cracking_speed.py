@@ -2,7 +2,8 @@
 """The cost of cracks anywhere in the concrete against the one-plane
 corroded demo, side by side in one run (docs/cracking.md, "Speed").
 
-Cases (the paper's mesh 16/8, one thread each, one after the other):
+Cases (the paper's mesh 16/8, one thread per process, one after the
+other):
 
   plane           demo/pushout_corroded.toml as it is: one crack plane to the
                   nearest face, 25 corrosion steps to x = 50 um, a 40-step
@@ -22,6 +23,9 @@ Cases (the paper's mesh 16/8, one thread each, one after the other):
                   the same at implex_tolerance 0.01 (the default until
                   docs/cracking.md "Accuracy and the tolerance" made it
                   0.0025): about half the time, less accurate;
+  embedded_implex_2proc
+                  embedded_implex on two processes (mpirun -n 2, one
+                  thread each: the LU in single precision across the two);
   embedded_fine   the implicit cracks at four times the steps (100 corrosion,
                   160 push): the reference of the error columns.
 
@@ -59,28 +63,32 @@ def main():
     args = arguments(__doc__, "bench_cracking_speed")
     embedded = pushout_runs.embedded_corroded_demo(
         os.path.join(args.out, "pushout_corroded_embedded.toml"))
+    # name: (scene, --set values, processes)
     cases = {
-        "plane": (os.path.join(ROOT, "demo", "pushout_corroded.toml"), []),
-        "embedded": (embedded, ["cracking.integration=implicit"]),
-        "embedded_auto": (embedded, ["loading.control=auto"]),
-        "embedded_implex": (embedded, ["cracking.integration=implex"]),
+        "plane": (os.path.join(ROOT, "demo", "pushout_corroded.toml"), [], 1),
+        "embedded": (embedded, ["cracking.integration=implicit"], 1),
+        "embedded_auto": (embedded, ["loading.control=auto"], 1),
+        "embedded_implex": (embedded, ["cracking.integration=implex"], 1),
         "embedded_implex_0.01": (embedded, ["cracking.integration=implex",
-                                            "cracking.implex_tolerance=0.01"]),
+                                            "cracking.implex_tolerance=0.01"], 1),
+        "embedded_implex_2proc": (embedded, ["cracking.integration=implex"], 2),
         "embedded_fine": (embedded, ["cracking.integration=implicit", "corrosion.steps=100",
-                                     "loading.steps=160"]),
+                                     "loading.steps=160"], 1),
     }
     rows = []
-    for name, (scene, sets) in cases.items():
+    for name, (scene, sets, processes) in cases.items():
         if args.only and name not in args.only:
             continue
         out = os.path.join(args.out, name)
         start = time.time()
-        code = run(args.pushout, scene, out, sets, reuse=args.reuse, check=False)
+        code = run(args.pushout, scene, out, sets, reuse=args.reuse, check=False,
+                   mpirun=processes if processes > 1 else None)
         print(f"{name}: exit {code}, {time.time() - start:.1f} s", flush=True)
         s = summary(out)
         step0, corrosion, push = phases(out)
         rows.append({"case": name, "wall_s": round(s["wall_s"], 2), "converged": s["converged"],
-                     "symmetry": s["symmetry"], "dofs": s["dofs"],
+                     "processes": s["processes"], "symmetry": s["symmetry"],
+                     "dofs": s["dofs"],
                      "condensed_dofs": s["condensed_dofs"],
                      "newton_iterations": s["newton_iterations"],
                      "factorizations": s["factorizations"],
@@ -108,7 +116,7 @@ def main():
     with open(os.path.join(RESULTS, "cracking_speed.md"), "w") as f:
         f.write("# Cracks anywhere: cost against the one-plane corroded demo\n\n"
                 "Made by `bench/cracking_speed.py " + " ".join(sys.argv[1:]) +
-                "` (one thread per run, this machine, one run each; the error columns "
+                "` (one thread per process, this machine, one run each; the error columns "
                 "against embedded_fine; ran_utc: when each row's run was made, as --reuse "
                 "keeps earlier runs).\n\n")
         f.write(markdown_table(list(rows[0].keys()), rows))
