@@ -172,6 +172,22 @@ std::string seed_table(const std::vector<Variation>& vary, const std::vector<std
   }
   return out.str();
 }
+
+/// One number over a group's converged cases where it is a number.
+struct Tally
+{
+  int count = 0;
+  double sum = 0, min = std::numeric_limits<double>::infinity(),
+         max = -std::numeric_limits<double>::infinity();
+
+  void add(double v)
+  {
+    ++count;
+    sum += v;
+    min = std::min(min, v);
+    max = std::max(max, v);
+  }
+};
 } // namespace
 
 std::string case_name(std::size_t i)
@@ -193,7 +209,7 @@ std::vector<SeedGroup> group_seeds(const std::vector<Variation>& vary,
                                    const std::vector<CaseState>& states)
 {
   std::vector<SeedGroup> groups;
-  std::vector<std::vector<int>> counts;                     // per group, per number
+  std::vector<std::vector<Tally>> tallies;                  // per group, per number
   std::map<std::vector<std::string>, std::size_t> group_of; // the other values -> group
   for (std::size_t i = 0; i < cases.size(); ++i)
   {
@@ -202,39 +218,28 @@ std::vector<SeedGroup> group_seeds(const std::vector<Variation>& vary,
       if (vary[k].key != seed_key)
         others.push_back(value_of(cases[i][k]));
     const auto [at, added] = group_of.emplace(others, groups.size());
-    const std::size_t n = numbers[i].size();
     if (added)
     {
-      groups.push_back({others, 0, 0, std::vector<double>(n, 0.0),
-                        std::vector<double>(n, std::numeric_limits<double>::infinity()),
-                        std::vector<double>(n, -std::numeric_limits<double>::infinity())});
-      counts.emplace_back(n, 0);
+      groups.push_back({others, 0, 0, {}, {}, {}});
+      tallies.emplace_back(numbers[i].size());
     }
     SeedGroup& g = groups[at->second];
     g.seeds += states[i] != CaseState::not_run;
     if (states[i] != CaseState::converged)
       continue;
     ++g.converged;
-    for (std::size_t k = 0; k < n; ++k)
+    std::vector<Tally>& t = tallies[at->second];
+    for (std::size_t k = 0; k < t.size(); ++k)
       if (std::isfinite(numbers[i][k]))
-      {
-        ++counts[at->second][k];
-        g.mean[k] += numbers[i][k];
-        g.min[k] = std::min(g.min[k], numbers[i][k]);
-        g.max[k] = std::max(g.max[k], numbers[i][k]);
-      }
+        t[k].add(numbers[i][k]);
   }
   for (std::size_t j = 0; j < groups.size(); ++j)
-  {
-    SeedGroup& g = groups[j];
-    for (std::size_t k = 0; k < g.mean.size(); ++k)
+    for (const Tally& t : tallies[j])
     {
-      if (counts[j][k] == 0)
-        g.mean[k] = g.min[k] = g.max[k] = nan;
-      else
-        g.mean[k] /= counts[j][k];
+      groups[j].mean.push_back(t.count == 0 ? nan : t.sum / t.count);
+      groups[j].min.push_back(t.count == 0 ? nan : t.min);
+      groups[j].max.push_back(t.count == 0 ? nan : t.max);
     }
-  }
   return groups;
 }
 
