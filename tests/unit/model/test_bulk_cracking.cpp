@@ -16,6 +16,7 @@
 //
 // No equilibrium is solved: a tangent and a gradient are properties of the
 // state, in or out of balance.
+#include "central_difference.h"
 #include "mesh/generate.h"
 #include "model/BulkCracking.h"
 #include "model/Model.h"
@@ -99,72 +100,11 @@ protected:
   Vec x = nullptr, F = nullptr;
 };
 
-/// The largest relative difference over three random directions v (of
-/// `space`, about 1e-3 mm per dof) between `exact(v)` (a vector of
-/// `result`'s layout) and the central difference `difference(h, v)`, each direction its best of
-/// three steps h: a central difference errs by its truncation (~h^2, large where a step crosses a
-/// kink of the cohesive law: loading, unloading) and by round-off (~eps |F|
-/// / h); a wrong derivative is wrong at every step.
-template <typename Exact, typename Difference>
-double worst_relative_error(Vec space, Vec result, Exact&& exact, Difference&& difference)
-{
-  std::mt19937 gen(5);
-  std::uniform_real_distribution<double> U(-1, 1);
-  Vec v, e, d;
-  VecDuplicate(space, &v);
-  VecDuplicate(result, &e);
-  VecDuplicate(result, &d);
-  PetscInt n;
-  VecGetLocalSize(v, &n);
-  double worst = 0;
-  for (int trial = 0; trial < 3; ++trial)
-  {
-    double* a;
-    VecGetArray(v, &a);
-    for (PetscInt i = 0; i < n; ++i)
-      a[i] = 1e-3 * U(gen); // [mm]: a strain of about 1e-4 over a cell
-    VecRestoreArray(v, &a);
-    exact(v, e);
-    double scale;
-    VecNorm(e, NORM_INFINITY, &scale);
-    double best = INFINITY;
-    for (const double h : {1e-3, 1e-4, 1e-5})
-    {
-      difference(h, v, d);
-      VecAXPY(d, -1.0, e);
-      double diff;
-      VecNorm(d, NORM_INFINITY, &diff);
-      best = std::min(best, diff / scale);
-    }
-    worst = std::max(worst, best);
-  }
-  for (Vec* w : {&v, &e, &d})
-    VecDestroy(w);
-  return worst;
-}
+/// The directions of the central differences below: about 1e-3 mm per dof
+/// (a strain of about 1e-4 over a cell), and their steps.
+constexpr double direction_mm = 1e-3;
+constexpr std::initializer_list<double> steps_mm = {1e-3, 1e-4, 1e-5};
 
-/// worst_relative_error of the assembled tangent J at `at` against the
-/// central differences of the assembled residual there.
-double tangent_error(solver::Equilibrium& eq, Mat J, Vec at)
-{
-  Vec xp, xm, Fm;
-  for (Vec* w : {&xp, &xm, &Fm})
-    VecDuplicate(at, w);
-  const double error = worst_relative_error(
-      at, at, [&](Vec v, Vec Jv) { MatMult(J, v, Jv); },
-      [&](double h, Vec v, Vec d)
-      {
-        VecWAXPY(xp, h, v, at);
-        VecWAXPY(xm, -h, v, at);
-        eq.internal_forces(xp, d);
-        eq.internal_forces(xm, Fm);
-        VecAXPY(d, -1.0, Fm);
-        VecScale(d, 1.0 / (2 * h));
-      });
-  for (Vec* w : {&xp, &xm, &Fm})
-    VecDestroy(w);
-  return error;
-}
 } // namespace
 
 TEST_F(CrackedSlice, MostPointsCrack)
@@ -185,7 +125,7 @@ TEST_F(CrackedSlice, AssembledTangentMatchesFiniteDifferences)
   // No constraints are set: every row is compared. Central differences of
   // a smooth residual: truncation ~h^2 and round-off ~1e-16 |F| / h, far
   // below this (as test_jacobian.cpp).
-  EXPECT_LT(tangent_error(*eq, J, x1), 1e-6);
+  EXPECT_LT(unit::tangent_error(*eq, J, x1, direction_mm, steps_mm), 1e-6);
   VecDestroy(&x1);
   MatDestroy(&J);
 }
@@ -313,7 +253,7 @@ TEST_F(ImplexCrackedSlice, TangentIsTheResidualsDerivativeAfterCracksCloseAndReo
   ASSERT_TRUE(eq->internal_forces(x2, F));
   EXPECT_NE(cracking().tangent_version(), closed) << "no crack opened again";
   ASSERT_TRUE(eq->jacobian(x2, J));
-  EXPECT_LT(tangent_error(*eq, J, x2), 1e-6);
+  EXPECT_LT(unit::tangent_error(*eq, J, x2, direction_mm, steps_mm), 1e-6);
   for (Vec* w : {&xc, &x2})
     VecDestroy(w);
   MatDestroy(&J);
@@ -333,7 +273,7 @@ TEST_F(ImplexCrackedSlice, TangentIsTheResidualsDerivativeAfterANewExtrapolation
   stretch(x2, 2.3e-4, 1e-5, 11);
   ASSERT_TRUE(eq->internal_forces(x2, F));
   ASSERT_TRUE(eq->jacobian(x2, J));
-  EXPECT_LT(tangent_error(*eq, J, x2), 1e-6);
+  EXPECT_LT(unit::tangent_error(*eq, J, x2, direction_mm, steps_mm), 1e-6);
   VecDestroy(&x2);
   MatDestroy(&J);
 }
@@ -353,8 +293,9 @@ TEST_F(CrackedSlice, EnergyReleaseGradientMatchesFiniteDifferences)
   // The gradient as a directional derivative g . v, in a one-entry Vec.
   Vec one;
   VecCreateMPI(MPI_COMM_WORLD, PETSC_DECIDE, 1, &one);
-  const double error = worst_relative_error(
-      x, one,
+  std::mt19937 gen(5);
+  const double error = unit::worst_relative_error(
+      x, one, gen, direction_mm, steps_mm,
       [&](Vec v, Vec e)
       {
         double gv;

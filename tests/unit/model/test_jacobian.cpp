@@ -1,6 +1,7 @@
 // The consistent tangent in the assembled system: on a coarse push-out with
 // a sliding friction interface, J v equals the central finite difference of
 // the assembled residual F along random directions v.
+#include "central_difference.h"
 #include "mesh/generate.h"
 #include "model/Model.h"
 #include "scene/Scene.h"
@@ -53,46 +54,11 @@ double jacobian_error(const std::string& quadrature, int degree = 1)
   Mat J;
   MatDuplicate(model.stiffness(), MAT_COPY_VALUES, &J);
   EXPECT_TRUE(eq.jacobian(x, J));
-  Vec v, Jv, Fp, Fm, xp, xm;
-  for (Vec* w : {&v, &Jv, &Fp, &Fm, &xp, &xm})
-    VecDuplicate(x, w);
-  double worst = 0;
-  // A central difference errs by its truncation (~h^2, large where a step
-  // crosses a stick/slip kink) and by the residual's round-off (~eps |F| /
-  // h, whose size depends on the state's cancellations, and so on the BLAS
-  // threads and the generated forms' last digits): each direction takes the
-  // best of three steps, where one of the two is small. A wrong tangent is
-  // wrong at every step.
-  for (int trial = 0; trial < 3; ++trial)
-  {
-    double* va;
-    VecGetArray(v, &va);
-    for (PetscInt i = 0; i < n; ++i)
-      va[i] = U(gen);
-    VecRestoreArray(v, &va);
-    MatMult(J, v, Jv);
-    double norm_Jv;
-    VecNorm(Jv, NORM_INFINITY, &norm_Jv);
-    double best = INFINITY;
-    for (const double h : {1e-6, 1e-7, 1e-8}) // mm
-    {
-      VecWAXPY(xp, h, v, x);
-      VecWAXPY(xm, -h, v, x);
-      eq.internal_forces(xp, Fp);
-      eq.internal_forces(xm, Fm);
-      VecAXPY(Fp, -1.0, Fm);
-      VecScale(Fp, 1.0 / (2 * h));
-      // Free rows only: J's constrained rows are identity; there are no
-      // constraints set here, so all rows are compared.
-      VecAXPY(Fp, -1.0, Jv);
-      double diff;
-      VecNorm(Fp, NORM_INFINITY, &diff);
-      best = std::min(best, diff / norm_Jv);
-    }
-    worst = std::max(worst, best);
-  }
-  for (Vec* w : {&v, &Jv, &Fp, &Fm, &xp, &xm, &x})
-    VecDestroy(w);
+  // Directions of unit size per dof, steps where one of the two errors is
+  // small (unit::worst_relative_error). No constraints are set here: J has
+  // no identity rows, and every row is compared.
+  const double worst = unit::tangent_error(eq, J, x, 1.0, {1e-6, 1e-7, 1e-8}, &gen);
+  VecDestroy(&x);
   MatDestroy(&J);
   return worst;
 }
