@@ -30,6 +30,10 @@ Axes axes_of(const std::string& model_type)
   return {"delta", "mm", "tau", "MPa"};
 }
 
+/// The index in number_names of the last point's abscissa (delta_last_mm,
+/// u_s_last_mm): the run's end, the same for every seed.
+constexpr std::size_t last_abscissa = 3;
+
 /// The names of a case's numbers (CaseNumbers) for `model_type`.
 std::vector<std::string> number_names(const std::string& model_type)
 {
@@ -155,9 +159,8 @@ std::string seed_table(const std::vector<Variation>& vary, const std::vector<std
     if (v.key != seed_key)
       out << csv_cell(v.key) << ",";
   out << "seeds,converged";
-  // The last point's abscissa is the run's end, the same for every seed.
   for (std::size_t k = 0; k < names.size(); ++k)
-    if (k != 3)
+    if (k != last_abscissa)
       out << "," << names[k] << "_mean," << names[k] << "_min," << names[k] << "_max";
   out << "\n" << std::setprecision(12);
   for (const SeedGroup& g : groups)
@@ -166,7 +169,7 @@ std::string seed_table(const std::vector<Variation>& vary, const std::vector<std
       out << csv_cell(v) << ",";
     out << g.seeds << "," << g.converged;
     for (std::size_t k = 0; k < names.size(); ++k)
-      if (k != 3)
+      if (k != last_abscissa)
         out << "," << g.mean[k] << "," << g.min[k] << "," << g.max[k];
     out << "\n";
   }
