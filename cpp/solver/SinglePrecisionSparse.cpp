@@ -87,10 +87,10 @@ void initialise(Factors& f, MPI_Comm comm)
     f.id.icntl[icntl_distributed_matrix] = 3;
 }
 
-/// P's rows on this process as MUMPS's coordinates (1-based, global), in
-/// the order of P's rows, the coordinates only for a new pattern: a
-/// sequential AIJ matrix's through its row structure, a parallel one's row
-/// by row. The values in single precision.
+/// This process's rows of P for MUMPS: their values in single precision,
+/// and for a new pattern their coordinates (1-based, global, in P's row
+/// order). A sequential AIJ matrix is read through its row structure, a
+/// parallel one row by row.
 void read_rows(Factors& f, Mat P, bool new_pattern)
 {
   if (!f.distributed)
@@ -180,7 +180,6 @@ bool load(Factors& f, Mat P)
     f.id.irn = f.rows.data();
     f.id.jcn = f.cols.data();
     f.id.a = f.values.data();
-    f.rhs.resize(std::size_t(rows));
   }
   if (new_pattern)
   {
