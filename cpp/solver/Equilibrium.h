@@ -76,8 +76,8 @@ public:
       cracking->revert();
   }
   int constraint_version() const override { return _constraint_version; }
-  /// GMRES on a lagged MUMPS LU, on one process, with solver.precision =
-  /// "mixed": that LU in single precision, and flexible GMRES
+  /// GMRES on a lagged MUMPS LU, with solver.precision = "mixed": that LU
+  /// in single precision (on any number of processes), and flexible GMRES
   /// (SinglePrecisionSparse.h). Any other solver as the options say.
   void configure(KSP ksp) const override;
 

@@ -62,7 +62,7 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
                                  : "; implicit cracks (cracking.integration)";
   // The whole model's linear solver as NewtonSolver::set_default_options
   // and Equilibrium::configure make it (the LU in single precision under
-  // GMRES on one process), unless the user's PETSc options chose another.
+  // GMRES), unless the user's PETSc options chose another.
   const bool single = part.mixed_precision && (lagged || nonsmooth_bulk);
   const std::string whole_linear =
       NewtonSolver::linear_solver_from_options() ? ", the linear solver of the PETSc options"

@@ -128,9 +128,9 @@ public:
   /// 2 103, the same Newton iterations, τ within 2e-6 of its value
   /// (docs/cracking.md, "Speed of a step"). Only with
   /// Preconditioner::lagged (elsewhere every iteration has its own LU),
-  /// where GMRES measures the true residual (flexible GMRES, as with the
-  /// LU in single precision on one process; a preconditioned norm may be
-  /// far from it), and without -snes_ksp_ew, which sets the tolerances
+  /// where GMRES measures the true residual (flexible GMRES on the LU in
+  /// single precision, right-preconditioned GMRES on the LU in double; a
+  /// preconditioned norm may be far from it), and without -snes_ksp_ew, which sets the tolerances
   /// itself. Off by default.
   void set_inexact(bool inexact) { _inexact = inexact && _policy.lagged(); }
 
@@ -154,8 +154,8 @@ public:
   /// tolerances) where the user did not set them. Call before NewtonSolver.
   /// The LU is the solver (KSP preonly), or preconditions GMRES: lagged, or
   /// the LU of every Jacobian of implicit cracks when it is factored in
-  /// single precision (`single_precision_lu`: solver.precision = "mixed" on
-  /// one process; Equilibrium::configure). The line search backtracks (bt),
+  /// single precision (`single_precision_lu`: solver.precision = "mixed";
+  /// Equilibrium::configure). The line search backtracks (bt),
   /// or, if the concrete's cracks are solved in every iteration
   /// (Concrete::cracks), minimises |F|^2 along the Newton direction (l2):
   /// backtracking from a full step that cracks many points stalled on the

@@ -61,16 +61,15 @@ double worst_relative_error(Vec space, Vec result, std::mt19937& gen, double amp
 
 /// worst_relative_error of the assembled tangent J at `at` against the
 /// central differences of the assembled residual there; directions of
-/// `amplitude` [mm] per dof from a generator seeded 5 unless `gen` is given.
-inline double tangent_error(solver::Equilibrium& eq, Mat J, Vec at, double amplitude,
-                            std::initializer_list<double> steps, std::mt19937* gen = nullptr)
+/// `amplitude` [mm] per dof drawn from `gen`.
+inline double tangent_error(solver::Equilibrium& eq, Mat J, Vec at, std::mt19937 gen,
+                            double amplitude, std::initializer_list<double> steps)
 {
-  std::mt19937 own(5);
   Vec xp, xm, Fm;
   for (Vec* w : {&xp, &xm, &Fm})
     VecDuplicate(at, w);
   const double error = worst_relative_error(
-      at, at, gen ? *gen : own, amplitude, steps, [&](Vec v, Vec Jv) { MatMult(J, v, Jv); },
+      at, at, gen, amplitude, steps, [&](Vec v, Vec Jv) { MatMult(J, v, Jv); },
       [&](double h, Vec v, Vec d)
       {
         VecWAXPY(xp, h, v, at);

@@ -57,7 +57,7 @@ double jacobian_error(const std::string& quadrature, int degree = 1)
   // Directions of unit size per dof, steps where one of the two errors is
   // small (unit::worst_relative_error). No constraints are set here: J has
   // no identity rows, and every row is compared.
-  const double worst = unit::tangent_error(eq, J, x, 1.0, {1e-6, 1e-7, 1e-8}, &gen);
+  const double worst = unit::tangent_error(eq, J, x, gen, 1.0, {1e-6, 1e-7, 1e-8});
   VecDestroy(&x);
   MatDestroy(&J);
   return worst;
