@@ -125,17 +125,21 @@ struct CrackBandResult
 /// closure, and the functional whose sign picks the side: what every
 /// evaluation of a step needs, computed once per step
 /// (CrackBand::secant_operator, applied by CrackBand::secant_apply).
-struct SecantOperator
+///
+/// What picks the side comes first, on one cache line: an evaluation reads
+/// it at every point, and then one of the two maps (BulkCracking::evaluate
+/// streams them, 40 960 points on the bench's mesh).
+struct alignas(64) SecantOperator
 {
   bool cracked = false;
-  /// d sigma / d epsilon with the crack open [0] and closed [1] [MPa]
-  std::array<Voigt66, 2> tangent{};
   /// That side's crack equilibrium J is regular (else its response fails).
   std::array<bool, 2> regular{true, true};
+  double damage = 0; ///< the crack's damage at the history [-]
   /// n . w of the open crack per unit strain [mm]: the crack is open where
   /// closing . epsilon > 0.
   Voigt closing{};
-  double damage = 0; ///< the crack's damage at the history [-]
+  /// d sigma / d epsilon with the crack open [0] and closed [1] [MPa]
+  std::array<Voigt66, 2> tangent{};
 };
 
 class CrackBand
@@ -290,16 +294,18 @@ public:
   }
 
   /// secant_response() of the committed state `old` at the history `kappa`
-  /// [mm] as linear maps of the strain (SecantOperator): secant_apply() of
-  /// it at a strain is secant_response() there.
-  SecantOperator secant_operator(std::span<const double> old, double kappa,
-                                 double strength = 1) const
+  /// [mm] as linear maps of the strain, into `op`: secant_apply() of it at a
+  /// strain is secant_response() there. Written in place (an operator is
+  /// 640 bytes, made at every point at every step); where `old` is
+  /// uncracked only op.cracked is, the rest is never read.
+  void secant_operator(std::span<const double> old, double kappa, double strength,
+                       SecantOperator& op) const
   {
     const CrackState<const double> state(old);
-    SecantOperator op;
-    if (!state.cracked())
-      return op;
-    op.cracked = true;
+    op.cracked = state.cracked();
+    if (!op.cracked)
+      return;
+    op.closing = {};
     const CrackPlane plane(*this, state, Voigt{});
     const laws::CamanhoDavila law = cohesive_law(plane.h, strength);
     kappa = std::max(kappa, laws::DamageHistory<const double>(state.law_state()).kappa());
@@ -328,7 +334,6 @@ public:
             op.closing[j] += plane.R[i] * Jinv[k][i] * s0[k];
       }
     }
-    return op;
   }
 
   /// The stress and tangent of secant_operator() `op` at `strain`, and
@@ -337,30 +342,41 @@ public:
   CrackBandResult secant_apply(const SecantOperator& op, const Voigt& strain) const
   {
     CrackBandResult r;
-    if (!op.cracked)
+    const int side = secant_side(op, strain);
+    if (side == secant_elastic || side == secant_failed)
     {
+      // Uncracked; or as secant_response() fails: elastic, not closed, not
+      // converged.
       r.stress = multiply(_C, strain);
       r.tangent = _C;
+      if (side == secant_failed)
+        r.status = CrackBandResult::Status::not_converged;
       return r;
     }
-    double opening = 0;
-    for (int j = 0; j < 6; ++j)
-      opening += op.closing[j] * strain[j];
-    const int side = op.regular[0] && opening > 0 ? 0 : 1;
-    if (!op.regular[0] || !op.regular[side])
-    {
-      // As secant_response() fails: elastic, not closed, not converged.
-      r.stress = multiply(_C, strain);
-      r.tangent = _C;
-      r.status = CrackBandResult::Status::not_converged;
-      return r;
-    }
-    r.closed = side == 1;
+    r.closed = side == secant_closed;
     r.tangent = op.tangent[side];
     r.stress = multiply(r.tangent, strain);
     r.damage = op.damage;
     return r;
   }
+
+  /// Which map of secant_operator() `op` answers at `strain`, as
+  /// secant_apply() picks it: op.tangent[secant_open] or
+  /// op.tangent[secant_closed], or C (secant_elastic: uncracked;
+  /// secant_failed: that side's crack equilibrium is singular, and
+  /// secant_response() fails). What an evaluation needs without the
+  /// result's copy of the tangent.
+  static int secant_side(const SecantOperator& op, const Voigt& strain)
+  {
+    if (!op.cracked)
+      return secant_elastic;
+    double opening = 0;
+    for (int j = 0; j < 6; ++j)
+      opening += op.closing[j] * strain[j];
+    const int side = op.regular[0] && opening > 0 ? secant_open : secant_closed;
+    return op.regular[0] && op.regular[side] ? side : secant_failed;
+  }
+  static constexpr int secant_open = 0, secant_closed = 1, secant_failed = 2, secant_elastic = 3;
 
 private:
   static constexpr std::array<double, 2> zero_history = {0, 0};

@@ -285,73 +285,122 @@ bool BulkCracking::evaluate()
       std::equal(u.begin(), u.end(), _evaluated.u.begin(), _evaluated.u.end()))
     return _evaluated.ok;
   _trial_implicit = false;
-  const int n_points = expression_cracking_strain->num_points;
   evaluate_strains();
-  const bulk::Voigt66& C = _band.stiffness();
-  bool ok = true;
-  bool tangent_changed = !_implex;
-  // IMPL-EX: a point's tangent (d_C) is written when its secant maps are
-  // made anew or its crack opens or closes; it holds otherwise.
-  const bool new_secants = _implex && !_secant_current;
-  if (new_secants)
-  {
-    for (std::size_t i = 0; i < _secant.size(); ++i)
-      _secant[i] = _band.secant_operator(
-          std::span<const double>(_committed.data() + state * i, state),
-          kappa_of(_committed, i) + _extrapolation * _kappa_step[i], _strength[i]);
-    _secant_current = true;
-  }
+  bool tangent_changed = true;
+  const bool ok = _implex ? apply_secants(tangent_changed) : update_points();
+  if (tangent_changed)
+    ++_tangent_version;
+  _evaluated = {true, ++_trial_version, {u.begin(), u.end()}, ok};
+  return ok;
+}
+
+template <typename At> void BulkCracking::for_each_point(At&& at)
+{
+  const int n_points = expression_cracking_strain->num_points;
   const PointValues d_sigma_at(*_d_sigma, voigt), d_C_at(*_d_C, voigt_sq);
   for (std::size_t c = 0; c < _cells.size(); ++c)
     for (int q = 0; q < n_points; ++q)
     {
       const std::size_t i = c * std::size_t(n_points) + q;
-      const bulk::Voigt strain = voigt_at(_strain_values, i);
-      const std::span<const double> old(_committed.data() + state * i, state);
-      const std::span<double> now(_trial.data() + state * i, state);
-      auto width = [&](const bulk::Vec3& n) { return band_width(c, n); };
-      // Initialised in place (not assigned): the result is 50 numbers, and
-      // zeroing and copying a second one cost a tenth of the loop.
-      bulk::CrackBandResult r = [&]
+      at(c, i, voigt_at(_strain_values, i), d_sigma_at(_cells[c], q),
+         [&] { return d_C_at(_cells[c], q); });
+    }
+}
+
+bool BulkCracking::update_points()
+{
+  const bulk::Voigt66& C = _band.stiffness();
+  bool ok = true;
+  for_each_point(
+      [&](std::size_t c, std::size_t i, const bulk::Voigt& strain, std::span<double> d_sigma,
+          auto d_C_at)
       {
-        if (_implex)
-          return _band.secant_apply(_secant[i], strain);
-        if (_new_cracks || bulk::CrackState<const double>(old).cracked())
-          return _band.update(old, strain, now, width, _strength[i], _dt);
-        return _band.held_uncracked(old, strain, now);
-      }();
-      if (!_implex && _loading[i] && at_committed_strain(i, strain))
-        r.tangent = loading_tangent(i, strain, width);
-      ok = ok && r.status == bulk::CrackBandResult::Status::ok;
-      bool write_tangent = !_implex || new_secants;
-      // The side of closure whose map answered (a failed one answers C).
-      const std::uint8_t side = r.status != bulk::CrackBandResult::Status::ok ? 2 : r.closed;
-      if (_implex && side != _closed[i])
-      {
-        _closed[i] = side;
-        tangent_changed = write_tangent = true;
-      }
-      std::copy(r.stress.begin(), r.stress.end(), _stress_trial.begin() + voigt * i);
-      if (!_implex) // IMPL-EX: the readings are implicit_update()'s
-      {
+        const std::span<const double> old(_committed.data() + state * i, state);
+        const std::span<double> now(_trial.data() + state * i, state);
+        auto width = [&](const bulk::Vec3& n) { return band_width(c, n); };
+        // Initialised in place (not assigned): the result is 50 numbers, and
+        // zeroing and copying a second one cost a tenth of the loop.
+        bulk::CrackBandResult r = _new_cracks || bulk::CrackState<const double>(old).cracked()
+                                      ? _band.update(old, strain, now, width, _strength[i], _dt)
+                                      : _band.held_uncracked(old, strain, now);
+        if (_loading[i] && at_committed_strain(i, strain))
+          r.tangent = loading_tangent(i, strain, width);
+        ok = ok && r.status == bulk::CrackBandResult::Status::ok;
+        std::copy(r.stress.begin(), r.stress.end(), _stress_trial.begin() + voigt * i);
         _dissipated_step[i] = r.dissipation;
         _dissipated_trial[i] = _dissipated[i] + r.dissipation;
         std::copy(r.opening.begin(), r.opening.end(), _opening_trial.begin() + 3 * i);
-      }
-      const std::span<double> d_sigma = d_sigma_at(_cells[c], q);
-      const bulk::Voigt elastic = bulk::multiply(C, strain);
-      for (int k = 0; k < voigt; ++k)
-        d_sigma[k] = r.stress[k] - elastic[k];
-      if (write_tangent)
-      {
-        const std::span<double> d_C = d_C_at(_cells[c], q);
+        const bulk::Voigt elastic = bulk::multiply(C, strain);
+        for (int k = 0; k < voigt; ++k)
+          d_sigma[k] = r.stress[k] - elastic[k];
+        const std::span<double> d_C = d_C_at();
         for (int k = 0; k < voigt_sq; ++k)
           d_C[k] = r.tangent[k] - C[k];
-      }
-    }
-  if (tangent_changed)
-    ++_tangent_version;
-  _evaluated = {true, ++_trial_version, {u.begin(), u.end()}, ok};
+      });
+  return ok;
+}
+
+bool BulkCracking::apply_secants(bool& tangent_changed)
+{
+  // The step's maps, made at its first evaluation: each point's tangent
+  // (d_C) is written then, and afterwards only where its crack opens or
+  // closes.
+  const bool new_secants = !_secant_current;
+  if (new_secants)
+  {
+    for (std::size_t i = 0; i < _secant.size(); ++i)
+      _band.secant_operator(std::span<const double>(_committed.data() + state * i, state),
+                            kappa_of(_committed, i) + _extrapolation * _kappa_step[i], _strength[i],
+                            _secant[i]);
+    _secant_current = true;
+  }
+  tangent_changed = new_secants;
+  const bulk::Voigt66& C = _band.stiffness();
+  bool ok = true;
+  for_each_point(
+      [&](std::size_t, std::size_t i, const bulk::Voigt& strain, std::span<double> d_sigma,
+          auto d_C_at)
+      {
+        const bulk::SecantOperator& op = _secant[i];
+        const int side = bulk::CrackBand::secant_side(op, strain);
+        // The map that answers; none: C (uncracked, or the map failed).
+        const bulk::Voigt66* T =
+            side == bulk::CrackBand::secant_open || side == bulk::CrackBand::secant_closed
+                ? &op.tangent[side]
+                : nullptr;
+        ok = ok && side != bulk::CrackBand::secant_failed;
+        // The side of closure as _closed keeps it (a failed map answers C,
+        // and so does an uncracked point, on the open side).
+        const std::uint8_t closed = side == bulk::CrackBand::secant_elastic ? 0 : side;
+        const bool write_tangent = new_secants || closed != _closed[i];
+        if (closed != _closed[i])
+        {
+          _closed[i] = closed;
+          tangent_changed = true;
+        }
+        const bulk::Voigt elastic = bulk::multiply(C, strain);
+        double* stress = _stress_trial.data() + voigt * i;
+        if (T)
+        {
+          const bulk::Voigt s = bulk::multiply(*T, strain);
+          for (int k = 0; k < voigt; ++k)
+          {
+            stress[k] = s[k];
+            d_sigma[k] = s[k] - elastic[k];
+          }
+        }
+        else
+        {
+          std::copy(elastic.begin(), elastic.end(), stress);
+          std::fill(d_sigma.begin(), d_sigma.end(), 0.0);
+        }
+        if (write_tangent)
+        {
+          const std::span<double> d_C = d_C_at();
+          for (int k = 0; k < voigt_sq; ++k)
+            d_C[k] = T ? (*T)[k] - C[k] : 0.0;
+        }
+      });
   return ok;
 }
 
@@ -534,34 +583,5 @@ void BulkCracking::add_tangent_change(Mat A, std::vector<double>& assembled)
       fem::create_form<double>(*form_cracking_a_crack, _a->function_spaces(),
                                {{"d_C", _d_C_change}}, {}, {{fem::IntegralType::cell, &tags}});
   fem::assemble_matrix(dolfinx::la::petsc::Matrix::set_block_fn(A, ADD_VALUES), form, {});
-}
-
-CrackingTotals BulkCracking::totals()
-{
-  // A failure was the converged step's, and is not one. IMPL-EX: the
-  // state the step commits, the crack band's own at the converged strain.
-  if (_implex)
-    implicit_update();
-  else
-    evaluate();
-  CrackingTotals t;
-  t.points = std::int64_t(_strength.size());
-  for (std::size_t i = 0; i < _strength.size(); ++i)
-  {
-    const bulk::CrackState<const double> s(
-        std::span<const double>(_trial.data() + state * i, state));
-    if (!s.cracked())
-      continue;
-    ++t.cracked_points;
-    t.max_opening = std::max(t.max_opening, _opening_trial[3 * i]);
-  }
-  t.dissipated = integrate([&](std::size_t i) { return _dissipated_trial[i]; });
-  MPI_Comm comm = _mesh->comm();
-  MPI_Allreduce(MPI_IN_PLACE, &t.points, 1, MPI_INT64_T, MPI_SUM, comm);
-  MPI_Allreduce(MPI_IN_PLACE, &t.cracked_points, 1, MPI_INT64_T, MPI_SUM, comm);
-  MPI_Allreduce(MPI_IN_PLACE, &t.dissipated, 1, MPI_DOUBLE, MPI_SUM, comm);
-  MPI_Allreduce(MPI_IN_PLACE, &t.max_opening, 1, MPI_DOUBLE, MPI_MAX, comm);
-  read_surface(t);
-  return t;
 }
 } // namespace pushout::model

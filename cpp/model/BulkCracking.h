@@ -236,6 +236,21 @@ private:
   /// The strain at every point from the model's displacement, into
   /// _strain_values.
   void evaluate_strains();
+  /// evaluate()'s implicit cracks: the crack band's update of every point
+  /// from the committed state to _strain_values, into the trial state and
+  /// the forms' coefficients. Whether every point's update converged.
+  bool update_points();
+  /// evaluate()'s IMPL-EX cracks: every point's response to _strain_values
+  /// by its step's secant maps (made at the step's first evaluation), into
+  /// the trial stress and the forms' coefficients. Whether every map
+  /// answered; `tangent_changed`: whether some point's tangent changed.
+  bool apply_secants(bool& tangent_changed);
+  /// Calls at(cell, point, strain, d_sigma, d_C) at every point, in the
+  /// order of the points' arrays ([cell][point]): the strain is
+  /// _strain_values', d_sigma the stress coefficient's values there, d_C()
+  /// the tangent coefficient's. evaluate()'s loop (defined and used in
+  /// BulkCracking.cpp).
+  template <typename At> void for_each_point(At&& at);
   /// What a step's cracks hold changed (a commit, a reset, a new
   /// extrapolation): their tangent and secant maps are to be made again.
   void history_changed()

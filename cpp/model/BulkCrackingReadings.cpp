@@ -1,5 +1,6 @@
 // What the concrete's cracks look like from outside (BulkCracking.h): the
-// cells' places on the slice, the gauge's reading at the outer faces
+// totals a step records (cracked points, dissipation, the widest crack),
+// the cells' places on the slice, the gauge's reading at the outer faces
 // (SurfaceCracks.h) and the per-cell fields of fields.xdmf.
 #include "../laws/CamanhoDavila.h"
 #include "BulkCracking.h"
@@ -275,5 +276,33 @@ void BulkCracking::cell_fields(dolfinx::fem::Function<double>& opening,
   opening.x()->scatter_fwd();
   normal.x()->scatter_fwd();
   damage.x()->scatter_fwd();
+}
+CrackingTotals BulkCracking::totals()
+{
+  // A failure was the converged step's, and is not one. IMPL-EX: the
+  // state the step commits, the crack band's own at the converged strain.
+  if (_implex)
+    implicit_update();
+  else
+    evaluate();
+  CrackingTotals t;
+  t.points = std::int64_t(_strength.size());
+  for (std::size_t i = 0; i < _strength.size(); ++i)
+  {
+    const bulk::CrackState<const double> s(
+        std::span<const double>(_trial.data() + state * i, state));
+    if (!s.cracked())
+      continue;
+    ++t.cracked_points;
+    t.max_opening = std::max(t.max_opening, _opening_trial[3 * i]);
+  }
+  t.dissipated = integrate([&](std::size_t i) { return _dissipated_trial[i]; });
+  MPI_Comm comm = _mesh->comm();
+  MPI_Allreduce(MPI_IN_PLACE, &t.points, 1, MPI_INT64_T, MPI_SUM, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &t.cracked_points, 1, MPI_INT64_T, MPI_SUM, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &t.dissipated, 1, MPI_DOUBLE, MPI_SUM, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &t.max_opening, 1, MPI_DOUBLE, MPI_MAX, comm);
+  read_surface(t);
+  return t;
 }
 } // namespace pushout::model

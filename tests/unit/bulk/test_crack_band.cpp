@@ -413,7 +413,9 @@ TEST(CrackBand, SecantResponseIsLinearEachSideOfClosureWithSymmetricTangent)
 // IMPL-EX's evaluations within a step (BulkCracking::evaluate): the secant
 // response as linear maps computed once (CrackBand::secant_operator) and
 // applied at each strain (secant_apply) is secant_response itself, on
-// either side of closure, to the round-off of the different sums.
+// either side of closure, to the round-off of the different sums. One
+// operator is written over and over, as BulkCracking keeps one per point:
+// nothing of an earlier state may stay in it.
 TEST(CrackBand, SecantOperatorAppliedIsTheSecantResponse)
 {
   const CrackBand law(E, nu, exponential);
@@ -421,13 +423,14 @@ TEST(CrackBand, SecantOperatorAppliedIsTheSecantResponse)
   std::uniform_real_distribution<double> U(-1, 1);
   double worst_stress = 0, worst_tangent = 0;
   int tried = 0, closed = 0, open = 0;
+  SecantOperator op;
   for (int trial = 0; trial < 200; ++trial)
   {
     Path path{law, 2.0};
     path.step({2e-4 * (U(gen) + 1.5), 1e-4 * U(gen), 1e-4 * U(gen), 1e-4 * U(gen), 1e-4 * U(gen),
                1e-4 * U(gen)});
     const double kappa = path.state[8] * (2 + U(gen));
-    const SecantOperator op = law.secant_operator(path.state, kappa);
+    law.secant_operator(path.state, kappa, 1, op);
     EXPECT_EQ(op.cracked, path.state[0] != 0);
     ++tried;
     for (int k = 0; k < 5; ++k)
@@ -438,6 +441,11 @@ TEST(CrackBand, SecantOperatorAppliedIsTheSecantResponse)
       const CrackBandResult direct = law.secant_response(path.state, strain, kappa);
       const CrackBandResult applied = law.secant_apply(op, strain);
       ASSERT_EQ(applied.status, direct.status);
+      // The side that BulkCracking::evaluate reads without the result.
+      const int side = CrackBand::secant_side(op, strain);
+      EXPECT_EQ(side == CrackBand::secant_failed, direct.status != CrackBandResult::Status::ok);
+      EXPECT_EQ(side == CrackBand::secant_elastic, !op.cracked);
+      EXPECT_EQ(side == CrackBand::secant_closed, direct.closed);
       EXPECT_EQ(applied.closed, direct.closed);
       (direct.closed ? closed : open) += op.cracked;
       EXPECT_DOUBLE_EQ(applied.damage, direct.damage);
