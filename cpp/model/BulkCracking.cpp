@@ -1,6 +1,7 @@
 #include "BulkCracking.h"
 #include "../bulk/StrengthField.h"
 #include "../scene/SceneError.h"
+#include "BulkCrackingPoints.h"
 #include "CrackingCells.h"
 #include "cracking.h"
 #include <algorithm>
@@ -13,56 +14,15 @@
 
 namespace pushout::model
 {
+using namespace points;
 namespace
 {
 namespace fem = dolfinx::fem;
 constexpr int region_tag = 1; ///< REGION of forms/cracking.py
-constexpr int voigt = 6;      ///< strain and stress components
-constexpr int voigt_sq = 36;  ///< tangent components
-constexpr int state = bulk::CrackBand::state_size;
 /// The relative size of the step beyond the committed strain at which a
 /// crack's loading tangent is taken where the strain has not moved
 /// (BulkCracking::loading_tangent; as interface::Interface::loading_probe).
 constexpr double probe = 1e-9;
-
-/// The history kappa of point i's crack in `states` ([point][state]) [mm].
-double kappa_of(const std::vector<double>& states, std::size_t i)
-{
-  return laws::DamageHistory<const double>(
-             bulk::CrackState<const double>(std::span(states.data() + state * i, state))
-                 .law_state())
-      .kappa();
-}
-
-/// Point i's six Voigt components in `values` ([point][6]).
-bulk::Voigt voigt_at(const std::vector<double>& values, std::size_t i)
-{
-  bulk::Voigt v;
-  std::copy_n(values.begin() + voigt * i, voigt, v.begin());
-  return v;
-}
-
-/// The values of a Quadrature function at (cell, point), `bs` per point.
-/// Made once per loop over the points: the dofmap and the array are looked
-/// up here, not at each point (two shared_ptr copies a point cost 4 % of
-/// an IMPL-EX run).
-class PointValues
-{
-public:
-  PointValues(fem::Function<double>& f, int bs)
-      : _dofs(f.function_space()->dofmap()->list()), _values(f.x()->mutable_array()), _bs(bs)
-  {
-  }
-  std::span<double> operator()(std::int32_t cell, int point) const
-  {
-    return _values.subspan(std::size_t(_dofs.links(cell)[point]) * _bs, _bs);
-  }
-
-private:
-  const dolfinx::graph::AdjacencyList<std::int32_t>& _dofs; // f's space's, alive with f
-  std::span<double> _values;
-  std::size_t _bs;
-};
 
 /// A function on the Quadrature space that `form`'s coefficient `name`
 /// lives on (forms/cracking.py).
@@ -102,8 +62,8 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
       _cells(cracking_cells(*mesh, material, part.radius, slice.tube_center)),
       _axis(slice.tube_center), _tube_radius(slice.tube_radius()),
       _visible_width(part.visible_width), _cut(cut_by_symmetry), _implex(part.implex),
-      _implex_tolerance(part.implex_tolerance), _E(concrete.E), _nu(concrete.nu),
-      _dT(std::make_shared<fem::Constant<double>>(0.0))
+      _implex_tolerance(part.implex_tolerance), _predict_strain(part.predict_strain),
+      _E(concrete.E), _nu(concrete.nu), _dT(std::make_shared<fem::Constant<double>>(0.0))
 {
   // A radius that takes in no concrete would leave it linear without a
   // word: refused, the same on every process (the count is summed, the
@@ -229,6 +189,12 @@ void BulkCracking::commit()
     implicit_update();
     for (std::size_t i = 0; i < _kappa_step.size(); ++i)
       _kappa_step[i] = kappa_of(_trial, i) - kappa_of(_committed, i);
+    if (_predict_strain)
+    {
+      _strain_step.resize(_strain_values.size());
+      for (std::size_t j = 0; j < _strain_values.size(); ++j)
+        _strain_step[j] = _strain_values[j] - _strain_committed[j];
+    }
   }
   for (std::size_t i = 0; i < _loading.size(); ++i)
     _loading[i] = kappa_of(_trial, i) > kappa_of(_committed, i);
@@ -257,6 +223,7 @@ void BulkCracking::reset()
   std::fill(_opening.begin(), _opening.end(), 0.0);
   std::fill(_loading.begin(), _loading.end(), false);
   std::fill(_kappa_step.begin(), _kappa_step.end(), 0.0);
+  _strain_step.clear();
   history_changed();
   std::fill(_stress_committed.begin(), _stress_committed.end(), 0.0);
   std::fill(_strain_committed.begin(), _strain_committed.end(), 0.0);
@@ -294,19 +261,6 @@ bool BulkCracking::evaluate()
   return ok;
 }
 
-template <typename At> void BulkCracking::for_each_point(At&& at)
-{
-  const int n_points = expression_cracking_strain->num_points;
-  const PointValues d_sigma_at(*_d_sigma, voigt), d_C_at(*_d_C, voigt_sq);
-  for (std::size_t c = 0; c < _cells.size(); ++c)
-    for (int q = 0; q < n_points; ++q)
-    {
-      const std::size_t i = c * std::size_t(n_points) + q;
-      at(c, i, voigt_at(_strain_values, i), d_sigma_at(_cells[c], q),
-         [&] { return d_C_at(_cells[c], q); });
-    }
-}
-
 bool BulkCracking::update_points()
 {
   const bulk::Voigt66& C = _band.stiffness();
@@ -338,124 +292,6 @@ bool BulkCracking::update_points()
           d_C[k] = r.tangent[k] - C[k];
       });
   return ok;
-}
-
-bool BulkCracking::apply_secants(bool& tangent_changed)
-{
-  // The step's maps, made at its first evaluation: each point's tangent
-  // (d_C) is written then, and afterwards only where its crack opens or
-  // closes.
-  const bool new_secants = !_secant_current;
-  if (new_secants)
-  {
-    for (std::size_t i = 0; i < _secant.size(); ++i)
-      _band.secant_operator(std::span<const double>(_committed.data() + state * i, state),
-                            kappa_of(_committed, i) + _extrapolation * _kappa_step[i], _strength[i],
-                            _secant[i]);
-    _secant_current = true;
-  }
-  tangent_changed = new_secants;
-  const bulk::Voigt66& C = _band.stiffness();
-  bool ok = true;
-  for_each_point(
-      [&](std::size_t, std::size_t i, const bulk::Voigt& strain, std::span<double> d_sigma,
-          auto d_C_at)
-      {
-        const bulk::SecantOperator& op = _secant[i];
-        const int side = bulk::CrackBand::secant_side(op, strain);
-        // The map that answers; none: C (uncracked, or the map failed).
-        const bulk::Voigt66* T =
-            side == bulk::CrackBand::secant_open || side == bulk::CrackBand::secant_closed
-                ? &op.tangent[side]
-                : nullptr;
-        ok = ok && side != bulk::CrackBand::secant_failed;
-        // The side of closure as _closed keeps it (a failed map answers C,
-        // and so does an uncracked point, on the open side).
-        const std::uint8_t closed = side == bulk::CrackBand::secant_elastic ? 0 : side;
-        const bool write_tangent = new_secants || closed != _closed[i];
-        if (closed != _closed[i])
-        {
-          _closed[i] = closed;
-          tangent_changed = true;
-        }
-        const bulk::Voigt elastic = bulk::multiply(C, strain);
-        double* stress = _stress_trial.data() + voigt * i;
-        if (T)
-        {
-          const bulk::Voigt s = bulk::multiply(*T, strain);
-          for (int k = 0; k < voigt; ++k)
-          {
-            stress[k] = s[k];
-            d_sigma[k] = s[k] - elastic[k];
-          }
-        }
-        else
-        {
-          std::copy(elastic.begin(), elastic.end(), stress);
-          std::fill(d_sigma.begin(), d_sigma.end(), 0.0);
-        }
-        if (write_tangent)
-        {
-          const std::span<double> d_C = d_C_at();
-          for (int k = 0; k < voigt_sq; ++k)
-            d_C[k] = T ? (*T)[k] - C[k] : 0.0;
-        }
-      });
-  return ok;
-}
-
-void BulkCracking::implicit_update()
-{
-  if (_trial_implicit) // since the last evaluate(): the same displacement
-    return;
-  _trial_implicit = true;
-  ++_trial_version;
-  _implicit_failures = 0;
-  const int n_points = expression_cracking_strain->num_points;
-  evaluate_strains();
-  for (std::size_t c = 0; c < _cells.size(); ++c)
-    for (int q = 0; q < n_points; ++q)
-    {
-      const std::size_t i = c * std::size_t(n_points) + q;
-      const bulk::CrackBandResult r = _band.update(
-          std::span<const double>(_committed.data() + state * i, state),
-          voigt_at(_strain_values, i), std::span<double>(_trial.data() + state * i, state),
-          [&](const bulk::Vec3& n) { return band_width(c, n); }, _strength[i], _dt);
-      // A point whose crack's equilibrium fails keeps its committed state,
-      // counted: implex_error() says so, and the step is cut.
-      if (r.status != bulk::CrackBandResult::Status::ok)
-      {
-        std::copy_n(_committed.begin() + state * i, state, _trial.begin() + state * i);
-        ++_implicit_failures;
-        continue;
-      }
-      _dissipated_step[i] = r.dissipation;
-      _dissipated_trial[i] = _dissipated[i] + r.dissipation;
-      std::copy(r.stress.begin(), r.stress.end(), _stress_trial.begin() + voigt * i);
-      std::copy(r.opening.begin(), r.opening.end(), _opening_trial.begin() + 3 * i);
-    }
-}
-
-double BulkCracking::implex_error(std::int64_t& failed_points)
-{
-  // The stress the step converged with, before the update replaces it.
-  const std::vector<double> stepped = _stress_trial;
-  implicit_update();
-  double sums[2] = {
-      integrate(
-          [&](std::size_t i)
-          {
-            bulk::Voigt d = voigt_at(_stress_trial, i);
-            const bulk::Voigt e = voigt_at(stepped, i);
-            for (int k = 0; k < voigt; ++k)
-              d[k] -= e[k];
-            return bulk::complementary_energy(d, _E, _nu);
-          }),
-      integrate([&](std::size_t i)
-                { return bulk::complementary_energy(voigt_at(_stress_trial, i), _E, _nu); })};
-  MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, _mesh->comm());
-  MPI_Allreduce(&_implicit_failures, &failed_points, 1, MPI_INT64_T, MPI_SUM, _mesh->comm());
-  return sums[1] > 0 ? std::sqrt(sums[0] / sums[1]) : 0.0;
 }
 
 bool BulkCracking::at_committed_strain(std::size_t i, const bulk::Voigt& strain) const

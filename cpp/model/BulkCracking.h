@@ -84,12 +84,15 @@ public:
   /// CrackBand::secant_operator) and no point cracks, so that the bulk is
   /// linear but for closure; after the step the crack band's own update at
   /// the converged strain (onset, the history, the dissipation) is what is
-  /// committed.
+  /// committed. With cracking.implex_predictor = "strain" the state a step
+  /// holds is the crack band's update at the strain extrapolated from the
+  /// last step instead: a point predicted to crack holds that crack.
   bool implex() const { return _implex; }
   /// IMPL-EX: the extrapolation of this try, the ratio of its load
   /// increment to the last committed step's (0: none, the committed
   /// history: a stage's first step, a load that turns back). The history
-  /// a crack holds is kappa_n + ratio (kappa_n - kappa_n-1).
+  /// a crack holds is kappa_n + ratio (kappa_n - kappa_n-1); with the strain
+  /// predictor, the crack band's update at eps_n + ratio (eps_n - eps_n-1).
   void set_extrapolation(double ratio)
   {
     const double r = ratio > 0 ? ratio : 0.0;
@@ -245,11 +248,16 @@ private:
   /// the trial stress and the forms' coefficients. Whether every map
   /// answered; `tangent_changed`: whether some point's tangent changed.
   bool apply_secants(bool& tangent_changed);
+  /// IMPL-EX: every point's secant maps for the step (_secant), from the
+  /// committed state and the last step's growth, extrapolated by
+  /// set_extrapolation()'s ratio: of the history, or of the strain
+  /// (cracking.implex_predictor).
+  void make_secants();
   /// Calls at(cell, point, strain, d_sigma, d_C) at every point, in the
   /// order of the points' arrays ([cell][point]): the strain is
   /// _strain_values', d_sigma the stress coefficient's values there, d_C()
-  /// the tangent coefficient's. evaluate()'s loop (defined and used in
-  /// BulkCracking.cpp).
+  /// the tangent coefficient's. evaluate()'s loop (defined in
+  /// BulkCrackingPoints.h).
   template <typename At> void for_each_point(At&& at);
   /// What a step's cracks hold changed (a commit, a reset, a new
   /// extrapolation): their tangent and secant maps are to be made again.
@@ -307,6 +315,7 @@ private:
   double _dt = 0;                      ///< set_time_increment [mm of push]
   bool _implex = false;                ///< cracking.integration = "implex"
   double _implex_tolerance = 0;        ///< cracking.implex_tolerance
+  bool _predict_strain = false;        ///< cracking.implex_predictor = "strain"
   double _E = 0, _nu = 0;              ///< the concrete's [MPa], [-]
   double _extrapolation = 0;           ///< set_extrapolation
   /// IMPL-EX: the trial state is implicit_update()'s, and no evaluate()
@@ -316,6 +325,9 @@ private:
   std::int64_t _implicit_failures = 0;
   /// [point] IMPL-EX: the growth of kappa in the last committed step [mm]
   std::vector<double> _kappa_step;
+  /// IMPL-EX, implex_predictor = "strain": [point][6] the growth of the
+  /// strain in the last committed step (empty before the first)
+  std::vector<double> _strain_step;
   /// [point] IMPL-EX: the side of closure of the last evaluate(): 0 open,
   /// 1 closed, 2 neither (its map failed, elastic); its tangent changes
   /// with it

@@ -95,6 +95,7 @@ void Scene::fill_parts()
   const std::string integration = string("cracking.integration");
   _cracking.implex = integration == "implex" || (integration == "auto" && _cracking.viscosity == 0);
   _cracking.implex_tolerance = number("cracking.implex_tolerance");
+  _cracking.predict_strain = string("cracking.implex_predictor") == "strain";
 
   _solver.lagged_preconditioner = string("solver.preconditioner") == "lagged";
   using Condensation = SolverPart::Condensation;

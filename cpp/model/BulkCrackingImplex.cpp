@@ -1,0 +1,159 @@
+// IMPL-EX cracks (BulkCracking.h, docs/cracking.md "IMPL-EX"): a step's
+// secant maps from the committed state and the last step's growth, the
+// step's evaluations by them, and after the step the crack band's own
+// update and the step's error against it.
+#include "BulkCrackingPoints.h"
+#include <cmath>
+#include <mpi.h>
+
+namespace pushout::model
+{
+using namespace points;
+
+void BulkCracking::make_secants()
+{
+  // The strain predictor: each point's state is the crack band's own
+  // update from the committed state to the strain extrapolated from the
+  // last step, as the history predictor extrapolates the history: a point
+  // may crack there, and a crack that stops growing holds its history.
+  const bool by_strain = _predict_strain && _extrapolation > 0 && !_strain_step.empty();
+  const int n_points = expression_cracking_strain->num_points;
+  std::vector<double> predicted(state);
+  for (std::size_t i = 0; i < _secant.size(); ++i)
+  {
+    const std::span<const double> old(_committed.data() + state * i, state);
+    if (by_strain)
+    {
+      bulk::Voigt strain;
+      for (int k = 0; k < voigt; ++k)
+        strain[k] = _strain_committed[voigt * i + k] + _extrapolation * _strain_step[voigt * i + k];
+      const std::size_t c = i / std::size_t(n_points);
+      const bulk::CrackBandResult r = _band.update(
+          old, strain, predicted, [&](const bulk::Vec3& n) { return band_width(c, n); },
+          _strength[i], _dt);
+      // Uncracked there, or its update failed: the history predictor's map.
+      if (r.status == bulk::CrackBandResult::Status::ok &&
+          bulk::CrackState<const double>(std::span<const double>(predicted)).cracked())
+      {
+        _band.secant_operator(predicted, kappa_of(predicted, 0), _strength[i], _secant[i]);
+        continue;
+      }
+    }
+    _band.secant_operator(old, kappa_of(_committed, i) + _extrapolation * _kappa_step[i],
+                          _strength[i], _secant[i]);
+  }
+  _secant_current = true;
+}
+
+bool BulkCracking::apply_secants(bool& tangent_changed)
+{
+  // The step's maps, made at its first evaluation: each point's tangent
+  // (d_C) is written then, and afterwards only where its crack opens or
+  // closes.
+  const bool new_secants = !_secant_current;
+  if (new_secants)
+    make_secants();
+  tangent_changed = new_secants;
+  const bulk::Voigt66& C = _band.stiffness();
+  bool ok = true;
+  for_each_point(
+      [&](std::size_t, std::size_t i, const bulk::Voigt& strain, std::span<double> d_sigma,
+          auto d_C_at)
+      {
+        const bulk::SecantOperator& op = _secant[i];
+        const int side = bulk::CrackBand::secant_side(op, strain);
+        // The map that answers; none: C (uncracked, or the map failed).
+        const bulk::Voigt66* T =
+            side == bulk::CrackBand::secant_open || side == bulk::CrackBand::secant_closed
+                ? &op.tangent[side]
+                : nullptr;
+        ok = ok && side != bulk::CrackBand::secant_failed;
+        // The side of closure as _closed keeps it (a failed map answers C,
+        // and so does an uncracked point, on the open side).
+        const std::uint8_t closed = side == bulk::CrackBand::secant_elastic ? 0 : side;
+        const bool write_tangent = new_secants || closed != _closed[i];
+        if (closed != _closed[i])
+        {
+          _closed[i] = closed;
+          tangent_changed = true;
+        }
+        const bulk::Voigt elastic = bulk::multiply(C, strain);
+        double* stress = _stress_trial.data() + voigt * i;
+        if (T)
+        {
+          const bulk::Voigt s = bulk::multiply(*T, strain);
+          for (int k = 0; k < voigt; ++k)
+          {
+            stress[k] = s[k];
+            d_sigma[k] = s[k] - elastic[k];
+          }
+        }
+        else
+        {
+          std::copy(elastic.begin(), elastic.end(), stress);
+          std::fill(d_sigma.begin(), d_sigma.end(), 0.0);
+        }
+        if (write_tangent)
+        {
+          const std::span<double> d_C = d_C_at();
+          for (int k = 0; k < voigt_sq; ++k)
+            d_C[k] = T ? (*T)[k] - C[k] : 0.0;
+        }
+      });
+  return ok;
+}
+
+void BulkCracking::implicit_update()
+{
+  if (_trial_implicit) // since the last evaluate(): the same displacement
+    return;
+  _trial_implicit = true;
+  ++_trial_version;
+  _implicit_failures = 0;
+  const int n_points = expression_cracking_strain->num_points;
+  evaluate_strains();
+  for (std::size_t c = 0; c < _cells.size(); ++c)
+    for (int q = 0; q < n_points; ++q)
+    {
+      const std::size_t i = c * std::size_t(n_points) + q;
+      const bulk::CrackBandResult r = _band.update(
+          std::span<const double>(_committed.data() + state * i, state),
+          voigt_at(_strain_values, i), std::span<double>(_trial.data() + state * i, state),
+          [&](const bulk::Vec3& n) { return band_width(c, n); }, _strength[i], _dt);
+      // A point whose crack's equilibrium fails keeps its committed state,
+      // counted: implex_error() says so, and the step is cut.
+      if (r.status != bulk::CrackBandResult::Status::ok)
+      {
+        std::copy_n(_committed.begin() + state * i, state, _trial.begin() + state * i);
+        ++_implicit_failures;
+        continue;
+      }
+      _dissipated_step[i] = r.dissipation;
+      _dissipated_trial[i] = _dissipated[i] + r.dissipation;
+      std::copy(r.stress.begin(), r.stress.end(), _stress_trial.begin() + voigt * i);
+      std::copy(r.opening.begin(), r.opening.end(), _opening_trial.begin() + 3 * i);
+    }
+}
+
+double BulkCracking::implex_error(std::int64_t& failed_points)
+{
+  // The stress the step converged with, before the update replaces it.
+  const std::vector<double> stepped = _stress_trial;
+  implicit_update();
+  double sums[2] = {
+      integrate(
+          [&](std::size_t i)
+          {
+            bulk::Voigt d = voigt_at(_stress_trial, i);
+            const bulk::Voigt e = voigt_at(stepped, i);
+            for (int k = 0; k < voigt; ++k)
+              d[k] -= e[k];
+            return bulk::complementary_energy(d, _E, _nu);
+          }),
+      integrate([&](std::size_t i)
+                { return bulk::complementary_energy(voigt_at(_stress_trial, i), _E, _nu); })};
+  MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, _mesh->comm());
+  MPI_Allreduce(&_implicit_failures, &failed_points, 1, MPI_INT64_T, MPI_SUM, _mesh->comm());
+  return sums[1] > 0 ? std::sqrt(sums[0] / sums[1]) : 0.0;
+}
+} // namespace pushout::model
