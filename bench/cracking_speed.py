@@ -26,6 +26,10 @@ other):
   embedded_implex_2proc
                   embedded_implex on two processes (mpirun -n 2, one
                   thread each: the LU in single precision across the two);
+  embedded_implex_strain
+                  embedded_implex with the strain predictor
+                  (cracking.implex_predictor = "strain": a step's cracks
+                  from the strain extrapolated from the last step);
   embedded_fine   the implicit cracks at four times the steps (100 corrosion,
                   160 push): the reference of the error columns.
 
@@ -72,6 +76,8 @@ def main():
         "embedded_implex_0.01": (embedded, ["cracking.integration=implex",
                                             "cracking.implex_tolerance=0.01"], 1),
         "embedded_implex_2proc": (embedded, ["cracking.integration=implex"], 2),
+        "embedded_implex_strain": (embedded, ["cracking.integration=implex",
+                                              "cracking.implex_predictor=strain"], 1),
         "embedded_fine": (embedded, ["cracking.integration=implicit", "corrosion.steps=100",
                                      "loading.steps=160"], 1),
     }
