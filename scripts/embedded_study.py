@@ -28,11 +28,13 @@ SCENE = "pushout_corroded_embedded.toml"
 # of the crack-plane series' 12 / 4 (scripts/studies.py mesh_sets), and its
 # cracking.implex_tolerance (None: the default, 0.0025, where the centred
 # tube's cover picks the main crack of a converged integration;
-# docs/cracking.md, "Accuracy and the tolerance").
+# docs/cracking.md, "Accuracy and the tolerance"), and its
+# cracking.implex_predictor (None: the default, "history").
 STUDIES = {
-    "corroded_embedded": ("implicit", False, None),
-    "corroded_embedded_implex": ("implex", False, None),
-    "corroded_embedded_paper_mesh": ("implex", True, None),
+    "corroded_embedded": ("implicit", False, None, None),
+    "corroded_embedded_implex": ("implex", False, None, None),
+    "corroded_embedded_paper_mesh": ("implex", True, None, None),
+    "corroded_embedded_implex_strain": ("implex", False, None, "strain"),
 }
 VISIBLE_UM = 50.0  # the [cracking] visible_width default: a surface crack counts from here
 
@@ -63,6 +65,8 @@ def cases(quick, study="corroded_embedded"):
                         sets.append("cracking.integration=implex")
                         if STUDIES[study][2] is not None:
                             sets.append(f"cracking.implex_tolerance={STUDIES[study][2]}")
+                        if STUDIES[study][3] is not None:
+                            sets.append(f"cracking.implex_predictor={STUDIES[study][3]}")
                     else:
                         # The centred tube's cover snaps back past the peak
                         # pressure, which control of x alone cannot pass.
@@ -157,6 +161,7 @@ def plot_bond(plt, out, groups, table, study):
     axes[0].legend(fontsize=8)
     fig.suptitle("Corroded push-out, cracks anywhere" +
                  (" (IMPL-EX)" if STUDIES[study][0] == "implex" else "") +
+                 (", the strain predictor" if STUDIES[study][3] == "strain" else "") +
                  (", the paper's mesh" if on_paper_mesh(study) else "") +
                  " (5 seeds of a cov 0.15 strength field: mean and range)")
     fig.tight_layout()

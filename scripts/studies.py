@@ -46,6 +46,9 @@ Studies (each run keeps its resolved scene.toml next to its curve.csv):
   corroded_embedded_paper_mesh  corroded_embedded_implex on the paper's
               mesh (16 per quarter, 8 through the thickness) instead of
               12 / 4 (not in the studies run by default).
+  corroded_embedded_implex_strain  corroded_embedded_implex with the strain
+              predictor (cracking.implex_predictor = "strain"; not in the
+              studies run by default).
 --quick runs the same studies on a coarse mesh with few steps (the test
 suite uses it). Writes OUT/<study>/<case>/ run folders, OUT/*.png figures,
 OUT/plateaus.csv (friction plateau vs mu p) and OUT/timing.json.

@@ -107,7 +107,8 @@ std::vector<KeyDef> law_keys()
        "a point predicted to crack is cracked through the step and a crack that starts or "
        "stops growing is seen; both are explicit (the step stays linear but for closure). "
        "strain: about half the error at the same steps, a quarter fewer steps and time on "
-       "the cracking demo (docs/cracking.md, \"The strain predictor\")",
+       "the cracking demo, but where a centred tube's cover snaps back it may take another "
+       "main crack (docs/cracking.md, \"The strain predictor\"; docs/corrosion.md)",
        -inf,
        inf,
        false,
