@@ -101,14 +101,13 @@ std::vector<KeyDef> law_keys()
        K::string,
        std::string("history"),
        "",
-       "implex: what a step's cracks hold, from the last step: history: each crack's damage "
-       "extrapolated (Oliver, Huespe & Cante 2008), and no point cracks in the step; strain: "
-       "the crack band's own update at the strain extrapolated from the last step, so that "
-       "a point predicted to crack is cracked through the step and a crack that starts or "
-       "stops growing is seen; both are explicit (the step stays linear but for closure). "
-       "strain: about half the error at the same steps, a quarter fewer steps and time on "
-       "the cracking demo, but where a centred tube's cover snaps back it may take another "
-       "main crack (docs/cracking.md, \"The strain predictor\"; docs/corrosion.md)",
+       "implex: what a step's cracks hold: history: each crack's damage extrapolated from "
+       "the last steps (Oliver, Huespe & Cante 2008), no point cracks in the step; strain: "
+       "the crack band's own update at the strain extrapolated from the last step (a point "
+       "may crack, a crack may stop growing); both explicit. strain: about half the error at "
+       "the same steps, a quarter fewer steps and time on the cracking demo, but where a "
+       "centred tube's cover snaps back it may take another main crack (docs/cracking.md, "
+       "\"The strain predictor\"; docs/corrosion.md)",
        -inf,
        inf,
        false,

@@ -156,3 +156,22 @@ def check(cond, message):
     if not cond:
         raise SystemExit("FAILED: " + message)
     print("ok: " + message)
+
+
+def check_one_and_two_processes(scene, name, sets, extra=()):
+    """Runs `scene` at SNES_RTOL (TIGHT_NEWTON) on 1 and 2 processes (into
+    out_dir(NAME_np1) and out_dir(NAME_np2)) and checks that they give the
+    same corrosion rows, cracked points and p(x): Newton's tolerance on a p of
+    a few MPa (SNES_RTOL on the residual, as the ring's test), which two runs
+    that converge alike meet far below 1e-6 MPa. `extra`: more options of the
+    one-process run. Returns that run's process and folder."""
+    one, two = out_dir(name + "_np1"), out_dir(name + "_np2")
+    p_one = run(scene, one, sets=sets, extra=TIGHT_NEWTON + list(extra))
+    run(scene, two, sets=sets, extra=TIGHT_NEWTON, mpirun=2)
+    r1, r2 = corrosion(one), corrosion(two)
+    dp = max(abs(a["p_MPa"] - b["p_MPa"]) for a, b in zip(r1, r2))
+    check(len(r1) == len(r2) and dp < 1e-6 and
+          all(a["cracked_points"] == b["cracked_points"] for a, b in zip(r1, r2)),
+          f"1 and 2 processes: {len(r1)} and {len(r2)} rows, the same cracked points, p within "
+          f"{dp:.1e} MPa")
+    return p_one, one

@@ -23,8 +23,8 @@ face, corroded to x = 30 um in 15 steps and pushed 5 um):
    increments'), where nothing snaps back, no energy step and the same
    bound as 2."""
 
-from common import (TIGHT_NEWTON, check, corrosion, cracking_corroded_demo, out_dir, run,
-                    summary)
+from common import (check, check_one_and_two_processes, corrosion, cracking_corroded_demo,
+                    out_dir, run, summary)
 
 scene = cracking_corroded_demo(0.03, 15, seed=1)
 STRAIN = ["cracking.integration=implex", "cracking.implex_predictor=strain"]
@@ -75,16 +75,8 @@ check(len(rows) < len(h_rows) and s["newton_iterations"] < h["newton_iterations"
       f"{len(h_rows)} and {h['newton_iterations']} with the history predictor")
 
 # 3. One and two processes (at SNES_RTOL, as test_implex_tends_to_implicit 4).
-one, two = out_dir("strain_predictor_np1"), out_dir("strain_predictor_np2")
-sets = STRAIN + ["corrosion.penetration=0.016", "corrosion.steps=8"]
-run(scene, one, sets=sets, extra=TIGHT_NEWTON)
-run(scene, two, sets=sets, extra=TIGHT_NEWTON, mpirun=2)
-r1, r2 = corrosion(one), corrosion(two)
-dp = max(abs(a["p_MPa"] - b["p_MPa"]) for a, b in zip(r1, r2))
-check(len(r1) == len(r2) and dp < 1e-6 and
-      all(a["cracked_points"] == b["cracked_points"] for a, b in zip(r1, r2)),
-      f"1 and 2 processes: {len(r1)} and {len(r2)} rows, the same cracked points, p within "
-      f"{dp:.1e} MPa")
+check_one_and_two_processes(scene, "strain_predictor",
+                            STRAIN + ["corrosion.penetration=0.016", "corrosion.steps=8"])
 
 # 4. Dissipation control: its steps of x need not land on the nominal ones,
 #    so p is compared at the x of the implicit run's 60 steps that both

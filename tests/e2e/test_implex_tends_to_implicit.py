@@ -53,8 +53,8 @@ a face), corroded to x = 30 um in 15 steps and pushed 5 um:
 import os
 import re
 
-from common import (IMPLEX_RTOL, TIGHT_NEWTON, check, corrosion, cracking_corroded_demo,
-                    newton_bound, out_dir, run, summary)
+from common import (IMPLEX_RTOL, TIGHT_NEWTON, check, check_one_and_two_processes, corrosion,
+                    cracking_corroded_demo, newton_bound, out_dir, run, summary)
 
 scene = cracking_corroded_demo(0.03, 15, seed=1)
 implicit, controlled, fixed = out_dir("implex_ref"), out_dir("implex_tol"), out_dir("implex_fixed")
@@ -103,18 +103,9 @@ for sets, integration in (([], "implex"), (["loading.control=auto"], "implex"),
           f"{s['implex_error_max']}, implex_jumps {s['implex_jumps']})")
 
 # 4. One and two processes.
-one, two = out_dir("implex_np1"), out_dir("implex_np2")
 sets = ["cracking.integration=implex", "corrosion.penetration=0.016", "corrosion.steps=8"]
-p_one = run(scene, one, sets=sets, extra=TIGHT_NEWTON + ["-log_view"])
-run(scene, two, sets=sets, extra=TIGHT_NEWTON, mpirun=2)
-r1, r2 = corrosion(one), corrosion(two)
-# Newton's tolerance on a p of a few MPa (SNES_RTOL on the residual, as the
-# ring's test): two runs that converge alike agree far below it.
-dp = max(abs(a["p_MPa"] - b["p_MPa"]) for a, b in zip(r1, r2))
-check(len(r1) == len(r2) and dp < 1e-6 and
-      all(a["cracked_points"] == b["cracked_points"] for a, b in zip(r1, r2)),
-      f"1 and 2 processes: {len(r1)} and {len(r2)} rows, the same cracked points, p within "
-      f"{dp:.1e} MPa")
+p_one, one = check_one_and_two_processes(scene, "implex", sets, extra=["-log_view"])
+r1 = corrosion(one)
 
 # 5. The step's tangent kept, against the tangent of every iteration.
 fresh = out_dir("implex_fresh_tangent")
