@@ -32,8 +32,7 @@ void BulkCracking::make_secants()
           old, strain, predicted, [&](const bulk::Vec3& n) { return band_width(c, n); },
           _strength[i], _dt);
       // Uncracked there, or its update failed: the history predictor's map.
-      if (r.status == bulk::CrackBandResult::Status::ok &&
-          bulk::CrackState<const double>(std::span<const double>(predicted)).cracked())
+      if (r.status == bulk::CrackBandResult::Status::ok && crack_of(predicted, 0).cracked())
       {
         _band.secant_operator(predicted, kappa_of(predicted, 0), _strength[i], _secant[i]);
         continue;

@@ -20,13 +20,16 @@ namespace fem = dolfinx::fem;
 constexpr int voigt = 6;     ///< strain and stress components
 constexpr int voigt_sq = 36; ///< tangent components
 constexpr int state = bulk::CrackBand::state_size;
+/// Point i's crack in `states` ([point][state]).
+inline bulk::CrackState<const double> crack_of(const std::vector<double>& states, std::size_t i)
+{
+  return bulk::CrackState<const double>(std::span<const double>(states.data() + state * i, state));
+}
+
 /// The history kappa of point i's crack in `states` ([point][state]) [mm].
 inline double kappa_of(const std::vector<double>& states, std::size_t i)
 {
-  return laws::DamageHistory<const double>(
-             bulk::CrackState<const double>(std::span(states.data() + state * i, state))
-                 .law_state())
-      .kappa();
+  return laws::DamageHistory<const double>(crack_of(states, i).law_state()).kappa();
 }
 
 /// Point i's six Voigt components in `values` ([point][6]).

@@ -3,7 +3,7 @@
 // the cells' places on the slice, the gauge's reading at the outer faces
 // (SurfaceCracks.h) and the per-cell fields of fields.xdmf.
 #include "../laws/CamanhoDavila.h"
-#include "BulkCracking.h"
+#include "BulkCrackingPoints.h"
 #include "cracking.h"
 #include <algorithm>
 #include <cmath>
@@ -16,7 +16,6 @@ namespace pushout::model
 {
 namespace
 {
-constexpr int state = bulk::CrackBand::state_size;
 /// A cell's record: [face (-1: the column), x, y, weight * value, size (a
 /// face's: depth), outline (8)].
 constexpr int record_size = 13;
@@ -155,7 +154,7 @@ void BulkCracking::place_cells(const Geometry& slice, const std::vector<double>&
 
 double BulkCracking::crack_strain_along(std::size_t i, double tx, double ty) const
 {
-  const bulk::CrackState<const double> s(std::span<const double>(_trial.data() + state * i, state));
+  const bulk::CrackState<const double> s = points::crack_of(_trial, i);
   if (!s.cracked())
     return 0;
   const bulk::Mat3 R = s.frame();                  // rows n, s1, s2
@@ -178,8 +177,7 @@ void BulkCracking::read_surface(CrackingTotals& t) const
     for (int q = 0; q < n_points; ++q)
     {
       const std::size_t i = c * std::size_t(n_points) + q;
-      if (bulk::CrackState<const double>(std::span<const double>(_trial.data() + state * i, state))
-              .cracked())
+      if (points::crack_of(_trial, i).cracked())
         widest = std::max(widest, _opening_trial[3 * i]);
     }
     mine.insert(mine.end(), {-1.0, p.x, p.y, p.weight * widest, p.size});
@@ -260,8 +258,7 @@ void BulkCracking::cell_fields(dolfinx::fem::Function<double>& opening,
     for (int q = 0; q < n_points; ++q)
     {
       const std::size_t i = c * std::size_t(n_points) + q;
-      const bulk::CrackState<const double> s(
-          std::span<const double>(_trial.data() + state * i, state));
+      const bulk::CrackState<const double> s = points::crack_of(_trial, i);
       if (!s.cracked())
         continue;
       d[dof] = std::max(d[dof], laws::DamageHistory<const double>(s.law_state()).damage());
@@ -289,8 +286,7 @@ CrackingTotals BulkCracking::totals()
   t.points = std::int64_t(_strength.size());
   for (std::size_t i = 0; i < _strength.size(); ++i)
   {
-    const bulk::CrackState<const double> s(
-        std::span<const double>(_trial.data() + state * i, state));
+    const bulk::CrackState<const double> s = points::crack_of(_trial, i);
     if (!s.cracked())
       continue;
     ++t.cracked_points;
