@@ -18,7 +18,8 @@ other):
                   the implicit cracks, as integration "auto" takes there);
   embedded_implex the same with IMPL-EX cracks (cracking.integration =
                   "implex", what its default "auto" takes under displacement
-                  control; cracking.implex_tolerance at its default 0.0025);
+                  control; cracking.implex_tolerance at its default 0.0025,
+                  the strain predictor, the default);
   embedded_implex_0.01
                   the same at implex_tolerance 0.01 (the default until
                   docs/cracking.md "Accuracy and the tolerance" made it
@@ -26,10 +27,11 @@ other):
   embedded_implex_2proc
                   embedded_implex on two processes (mpirun -n 2, one
                   thread each: the LU in single precision across the two);
-  embedded_implex_strain
-                  embedded_implex with the strain predictor
-                  (cracking.implex_predictor = "strain": a step's cracks
-                  from the strain extrapolated from the last step);
+  embedded_implex_history
+                  embedded_implex with the history predictor
+                  (cracking.implex_predictor = "history": each crack's
+                  damage extrapolated from the last steps, the default
+                  until the strain predictor's);
   embedded_fine   the implicit cracks at four times the steps (100 corrosion,
                   160 push): the reference of the error columns.
 
@@ -76,8 +78,8 @@ def main():
         "embedded_implex_0.01": (embedded, ["cracking.integration=implex",
                                             "cracking.implex_tolerance=0.01"], 1),
         "embedded_implex_2proc": (embedded, ["cracking.integration=implex"], 2),
-        "embedded_implex_strain": (embedded, ["cracking.integration=implex",
-                                              "cracking.implex_predictor=strain"], 1),
+        "embedded_implex_history": (embedded, ["cracking.integration=implex",
+                                               "cracking.implex_predictor=history"], 1),
         "embedded_fine": (embedded, ["cracking.integration=implicit", "corrosion.steps=100",
                                      "loading.steps=160"], 1),
     }

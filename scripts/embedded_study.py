@@ -29,11 +29,13 @@ SCENE = "pushout_corroded_embedded.toml"
 # cracking.implex_tolerance (None: the default, 0.0025, where the centred
 # tube's cover picks the main crack of a converged integration;
 # docs/cracking.md, "Accuracy and the tolerance"), and its
-# cracking.implex_predictor (None: the default, "history").
+# cracking.implex_predictor (None: the default, "strain"; the series run
+# before it became the default name "history", so that they rerun as they
+# ran: docs/corrosion.md).
 STUDIES = {
     "corroded_embedded": ("implicit", False, None, None),
-    "corroded_embedded_implex": ("implex", False, None, None),
-    "corroded_embedded_paper_mesh": ("implex", True, None, None),
+    "corroded_embedded_implex": ("implex", False, None, "history"),
+    "corroded_embedded_paper_mesh": ("implex", True, None, "history"),
     "corroded_embedded_implex_strain": ("implex", False, None, "strain"),
 }
 VISIBLE_UM = 50.0  # the [cracking] visible_width default: a surface crack counts from here

@@ -42,13 +42,15 @@ Studies (each run keeps its resolved scene.toml next to its curve.csv):
               studies run by default: --only corroded_embedded).
   corroded_embedded_implex  the same with IMPL-EX cracks under displacement
               control (cracking.integration = "implex", what its default
-              "auto" takes there; not in the studies run by default).
+              "auto" takes there) and the history predictor
+              (cracking.implex_predictor = "history", the default when it
+              ran; not in the studies run by default).
   corroded_embedded_paper_mesh  corroded_embedded_implex on the paper's
               mesh (16 per quarter, 8 through the thickness) instead of
               12 / 4 (not in the studies run by default).
   corroded_embedded_implex_strain  corroded_embedded_implex with the strain
-              predictor (cracking.implex_predictor = "strain"; not in the
-              studies run by default).
+              predictor (cracking.implex_predictor = "strain", the default;
+              not in the studies run by default).
 --quick runs the same studies on a coarse mesh with few steps (the test
 suite uses it). Writes OUT/<study>/<case>/ run folders, OUT/*.png figures,
 OUT/plateaus.csv (friction plateau vs mu p) and OUT/timing.json.

@@ -99,15 +99,14 @@ std::vector<KeyDef> law_keys()
        A::pushout},
       {"cracking.implex_predictor",
        K::string,
-       std::string("history"),
+       std::string("strain"),
        "",
-       "implex: what a step's cracks hold: history: each crack's damage extrapolated from "
-       "the last steps (Oliver, Huespe & Cante 2008), no point cracks in the step; strain: "
-       "the crack band's own update at the strain extrapolated from the last step (a point "
-       "may crack, a crack may stop growing); both explicit. strain: about half the error at "
-       "the same steps, a quarter fewer steps and time on the cracking demo, but where a "
-       "centred tube's cover snaps back it may take another main crack (docs/cracking.md, "
-       "\"The strain predictor\"; docs/corrosion.md)",
+       "implex: what a step's cracks hold: strain: the crack band's own update at the strain "
+       "extrapolated from the last step (a point may crack, a crack may stop growing); "
+       "history: each crack's damage extrapolated from the last steps (Oliver, Huespe & Cante "
+       "2008), no point cracks in the step; both explicit. strain has about half the error "
+       "at the same steps: a quarter fewer steps and time on the cracking demo, as close to "
+       "the implicit cracks (docs/cracking.md, \"The strain predictor\")",
        -inf,
        inf,
        false,

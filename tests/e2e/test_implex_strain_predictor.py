@@ -1,7 +1,7 @@
-"""IMPL-EX's strain predictor ([cracking] implex_predictor = "strain",
-docs/cracking.md "The strain predictor"): a step's cracks hold the crack
-band's own update at the strain extrapolated from the last step, instead of
-each crack's history extrapolated (the default, "history"). Both are
+"""IMPL-EX's strain predictor ([cracking] implex_predictor = "strain", the
+default; docs/cracking.md "The strain predictor"): a step's cracks hold the
+crack band's own update at the strain extrapolated from the last step,
+instead of each crack's history extrapolated ("history"). Both are
 explicit: a step's bulk is linear but for closure. On the specimen of
 test_implex_tends_to_implicit (coarse mesh, random field, tube 15 mm from a
 face, corroded to x = 30 um in 15 steps and pushed 5 um):
