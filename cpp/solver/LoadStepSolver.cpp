@@ -200,8 +200,9 @@ Vec LoadStepSolver::functional(Vec a)
 SolveReport LoadStepSolver::solve(Vec x, Vec unpredicted)
 {
   update(); // may find the condensation untrusted, and turn it off
-  // The reference is the residual with new cracks allowed; the crack-free
-  // predictor (solve_whole) runs only in step 0, which is never predicted.
+  // The reference is the residual with new cracks allowed, for the
+  // crack-free predictor's first solve too (solve_whole: step 0, whose
+  // parts after a cut are predicted).
   if (!_condense)
     return solve_whole(x, unpredicted ? residual_norm(unpredicted) : 0.0);
   Vec xp = to_problem(x);
@@ -234,7 +235,8 @@ double LoadStepSolver::residual_norm(Vec unpredicted)
 
 SolveReport LoadStepSolver::solve_whole(Vec x, double reference)
 {
-  // IMPL-EX cracks open only after a step: nothing to hold back.
+  // IMPL-EX cracks are the step's secant maps, fixed through it: nothing
+  // to hold back.
   model::BulkCracking* bulk = _eq.model().bulk_cracking();
   if (!bulk || !_crack_free_predictor || bulk->implex())
     return _whole.solve(x, reference);
