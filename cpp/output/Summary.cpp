@@ -46,6 +46,7 @@ void Summary::write(const std::filesystem::path& file) const
       {"penetration_mm", penetration_mm},
       {"permanent_displacements_mm", permanent_displacements_mm},
       {"cracks", crack_list},
+      {"surface_crack_width_mm", surface_crack_width_mm},
       {"initial_damage", damage_list},
       {"newton_iterations", newton_iterations},
       {"cuts", cuts},

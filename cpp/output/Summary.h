@@ -86,6 +86,10 @@ struct Summary
     double max_damage = 0;       ///< plane: largest damage at a quadrature point
   };
   std::vector<Crack> cracks;
+  /// The widest crack at the slice's outer faces at the start of the push
+  /// [mm], as corrosion.csv's crack_width_mm reads it (a plane's mouth
+  /// opening, or the concrete's gauge reading however narrow); 0: none.
+  double surface_crack_width_mm = 0;
   /// The damage of a damage layer of the interface at the start of the push
   /// (what the thermal step and the corrosion stage left).
   struct LayerDamage

@@ -12,6 +12,20 @@
 
 namespace pushout::specimen
 {
+namespace
+{
+/// The widest crack at the slice's outer faces [mm]: the planes' mouth
+/// openings and the concrete's widest surface crack (its gauge reading,
+/// however narrow); 0: none.
+double widest_surface_crack(const std::vector<double>& mouths, const model::CrackingTotals& bulk)
+{
+  double widest = mouths.empty() ? 0.0 : *std::max_element(mouths.begin(), mouths.end());
+  if (!bulk.surface.empty()) // widest first
+    widest = std::max(widest, bulk.surface.front().width_mm);
+  return widest;
+}
+} // namespace
+
 Corrosion::Corrosion(const CorrosionPart& corrosion, const CrackDirections& cracks,
                      bool bulk_cracking, const std::filesystem::path& out,
                      record::RunReport& report, MPI_Comm comm)
@@ -60,7 +74,6 @@ void Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iterati
   const double x = penetration_at(s);
   const double p = mean_pressure(model.interface(), _comm);
   const std::vector<double> widths = model.crack_mouth_openings();
-  double crack_width = widths.empty() ? 0.0 : *std::max_element(widths.begin(), widths.end());
   model::CrackingTotals bulk;
   int at_surface = 0; // cracks as wide as cracking.visible_width at the outer faces
   if (model::BulkCracking* cracking = eq.model().bulk_cracking())
@@ -70,9 +83,8 @@ void Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iterati
       at_surface += w >= cracking->visible_width();
     for (const model::SurfaceCrack& c : bulk.surface)
       at_surface += c.width_mm >= cracking->visible_width();
-    if (!bulk.surface.empty()) // widest first
-      crack_width = std::max(crack_width, bulk.surface.front().width_mm);
   }
+  const double crack_width = widest_surface_crack(widths, bulk);
   std::vector<double> values = {x, p, crack_width};
   values.insert(values.end(), widths.begin(), widths.end());
   if (model.bulk_cracking())
@@ -137,9 +149,13 @@ void Corrosion::describe_cracks(solver::Equilibrium& eq, Vec state, output::Summ
       summary.cracks[i].max_opening_mm = summary.cracks[std::size_t(image)].max_opening_mm;
       summary.cracks[i].max_damage = summary.cracks[std::size_t(image)].max_damage;
     }
-  if (model::BulkCracking* cracking = eq.model().bulk_cracking())
+  model::CrackingTotals bulk;
+  model::BulkCracking* cracking = eq.model().bulk_cracking();
+  if (cracking)
+    bulk = cracking->totals();
+  summary.surface_crack_width_mm = widest_surface_crack(mouth, bulk);
+  if (cracking)
   {
-    const model::CrackingTotals bulk = cracking->totals();
     for (const model::SurfaceCrack& s : bulk.surface)
       if (s.width_mm >= cracking->visible_width())
       {

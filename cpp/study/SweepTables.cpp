@@ -83,27 +83,19 @@ std::map<std::string, std::vector<double>> read_csv(const std::filesystem::path&
 }
 
 /// The widest crack on the slice's outer faces at the push's start [mm]:
-/// corrosion.csv's last crack_width_mm (a gauge's reading, however wide),
-/// or without a corrosion stage the widest of summary.json's cracks (the
-/// planes', and the concrete's as wide as cracking.visible_width; 0: none);
-/// NaN if the case has neither file.
+/// summary.json's surface_crack_width_mm, as corrosion.csv's last
+/// crack_width_mm reads it (a plane's mouth, or the concrete's gauge
+/// reading however narrow; 0: none); NaN if the case has no summary.
 double widest_crack(const std::filesystem::path& folder)
 {
-  const auto corrosion = read_csv(folder / "corrosion.csv");
-  const auto width = corrosion.find("crack_width_mm");
-  if (width != corrosion.end() && !width->second.empty())
-    return width->second.back();
   std::ifstream in(folder / "summary.json");
   if (!in)
     return nan;
   const nlohmann::json s = nlohmann::json::parse(in, nullptr, false);
-  if (s.is_discarded() || !s.contains("cracks") || !s["cracks"].is_array())
+  if (s.is_discarded() || !s.contains("surface_crack_width_mm") ||
+      !s["surface_crack_width_mm"].is_number())
     return nan;
-  double widest = 0;
-  for (const auto& c : s["cracks"])
-    if (c.contains("width_mm") && c["width_mm"].is_number())
-      widest = std::max(widest, c["width_mm"].get<double>());
-  return widest;
+  return s["surface_crack_width_mm"].get<double>();
 }
 
 /// A case's numbers (number_names order) from its folder, and the number of

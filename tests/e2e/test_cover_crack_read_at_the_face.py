@@ -15,15 +15,17 @@ random strength field and no crack planes:
    point's f_t along the crack's normal).
 3. corrosion.csv: crack_width_mm never negative, the widest crack grows
    with x once it is visible, and cracks_at_surface counts it; summary.json
-   lists it; crack_pattern.csv and crack_pattern.png are written; fields.xdmf
-   has crack_opening, crack_normal and crack_damage.
+   lists it, and its surface_crack_width_mm is the last row's
+   crack_width_mm; crack_pattern.csv and crack_pattern.png are written;
+   fields.xdmf has crack_opening, crack_normal and crack_damage.
 4. The same surface cracks on 1 and 2 processes (the columns are gathered
    from both): widths and lengths within Newton's tolerance, both runs at
    1e-10 (common.TIGHT_NEWTON: the default integration here is IMPL-EX,
    whose Newton stops at 1e-6, where a point at its strength may crack in
    one run and not the other).
 5. A crack that counts only from 1 mm (cracking.visible_width) reads the
-   same widths, and none is counted.
+   same widths, and none is counted; summary.json's surface_crack_width_mm
+   still reads it (what a sweep's crack_width_mm reports).
 6. On a model cut by symmetry (uniform strength, model.symmetry =
    "symmetric": the half x >= 50 mm) the cover crack lies on the plane:
    read whole (its mirror image added), along the plane (270 degrees), and
@@ -98,8 +100,10 @@ check(min(widths) >= 0, f"crack_width_mm never negative (least {min(widths):.2e}
 check(visible and all(b >= a for a, b in zip(widths[visible[0]:], widths[visible[0] + 1:])),
       f"the first visible crack at x = {rows[visible[0]]['penetration_mm'] * 1e3:.0f} um, "
       f"growing after: {[round(v * 1e3, 1) for v in widths[visible[0]:]]} um")
-check(abs(widths[-1] - w) <= 1e-12 and rows[-1]["cracks_at_surface"] == len(concrete),
-      "the last row's width and count are summary.json's")
+# The same reading, written with 12 digits to corrosion.csv: equal to 1e-12 mm.
+check(abs(widths[-1] - w) <= 1e-12 and rows[-1]["cracks_at_surface"] == len(concrete)
+      and abs(summary(one)["surface_crack_width_mm"] - widths[-1]) <= 1e-12,
+      "the last row's width and count are summary.json's (surface_crack_width_mm too)")
 with open(os.path.join(one, "fields.xdmf")) as f:
     xdmf = f.read()
 check(all(f'Name="{n}"' in xdmf for n in ("crack_opening", "crack_normal", "crack_damage"))
@@ -128,7 +132,8 @@ run(scene, wide, sets=["cracking.visible_width=1"], extra=TIGHT_NEWTON)
 w_wide, w_tight = ([r["crack_width_mm"] for r in corrosion(o)] for o in (wide, tight))
 check(len(w_wide) == len(w_tight) and max(abs(a - b) for a, b in zip(w_wide, w_tight)) < TOL and
       all(r["cracks_at_surface"] == 0 for r in corrosion(wide)) and
-      not [c for c in summary(wide)["cracks"] if c["source"] == "concrete"],
+      not [c for c in summary(wide)["cracks"] if c["source"] == "concrete"] and
+      abs(summary(wide)["surface_crack_width_mm"] - w_tight[-1]) < TOL,
       f"visible from 1 mm: the same widths (to {TOL} mm; widest {max(w_wide) * 1e3:.1f} um), "
       "none counted")
 
