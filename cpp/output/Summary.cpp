@@ -1,5 +1,6 @@
 #include "Summary.h"
 #include "OutputFiles.h"
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 namespace pushout::output
@@ -46,7 +47,9 @@ void Summary::write(const std::filesystem::path& file) const
       {"penetration_mm", penetration_mm},
       {"permanent_displacements_mm", permanent_displacements_mm},
       {"cracks", crack_list},
-      {"surface_crack_width_mm", surface_crack_width_mm},
+      {"surface_crack_width_mm", std::isfinite(surface_crack_width_mm)
+                                     ? nlohmann::json(surface_crack_width_mm)
+                                     : nlohmann::json()},
       {"initial_damage", damage_list},
       {"newton_iterations", newton_iterations},
       {"cuts", cuts},

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -88,8 +89,9 @@ struct Summary
   std::vector<Crack> cracks;
   /// The widest crack at the slice's outer faces at the start of the push
   /// [mm], as corrosion.csv's crack_width_mm reads it (a plane's mouth
-  /// opening, or the concrete's gauge reading however narrow); 0: none.
-  double surface_crack_width_mm = 0;
+  /// opening, or the concrete's gauge reading however narrow); 0: none;
+  /// NaN (null) where the run stopped before the push.
+  double surface_crack_width_mm = std::numeric_limits<double>::quiet_NaN();
   /// The damage of a damage layer of the interface at the start of the push
   /// (what the thermal step and the corrosion stage left).
   struct LayerDamage
