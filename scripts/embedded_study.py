@@ -30,8 +30,9 @@ SCENE = "pushout_corroded_embedded.toml"
 # tube's cover picks the main crack of a converged integration;
 # docs/cracking.md, "Accuracy and the tolerance"), and its
 # cracking.implex_predictor (None: the default, "strain"; the series run
-# before it became the default name "history", so that they rerun as they
-# ran: docs/corrosion.md).
+# before it became the default name "history", so that they rerun with the
+# predictor they ran with, though not bit for bit: step 0 extrapolates its
+# parts since de9cf8a; docs/corrosion.md).
 STUDIES = {
     "corroded_embedded": ("implicit", False, None, None),
     "corroded_embedded_implex": ("implex", False, None, "history"),

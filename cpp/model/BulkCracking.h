@@ -79,14 +79,15 @@ public:
 
   /// Whether the cracks are integrated by IMPL-EX (cracking.integration
   /// resolved to "implex"; docs/cracking.md, "IMPL-EX"): in a step each
-  /// crack holds the damage of its history extrapolated from the last
-  /// committed step (CrackBand::secant_response, as the linear maps of
-  /// CrackBand::secant_operator) and no point cracks, so that the bulk is
-  /// linear but for closure; after the step the crack band's own update at
-  /// the converged strain (onset, the history, the dissipation) is what is
-  /// committed. With cracking.implex_predictor = "strain" the state a step
-  /// holds is the crack band's update at the strain extrapolated from the
-  /// last step instead: a point predicted to crack holds that crack.
+  /// point holds a predicted crack state as the linear maps of
+  /// CrackBand::secant_operator, so that the bulk is linear but for
+  /// closure; after the step the crack band's own update at the converged
+  /// strain (onset, the history, the dissipation) is what is committed.
+  /// The prediction (cracking.implex_predictor): "strain", the default, the
+  /// crack band's update at the strain extrapolated from the last step (a
+  /// point predicted to crack holds that crack); "history", each crack's
+  /// damage extrapolated from the last committed step
+  /// (CrackBand::secant_response), and no point cracks in the step.
   bool implex() const { return _implex; }
   /// IMPL-EX: the extrapolation of this try, the ratio of its load
   /// increment to the last committed step's (0: none, the committed

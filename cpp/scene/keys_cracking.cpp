@@ -72,8 +72,8 @@ std::vector<KeyDef> law_keys()
        std::string("auto"),
        "",
        "implicit: each step solves the cracks' own update (Newton through every onset and "
-       "kink); implex: in a step each crack holds the damage extrapolated from the last steps "
-       "and new cracks open after it (Oliver, Huespe & Cante 2008), so a step's bulk is linear "
+       "kink); implex: in a step each point holds a crack state predicted from the last steps "
+       "(implex_predictor; Oliver, Huespe & Cante 2008), so a step's bulk is linear "
        "but for closure: faster and never stuck, with an error of the order of the step held "
        "to implex_tolerance (any loading.control; no viscosity); auto: implex without a "
        "viscosity, implicit with one (summary.json cracking_integration says which; "

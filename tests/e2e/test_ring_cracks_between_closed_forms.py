@@ -34,8 +34,8 @@ planes: the ring of the closed forms (scripts/analytic.py).
 8. 1 to 7 run the implicit cracks (integration = "implicit"), so that the
    two controls of 5 integrate alike; the default, "auto", takes IMPL-EX
    under displacement control, and its ring meets the closed forms of 2
-   and 3 as well (its new cracks open after the step that reaches f_t: the
-   same bracket)."""
+   and 3 as well (what is committed is the crack band's own update at the
+   converged strain, whatever the step predicted: the same bracket)."""
 
 from common import check, corroded_ring, corrosion, out_dir, run, summary
 import analytic
