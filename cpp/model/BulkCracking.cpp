@@ -178,6 +178,15 @@ double BulkCracking::band_width(std::size_t cell, const bulk::Vec3& n) const
   return hi - lo;
 }
 
+bulk::CrackBandResult BulkCracking::update_point(std::size_t c, std::size_t i,
+                                                 const bulk::Voigt& strain,
+                                                 std::span<double> now) const
+{
+  return _band.update(
+      std::span<const double>(_committed.data() + state * i, state), strain, now,
+      [&](const bulk::Vec3& n) { return band_width(c, n); }, _strength[i], _dt);
+}
+
 void BulkCracking::commit()
 {
   history_changed();
@@ -271,14 +280,13 @@ bool BulkCracking::update_points()
       {
         const std::span<const double> old(_committed.data() + state * i, state);
         const std::span<double> now(_trial.data() + state * i, state);
-        auto width = [&](const bulk::Vec3& n) { return band_width(c, n); };
         // Initialised in place (not assigned): the result is 50 numbers, and
         // zeroing and copying a second one cost a tenth of the loop.
         bulk::CrackBandResult r = _new_cracks || bulk::CrackState<const double>(old).cracked()
-                                      ? _band.update(old, strain, now, width, _strength[i], _dt)
+                                      ? update_point(c, i, strain, now)
                                       : _band.held_uncracked(old, strain, now);
         if (_loading[i] && at_committed_strain(i, strain))
-          r.tangent = loading_tangent(i, strain, width);
+          r.tangent = loading_tangent(c, i, strain);
         ok = ok && r.status == bulk::CrackBandResult::Status::ok;
         std::copy(r.stress.begin(), r.stress.end(), _stress_trial.begin() + voigt * i);
         _dissipated_step[i] = r.dissipation;
@@ -306,18 +314,14 @@ bool BulkCracking::at_committed_strain(std::size_t i, const bulk::Voigt& strain)
   return change <= probe * size;
 }
 
-template <typename BandWidth>
-bulk::Voigt66 BulkCracking::loading_tangent(std::size_t i, const bulk::Voigt& strain,
-                                            BandWidth&& width) const
+bulk::Voigt66 BulkCracking::loading_tangent(std::size_t c, std::size_t i,
+                                            const bulk::Voigt& strain) const
 {
   bulk::Voigt probed;
   for (int k = 0; k < voigt; ++k)
     probed[k] = strain[k] * (1 + probe);
   std::array<double, state> scratch;
-  return _band
-      .update(std::span<const double>(_committed.data() + state * i, state), probed, scratch, width,
-              _strength[i], _dt)
-      .tangent;
+  return update_point(c, i, probed, scratch).tangent;
 }
 
 bool BulkCracking::energy_release(std::span<double> gradient, double& G)

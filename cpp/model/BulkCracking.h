@@ -271,16 +271,16 @@ private:
 
   /// Whether `strain` is point i's committed strain (to a relative 1e-9).
   bool at_committed_strain(std::size_t i, const bulk::Voigt& strain) const;
-  /// The tangent of point i just beyond `strain` along itself: where a
-  /// crack that grew in the last step starts the next one at its committed
-  /// strain, its law's tangent is the secant (nothing loads yet), and a
+  /// The tangent of point i (of cracking cell c) just beyond `strain` along
+  /// itself: where a crack that grew in the last step starts the next one
+  /// at its committed strain, its law's tangent is the secant (nothing
+  /// loads yet), and a
   /// Newton step from it sees none of the softening ahead. The loading
   /// tangent instead keeps the first iteration of every step (and the
   /// gradient of energy_release()) on the path, as the joints' energy
   /// release does (interface::Interface::loading_probe). The probe's trial
   /// state is thrown away.
-  template <typename BandWidth>
-  bulk::Voigt66 loading_tangent(std::size_t i, const bulk::Voigt& strain, BandWidth&& width) const;
+  bulk::Voigt66 loading_tangent(std::size_t c, std::size_t i, const bulk::Voigt& strain) const;
 
   /// The integral over this process's cracking cells of a value per point
   /// [value's unit times mm^3].
@@ -289,6 +289,10 @@ private:
   /// Band width of a cracking cell along a unit normal n: the extent of its
   /// vertices along n [mm] (bulk/CrackBand.h).
   double band_width(std::size_t cell, const bulk::Vec3& n) const;
+  /// The crack band's own update of point i (of cracking cell c) from its
+  /// committed state to `strain`, the new state into `now`.
+  bulk::CrackBandResult update_point(std::size_t c, std::size_t i, const bulk::Voigt& strain,
+                                     std::span<double> now) const;
 
   std::shared_ptr<dolfinx::mesh::Mesh> _mesh;
   std::shared_ptr<const dolfinx::fem::Function<double>> _u; ///< the model's displacement [mm]

@@ -149,10 +149,8 @@ void Corrosion::describe_cracks(solver::Equilibrium& eq, Vec state, output::Summ
       summary.cracks[i].max_opening_mm = summary.cracks[std::size_t(image)].max_opening_mm;
       summary.cracks[i].max_damage = summary.cracks[std::size_t(image)].max_damage;
     }
-  model::CrackingTotals bulk;
   model::BulkCracking* cracking = eq.model().bulk_cracking();
-  if (cracking)
-    bulk = cracking->totals();
+  const model::CrackingTotals bulk = cracking ? cracking->totals() : model::CrackingTotals{};
   summary.surface_crack_width_mm = widest_surface_crack(mouth, bulk);
   if (cracking)
   {
