@@ -472,6 +472,7 @@ private:
         return false;
       Vec3 res;
       double norm = residual(w, res);
+      bool at_w = true; // the last residual() was w's (the law's trial state)
       for (int it = 0; it < 60 && norm > tol; ++it)
       {
         Vec3 dw;
@@ -486,12 +487,16 @@ private:
           trial_norm = residual(trial, trial_res);
         }
         if (!(trial_norm < norm))
+        {
+          at_w = false;
           break;
+        }
         w = trial;
         res = trial_res;
         norm = trial_norm;
       }
-      norm = residual(w, res); // the state and tangent of the final w
+      if (!at_w)
+        norm = residual(w, res); // the state and tangent of the final w
       return norm <= tol && cohesive.status == laws::LawStatus::ok;
     }
 
