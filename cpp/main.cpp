@@ -118,8 +118,9 @@ int run_scene(const std::string& scene_file, const std::string& out,
         if (s.interrupted)
         {
           if (rank == 0)
-            std::cerr << "pushout: " << s.message << "; " << out << "/curve.csv keeps them"
-                      << std::endl;
+            std::cerr << "pushout: " << s.message << "; " << out
+                      << (s.stopped_in == "corrosion steps" ? "/corrosion.csv" : "/curve.csv")
+                      << " keeps them" << std::endl;
           return exit_code::signal(s.signal);
         }
         if (!s.converged)

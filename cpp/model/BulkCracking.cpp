@@ -141,26 +141,38 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
     cover = std::min(cover, part.radius - _tube_radius);
   _nominal_fracture_energy = _band.envelope().softening_energy() * slice.thickness * cover;
 
-  // The size condition of the crack band (bulk/CrackBand.h): the band may
-  // be as wide as the cell's bounding-box diagonal (no extent along a
-  // normal exceeds it), and must soften without snapping back there.
-  double worst = 0; // largest diagonal / max_band_width
+  refuse_bands_too_wide(part, n_points);
+}
+
+void BulkCracking::refuse_bands_too_wide(const CrackingPart& part, int n_points) const
+{
+  // [0]: largest diagonal / max_band_width; [1]: the same at the mean
+  // strength (the field's strongest points aside).
+  double worst[2] = {0, 0};
   for (std::size_t c = 0; c < _cells.size(); ++c)
   {
     const double diagonal =
         std::hypot(band_width(c, {1, 0, 0}), band_width(c, {0, 1, 0}), band_width(c, {0, 0, 1}));
     for (int q = 0; q < n_points; ++q)
-      worst = std::max(worst, diagonal / _band.max_band_width(_strength[c * n_points + q]));
+      worst[0] = std::max(worst[0], diagonal / _band.max_band_width(_strength[c * n_points + q]));
+    worst[1] = std::max(worst[1], diagonal / _band.max_band_width(1.0));
   }
-  MPI_Allreduce(MPI_IN_PLACE, &worst, 1, MPI_DOUBLE, MPI_MAX, mesh->comm());
+  MPI_Allreduce(MPI_IN_PLACE, worst, 2, MPI_DOUBLE, MPI_MAX, _mesh->comm());
   std::ostringstream why;
-  why << "cracking: a concrete element is " << worst
+  why << "cracking: a concrete element is " << worst[0]
       << " times the widest band its crack can soften over without snapping back (mu / |d "
-         "sigma / d w|, docs/cracking.md): refine the mesh (mesh.elements_per_quarter) or lower "
-         "cracking.f_t or "
-      << (part.linear_softening ? "raise cracking.w_c2" : "lower cracking.c");
+         "sigma / d w|, docs/cracking.md)";
+  if (worst[1] < 1) // only where the field raises f_t
+    why << " at a point where the strength field (cracking.strength_cov = " << part.strength_cov
+        << ") raises f_t; at the mean f_t it is " << worst[1]
+        << " times: lower cracking.strength_cov, refine the mesh "
+           "(mesh.elements_per_quarter), or lower cracking.f_t or "
+        << (part.linear_softening ? "raise cracking.w_c2" : "lower cracking.c");
+  else
+    why << ": refine the mesh (mesh.elements_per_quarter) or lower cracking.f_t or "
+        << (part.linear_softening ? "raise cracking.w_c2" : "lower cracking.c");
   // The same value on every process: all refuse the scene together (exit 2).
-  if (worst >= 1)
+  if (worst[0] >= 1)
     throw SceneError(why.str());
 }
 

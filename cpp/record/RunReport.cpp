@@ -8,6 +8,15 @@
 
 namespace pushout::record
 {
+std::string stage_progress(const std::string& stage, const output::Summary& s)
+{
+  if (stage == "step 0")
+    return "in step 0";
+  if (stage == "corrosion steps")
+    return "after " + std::to_string(s.corrosion_steps) + " corrosion steps";
+  return "after " + std::to_string(s.steps) + " load steps";
+}
+
 double peak_memory_here_mb()
 {
   rusage usage;
@@ -37,8 +46,10 @@ RunReport::RunReport(const Scene& scene, const std::filesystem::path& out, bool 
             s.converged = false;
             s.signal = sig;
             s.stopped_in = phase;
-            s.message = "interrupted by " + interrupt::signal_name(sig) + " during " + phase +
-                        " after " + std::to_string(s.steps) + " load steps";
+            std::string where = " during " + phase;
+            if (phase != "step 0")
+              where += ' ' + stage_progress(phase, s);
+            s.message = "interrupted by " + interrupt::signal_name(sig) + where;
             stamp(s);
             if (_rank != 0)
             {

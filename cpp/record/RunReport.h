@@ -19,6 +19,11 @@
 
 namespace pushout::record
 {
+/// How far the steps of `stage` had gone when a signal stopped it: "in step
+/// 0", "after 5 corrosion steps", or (the push, or any other phase) "after 3
+/// load steps" (summary.json's message; `stage` as its stopped_in).
+std::string stage_progress(const std::string& stage, const output::Summary& s);
+
 class RunReport
 {
 public:

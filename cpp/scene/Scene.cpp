@@ -172,7 +172,20 @@ void check_value(const KeyDef& def, const Value& v)
   if (const auto* d = std::get_if<double>(&v))
     check_range(*d, def.min, def.max, def.open, def.path, def.unit);
   else if (const auto* i = std::get_if<std::int64_t>(&v))
+  {
+    // Exactly: above 2^53 a double rounds the value onto its bound.
+    const auto whole = [](double bound)
+    { return std::abs(bound) < 9e18 && std::floor(bound) == bound; };
+    const bool outside =
+        (whole(def.min) && (def.open ? *i <= std::int64_t(def.min) : *i < std::int64_t(def.min))) ||
+        (whole(def.max) && (def.open ? *i >= std::int64_t(def.max) : *i > std::int64_t(def.max)));
+    if (outside)
+      throw SceneError("'" + def.path + "' = " + std::to_string(*i) +
+                       (def.unit.empty() || def.unit == "-" ? "" : " " + def.unit) +
+                       " is out of range: it must be " +
+                       range_text(def.min, def.max, def.open, true));
     check_range(double(*i), def.min, def.max, def.open, def.path, def.unit, true);
+  }
   else if (const auto* a = std::get_if<std::vector<double>>(&v))
   {
     // Every number of an array as a scalar of the key would be.

@@ -224,7 +224,9 @@ std::vector<KeyDef> make_keys()
        1.0,
        "",
        "ratio of each push step to the previous one (1: equal steps; > 1: fine steps "
-       "first, for the peak, coarse ones later); below 10, and the last step at most 1e6 "
+       "first, for the peak, coarse ones later) under displacement control (and under "
+       "dissipation control where nothing softens, which then runs so; refused where its "
+       "own steps run, and under arc length); below 10, and the last step at most 1e6 "
        "times the first (step_growth^(steps - 1)): more leaves the first steps below round-off",
        0,
        10,
@@ -453,7 +455,10 @@ std::vector<KeyDef> make_keys()
        "cut); current: the tangent at the step's start, where the laws are at their "
        "committed state (always under dissipation control, whose steps must stay on the "
        "committed state's branch, in the thermal step, and with IMPL-EX cracks, whose step's "
-       "tangent is known at its start). The converged solution is the same",
+       "tangent is known at its start). The converged solution is the same where it is "
+       "unique; where softening leaves a step more than one equilibrium (implicit cracks in the "
+       "concrete that compete, a brittle layer at its peak) Newton may find another from "
+       "another start",
        -inf,
        inf,
        false,

@@ -28,8 +28,8 @@ double widest_surface_crack(const std::vector<double>& mouths, const model::Crac
 
 Corrosion::Corrosion(const CorrosionPart& corrosion, const CrackDirections& cracks,
                      bool bulk_cracking, const std::filesystem::path& out,
-                     record::RunReport& report, MPI_Comm comm)
-    : _out(out), _report(report), _comm(comm)
+                     record::RunReport& report, MPI_Comm comm, int copies)
+    : _out(out), _report(report), _comm(comm), _copies(copies)
 {
   _x_final = corrosion.penetration;
   _steps = int(corrosion.steps);
@@ -79,6 +79,11 @@ void Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iterati
   if (model::BulkCracking* cracking = eq.model().bulk_cracking())
   {
     bulk = cracking->totals();
+    // The specimen's, as the push force is (a symmetric model's points and
+    // energy are a 1/copies part of them).
+    bulk.points *= _copies;
+    bulk.cracked_points *= _copies;
+    bulk.dissipated *= _copies;
     for (double w : widths)
       at_surface += w >= cracking->visible_width();
     for (const model::SurfaceCrack& c : bulk.surface)

@@ -37,9 +37,13 @@ class Corrosion
 public:
   /// Opens corrosion.csv in `out` if `corrosion` has a stage (penetration
   /// > 0); `cracks`: the crack planes' directions; `bulk_cracking`: the
-  /// concrete may crack anywhere ([cracking]); `comm`: the run's processes.
+  /// concrete may crack anywhere ([cracking]); `comm`: the run's processes;
+  /// `copies`: the specimen is that many mirror images of the model
+  /// (mesh::MeshData::copies), so the concrete's cracked points and
+  /// dissipation are written as the specimen's (as the push force is).
   Corrosion(const CorrosionPart& corrosion, const CrackDirections& cracks, bool bulk_cracking,
-            const std::filesystem::path& out, record::RunReport& report, MPI_Comm comm);
+            const std::filesystem::path& out, record::RunReport& report, MPI_Comm comm,
+            int copies = 1);
 
   /// Whether the scene has a corrosion stage (penetration > 0).
   bool active() const { return _x_final > 0; }
@@ -83,6 +87,7 @@ private:
   std::filesystem::path _out; ///< the output folder
   record::RunReport& _report;
   MPI_Comm _comm;
+  int _copies = 1;                         ///< mirror images of the model in the specimen
   std::optional<output::CurveWriter> _csv; ///< rank 0
 };
 

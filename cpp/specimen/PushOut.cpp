@@ -418,6 +418,10 @@ void PushOut::check_scene(const Scene& scene)
                        "\"displacement\" (path following and dissipation control run a "
                        "monotonic push)");
   }
+  if (loading.step_growth != 1.0 && loading.control == Loading::Control::arc_length)
+    throw SceneError("'loading.step_growth' grows the push's steps of delta; arc length "
+                     "('loading.control' = \"arc_length\") takes steps of equal length, "
+                     "push_displacement / steps in the (delta, slip) plane: leave it at 1");
   // Steps growing (or shrinking) geometrically: the last at most
   // max_step_ratio times the first, or the other way round.
   const double growth = loading.step_growth;

@@ -11,6 +11,7 @@
 #include "StepLoopShared.h"
 #include <array>
 #include <iostream>
+#include <optional>
 
 namespace pushout::stepping
 {
@@ -48,12 +49,23 @@ bool StepLoop::run(Control control)
   try
   {
     // Step 0 and the corrosion stage end with the push's start recorded
-    // (curve.csv row 0) before their last commit.
+    // (curve.csv row 0) before their last commit. Each stage names itself
+    // where a signal stops it (the watcher's phase, and stop_requested()).
+    std::optional<interrupt::Phase> phase;
+    const auto enter = [&](const char* stage)
+    {
+      _stage = stage;
+      phase.reset();
+      phase.emplace(stage, interrupt::stop_grace_s);
+    };
+    enter("step 0");
     if (!initial_step())
       return false;
+    enter("corrosion steps");
     if (_corrosion.active() &&
         !(control == Control::dissipation ? corrode_by_dissipation() : corrode()))
       return false;
+    enter("load steps");
     switch (control)
     {
     case Control::arc_length:
@@ -194,10 +206,10 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
   ++_summary.cuts;
   if (_report.talk())
   {
-    // "load step 3" is said "step 3", as its progress line; a stage of one
-    // step ("corrosion step") by its name.
-    const std::size_t at = what.rfind("step ");
-    std::cout << (at == std::string::npos ? what : what.substr(at)) << ": " << reason
+    // "load step 3" is said "step 3", as its progress line; the other
+    // stages' steps by their names ("corrosion step 3", "corrosion step").
+    const std::string load = "load ";
+    std::cout << (what.rfind(load, 0) == 0 ? what.substr(load.size()) : what) << ": " << reason
               << "; retrying with " << size(stepper.increment()) << std::endl;
   }
   return true;
@@ -215,9 +227,9 @@ bool StepLoop::stop_requested()
   interrupt::acknowledge(); // every process stops here, by itself
   _summary.interrupted = true;
   _summary.signal = global;
-  _summary.stopped_in = "load steps";
-  _summary.message = "interrupted by " + interrupt::signal_name(global) + " after " +
-                     std::to_string(_summary.steps) + " load steps";
+  _summary.stopped_in = _stage;
+  _summary.message = "interrupted by " + interrupt::signal_name(global) + " " +
+                     record::stage_progress(_stage, _summary);
   _report.save_stop();
   return true;
 }

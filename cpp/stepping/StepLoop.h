@@ -59,6 +59,11 @@ public:
   /// converge or a signal stopped the run (summary.message says which).
   bool run(Control control);
 
+  /// Whether dissipation control takes steps of its own in `model` (its
+  /// joints or the concrete's cracks soften; else it runs as displacement
+  /// control). Collective.
+  static bool dissipation_softens(model::Model& model);
+
 private:
   // --- StepLoop.cpp: step 0 and what the controls share ---
 
@@ -246,5 +251,8 @@ private:
   /// a step taken; check_implex)
   double _implex_missed = 0;
   double _implex_missed_increment = 0; ///< that try's increment of its stage's parameter
+  /// The stage the loop is in, as summary.json's stopped_in says it when a
+  /// signal stops the run: "step 0", "corrosion steps" or "load steps".
+  const char* _stage = "step 0";
 };
 } // namespace pushout::stepping

@@ -51,6 +51,13 @@ cases = [
      GOOD + '\n[cracking]\nmodel = "embedded"\nradius = 10.01\n', [],
      ["cracking.radius", "nearest element centre"]),
     ("a section given a value", GOOD, ["cracking=embedded"], ["'cracking'", "[cracking]", "model"]),
+    ("cracking seed beyond 2^53", GOOD + '\n[cracking]\nmodel = "embedded"\n',
+     ["cracking.seed=9007199254740993"], ["cracking.seed", "9007199254740993", "out of range"]),
+    # Steps that grow where the control takes equal steps of its own.
+    ("step growth under arc length", GOOD, ["loading.control=arc_length", "loading.step_growth=2"],
+     ["loading.step_growth", "arc_length"]),
+    ("step growth where dissipation control runs", GOOD + '\n[cracking]\nmodel = "embedded"\n',
+     ["loading.control=auto", "loading.step_growth=2"], ["loading.step_growth", "dissipation control"]),
     ("--set missing layer", GOOD, ["interface.3.mu=0.2"], ["interface.3.mu"]),
     ("--set unknown key", GOOD, ["loading.stepz=3"], ["loading.stepz"]),
     ("--set malformed", GOOD, ["loading.steps"], ["loading.steps", "key=value"]),

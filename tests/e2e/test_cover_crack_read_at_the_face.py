@@ -30,7 +30,9 @@ random strength field and no crack planes:
    "symmetric": the half x >= 50 mm) the cover crack lies on the plane:
    read whole (its mirror image added), along the plane (270 degrees), and
    counted; until it localises the whole slice solves the same symmetric
-   problem and reads the same widths at the same x."""
+   problem and reads the same widths at the same x, and the same cracked
+   points and concrete dissipation (written as the whole specimen's, as the
+   push force is: the half model's times 2)."""
 
 import csv
 import math
@@ -160,6 +162,17 @@ check(summary(half)["symmetry"] == "half" and len(pairs) >= 2 and
       all(abs(a - b) <= 0.01 * b for a, b in pairs),
       f"cut by symmetry: the cover crack reads whole before it localises ({len(pairs)} rows, "
       f"widest difference {max(abs(a - b) / b for a, b in pairs) * 100:.2f} %)")
+half_rows = {round(r["penetration_mm"], 12): r for r in corrosion(half)}
+both = [(half_rows[round(b["penetration_mm"], 12)], b) for b in corrosion(whole)
+        if 0 < b["crack_width_mm"] < 0.014 and round(b["penetration_mm"], 12) in half_rows]
+off = max(max(abs(a[k] - b[k]) / b[k] for k in ("cracked_points", "concrete_dissipation_Nmm"))
+          for a, b in both)
+check(len(both) >= 2 and off <= 0.01,
+      f"cut by symmetry: the cracked points and the concrete's dissipation are the whole "
+      f"specimen's ({len(both)} rows, widest difference {100 * off:.2f} %; at the last "
+      f"{int(both[-1][0]['cracked_points'])} points and "
+      f"{both[-1][0]['concrete_dissipation_Nmm']:.4g} N mm against "
+      f"{int(both[-1][1]['cracked_points'])} and {both[-1][1]['concrete_dissipation_Nmm']:.4g})")
 on_plane = [c for c in summary(half)["cracks"] if c["source"] == "concrete"]
 check(len(on_plane) == 1 and on_plane[0]["angle_deg"] == 270 and
       corrosion(half)[-1]["cracks_at_surface"] == 1,

@@ -1,6 +1,8 @@
 """A run killed with SIGTERM, SIGINT or SIGHUP mid-way exits with 128 +
 signal, keeps a valid curve.csv with every finished step, and its
-summary.json says it was interrupted (and not converged). A closed pipe
+summary.json says it was interrupted (and not converged). Stopped in the
+corrosion stage, it says so (stopped_in "corrosion steps", the corrosion
+steps it finished, corrosion.csv keeping them). A closed pipe
 (`pushout run ... | head -3`) does not stop it. A sweep stops within a few
 seconds, without plotting."""
 import os
@@ -9,7 +11,7 @@ import subprocess
 import sys
 import time
 
-from common import check, curve, out_dir, summary
+from common import SOURCE, check, corrosion, curve, out_dir, summary
 
 PUSHOUT = sys.argv[1]
 os.makedirs(os.environ.get("PUSHOUT_TEST_OUT", "/tmp"), exist_ok=True)
@@ -33,6 +35,28 @@ for sig in (signal.SIGTERM, signal.SIGINT, signal.SIGHUP):
     check(s["interrupted"] and not s["converged"], f"{sig.name}: summary.json says interrupted")
     check(len(rows) == s["steps"] + 1 >= 4, f"{sig.name}: curve.csv keeps all {len(rows)} rows")
     check(all(len(r) == len(rows[0]) for r in rows), f"{sig.name}: every row complete")
+
+# Stopped in the corrosion stage (the corroded demo, coarse, in many small
+# corrosion steps): the stage and its finished steps named.
+
+out = out_dir("interrupt_corrosion")
+p = subprocess.Popen([PUSHOUT, "run", os.path.join(SOURCE, "demo", "pushout_corroded.toml"), "--out",
+                      out, "--quiet", "--set", "mesh.elements_per_quarter=4", "--set",
+                      "mesh.elements_through_thickness=2", "--set", "corrosion.steps=100000"],
+                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+csv = os.path.join(out, "corrosion.csv")
+deadline = time.time() + 120
+while time.time() < deadline and (not os.path.exists(csv) or len(open(csv).readlines()) < 5):
+    time.sleep(0.1)
+p.send_signal(signal.SIGINT)
+_, err = p.communicate(timeout=120)
+s, rows = summary(out), corrosion(out)
+said = f"after {s['corrosion_steps']} corrosion steps"
+check(p.returncode == 130 and s["interrupted"] and s["stopped_in"] == "corrosion steps" and
+      s["steps"] == 0 and s["corrosion_steps"] == len(rows) - 1 >= 3 and said in s["message"] and
+      said in err and "corrosion.csv keeps them" in err,
+      f"SIGINT in the corrosion stage: exit {p.returncode}, stopped_in {s['stopped_in']!r}, "
+      f"{s['message']!r}, corrosion.csv {len(rows)} rows; {err.strip()!r}")
 
 # Under nohup (SIGHUP ignored from the start) SIGHUP does not stop the run.
 out = out_dir("interrupt_nohup")
