@@ -3,6 +3,7 @@
 #include "SceneError.h"
 #include "TomlNesting.h"
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -92,8 +93,13 @@ void apply_override(toml::table& root, const Override& o)
   {
     holder = toml::parse("v = " + o.value);
   }
-  catch (const toml::parse_error&)
+  catch (const toml::parse_error& e)
   {
+    // Digits that TOML cannot hold (beyond 64 bits) are not a bare word.
+    const std::size_t sign = !o.value.empty() && (o.value[0] == '+' || o.value[0] == '-');
+    if (o.value.size() > sign && std::all_of(o.value.begin() + long(sign), o.value.end(),
+                                             [](unsigned char c) { return std::isdigit(c) != 0; }))
+      throw SceneError(what + " = " + o.value + ": " + std::string(e.description()));
     holder = toml::table{{"v", o.value}}; // a bare word: take it as a string
   }
   const std::string& key = parts.back();

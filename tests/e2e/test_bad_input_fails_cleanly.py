@@ -62,6 +62,8 @@ cases = [
     ("--set unknown key", GOOD, ["loading.stepz=3"], ["loading.stepz"]),
     ("--set malformed", GOOD, ["loading.steps"], ["loading.steps", "key=value"]),
     ("--set wrong type", GOOD, ["loading.steps=many"], ["loading.steps"]),
+    ("--set integer beyond 64 bits", GOOD, ["loading.steps=99999999999999999999"],
+     ["loading.steps", "99999999999999999999", "64 bits"]),
 ]
 
 for name, text, sets, words in cases:
