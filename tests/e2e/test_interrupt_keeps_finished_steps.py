@@ -14,6 +14,16 @@ import time
 from common import SOURCE, check, corrosion, curve, out_dir, summary
 
 PUSHOUT = sys.argv[1]
+
+
+def wait_for_rows(csv, rows, seconds, poll):
+    """Waits until the file `csv` has `rows` lines (its header one of them),
+    at most `seconds`, looking every `poll` seconds."""
+    deadline = time.time() + seconds
+    while time.time() < deadline and (not os.path.exists(csv) or len(open(csv).readlines()) < rows):
+        time.sleep(poll)
+
+
 os.makedirs(os.environ.get("PUSHOUT_TEST_OUT", "/tmp"), exist_ok=True)
 scene = os.path.join(os.environ.get("PUSHOUT_TEST_OUT", "/tmp"), "interrupt.toml")
 with open(scene, "w") as f:
@@ -24,9 +34,7 @@ for sig in (signal.SIGTERM, signal.SIGINT, signal.SIGHUP):
     p = subprocess.Popen([PUSHOUT, "run", scene, "--out", out, "--quiet"],
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     csv = os.path.join(out, "curve.csv")
-    deadline = time.time() + 120
-    while time.time() < deadline and (not os.path.exists(csv) or len(open(csv).readlines()) < 4):
-        time.sleep(0.1)
+    wait_for_rows(csv, 4, 120, 0.1)
     p.send_signal(sig)
     _, err = p.communicate(timeout=120)
     check(p.returncode == 128 + sig, f"{sig.name}: exit {p.returncode} = 128 + {int(sig)}")
@@ -38,16 +46,13 @@ for sig in (signal.SIGTERM, signal.SIGINT, signal.SIGHUP):
 
 # Stopped in the corrosion stage (the corroded demo, coarse, in many small
 # corrosion steps): the stage and its finished steps named.
-
 out = out_dir("interrupt_corrosion")
 p = subprocess.Popen([PUSHOUT, "run", os.path.join(SOURCE, "demo", "pushout_corroded.toml"), "--out",
                       out, "--quiet", "--set", "mesh.elements_per_quarter=4", "--set",
                       "mesh.elements_through_thickness=2", "--set", "corrosion.steps=100000"],
                      stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
 csv = os.path.join(out, "corrosion.csv")
-deadline = time.time() + 120
-while time.time() < deadline and (not os.path.exists(csv) or len(open(csv).readlines()) < 5):
-    time.sleep(0.1)
+wait_for_rows(csv, 5, 120, 0.1)
 p.send_signal(signal.SIGINT)
 _, err = p.communicate(timeout=120)
 s, rows = summary(out), corrosion(out)
@@ -64,9 +69,7 @@ p = subprocess.Popen([PUSHOUT, "run", scene, "--out", out, "--quiet", "--set", "
                      stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                      preexec_fn=lambda: signal.signal(signal.SIGHUP, signal.SIG_IGN))
 csv = os.path.join(out, "curve.csv")
-deadline = time.time() + 120
-while time.time() < deadline and (not os.path.exists(csv) or len(open(csv).readlines()) < 4):
-    time.sleep(0.05)
+wait_for_rows(csv, 4, 120, 0.05)
 p.send_signal(signal.SIGHUP)
 _, err = p.communicate(timeout=300)
 check(p.returncode == 0 and summary(out)["converged"], f"nohup: SIGHUP ignored, exit {p.returncode}")
@@ -94,9 +97,7 @@ p = subprocess.Popen([PUSHOUT, "sweep", scene, "--out", out, "--quiet", "--vary"
                       f"loading.steps={steps}"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                      text=True)
 csv = os.path.join(out, "case_020", "curve.csv")
-deadline = time.time() + 300
-while time.time() < deadline and (not os.path.exists(csv) or len(open(csv).readlines()) < 3):
-    time.sleep(0.1)
+wait_for_rows(csv, 3, 300, 0.1)
 t0 = time.time()
 p.send_signal(signal.SIGTERM)
 _, err = p.communicate(timeout=120)
