@@ -118,9 +118,15 @@ int run_scene(const std::string& scene_file, const std::string& out,
         if (s.interrupted)
         {
           if (rank == 0)
-            std::cerr << "pushout: " << s.message << "; " << out
-                      << (s.stopped_in == "corrosion steps" ? "/corrosion.csv" : "/curve.csv")
-                      << " keeps them" << std::endl;
+          {
+            // What keeps the finished steps: none in step 0.
+            std::cerr << "pushout: " << s.message;
+            if (s.stopped_in != "step 0")
+              std::cerr << "; " << out
+                        << (s.stopped_in == "corrosion steps" ? "/corrosion.csv" : "/curve.csv")
+                        << " keeps them";
+            std::cerr << std::endl;
+          }
           return exit_code::signal(s.signal);
         }
         if (!s.converged)

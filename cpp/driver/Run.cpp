@@ -92,27 +92,6 @@ void describe_model(const mesh::MeshInput& shape, const mesh::MeshData& data,
 }
 } // namespace
 
-namespace
-{
-/// Dissipation control steps delta by push_displacement / steps where the
-/// joints or the concrete's cracks soften: a growth of the push's steps
-/// (loading.step_growth) would be ignored there, so it is refused (the same
-/// on every process: all refuse together).
-void refuse_ignored_step_growth(const Loading& loading, model::Model& model)
-{
-  if (loading.step_growth == 1.0 || !stepping::StepLoop::dissipation_softens(model))
-    return;
-  std::ostringstream s;
-  s << "'loading.step_growth' = " << loading.step_growth
-    << " grows the push's steps under displacement control; dissipation control "
-       "('loading.control' = \"auto\" or \"dissipation\"), which runs here as the joints or "
-       "the concrete's cracks soften, takes steps of delta of push_displacement / steps and "
-       "steps of energy: leave 'loading.step_growth' at 1 (more 'loading.steps' for finer "
-       "steps), or set 'loading.control' = \"displacement\"";
-  throw SceneError(s.str());
-}
-} // namespace
-
 Simulation::Simulation(const Scene& scene, const RunOptions& opt, record::RunReport& report)
     : _fingerprint(set_up_fingerprint(scene))
 {
@@ -189,7 +168,19 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, record::R
   const int factorizations_before = _solver->factorizations();
   const std::int64_t linear_before = _solver->linear_iterations();
 
+  // Outputs and load steps.
+  stepping::StepRecorder recorder(scene.output(), opt.out, *scenario, *_equilibrium, report);
+  specimen::Corrosion corrosion(scene.corrosion(), scene.crack_directions(),
+                                scene.cracking().embedded, opt.out, report, opt.comm, _data.copies);
   const Loading& loading = scene.loading();
+  stepping::StepLoop loop(*scenario, corrosion, *_equilibrium, *_solver, recorder, report,
+                          int(loading.max_cuts),
+                          scenario->has_load_factor() ? int(loading.dissipation_steps) : 1);
+  if (scene.solver().time_linear_solve)
+    loop.time_linear_solve();
+  report.publish();
+  std::optional<interrupt::Phase> phase(std::in_place, "load steps", interrupt::stop_grace_s);
+  const double t0 = report.seconds();
   const auto control = [&]
   {
     if (!scenario->has_load_factor())
@@ -204,20 +195,6 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, record::R
       return stepping::StepLoop::Control::dissipation; // "dissipation" or "auto"
     }
   }();
-  if (control == stepping::StepLoop::Control::dissipation)
-    refuse_ignored_step_growth(loading, *_model);
-  // Outputs and load steps.
-  stepping::StepRecorder recorder(scene.output(), opt.out, *scenario, *_equilibrium, report);
-  specimen::Corrosion corrosion(scene.corrosion(), scene.crack_directions(),
-                                scene.cracking().embedded, opt.out, report, opt.comm, _data.copies);
-  stepping::StepLoop loop(*scenario, corrosion, *_equilibrium, *_solver, recorder, report,
-                          int(loading.max_cuts),
-                          scenario->has_load_factor() ? int(loading.dissipation_steps) : 1);
-  if (scene.solver().time_linear_solve)
-    loop.time_linear_solve();
-  report.publish();
-  std::optional<interrupt::Phase> phase(std::in_place, "load steps", interrupt::stop_grace_s);
-  const double t0 = report.seconds();
   // An error on one process is agreed on here, where the solvers still
   // live: destroying a MUMPS factor is collective, so a process must not
   // leave with it while the others go on (common/mpi_errors.h).

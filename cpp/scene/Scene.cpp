@@ -93,13 +93,15 @@ void apply_override(toml::table& root, const Override& o)
   {
     holder = toml::parse("v = " + o.value);
   }
-  catch (const toml::parse_error& e)
+  catch (const toml::parse_error&)
   {
-    // Digits that TOML cannot hold (beyond 64 bits) are not a bare word.
+    // Digits that TOML cannot hold (more than 18: beyond 64 bits) are not a
+    // bare word.
     const std::size_t sign = !o.value.empty() && (o.value[0] == '+' || o.value[0] == '-');
-    if (o.value.size() > sign && std::all_of(o.value.begin() + long(sign), o.value.end(),
-                                             [](unsigned char c) { return std::isdigit(c) != 0; }))
-      throw SceneError(what + " = " + o.value + ": " + std::string(e.description()));
+    if (o.value.size() > sign + 18 &&
+        std::all_of(o.value.begin() + long(sign), o.value.end(),
+                    [](unsigned char c) { return std::isdigit(c) != 0; }))
+      throw SceneError(what + " = " + shortened(o.value) + ": an integer beyond 64 bits");
     holder = toml::table{{"v", o.value}}; // a bare word: take it as a string
   }
   const std::string& key = parts.back();
@@ -179,18 +181,26 @@ void check_value(const KeyDef& def, const Value& v)
     check_range(*d, def.min, def.max, def.open, def.path, def.unit);
   else if (const auto* i = std::get_if<std::int64_t>(&v))
   {
-    // Exactly: above 2^53 a double rounds the value onto its bound.
-    const auto whole = [](double bound)
-    { return std::abs(bound) < 9e18 && std::floor(bound) == bound; };
-    const bool outside =
-        (whole(def.min) && (def.open ? *i <= std::int64_t(def.min) : *i < std::int64_t(def.min))) ||
-        (whole(def.max) && (def.open ? *i >= std::int64_t(def.max) : *i > std::int64_t(def.max)));
-    if (outside)
+    // Exactly against a whole bound: above 2^53 a double would round the
+    // value onto it.
+    const auto whole = [](double b) { return std::abs(b) < 0x1p63 && std::floor(b) == b; };
+    const auto below = [&](double b)
+    {
+      if (whole(b))
+        return def.open ? *i <= std::int64_t(b) : *i < std::int64_t(b);
+      return def.open ? double(*i) <= b : double(*i) < b; // -inf: never
+    };
+    const auto above = [&](double b)
+    {
+      if (whole(b))
+        return def.open ? *i >= std::int64_t(b) : *i > std::int64_t(b);
+      return def.open ? double(*i) >= b : double(*i) > b; // inf: never
+    };
+    if (below(def.min) || above(def.max))
       throw SceneError("'" + def.path + "' = " + std::to_string(*i) +
                        (def.unit.empty() || def.unit == "-" ? "" : " " + def.unit) +
                        " is out of range: it must be " +
                        range_text(def.min, def.max, def.open, true));
-    check_range(double(*i), def.min, def.max, def.open, def.path, def.unit, true);
   }
   else if (const auto* a = std::get_if<std::vector<double>>(&v))
   {

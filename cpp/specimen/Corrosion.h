@@ -42,8 +42,7 @@ public:
   /// (mesh::MeshData::copies), so the concrete's cracked points and
   /// dissipation are written as the specimen's (as the push force is).
   Corrosion(const CorrosionPart& corrosion, const CrackDirections& cracks, bool bulk_cracking,
-            const std::filesystem::path& out, record::RunReport& report, MPI_Comm comm,
-            int copies = 1);
+            const std::filesystem::path& out, record::RunReport& report, MPI_Comm comm, int copies);
 
   /// Whether the scene has a corrosion stage (penetration > 0).
   bool active() const { return _x_final > 0; }

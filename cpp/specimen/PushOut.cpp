@@ -1,4 +1,5 @@
 #include "PushOut.h"
+#include "../laws/LawRegistry.h"
 #include "../mesh/cracks.h"
 #include "../mesh/symmetry.h"
 #include "../scene/SceneError.h"
@@ -346,6 +347,48 @@ std::string PushOut::progress(const std::vector<double>& r) const
 
 namespace pushout::specimen
 {
+namespace
+{
+/// Whether a joint law of the scene ([[interface]] layers, [[crack]] planes)
+/// or the concrete ([cracking]) softens: then dissipation control takes steps
+/// of its own (StepLoop::by_dissipation; else it runs as displacement
+/// control).
+bool softens(const Scene& scene)
+{
+  const auto law_softens = [](const LayerSpec& spec, const std::string& prefix)
+  { return laws::find_law(spec.law)->make(spec.params, prefix)->fracture_energy() > 0; };
+  bool any = scene.cracking().embedded;
+  for (std::size_t i = 0; i < scene.layers().size(); ++i)
+    any = any || law_softens(scene.layers()[i], "interface." + std::to_string(i) + ".");
+  for (std::size_t i = 0; i < scene.cracks().size(); ++i)
+    any = any || law_softens(scene.cracks()[i].layer, "crack." + std::to_string(i) + ".");
+  return any;
+}
+
+/// loading.step_growth grows the push's steps under displacement control; a
+/// control that takes equal steps of its own would ignore it: refused.
+void refuse_ignored_step_growth(const Scene& scene)
+{
+  const Loading& loading = scene.loading();
+  if (loading.step_growth == 1.0)
+    return;
+  std::ostringstream s;
+  s << "'loading.step_growth' = " << loading.step_growth
+    << " grows the push's steps under displacement control; ";
+  if (loading.control == Loading::Control::arc_length)
+    s << "arc length ('loading.control' = \"arc_length\") takes steps of equal length, "
+         "push_displacement / steps in the (delta, slip) plane: leave it at 1";
+  else if (loading.control != Loading::Control::displacement && softens(scene))
+    s << "dissipation control ('loading.control' = \"auto\" or \"dissipation\"), which runs "
+         "here as the joints or the concrete's cracks soften, takes steps of delta of "
+         "push_displacement / steps and steps of energy: leave 'loading.step_growth' at 1 (more "
+         "'loading.steps' for finer steps), or set 'loading.control' = \"displacement\"";
+  else
+    return;
+  throw SceneError(s.str());
+}
+} // namespace
+
 void PushOut::check_scene(const Scene& scene)
 {
   const Geometry& g = scene.geometry();
@@ -418,10 +461,7 @@ void PushOut::check_scene(const Scene& scene)
                        "\"displacement\" (path following and dissipation control run a "
                        "monotonic push)");
   }
-  if (loading.step_growth != 1.0 && loading.control == Loading::Control::arc_length)
-    throw SceneError("'loading.step_growth' grows the push's steps of delta; arc length "
-                     "('loading.control' = \"arc_length\") takes steps of equal length, "
-                     "push_displacement / steps in the (delta, slip) plane: leave it at 1");
+  refuse_ignored_step_growth(scene);
   // Steps growing (or shrinking) geometrically: the last at most
   // max_step_ratio times the first, or the other way round.
   const double growth = loading.step_growth;

@@ -213,11 +213,6 @@ bool StepLoop::push_by_dissipation()
 /// move lambda by more than a step of lambda. Failed steps are halved (each
 /// kind its own Stepper.h). Without softening layers (dG = 0) the stage
 /// runs as without dissipation control.
-bool StepLoop::dissipation_softens(model::Model& model)
-{
-  return fracture_energy(model) > 0;
-}
-
 bool StepLoop::by_dissipation(const DissipationStage& stage)
 {
   const double dG_nominal = fracture_energy(_equilibrium.model()) / _dissipation_steps; // [N mm]

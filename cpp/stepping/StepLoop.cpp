@@ -206,10 +206,13 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
   ++_summary.cuts;
   if (_report.talk())
   {
-    // "load step 3" is said "step 3", as its progress line; the other
-    // stages' steps by their names ("corrosion step 3", "corrosion step").
-    const std::string load = "load ";
-    std::cout << (what.rfind(load, 0) == 0 ? what.substr(load.size()) : what) << ": " << reason
+    // A push step ("load step 3") is said "step 3", as its progress line; a
+    // stage of one step by its name ("load step", "corrosion step"), and
+    // so is a corrosion step ("corrosion step 3": its progress line says
+    // "corrosion 3/25").
+    const std::size_t at =
+        what.rfind("corrosion ", 0) == 0 ? std::string::npos : what.rfind("step ");
+    std::cout << (at == std::string::npos ? what : what.substr(at)) << ": " << reason
               << "; retrying with " << size(stepper.increment()) << std::endl;
   }
   return true;

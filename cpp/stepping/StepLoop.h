@@ -59,11 +59,6 @@ public:
   /// converge or a signal stopped the run (summary.message says which).
   bool run(Control control);
 
-  /// Whether dissipation control takes steps of its own in `model` (its
-  /// joints or the concrete's cracks soften; else it runs as displacement
-  /// control). Collective.
-  static bool dissipation_softens(model::Model& model);
-
 private:
   // --- StepLoop.cpp: step 0 and what the controls share ---
 

@@ -53,6 +53,10 @@ cases = [
     ("a section given a value", GOOD, ["cracking=embedded"], ["'cracking'", "[cracking]", "model"]),
     ("cracking seed beyond 2^53", GOOD + '\n[cracking]\nmodel = "embedded"\n',
      ["cracking.seed=9007199254740993"], ["cracking.seed", "9007199254740993", "out of range"]),
+    ("crack band too wide where the field raises f_t",
+     GOOD.replace("elements_per_quarter = 4", "elements_per_quarter = 8") +
+     '\n[cracking]\nmodel = "embedded"\nstrength_cov = 0.8\n', [],
+     ["cracking.strength_cov", "mean f_t"]),
     # Steps that grow where the control takes equal steps of its own.
     ("step growth under arc length", GOOD, ["loading.control=arc_length", "loading.step_growth=2"],
      ["loading.step_growth", "arc_length"]),

@@ -155,19 +155,26 @@ uniform = cracking_corroded_demo(0.03, 10, f_t, 0.0)
 half, whole = out_dir("cover_crack_half"), out_dir("cover_crack_whole")
 run(uniform, half, sets=["model.symmetry=symmetric"], extra=TIGHT_NEWTON)
 run(uniform, whole, extra=TIGHT_NEWTON)
-half_at = {round(r["penetration_mm"], 12): r["crack_width_mm"] for r in corrosion(half)}
-pairs = [(half_at[round(b["penetration_mm"], 12)], b["crack_width_mm"]) for b in corrosion(whole)
-         if 0 < b["crack_width_mm"] < 0.014 and round(b["penetration_mm"], 12) in half_at]
-check(summary(half)["symmetry"] == "half" and len(pairs) >= 2 and
-      all(abs(a - b) <= 0.01 * b for a, b in pairs),
-      f"cut by symmetry: the cover crack reads whole before it localises ({len(pairs)} rows, "
-      f"widest difference {max(abs(a - b) / b for a, b in pairs) * 100:.2f} %)")
 half_rows = {round(r["penetration_mm"], 12): r for r in corrosion(half)}
 both = [(half_rows[round(b["penetration_mm"], 12)], b) for b in corrosion(whole)
         if 0 < b["crack_width_mm"] < 0.014 and round(b["penetration_mm"], 12) in half_rows]
-off = max(max(abs(a[k] - b[k]) / b[k] for k in ("cracked_points", "concrete_dissipation_Nmm"))
-          for a, b in both)
-check(len(both) >= 2 and off <= 0.01,
+
+
+def widest_difference(key):
+    """The largest relative difference of a column between the two runs'
+    rows compared."""
+    return max(abs(a[key] - b[key]) / b[key] for a, b in both)
+
+
+check(summary(half)["symmetry"] == "half" and len(both) >= 2 and
+      widest_difference("crack_width_mm") <= 0.01,
+      f"cut by symmetry: the cover crack reads whole before it localises ({len(both)} rows, "
+      f"widest difference {widest_difference('crack_width_mm') * 100:.2f} %)")
+# The same bound for the totals: the points cracked differ only where one
+# lands within Newton's tolerance of its strength (none, measured); the
+# modelled half's would be 50 % off.
+off = max(widest_difference(k) for k in ("cracked_points", "concrete_dissipation_Nmm"))
+check(off <= 0.01,
       f"cut by symmetry: the cracked points and the concrete's dissipation are the whole "
       f"specimen's ({len(both)} rows, widest difference {100 * off:.2f} %; at the last "
       f"{int(both[-1][0]['cracked_points'])} points and "
