@@ -132,8 +132,14 @@ int run_scene(const std::string& scene_file, const std::string& out,
         if (!s.converged)
         {
           if (rank == 0)
+          {
             std::cerr << "pushout: error: " << s.message << "; " << out << "/curve.csv keeps the "
-                      << s.steps << " converged steps" << std::endl;
+                      << s.steps << " converged steps";
+            if (s.corrosion_steps > 0)
+              std::cerr << ", " << out << "/corrosion.csv the " << s.corrosion_steps
+                        << " converged corrosion steps";
+            std::cerr << std::endl;
+          }
           return exit_code::not_converged;
         }
         if (rank == 0 && !quiet)
@@ -300,9 +306,11 @@ struct CommandLine
         ->add_option("--vary", sweep_options.vary,
                      "a key and its values: key=v1,v2,... (repeatable)")
         ->required();
-    sweep->add_option("--max-cases", sweep_options.max_cases,
-                      "the most cases the sweep runs; more is refused (default " +
-                          std::to_string(pushout::study::SweepOptions::default_max_cases) + ")");
+    sweep
+        ->add_option("--max-cases", sweep_options.max_cases,
+                     "the most cases the sweep runs; more is refused (default " +
+                         std::to_string(pushout::study::SweepOptions::default_max_cases) + ")")
+        ->check(CLI::Range(1, 100000000)); // a negative count would wrap round
     fit = app.add_subcommand(
         "fit", "fit scene values (law parameters, loads) to a measured push-out curve by least "
                "squares (PETSc TAO); DIR/fit.json has them with their standard errors "
@@ -348,10 +356,19 @@ struct CommandLine
       return usage_error(e.what());
     }
     // Options with two dashes are pushout's: one it does not know is a
-    // typo, not a PETSc option (those have one dash).
+    // typo, not a PETSc option (those have one dash, each with at most one
+    // value after it). A word after no option is an argument too many.
+    bool after_option = false; // the last word was a PETSc option's name
     for (const std::string& extra : app.remaining(true))
+    {
       if (extra.rfind("--", 0) == 0)
         return usage_error("unknown option '" + extra.substr(0, extra.find('=')) + "'");
+      const bool name = extra.size() > 1 && extra[0] == '-' &&
+                        !(std::isdigit(static_cast<unsigned char>(extra[1])) || extra[1] == '.');
+      if (!name && !after_option)
+        return usage_error("unexpected argument '" + extra + "'");
+      after_option = name;
+    }
     return std::nullopt;
   }
 

@@ -441,6 +441,9 @@ void PushOut::check_scene(const Scene& scene)
   const double max_steps = key_max("loading.steps");
   if (const auto& path = loading.push_path; !path.empty())
   {
+    if (path.size() < 2)
+      throw SceneError("'loading.push_path' has no segment: it needs 0 and at least one more "
+                       "displacement [mm] (e.g. [0.0, 0.02, 0.0, 0.1])");
     if (path[0] != 0.0)
       throw SceneError("'loading.push_path' must start at 0: the push starts from the state "
                        "after the thermal step (and the corrosion stage)");

@@ -21,6 +21,10 @@ MeasuredCurve read_measured(const std::filesystem::path& file)
     throw SceneError("--data '" + file.string() + "' is empty");
   if (!line.empty() && line.back() == '\r')
     line.pop_back();
+  // A UTF-8 byte order mark (spreadsheets write one) is not the header's.
+  const std::string bom = "\xEF\xBB\xBF";
+  if (line.rfind(bom, 0) == 0)
+    line.erase(0, bom.size());
   const std::vector<std::string> header = split(line, ',');
   const auto find = [&](const std::string& name)
   {
@@ -60,6 +64,10 @@ MeasuredCurve read_measured(const std::filesystem::path& file)
                          header[col] + " '" + (col < cells.size() ? cells[col] : "") +
                          "' is not a number");
     }
+    if (v[0] < 0)
+      throw SceneError("--data '" + file.string() + "' line " + std::to_string(row) +
+                       ": delta_mm " + cells[cd] +
+                       " is negative: the push displaces the tube forward from delta = 0");
     if (!c.delta.empty() && !(v[0] > c.delta.back()))
       throw SceneError("--data '" + file.string() + "' line " + std::to_string(row) +
                        ": delta_mm must increase (a monotonic push; unload and reload "

@@ -154,8 +154,14 @@ def write(name, text):
     return path
 
 
+bom = os.path.join(bad, "bom.csv")  # a spreadsheet's UTF-8 byte order mark, then rows out of order
+with open(bom, "wb") as f:
+    f.write(b"\xef\xbb\xbfdelta_mm,tau_MPa\n0.02,1.0\n0.01,2\n0.03,2\n0.04,2\n")
 cases = [
     ("no data file", os.path.join(bad, "missing.csv"), {}, "cannot read"),
+    ("negative delta", write("behind.csv", "delta_mm,tau_MPa\n-0.01,1.0\n0.01,2\n0.03,2\n"), {},
+     "is negative"),
+    ("a byte order mark: the header read past it", bom, {}, "must increase"),
     ("no tau column", write("no_tau.csv", "delta_mm,force_N\n0.01,5\n0.02,6\n"), {}, "tau_MPa"),
     ("not a number", write("nan.csv", "delta_mm,tau_MPa\n0.01,1.0\n0.02,abc\n0.03,2\n0.04,2\n"), {},
      "not a number"),

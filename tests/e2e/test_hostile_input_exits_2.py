@@ -90,6 +90,13 @@ args, _ = run_args("big", big)
 refused("scene over 1 MiB", args, ["hostile_big.toml", "MiB"], timeout=30, seconds=10)
 args, _ = run_args("directory", "/tmp")
 refused("directory as the scene", args, ["/tmp", "regular file"], timeout=30, seconds=10)
+# Command lines with words nothing takes, or a count that would wrap round.
+refused("a second scene", ["run", GOOD_SCENE, GOOD_SCENE, "--out", out_dir("hostile_two")],
+        ["unexpected argument", GOOD_SCENE])
+refused("a word after a command without arguments", ["keys", "extra"], ["unexpected argument", "extra"])
+refused("a negative --max-cases", ["sweep", GOOD_SCENE, "--vary", "interface.0.mu=0.2,0.3",
+                                   "--max-cases", "-5", "--out", out_dir("hostile_cases")],
+        ["--max-cases", "-5"])
 
 # 4. Step counts that would run for days.
 refused_run("steps 1e7", GOOD, ["loading.steps=10000000"], ["loading.steps", "100000"], seconds=10)

@@ -97,6 +97,7 @@ check(len(summary(viscous)["permanent_displacements_mm"]) == 2,
 # 4. Scene errors.
 for what, scene, key in (
         ("a path not starting at 0", THERMAL.format(n=4, path="[0.01, 0.02]"), "loading.push_path"),
+        ("a path of one point", THERMAL.format(n=4, path="[0.0]"), "no segment"),
         ("step growth", THERMAL.format(n=4, path="[0.0, 0.02]") + "step_growth = 1.1\n",
          "loading.step_growth"),
         ("dissipation control", THERMAL.format(n=4, path="[0.0, 0.02]") + 'control = "dissipation"\n',
