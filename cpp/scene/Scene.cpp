@@ -26,6 +26,10 @@ std::vector<std::string> split(const std::string& s, char sep)
 /// The largest scene file [bytes]: 1 MiB (a scene is a few kB).
 constexpr std::uintmax_t max_scene_bytes = std::uintmax_t(1) << 20;
 
+/// The law of an [[interface]] layer that names none, and of the one layer
+/// of a scene without [[interface]] tables.
+constexpr const char* default_interface_law = "friction";
+
 /// At most the first 60 characters of `s` (a path or value in a message).
 std::string shortened(const std::string& s)
 {
@@ -68,9 +72,14 @@ void apply_override(toml::table& root, const Override& o)
     {
       if (!tbl->contains(seg))
       {
-        if (seg == "interface" || seg == "crack")
+        // A scene without [[interface]] has the default layer, as its
+        // resolved scene.toml shows: its keys are set as that layer's.
+        if (seg == "interface" && i == 0)
+          tbl->insert(seg, toml::array{toml::table{{"law", default_interface_law}}});
+        else if (seg == "interface" || seg == "crack")
           throw SceneError(what + ": the scene has no [[" + seg + "]] tables");
-        tbl->insert(seg, toml::table{});
+        else
+          tbl->insert(seg, toml::table{});
       }
       node = tbl->get(seg);
     }
@@ -437,7 +446,7 @@ Scene Scene::parse(const std::string& toml_text, const std::vector<Override>& ov
       if (!arr)
         throw SceneError("'interface' must be written as [[interface]] tables");
       for (std::size_t i = 0; i < arr->size(); ++i)
-        scene._layers.push_back(read_layer(*arr->get(i), i, "interface", "friction"));
+        scene._layers.push_back(read_layer(*arr->get(i), i, "interface", default_interface_law));
       continue;
     }
     if (sname == "crack")
@@ -486,8 +495,8 @@ Scene Scene::parse(const std::string& toml_text, const std::vector<Override>& ov
 
   if (scene._layers.empty())
   {
-    toml::table t{{"law", "friction"}};
-    scene._layers.push_back(read_layer(t, 0, "interface", "friction"));
+    toml::table t{{"law", default_interface_law}};
+    scene._layers.push_back(read_layer(t, 0, "interface", default_interface_law));
   }
 
   scene.fill_parts();

@@ -232,6 +232,19 @@ TEST(Scene, OverridesReachTablesAndLayers)
   EXPECT_DOUBLE_EQ(s.layers()[1].params.at("k_s"), 7.0);
 }
 
+TEST(Scene, OverridesReachTheDefaultLayer)
+{
+  // A scene without [[interface]] has one friction layer (scene.toml shows
+  // it as interface.0); --set reaches it, as a fit's or sweep's key does.
+  const Scene s = Scene::parse("", {{"interface.0.mu", "0.2"}});
+  ASSERT_EQ(s.layers().size(), 1u);
+  EXPECT_EQ(s.layers()[0].law, "friction");
+  EXPECT_DOUBLE_EQ(s.layers()[0].params.at("mu"), 0.2);
+  EXPECT_EQ(Scene::parse("").to_toml(),
+            Scene::parse("", {{"interface.0.mu", "0.4"}}).to_toml()); // 0.4: the default
+  EXPECT_NE(error_of("", {{"crack.0.f_t", "1"}}).find("no [[crack]]"), std::string::npos);
+}
+
 TEST(Scene, ResolvedSceneReadsBackToTheSameScene)
 {
   const Scene a =
