@@ -2,6 +2,7 @@
 // bounds and the scale TAO divides it by.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -13,7 +14,14 @@ struct Free
   std::string key;
   double start = 0, lo = -INFINITY, hi = INFINITY, scale = 1;
   bool lo_exclusive = false; ///< lo itself is not allowed (a law's positive parameter)
-  /// The lower bound given to TAO: lo, or the next number above it.
-  double tao_lo() const { return lo_exclusive ? std::nextafter(lo, INFINITY) : lo; }
+  /// The lower bound given to TAO: lo, or just above it where lo itself is
+  /// not allowed: by 1e-9 of the value's scale, so that the bound divided
+  /// by the scale (TAO's variable) and multiplied back stays above lo (the
+  /// next number above 0 became 0 there, and the model was run at f_t = 0),
+  /// and within the 1e-6 of the scale that says a value sits on its bound.
+  double tao_lo() const
+  {
+    return lo_exclusive ? std::max(lo + 1e-9 * scale, std::nextafter(lo, INFINITY)) : lo;
+  }
 };
 } // namespace pushout::study
