@@ -457,6 +457,32 @@ bool start_petsc(char* program, std::vector<std::string>& options)
   return true;
 }
 
+/// The user's PETSc options as the default solver's objects read them (a
+/// SNES, its KSP and PC): PETSc's message where one cannot take its value
+/// (-ksp_type bogus, -snes_max_it abc), else "". Found before the run, it
+/// is a usage error (exit 2), not a run that fails in its first solve. The
+/// same on every process (each reads the same options).
+std::string petsc_option_error()
+{
+  using pushout::petsc::check;
+  SNES snes;
+  check(SNESCreate(PETSC_COMM_SELF, &snes), "SNESCreate");
+  std::string error;
+  try
+  {
+    check(SNESSetFromOptions(snes), "SNESSetFromOptions");
+    KSP ksp;
+    check(SNESGetKSP(snes, &ksp), "SNESGetKSP");
+    check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
+  }
+  catch (const pushout::petsc::Error& e)
+  {
+    error = e.what();
+  }
+  check(SNESDestroy(&snes), "SNESDestroy");
+  return error;
+}
+
 /// The exit code after the user's PETSc options (`given`) were checked: a
 /// PETSc option nothing read is most likely a typo of one (-snes_monitr):
 /// an error (exit 2) after a run that succeeded, unless `allow_unused`; a
@@ -500,6 +526,13 @@ int main(int argc, char* argv[])
   std::vector<std::string> petsc_options = cli.petsc_options();
   if (!start_petsc(argv[0], petsc_options))
     return pushout::exit_code::failure;
+  if (const std::string bad = petsc_option_error(); !bad.empty())
+  {
+    if (first_process())
+      std::cerr << "pushout: error: a PETSc option: " << bad << std::endl;
+    pushout::petsc::check_nothrow(PetscFinalize(), "PetscFinalize");
+    return pushout::exit_code::bad_input;
+  }
   pushout::output::share_run_id(MPI_COMM_WORLD);
   // After PETSc, whose own handlers would otherwise abort on SIGTERM.
   pushout::interrupt::install();

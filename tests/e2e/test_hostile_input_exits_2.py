@@ -94,6 +94,11 @@ refused("directory as the scene", args, ["/tmp", "regular file"], timeout=30, se
 refused("a second scene", ["run", GOOD_SCENE, GOOD_SCENE, "--out", out_dir("hostile_two")],
         ["unexpected argument", GOOD_SCENE])
 refused("a word after a command without arguments", ["keys", "extra"], ["unexpected argument", "extra"])
+# A PETSc option whose value PETSc cannot take: refused before the run.
+for option in (["-ksp_type", "bogus"], ["-snes_max_it", "abc"]):
+    refused(f"PETSc option {' '.join(option)}",
+            ["run", GOOD_SCENE, "--out", out_dir("hostile_petsc"), "--quiet"] + option,
+            ["PETSc option", option[1]], seconds=10)
 refused("a negative --max-cases", ["sweep", GOOD_SCENE, "--vary", "interface.0.mu=0.2,0.3",
                                    "--max-cases", "-5", "--out", out_dir("hostile_cases")],
         ["--max-cases", "-5"])
