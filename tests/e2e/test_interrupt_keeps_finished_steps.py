@@ -19,8 +19,14 @@ PUSHOUT = sys.argv[1]
 def wait_for_rows(csv, rows, seconds, poll):
     """Waits until the file `csv` has `rows` lines (its header one of them),
     at most `seconds`, looking every `poll` seconds."""
+    def lines():
+        if not os.path.exists(csv):
+            return 0
+        with open(csv) as f:
+            return len(f.readlines())
+
     deadline = time.time() + seconds
-    while time.time() < deadline and (not os.path.exists(csv) or len(open(csv).readlines()) < rows):
+    while time.time() < deadline and lines() < rows:
         time.sleep(poll)
 
 
