@@ -282,6 +282,17 @@ StepLoop::DissipationSteps::Try StepLoop::DissipationSteps::try_step(const std::
     // cut (a smaller release); replaced by a step of lambda it would be
     // jumped, found too dissipative and tried by energy again, for ever.
     check_implex(t);
+    if (t.rep.converged && t.lambda_new < 0)
+    {
+      // Behind the stage's start (a push turned into a pull of the tube, a
+      // negative corrosion depth): an equilibrium of the model, not a state
+      // of the test. The step of energy is cut.
+      std::ostringstream why;
+      why << "a step of energy took " << _stage.path.symbol << " to " << t.lambda_new * 1e3
+          << " um, behind the start of the " << _stage.path.target;
+      t.rep.converged = false;
+      t.rep.reason = why.str();
+    }
     if (t.rep.converged && (t.lambda_new > _lambda + _h_nominal || t.lambda_new > _lambda_final))
     {
       // Past a nominal step of lambda (the joints have little left to

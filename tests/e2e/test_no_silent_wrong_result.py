@@ -10,7 +10,12 @@
    leaves a NaN in its solution) is a failed step: cut back, and, when the
    cuts run out, exit 3 with a message that says what was not a number;
    summary.json says not converged, and curve.csv holds only finite rows.
-   (The curve writer's own refusal of a non-finite row: tests/unit/record/test_recorder.cpp.)"""
+   (The curve writer's own refusal of a non-finite row: tests/unit/record/test_recorder.cpp.)
+3. A step of energy under dissipation control that finds an equilibrium
+   behind the push's start (the tube pulled back) is no state of the test:
+   it is cut, never taken. The corroded demo (coarse) with its crack plane at
+   a block corner of the mesh took one to delta = -2.47 mm, P = -5347 N, and
+   pushed on from there to an exit 0; now no row lies behind the start."""
 import glob
 import math
 import os
@@ -18,7 +23,7 @@ import shutil
 import struct
 import subprocess
 
-from common import OUT_ROOT, PUSHOUT, check, curve, out_dir, run, summary
+from common import OUT_ROOT, PUSHOUT, SOURCE, check, curve, out_dir, run, summary
 
 scene = """
 [mesh]
@@ -87,3 +92,13 @@ rows = curve(out)
 check(not s["converged"] and s["cuts"] >= 1
       and all(math.isfinite(v) for r in rows for v in r.values()),
       f"not converged, {s['cuts']} cuts, {len(rows)} finite rows in curve.csv")
+
+# 3. No step of energy behind the push's start.
+corner = out_dir("energy_step_behind_start")
+p = run(os.path.join(SOURCE, "demo", "pushout_corroded.toml"), corner, check=False,
+        sets=["mesh.elements_per_quarter=4", "mesh.elements_through_thickness=2", "loading.steps=5",
+              "crack.0.angle=56.309932", "loading.control=auto"])
+rows = curve(corner)
+check(p.returncode in (0, 3) and rows and min(r["delta_mm"] for r in rows) >= 0,
+      f"dissipation control: exit {p.returncode}, {len(rows)} rows, delta from "
+      f"{min(r['delta_mm'] for r in rows) * 1e3:.2f} um (never behind the start)")
