@@ -459,7 +459,7 @@ std::vector<double> Model::crack_mouth_openings() const
   std::vector<double> width(_mouths.size(), 0.0);
   for (std::size_t i = 0; i < _mouths.size(); ++i)
     if (_mouths[i].image_of < 0 && sums[2 * i + 1] > 0)
-      width[i] = sums[2 * i] / sums[2 * i + 1];
+      width[i] = std::max(sums[2 * i] / sums[2 * i + 1], 0.0); // closed: 0, not the overlap
   for (std::size_t i = 0; i < _mouths.size(); ++i)
     if (_mouths[i].image_of >= 0)
       width[i] = width[std::size_t(_mouths[i].image_of)];

@@ -118,8 +118,10 @@ public:
   /// outer row of Gauss points, a fraction 0.21 of the element's radial size
   /// inside the face for 2-point Gauss), where the laws evaluate it. A nodal
   /// value at the face would extrapolate a linear jump over a coarse element
-  /// and can read negative while every point of the plane opens. A plane cut
-  /// away by symmetry has its image's. Collective.
+  /// and can read negative while every point of the plane opens. A closed
+  /// mouth reads 0, as a gauge would (not the penalty's overlap in
+  /// compression, w . n < 0). A plane cut away by symmetry has its image's.
+  /// Collective.
   std::vector<double> crack_mouth_openings() const;
 
   /// Bulk stiffness K [N/mm], with room for the interface couplings.

@@ -25,7 +25,11 @@ law oxide_friction and no temperature change:
 5. Without a [corrosion] section nothing changes: no corrosion.csv.
 6. Stages of one step that are cut say so by their name ("corrosion step:
    ... retrying with 0.5 of a step"; Newton limited to 4 iterations on the
-   corroded demo, coarse), and the run goes on to its end."""
+   corroded demo, coarse), and the run goes on to its end.
+7. A crack plane whose mouth stays closed (the demo's plane turned to 45
+   degrees, towards a corner: the cover there is thick; to x = 10 um) reads a width of 0
+   in every row and in summary.json, not its penalty's overlap in
+   compression (-0.03 um measured before: a width a gauge cannot read)."""
 import math
 import os
 import subprocess
@@ -98,3 +102,15 @@ p = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
 retries = [line for line in p.stdout.splitlines() if "retrying" in line]
 check(p.returncode == 0 and retries and retries[0].startswith("corrosion step: DIVERGED_MAX_IT"),
       f"one corrosion step, cut: exit {p.returncode}, {retries[:1] or p.stderr[-300:]}")
+
+# 7. A closed mouth reads 0.
+closed = out_dir("corrosion_closed_mouth")
+run(os.path.join(SOURCE, "demo", "pushout_corroded.toml"), closed,
+    sets=["mesh.elements_per_quarter=4", "mesh.elements_through_thickness=2", "loading.steps=2",
+          "crack.0.angle=45", "corrosion.penetration=0.01", "corrosion.steps=5"])
+rows = corrosion(closed)
+widths = [r[k] for r in rows for k in ("crack_width_mm", "w_crack_0_mm")]
+planes = [c for c in summary(closed)["cracks"] if c["source"] == "plane"]
+check(min(widths) >= 0 and all(c["width_mm"] >= 0 and c["mouth_opening_mm"] >= 0 for c in planes),
+      f"a closed mouth: widths from {min(widths) * 1e3:.4f} um in corrosion.csv, "
+      f"{[c['width_mm'] for c in planes]} mm in summary.json (never negative)")
