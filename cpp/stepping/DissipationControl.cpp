@@ -194,6 +194,11 @@ bool StepLoop::push_by_dissipation()
                          [&] { return push_by_displacement(); }});
 }
 
+bool StepLoop::softens()
+{
+  return fracture_energy(_equilibrium.model()) > 0;
+}
+
 /// Dissipation control of a stage (Verhoosel, Remmers & Gutierrez 2009):
 /// steps of the load factor lambda as under displacement control while the
 /// joints dissipate little; steps of the energy they release (path

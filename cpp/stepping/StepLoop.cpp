@@ -58,6 +58,7 @@ bool StepLoop::run(Control control)
       phase.reset();
       phase.emplace(stage, interrupt::stop_grace_s);
     };
+    _may_snap_back = control == Control::displacement && _scenario.has_load_factor() && softens();
     enter("step 0");
     if (!initial_step())
       return false;
@@ -200,6 +201,9 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
   {
     _summary.message = what + " did not converge with " + std::to_string(cuts) + " cuts, down to " +
                        size(stepper.increment()) + " (" + reason + "); stopped";
+    if (_may_snap_back)
+      _summary.message += " (where the structure snaps back, loading.control = \"auto\" follows "
+                          "it: docs/numerics.md, \"Dissipation control\")";
     return false;
   }
   ++cuts;

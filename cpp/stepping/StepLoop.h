@@ -249,5 +249,13 @@ private:
   /// The stage the loop is in, as summary.json's stopped_in says it when a
   /// signal stops the run: "step 0", "corrosion steps" or "load steps".
   const char* _stage = "step 0";
+  /// A step that fails under displacement control may be a snap-back that
+  /// dissipation control would follow: the joints or cracks soften, and the
+  /// scene may take loading.control = "auto" (a monotonic push). Its
+  /// failure message says so.
+  bool _may_snap_back = false;
+  /// Whether the joints or the concrete's cracks soften (they release
+  /// energy; DissipationControl.cpp). Collective.
+  bool softens();
 };
 } // namespace pushout::stepping

@@ -19,7 +19,8 @@
    under displacement control.
 4. The corrosion stage (the corroded demo, coarse, with a brittle crack
    through the cover: c = 100 1/mm, G_F = 0.03 N/mm; x to 20 um in 10
-   steps): control by x stops where the crack snaps (exit 3); dissipation
+   steps): control by x stops where the crack snaps (exit 3, its message
+   naming loading.control = "auto"); dissipation
    control passes it, x decreasing in at least one step, and reaches x =
    20 um, where p and the crack width equal those of the same crack made
    slightly viscous (eta = 1e-5: x-control passes the snap dynamically) to
@@ -124,7 +125,9 @@ CRACK = ["crack.0.c=100", "mesh.elements_per_quarter=8", "mesh.elements_through_
          "loading.steps=2"]
 by_x, diss = out_dir("dissipation_crack_x"), out_dir("dissipation_crack_dissipation")
 p = run(corroded, by_x, sets=CRACK, check=False)
-check(p.returncode == 3, f"control by x stops where the crack snaps: exit {p.returncode}")
+check(p.returncode == 3 and 'loading.control = "auto"' in p.stderr,
+      f"control by x stops where the crack snaps, and says what follows it: exit {p.returncode}, "
+      f"{p.stderr.strip()[-300:]!r}")
 run(corroded, diss, sets=CRACK + ["loading.control=dissipation"])
 c, s = corrosion(diss), summary(diss)
 x = [r["penetration_mm"] for r in c]
