@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <toml++/toml.h>
 
@@ -169,17 +170,17 @@ Value convert(const toml::node& node, KeyType type, const std::string& path)
 
 /// Throws unless min <= x <= max (open: min < x < max) and x is finite.
 void check_range(double x, double min, double max, bool open, const std::string& path,
-                 const std::string& unit, bool integer = false)
+                 const std::string& unit)
 {
   if (!std::isfinite(x))
     throw SceneError("'" + path + "' = " + std::to_string(x) +
-                     " is not a finite number: it must be " + range_text(min, max, open, integer));
+                     " is not a finite number: it must be " + range_text(min, max, open, false));
   const bool inside = open ? (x > min && x < max) : (x >= min && x <= max);
   if (!inside)
   {
     std::ostringstream s;
     s << "'" << path << "' = " << x << (unit.empty() || unit == "-" ? "" : " " + unit)
-      << " is out of range: it must be " << range_text(min, max, open, integer);
+      << " is out of range: it must be " << range_text(min, max, open, false);
     throw SceneError(s.str());
   }
 }
@@ -190,22 +191,11 @@ void check_value(const KeyDef& def, const Value& v)
     check_range(*d, def.min, def.max, def.open, def.path, def.unit);
   else if (const auto* i = std::get_if<std::int64_t>(&v))
   {
-    // Exactly against a whole bound: above 2^53 a double would round the
-    // value onto it.
-    const auto whole = [](double b) { return std::abs(b) < 0x1p63 && std::floor(b) == b; };
-    const auto below = [&](double b)
-    {
-      if (whole(b))
-        return def.open ? *i <= std::int64_t(b) : *i < std::int64_t(b);
-      return def.open ? double(*i) <= b : double(*i) < b; // -inf: never
-    };
-    const auto above = [&](double b)
-    {
-      if (whole(b))
-        return def.open ? *i >= std::int64_t(b) : *i > std::int64_t(b);
-      return def.open ? double(*i) >= b : double(*i) > b; // inf: never
-    };
-    if (below(def.min) || above(def.max))
+    // Exactly: a long double holds every 64-bit integer (and every double
+    // bound), where a double would round a value above 2^53 onto its bound.
+    static_assert(std::numeric_limits<long double>::digits >= 64);
+    const long double x = *i;
+    if (!(def.open ? (x > def.min && x < def.max) : (x >= def.min && x <= def.max)))
       throw SceneError("'" + def.path + "' = " + std::to_string(*i) +
                        (def.unit.empty() || def.unit == "-" ? "" : " " + def.unit) +
                        " is out of range: it must be " +

@@ -55,8 +55,7 @@ bool StepLoop::run(Control control)
     const auto enter = [&](const char* stage)
     {
       _stage = stage;
-      phase.reset();
-      phase.emplace(stage, interrupt::stop_grace_s);
+      phase.emplace(stage, interrupt::stop_grace_s); // the last one's ended first
     };
     _may_snap_back = control == Control::displacement && _scenario.has_load_factor() && softens();
     enter("step 0");

@@ -262,6 +262,11 @@ TEST(Scene, ErrorsNameTheKey)
   EXPECT_NE(error_of("[[interface]]\nk = -1.0\n").find("interface.0.k"), std::string::npos);
   EXPECT_NE(error_of("", {{"interface.2.k", "1"}}).find("interface.2.k"), std::string::npos);
   EXPECT_NE(error_of("[[interface]]\nlaw = 3\n").find("interface.0.law"), std::string::npos);
+  // An integer against its bound exactly, above 2^53 too (a double rounds
+  // 2^53 + 1 onto 2^53, cracking.seed's largest).
+  EXPECT_EQ(error_of("", {{"cracking.seed", "9007199254740992"}}), "");
+  EXPECT_NE(error_of("", {{"cracking.seed", "9007199254740993"}}).find("= 9007199254740993 is out"),
+            std::string::npos);
 }
 
 TEST(Scene, CrackTablesTakeAnAngleAndALaw)
