@@ -66,6 +66,7 @@ void describe_model(const mesh::MeshInput& shape, const mesh::MeshData& data,
   for (const interface::Interface* joints : model.joints())
     local_pairs += std::int64_t(joints->num_pairs());
   MPI_Allreduce(&local_pairs, &s.interface_pairs, 1, MPI_INT64_T, MPI_SUM, model.comm());
+  report.publish(); // a signal during the rest of the set-up reports the model's size
   if (!report.talk())
     return;
   std::string cut;

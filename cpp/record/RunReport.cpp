@@ -14,7 +14,9 @@ std::string stage_progress(const std::string& stage, const output::Summary& s)
     return "in step 0";
   if (stage == "corrosion steps")
     return "after " + std::to_string(s.corrosion_steps) + " corrosion steps";
-  return "after " + std::to_string(s.steps) + " load steps";
+  if (stage == "load steps")
+    return "after " + std::to_string(s.steps) + " load steps";
+  return ""; // meshing, set-up: no step yet
 }
 
 double peak_memory_here_mb()
@@ -47,8 +49,9 @@ RunReport::RunReport(const Scene& scene, const std::filesystem::path& out, bool 
             s.signal = sig;
             s.stopped_in = phase;
             std::string where = " during " + phase;
-            if (phase != "step 0")
-              where += ' ' + stage_progress(phase, s);
+            if (const std::string progress = stage_progress(phase, s);
+                phase != "step 0" && !progress.empty())
+              where += ' ' + progress;
             s.message = "interrupted by " + interrupt::signal_name(sig) + where;
             stamp(s);
             if (_rank != 0)

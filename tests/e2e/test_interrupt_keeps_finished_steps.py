@@ -2,7 +2,8 @@
 signal, keeps a valid curve.csv with every finished step, and its
 summary.json says it was interrupted (and not converged). Stopped in the
 corrosion stage, it says so (stopped_in "corrosion steps", the corrosion
-steps it finished, corrosion.csv keeping them). A closed pipe
+steps it finished, corrosion.csv keeping them); in step 0, the set-up or
+meshing, it names that alone. A closed pipe
 (`pushout run ... | head -3`) does not stop it. A sweep stops within a few
 seconds, without plotting."""
 import os
@@ -68,6 +69,43 @@ check(p.returncode == 130 and s["interrupted"] and s["stopped_in"] == "corrosion
       said in err and "corrosion.csv keeps them" in err,
       f"SIGINT in the corrosion stage: exit {p.returncode}, stopped_in {s['stopped_in']!r}, "
       f"{s['message']!r}, corrosion.csv {len(rows)} rows; {err.strip()!r}")
+
+
+def interrupt_after_model_line(name, sets):
+    """Runs `scene` on a mesh large enough that the condensation (set-up)
+    and Newton on the whole model (step 0) each take seconds (here 6.8 and
+    3.3 s after the line that describes the model, which follows meshing),
+    and sends SIGINT 1 s after that line. Returns the exit code, stderr and
+    the output folder."""
+    out = out_dir(name)
+    p = subprocess.Popen([PUSHOUT, "run", scene, "--out", out, "--set", "mesh.elements_per_quarter=40",
+                          "--set", "mesh.elements_through_thickness=12", "--set", "loading.steps=3"] +
+                         [a for s in sets for a in ("--set", s)],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    while not (line := p.stdout.readline()).startswith("pushout: pushout") and line:
+        pass
+    time.sleep(1.0)
+    p.send_signal(signal.SIGINT)
+    _, err = p.communicate(timeout=120)
+    return p.returncode, err, out
+
+
+# Stopped in step 0 (the thermal step; Newton on the whole model): said as
+# such, no load step claimed, curve.csv has its header only.
+code, err, out = interrupt_after_model_line("interrupt_step0", ["solver.condensation=off"])
+s = summary(out)
+check(code == 130 and s["interrupted"] and s["stopped_in"] == "step 0" and s["steps"] == 0 and
+      "in step 0" in s["message"] and "load steps" not in s["message"] and curve(out) == [],
+      f"SIGINT in step 0: exit {code}, stopped_in {s['stopped_in']!r}, {s['message']!r}; {err.strip()!r}")
+
+# Stopped in the set-up (the condensation): no steps named, and summary.json
+# gives the model that was built.
+code, err, out = interrupt_after_model_line("interrupt_setup", [])
+s = summary(out)
+check(code == 130 and s["stopped_in"] == "set-up" and s["message"] == "interrupted by SIGINT during set-up"
+      and s["cells"] == 18240 and s["dofs"] == 63960,
+      f"SIGINT in the set-up: exit {code}, stopped_in {s['stopped_in']!r}, {s['message']!r}, "
+      f"{s['cells']} cells, {s['dofs']} dofs; {err.strip()!r}")
 
 # Under nohup (SIGHUP ignored from the start) SIGHUP does not stop the run.
 out = out_dir("interrupt_nohup")
@@ -164,6 +202,7 @@ for sig in (signal.SIGTERM, signal.SIGINT):
     check("interrupted by " + sig.name + " during meshing" in err, f"{sig.name}: says where: {err.strip()!r}")
     s = summary(out)
     check(s["interrupted"] and not s["converged"] and s["stopped_in"] == "meshing"
-          and s["signal"] == int(sig), f"{sig.name}: summary.json says it stopped in meshing")
+          and s["signal"] == int(sig) and s["message"] == f"interrupted by {sig.name} during meshing",
+          f"{sig.name}: summary.json says it stopped in meshing, and no steps: {s['message']!r}")
     check(not any(f.endswith(".mesh") for f in os.listdir(cache)) if os.path.isdir(cache) else True,
           f"{sig.name}: no half-made mesh in the cache")
