@@ -8,8 +8,9 @@
 // and passed as constants: nb boundaries, boundary i at angle a_i [rad] from
 // the tube centre (increasing), its outer point (ox_i, oy_i) on the slice
 // boundary, and n_i elements along the circumference from boundary i to
-// boundary i + 1 (cyclic). Without cracks pushout meshes slice.geo instead.
-// The radial divisions are slice.geo's (same formulas). Units: mm.
+// boundary i + 1 (cyclic), and the radial divisions: nr1, nr2 and the
+// growth q (cpp/mesh/size.cpp). Without cracks
+// pushout meshes slice.geo instead. Units: mm.
 DefineConstant[
   shape = {0, Name "outer_shape: 0 square, 1 circle"},
   W = {100, Name "width (square side or circle diameter)"},
@@ -22,56 +23,16 @@ DefineConstant[
   nq = {16, Name "elements per quarter circumference"},
   nz = {8, Name "elements through thickness"},
   ns = {3, Name "steel layers"},
-  ratio = {10, Name "outer size ratio"},
-  nb = {5, Name "sector boundaries"}
+  nb = {5, Name "sector boundaries"},
+  // The radial divisions, computed by pushout (cpp/mesh/size.cpp,
+  // slice_divisions): elements from R to the support circle, and from there
+  // to the boundary along each sector boundary with growth q.
+  nr1 = {5, Name "elements of the concrete ring (R..Rs)"},
+  nr2 = {9, Name "elements of the graded block (Rs..boundary)"},
+  q = {1.333521432163324, Name "growth of the graded block's elements"}
 ];
 
 R = D / 2; Ri = Di / 2; Rs = Ds / 2;
-h = Pi / 2 * R / nq;                 // interface element size
-
-// Radial divisions: slice.geo's, line for line.
-q_max = 1.6;
-nr1 = Floor((Rs - R) / h + 0.5);
-If (nr1 < 1)
-  nr1 = 1;
-EndIf
-Lr = W / 2 - Rs;
-If (shape == 0)
-  Lr = W / 2;
-  If (cx < Lr) Lr = cx; EndIf
-  If (cy < Lr) Lr = cy; EndIf
-  If (W - cx < Lr) Lr = W - cx; EndIf
-  If (W - cy < Lr) Lr = W - cy; EndIf
-  Lr = Lr - Rs;
-EndIf
-he = ratio * h;
-q = 1;
-nr2 = Ceil(Lr / h);
-If (ratio > 1 && he < Lr)
-  q0 = (Lr - h) / (Lr - he);
-  If (q0 <= q_max)
-    nr2 = Floor(Log(ratio) / Log(q0) + 1.5);
-    If (nr2 < 2) nr2 = 2; EndIf
-    q = Exp(Log(ratio) / (nr2 - 1));
-  Else
-    // Reaching ratio * h within Lr would take elements growing by more than
-    // q_max (down to one element of about Lr when he nears Lr): grow by
-    // q_max at most instead, nr2 elements from h that fill Lr, and q
-    // (bisection) so that h (q^nr2 - 1) / (q - 1) = Lr.
-    nr2 = Ceil(Log(1 + Lr * (q_max - 1) / h) / Log(q_max));
-    lo = 1; hi = q_max;
-    For i In {1:60}
-      q = (lo + hi) / 2;
-      If (h * (Exp(nr2 * Log(q)) - 1) / (q - 1) < Lr)
-        lo = q;
-      Else
-        hi = q;
-      EndIf
-    EndFor
-    q = (lo + hi) / 2;
-  EndIf
-EndIf
-If (nr2 < 1) nr2 = 1; EndIf
 
 pc = newp; Point(pc) = {cx, cy, 0};
 radii[] = {Ri, R, Rs};

@@ -1,5 +1,6 @@
 #include "generate.h"
 #include "cracks.h"
+#include "size.h"
 #include "symmetry.h"
 #include <algorithm>
 #include <array>
@@ -60,8 +61,10 @@ geo_for(const MeshInput& in)
       {"Ds", g.support_inner_diameter},
       {"nq", double(in.mesh.elements_per_quarter)},
       {"nz", double(in.mesh.elements_through_thickness)},
-      {"ns", double(in.mesh.steel_layers)},
-      {"ratio", in.mesh.outer_size_ratio}};
+      {"ns", double(in.mesh.steel_layers)}};
+  const SliceDivisions d = slice_divisions(in); // the radial divisions (mesh/size.h)
+  constants.insert(constants.end(),
+                   {{"nr1", double(d.ring)}, {"nr2", double(d.graded)}, {"q", d.growth}});
   if (sectors.empty())
     return {dir / "slice.geo", constants};
   constants.insert(constants.end(), sectors.begin(), sectors.end());

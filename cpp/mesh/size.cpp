@@ -7,9 +7,72 @@
 
 namespace pushout::mesh
 {
+namespace
+{
+constexpr double q_max = graded_growth_max;
+
+/// How many elements from `first` [mm], growing by q_max, fill L [mm].
+std::int64_t elements_to_fill(double first, double L)
+{
+  return std::int64_t(std::ceil(std::log(1 + L * (q_max - 1) / first) / std::log(q_max)));
+}
+
+/// The growth q in [1, q_max] of n elements from `first` [mm] that fill L
+/// [mm]: first (q^n - 1) / (q - 1) = L (bisection); 1 (uniform, smaller
+/// than `first`) where n of `first` already fill L.
+double growth_to_fill(double first, std::int64_t n, double L)
+{
+  if (double(n) * first >= L)
+    return 1;
+  double lo = 1, hi = q_max;
+  for (int i = 0; i < 60; ++i)
+  {
+    const double q = (lo + hi) / 2;
+    (first * (std::pow(q, double(n)) - 1) / (q - 1) < L ? lo : hi) = q;
+  }
+  return (lo + hi) / 2;
+}
+
+/// The first element of n that fill L with growth q [mm].
+double first_element(double L, std::int64_t n, double q)
+{
+  return q > 1 ? L * (q - 1) / (std::pow(q, double(n)) - 1) : L / double(n);
+}
+
+/// The lengths of the graded block's lines, support circle to boundary [mm],
+/// in the .geo's order: slice.geo's from the support circle at 45 + 90 k
+/// degrees to corner k (or the circle), slice_cracked.geo's along each
+/// sector boundary (mesh/cracks.h).
+std::vector<double> graded_lines(const MeshInput& in, double Rs)
+{
+  const Geometry& g = in.geometry;
+  const auto& c = g.tube_center;
+  std::vector<double> angles;
+  std::vector<std::array<double, 2>> outer;
+  if (in.cracked())
+  {
+    const SliceSectors sec = slice_sectors(in);
+    angles = sec.angles;
+    outer = sec.outer;
+  }
+  else
+    for (int k = 0; k < 4; ++k)
+    {
+      const double a = std::numbers::pi / 4 + k * std::numbers::pi / 2, W = g.width;
+      angles.push_back(a);
+      outer.push_back(g.circle ? std::array{c[0] + W / 2 * std::cos(a), c[1] + W / 2 * std::sin(a)}
+                               : std::array{k == 0 || k == 3 ? W : 0.0, k < 2 ? W : 0.0});
+    }
+  std::vector<double> lengths;
+  for (std::size_t k = 0; k < angles.size(); ++k)
+    lengths.push_back(std::hypot(outer[k][0] - c[0] - Rs * std::cos(angles[k]),
+                                 outer[k][1] - c[1] - Rs * std::sin(angles[k])));
+  return lengths;
+}
+} // namespace
+
 SliceDivisions slice_divisions(const MeshInput& in)
 {
-  // meshes/slice.geo, line for line.
   const Geometry& g = in.geometry;
   const double W = g.width;
   const double R = g.tube_radius();
@@ -22,21 +85,50 @@ SliceDivisions slice_divisions(const MeshInput& in)
   d.thickness = in.mesh.elements_through_thickness;
   const double h = std::numbers::pi / 2 * R / double(d.circumferential); // interface element [mm]
   d.ring = std::max<std::int64_t>(std::int64_t(std::floor((Rs - R) / h + 0.5)), 1);
-  double Lr = W / 2 - Rs;
-  if (!g.circle)
-    Lr = std::min({W / 2, c[0], c[1], W - c[0], W - c[1]}) - Rs;
+
+  // One growth for every line, from the shortest way out Lr: towards ratio
+  // h where that is gentle, else from h by at most q_max (also where ratio
+  // h is beyond Lr: the coarsest the growth allows); ratio 1: uniform.
+  const double Lr = (g.circle ? W / 2 : std::min({W / 2, c[0], c[1], W - c[0], W - c[1]})) - Rs;
   const double he = ratio * h;
-  d.graded = std::int64_t(std::ceil(Lr / h));
-  if (ratio > 1 && he < Lr)
+  d.graded = std::max<std::int64_t>(std::int64_t(std::ceil(Lr / h)), 1);
+  double q = 1;
+  if (ratio > 1)
   {
-    const double q0 = (Lr - h) / (Lr - he);
-    d.graded = q0 <= graded_growth_max
-                   ? std::max<std::int64_t>(
-                         std::int64_t(std::floor(std::log(ratio) / std::log(q0) + 1.5)), 2)
-                   : std::int64_t(std::ceil(std::log(1 + Lr * (graded_growth_max - 1) / h) /
-                                            std::log(graded_growth_max)));
+    const double q0 = he < Lr ? (Lr - h) / (Lr - he) : q_max + 1;
+    if (q0 <= q_max)
+    {
+      d.graded =
+          std::max<std::int64_t>(std::int64_t(std::floor(std::log(ratio) / std::log(q0) + 1.5)), 2);
+      q = std::exp(std::log(ratio) / double(d.graded - 1));
+    }
+    else
+    {
+      d.graded = std::max<std::int64_t>(elements_to_fill(h, Lr), 1);
+      q = growth_to_fill(h, d.graded, Lr);
+    }
   }
-  d.graded = std::max<std::int64_t>(d.graded, 1);
+  d.growth = q;
+
+  // The longest line (to a far corner) has the same number of elements,
+  // stretched: where its first one would jump from the ring's (more than
+  // q_max h), the fewest elements that start it at q_max h at most while
+  // they grow by q_max at most: q_max throughout (the shorter lines start
+  // smaller). One growth for all lines: gmsh's transfinite blocks are mirror
+  // images only between lines of the same growth, and a half or quarter
+  // model is cut from the whole mesh (mesh/symmetry.h).
+  const std::vector<double> lines = graded_lines(in, Rs);
+  const double longest = *std::max_element(lines.begin(), lines.end());
+  if (first_element(longest, d.graded, q) > q_max * h * (1 + 1e-9))
+  {
+    if (ratio == 1) // uniform, as asked
+      d.graded = std::int64_t(std::ceil(longest / (q_max * h)));
+    else
+    {
+      d.growth = q_max;
+      d.graded = std::max(d.graded, elements_to_fill(q_max * h, longest));
+    }
+  }
   return d;
 }
 

@@ -1,6 +1,6 @@
 // The size of the mesh a scene asks for, counted from the mesh keys before
 // any meshing: meshes/slice.geo is a structured block mesh, so its element
-// counts follow from its block divisions in closed form. Used to refuse a run
+// counts follow from its block divisions (computed here, for gmsh too). Used to refuse a run
 // that cannot fit in memory before gmsh spends minutes on it
 // (record/ResourceGuard.h).
 #pragma once
@@ -22,9 +22,24 @@ struct MeshSize
   Symmetry symmetry;                ///< the planes the model is cut along (symmetry.h)
 };
 
-/// The block divisions of meshes/slice.geo for a push-out scene. These
-/// formulas mirror the .geo file: change both together (the e2e test
-/// test_resource_estimate_within_factor_2 compares them with generated meshes).
+/// The block divisions of meshes/slice.geo and meshes/slice_cracked.geo for
+/// a push-out scene, computed here alone and passed to gmsh as constants
+/// (mesh/generate.cpp); the mesh size estimate counts cells from them too.
+///
+/// The graded block runs from the support circle to the outer boundary
+/// along one line per block corner (slice.geo) or sector boundary
+/// (slice_cracked.geo), each with the same number of elements and growth
+/// (gmsh's progression). They are sized on the shortest way out, Lr (support
+/// circle to the nearest side): from about the interface size h towards
+/// outer_size_ratio h, growing by graded_growth_max at most. The other lines
+/// are longer (to the square's corners, or across an off-centre tube), and
+/// the same divisions stretch their elements by their length over Lr; where
+/// that makes the longest line's first element more than
+/// graded_growth_max h (a jump from the ring's elements of h), the lines get
+/// the fewest elements that start it at graded_growth_max h at most, all
+/// growing by graded_growth_max (the shorter lines' start smaller). A tube 6 mm from a side
+/// had one element across the other 70 mm of concrete before, and its curve
+/// moved by 1.7 % from 24 to 32 elements per quarter (docs/architecture.md).
 struct SliceDivisions
 {
   std::int64_t circumferential; ///< elements per quarter circumference (nq)
@@ -32,13 +47,16 @@ struct SliceDivisions
   std::int64_t ring;            ///< radial elements from R to the support circle (nr1)
   std::int64_t graded;          ///< radial elements from there to the boundary (nr2)
   std::int64_t thickness;       ///< elements through the thickness (nz)
+  /// The graded lines' growth, each element to the next (gmsh's
+  /// progression, from the support circle out; 1: uniform).
+  double growth = 1;
 };
 SliceDivisions slice_divisions(const MeshInput& in);
 
-/// The most the graded block's elements grow from one to the next (q_max of
-/// meshes/slice.geo): where reaching outer_size_ratio times the interface
-/// size within the block would take more, they grow by this much at most
-/// and stay smaller.
+/// The most the graded block's elements grow from one to the next (and its
+/// first ones from the ring's, of the interface size): where reaching
+/// outer_size_ratio times the interface size would take more, they grow by
+/// this much at most and stay smaller.
 inline constexpr double graded_growth_max = 1.6;
 
 /// The size of the scene's mesh and model (push-out or single joint).

@@ -1,88 +1,140 @@
-// The graded block of meshes/slice.geo (mesh/size.h, slice_divisions): its
-// elements start at about the interface size h and grow by
-// graded_growth_max at most, whatever the way to the boundary, from scenes
-// alone (no meshing; the e2e test test_resource_estimate_within_factor_2
-// compares the counts with gmsh's meshes).
+// The graded block of meshes/slice.geo and slice_cracked.geo (mesh/size.h,
+// slice_divisions): along every line from the support circle to the
+// boundary the elements start at most graded_growth_max times the interface
+// size h (a gentle step from the ring's elements) and grow by
+// graded_growth_max at most, whatever the tube's place, from scenes alone
+// (no meshing; the e2e test test_resource_estimate_within_factor_2 compares
+// the counts with gmsh's meshes).
 #include "mesh/size.h"
+#include <array>
 #include <cmath>
 #include <gtest/gtest.h>
 #include <numbers>
+#include <sstream>
 #include <string>
 
 using pushout::Scene;
 using pushout::mesh::graded_growth_max;
 using pushout::mesh::MeshInput;
 using pushout::mesh::slice_divisions;
+using pushout::mesh::SliceDivisions;
 
 namespace
 {
-/// The tube centre of the default 100 mm square with R = 10 mm and a
-/// support circle of 15 mm: the graded block's shortest way, from the
-/// support circle to the nearest face, is Lr = 35 mm centred and 10 mm with
-/// the corroded demo's 15 mm cover.
-struct Case
-{
-  const char* centre;
-  double Lr; ///< mm
-};
-constexpr Case centred{"[50.0, 50.0]", 35.0}, cover15{"[50.0, 25.0]", 10.0};
+constexpr double pi = std::numbers::pi;
 
-pushout::mesh::SliceDivisions divisions(const Case& where, int per_quarter)
+/// The default 100 mm square, R = 10 mm, support circle Rs = 15 mm, the
+/// tube at `centre` [mm]; `extra`: more TOML.
+MeshInput scene(const std::string& centre, int per_quarter, const std::string& extra = "")
 {
-  return slice_divisions(MeshInput::of(
-      Scene::parse(std::string("[geometry]\ntube_center = ") + where.centre +
-                   "\n[mesh]\nelements_per_quarter = " + std::to_string(per_quarter) + "\n")));
+  return MeshInput::of(Scene::parse(
+      "[geometry]\ntube_center = " + centre +
+      "\n[mesh]\nelements_per_quarter = " + std::to_string(per_quarter) + "\n" + extra));
 }
 
-/// The growth q of n elements that start at h and fill L:
-/// h (q^n - 1) / (q - 1) = L (q > 1; bisection).
-double growth_to_fill(double h, int n, double L)
+/// slice.geo's graded lines: from the support circle at 45 + 90 k degrees
+/// to the square's corner k [mm].
+std::array<double, 4> corner_lines(double cx, double cy)
 {
-  double lo = 1 + 1e-12, hi = 100;
-  for (int i = 0; i < 200; ++i)
+  const std::array<std::array<double, 2>, 4> corners{{{100, 100}, {0, 100}, {0, 0}, {100, 0}}};
+  std::array<double, 4> L{};
+  for (int k = 0; k < 4; ++k)
   {
-    const double q = (lo + hi) / 2;
-    (h * (std::pow(q, n) - 1) / (q - 1) < L ? lo : hi) = q;
+    const double a = pi / 4 + k * pi / 2;
+    L[k] = std::hypot(corners[k][0] - cx - 15 * std::cos(a), corners[k][1] - cy - 15 * std::sin(a));
   }
-  return (lo + hi) / 2;
+  return L;
+}
+
+/// The first element of n that fill L with growth q [mm].
+double first_element(double L, std::int64_t n, double q)
+{
+  return q > 1 ? L * (q - 1) / (std::pow(q, double(n)) - 1) : L / double(n);
 }
 } // namespace
 
-TEST(SliceDivisions, GradedElementsGrowGently)
+TEST(SliceDivisions, GradedElementsStartAndGrowGently)
 {
-  for (const Case& where : {centred, cover15})
+  // Centred, the corroded demo's 15 mm cover, 6 mm and 1 mm of concrete
+  // beyond the support circle (a tube 16 mm from a side: before, one
+  // element across the other 70 mm of concrete), and a corner.
+  for (const auto& [cx, cy] :
+       std::array<std::array<double, 2>, 5>{{{50, 50}, {50, 25}, {50, 21}, {16, 50}, {20, 22}}})
     for (int nq : {4, 5, 6, 8, 12, 16, 24, 32})
     {
-      const auto d = divisions(where, nq);
-      const double h = std::numbers::pi / 2 * 10.0 / nq; // interface element [mm]
-      SCOPED_TRACE("Lr = " + std::to_string(where.Lr) + " mm, " + std::to_string(nq) +
-                   " per quarter: " + std::to_string(d.graded) + " graded elements");
+      std::ostringstream centre;
+      centre << "[" << cx << ", " << cy << "]";
+      const SliceDivisions d = slice_divisions(scene(centre.str(), nq));
+      const double h = pi / 2 * 10.0 / nq; // interface element [mm]
+      std::ostringstream where;
+      where << "centre " << centre.str() << ", " << nq << " per quarter: " << d.graded << " graded";
+      SCOPED_TRACE(where.str());
       ASSERT_GE(d.graded, 1);
-      if (double(d.graded) * h >= where.Lr)
-        continue; // uniform, at most h
-      // The growth the .geo gives its progression: from h to the outer size
-      // ratio h (ratio 10) where that fills Lr gently, else the growth that
-      // fills Lr from h. Either way at most q_max (1e-9: the bisection above).
-      const double he = 10 * h, q0 = (where.Lr - h) / (where.Lr - he);
-      const double q = he < where.Lr && q0 <= graded_growth_max
-                           ? std::pow(10.0, 1.0 / double(d.graded - 1))
-                           : growth_to_fill(h, int(d.graded), where.Lr);
-      EXPECT_LE(q, graded_growth_max + 1e-9);
+      EXPECT_GE(d.growth, 1.0);
+      EXPECT_LE(d.growth, graded_growth_max + 1e-9); // 1e-9: the bisection
+      for (double L : corner_lines(cx, cy))
+        EXPECT_LE(first_element(L, d.graded, d.growth), graded_growth_max * h * (1 + 1e-6));
     }
 }
 
-TEST(SliceDivisions, ThinCoverKeepsSeveralElements)
+TEST(SliceDivisions, VerifiedMeshesKeepTheirGrading)
 {
-  // Before the growth was bounded, 16 per quarter (the paper's mesh) gave the
-  // 15 mm cover 2 graded elements of 1 and 9 mm (24 per quarter: 3) while 12
-  // per quarter gave it 8 of 1.25 mm: the outer slice was 2 elements deep
-  // and the corroded slice's bending after its cover cracked doubled its
-  // pressure (docs/corrosion.md).
-  EXPECT_EQ(divisions(cover15, 12).graded, 8); // uniform: 10 mm / 1.31 mm
-  EXPECT_EQ(divisions(cover15, 16).graded, 5);
-  EXPECT_EQ(divisions(cover15, 24).graded, 5);
-  EXPECT_EQ(divisions(cover15, 32).graded, 6);
-  // Where the grading was gentle nothing changed: the paper's centred mesh.
-  EXPECT_EQ(divisions(centred, 16).graded, 9);
-  EXPECT_EQ(divisions(centred, 12).graded, 6);
+  // The paper's centred mesh, where one growth for every line already starts
+  // gently: 9 graded elements from h to 10 h (growth 10^(1/8)) on all four.
+  const SliceDivisions centred = slice_divisions(scene("[50.0, 50.0]", 16));
+  EXPECT_EQ(centred.graded, 9);
+  EXPECT_NEAR(centred.growth, std::pow(10.0, 1.0 / 8), 1e-12);
+  // A circle: all its lines have the shortest way's length.
+  const SliceDivisions circle = slice_divisions(MeshInput::of(
+      Scene::parse("[geometry]\nouter_shape = \"circle\"\n[mesh]\nelements_per_quarter = 16\n")));
+  EXPECT_EQ(circle.graded, 9);
+}
+
+TEST(SliceDivisions, OffCentreTubeStartsItsFarLinesGently)
+{
+  // The corroded demo (15 mm cover): 5 elements growing by 1.50 fill its
+  // 10 mm way out, and would start its lines to the far corners, 7.5 times
+  // as long, at 5.8 h; 8 growing by 1.6 start them within 1.6 h.
+  const SliceDivisions d = slice_divisions(scene("[50.0, 25.0]", 16));
+  EXPECT_EQ(d.graded, 8);
+  EXPECT_EQ(d.growth, graded_growth_max);
+}
+
+TEST(SliceDivisions, CoarserAskedCoarserGiven)
+{
+  // A larger outer_size_ratio never gives more elements (before, a ratio
+  // whose size was beyond the way out gave the uniform mesh of h, the
+  // finest: 384 cells at 18 against 192 at 17, 8 per quarter).
+  for (const char* centre : {"[50.0, 50.0]", "[50.0, 25.0]", "[16.0, 50.0]"})
+    for (int nq : {8, 16})
+    {
+      std::int64_t last = -1;
+      for (double ratio : {1.0, 1.5, 2.0, 5.0, 10.0, 17.0, 18.0, 20.0, 50.0, 1000.0})
+      {
+        const std::int64_t n =
+            slice_divisions(scene(centre, nq, "outer_size_ratio = " + std::to_string(ratio) + "\n"))
+                .graded;
+        if (last >= 0)
+        {
+          EXPECT_LE(n, last) << centre << ", " << nq << " per quarter, ratio " << ratio;
+        }
+        last = n;
+      }
+    }
+}
+
+TEST(SliceDivisions, CrackPlanesSectorLinesStartGently)
+{
+  // slice_cracked.geo: a line on each sector boundary (the four corners',
+  // the crack plane's towards the nearest face of the corroded demo, and the
+  // symmetry plane's opposite it), the corners' the longest.
+  const SliceDivisions d = slice_divisions(
+      scene("[50.0, 25.0]", 16,
+            "[[crack]]\nangle = \"nearest_face\"\nlaw = \"exponential_softening\"\n"));
+  const double h = pi / 2 * 10.0 / 16;
+  EXPECT_GE(d.growth, 1.0);
+  EXPECT_LE(d.growth, graded_growth_max + 1e-9);
+  // The longest line, to the far corners (as without the crack plane).
+  for (double L : corner_lines(50, 25))
+    EXPECT_LE(first_element(L, d.graded, d.growth), graded_growth_max * h * (1 + 1e-6));
 }
