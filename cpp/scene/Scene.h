@@ -68,7 +68,9 @@ public:
   /// Keys set to other than their default that nothing reads, one line
   /// each for the run's progress output (SceneParts.cpp): the [cracking]
   /// keys while cracking.model = "none", the other law's parameter of
-  /// cracking.law. Not errors: a scene turned off by --set keeps its keys.
+  /// cracking.law, the monotonic push's keys beside loading.push_path (and
+  /// the path's without one), loading.dissipation_steps under displacement
+  /// control. Not errors: a scene turned off by --set keeps its keys.
   std::vector<std::string> unread_keys() const;
 
 private:

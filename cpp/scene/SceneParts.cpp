@@ -39,6 +39,12 @@ void Scene::fill_parts()
   if (c.size() != 2)
     throw SceneError("'geometry.tube_center' must have 2 entries (x, y)");
   _geometry.tube_center = {c[0], c[1]};
+  // A circle slice is meshed around its tube (meshes/slice.geo).
+  if (_geometry.circle &&
+      *find("geometry.tube_center") != find_key("geometry.tube_center")->default_value)
+    throw SceneError("'geometry.tube_center' places the tube in a square slice; a circle slice "
+                     "('geometry.outer_shape' = \"circle\") is concentric with its tube: leave "
+                     "tube_center out");
   _geometry.support_inner_diameter = number("geometry.support_inner_diameter");
   _geometry.area = number("geometry.area");
 
@@ -146,6 +152,22 @@ std::vector<std::string> Scene::unread_keys() const
                     (_cracking.linear_softening ? "linear_softening" : "exponential_softening") +
                     "\" (it takes " +
                     (_cracking.linear_softening ? "cracking.w_c2" : "cracking.c") + ")");
+  // The push: a path, or a monotonic push to push_displacement.
+  if (!_loading.push_path.empty())
+  {
+    if (const std::string keys = changed({"loading.push_displacement", "loading.steps"});
+        !keys.empty())
+      notes.push_back(keys + " not read: loading.push_path sets the push (in "
+                             "loading.steps_per_segment steps a segment)");
+  }
+  else if (const std::string keys = changed({"loading.steps_per_segment", "loading.unload_to"});
+           !keys.empty())
+    notes.push_back(keys + " not read: they apply to loading.push_path, and the push is "
+                           "monotonic (to loading.push_displacement)");
+  if (_loading.control == Loading::Control::displacement)
+    if (const std::string key = changed({"loading.dissipation_steps"}); !key.empty())
+      notes.push_back(key + " not read: it sizes the energy steps of loading.control = "
+                            "\"auto\" or \"dissipation\"");
   return notes;
 }
 } // namespace pushout

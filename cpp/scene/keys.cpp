@@ -99,7 +99,8 @@ std::vector<KeyDef> make_keys()
        K::number_array,
        std::vector<double>{50.0, 50.0},
        "mm",
-       "tube axis position (x, y); the square spans [0, width]^2",
+       "tube axis position (x, y); the square spans [0, width]^2 (a circle slice is "
+       "concentric with its tube: leave it out)",
        -inf,
        inf,
        false,
@@ -162,9 +163,11 @@ std::vector<KeyDef> make_keys()
        K::number,
        10.0,
        "",
-       "outer concrete element size / interface element size (at most: the elements grow "
-       "by 1.6 at most from one to the next, so a short way to the boundary, e.g. a thin cover, "
-       "keeps smaller ones)",
+       "outer concrete element size / interface element size on the shortest way from the "
+       "support circle to the boundary (at most: the elements grow by 1.6 at most from one to "
+       "the next, so a short way, e.g. a thin cover, keeps smaller ones); the longer ways out, "
+       "to the corners or across an off-centre tube, have as many elements, from 1.6 times the "
+       "interface size at most, growing by 1.6 at most",
        1,
        inf,
        false,
@@ -248,8 +251,8 @@ std::vector<KeyDef> make_keys()
        K::integer,
        std::int64_t(9),
        "",
-       "equal displacement steps from 0 to push_displacement; at most 100000 (a step takes "
-       "milliseconds to seconds: more would run for days)",
+       "displacement steps from 0 to push_displacement (equal, or growing by step_growth); at "
+       "most 100000 (a step takes milliseconds to seconds: more would run for days)",
        1,
        100000,
        false,
@@ -441,7 +444,9 @@ std::vector<KeyDef> make_keys()
        "lagged: from a load step's second Newton iteration on, GMRES stops at half the "
        "residual that Newton's test still asks for (Kelley's safeguard on the forcing term), "
        "not at -ksp_rtol's relative reduction, which it never goes below; the first "
-       "iteration solves to -ksp_rtol. Where GMRES measures the true residual (right "
+       "iteration solves to -ksp_rtol (where a step starts from a prediction that made the "
+       "residual smaller, to what the step's unpredicted residual asks). Where GMRES measures the "
+       "true residual (right "
        "preconditioning, the default -ksp_pc_side; flexible GMRES in single precision). The "
        "converged solution is the same "
        "to Newton's tolerance. false: every linear solve to -ksp_rtol"},

@@ -12,20 +12,27 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <string>
 #include <vector>
 
 namespace pushout::specimen
 {
+/// The checks of a path key (`key`: loading.push_path or
+/// loading.shear_path) beyond its type: a segment at least, from 0, and at
+/// most steps_per_segment's bound of steps on all its segments together.
+/// Throws SceneError naming the key.
+void check_load_path(const std::string& key, const std::vector<double>& path,
+                     std::int64_t per_segment);
+
 class LoadPath
 {
 public:
   LoadPath() = default;
-  /// One vertex is a path that stays there (one segment).
+  /// Vertices as check_load_path accepts them (or none: no path).
   LoadPath(std::vector<double> vertices, int per_segment)
       : _v(std::move(vertices)), _per_segment(per_segment)
   {
-    if (_v.size() == 1)
-      _v.push_back(_v[0]);
   }
 
   bool empty() const { return _v.empty(); }

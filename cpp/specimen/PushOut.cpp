@@ -25,14 +25,6 @@ constexpr double max_push_ratio = 0.1;
 /// The largest ratio of the last push step to the first (step_growth).
 constexpr double max_step_ratio = 1e6;
 
-/// The upper bound declared for a scene key (scene/keys.cpp).
-double key_max(const std::string& path)
-{
-  if (const KeyDef* k = find_key(path))
-    return k->max;
-  throw std::logic_error("no scene key '" + path + "'");
-}
-
 /// Node of `candidates` nearest to p.
 std::int64_t nearest(const mesh::MeshData& m, const std::vector<std::int64_t>& candidates,
                      std::array<double, 3> p)
@@ -387,14 +379,90 @@ void refuse_ignored_step_growth(const Scene& scene)
     return;
   throw SceneError(s.str());
 }
+/// The [loading] keys of a push-out with the rest of the scene.
+void check_loading(const Scene& scene)
+{
+  const Loading& loading = scene.loading();
+  const double L = scene.geometry().thickness;
+  // The model is small-displacement: beyond a push of max_push_ratio L the
+  // contact length it keeps (L) and the one tau divides by (L - delta)
+  // differ by more than 10 %.
+  const auto beyond_small_displacement = [&](const std::string& key, double push)
+  {
+    std::ostringstream s;
+    s << "'" << key << "' pushes " << push << " mm, more than 10 % of 'geometry.thickness' ("
+      << max_push_ratio * L
+      << " mm): the model is small-displacement (it keeps the whole contact length L while "
+         "tau = P / (pi D (L - delta)))";
+    return SceneError(s.str());
+  };
+  const auto& path = loading.push_path;
+  if (path.empty())
+  {
+    if (const double push = loading.push_displacement; !(std::abs(push) <= max_push_ratio * L))
+      throw beyond_small_displacement("loading.push_displacement", push);
+    // Path following and dissipation control run the push to its end: a
+    // load factor from 0 up to push_displacement.
+    if (loading.control != Loading::Control::displacement && !(loading.push_displacement > 0))
+    {
+      std::ostringstream s;
+      using Control = Loading::Control;
+      const Control control = loading.control;
+      s << "'loading.control' = \""
+        << (control == Control::arc_length    ? "arc_length"
+            : control == Control::dissipation ? "dissipation"
+                                              : "auto")
+        << "\" follows a push to a positive 'loading.push_displacement' (it is "
+        << loading.push_displacement
+        << " mm): give one (a short one, e.g. 0.001 mm, after a corrosion stage alone), or set "
+           "'loading.control' = \"displacement\"";
+      throw SceneError(s.str());
+    }
+  }
+  else
+  {
+    check_load_path("loading.push_path", path, loading.steps_per_segment);
+    for (const double d : path)
+      if (!(std::abs(d) <= max_push_ratio * L))
+        throw beyond_small_displacement("loading.push_path", d);
+    if (loading.step_growth != 1.0)
+      throw SceneError("'loading.step_growth' applies to the monotonic push "
+                       "(push_displacement, steps), not to 'loading.push_path': leave it at 1");
+    if (loading.control != Loading::Control::displacement)
+      throw SceneError("'loading.push_path' is followed under 'loading.control' = "
+                       "\"displacement\" (path following and dissipation control run a "
+                       "monotonic push)");
+    if (const double lowest = *std::min_element(path.begin(), path.end());
+        loading.unload_to_zero_force && lowest < 0)
+    {
+      std::ostringstream s;
+      s << "'loading.unload_to' = \"zero_force\" is a push-out device that cannot pull, and "
+           "'loading.push_path' pulls the tube back to "
+        << lowest << " mm: keep the path at 0 or above, or set 'loading.unload_to' = \"path\"";
+      throw SceneError(s.str());
+    }
+  }
+  refuse_ignored_step_growth(scene);
+  // Steps growing (or shrinking) geometrically: the last at most
+  // max_step_ratio times the first, or the other way round.
+  const double growth = loading.step_growth;
+  if (const auto steps = loading.steps;
+      std::abs(double(steps - 1) * std::log(growth)) > std::log(max_step_ratio))
+  {
+    std::ostringstream s;
+    s << "'loading.step_growth' = " << growth << " over 'loading.steps' = " << steps
+      << " makes the last step " << growth << "^" << steps - 1
+      << " times the first: at most 1e6 either way";
+    throw SceneError(s.str());
+  }
+}
 } // namespace
 
 void PushOut::check_scene(const Scene& scene)
 {
   const Geometry& g = scene.geometry();
-  const Loading& loading = scene.loading();
   const double W = g.width, D = g.tube_outer_diameter, Di = g.tube_inner_diameter;
-  const double Ds = g.support_inner_diameter, L = g.thickness;
+  const double Ds = g.support_inner_diameter;
   const auto& c = g.tube_center;
   // The tube wall and the support's gap around the tube are meshed with
   // elements across them: thinner than min_width_ratio D they are no
@@ -421,62 +489,12 @@ void PushOut::check_scene(const Scene& scene)
   const double margin =
       circle ? W / 2 - Ds / 2 : std::min({c[0], c[1], W - c[0], W - c[1]}) - Ds / 2;
   if (!(margin > 0))
-    throw SceneError("'geometry.support_inner_diameter' (or "
-                     "'geometry.tube_center') leaves no support outside "
-                     "the hole: the hole must fit inside the slice");
-  // The model is small-displacement: beyond a push of max_push_ratio L the
-  // contact length it keeps (L) and the one tau divides by (L - delta)
-  // differ by more than 10 %.
-  const auto beyond_small_displacement = [&](const std::string& key, double push)
-  {
-    std::ostringstream s;
-    s << "'" << key << "' pushes " << push << " mm, more than 10 % of 'geometry.thickness' ("
-      << max_push_ratio * L
-      << " mm): the model is small-displacement (it keeps the whole contact length L while "
-         "tau = P / (pi D (L - delta)))";
-    return SceneError(s.str());
-  };
-  if (const double push = loading.push_displacement; !(std::abs(push) <= max_push_ratio * L))
-    throw beyond_small_displacement("loading.push_displacement", push);
-  const double max_steps = key_max("loading.steps");
-  if (const auto& path = loading.push_path; !path.empty())
-  {
-    if (path.size() < 2)
-      throw SceneError("'loading.push_path' has no segment: it needs 0 and at least one more "
-                       "displacement [mm] (e.g. [0.0, 0.02, 0.0, 0.1])");
-    if (path[0] != 0.0)
-      throw SceneError("'loading.push_path' must start at 0: the push starts from the state "
-                       "after the thermal step (and the corrosion stage)");
-    for (const double d : path)
-      if (!(std::abs(d) <= max_push_ratio * L))
-        throw beyond_small_displacement("loading.push_path", d);
-    const double steps = double(path.size() - 1) * double(loading.steps_per_segment);
-    if (steps > max_steps)
-      throw SceneError("'loading.steps_per_segment' times the " + std::to_string(path.size() - 1) +
-                       " segments of 'loading.push_path' is " +
-                       std::to_string(std::int64_t(steps)) + " steps, more than " +
-                       std::to_string(std::int64_t(max_steps)));
-    if (loading.step_growth != 1.0)
-      throw SceneError("'loading.step_growth' applies to the monotonic push "
-                       "(push_displacement, steps), not to 'loading.push_path': leave it at 1");
-    if (loading.control != Loading::Control::displacement)
-      throw SceneError("'loading.push_path' is followed under 'loading.control' = "
-                       "\"displacement\" (path following and dissipation control run a "
-                       "monotonic push)");
-  }
-  refuse_ignored_step_growth(scene);
-  // Steps growing (or shrinking) geometrically: the last at most
-  // max_step_ratio times the first, or the other way round.
-  const double growth = loading.step_growth;
-  if (const auto steps = loading.steps;
-      std::abs(double(steps - 1) * std::log(growth)) > std::log(max_step_ratio))
-  {
-    std::ostringstream s;
-    s << "'loading.step_growth' = " << growth << " over 'loading.steps' = " << steps
-      << " makes the last step " << growth << "^" << steps - 1
-      << " times the first: at most 1e6 either way";
-    throw SceneError(s.str());
-  }
+    throw SceneError(circle ? "'geometry.support_inner_diameter' leaves no support outside the "
+                              "hole: the hole must fit inside the circle ('geometry.width')"
+                            : "'geometry.support_inner_diameter' (or 'geometry.tube_center') "
+                              "leaves no support outside the hole: the hole must fit inside "
+                              "the slice");
+  check_loading(scene);
   // The oxide presses on the concrete only through a law that models it.
   const auto& layers = scene.layers();
   if (scene.corrosion().penetration > 0 &&

@@ -79,6 +79,7 @@ public:
   /// The load factor of path following is the push delta [mm].
   bool has_load_factor() const override { return true; }
   double final_load_factor() const override { return _delta_final; }
+  bool monotonic() const override { return _path.empty(); }
   void apply_load_factor(double delta, solver::Equilibrium& eq) const override;
   /// The push force on the model as meshed (a quarter's on a quarter model,
   /// a half's on a half).

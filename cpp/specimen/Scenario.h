@@ -45,6 +45,10 @@ public:
   /// affinely, and lambda's final value.
   virtual bool has_load_factor() const { return false; }
   virtual double final_load_factor() const { return 0.0; }
+  /// Whether the load factor only grows, to its final value (a push-out's
+  /// monotonic push, not its push_path): what path following and
+  /// dissipation control run.
+  virtual bool monotonic() const { return has_load_factor(); }
   /// Sets constraints and loads for load factor lambda (after step 0).
   virtual void apply_load_factor(double /*lambda*/, solver::Equilibrium& /*eq*/) const {}
   /// The force that works on the load factor, on the model as meshed (a

@@ -98,7 +98,7 @@ void SingleJoint::check_scene(const Scene& scene)
 {
   if (scene.mesh().degree == 2)
     throw SceneError("'mesh.degree' = 2 is implemented for model.type = \"pushout\" only");
-  if (scene.loading().shear_path.empty())
-    throw SceneError("'loading.shear_path' must have at least one value");
+  check_load_path("loading.shear_path", scene.loading().shear_path,
+                  scene.loading().steps_per_segment);
 }
 } // namespace pushout::specimen

@@ -200,9 +200,13 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
   {
     _summary.message = what + " did not converge with " + std::to_string(cuts) + " cuts, down to " +
                        size(stepper.increment()) + " (" + reason + "); stopped";
-    if (_may_snap_back)
+    if (_may_snap_back && _scenario.monotonic())
       _summary.message += " (where the structure snaps back, loading.control = \"auto\" follows "
                           "it: docs/numerics.md, \"Dissipation control\")";
+    else if (_may_snap_back) // a push_path, which only displacement control runs
+      _summary.message += " (where the structure snaps back on a push path, a damage viscosity "
+                          "lets displacement control pass it: a softening layer's eta, or "
+                          "cracking.viscosity; docs/numerics.md, \"Viscous regularisation\")";
     return false;
   }
   ++cuts;

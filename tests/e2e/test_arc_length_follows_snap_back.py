@@ -78,8 +78,17 @@ check(all(y > x for x, y in zip(slips, slips[1:])), "mean slip grows in every ar
 brittle = COARSE_MESH + FRICTION_2 + EXP.format(c=100.0) + SNAP_BACK_LOADING
 disp, arc = out_dir("arc_snap_displacement"), out_dir("arc_snap_arc_length")
 p = run(brittle, disp, check=False)
-check(p.returncode == 3 and "did not converge" in p.stderr,
-      f"displacement control stops at the peak: exit {p.returncode}, {p.stderr.strip()!r}")
+check(p.returncode == 3 and "did not converge" in p.stderr and 'loading.control = "auto"' in p.stderr,
+      f"displacement control stops at the peak, and says what follows it: exit {p.returncode}, "
+      f"{p.stderr.strip()!r}")
+# The same push as a push_path, which only displacement control runs: the
+# hint names what can pass it there (a damage viscosity), not a control
+# that would refuse the path.
+path = out_dir("arc_snap_push_path")
+p = run(brittle, path, sets=["loading.push_path=[0.0, 0.04]", "loading.steps_per_segment=20"],
+        check=False)
+check(p.returncode == 3 and "damage viscosity" in p.stderr and "loading.control" not in p.stderr,
+      f"on a push path: exit {p.returncode}, {p.stderr.strip()!r}")
 run(brittle, arc, sets=["loading.control=arc_length"])
 a = curve(arc)
 s = summary(arc)

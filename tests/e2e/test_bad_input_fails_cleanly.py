@@ -5,6 +5,7 @@ import os
 from common import COARSE_MESH, FRICTION_2, SOURCE, check, out_dir, run
 
 GOOD = COARSE_MESH + FRICTION_2
+JOINT = open(os.path.join(SOURCE, "demo", "single_joint_fig6.toml")).read()
 
 cases = [
     # (name, scene text, --set overrides, expected words in stderr)
@@ -62,6 +63,25 @@ cases = [
      ["loading.step_growth", "arc_length"]),
     ("step growth where dissipation control runs", GOOD + '\n[cracking]\nmodel = "embedded"\n',
      ["loading.control=auto", "loading.step_growth=2"], ["loading.step_growth", "dissipation control"]),
+    # A push the control cannot run, a path the device cannot follow.
+    ("push to 0 under auto", GOOD, ["loading.control=auto", "loading.push_displacement=0.0"],
+     ["'loading.control' = \"auto\"", "loading.push_displacement"]),
+    ("pull under arc length", GOOD, ["loading.control=arc_length", "loading.push_displacement=-0.01"],
+     ["'loading.control' = \"arc_length\"", "loading.push_displacement"]),
+    ("device that cannot pull, pulled", GOOD,
+     ["loading.push_path=[0.0, -0.01, 0.0]", "loading.unload_to=zero_force"],
+     ["loading.unload_to", "cannot pull", "loading.push_path"]),
+    ("circle with its tube off centre", GOOD,
+     ["geometry.outer_shape=circle", "geometry.tube_center=[30.0, 50.0]"],
+     ["geometry.tube_center", "concentric"]),
+    # The single joint's shear path, checked as a push path is.
+    ("shear path of one value", JOINT, ["loading.shear_path=[0.0]"],
+     ["loading.shear_path", "no segment"]),
+    ("shear path not from 0", JOINT, ["loading.shear_path=[0.1, 0.2]"],
+     ["loading.shear_path", "must start at 0"]),
+    ("shear path of too many steps", JOINT,
+     ["loading.shear_path=[0.0, 0.01, 0.0, 0.01]", "loading.steps_per_segment=40000"],
+     ["loading.steps_per_segment", "loading.shear_path", "120000 steps"]),
     ("--set missing layer", GOOD, ["interface.3.mu=0.2"], ["interface.3.mu"]),
     ("--set unknown key", GOOD, ["loading.stepz=3"], ["loading.stepz"]),
     ("--set malformed", GOOD, ["loading.steps"], ["loading.steps", "key=value"]),

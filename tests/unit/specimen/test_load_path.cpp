@@ -2,8 +2,11 @@
 // 0 -> 10 um -> 4 um (unloading) -> 20 um in 4 nominal steps per segment:
 // its value and length at each load parameter, the segment of a step, and
 // an unloading segment ended early (where the push force falls to zero).
+#include "scene/SceneError.h"
 #include "specimen/LoadPath.h"
 #include <gtest/gtest.h>
+#include <string>
+#include <vector>
 
 using pushout::specimen::LoadPath;
 
@@ -83,13 +86,28 @@ TEST(LoadPath, UnloadingEndedEarlyStartsTheNextSegmentThere)
   EXPECT_DOUBLE_EQ(path.length_to(12.0), 0.026);
 }
 
-TEST(LoadPath, OneVertexStaysThere)
+TEST(LoadPath, PathKeysChecked)
 {
-  const LoadPath path({0.005}, 3);
-  EXPECT_EQ(path.segments(), 1u);
-  EXPECT_EQ(path.steps(), 3);
-  EXPECT_DOUBLE_EQ(path.value(0.0), 0.005);
-  EXPECT_DOUBLE_EQ(path.value(2.0), 0.005);
-  EXPECT_DOUBLE_EQ(path.length_to(3.0), 0.0);
-  EXPECT_FALSE(path.decreasing(0));
+  // push_path and shear_path alike: a segment at least, from 0, and at most
+  // 100000 steps on all segments (loading.steps_per_segment's bound).
+  using pushout::specimen::check_load_path;
+  const auto refused = [](const std::vector<double>& path, std::int64_t per_segment)
+  {
+    try
+    {
+      check_load_path("loading.shear_path", path, per_segment);
+    }
+    catch (const pushout::SceneError& e)
+    {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(refused({0.0, 0.02, 0.0}, 20), "");
+  EXPECT_EQ(refused({0.0, -0.01}, 100000), "");
+  EXPECT_NE(refused({0.0}, 20).find("'loading.shear_path' has no segment"), std::string::npos);
+  EXPECT_NE(refused({}, 20).find("has no segment"), std::string::npos);
+  EXPECT_NE(refused({0.1, 0.2}, 20).find("must start at 0"), std::string::npos);
+  EXPECT_NE(refused({0.0, 0.01, 0.0, 0.01}, 40000).find("120000 steps, more than 100000"),
+            std::string::npos);
 }
