@@ -112,11 +112,11 @@ SliceDivisions slice_divisions(const MeshInput& in)
 
   // The longest line (to a far corner) has the same number of elements,
   // stretched: where its first one would jump from the ring's (more than
-  // q_max h), the fewest elements that start it at q_max h at most while
-  // they grow by q_max at most: q_max throughout (the shorter lines start
-  // smaller). One growth for all lines: gmsh's transfinite blocks are mirror
-  // images only between lines of the same growth, and a half or quarter
-  // model is cut from the whole mesh (mesh/symmetry.h).
+  // q_max h), enough elements to start it at q_max h while they grow by
+  // q_max at most, with the growth that fills it so (the shorter lines
+  // start smaller). One growth for all lines: gmsh's transfinite blocks are
+  // mirror images only between lines of the same growth, and a half or
+  // quarter model is cut from the whole mesh (mesh/symmetry.h).
   const std::vector<double> lines = graded_lines(in, Rs);
   const double longest = *std::max_element(lines.begin(), lines.end());
   if (first_element(longest, d.graded, q) > q_max * h * (1 + 1e-9))
@@ -125,8 +125,8 @@ SliceDivisions slice_divisions(const MeshInput& in)
       d.graded = std::int64_t(std::ceil(longest / (q_max * h)));
     else
     {
-      d.growth = q_max;
       d.graded = std::max(d.graded, elements_to_fill(q_max * h, longest));
+      d.growth = growth_to_fill(q_max * h, d.graded, longest);
     }
   }
   return d;

@@ -36,8 +36,9 @@ struct MeshSize
 /// the same divisions stretch their elements by their length over Lr; where
 /// that makes the longest line's first element more than
 /// graded_growth_max h (a jump from the ring's elements of h), the lines get
-/// the fewest elements that start it at graded_growth_max h at most, all
-/// growing by graded_growth_max (the shorter lines' start smaller). A tube 6 mm from a side
+/// enough elements to start it at graded_growth_max h while they grow by
+/// graded_growth_max at most, and the growth that fills it so (the shorter
+/// lines start smaller). A tube 6 mm from a side
 /// had one element across the other 70 mm of concrete before, and its curve
 /// moved by 1.7 % from 24 to 32 elements per quarter (docs/architecture.md).
 struct SliceDivisions
