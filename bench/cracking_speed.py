@@ -58,11 +58,12 @@ RESULTS = os.path.join(ROOT, "bench", "results")
 
 
 def phases(out):
-    """Seconds of step 0, the corrosion stage and the push."""
+    """Seconds of step 0, the corrosion stage and the push (empty: a run that
+    stopped before it)."""
     corr = pushout_runs.corrosion(out)
     push = curve(out)
-    t0, t_corr, t_end = corr[0]["wall_s"], corr[-1]["wall_s"], push[-1]["wall_s"]
-    return round(t0, 2), round(t_corr - t0, 2), round(t_end - t_corr, 2)
+    t0, t_corr = corr[0]["wall_s"], corr[-1]["wall_s"]
+    return round(t0, 2), round(t_corr - t0, 2), round(push[-1]["wall_s"] - t_corr, 2) if push else ""
 
 
 def main():
@@ -106,19 +107,20 @@ def main():
                      "s_per_iteration": round(s["wall_s"] / max(s["newton_iterations"], 1), 3),
                      "p_peak_MPa": round(max(r["p_MPa"] for r in pushout_runs.corrosion(out)), 4),
                      "p_corroded_MPa": round(pushout_runs.corrosion(out)[-1]["p_MPa"], 4),
-                     "tau_last_MPa": round(curve(out)[-1]["tau_MPa"], 4),
+                     "tau_last_MPa": round(curve(out)[-1]["tau_MPa"], 4) if curve(out) else "",
                      # When the row's run was made: with --reuse, an earlier
                      # run's (an earlier build's) results may stand beside today's.
                      "ran_utc": time.strftime("%Y-%m-%d %H:%M", time.gmtime(
                          os.path.getmtime(os.path.join(out, "summary.json"))))})
     plane = next((r["wall_s"] for r in rows if r["case"] == "plane"), None)
-    fine = next((r for r in rows if r["case"] == "embedded_fine"), None)
+    fine = next((r for r in rows if r["case"] == "embedded_fine" and r["converged"]), None)
     for r in rows:
         r["ratio_to_plane"] = round(r["wall_s"] / plane, 1) if plane else ""
+        # Errors of the runs that finished, against the fine reference.
         for key in ("p_peak_MPa", "p_corroded_MPa", "tau_last_MPa"):
             r[key.replace("_MPa", "_error_pct")] = (
                 round(100 * (r[key] / fine[key] - 1), 2)
-                if fine and r["case"].startswith("embedded") else "")
+                if fine and r["converged"] and r["case"].startswith("embedded") else "")
     os.makedirs(RESULTS, exist_ok=True)
     write_csv(os.path.join(RESULTS, "cracking_speed.csv"), rows)
     with open(os.path.join(RESULTS, "cracking_speed.md"), "w") as f:

@@ -5,8 +5,9 @@
 // blocks -- the tube wall (Ri..R), a concrete ring up to the support circle
 // (R..Rs) of elements of about the interface size, so that the support edge
 // is a mesh line, and a graded block out to the slice boundary (square side
-// or circle) -- then everything is extruded through the thickness. Steel and concrete share the nodes on r = R here;
-// pushout duplicates them to insert the interface (joint) elements.
+// or circle) -- then everything is extruded through the thickness. Steel
+// and concrete share the nodes on r = R here; pushout duplicates them to
+// insert the interface (joint) elements.
 //
 // Open it in gmsh to see the block structure; pushout sets the constants
 // from the scene (gmsh -setnumber). Units: mm.

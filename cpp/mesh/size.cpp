@@ -101,6 +101,8 @@ SliceDivisions slice_divisions(const MeshInput& in)
       d.graded =
           std::max<std::int64_t>(std::int64_t(std::floor(std::log(ratio) / std::log(q0) + 1.5)), 2);
       q = std::exp(std::log(ratio) / double(d.graded - 1));
+      for (; q > q_max; q = std::exp(std::log(ratio) / double(d.graded - 1)))
+        ++d.graded; // the count rounded down: one more, until the growth is q_max at most
     }
     else
     {

@@ -29,18 +29,20 @@ struct MeshSize
 /// The graded block runs from the support circle to the outer boundary
 /// along one line per block corner (slice.geo) or sector boundary
 /// (slice_cracked.geo), each with the same number of elements and growth
-/// (gmsh's progression). They are sized on the shortest way out, Lr (support
-/// circle to the nearest side): from about the interface size h towards
-/// outer_size_ratio h, growing by graded_growth_max at most. The other lines
-/// are longer (to the square's corners, or across an off-centre tube), and
-/// the same divisions stretch their elements by their length over Lr; where
-/// that makes the longest line's first element more than
+/// (gmsh's progression). They are sized on the shortest way out, Lr
+/// (support circle to the nearest side): from about the interface size h
+/// towards outer_size_ratio h, growing by graded_growth_max at most. The
+/// other lines are longer (to the square's corners, or across an off-centre
+/// tube), and the same divisions stretch their elements by their length
+/// over Lr. Where that makes the longest line's first element more than
 /// graded_growth_max h (a jump from the ring's elements of h), the lines get
 /// enough elements to start it at graded_growth_max h while they grow by
-/// graded_growth_max at most, and the growth that fills it so (the shorter
-/// lines start smaller). A tube 6 mm from a side
-/// had one element across the other 70 mm of concrete before, and its curve
-/// moved by 1.7 % from 24 to 32 elements per quarter (docs/architecture.md).
+/// graded_growth_max at most, and the growth that fills it so;
+/// outer_size_ratio then no longer applies, and the shorter ways start with
+/// smaller elements (the corroded demo's 10 mm cover at 0.21 h). A tube 6 mm
+/// from a side had one element across the other 70 mm of concrete before,
+/// and its curve moved by 1.7 % from 24 to 32 elements per quarter
+/// (docs/corrosion.md, "The mesh").
 struct SliceDivisions
 {
   std::int64_t circumferential; ///< elements per quarter circumference (nq)

@@ -14,9 +14,9 @@ std::string stage_progress(const std::string& stage, const output::Summary& s)
     return "in step 0";
   if (stage == "corrosion steps")
     return "after " + std::to_string(s.corrosion_steps) + " corrosion steps";
-  if (stage == "load steps")
-    return "after " + std::to_string(s.steps) + " load steps";
-  return ""; // meshing, set-up: no step yet
+  if (stage == "meshing" || stage == "set-up")
+    return ""; // no step yet
+  return "after " + std::to_string(s.steps) + " load steps";
 }
 
 double peak_memory_here_mb()

@@ -20,9 +20,9 @@
 namespace pushout::record
 {
 /// How far the steps of `stage` had gone when a signal stopped it: "in step
-/// 0", "after 5 corrosion steps", "after 3 load steps" (the push), or empty
-/// before the steps (meshing, set-up) (summary.json's message; `stage` as
-/// its stopped_in).
+/// 0", "after 5 corrosion steps", empty before the steps (meshing, set-up),
+/// or (the push, or a later phase: writing outputs, ...) "after 3 load
+/// steps" (summary.json's message; `stage` as its stopped_in).
 std::string stage_progress(const std::string& stage, const output::Summary& s);
 
 class RunReport

@@ -70,7 +70,7 @@ public:
   /// keys while cracking.model = "none", the other law's parameter of
   /// cracking.law, the monotonic push's keys beside loading.push_path (and
   /// the path's without one), loading.dissipation_steps under displacement
-  /// control. Not errors: a scene turned off by --set keeps its keys.
+  /// control or arc length. Not errors: a scene turned off by --set keeps its keys.
   std::vector<std::string> unread_keys() const;
 
 private:

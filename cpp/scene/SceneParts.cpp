@@ -164,7 +164,8 @@ std::vector<std::string> Scene::unread_keys() const
            !keys.empty())
     notes.push_back(keys + " not read: they apply to loading.push_path, and the push is "
                            "monotonic (to loading.push_displacement)");
-  if (_loading.control == Loading::Control::displacement)
+  if (_loading.control == Loading::Control::displacement ||
+      _loading.control == Loading::Control::arc_length)
     if (const std::string key = changed({"loading.dissipation_steps"}); !key.empty())
       notes.push_back(key + " not read: it sizes the energy steps of loading.control = "
                             "\"auto\" or \"dissipation\"");

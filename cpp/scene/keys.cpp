@@ -165,9 +165,10 @@ std::vector<KeyDef> make_keys()
        "",
        "outer concrete element size / interface element size on the shortest way from the "
        "support circle to the boundary (at most: the elements grow by 1.6 at most from one to "
-       "the next, so a short way, e.g. a thin cover, keeps smaller ones); the longer ways out, "
-       "to the corners or across an off-centre tube, have as many elements, from 1.6 times the "
-       "interface size at most, growing by 1.6 at most",
+       "the next, so a short way, e.g. a thin cover, keeps smaller ones). The longer ways out, "
+       "to the corners or across an off-centre tube, have as many elements; where their first "
+       "would exceed 1.6 times the interface size, all ways get enough elements to start the "
+       "longest there, growing by 1.6 at most, and this ratio no longer applies",
        1,
        inf,
        false,
@@ -216,7 +217,9 @@ std::vector<KeyDef> make_keys()
        "mm",
        "final downward displacement delta of the tube's top nodes; at most 10 % of "
        "geometry.thickness either way: the model is small-displacement (it keeps the whole "
-       "contact length L while tau = P / (pi D (L - delta)) divides by the shrinking one)",
+       "contact length L while tau = P / (pi D (L - delta)) divides by the shrinking one); "
+       "positive under loading.control = auto, dissipation or arc_length; not read with "
+       "push_path",
        -inf,
        inf,
        false,
@@ -276,8 +279,8 @@ std::vector<KeyDef> make_keys()
        "",
        "path: an unloading segment of push_path goes to its value (the tube pulled back if "
        "need be); zero_force: it ends where the push force P falls to zero, as a push-out "
-       "device that cannot pull (summary.json permanent_displacements_mm), and the next "
-       "segment starts there",
+       "device that cannot pull (summary.json permanent_displacements_mm; the path stays at "
+       "0 or above), and the next segment starts there",
        -inf,
        inf,
        false,
@@ -332,8 +335,8 @@ std::vector<KeyDef> make_keys()
        K::number_array,
        std::vector<double>{0.0, 0.02, 0.01, 0.025},
        "mm",
-       "shear (x) displacement of the upper face: piecewise-linear path "
-       "through these values",
+       "shear (x) displacement of the upper face: piecewise-linear path through these "
+       "values, from 0 (the normal preload's state), at least one segment",
        -inf,
        inf,
        false,

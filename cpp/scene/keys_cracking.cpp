@@ -118,8 +118,9 @@ std::vector<KeyDef> law_keys()
        "mm",
        "damage viscosity of the concrete's cracks, as the damage laws' eta: pseudo-time "
        "constant in mm of push; a corrosion step lasts a push step's pseudo-time "
-       "(push_displacement / loading.steps), so the corrosion stage's cracks depend on "
-       "loading.steps too; 0: rate independent",
+       "(push_displacement / loading.steps; with push_path, its first segment's length / "
+       "steps_per_segment), so the corrosion stage's cracks depend on those too; 0: rate "
+       "independent",
        0,
        inf,
        false,

@@ -206,7 +206,8 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
     else if (_may_snap_back) // a push_path, which only displacement control runs
       _summary.message += " (where the structure snaps back on a push path, a damage viscosity "
                           "lets displacement control pass it: a softening layer's eta, or "
-                          "cracking.viscosity; docs/numerics.md, \"Viscous regularisation\")";
+                          "cracking.viscosity with implicit cracks; docs/numerics.md, "
+                          "\"Viscous regularisation\")";
     return false;
   }
   ++cuts;

@@ -103,7 +103,7 @@ check(code == 130 and s["interrupted"] and s["stopped_in"] == "step 0" and s["st
 code, err, out = interrupt_after_model_line("interrupt_setup", [])
 s = summary(out)
 check(code == 130 and s["stopped_in"] == "set-up" and s["message"] == "interrupted by SIGINT during set-up"
-      and s["cells"] == 18240 and s["dofs"] == 63960,
+      and s["cells"] == s["estimate"]["cells"] > 0 and s["dofs"] == s["estimate"]["dofs"],
       f"SIGINT in the set-up: exit {code}, stopped_in {s['stopped_in']!r}, {s['message']!r}, "
       f"{s['cells']} cells, {s['dofs']} dofs; {err.strip()!r}")
 

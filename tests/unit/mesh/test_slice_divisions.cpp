@@ -147,3 +147,18 @@ TEST(SliceDivisions, CrackPlanesSectorLinesStartGently)
     EXPECT_LE(first_element(std::hypot(x - 50, y - 25) - 15, d.graded, d.growth),
               graded_growth_max * h * (1 + 1e-6));
 }
+
+TEST(SliceDivisions, RoundedCountsKeepTheGrowthBound)
+{
+  // Towards ratio h the count is rounded: down, it made the growth 1.8 (a
+  // circle 50 mm wide, 5 per quarter, ratio 1.8) and 1.64 (a 150 mm square,
+  // 8 per quarter, ratio 11.95); one element more where it did.
+  const SliceDivisions circle = slice_divisions(
+      MeshInput::of(Scene::parse("[geometry]\nouter_shape = \"circle\"\nwidth = 50.0\n"
+                                 "[mesh]\nelements_per_quarter = 5\nouter_size_ratio = 1.8\n")));
+  EXPECT_LE(circle.growth, graded_growth_max);
+  const SliceDivisions square = slice_divisions(
+      MeshInput::of(Scene::parse("[geometry]\nwidth = 150.0\ntube_center = [75.0, 75.0]\n"
+                                 "[mesh]\nelements_per_quarter = 8\nouter_size_ratio = 11.95\n")));
+  EXPECT_LE(square.growth, graded_growth_max);
+}
