@@ -448,11 +448,10 @@ std::vector<KeyDef> make_keys()
        "residual that Newton's test still asks for (Kelley's safeguard on the forcing term), "
        "not at -ksp_rtol's relative reduction, which it never goes below; the first "
        "iteration solves to -ksp_rtol (where a step starts from a prediction that made the "
-       "residual smaller, to what the step's unpredicted residual asks). Where GMRES measures the "
-       "true residual (right "
-       "preconditioning, the default -ksp_pc_side; flexible GMRES in single precision). The "
-       "converged solution is the same "
-       "to Newton's tolerance. false: every linear solve to -ksp_rtol"},
+       "residual smaller, to what the step's unpredicted residual asks). Where GMRES measures "
+       "the true residual (right preconditioning, the default -ksp_pc_side; flexible GMRES in "
+       "single precision). The converged solution is the same to Newton's tolerance. false: "
+       "every linear solve to -ksp_rtol"},
       {"solver.first_tangent",
        K::string,
        std::string("converged"),

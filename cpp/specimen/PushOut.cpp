@@ -406,13 +406,8 @@ void check_loading(const Scene& scene)
     if (loading.control != Loading::Control::displacement && !(loading.push_displacement > 0))
     {
       std::ostringstream s;
-      using Control = Loading::Control;
-      const Control control = loading.control;
-      s << "'loading.control' = \""
-        << (control == Control::arc_length    ? "arc_length"
-            : control == Control::dissipation ? "dissipation"
-                                              : "auto")
-        << "\" follows a push to a positive 'loading.push_displacement' (it is "
+      s << "'loading.control' other than \"displacement\" (auto, dissipation, arc_length) "
+           "follows a push to a positive 'loading.push_displacement' (it is "
         << loading.push_displacement
         << " mm): give one (a short one, e.g. 0.001 mm, after a corrosion stage alone), or set "
            "'loading.control' = \"displacement\"";

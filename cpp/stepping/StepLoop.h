@@ -249,10 +249,10 @@ private:
   /// The stage the loop is in, as summary.json's stopped_in says it when a
   /// signal stops the run: "step 0", "corrosion steps" or "load steps".
   const char* _stage = "step 0";
-  /// A step that fails under displacement control may be a snap-back that
-  /// dissipation control would follow: the joints or cracks soften, and the
-  /// scene may take loading.control = "auto" (a monotonic push). Its
-  /// failure message says so.
+  /// A step that fails under displacement control may be a snap-back: the
+  /// joints or cracks soften. Its failure message says what passes one:
+  /// loading.control = "auto" on a monotonic push, a damage viscosity on a
+  /// push_path (which only displacement control runs).
   bool _may_snap_back = false;
   /// Whether the joints or the concrete's cracks soften (they release
   /// energy; DissipationControl.cpp). Collective.

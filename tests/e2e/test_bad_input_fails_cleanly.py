@@ -65,9 +65,9 @@ cases = [
      ["loading.control=auto", "loading.step_growth=2"], ["loading.step_growth", "dissipation control"]),
     # A push the control cannot run, a path the device cannot follow.
     ("push to 0 under auto", GOOD, ["loading.control=auto", "loading.push_displacement=0.0"],
-     ["'loading.control' = \"auto\"", "loading.push_displacement"]),
+     ["'loading.control'", "loading.push_displacement"]),
     ("pull under arc length", GOOD, ["loading.control=arc_length", "loading.push_displacement=-0.01"],
-     ["'loading.control' = \"arc_length\"", "loading.push_displacement"]),
+     ["'loading.control'", "arc_length", "loading.push_displacement"]),
     ("device that cannot pull, pulled", GOOD,
      ["loading.push_path=[0.0, -0.01, 0.0]", "loading.unload_to=zero_force"],
      ["loading.unload_to", "cannot pull", "loading.push_path"]),
