@@ -29,7 +29,14 @@ DefineConstant[
   // with growth (progression) q.
   nr1 = {5, Name "elements of the concrete ring (R..Rs)"},
   nr2 = {9, Name "elements of the graded block (Rs..boundary)"},
-  q = {1.333521432163324, Name "growth of the graded block's elements"}
+  q = {1.333521432163324, Name "growth of the graded block's elements"},
+  // The outer ends of the block corner lines, also from pushout
+  // (cpp/scene/CrackPlanes.h, block_corners): the square's corners, or the
+  // circle's points at 45 + 90 k degrees.
+  ox_0 = {100, Name "block corner 0 x"}, oy_0 = {100, Name "block corner 0 y"},
+  ox_1 = {0, Name "block corner 1 x"}, oy_1 = {100, Name "block corner 1 y"},
+  ox_2 = {0, Name "block corner 2 x"}, oy_2 = {0, Name "block corner 2 y"},
+  ox_3 = {100, Name "block corner 3 x"}, oy_3 = {0, Name "block corner 3 y"}
 ];
 
 R = D / 2; Ri = Di / 2; Rs = Ds / 2;
@@ -43,13 +50,7 @@ For k In {0:3}
     Point(p[4 * j + k]) = {cx + radii[j] * Cos(a), cy + radii[j] * Sin(a), 0};
   EndFor
   po[k] = newp;
-  If (shape == 0)
-    sx = (k == 0 || k == 3) ? W : 0;
-    sy = (k == 0 || k == 1) ? W : 0;
-    Point(po[k]) = {sx, sy, 0};
-  Else
-    Point(po[k]) = {cx + W / 2 * Cos(a), cy + W / 2 * Sin(a), 0};
-  EndIf
+  Point(po[k]) = {ox~{k}, oy~{k}, 0};
 EndFor
 
 // Arcs on r = Ri, R, Rs and the outer boundary, quarter k from corner k to k+1.

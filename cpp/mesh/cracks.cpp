@@ -55,14 +55,9 @@ SliceSectors slice_sectors(const MeshInput& in)
   {
     const auto [a, corner] = b[i];
     sec.angles.push_back(a);
-    if (corner && !g.circle)
-    {
-      const std::size_t k =
-          std::size_t(std::find(corners.begin(), corners.end(), a) - corners.begin());
-      const std::array<std::array<double, 2>, 4> square = {
-          {{g.width, g.width}, {0, g.width}, {0, 0}, {g.width, 0}}};
-      sec.outer.push_back(square[k]);
-    }
+    if (corner && !g.circle) // exactly the corner, not a ray's round-off near it
+      sec.outer.push_back(block_corners(
+          g)[std::size_t(std::find(corners.begin(), corners.end(), a) - corners.begin())]);
     else
       sec.outer.push_back(boundary_point(g, a));
     const double next = i + 1 < b.size() ? b[i + 1].first : b[0].first + 2 * pi;

@@ -1,4 +1,5 @@
 #include "generate.h"
+#include "../scene/CrackPlanes.h"
 #include "cracks.h"
 #include "size.h"
 #include "symmetry.h"
@@ -66,7 +67,13 @@ geo_for(const MeshInput& in)
   constants.insert(constants.end(),
                    {{"nr1", double(d.ring)}, {"nr2", double(d.graded)}, {"q", d.growth}});
   if (sectors.empty())
+  {
+    const auto corners = block_corners(g); // the graded block's outer ends
+    for (std::size_t k = 0; k < corners.size(); ++k)
+      constants.insert(constants.end(), {{"ox_" + std::to_string(k), corners[k][0]},
+                                         {"oy_" + std::to_string(k), corners[k][1]}});
     return {dir / "slice.geo", constants};
+  }
   constants.insert(constants.end(), sectors.begin(), sectors.end());
   return {dir / "slice_cracked.geo", constants};
 }

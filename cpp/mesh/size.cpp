@@ -1,4 +1,5 @@
 #include "size.h"
+#include "../scene/CrackPlanes.h"
 #include "cracks.h"
 #include "symmetry.h"
 #include <algorithm>
@@ -41,8 +42,8 @@ double first_element(double L, std::int64_t n, double q)
 
 /// The lengths of the graded block's lines, support circle to boundary [mm],
 /// in the .geo's order: slice.geo's from the support circle at 45 + 90 k
-/// degrees to corner k (or the circle), slice_cracked.geo's along each
-/// sector boundary (mesh/cracks.h).
+/// degrees to block corner k, slice_cracked.geo's along each sector
+/// boundary (mesh/cracks.h).
 std::vector<double> graded_lines(const MeshInput& in, double Rs)
 {
   const Geometry& g = in.geometry;
@@ -58,10 +59,8 @@ std::vector<double> graded_lines(const MeshInput& in, double Rs)
   else
     for (int k = 0; k < 4; ++k)
     {
-      const double a = std::numbers::pi / 4 + k * std::numbers::pi / 2, W = g.width;
-      angles.push_back(a);
-      outer.push_back(g.circle ? std::array{c[0] + W / 2 * std::cos(a), c[1] + W / 2 * std::sin(a)}
-                               : std::array{k == 0 || k == 3 ? W : 0.0, k < 2 ? W : 0.0});
+      angles.push_back(std::numbers::pi / 4 + k * std::numbers::pi / 2);
+      outer.push_back(block_corners(g)[std::size_t(k)]);
     }
   std::vector<double> lengths;
   for (std::size_t k = 0; k < angles.size(); ++k)
@@ -74,11 +73,9 @@ std::vector<double> graded_lines(const MeshInput& in, double Rs)
 SliceDivisions slice_divisions(const MeshInput& in)
 {
   const Geometry& g = in.geometry;
-  const double W = g.width;
   const double R = g.tube_radius();
   const double Rs = g.support_inner_diameter / 2;
   const double ratio = in.mesh.outer_size_ratio;
-  const auto& c = g.tube_center;
   SliceDivisions d;
   d.circumferential = in.mesh.elements_per_quarter;
   d.steel = in.mesh.steel_layers;
@@ -89,7 +86,7 @@ SliceDivisions slice_divisions(const MeshInput& in)
   // One growth for every line, from the shortest way out Lr: towards ratio
   // h where that is gentle, else from h by at most q_max (also where ratio
   // h is beyond Lr: the coarsest the growth allows); ratio 1: uniform.
-  const double Lr = (g.circle ? W / 2 : std::min({W / 2, c[0], c[1], W - c[0], W - c[1]})) - Rs;
+  const double Lr = g.nearest_face_distance() - Rs;
   const double he = ratio * h;
   d.graded = std::max<std::int64_t>(std::int64_t(std::ceil(Lr / h)), 1);
   double q = 1;

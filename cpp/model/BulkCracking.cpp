@@ -134,9 +134,7 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
   _stress_committed = _stress_trial;
   _strain_committed = _stress_trial;
   place_cells(slice, positions);
-  const auto [cx, cy] = slice.tube_center;
-  const double W = slice.width;
-  double cover = (slice.circle ? W / 2 : std::min({cx, W - cx, cy, W - cy})) - _tube_radius;
+  double cover = slice.nearest_face_distance() - _tube_radius;
   if (part.radius > 0)
     cover = std::min(cover, part.radius - _tube_radius);
   _nominal_fracture_energy = _band.envelope().softening_energy() * slice.thickness * cover;

@@ -38,6 +38,17 @@ std::array<double, 4> corner_angles(const Geometry& g)
           turn(std::atan2(-y, W - x))};
 }
 
+std::array<std::array<double, 2>, 4> block_corners(const Geometry& g)
+{
+  const double W = g.width;
+  if (!g.circle)
+    return {{{W, W}, {0, W}, {0, 0}, {W, 0}}};
+  std::array<std::array<double, 2>, 4> corners;
+  for (std::size_t k = 0; k < 4; ++k)
+    corners[k] = boundary_point(g, pi / 4 + double(k) * pi / 2);
+  return corners;
+}
+
 /// Where the ray from the tube centre at angle a meets the slice boundary.
 std::array<double, 2> boundary_point(const Geometry& g, double a)
 {

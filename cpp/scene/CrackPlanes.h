@@ -19,6 +19,12 @@ double angle_between(double a, double b);
 /// side), or 45 + 90 k degrees in a circle.
 std::array<double, 4> corner_angles(const Geometry& g);
 
+/// The outer ends of the four block corner lines [mm], in corner_angles'
+/// order: the square's corners (+x+y, -x+y, -x-y, +x-y), or the circle's
+/// points at 45 + 90 k degrees from the tube axis. meshes/slice.geo's
+/// graded block runs to them (passed as constants, mesh/generate.cpp).
+std::array<std::array<double, 2>, 4> block_corners(const Geometry& g);
+
 /// Where the ray from the tube centre at angle a [rad] meets the slice's
 /// outer boundary [mm].
 std::array<double, 2> boundary_point(const Geometry& g, double a);

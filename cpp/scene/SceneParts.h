@@ -9,6 +9,7 @@
 #pragma once
 
 #include "../laws/LawRegistry.h"
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -51,6 +52,13 @@ struct Geometry
   double support_inner_diameter{};     ///< the slice rests outside this circle [mm]
   double area{};                       ///< single joint: the joint's area [mm^2]
   double tube_radius() const { return tube_outer_diameter / 2; } ///< R [mm]
+  /// From the tube axis to the nearest point of the slice's outer boundary
+  /// [mm] (the cover is this less R).
+  double nearest_face_distance() const
+  {
+    const auto [x, y] = tube_center;
+    return circle ? width / 2 : std::min({x, y, width - x, width - y});
+  }
 };
 
 /// [mesh] (paper §4.1).

@@ -456,9 +456,8 @@ void check_loading(const Scene& scene)
 void PushOut::check_scene(const Scene& scene)
 {
   const Geometry& g = scene.geometry();
-  const double W = g.width, D = g.tube_outer_diameter, Di = g.tube_inner_diameter;
+  const double D = g.tube_outer_diameter, Di = g.tube_inner_diameter;
   const double Ds = g.support_inner_diameter;
-  const auto& c = g.tube_center;
   // The tube wall and the support's gap around the tube are meshed with
   // elements across them: thinner than min_width_ratio D they are no
   // geometry the mesher (or the model) can resolve.
@@ -479,16 +478,14 @@ void PushOut::check_scene(const Scene& scene)
     throw SceneError("'geometry.support_inner_diameter' leaves a gap (Ds - D) / 2 between the "
                      "tube and the support narrower than " +
                      min_width.str());
-  const bool circle = g.circle;
   // The support hole must leave a ring of concrete inside the slice.
-  const double margin =
-      circle ? W / 2 - Ds / 2 : std::min({c[0], c[1], W - c[0], W - c[1]}) - Ds / 2;
+  const double margin = g.nearest_face_distance() - Ds / 2;
   if (!(margin > 0))
-    throw SceneError(circle ? "'geometry.support_inner_diameter' leaves no support outside the "
-                              "hole: the hole must fit inside the circle ('geometry.width')"
-                            : "'geometry.support_inner_diameter' (or 'geometry.tube_center') "
-                              "leaves no support outside the hole: the hole must fit inside "
-                              "the slice");
+    throw SceneError(g.circle ? "'geometry.support_inner_diameter' leaves no support outside the "
+                                "hole: the hole must fit inside the circle ('geometry.width')"
+                              : "'geometry.support_inner_diameter' (or 'geometry.tube_center') "
+                                "leaves no support outside the hole: the hole must fit inside "
+                                "the slice");
   check_loading(scene);
   // The oxide presses on the concrete only through a law that models it.
   const auto& layers = scene.layers();
