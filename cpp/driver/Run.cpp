@@ -23,14 +23,18 @@ namespace pushout::driver
 {
 namespace
 {
-/// What the scene sets that nothing reads (Scene::unread_keys), before
-/// the run's first line: a key of a switched-off part is most likely a
-/// slip, but not an error.
-void note_unread_keys(const Scene& scene, record::RunReport& report)
+/// Before the run's first line: what the scene sets that nothing reads
+/// (Scene::unread_keys: a key of a switched-off part is most likely a
+/// slip, but not an error), and values that are valid but may not run well
+/// (specimen::scene_notes).
+void note_scene(const Scene& scene, record::RunReport& report)
 {
-  if (report.talk())
-    for (const std::string& note : scene.unread_keys())
-      std::cout << "pushout: note: " << note << std::endl;
+  if (!report.talk())
+    return;
+  for (const std::string& note : scene.unread_keys())
+    std::cout << "pushout: note: " << note << std::endl;
+  for (const std::string& note : specimen::scene_notes(scene))
+    std::cout << "pushout: note: " << note << std::endl;
 }
 
 /// Before meshing: the size guard (throws TooLarge unless the run fits or
@@ -243,7 +247,7 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
 {
   specimen::check_scene(scene);
   record::RunReport report(scene, opt.out, opt.quiet, opt.comm, opt.plot);
-  note_unread_keys(scene, report);
+  note_scene(scene, report);
   return reporting_errors(report,
                           [&]
                           {
@@ -280,7 +284,7 @@ RunOutcome run_case(const std::filesystem::path& scene_file, const std::vector<s
           }
           specimen::check_scene(scene);
           record::RunReport report(scene, opt.out, opt.quiet, opt.comm, opt.plot);
-          note_unread_keys(scene, report);
+          note_scene(scene, report);
           return reporting_errors(report,
                                   [&]
                                   {

@@ -6,6 +6,7 @@
 #include "../solver/Vector.h"
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <mpi.h>
 #include <numbers>
@@ -452,6 +453,44 @@ void check_loading(const Scene& scene)
   }
 }
 } // namespace
+
+std::vector<std::string> PushOut::scene_notes(const Scene& scene)
+{
+  const Geometry& g = scene.geometry();
+  const double h = std::numbers::pi / 2 * g.tube_radius() /
+                   double(scene.mesh().elements_per_quarter); // interface element [mm]
+  const double E = scene.concrete().E;                        // [MPa]
+  const bool nodal = scene.mesh().nodal_quadrature;
+  std::vector<std::string> notes;
+  auto check = [&](const std::string& prefix, const LayerSpec& layer)
+  {
+    const laws::LawInfo* law = laws::find_law(layer.law);
+    if (!law)
+      return;
+    for (const laws::ParamDef& def : law->params)
+      if (const auto k = layer.params.find(def.name);
+          def.unit == "N/mm^3" && k != layer.params.end() && k->second * h / E > stiff_joint_ratio)
+      {
+        std::ostringstream note;
+        note << std::setprecision(3) << prefix << def.name << " = " << k->second << " N/mm^3 is "
+             << std::round(k->second * h / E) << " E / h (E " << std::llround(E)
+             << " MPa the concrete's, h " << h
+             << " mm an interface element's size): Newton may cycle between the joints' "
+                "contact and sliding states and not converge (seen from about "
+             << (nodal ? "3000 E / h"
+                       : "300 E / h with 2x2 Gauss points, 3000 with "
+                         "mesh.interface_quadrature = \"nodal\"")
+             << "); stiffer than " << stiff_joint_ratio << " E / h (" << stiff_joint_ratio * E / h
+             << " N/mm^3 here), a joint moves the curve by 0.1 % or less";
+        notes.push_back(note.str());
+      }
+  };
+  for (std::size_t i = 0; i < scene.layers().size(); ++i)
+    check("interface." + std::to_string(i) + ".", scene.layers()[i]);
+  for (std::size_t i = 0; i < scene.cracks().size(); ++i)
+    check("crack." + std::to_string(i) + ".", scene.cracks()[i].layer);
+  return notes;
+}
 
 void PushOut::check_scene(const Scene& scene)
 {

@@ -65,6 +65,20 @@ public:
   /// outside the tube, ...); throws SceneError naming the keys.
   static void check_scene(const Scene& scene);
 
+  /// A joint's penalty stiffness so far above the concrete's over an
+  /// interface element (k h / E > stiff_joint_ratio) that Newton may cycle
+  /// between the joints' contact and sliding states, for a curve that a
+  /// softer one gives as well: one note per such layer or crack plane.
+  static std::vector<std::string> scene_notes(const Scene& scene);
+
+  /// Above this k h / E (h the interface element's size around the tube),
+  /// scene_notes speaks. Measured on demo/pushout_friction.toml: tau at
+  /// 0.01 mm moves by 0.1 % from k h / E = 33 to 100; with 2x2 Gauss points
+  /// Newton cycles without converging from about 300 (k 5e6 N/mm^3 with 8
+  /// elements per quarter, 1e7 with 16), with nodal quadrature from about
+  /// 3000 (docs/numerics.md, "Stiff joints").
+  static constexpr double stiff_joint_ratio = 100;
+
   std::vector<std::string> columns() const override;
   int steps() const override { return _path.empty() ? _steps : _path.steps(); }
   bool initial_solve() const override { return _dT != 0.0; }

@@ -12,6 +12,11 @@ void check_scene(const Scene& scene)
     PushOut::check_scene(scene);
 }
 
+std::vector<std::string> scene_notes(const Scene& scene)
+{
+  return scene.model().pushout() ? PushOut::scene_notes(scene) : std::vector<std::string>{};
+}
+
 std::unique_ptr<Scenario> make_scenario(const Scene& scene, const mesh::MeshData& mesh,
                                         const model::Model& model)
 {

@@ -94,6 +94,10 @@ public:
 /// relations between keys no single range expresses. Throws SceneError.
 void check_scene(const Scene& scene);
 
+/// What a valid scene of the scene's model type asks that may not run well
+/// (one line each, printed as notes before the run).
+std::vector<std::string> scene_notes(const Scene& scene);
+
 /// The scenario of the scene's model type.
 std::unique_ptr<Scenario> make_scenario(const Scene& scene, const mesh::MeshData& mesh,
                                         const model::Model& model);

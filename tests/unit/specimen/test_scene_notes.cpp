@@ -1,0 +1,48 @@
+// The notes a valid push-out scene gets before its run (specimen::scene_notes):
+// a joint's penalty stiffness far above the concrete's over an interface
+// element, where Newton may cycle between contact and sliding states.
+#include "scene/Scene.h"
+#include "specimen/PushOut.h"
+#include "specimen/Scenario.h"
+#include <gtest/gtest.h>
+
+using pushout::Scene;
+using pushout::specimen::PushOut;
+using pushout::specimen::scene_notes;
+
+TEST(SceneNotes, StiffJointNotedAboveTheRatio)
+{
+  // The default scene: R 10 mm, 16 elements per quarter (h = 0.982 mm), the
+  // concrete's E 30000 MPa: E / h = 30 558 N/mm^3, so the note starts at
+  // k = 3.06e6 N/mm^3.
+  const double E_over_h = 30000.0 / (3.14159265358979 / 2 * 10.0 / 16);
+  const double k_limit = PushOut::stiff_joint_ratio * E_over_h;
+  EXPECT_TRUE(scene_notes(Scene::parse("")).empty());
+  EXPECT_TRUE(
+      scene_notes(Scene::parse("", {{"interface.0.k", std::to_string(0.99 * k_limit)}})).empty());
+  const auto notes =
+      scene_notes(Scene::parse("", {{"interface.0.k", std::to_string(1.01 * k_limit)}}));
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("interface.0.k"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[0].find("101 E / h"), std::string::npos) << notes[0];
+  // A finer mesh (smaller h) takes a stiffer joint; every stiffness
+  // parameter of a law (elastic's k_n and k_s) and the crack planes' laws
+  // are read.
+  EXPECT_TRUE(scene_notes(Scene::parse("", {{"interface.0.k", std::to_string(1.01 * k_limit)},
+                                            {"mesh.elements_per_quarter", "32"}}))
+                  .empty());
+  const auto elastic =
+      scene_notes(Scene::parse("[[interface]]\nlaw = \"elastic\"\nk_s = 1e7\n"
+                               "[[crack]]\nangle = 90.0\nlaw = \"linear_softening\"\nk = 1e7\n"
+                               "f_t = 3.0\nw_c2 = 0.1\n"));
+  ASSERT_EQ(elastic.size(), 2u);
+  EXPECT_EQ(elastic[0].rfind("interface.0.k_s = ", 0), 0u) << elastic[0];
+  EXPECT_EQ(elastic[1].rfind("crack.0.k = ", 0), 0u) << elastic[1];
+}
+
+TEST(SceneNotes, SingleJointHasNone)
+{
+  EXPECT_TRUE(
+      scene_notes(Scene::parse("[model]\ntype = \"single_joint\"\n", {{"interface.0.k", "1e9"}}))
+          .empty());
+}
