@@ -57,7 +57,8 @@ void Summary::write(const std::filesystem::path& file) const
       {"linear_iterations", linear_iterations},
       {"wall_s", wall_s},
       {"time_s", {{"mesh", mesh_s}, {"setup", setup_s}, {"solve", solve_s}, {"output", output_s}}},
-      {"linear_solve_s", linear_solve_s},
+      {"linear_solve_s",
+       linear_solve_s >= 0 ? nlohmann::json(linear_solve_s) : nlohmann::json()}, // null: not timed
       {"mesh_reused", mesh_reused},
       {"setup_reused", setup_reused},
       {"dofs", dofs},

@@ -44,7 +44,8 @@ struct Summary
   double wall_s = 0;
   double mesh_s = 0, setup_s = 0, solve_s = 0, output_s = 0;
   /// One linear solve of the first load step with the run's solver
-  /// (solver.time_linear_solve; < 0: not measured) [s]: the floor of a curve.
+  /// (solver.time_linear_solve; < 0: not measured, null in summary.json) [s]:
+  /// the floor of a curve.
   double linear_solve_s = -1;
   bool mesh_reused = false;
   /// The set-up (factorisation, condensed flexibility) of an earlier case
