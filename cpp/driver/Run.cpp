@@ -26,15 +26,16 @@ namespace
 /// Before the run's first line: what the scene sets that nothing reads
 /// (Scene::unread_keys: a key of a switched-off part is most likely a
 /// slip, but not an error), and values that are valid but may not run well
-/// (specimen::scene_notes).
+/// (specimen::scene_notes); summary.json keeps them (a --quiet run's too).
 void note_scene(const Scene& scene, record::RunReport& report)
 {
-  if (!report.talk())
-    return;
-  for (const std::string& note : scene.unread_keys())
-    std::cout << "pushout: note: " << note << std::endl;
+  std::vector<std::string>& notes = report.summary().notes;
+  notes = scene.unread_keys();
   for (const std::string& note : specimen::scene_notes(scene))
-    std::cout << "pushout: note: " << note << std::endl;
+    notes.push_back(note);
+  if (report.talk())
+    for (const std::string& note : notes)
+      std::cout << "pushout: note: " << note << std::endl;
 }
 
 /// Before meshing: the size guard (throws TooLarge unless the run fits or

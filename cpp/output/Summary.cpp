@@ -33,6 +33,7 @@ void Summary::write(const std::filesystem::path& file) const
       {"interrupted", interrupted},
       {"signal", signal},
       {"message", message},
+      {"notes", notes},
       {"model_type", model_type},
       {"symmetry", symmetry},
       {"condensed_dofs", condensed_dofs},

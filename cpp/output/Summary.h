@@ -10,11 +10,14 @@ namespace pushout::output
 {
 struct Summary
 {
-  std::string run_id;        ///< the run's id (output::run_id): which run wrote the folder
-  bool converged = false;    ///< every requested step converged
-  bool interrupted = false;  ///< stopped by a signal
-  int signal = 0;            ///< the signal, if interrupted
-  std::string message;       ///< why it stopped, if it did not finish
+  std::string run_id;       ///< the run's id (output::run_id): which run wrote the folder
+  bool converged = false;   ///< every requested step converged
+  bool interrupted = false; ///< stopped by a signal
+  int signal = 0;           ///< the signal, if interrupted
+  std::string message;      ///< why it stopped, if it did not finish
+  /// The notes printed before the run (driver/Run.cpp, note_scene): keys
+  /// set that nothing reads, values that may not run well.
+  std::vector<std::string> notes;
   int steps = 0;             ///< converged load steps (rows after step 0)
   int corrosion_steps = 0;   ///< converged corrosion steps (corrosion.csv rows after step 0)
   int dissipation_steps = 0; ///< corrosion and push steps controlled by the energy released

@@ -478,7 +478,7 @@ std::vector<std::string> PushOut::scene_notes(const Scene& scene)
              << " mm an interface element's size): Newton may cycle between the joints' "
                 "contact and sliding states and not converge (seen from about "
              << (nodal ? "3000 E / h"
-                       : "300 E / h with 2x2 Gauss points, 3000 with "
+                       : "130 E / h with 2x2 Gauss points, 3000 with "
                          "mesh.interface_quadrature = \"nodal\"")
              << "); stiffer than " << stiff_joint_ratio << " E / h (" << stiff_joint_ratio * E / h
              << " N/mm^3 here), a joint moves the curve by 0.1 % or less";

@@ -74,9 +74,9 @@ public:
   /// Above this k h / E (h the interface element's size around the tube),
   /// scene_notes speaks. Measured on demo/pushout_friction.toml: tau at
   /// 0.01 mm moves by 0.1 % from k h / E = 33 to 100; with 2x2 Gauss points
-  /// Newton cycles without converging from about 300 (k 5e6 N/mm^3 with 8
-  /// elements per quarter, 1e7 with 16), with nodal quadrature from about
-  /// 3000 (docs/numerics.md, "Stiff joints").
+  /// Newton cycles without converging from about 130 (k 4e6 N/mm^3 with 16
+  /// elements per quarter; not always: 5e6 ran, 1e7 did not), with nodal
+  /// quadrature from about 3000 (docs/numerics.md, "Stiff joints").
   static constexpr double stiff_joint_ratio = 100;
 
   std::vector<std::string> columns() const override;
