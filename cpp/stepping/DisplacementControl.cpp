@@ -29,6 +29,11 @@ constexpr double zero_force_tolerance = 1e-6;
 /// it (a first-order error halves) finds a jump of the state
 /// (StepLoop::check_implex).
 constexpr double jump_error_fall = 0.75;
+/// The largest step (of a nominal one) that, being the smallest
+/// loading.max_cuts allows, IMPL-EX takes as a jump without a smaller try
+/// to compare with: the default max_cuts's 2^-10. A larger smallest step
+/// (max_cuts < 10) may miss only because it is large.
+constexpr double jump_smallest_step = 1.0 / 1024;
 } // namespace
 
 /// Displacement control of the push.
@@ -89,7 +94,7 @@ bool StepLoop::nominal_steps(const Stage& stage)
       // increment does not grow, unless it jumped (smaller steps do not
       // help there).
       const ImplexCheck implex =
-          rep.converged ? check_implex(rep, s_try - s, stepper.smallest()) : ImplexCheck{};
+          rep.converged ? check_implex(rep, s_try - s, stepper) : ImplexCheck{};
       if (rep.converged && stage.zero_force_ends)
       {
         const double P_try = _scenario.load_force(model);
@@ -203,7 +208,7 @@ std::function<double(double)> StepLoop::extrapolation(std::function<double(doubl
 }
 
 StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, double increment,
-                                             bool smallest, const char* why_taken)
+                                             const Stepper& stepper, const char* why_taken)
 {
   model::BulkCracking* bulk = _equilibrium.model().bulk_cracking();
   if (!bulk || !bulk->implex())
@@ -225,9 +230,15 @@ StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, double in
     // under this control no step is small enough: the state jumps, and
     // IMPL-EX takes the jump (summary.json implex_jumps) once a smaller
     // try than the last that missed did not cut the error by a quarter, or
-    // the step cannot be cut.
+    // at the smallest step loading.max_cuts allows where that is small
+    // (jump_smallest_step) or right after a jump (the snap goes on). A
+    // larger smallest step that misses fails, as a Newton solve would: only
+    // max_cuts stopped its cuts (taken, max_cuts = 0 put p 12 % off).
     const bool smaller = _implex_missed > 0 && increment < 0.99 * _implex_missed_increment;
-    c.jump = c.ratio > 1 && (smallest || (smaller && error > jump_error_fall * _implex_missed));
+    const bool snaps = smaller && error > jump_error_fall * _implex_missed;
+    const bool smallest =
+        stepper.smallest() && (_implex_jumped || stepper.increment() <= jump_smallest_step);
+    c.jump = c.ratio > 1 && (snaps || smallest);
     if (c.ratio <= 1 || c.jump)
     {
       if (c.jump) // said when the step is committed (count_implex)
@@ -257,6 +268,7 @@ void StepLoop::count_implex(const ImplexCheck& c)
   if (!(c.ratio > 0))
     return;
   _summary.implex_jumps += c.jump ? 1 : 0;
+  _implex_jumped = c.jump;
   _summary.implex_error_max = std::max(_summary.implex_error_max, c.error);
   if (!c.said.empty() && _report.talk())
     std::cout << c.said << std::endl;

@@ -123,7 +123,7 @@ bool StepLoop::path_following()
     }
     _summary.newton_iterations += rep.iterations;
     const ImplexCheck implex =
-        rep.converged ? check_implex(rep, increment, stepper.smallest()) : ImplexCheck{};
+        rep.converged ? check_implex(rep, increment, stepper) : ImplexCheck{};
     if (rep.converged)
     {
       const double slip_new = path.control(_x);

@@ -200,7 +200,11 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
   {
     _summary.message = what + " did not converge with " + std::to_string(cuts) + " cuts, down to " +
                        size(stepper.increment()) + " (" + reason + "); stopped";
-    if (_may_snap_back && _scenario.monotonic())
+    if (reason.rfind("IMPL-EX error", 0) == 0) // a miss that smaller steps still lowered
+      _summary.message += " (no smaller step showed that IMPL-EX's error stops falling with "
+                          "the step, as where the cracks snap back: loading.max_cuts allows "
+                          "none; its default 10, or a larger cracking.implex_tolerance)";
+    else if (_may_snap_back && _scenario.monotonic())
       _summary.message += " (where the structure snaps back, loading.control = \"auto\" follows "
                           "it: docs/numerics.md, \"Dissipation control\")";
     else if (_may_snap_back) // a push_path, which only displacement control runs

@@ -162,11 +162,12 @@ private:
   /// IMPL-EX cracks: the error of a converged step of `increment` (of the
   /// stage's parameter) against its tolerance; a step that misses it fails
   /// (`rep`, its reason), to be cut, unless it is a jump: a smaller try
-  /// than the last that missed did not cut the error, or `smallest` (the
-  /// step cannot be cut). A step whose crack band update failed at a point
+  /// than the last that missed did not cut the error, or `stepper` cannot
+  /// cut it (right after a jump, or where its smallest step is 2^-10 of a
+  /// nominal one or less). A step whose crack band update failed at a point
   /// fails. `why_taken`: what the progress line says of a jump (null: the
   /// cracks snap back under the load's control).
-  ImplexCheck check_implex(solver::SolveReport& rep, double increment, bool smallest,
+  ImplexCheck check_implex(solver::SolveReport& rep, double increment, const Stepper& stepper,
                            const char* why_taken = nullptr);
   /// summary.json's implex_error_max and implex_jumps, and a jump's progress
   /// line: a checked step that is committed (a try may still be reverted
@@ -246,6 +247,7 @@ private:
   /// a step taken; check_implex)
   double _implex_missed = 0;
   double _implex_missed_increment = 0; ///< that try's increment of its stage's parameter
+  bool _implex_jumped = false;         ///< the last committed step was an IMPL-EX jump
   /// The stage the loop is in, as summary.json's stopped_in says it when a
   /// signal stops the run: "step 0", "corrosion steps" or "load steps".
   const char* _stage = "step 0";

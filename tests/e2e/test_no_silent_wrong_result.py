@@ -15,7 +15,14 @@
    behind the push's start (the tube pulled back) is no state of the test:
    it is cut, never taken. The corroded demo (coarse) with its crack plane at
    a block corner of the mesh took one to delta = -2.47 mm, P = -5347 N, and
-   pushed on from there to an exit 0; now no row lies behind the start."""
+   pushed on from there to an exit 0; now no row lies behind the start.
+4. An IMPL-EX step that misses its error tolerance at the smallest step
+   loading.max_cuts allows, with nothing that shows the cracks snapping
+   back (no smaller try whose error did not fall), stops the run (exit 3)
+   and the message names max_cuts; it used to be taken as a "jump" (the
+   coarse corroded cracking demo with max_cuts = 0: p after corrosion 12 %
+   off, exit 0). With the default max_cuts the same scene runs through
+   with no jump."""
 import glob
 import math
 import os
@@ -102,3 +109,20 @@ rows = curve(corner)
 check(p.returncode in (0, 3) and rows and min(r["delta_mm"] for r in rows) >= 0,
       f"dissipation control: exit {p.returncode}, {len(rows)} rows, delta from "
       f"{min(r['delta_mm'] for r in rows) * 1e3:.2f} um (never behind the start)")
+
+# 4. An IMPL-EX miss that only max_cuts stops from being cut is no jump.
+implex = ["mesh.elements_per_quarter=8", "mesh.elements_through_thickness=2",
+          "corrosion.penetration=0.006", "corrosion.steps=2", "loading.push_displacement=0.01",
+          "loading.steps=2"]
+demo = os.path.join(SOURCE, "demo", "pushout_corroded_cracking.toml")
+uncut = out_dir("implex_uncut")
+p = run(demo, uncut, check=False, sets=implex + ["loading.max_cuts=0"])
+lines = [line for line in p.stderr.splitlines() if line.startswith("pushout")]
+check(p.returncode == 3 and lines and "IMPL-EX error" in lines[-1] and "max_cuts" in lines[-1]
+      and summary(uncut)["implex_jumps"] == 0,
+      f"IMPL-EX at max_cuts = 0: exit {p.returncode}, {lines[-1] if lines else p.stderr[-300:]}")
+cut = out_dir("implex_cut")
+p = run(demo, cut, check=False, sets=implex)
+check(p.returncode == 0 and summary(cut)["implex_jumps"] == 0,
+      f"the same with the default max_cuts: exit {p.returncode}, "
+      f"{summary(cut)['implex_jumps']} jumps")
