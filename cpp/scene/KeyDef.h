@@ -42,6 +42,9 @@ std::vector<KeyDef> cracking_keys();
 /// exclusive; integer: the bounds written as integers), "finite" if both
 /// are infinite: what a scene's error and `pushout keys` say.
 std::string range_text(double min, double max, bool open, bool integer = false);
+/// The same with each bound open or closed on its own (a law's parameter:
+/// min < x <= max).
+std::string range_text(double min, double max, bool min_open, bool max_open, bool integer);
 
 /// The declaration of the key at `path`, or nullptr.
 const KeyDef* find_key(const std::string& path);

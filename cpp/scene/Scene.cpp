@@ -168,19 +168,21 @@ Value convert(const toml::node& node, KeyType type, const std::string& path)
   throw bad();
 }
 
-/// Throws unless min <= x <= max (open: min < x < max) and x is finite.
-void check_range(double x, double min, double max, bool open, const std::string& path,
-                 const std::string& unit)
+/// Throws unless min <= x <= max (min_open: min < x; max_open: x < max)
+/// and x is finite.
+void check_range(double x, double min, double max, bool min_open, bool max_open,
+                 const std::string& path, const std::string& unit)
 {
+  const std::string range = range_text(min, max, min_open, max_open, false);
   if (!std::isfinite(x))
     throw SceneError("'" + path + "' = " + std::to_string(x) +
-                     " is not a finite number: it must be " + range_text(min, max, open, false));
-  const bool inside = open ? (x > min && x < max) : (x >= min && x <= max);
+                     " is not a finite number: it must be " + range);
+  const bool inside = (min_open ? x > min : x >= min) && (max_open ? x < max : x <= max);
   if (!inside)
   {
     std::ostringstream s;
     s << "'" << path << "' = " << x << (unit.empty() || unit == "-" ? "" : " " + unit)
-      << " is out of range: it must be " << range_text(min, max, open, false);
+      << " is out of range: it must be " << range;
     throw SceneError(s.str());
   }
 }
@@ -188,7 +190,7 @@ void check_range(double x, double min, double max, bool open, const std::string&
 void check_value(const KeyDef& def, const Value& v)
 {
   if (const auto* d = std::get_if<double>(&v))
-    check_range(*d, def.min, def.max, def.open, def.path, def.unit);
+    check_range(*d, def.min, def.max, def.open, def.open, def.path, def.unit);
   else if (const auto* i = std::get_if<std::int64_t>(&v))
   {
     // Exactly: a long double holds every 64-bit integer (and every double
@@ -205,8 +207,8 @@ void check_value(const KeyDef& def, const Value& v)
   {
     // Every number of an array as a scalar of the key would be.
     for (std::size_t j = 0; j < a->size(); ++j)
-      check_range((*a)[j], def.min, def.max, def.open, def.path + "[" + std::to_string(j) + "]",
-                  def.unit);
+      check_range((*a)[j], def.min, def.max, def.open, def.open,
+                  def.path + "[" + std::to_string(j) + "]", def.unit);
   }
   else if (const auto* s = std::get_if<std::string>(&v); s && !def.choices.empty())
   {
@@ -301,11 +303,9 @@ LayerSpec read_layer(const toml::node& node, std::size_t index, const std::strin
   for (const auto& p : info->params)
     if (layer.params.count(p.name))
     {
-      // An open lower bound with a closed upper one: min < x <= max.
-      const double x = layer.params.at(p.name);
-      if (p.min_exclusive && !(x > p.min))
-        check_range(x, p.min, p.max, true, prefix + p.name, p.unit);
-      check_range(x, p.min, p.max, false, prefix + p.name, p.unit);
+      // A lower bound open or closed, a closed upper one.
+      check_range(layer.params.at(p.name), p.min, p.max, p.min_exclusive, false, prefix + p.name,
+                  p.unit);
     }
   try
   {
@@ -339,7 +339,7 @@ CrackSpec read_crack(const toml::node& node, std::size_t index)
     throw SceneError("'" + path + "'" + where(*angle) +
                      " must be a number (degrees) or \"nearest_face\"");
   crack.angle_deg = *angle->value<double>();
-  check_range(*crack.angle_deg, -360, 360, false, path, "deg");
+  check_range(*crack.angle_deg, -360, 360, false, false, path, "deg");
   return crack;
 }
 

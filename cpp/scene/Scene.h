@@ -70,10 +70,26 @@ public:
   /// keys while cracking.model = "none", the other law's parameter of
   /// cracking.law, the monotonic push's keys beside loading.push_path (and
   /// the path's without one), loading.dissipation_steps under displacement
-  /// control or arc length. Not errors: a scene turned off by --set keeps its keys.
+  /// control or arc length, the random field's seed and correlation length
+  /// with a uniform strength, the corrosion stage's keys without corrosion. Not errors: a scene
+  /// turned off by --set keeps its keys.
   std::vector<std::string> unread_keys() const;
 
+  /// Why `path` is not read, as unread_keys says it, whatever its value
+  /// ("" where it is read). pushout sweep refuses to vary a key that no
+  /// case reads.
+  std::string unread_note(const std::string& path) const;
+
 private:
+  /// unread_keys' notes: the keys, and why they are not read; `set`
+  /// counts as set to other than its default.
+  struct Unread
+  {
+    std::vector<std::string> keys;
+    std::string why;
+  };
+  std::vector<Unread> unread(const std::string& set = "") const;
+
   /// The typed parts from the validated values (SceneParts.cpp).
   void fill_parts();
   double number(const std::string& path) const;

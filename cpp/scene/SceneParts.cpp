@@ -3,6 +3,7 @@
 #include "CrackPlanes.h"
 #include "Scene.h"
 #include "SceneError.h"
+#include <algorithm>
 
 namespace pushout
 {
@@ -120,55 +121,89 @@ void Scene::fill_parts()
   _crack_directions = pushout::crack_directions(_geometry, _mesh.elements_per_quarter, _cracks);
 }
 
-std::vector<std::string> Scene::unread_keys() const
+std::vector<Scene::Unread> Scene::unread(const std::string& set) const
 {
-  // The keys among `paths` whose value is not their default.
+  // The keys among `paths` whose value is not their default (and `set`).
   auto changed = [&](const std::vector<std::string>& paths)
   {
-    std::string list;
+    std::vector<std::string> keys;
     for (const std::string& path : paths)
       if (const KeyDef* def = find_key(path);
-          def && find(path) && *find(path) != def->default_value)
-        list += (list.empty() ? "" : ", ") + path;
-    return list;
+          path == set || (def && find(path) && *find(path) != def->default_value))
+        keys.push_back(path);
+    return keys;
   };
-  std::vector<std::string> notes;
+  std::vector<Unread> notes;
+  auto note = [&](std::vector<std::string> keys, std::string why)
+  {
+    if (!keys.empty())
+      notes.push_back({std::move(keys), std::move(why)});
+  };
   if (!_model.pushout())
     return notes;
+  if (_corrosion.penetration == 0)
+    note(changed({"corrosion.steps", "corrosion.beta", "corrosion.porous_zone",
+                  "corrosion.oxide_bulk"}),
+         "corrosion.penetration = 0: no corrosion stage");
   if (!_cracking.embedded)
   {
     std::vector<std::string> others; // every [cracking] key but the switch
     for (const KeyDef& def : cracking_keys())
       if (def.path != "cracking.model")
         others.push_back(def.path);
-    if (const std::string keys = changed(others); !keys.empty())
-      notes.push_back(keys + " not read: cracking.model = \"none\" keeps the concrete linear "
-                             "(\"embedded\" lets it crack)");
+    note(changed(others), "cracking.model = \"none\" keeps the concrete linear (\"embedded\" "
+                          "lets it crack)");
   }
-  else if (const std::string key =
-               changed({_cracking.linear_softening ? "cracking.c" : "cracking.w_c2"});
-           !key.empty())
-    notes.push_back(key + " not read by cracking.law = \"" +
-                    (_cracking.linear_softening ? "linear_softening" : "exponential_softening") +
-                    "\" (it takes " +
-                    (_cracking.linear_softening ? "cracking.w_c2" : "cracking.c") + ")");
+  else
+  {
+    note(changed({_cracking.linear_softening ? "cracking.c" : "cracking.w_c2"}),
+         std::string("cracking.law = \"") +
+             (_cracking.linear_softening ? "linear_softening" : "exponential_softening") +
+             "\" takes " + (_cracking.linear_softening ? "cracking.w_c2" : "cracking.c"));
+    if (_cracking.strength_cov == 0)
+      note(changed({"cracking.seed", "cracking.correlation_length"}),
+           "cracking.strength_cov = 0 makes the tensile strength uniform (no random field)");
+  }
   // The push: a path, or a monotonic push to push_displacement.
   if (!_loading.push_path.empty())
-  {
-    if (const std::string keys = changed({"loading.push_displacement", "loading.steps"});
-        !keys.empty())
-      notes.push_back(keys + " not read: loading.push_path sets the push (in "
-                             "loading.steps_per_segment steps a segment)");
-  }
-  else if (const std::string keys = changed({"loading.steps_per_segment", "loading.unload_to"});
-           !keys.empty())
-    notes.push_back(keys + " not read: they apply to loading.push_path, and the push is "
-                           "monotonic (to loading.push_displacement)");
+    note(changed({"loading.push_displacement", "loading.steps"}),
+         "loading.push_path sets the push (in loading.steps_per_segment steps a segment)");
+  else
+    note(changed({"loading.steps_per_segment", "loading.unload_to"}),
+         "they apply to loading.push_path, and the push is monotonic (to "
+         "loading.push_displacement)");
   if (_loading.control == Loading::Control::displacement ||
       _loading.control == Loading::Control::arc_length)
-    if (const std::string key = changed({"loading.dissipation_steps"}); !key.empty())
-      notes.push_back(key + " not read: it sizes the energy steps of loading.control = "
-                            "\"auto\" or \"dissipation\"");
+    note(changed({"loading.dissipation_steps"}),
+         "it sizes the energy steps of loading.control = \"auto\" or \"dissipation\"");
   return notes;
+}
+
+namespace
+{
+/// "a, b not read: why"
+std::string unread_line(const std::vector<std::string>& keys, const std::string& why)
+{
+  std::string line;
+  for (const std::string& k : keys)
+    line += (line.empty() ? "" : ", ") + k;
+  return line + " not read: " + why;
+}
+} // namespace
+
+std::vector<std::string> Scene::unread_keys() const
+{
+  std::vector<std::string> lines;
+  for (const Unread& u : unread())
+    lines.push_back(unread_line(u.keys, u.why));
+  return lines;
+}
+
+std::string Scene::unread_note(const std::string& path) const
+{
+  for (const Unread& u : unread(path))
+    if (std::find(u.keys.begin(), u.keys.end(), path) != u.keys.end())
+      return unread_line({path}, u.why);
+  return "";
 }
 } // namespace pushout

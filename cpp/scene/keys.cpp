@@ -516,6 +516,11 @@ const std::vector<KeyDef>& scene_keys()
 
 std::string range_text(double min, double max, bool open, bool integer)
 {
+  return range_text(min, max, open, open, integer);
+}
+
+std::string range_text(double min, double max, bool min_open, bool max_open, bool integer)
+{
   auto bound = [&](double v)
   {
     std::ostringstream s;
@@ -527,11 +532,11 @@ std::string range_text(double min, double max, bool open, bool integer)
   };
   std::string text;
   if (std::isfinite(min))
-    text += (open ? "> " : ">= ") + bound(min);
+    text += (min_open ? "> " : ">= ") + bound(min);
   if (std::isfinite(min) && std::isfinite(max))
     text += " and ";
   if (std::isfinite(max))
-    text += (open ? "< " : "<= ") + bound(max);
+    text += (max_open ? "< " : "<= ") + bound(max);
   return text.empty() ? "finite" : text;
 }
 

@@ -20,20 +20,20 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <iostream>
 #include <mpi.h>
+#include <sstream>
 
 namespace pushout::study
 {
 namespace
 {
-/// The value of `key` in `scene` and the lower bound of its range (from the
-/// law's parameter declaration, and whether it is exclusive; -inf for other
-/// keys); throws SceneError if the key is not a number of the scene.
-double value_of(const Scene& scene, const std::string& key, double& minimum, bool& exclusive)
+/// The value of `key` in `scene`, with the bounds of its range in `f` (a
+/// law's parameter's, or a scene key's); throws SceneError if the key is
+/// not a number of the scene, or not read by it.
+double value_of(const Scene& scene, const std::string& key, Free& f)
 {
-  minimum = -INFINITY;
-  exclusive = false;
   const std::vector<std::string> parts = split(key, '.');
   if (parts.size() == 3 && (parts[0] == "interface" || parts[0] == "crack") && !parts[1].empty() &&
       std::all_of(parts[1].begin(), parts[1].end(), ::isdigit))
@@ -58,16 +58,28 @@ double value_of(const Scene& scene, const std::string& key, double& minimum, boo
     if (it == layer.params.end())
       throw SceneError("--free '" + key + "' has no value in the scene (an optional parameter): " +
                        "give it a start with --set " + key + "=...");
-    minimum = def->min;
-    exclusive = def->min_exclusive;
+    f.lo = def->min;
+    f.lo_exclusive = def->min_exclusive;
+    f.hi = def->max;
     return it->second;
   }
   const Value* v = scene.find(key);
   if (!v)
     throw SceneError("--free '" + key + "': no such key (pushout keys lists them)");
-  if (const double* d = std::get_if<double>(v))
-    return *d;
-  throw SceneError("--free '" + key + "': not a number key (" + to_toml(*v) + ")");
+  const double* d = std::get_if<double>(v);
+  if (!d)
+    throw SceneError("--free '" + key + "': not a number key (" + to_toml(*v) + ")");
+  // A key the scene does not read would leave the curve unchanged: the fit
+  // could not move it.
+  if (const std::string note = scene.unread_note(key); !note.empty())
+    throw SceneError("--free '" + key + "': the scene does not read it (" + note + ")");
+  if (const KeyDef* def = find_key(key))
+  {
+    f.lo = def->min;
+    f.hi = def->max;
+    f.lo_exclusive = f.hi_exclusive = def->open;
+  }
+  return *d;
 }
 
 /// The message of the lowest-ranked process of `comm` that has one ("" if
@@ -100,7 +112,7 @@ std::vector<Free> free_values(const Scene& scene, const FitOptions& opt)
     if (std::any_of(free.begin(), free.end(), [&](const Free& f) { return f.key == key; }))
       throw SceneError("--free '" + key + "' is given twice");
     Free f{key};
-    f.start = value_of(scene, key, f.lo, f.lo_exclusive);
+    f.start = value_of(scene, key, f);
     f.scale = f.start != 0 ? std::abs(f.start) : 1.0;
     free.push_back(f);
   }
@@ -122,8 +134,11 @@ std::vector<Free> free_values(const Scene& scene, const FitOptions& opt)
         f->lo = std::stod(lo);
         f->lo_exclusive = false;
       }
-      if (!hi.empty())
+      if (!hi.empty() && std::stod(hi) < f->hi)
+      {
         f->hi = std::stod(hi);
+        f->hi_exclusive = false;
+      }
     }
     catch (const std::exception&)
     {
@@ -131,10 +146,22 @@ std::vector<Free> free_values(const Scene& scene, const FitOptions& opt)
     }
   }
   for (const Free& f : free)
-    if (!(f.tao_lo() <= f.start && f.start <= f.hi))
-      throw SceneError("the bounds of '" + f.key + "' " + (f.lo_exclusive ? "(" : "[") +
-                       number_text(f.lo) + ", " + number_text(f.hi) + "] exclude its start " +
-                       number_text(f.start));
+  {
+    std::ostringstream b; // as [lo, hi], a bound that is excluded in ( )
+    b << std::setprecision(15) << (f.lo_exclusive ? '(' : '[') << f.lo << ", " << f.hi
+      << (f.hi_exclusive ? ')' : ']');
+    const std::string bounds = b.str();
+    if (!(f.lo < f.hi))
+      throw SceneError("the bounds of '" + f.key + "' " + bounds +
+                       " leave no value: lo is not below hi");
+    if (!(f.tao_lo() <= f.start && f.start <= f.tao_hi()))
+    {
+      std::ostringstream start;
+      start << std::setprecision(15) << f.start;
+      throw SceneError("the bounds of '" + f.key + "' " + bounds + " exclude its start " +
+                       start.str());
+    }
+  }
   return free;
 }
 

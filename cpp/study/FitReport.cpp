@@ -5,6 +5,8 @@
 #include "../output/OutputFiles.h"
 #include "../output/plot.h"
 #include "../scene/Scene.h"
+#include "../scene/SceneError.h"
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <iomanip>
@@ -34,7 +36,7 @@ nlohmann::json fitted_values(const std::vector<Free>& free, const std::vector<do
     errors[free[k].key] = number_or_null(st.se[k]);
     starts[free[k].key] = free[k].start;
     // [lo, hi], null where unbounded; lo itself excluded where the law says
-    // so (bounds_exclusive).
+    // so, or the key's range is open (bounds_exclusive; hi too then).
     bounds[free[k].key] = {number_or_null(free[k].lo), number_or_null(free[k].hi)};
     if (free[k].lo_exclusive)
       exclusive.push_back(free[k].key);
@@ -73,17 +75,34 @@ int write_fit(const FitOptions& opt, const MeasuredCurve& data, const std::vecto
   j["warnings"] = stats.warnings;
   j["data"] = opt.data.string();
   j["wall_s"] = fit.wall_s;
+  // The fitted scene, rerunnable; the bounds keep every value in its key's
+  // range, but a scene check that relates keys may still refuse it.
+  std::string scene_text, scene_refused;
+  try
+  {
+    scene_text = Scene::load(opt.scene_file, parse_overrides(fit.sets)).to_toml();
+  }
+  catch (const SceneError& e)
+  {
+    scene_refused = e.what();
+    code = code == exit_code::done ? exit_code::not_converged : code;
+  }
+  std::vector<std::filesystem::path> written;
   try
   {
     output::write_file(opt.out / "fit.json", j.dump(2) + "\n");
-    // The fitted scene, rerunnable.
-    output::write_file(opt.out / "scene.toml",
-                       Scene::load(opt.scene_file, parse_overrides(fit.sets)).to_toml());
+    written.push_back(opt.out / "fit.json");
+    if (!scene_text.empty())
+    {
+      output::write_file(opt.out / "scene.toml", scene_text);
+      written.push_back(opt.out / "scene.toml");
+    }
     std::ostringstream csv;
     csv << "delta_mm,tau_data_MPa,tau_model_MPa\n" << std::setprecision(12);
     for (std::size_t i = 0; i < m; ++i)
       csv << data.delta[i] << "," << data.tau[i] << "," << data.tau[i] + fit.r[i] << "\n";
     output::write_file(opt.out / "fit.csv", csv.str());
+    written.push_back(opt.out / "fit.csv");
   }
   catch (const std::exception& e)
   {
@@ -91,10 +110,18 @@ int write_fit(const FitOptions& opt, const MeasuredCurve& data, const std::vecto
     code = exit_code::failure;
   }
   std::string why;
-  if (!output::plot_fit(opt.out, opt.out / "fit.png", why))
-    std::cerr << "pushout: warning: no fit.png: " << why << std::endl;
+  if (std::find(written.begin(), written.end(), opt.out / "fit.csv") != written.end())
+  {
+    if (output::plot_fit(opt.out, opt.out / "fit.png", why))
+      written.push_back(opt.out / "fit.png");
+    else
+      std::cerr << "pushout: warning: no fit.png: " << why << std::endl;
+  }
   for (const std::string& w : stats.warnings)
     std::cerr << "pushout: warning: " << w << std::endl;
+  if (!scene_refused.empty())
+    std::cerr << "pushout: error: the fitted values make no valid scene (" << scene_refused
+              << "); no scene.toml" << std::endl;
   if (!fit.converged)
     std::cerr << "pushout: error: the fit did not converge (" << fit.reason
               << (fit.failed_runs ? "; " + std::to_string(fit.failed_runs) +
@@ -109,8 +136,10 @@ int write_fit(const FitOptions& opt, const MeasuredCurve& data, const std::vecto
     for (std::size_t k = 0; k < free.size(); ++k)
       std::cout << "  " << free[k].key << " = " << std::setprecision(6) << x[k] * free[k].scale
                 << " +- " << stats.se[k] << std::endl;
-    std::cout << "results: " << (opt.out / "fit.json").string() << ", fitted scene "
-              << (opt.out / "scene.toml").string() << std::endl;
+    std::string files;
+    for (const auto& f : written)
+      files += (files.empty() ? "" : ", ") + f.string();
+    std::cout << "results: " << (files.empty() ? "none" : files) << std::endl;
   }
   return code;
 }

@@ -14,6 +14,7 @@ struct Free
   std::string key;
   double start = 0, lo = -INFINITY, hi = INFINITY, scale = 1;
   bool lo_exclusive = false; ///< lo itself is not allowed (a law's positive parameter)
+  bool hi_exclusive = false; ///< hi itself is not allowed (a key's open range)
   /// The lower bound given to TAO: lo, or just above it where lo itself is
   /// not allowed: by 1e-9 of the value's scale, so that the bound divided
   /// by the scale (TAO's variable) and multiplied back stays above lo (the
@@ -22,6 +23,11 @@ struct Free
   double tao_lo() const
   {
     return lo_exclusive ? std::max(lo + 1e-9 * scale, std::nextafter(lo, INFINITY)) : lo;
+  }
+  /// The upper bound given to TAO: hi, or just below it (as tao_lo).
+  double tao_hi() const
+  {
+    return hi_exclusive ? std::min(hi - 1e-9 * scale, std::nextafter(hi, -INFINITY)) : hi;
   }
 };
 } // namespace pushout::study

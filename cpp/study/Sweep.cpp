@@ -13,6 +13,7 @@
 #include "SweepTables.h"
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -70,6 +71,26 @@ std::vector<CaseResult> gather(const std::vector<CaseResult>& mine)
   std::sort(results.begin(), results.end(),
             [](const CaseResult& a, const CaseResult& b) { return a.index < b.index; });
   return results;
+}
+
+/// A value `v` gives twice, as its text or as a number ("" if none).
+std::string repeated_value(const Variation& v)
+{
+  auto number = [](const std::string& text, double& x)
+  {
+    char* end = nullptr;
+    x = std::strtod(text.c_str(), &end);
+    return end != text.c_str() && *end == '\0';
+  };
+  for (std::size_t i = 0; i < v.values.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+    {
+      double a = 0, b = 0;
+      if (v.values[i] == v.values[j] ||
+          (number(v.values[i], a) && number(v.values[j], b) && a == b))
+        return v.values[i];
+    }
+  return "";
 }
 
 } // namespace
@@ -152,10 +173,15 @@ SweepPlan plan_sweep(const SweepOptions& opt)
   for (const std::string& v : opt.vary)
   {
     plan.vary.push_back(parse_variation(v));
+    const Variation& last = plan.vary.back();
     for (std::size_t i = 0; i + 1 < plan.vary.size(); ++i)
-      if (plan.vary[i].key == plan.vary.back().key)
-        throw SceneError("'" + plan.vary.back().key +
+      if (plan.vary[i].key == last.key)
+        throw SceneError("'" + last.key +
                          "' is given in two --vary options: give its values in one");
+    if (const std::string twice = repeated_value(last); !twice.empty())
+      throw SceneError("--vary '" + v + "' gives the value " + twice +
+                       " twice: each case would run again (and a seed would count twice in "
+                       "sweep_seeds.csv)");
   }
   // The count before the cases are made (it may not fit in memory).
   double count = 1;
@@ -175,6 +201,12 @@ SweepPlan plan_sweep(const SweepOptions& opt)
   plan.model_type = base.model().name();
   plan.plot = base.output().plot;
   std::vector<std::string> set_ups(plan.cases.size());
+  // Each varied key's note from a case that does not read it; erased where
+  // one case does (a key another varied key switches off in some cases,
+  // such as the seed beside strength_cov = 0, is read in the others).
+  std::map<std::string, std::string> unread;
+  for (const Variation& v : plan.vary)
+    unread[v.key] = "";
   for (std::size_t i = 0; i < plan.cases.size(); ++i)
   {
     std::vector<std::string> sets = opt.sets;
@@ -184,6 +216,14 @@ SweepPlan plan_sweep(const SweepOptions& opt)
       const Scene scene = Scene::load(opt.scene_file, parse_overrides(sets));
       if (scene.model().name() != plan.model_type)
         throw SceneError("a sweep runs one model type: vary other keys");
+      for (auto it = unread.begin(); it != unread.end();)
+      {
+        const std::string note = scene.unread_note(it->first);
+        if (note.empty())
+          it = unread.erase(it);
+        else
+          (it++)->second = note;
+      }
       set_ups[i] = Simulation::set_up_fingerprint(scene);
     }
     catch (const SceneError& e)
@@ -194,6 +234,10 @@ SweepPlan plan_sweep(const SweepOptions& opt)
       throw SceneError(case_name(i) + " (" + what + "): " + e.what());
     }
   }
+  if (!unread.empty())
+    throw SceneError("--vary '" + unread.begin()->first +
+                     "': no case reads it, so every case would give the same curve (" +
+                     unread.begin()->second + ")");
   plan.order = set_up_order(set_ups);
   return plan;
 }

@@ -78,7 +78,7 @@ void Problem::evaluate(const std::vector<double>& x, Mat J)
     for (std::size_t j = 0; j < x.size(); ++j)
     {
       h[j] = difference_step * std::max(std::abs(x[j]), 1e-3);
-      if (x[j] + h[j] > free[j].hi / free[j].scale)
+      if (x[j] + h[j] > free[j].tao_hi() / free[j].scale)
         h[j] = -h[j]; // backwards at the upper bound
       points.push_back(x);
       points.back()[j] += h[j];
@@ -139,7 +139,8 @@ TaoFit::TaoFit(const std::vector<Free>& free, PetscInt m, Problem& problem)
     check(VecSetValue(lo, j, std::isfinite(f.lo) ? f.tao_lo() / f.scale : PETSC_NINFINITY,
                       INSERT_VALUES),
           "VecSetValue");
-    check(VecSetValue(hi, j, std::isfinite(f.hi) ? f.hi / f.scale : PETSC_INFINITY, INSERT_VALUES),
+    check(VecSetValue(hi, j, std::isfinite(f.hi) ? f.tao_hi() / f.scale : PETSC_INFINITY,
+                      INSERT_VALUES),
           "VecSetValue");
   }
   for (Vec v : {X, lo, hi})

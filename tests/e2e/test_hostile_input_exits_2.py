@@ -152,12 +152,30 @@ err = refused("sweep: 40 000 cases", sweep + ["--vary", f"interface.0.mu={values
                                             f"interface.0.k={','.join(str(1000 + i) for i in range(200))}"],
               ["40000", "--max-cases"], seconds=10)
 
+# A sweep whose cases would all give the same curve, or run one twice: a
+# varied key that no case reads (the seed without [cracking]), a value
+# given twice.
+refused("sweep: a key no case reads", sweep + ["--vary", "cracking.seed=1,2"],
+        ["cracking.seed", "no case reads it", "cracking.model"], seconds=10)
+refused("sweep: a value twice", sweep + ["--vary", "interface.0.mu=0.3,0.2,0.30"],
+        ["interface.0.mu", "0.30 twice"], seconds=10)
+
 # 10. Command-line usage errors: one line, exit 2, a hint.
 refused("run without --out", ["run", GOOD_SCENE], ["--out", "pushout run --help"])
 refused("no command", [], ["pushout --help"])
 refused("unknown command", ["frobnicate", GOOD_SCENE], ["frobnicate", "pushout --help"])
 refused("fit without --free", ["fit", GOOD_SCENE, "--data", "x.csv", "--out", out_dir("hostile_fit")],
         ["--free", "pushout fit --help"])
+# A fit of a key the scene does not read (no corrosion stage), or with
+# bounds that leave no value.
+fit_data = os.path.join(OUT_ROOT, "hostile_fit.csv")
+with open(fit_data, "w") as f:
+    f.write("delta_mm,tau_MPa\n0.002,1.0\n0.004,1.5\n0.006,1.7\n")
+fit = ["fit", GOOD_SCENE, "--data", fit_data, "--out", out_dir("hostile_fit"), "--quiet"]
+refused("fit: a free key not read", fit + ["--free", "corrosion.beta"],
+        ["corrosion.beta", "does not read", "corrosion.penetration = 0"], seconds=10)
+refused("fit: bounds with lo above hi", fit + ["--free", "interface.0.mu", "--bounds", "interface.0.mu=0.5:0.1"],
+        ["interface.0.mu", "lo is not below hi"], seconds=10)
 for cmd in ([], ["run"], ["sweep"]):
     p, _ = pushout(cmd + ["--help"])
     check(p.returncode == 0 and "--out" in p.stdout or not cmd, f"pushout {' '.join(cmd)} --help: exit 0, help")

@@ -221,6 +221,34 @@ TEST(Scene, UnreadCrackingKeysAreNamed)
   EXPECT_EQ(Scene::parse(cracks, {{"cracking.w_c2", "0.25"}}).unread_keys().size(), 1u);
   // The resolved scene of a run without cracks reads back without a note.
   EXPECT_TRUE(Scene::parse(Scene::parse("").to_toml()).unread_keys().empty());
+  // The random field's keys with a uniform strength; the corrosion stage's
+  // without corrosion.
+  const Scene uniform = Scene::parse(cracks, {{"cracking.seed", "2"}});
+  ASSERT_EQ(uniform.unread_keys().size(), 1u);
+  EXPECT_NE(uniform.unread_keys()[0].find("cracking.strength_cov = 0"), std::string::npos);
+  EXPECT_TRUE(Scene::parse(cracks, {{"cracking.seed", "2"}, {"cracking.strength_cov", "0.1"}})
+                  .unread_keys()
+                  .empty());
+  EXPECT_EQ(Scene::parse("", {{"corrosion.beta", "3"}}).unread_keys().size(), 1u);
+  EXPECT_TRUE(Scene::parse("", {{"corrosion.beta", "3"}, {"corrosion.penetration", "0.01"}})
+                  .unread_keys()
+                  .empty());
+}
+
+// unread_note says why a key is not read whatever its value (its default
+// too: pushout sweep and fit ask it of the key they vary), "" where it is.
+TEST(Scene, UnreadNoteWhateverTheValue)
+{
+  const Scene plain = Scene::parse("");
+  EXPECT_NE(plain.unread_note("cracking.seed").find("cracking.model = \"none\""),
+            std::string::npos);
+  EXPECT_EQ(plain.unread_note("cracking.seed").rfind("cracking.seed not read", 0), 0u);
+  EXPECT_NE(plain.unread_note("corrosion.beta").find("corrosion.penetration = 0"),
+            std::string::npos);
+  EXPECT_EQ(plain.unread_note("interface.0.mu"), "");
+  const Scene field = Scene::parse("[cracking]\nmodel = \"embedded\"\nstrength_cov = 0.15\n");
+  EXPECT_EQ(field.unread_note("cracking.seed"), "");
+  EXPECT_NE(field.unread_note("cracking.w_c2").find("exponential_softening"), std::string::npos);
 }
 
 TEST(Scene, OverridesReachTablesAndLayers)
