@@ -166,6 +166,7 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, record::R
     summary.condensation_asymmetry = _set_up.condensation_asymmetry;
     summary.setup_reused = true;
     _model->set_laws(model::JointLaws::of(scene));
+    _equilibrium->restart();
     _solver->restart();
   }
   const std::unique_ptr<specimen::Scenario> scenario =

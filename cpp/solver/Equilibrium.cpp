@@ -109,6 +109,14 @@ bool Equilibrium::assemble_joints(std::span<double> f, Mat A)
   return ok;
 }
 
+void Equilibrium::restart()
+{
+  if (_bulk_tangent)
+    check(MatDestroy(&_bulk_tangent), "MatDestroy");
+  _bulk_assembled.clear();
+  _bulk_tangent_version = 0;
+}
+
 Mat Equilibrium::bulk_tangent()
 {
   model::BulkCracking* cracking = _model.bulk_cracking();

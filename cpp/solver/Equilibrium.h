@@ -85,6 +85,13 @@ public:
   /// (solver.precision = "mixed"). Set before a solver is made.
   void set_single_precision(bool single) { _single_precision = single; }
 
+  /// Before another run on this model (a sweep's or a fit's case that
+  /// reuses the set-up, after Model::set_laws): the kept K plus cracks'
+  /// tangent is built afresh, so that the run is the one a fresh set-up
+  /// makes bit for bit (the kept one carries the round-off of the changes
+  /// the last run added to it).
+  void restart();
+
   /// Copies x into the model's displacement (ghosts updated).
   void update_displacement(Vec x);
 
