@@ -101,8 +101,9 @@ void Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iterati
                     [&]
                     {
                       if (_csv)
-                        _csv->row(step, values);
+                        _csv->row(_row, values);
                     });
+  ++_row;
   if (!_report.talk())
     return;
   std::ostringstream line;

@@ -7,7 +7,8 @@
 // and the oxide layer (thickness beta x, bulk modulus B_ox, confined and
 // shear-free) the normal compliance beta x / B_ox, in series with the
 // joint's penalty: the inputs of the law oxide_friction (laws/Oxide.h).
-// Each converged step writes a row of corrosion.csv (rank 0):
+// Each converged step (or part of a cut one) writes a row of corrosion.csv
+// (rank 0), numbered as curve.csv's rows:
 //   step, penetration_mm, p_MPa, crack_width_mm[, w_crack_I_mm...],
 //   newton_iterations, cuts, wall_s
 // p the mean interface pressure (as in curve.csv), crack_width_mm the
@@ -88,6 +89,7 @@ private:
   MPI_Comm _comm;
   int _copies = 1;                         ///< mirror images of the model in the specimen
   std::optional<output::CurveWriter> _csv; ///< rank 0
+  int _row = 0; ///< corrosion.csv's next row number (its step column, as curve.csv's)
 };
 
 /// The normal force N = -int t_n dA [N] and the area A [mm^2] of the whole
