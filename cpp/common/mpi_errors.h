@@ -34,6 +34,7 @@
 #include <iostream>
 #include <mpi.h>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -110,9 +111,13 @@ inline bool alone(MPI_Comm comm)
 /// to agree on.
 [[noreturn]] inline void abandon(const std::string& message, int rank)
 {
-  std::cerr << "pushout: error: " << message << " (process " << rank
-            << "; the other processes did not come to agree on it within " << abandon_after_s
-            << " s, so the run is ended)" << std::endl;
+  // One write: mpirun prints its abort banner on the same stderr, and a
+  // line written in pieces (std::cerr is unbuffered) was cut by it.
+  std::ostringstream line;
+  line << "pushout: error: " << message << " (process " << rank
+       << "; the other processes did not come to agree on it within " << abandon_after_s
+       << " s, so the run is ended)\n";
+  std::cerr << line.str() << std::flush;
   MPI_Abort(MPI_COMM_WORLD, 1);
   std::abort();
 }

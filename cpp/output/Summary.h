@@ -93,7 +93,7 @@ struct Summary
   std::vector<Crack> cracks;
   /// The widest crack at the slice's outer faces at the start of the push
   /// [mm], as corrosion.csv's crack_width_mm reads it (a plane's mouth
-  /// opening, or the concrete's gauge reading however narrow); 0: none;
+  /// opening, or the concrete's gauge reading from its resolution up); 0: none;
   /// NaN (null) where the run stopped before the push.
   double surface_crack_width_mm = std::numeric_limits<double>::quiet_NaN();
   /// The damage of a damage layer of the interface at the start of the push

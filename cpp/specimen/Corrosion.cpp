@@ -16,7 +16,7 @@ namespace
 {
 /// The widest crack at the slice's outer faces [mm]: the planes' mouth
 /// openings and the concrete's widest surface crack (its gauge reading,
-/// however narrow); 0: none.
+/// from the gauge's resolution up: model/SurfaceCracks.h); 0: none.
 double widest_surface_crack(const std::vector<double>& mouths, const model::CrackingTotals& bulk)
 {
   double widest = mouths.empty() ? 0.0 : *std::max_element(mouths.begin(), mouths.end());

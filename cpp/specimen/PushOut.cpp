@@ -462,28 +462,36 @@ std::vector<std::string> PushOut::scene_notes(const Scene& scene)
   const double E = scene.concrete().E;                        // [MPa]
   const bool nodal = scene.mesh().nodal_quadrature;
   std::vector<std::string> notes;
+  // One note per layer, on its stiffest parameter (elastic's k_n and k_s
+  // default to its k: the first of equals).
   auto check = [&](const std::string& prefix, const LayerSpec& layer)
   {
     const laws::LawInfo* law = laws::find_law(layer.law);
     if (!law)
       return;
+    const laws::ParamDef* stiffest = nullptr;
+    double k = 0; // [N/mm^3]
     for (const laws::ParamDef& def : law->params)
-      if (const auto k = layer.params.find(def.name);
-          def.unit == "N/mm^3" && k != layer.params.end() && k->second * h / E > stiff_joint_ratio)
+      if (const auto it = layer.params.find(def.name);
+          def.unit == "N/mm^3" && it != layer.params.end() && it->second > k)
       {
-        std::ostringstream note;
-        note << std::setprecision(3) << prefix << def.name << " = " << k->second << " N/mm^3 is "
-             << std::round(k->second * h / E) << " E / h (E " << std::llround(E)
-             << " MPa the concrete's, h " << h
-             << " mm an interface element's size): Newton may cycle between the joints' "
-                "contact and sliding states and not converge (seen from about "
-             << (nodal ? "3000 E / h"
-                       : "130 E / h with 2x2 Gauss points, 3000 with "
-                         "mesh.interface_quadrature = \"nodal\"")
-             << "); stiffer than " << stiff_joint_ratio << " E / h (" << stiff_joint_ratio * E / h
-             << " N/mm^3 here), a joint moves the curve by 0.1 % or less";
-        notes.push_back(note.str());
+        stiffest = &def;
+        k = it->second;
       }
+    if (!stiffest || !(k * h / E > stiff_joint_ratio))
+      return;
+    std::ostringstream note;
+    note << std::setprecision(3) << prefix << stiffest->name << " = " << k << " N/mm^3 is "
+         << std::llround(k * h / E) << " E / h (E " << std::llround(E) << " MPa the concrete's, h "
+         << h
+         << " mm an interface element's size): Newton may cycle between the joints' contact "
+            "and sliding states and not converge (seen from about "
+         << (nodal ? "3000 E / h"
+                   : "130 E / h with 2x2 Gauss points, 3000 with "
+                     "mesh.interface_quadrature = \"nodal\"")
+         << "); stiffer than " << stiff_joint_ratio << " E / h (" << stiff_joint_ratio * E / h
+         << " N/mm^3 here), a joint moves the curve by 0.1 % or less";
+    notes.push_back(note.str());
   };
   for (std::size_t i = 0; i < scene.layers().size(); ++i)
     check("interface." + std::to_string(i) + ".", scene.layers()[i]);

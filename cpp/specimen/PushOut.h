@@ -68,7 +68,10 @@ public:
   /// A joint's penalty stiffness so far above the concrete's over an
   /// interface element (k h / E > stiff_joint_ratio) that Newton may cycle
   /// between the joints' contact and sliding states, for a curve that a
-  /// softer one gives as well: one note per such layer or crack plane.
+  /// softer one gives as well: one note per such layer or crack plane (on
+  /// its stiffest parameter). h is the interface's element size around the
+  /// tube, taken for the crack planes' joints too (whose elements are the
+  /// radial block's); measured with trilinear bulk elements.
   static std::vector<std::string> scene_notes(const Scene& scene);
 
   /// Above this k h / E (h the interface element's size around the tube),

@@ -58,6 +58,7 @@ bool StepLoop::nominal_steps(const Stage& stage)
 {
   const int steps = stage.steps;
   Stepper stepper(_max_cuts, easy_tries(_equilibrium.model()));
+  forget_implex_misses(); // another stage, another parameter
   const Words fraction = [](double increment)
   {
     std::ostringstream s;
@@ -185,6 +186,7 @@ bool StepLoop::zero_force_step(const Stage& stage, int k, int cuts, double s0, d
   case ZeroForceResult::Outcome::found:
     stage.record(rep.iterations, cuts, k, s); // before the commit: StepRecorder.h
     commit();
+    forget_implex_misses(); // a step found by its force, not by its error
     return true;
   case ZeroForceResult::Outcome::try_failed:
     if (!stopped) // else the summary says so
@@ -216,6 +218,7 @@ StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, double in
   std::int64_t failed_points = 0;
   const double error = bulk->implex_error(failed_points);
   ImplexCheck c{error / bulk->implex_tolerance(), false, error, {}};
+  _implex_cut_short = false;
   std::ostringstream why;
   if (failed_points > 0)
   {
@@ -236,9 +239,12 @@ StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, double in
     // max_cuts stopped its cuts (taken, max_cuts = 0 put p 12 % off).
     const bool smaller = _implex_missed > 0 && increment < 0.99 * _implex_missed_increment;
     const bool snaps = smaller && error > jump_error_fall * _implex_missed;
-    const bool smallest =
-        stepper.smallest() && (_implex_jumped || stepper.increment() <= jump_smallest_step);
+    const bool falling = smaller && !snaps; // a smaller try lowered the error
+    const bool smallest = stepper.smallest() && (stepper.increment() <= jump_smallest_step ||
+                                                 (_implex_jumped && !falling));
     c.jump = c.ratio > 1 && (snaps || smallest);
+    c.missed_at_smallest = c.ratio > 1 && !c.jump && stepper.smallest();
+    _implex_cut_short = c.missed_at_smallest;
     if (c.ratio <= 1 || c.jump)
     {
       if (c.jump) // said when the step is committed (count_implex)
@@ -265,13 +271,19 @@ StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, double in
 
 void StepLoop::count_implex(const ImplexCheck& c)
 {
+  _implex_jumped = c.jump; // a committed step's: jumped or not
   if (!(c.ratio > 0))
     return;
   _summary.implex_jumps += c.jump ? 1 : 0;
-  _implex_jumped = c.jump;
   _summary.implex_error_max = std::max(_summary.implex_error_max, c.error);
   if (!c.said.empty() && _report.talk())
     std::cout << c.said << std::endl;
+}
+
+void StepLoop::forget_implex_misses()
+{
+  _implex_missed = 0;
+  _implex_jumped = false;
 }
 
 void StepLoop::set_crack_extrapolation(double ratio)

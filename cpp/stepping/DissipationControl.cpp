@@ -248,6 +248,7 @@ StepLoop::DissipationSteps::DissipationSteps(StepLoop& loop, const DissipationSt
       _energy(loop._max_cuts, easy_tries(loop._equilibrium.model(), true))
 {
   _path.set_load_difference(stage.load_difference);
+  _loop.forget_implex_misses(); // another stage, another parameter
   _jump = mean_jump();
   _P = stage.force();
 }
@@ -460,7 +461,7 @@ void StepLoop::DissipationSteps::check_implex(Try& t)
   if (!t.rep.converged)
     return;
   if (t.energy_step != _implex_energy)
-    _loop._implex_missed = 0;
+    _loop.forget_implex_misses(); // steps of energy and of the load: other parameters
   _implex_energy = t.energy_step;
   Stepper& stepper = t.energy_step ? _energy : _by_lambda;
   // An energy step's error that a smaller release does not lower is the

@@ -58,6 +58,7 @@ bool StepLoop::path_following()
   LoadFactorPath p;
   if (!begin_load_factor_path("path following", p))
     return false;
+  forget_implex_misses();
   const solver::Vector a(_equilibrium.model().mean_axial_slip_functional());
   solver::PathFollower path(_solver, a);
   const SolverCounts count{_summary, path};

@@ -200,10 +200,12 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
   {
     _summary.message = what + " did not converge with " + std::to_string(cuts) + " cuts, down to " +
                        size(stepper.increment()) + " (" + reason + "); stopped";
-    if (reason.rfind("IMPL-EX error", 0) == 0) // a miss that smaller steps still lowered
-      _summary.message += " (no smaller step showed that IMPL-EX's error stops falling with "
-                          "the step, as where the cracks snap back: loading.max_cuts allows "
-                          "none; its default 10, or a larger cracking.implex_tolerance)";
+    if (_implex_cut_short) // IMPL-EX's error missed, and no smaller step is allowed
+      _summary.message += " (loading.max_cuts = " + std::to_string(_max_cuts) +
+                          " stops the cuts at 2^-" + std::to_string(_max_cuts) +
+                          " of a step before a smaller one showed that IMPL-EX's error stops "
+                          "falling with the step, as where the cracks snap back: raise "
+                          "max_cuts (default 10) or cracking.implex_tolerance)";
     else if (_may_snap_back && _scenario.monotonic())
       _summary.message += " (where the structure snaps back, loading.control = \"auto\" follows "
                           "it: docs/numerics.md, \"Dissipation control\")";

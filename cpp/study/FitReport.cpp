@@ -6,6 +6,7 @@
 #include "../output/plot.h"
 #include "../scene/Scene.h"
 #include "../scene/SceneError.h"
+#include "../specimen/Scenario.h"
 #include <algorithm>
 #include <cmath>
 #include <exception>
@@ -27,7 +28,8 @@ nlohmann::json fitted_values(const std::vector<Free>& free, const std::vector<do
   { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
   nlohmann::json params = nlohmann::json::object(), errors = nlohmann::json::object(),
                  starts = nlohmann::json::object(), bounds = nlohmann::json::object(),
-                 exclusive = nlohmann::json::array(), correlation = nlohmann::json::array();
+                 exclusive = nlohmann::json::array(), exclusive_hi = nlohmann::json::array(),
+                 correlation = nlohmann::json::array();
   std::vector<std::string> keys;
   for (std::size_t k = 0; k < free.size(); ++k)
   {
@@ -36,10 +38,13 @@ nlohmann::json fitted_values(const std::vector<Free>& free, const std::vector<do
     errors[free[k].key] = number_or_null(st.se[k]);
     starts[free[k].key] = free[k].start;
     // [lo, hi], null where unbounded; lo itself excluded where the law says
-    // so, or the key's range is open (bounds_exclusive; hi too then).
+    // so or the key's range is open (bounds_exclusive), hi where the key's
+    // range is open (bounds_exclusive_hi).
     bounds[free[k].key] = {number_or_null(free[k].lo), number_or_null(free[k].hi)};
     if (free[k].lo_exclusive)
       exclusive.push_back(free[k].key);
+    if (free[k].hi_exclusive)
+      exclusive_hi.push_back(free[k].key);
     nlohmann::json row = nlohmann::json::array();
     for (double c : st.corr[k])
       row.push_back(number_or_null(c));
@@ -52,6 +57,7 @@ nlohmann::json fitted_values(const std::vector<Free>& free, const std::vector<do
   j["start"] = starts;
   j["bounds"] = bounds;
   j["bounds_exclusive"] = exclusive;
+  j["bounds_exclusive_hi"] = exclusive_hi;
   return j;
 }
 } // namespace
@@ -80,7 +86,9 @@ int write_fit(const FitOptions& opt, const MeasuredCurve& data, const std::vecto
   std::string scene_text, scene_refused;
   try
   {
-    scene_text = Scene::load(opt.scene_file, parse_overrides(fit.sets)).to_toml();
+    const Scene fitted = Scene::load(opt.scene_file, parse_overrides(fit.sets));
+    specimen::check_scene(fitted); // the checks that relate keys
+    scene_text = fitted.to_toml();
   }
   catch (const SceneError& e)
   {

@@ -234,10 +234,14 @@ SweepPlan plan_sweep(const SweepOptions& opt)
       throw SceneError(case_name(i) + " (" + what + "): " + e.what());
     }
   }
-  if (!unread.empty())
-    throw SceneError("--vary '" + unread.begin()->first +
-                     "': no case reads it, so every case would give the same curve (" +
-                     unread.begin()->second + ")");
+  std::string unread_keys; // in --vary's order
+  for (const Variation& v : plan.vary)
+    if (const auto it = unread.find(v.key); it != unread.end())
+      unread_keys += (unread_keys.empty() ? "" : "; ") + it->second;
+  if (!unread_keys.empty())
+    throw SceneError("--vary: no case reads a varied key, so every case would give the same "
+                     "curve (" +
+                     unread_keys + ")");
   plan.order = set_up_order(set_ups);
   return plan;
 }

@@ -85,7 +85,7 @@ std::map<std::string, std::vector<double>> read_csv(const std::filesystem::path&
 /// The widest crack on the slice's outer faces at the push's start [mm]:
 /// summary.json's surface_crack_width_mm, as corrosion.csv's last
 /// crack_width_mm reads it (a plane's mouth, or the concrete's gauge
-/// reading however narrow; 0: none); NaN if the case has no summary.
+/// reading from its resolution up; 0: none); NaN if the case has no summary.
 double widest_crack(const std::filesystem::path& folder)
 {
   std::ifstream in(folder / "summary.json");

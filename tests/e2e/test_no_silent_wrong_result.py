@@ -30,7 +30,7 @@ import shutil
 import struct
 import subprocess
 
-from common import OUT_ROOT, PUSHOUT, SOURCE, check, curve, out_dir, run, summary
+from common import OUT_ROOT, PUSHOUT, SOURCE, check, corrosion, curve, out_dir, run, summary
 
 scene = """
 [mesh]
@@ -126,3 +126,9 @@ p = run(demo, cut, check=False, sets=implex)
 check(p.returncode == 0 and summary(cut)["implex_jumps"] == 0,
       f"the same with the default max_cuts: exit {p.returncode}, "
       f"{summary(cut)['implex_jumps']} jumps")
+# Its cut steps' parts are rows of corrosion.csv numbered as curve.csv's.
+rows = corrosion(cut)
+check(summary(cut)["cuts"] > 0 and [r["step"] for r in rows] == list(range(len(rows))),
+      f"{summary(cut)['cuts']} cuts: corrosion.csv's step is the row's number ({len(rows)} rows)")
+check(summary(cut)["linear_solve_s"] is None and summary(cut)["notes"] == [],
+      "summary.json: linear_solve_s null (not timed), no notes")

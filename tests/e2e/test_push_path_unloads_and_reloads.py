@@ -127,3 +127,6 @@ p = subprocess.run(pushout_runs.command(PUSHOUT, scene, out, ["geometry.thicknes
                                         quiet=False), capture_output=True, text=True, timeout=600)
 check(p.returncode == 0 and "loading.steps not read: loading.push_path sets the push" in p.stdout,
       f"a thin slice with a push path: exit {p.returncode}, {p.stderr.strip()[-300:]!r}")
+notes = summary(out)["notes"]
+check(len(notes) == 1 and notes[0].startswith("loading.steps not read"),
+      f"summary.json keeps the note: {notes}")

@@ -31,6 +31,8 @@ TEST(SceneNotes, StiffJointNotedAboveTheRatio)
   EXPECT_TRUE(scene_notes(Scene::parse("", {{"interface.0.k", std::to_string(1.01 * k_limit)},
                                             {"mesh.elements_per_quarter", "32"}}))
                   .empty());
+  // One note per layer: elastic's k_n and k_s take its k.
+  EXPECT_EQ(scene_notes(Scene::parse("[[interface]]\nlaw = \"elastic\"\nk = 1e7\n")).size(), 1u);
   const auto elastic =
       scene_notes(Scene::parse("[[interface]]\nlaw = \"elastic\"\nk_s = 1e7\n"
                                "[[crack]]\nangle = 90.0\nlaw = \"linear_softening\"\nk = 1e7\n"
