@@ -6,7 +6,8 @@ push-out: nominal bond stress tau [MPa] against tube displacement delta [um]
 u_s [mm]; corrosion (corrosion.csv): interface pressure p [MPa] and crack
 widths [um] against the corrosion depth x [um]; crack pattern
 (crack_pattern.csv, with [cracking]): the slice seen along the tube axis,
-each column of the concrete coloured by its thickness-mean crack opening.
+each column of the concrete coloured by its thickness-mean crack opening,
+and the crack planes (crack_planes.csv beside it) by their mouth opening.
 Usage: plot_curve.py CSV OUT.png --kind pushout|single_joint|corrosion|crack_pattern
        plot_curve.py --serve   (plots named on stdin: what pushout runs)
 """
@@ -85,23 +86,33 @@ def draw_example():
 def draw(csv_path, png, kind, title):
     fig = Figure(figsize=(6, 4), dpi=120)
     FigureCanvasAgg(fig)
-    plot(fig, read(csv_path), kind,
-         title or os.path.basename(os.path.dirname(os.path.abspath(csv_path))))
+    title = title or os.path.basename(os.path.dirname(os.path.abspath(csv_path)))
+    if kind == "crack_pattern":
+        # The crack planes of the run, beside its crack_pattern.csv.
+        planes = os.path.join(os.path.dirname(os.path.abspath(csv_path)), "crack_planes.csv")
+        plot_crack_pattern(fig, read(csv_path), title,
+                           read(planes) if os.path.exists(planes) else None)
+    else:
+        plot(fig, read(csv_path), kind, title)
     fig.savefig(png)
 
 
-def draw_crack_pattern(ax, data, top=None):
+def draw_crack_pattern(ax, data, top=None, planes=None):
     """The slice seen along the tube axis on `ax`: each column its cell's
     outline, coloured by its opening on a log scale from 1 um (below: the
-    lightest colour) to `top` [mm] (default: the widest). Returns the
-    coloured collection (for a colour bar)."""
+    lightest colour) to `top` [mm] (default: the widest); `planes`
+    (crack_planes.csv's columns): each crack plane a line from the tube to
+    the outer face, coloured by its mouth opening on the same scale and
+    labelled with it. Returns the coloured collection (for a colour
+    bar)."""
     from matplotlib.collections import PatchCollection
     from matplotlib.colors import LogNorm
     from matplotlib.patches import Polygon
     floor = 1e-3  # mm
     xs = data.get("x_mm", [])
     opening = data.get("opening_mm", [])
-    top = top or max([floor * 10] + opening)
+    mouths = (planes or {}).get("mouth_mm", [])
+    top = top or max([floor * 10] + opening + mouths)
     outlines = [[(data[f"corner_{k}_x_mm"][i], data[f"corner_{k}_y_mm"][i]) for k in range(4)]
                 for i in range(len(xs))]
     cells = PatchCollection([Polygon(o) for o in outlines], cmap="inferno_r",
@@ -113,16 +124,26 @@ def draw_crack_pattern(ax, data, top=None):
         ax.set_ylim(min(p[1] for o in outlines for p in o), max(p[1] for o in outlines for p in o))
     ax.set_facecolor("0.85")  # where the concrete may not crack, and the tube
     ax.set_aspect("equal")
+    for i, w in enumerate(mouths):
+        x = [planes["x_inner_mm"][i], planes["x_outer_mm"][i]]
+        y = [planes["y_inner_mm"][i], planes["y_outer_mm"][i]]
+        ax.plot(x, y, color=cells.cmap(cells.norm(max(w, floor))), lw=2.5, solid_capstyle="butt")
+        ax.plot(x, y, color="C0", lw=0.6, ls="--")  # marks it a plane, however narrow
+        at = (x[0] + 0.8 * (x[1] - x[0]), y[0] + 0.8 * (y[1] - y[0]))  # inside the slice
+        ax.annotate(f"plane {int(planes['plane'][i])}: {w * 1e3:.3g} µm", at,
+                    fontsize=7, color="C0", ha="center", va="center",
+                    bbox={"boxstyle": "round,pad=0.2", "fc": "white", "alpha": 0.8, "lw": 0})
     return cells
 
 
-def plot_crack_pattern(fig, data, title):
+def plot_crack_pattern(fig, data, title, planes=None):
     """The crack pattern of one run (draw_crack_pattern) with its colour bar."""
     ax = fig.add_subplot()
-    cells = draw_crack_pattern(ax, data)
+    cells = draw_crack_pattern(ax, data, planes=planes)
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("y [mm]")
-    fig.colorbar(cells, ax=ax, label="crack opening, mean through the thickness [mm]")
+    fig.colorbar(cells, ax=ax, label="crack opening, mean through the thickness [mm]"
+                 + ("\n(planes: mouth opening)" if planes else ""))
     ax.set_title(f"crack pattern at the start of the push: {title}")
     fig.tight_layout()
 

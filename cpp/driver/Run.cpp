@@ -178,7 +178,8 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, record::R
   // Outputs and load steps.
   stepping::StepRecorder recorder(scene.output(), opt.out, *scenario, *_equilibrium, report);
   specimen::Corrosion corrosion(scene.corrosion(), scene.crack_directions(),
-                                scene.cracking().embedded, opt.out, report, opt.comm, _data.copies);
+                                scene.cracking().embedded, opt.out, report, opt.comm, _data.copies,
+                                scene.geometry());
   const Loading& loading = scene.loading();
   stepping::StepLoop loop(*scenario, corrosion, *_equilibrium, *_solver, recorder, report,
                           int(loading.max_cuts),

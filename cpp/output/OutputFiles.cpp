@@ -21,12 +21,12 @@ namespace fs = std::filesystem;
 bool is_output_file(const std::string& name)
 {
   static const char* const names[] = {
-      "curve.csv",         "curve.png",        "corrosion.csv",       "corrosion.png",
-      "summary.json",      "scene.toml",       "fields.xdmf",         "fields.h5",
-      "interface.xdmf",    "interface.h5",     "cracks.xdmf",         "cracks.h5",
-      "sweep.csv",         "sweep.png",        "sweep_seeds.csv",     "fit.json",
-      "fit.csv",           "fit.png",          ".pushout-write-test", "summary.json.tmp",
-      "crack_pattern.csv", "crack_pattern.png"};
+      "curve.csv",         "curve.png",         "corrosion.csv",       "corrosion.png",
+      "summary.json",      "scene.toml",        "fields.xdmf",         "fields.h5",
+      "interface.xdmf",    "interface.h5",      "cracks.xdmf",         "cracks.h5",
+      "sweep.csv",         "sweep.png",         "sweep_seeds.csv",     "fit.json",
+      "fit.csv",           "fit.png",           ".pushout-write-test", "summary.json.tmp",
+      "crack_pattern.csv", "crack_pattern.png", "crack_planes.csv"};
   for (const char* n : names)
     if (name == n)
       return true;

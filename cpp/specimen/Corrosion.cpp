@@ -2,7 +2,9 @@
 #include "../common/mpi_errors.h"
 #include "../output/OutputFiles.h"
 #include "../record/NonFinite.h"
+#include "../scene/CrackPlanes.h"
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <limits>
@@ -28,9 +30,16 @@ double widest_surface_crack(const std::vector<double>& mouths, const model::Crac
 
 Corrosion::Corrosion(const CorrosionPart& corrosion, const CrackDirections& cracks,
                      bool bulk_cracking, const std::filesystem::path& out,
-                     record::RunReport& report, MPI_Comm comm, int copies)
+                     record::RunReport& report, MPI_Comm comm, int copies, const Geometry& slice)
     : _out(out), _report(report), _comm(comm), _copies(copies)
 {
+  for (double a : cracks.angles)
+  {
+    const auto [cx, cy] = slice.tube_center;
+    const std::array<double, 2> outer = boundary_point(slice, a);
+    _plane_ends.push_back({cx + slice.tube_radius() * std::cos(a),
+                           cy + slice.tube_radius() * std::sin(a), outer[0], outer[1]});
+  }
   _x_final = corrosion.penetration;
   _steps = int(corrosion.steps);
   _oxide = {corrosion.beta, corrosion.porous_zone, corrosion.oxide_bulk};
@@ -170,11 +179,12 @@ void Corrosion::describe_cracks(solver::Equilibrium& eq, Vec state, output::Summ
         c.length_mm = s.length_mm;
         summary.cracks.push_back(c);
       }
-    write_crack_pattern(bulk.columns);
+    write_crack_pattern(bulk.columns, mouth);
   }
 }
 
-void Corrosion::write_crack_pattern(const std::vector<model::CrackColumn>& columns) const
+void Corrosion::write_crack_pattern(const std::vector<model::CrackColumn>& columns,
+                                    const std::vector<double>& mouths) const
 {
   int rank = 0;
   MPI_Comm_rank(_comm, &rank);
@@ -197,6 +207,23 @@ void Corrosion::write_crack_pattern(const std::vector<model::CrackColumn>& colum
                         csv << "\n";
                       }
                       output::write_file(_out / "crack_pattern.csv", csv.str());
+                      // The planes (a model cut by symmetry keeps each
+                      // plane's mouth, its image's too: Model::crack_image).
+                      std::filesystem::remove(_out / "crack_planes.csv");
+                      if (_plane_ends.empty())
+                        return;
+                      std::ostringstream planes;
+                      planes.precision(10);
+                      planes << "plane,angle_deg,x_inner_mm,y_inner_mm,x_outer_mm,y_outer_mm,"
+                                "mouth_mm\n";
+                      for (std::size_t i = 0; i < _plane_ends.size(); ++i)
+                      {
+                        planes << i << "," << _directions.angles[i] * 180 / std::numbers::pi;
+                        for (double v : _plane_ends[i])
+                          planes << "," << v;
+                        planes << "," << mouths.at(i) << "\n";
+                      }
+                      output::write_file(_out / "crack_planes.csv", planes.str());
                     });
   _report.plot_also("crack_pattern", "crack_pattern");
 }

@@ -41,9 +41,11 @@ public:
   /// concrete may crack anywhere ([cracking]); `comm`: the run's processes;
   /// `copies`: the specimen is that many mirror images of the model
   /// (mesh::MeshData::copies), so the concrete's cracked points and
-  /// dissipation are written as the specimen's (as the push force is).
+  /// dissipation are written as the specimen's (as the push force is);
+  /// `slice`: where the crack planes run (crack_planes.csv).
   Corrosion(const CorrosionPart& corrosion, const CrackDirections& cracks, bool bulk_cracking,
-            const std::filesystem::path& out, record::RunReport& report, MPI_Comm comm, int copies);
+            const std::filesystem::path& out, record::RunReport& report, MPI_Comm comm, int copies,
+            const Geometry& slice);
 
   /// Whether the scene has a corrosion stage (penetration > 0).
   bool active() const { return _x_final > 0; }
@@ -77,13 +79,19 @@ public:
 private:
   /// crack_pattern.csv: the cracking concrete's columns through the
   /// thickness, their centre, mean widest opening, size and four corners
-  /// (rank 0's `columns`); its plot asked for. Collective.
-  void write_crack_pattern(const std::vector<model::CrackColumn>& columns) const;
+  /// (rank 0's `columns`); with crack planes also crack_planes.csv, each
+  /// plane's ends and mouth opening (`mouths` [mm]), which the figure draws
+  /// over the columns; its plot asked for. Collective.
+  void write_crack_pattern(const std::vector<model::CrackColumn>& columns,
+                           const std::vector<double>& mouths) const;
 
   double _x_final = 0; ///< [mm]
   int _steps = 1;
   laws::OxideLayer _oxide;
   CrackDirections _directions;
+  /// Each crack plane's ends in the x-y plane, at the interface and at the
+  /// outer boundary [mm]: x0, y0, x1, y1.
+  std::vector<std::array<double, 4>> _plane_ends;
   std::filesystem::path _out; ///< the output folder
   record::RunReport& _report;
   MPI_Comm _comm;

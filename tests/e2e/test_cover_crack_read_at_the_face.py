@@ -32,7 +32,12 @@ random strength field and no crack planes:
    counted; until it localises the whole slice solves the same symmetric
    problem and reads the same widths at the same x, and the same cracked
    points and concrete dissipation (written as the whole specimen's, as the
-   push force is: the half model's times 2)."""
+   push force is: the half model's times 2).
+7. With a crack plane too (towards the nearest face), crack_planes.csv has
+   the plane: from the interface (R from the axis, at 270 degrees) to the
+   face y = 0, its mouth summary.json's (both printed to 10 digits), and
+   crack_pattern.png draws it; without planes (1.) there is no
+   crack_planes.csv."""
 
 import csv
 import math
@@ -184,3 +189,22 @@ on_plane = [c for c in summary(half)["cracks"] if c["source"] == "concrete"]
 check(len(on_plane) == 1 and on_plane[0]["angle_deg"] == 270 and
       corrosion(half)[-1]["cracks_at_surface"] == 1,
       f"cut by symmetry: one surface crack, along the plane: {on_plane}")
+
+# 7. A crack plane beside the concrete's cracks: in crack_planes.csv and the figure.
+check(not os.path.exists(os.path.join(one, "crack_planes.csv")), "no planes: no crack_planes.csv")
+both_kinds = out_dir("cover_crack_with_plane")
+run(scene.replace("[loading]", '[[crack]]\nangle = "nearest_face"\nf_t = 3.0\nc = 30.0\n\n[loading]', 1)
+    .replace("xdmf = true", "xdmf = false"), both_kinds)
+with open(os.path.join(both_kinds, "crack_planes.csv"), newline="") as f:
+    planes = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+plane = [c for c in summary(both_kinds)["cracks"] if c["source"] == "plane"]
+R = 10.0  # the tube's outer radius [mm]
+check(len(planes) == 1 and len(plane) == 1 and planes[0]["angle_deg"] == 270
+      and math.isclose(planes[0]["x_inner_mm"], axis[0], abs_tol=1e-9)
+      and math.isclose(planes[0]["y_inner_mm"], axis[1] - R, abs_tol=1e-9)
+      and math.isclose(planes[0]["x_outer_mm"], axis[0], abs_tol=1e-9)
+      and abs(planes[0]["y_outer_mm"]) <= 1e-9
+      and math.isclose(planes[0]["mouth_mm"], plane[0]["width_mm"], rel_tol=1e-9)
+      and os.path.getsize(os.path.join(both_kinds, "crack_pattern.png")) > 0,
+      f"crack_planes.csv: the plane from the tube to the face, its mouth "
+      f"{planes[0]['mouth_mm'] * 1e3:.1f} um as summary.json's; the figure drawn")
