@@ -52,11 +52,12 @@ def command(pushout, scene, out, sets=(), petsc=(), quiet=True):
 
 
 def run(pushout, scene, out, sets=(), petsc=(), one_thread=False, timeout=None, check=False,
-        mpirun=None):
+        mpirun=None, quiet=True):
     """Runs a scene; returns the CompletedProcess (output captured), or None if it ran
     out of `timeout` seconds. `one_thread`: BLAS on one core (runs side by side);
-    `mpirun`: a number of processes; `check`: raise RunError on a non-zero exit."""
-    cmd = command(pushout, scene, out, sets, petsc)
+    `mpirun`: a number of processes; `check`: raise RunError on a non-zero exit;
+    `quiet` false: with the progress output (in the CompletedProcess's stdout)."""
+    cmd = command(pushout, scene, out, sets, petsc, quiet)
     if mpirun:
         cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-n", str(mpirun)] + cmd
     env = dict(os.environ, OPENBLAS_NUM_THREADS="1") if one_thread else None

@@ -133,9 +133,10 @@ def out_dir(name):
     return d
 
 
-def run(scene, out, sets=(), extra=(), check=True, mpirun=None):
+def run(scene, out, sets=(), extra=(), check=True, mpirun=None, quiet=True):
     """Runs a scene (a path, or TOML text written to out/../NAME.toml);
-    `mpirun`: on that many processes."""
+    `mpirun`: on that many processes; `quiet` false: with the progress
+    output (stdout)."""
     if "\n" in scene or "=" in scene:
         os.makedirs(OUT_ROOT, exist_ok=True)
         path = os.path.join(OUT_ROOT, os.path.basename(out.rstrip("/")) + ".toml")
@@ -144,7 +145,7 @@ def run(scene, out, sets=(), extra=(), check=True, mpirun=None):
         scene = path
     try:
         p = pushout_runs.run(PUSHOUT, scene, out, sets, extra, timeout=1200, check=check,
-                             mpirun=mpirun)
+                             mpirun=mpirun, quiet=quiet)
     except pushout_runs.RunError as e:
         raise SystemExit(f"FAILED: {e}")
     if p is None:

@@ -35,10 +35,8 @@ law oxide_friction and no temperature change:
    compression (-0.03 um measured before: a width a gauge cannot read)."""
 import math
 import os
-import subprocess
 
-from common import (LAME, PUSHOUT, SOURCE, check, corroded_ring, corrosion, curve, out_dir,
-                    pushout_runs, run, summary)
+from common import LAME, SOURCE, check, corroded_ring, corrosion, curve, out_dir, run, summary
 import analytic
 
 a, R, b = 8.0, 10.0, 50.0
@@ -97,12 +95,10 @@ check(not os.path.exists(os.path.join(out_t, "corrosion.csv")), "no corrosion st
 
 # 6. A stage of one step, cut.
 one = out_dir("corrosion_one_step_cut")
-cmd = pushout_runs.command(PUSHOUT, os.path.join(SOURCE, "demo", "pushout_corroded.toml"), one,
-                           ["mesh.elements_per_quarter=6", "mesh.elements_through_thickness=3",
-                            "crack.0.c=3", "corrosion.steps=1", "loading.steps=1",
-                            "output.plot=false"],
-                           ["-snes_max_it", "4"], quiet=False)
-p = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+p = run(os.path.join(SOURCE, "demo", "pushout_corroded.toml"), one,
+        ["mesh.elements_per_quarter=6", "mesh.elements_through_thickness=3", "crack.0.c=3",
+         "corrosion.steps=1", "loading.steps=1", "output.plot=false"],
+        ["-snes_max_it", "4"], check=False, quiet=False)
 retries = [line for line in p.stdout.splitlines() if "retrying" in line]
 check(p.returncode == 0 and retries and retries[0].startswith("corrosion step: DIVERGED_MAX_IT"),
       f"one corrosion step, cut: exit {p.returncode}, {retries[:1] or p.stderr[-300:]}")

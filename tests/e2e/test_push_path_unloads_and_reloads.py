@@ -25,10 +25,8 @@
 5. A path within a thin slice's small-displacement range runs, whatever
    the (unread) push_displacement, and the unread keys are noted."""
 import os
-import subprocess
 
-from common import (COARSE_MESH, EXP_SOFT, FRICTION_2, OUT_ROOT, PUSHOUT, check, curve, out_dir,
-                    pushout_runs, run, summary)
+from common import COARSE_MESH, EXP_SOFT, FRICTION_2, OUT_ROOT, check, curve, out_dir, run, summary
 
 THERMAL = "[loading]\ntemperature_change = -25.0\nsteps_per_segment = {n}\npush_path = {path}\n"
 ZERO = 'unload_to = "zero_force"\n'
@@ -123,8 +121,7 @@ out = out_dir("push_path_thin_slice")
 scene = os.path.join(OUT_ROOT, "push_path_thin_slice.toml")
 with open(scene, "w") as f:
     f.write(COARSE_MESH + FRICTION_2 + THERMAL.format(n=2, path="[0.0, 0.005]"))
-p = subprocess.run(pushout_runs.command(PUSHOUT, scene, out, ["geometry.thickness=0.08", "loading.steps=7"],
-                                        quiet=False), capture_output=True, text=True, timeout=600)
+p = run(scene, out, ["geometry.thickness=0.08", "loading.steps=7"], check=False, quiet=False)
 check(p.returncode == 0 and "loading.steps not read: loading.push_path sets the push" in p.stdout,
       f"a thin slice with a push path: exit {p.returncode}, {p.stderr.strip()[-300:]!r}")
 notes = summary(out)["notes"]
