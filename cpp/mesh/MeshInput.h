@@ -13,8 +13,8 @@ struct MeshInput
   MeshPart mesh;
   CrackDirections cracks;         ///< the crack planes' directions (none: uncracked)
   ModelPart::Symmetry symmetry{}; ///< model.symmetry
-  bool fields = false;            ///< output.xdmf (a model cut by symmetry writes none)
-  bool bulk_cracking = false;     ///< cracking.model = "embedded": cracks anywhere in the concrete
+  bool fields = false;        ///< output.xdmf (model.symmetry "auto" then takes the whole slice)
+  bool bulk_cracking = false; ///< cracking.model = "embedded": cracks anywhere in the concrete
   bool cracked() const { return !cracks.angles.empty(); }
 
   static MeshInput of(const Scene& scene)

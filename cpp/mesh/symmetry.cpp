@@ -98,8 +98,11 @@ Symmetry model_symmetry(const MeshInput& in, std::string& why)
           "there)";
     return {};
   }
-  if (in.fields)
+  if (in.fields && in.symmetry == ModelPart::Symmetry::automatic)
   {
+    // (model.symmetry = "symmetric" asks for the cut: its fields are the
+    // part's, and the whole slice would solve another problem where crack
+    // planes that are mirror images open unalike.)
     why = "output.xdmf asks for fields of the whole specimen";
     return {};
   }
