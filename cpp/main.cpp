@@ -471,6 +471,16 @@ std::string petsc_option_error()
   try
   {
     check(SNESSetFromOptions(snes), "SNESSetFromOptions");
+    // The load steps are Newton's method with a line search on the laws'
+    // consistent tangents, and their stop tests and cuts read its
+    // iterations: another SNES (ksponly took one linear solve and said it
+    // converged; qn failed inside) is no solver of pushout's.
+    SNESType type = nullptr;
+    check(SNESGetType(snes, &type), "SNESGetType");
+    if (type && std::string(type) != SNESNEWTONLS)
+      error = std::string("-snes_type ") + type +
+              ": pushout's load steps run Newton's method with a line search (newtonls, the "
+              "default; -snes_linesearch_type chooses the line search)";
     KSP ksp;
     check(SNESGetKSP(snes, &ksp), "SNESGetKSP");
     check(KSPSetFromOptions(ksp), "KSPSetFromOptions");

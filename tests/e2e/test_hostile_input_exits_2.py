@@ -94,8 +94,11 @@ refused("directory as the scene", args, ["/tmp", "regular file"], timeout=30, se
 refused("a second scene", ["run", GOOD_SCENE, GOOD_SCENE, "--out", out_dir("hostile_two")],
         ["unexpected argument", GOOD_SCENE])
 refused("a word after a command without arguments", ["keys", "extra"], ["unexpected argument", "extra"])
-# A PETSc option whose value PETSc cannot take: refused before the run.
-for option in (["-ksp_type", "bogus"], ["-snes_max_it", "abc"]):
+# A PETSc option whose value PETSc cannot take, or a nonlinear solver that is
+# not Newton's (ksponly ran one linear solve a step and said it converged, 8 %
+# off): refused before the run.
+for option in (["-ksp_type", "bogus"], ["-snes_max_it", "abc"], ["-snes_type", "ksponly"],
+               ["-snes_type", "qn"]):
     refused(f"PETSc option {' '.join(option)}",
             ["run", GOOD_SCENE, "--out", out_dir("hostile_petsc"), "--quiet"] + option,
             ["PETSc option", option[1]], seconds=10)
