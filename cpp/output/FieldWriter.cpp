@@ -208,5 +208,7 @@ void FieldWriter::write(double t)
             if (_cracks)
               _cracks->write(u, t);
           }});
+  // The step on disk: readable if the run is killed before it closes them.
+  mpi::throw_if_any(_model.comm(), !flush_hdf5_files(), cannot_write(_fields_file));
 }
 } // namespace pushout::output

@@ -6,11 +6,13 @@
 #pragma once
 
 #include "OutputFiles.h"
+#include <algorithm>
 #include <dolfinx/io/XDMFFile.h>
 #include <filesystem>
 #include <hdf5.h>
 #include <memory>
 #include <stdexcept>
+#include <vector>
 
 namespace pushout::output
 {
@@ -38,6 +40,27 @@ void xdmf_checked(std::unique_ptr<dolfinx::io::XDMFFile>& file, const std::files
     (void)file.release(); // its HDF5 handle is broken: never closed again
     throw std::runtime_error(cannot_write(name));
   }
+}
+
+/// Flushes every HDF5 file the process has open (the XDMF files' data), so
+/// that the steps written so far can be read whatever ends the run: one
+/// killed under mpirun gets no time to close its files, and HDF5 files
+/// never flushed could not be opened at all. False if one failed.
+/// Collective: every process has the same files open, opened in the same
+/// order (their ids, sorted, the same).
+inline bool flush_hdf5_files()
+{
+  const ssize_t n = H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_FILE);
+  if (n <= 0)
+    return n == 0;
+  std::vector<hid_t> ids(static_cast<std::size_t>(n));
+  if (H5Fget_obj_ids(H5F_OBJ_ALL, H5F_OBJ_FILE, static_cast<std::size_t>(n), ids.data()) != n)
+    return false;
+  std::sort(ids.begin(), ids.end());
+  bool ok = true;
+  for (const hid_t id : ids)
+    ok = H5Fflush(id, H5F_SCOPE_LOCAL) >= 0 && ok;
+  return ok;
 }
 
 /// Closes the file (collective); an error as xdmf_checked. A file given up

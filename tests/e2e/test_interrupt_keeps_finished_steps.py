@@ -5,12 +5,17 @@ corrosion stage, it says so (stopped_in "corrosion steps", the corrosion
 steps it finished, corrosion.csv keeping them); in step 0, the set-up or
 meshing, it names that alone. A closed pipe
 (`pushout run ... | head -3`) does not stop it. A sweep stops within a few
-seconds, without plotting."""
+seconds, without plotting. A run killed outright (SIGKILL, as mpirun's kill
+or an out-of-memory kill) leaves its fields (output.xdmf) readable with the
+steps it wrote: the HDF5 files are flushed after each step (they could not
+be opened at all before)."""
 import os
 import signal
 import subprocess
 import sys
 import time
+
+import h5py
 
 from common import SOURCE, check, corrosion, curve, out_dir, summary
 
@@ -158,6 +163,18 @@ check(waited < 10, f"sweep: stopped {waited:.1f} s after SIGTERM")
 check(os.path.exists(os.path.join(out, "sweep.csv")) and not os.path.exists(os.path.join(out, "sweep.png")),
       "sweep: sweep.csv written, no sweep.png")
 check(summary(os.path.join(out, "case_020"))["interrupted"], "sweep: the stopped case says so")
+
+# Killed outright: the fields' HDF5 files hold the steps written.
+out = out_dir("interrupt_sigkill_fields")
+p = subprocess.Popen([PUSHOUT, "run", scene, "--out", out, "--quiet", "--set", "output.xdmf=true",
+                      "--set", "output.plot=false"], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+wait_for_rows(os.path.join(out, "curve.csv"), 6, 120, 0.05)
+p.kill()
+p.communicate(timeout=60)
+for name in ("fields.h5", "interface.h5"):
+    with h5py.File(os.path.join(out, name), "r") as h5:
+        steps = len(next(iter(h5["Function"].values())))
+    check(steps >= 5, f"SIGKILL: {name} opens, {steps} steps in it")
 
 # A fit stopped during its fitted run: exit 143, no fit.json, no best/ (a
 # part of the curve in best/ and a fit.json saying converged would pass for
