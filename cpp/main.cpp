@@ -104,6 +104,11 @@ int run_scene(const std::string& scene_file, const std::string& out,
         // error on any one is the same error on all, printed once (rank 0).
         const Scene scene = mpi::collectively<SceneError>(MPI_COMM_WORLD, [&]
                                                           { return load_scene(scene_file, sets); });
+        const driver::RunOptions options{out, pushout::mesh::default_cache_dir(), quiet, force};
+        // What refuses the run before its folder is touched: an earlier
+        // run's outputs there stay (a typo in a mesh key deleted them).
+        mpi::collectively<SceneError, record::TooLarge>(
+            MPI_COMM_WORLD, [&] { driver::check_before_run(scene, options); });
         // The folder is this run's alone, without an earlier run's outputs
         // (output/OutputFiles.h).
         mpi::collectively<SceneError, output::FolderError>(MPI_COMM_WORLD,
@@ -112,7 +117,6 @@ int run_scene(const std::string& scene_file, const std::string& out,
                                                              if (rank == 0)
                                                                output::claim(out, {scene_file});
                                                            });
-        const driver::RunOptions options{out, pushout::mesh::default_cache_dir(), quiet, force};
         const output::Summary s = mpi::collectively<SceneError, record::TooLarge>(
             MPI_COMM_WORLD, [&] { return driver::run(scene, options); });
         if (s.interrupted)

@@ -246,6 +246,14 @@ template <class F> output::Summary reporting_errors(record::RunReport& report, F
 }
 } // namespace
 
+void check_before_run(const Scene& scene, const RunOptions& opt)
+{
+  specimen::check_scene(scene);
+  const mesh::MeshInput shape = mesh::MeshInput::of(scene);
+  record::check_fits(record::estimate_resources(shape, scene.solver(), opt.comm), shape, opt.force);
+  (void)mesh::cache_limit_mb(); // throws on a $PUSHOUT_CACHE_MAX_MB that is no size
+}
+
 output::Summary run(const Scene& scene, const RunOptions& opt)
 {
   specimen::check_scene(scene);

@@ -67,6 +67,13 @@ private:
   int _runs = 0;           ///< load_steps() so far
 };
 
+/// The refusals a run can make before it touches its output folder (so
+/// that a refused run leaves an earlier run's outputs there as they were):
+/// the scene's checks of its model type (SceneError), the size guard
+/// (record::TooLarge, unless options.force) and a $PUSHOUT_CACHE_MAX_MB
+/// that is no size (std::runtime_error, exit 1). Collective.
+void check_before_run(const Scene& scene, const RunOptions& options);
+
 /// Runs the scene; writes curve.csv, summary.json, scene.toml (and
 /// curve.png, XDMF) into options.out. Returns the summary; a step that
 /// cannot converge ends the run with summary.converged = false.

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iomanip>
 #include <sstream>
+#include <sys/resource.h>
 
 namespace pushout::record
 {
@@ -69,6 +70,24 @@ double available_memory_mb()
   return available;
 }
 
+double address_space_left_mb()
+{
+  rlimit limit{};
+  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY)
+    return -1;
+  // What this process maps already (libraries, MPI's and PETSc's regions)
+  // counts against the limit.
+  double vm_kb = 0;
+  std::ifstream status("/proc/self/status");
+  for (std::string key; status >> key;)
+  {
+    if (key == "VmSize:")
+      status >> vm_kb;
+    status.ignore(256, '\n');
+  }
+  return std::max(0.0, double(limit.rlim_cur) / (1024.0 * 1024.0) - vm_kb / 1024);
+}
+
 double ResourceEstimate::peak_mb() const
 {
   return std::max(meshing_mb, solve_mb);
@@ -123,6 +142,11 @@ ResourceEstimate estimate_resources(const mesh::MeshInput& in, const SolverPart&
       std::max(e.meshing_mb + base_mb * (e.processes_here - 1), e.solve_mb * e.processes_here);
   // Each machine judges by its own memory; the tightest decides.
   e.available_mb = available_memory_mb();
+  // A per-process limit of the address space (ulimit -v): each process of
+  // the machine may take that much.
+  if (const double left = address_space_left_mb(); left >= 0)
+    e.available_mb = e.available_mb < 0 ? left * e.processes_here
+                                        : std::min(e.available_mb, left * e.processes_here);
   MPI_Allreduce(MPI_IN_PLACE, &e.available_mb, 1, MPI_DOUBLE, MPI_MIN, comm);
   return e;
 }

@@ -66,4 +66,9 @@ void check_fits(const ResourceEstimate& estimate, const mesh::MeshInput& in, boo
 /// Memory available to new allocations on this machine [MB]: MemAvailable
 /// of /proc/meminfo, or less under a cgroup memory limit.
 double available_memory_mb();
+
+/// What a limit of this process's address space (RLIMIT_AS, ulimit -v)
+/// leaves beyond what it maps already [MB]; -1: no limit. The estimate
+/// takes the smaller of the two (per process on the machine).
+double address_space_left_mb();
 } // namespace pushout::record

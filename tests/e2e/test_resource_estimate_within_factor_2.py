@@ -4,6 +4,7 @@ estimate is within a factor 2 of the measured peak, and a run that cannot
 fit is refused at once with exit 2 and a message that says what to change;
 --force runs it anyway."""
 import os
+import resource
 import subprocess
 import sys
 import time
@@ -83,6 +84,25 @@ check(wall < 10, f"refused before meshing: {wall:.1f} s")
 check(len(err.splitlines()) == 1 and "GB" in err and "available" in err and "--force" in err
       and "mesh.elements_per_quarter (2000)" in err, f"one line that says why and what to change: {err!r}")
 check(not os.path.exists(os.path.join(out, "curve.csv")), "no curve.csv from a refused run")
+
+# A refused run leaves an earlier run's outputs in its folder as they were
+# (it deleted them before it was refused).
+kept = out_dir("guard_keeps_earlier_run")
+run(SCENE, kept, sets=["mesh.elements_per_quarter=4", "mesh.elements_through_thickness=2"] + SHORT)
+before = {f: os.path.getmtime(os.path.join(kept, f)) for f in ("curve.csv", "summary.json")}
+p = run(SCENE, kept, sets=["mesh.elements_per_quarter=2000"], check=False)
+check(p.returncode == 2 and all(os.path.getmtime(os.path.join(kept, f)) == t for f, t in before.items()),
+      f"refused (exit {p.returncode}): the earlier run's curve.csv and summary.json stay")
+
+# A limit of the address space (ulimit -v) bounds the run as the machine's
+# memory does: a 5 GB run under a 2.5 GB limit is refused, not started.
+limited = out_dir("guard_address_space")
+p = subprocess.run([PUSHOUT, "run", SCENE, "--out", limited, "--quiet", "--set", "mesh.elements_per_quarter=32",
+                    "--set", "mesh.elements_through_thickness=16", "--set", "model.symmetry=full"],
+                   capture_output=True, text=True, timeout=120,
+                   preexec_fn=lambda: resource.setrlimit(resource.RLIMIT_AS, (2500 << 20, 2500 << 20)))
+check(p.returncode == 2 and "available" in p.stderr,
+      f"under ulimit -v 2.5 GB: exit {p.returncode}, {p.stderr.strip()[:120]!r}")
 
 # --force runs what the guard refuses (stopped once it is meshing).
 out = out_dir("guard_force")
