@@ -1,17 +1,23 @@
 """Render interface fields of a push-out run as unrolled maps (paper Fig. 8).
 
-Run with ParaView's pvbatch:
+Run with ParaView's pvbatch (on a machine without a display, under a virtual
+X server: `xvfb-run -a pvbatch ...`; scripts/studies.py starts its own):
   pvbatch scripts/render_interface.py RUN_DIR OUT.png [--fields t_n t_s1]
-          [--center 50 50] [--time LAST]
+          [--center X Y] [--time LAST]
 
 Reads RUN_DIR/interface.xdmf (written with output.xdmf = true), unrolls the
 tube surface to (arc length s = R theta, z) and draws one map per field,
 stacked, at the last (or the given) time step. Units: tractions MPa, s and
-z mm. The seam is at the block corner theta = 225 deg, where the mesh has a
-node line; cells are unrolled one by one so that none straddles the seam.
+z mm. The tube axis is RUN_DIR/scene.toml's geometry.tube_center (the
+resolved scene every run writes), unless --center gives it. The seam is at
+the block corner theta = 225 deg, where the mesh has a node line; cells are
+unrolled one by one so that none straddles the seam. The joint elements of
+[[crack]] planes, also in interface.xdmf, are left out: a cell is the
+interface's where its corners lie on one circle about the axis.
 """
 import argparse
 import os
+import tomllib
 
 from paraview.simple import (AssignViewToLayout, ColorBy, CreateLayout, CreateRenderView,
                              ExtractBlock, GetColorTransferFunction, GetScalarBar, MergeBlocks,
@@ -31,16 +37,21 @@ LABELS = {
 UNROLL = """
 import builtins
 import math
-from vtkmodules.vtkCommonCore import vtkPoints
+from vtkmodules.vtkCommonCore import vtkIdList, vtkPoints
 from vtkmodules.vtkCommonDataModel import VTK_QUAD, vtkUnstructuredGrid
 src = self.GetInputDataObject(0, 0)
 out = self.GetOutputDataObject(0)
 cx, cy, seam = {cx!r}, {cy!r}, math.radians(225.0)
 pts = vtkPoints()
 out.Allocate(src.GetNumberOfCells())
+kept = vtkIdList()
 for c in range(src.GetNumberOfCells()):
     cell = src.GetCell(c)
     xyz = [src.GetPoint(cell.GetPointId(i)) for i in range(cell.GetNumberOfPoints())]
+    radii = [math.hypot(p[0] - cx, p[1] - cy) for p in xyz]
+    if builtins.max(radii) - builtins.min(radii) > 1e-6 * builtins.max(radii):
+        continue  # a crack plane's joint element, radial: not on the tube
+    kept.InsertNextId(c)
     # angle measured from the seam, in (0, 2 pi)
     ang = [(math.atan2(p[1] - cy, p[0] - cx) - seam) % (2 * math.pi) for p in xyz]
     if builtins.max(ang) - builtins.min(ang) > math.pi:  # on the seam: keep the cell whole
@@ -53,7 +64,10 @@ for c in range(src.GetNumberOfCells()):
         ids.append(pts.InsertNextPoint(r * a, p[2], 0.0))
     out.InsertNextCell(VTK_QUAD, 4, ids)
 out.SetPoints(pts)
-out.GetCellData().ShallowCopy(src.GetCellData())
+data = out.GetCellData()
+data.CopyAllocate(src.GetCellData(), kept.GetNumberOfIds())
+for i in range(kept.GetNumberOfIds()):
+    data.CopyData(src.GetCellData(), kept.GetId(i), i)
 """
 
 
@@ -62,10 +76,14 @@ def main():
     ap.add_argument("run_dir")
     ap.add_argument("png")
     ap.add_argument("--fields", nargs="+", default=["t_n", "t_s1"])
-    ap.add_argument("--center", nargs=2, type=float, default=[50.0, 50.0])
+    ap.add_argument("--center", nargs=2, type=float, default=None,
+                    help="the tube axis x y [mm] (default: RUN_DIR/scene.toml's)")
     ap.add_argument("--time", type=float, default=None)
     ap.add_argument("--title", default="")
     args = ap.parse_args()
+    if args.center is None:
+        with open(os.path.join(args.run_dir, "scene.toml"), "rb") as f:
+            args.center = tomllib.load(f)["geometry"]["tube_center"]
 
     reader = XDMFReader(FileNames=[os.path.join(args.run_dir, "interface.xdmf")])
     reader.UpdatePipelineInformation()
