@@ -176,7 +176,8 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, record::R
   const std::int64_t linear_before = _solver->linear_iterations();
 
   // Outputs and load steps.
-  stepping::StepRecorder recorder(scene.output(), opt.out, *scenario, *_equilibrium, report);
+  stepping::StepRecorder recorder(scene.output(), opt.out, *scenario, *_equilibrium, report,
+                                  scene.corrosion().penetration > 0);
   specimen::Corrosion corrosion(scene.corrosion(), scene.crack_directions(),
                                 scene.cracking().embedded, opt.out, report, opt.comm, _data.copies,
                                 scene.geometry());

@@ -10,8 +10,10 @@
 
 namespace pushout::output
 {
-FieldWriter::FieldWriter(const model::Model& model, const std::filesystem::path& dir)
-    : _model(model), _dir(dir), _fields_file(dir / "fields.xdmf"), _stress(model)
+FieldWriter::FieldWriter(const model::Model& model, const std::filesystem::path& dir,
+                         const std::string& prefix)
+    : _model(model), _dir(dir), _prefix(prefix), _fields_file(dir / (prefix + "fields.xdmf")),
+      _stress(model)
 {
   namespace fem = dolfinx::fem;
   MPI_Comm comm = model.comm();
@@ -84,7 +86,7 @@ FieldWriter::FieldWriter(const model::Model& model, const std::filesystem::path&
           v.insert(v.end(), {o.w[2], double(set) - 1, set == 0 ? 0.0 : o.damage[0]});
         return v;
       },
-      dir / "interface.xdmf");
+      dir / (prefix + "interface.xdmf"));
   if (cracks.empty())
     return;
   // n is the crack's normal (opening), s1 axial, s2 radial.
@@ -96,7 +98,7 @@ FieldWriter::FieldWriter(const model::Model& model, const std::filesystem::path&
         return std::vector<double>{o.t[0], o.t[1], o.t[2],      o.w[0],
                                    o.w[1], o.w[2], o.damage[0], double(crack)};
       },
-      dir / "cracks.xdmf");
+      dir / (prefix + "cracks.xdmf"));
 }
 
 FieldWriter::~FieldWriter()
@@ -150,7 +152,7 @@ std::uintmax_t FieldWriter::data_bytes() const
   for (const char* f : {"fields.h5", "interface.h5", "cracks.h5"})
   {
     std::error_code ec;
-    const std::uintmax_t size = std::filesystem::file_size(_dir / f, ec);
+    const std::uintmax_t size = std::filesystem::file_size(_dir / (_prefix + f), ec);
     total += ec ? 0 : size;
   }
   return total;

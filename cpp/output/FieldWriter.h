@@ -23,7 +23,11 @@ namespace pushout::output
 class FieldWriter
 {
 public:
-  FieldWriter(const model::Model& model, const std::filesystem::path& dir);
+  /// The files dir/PREFIXfields.xdmf, PREFIXinterface.xdmf (and
+  /// PREFIXcracks.xdmf with crack planes), with their .h5 (`prefix`:
+  /// "corrosion_" for the corrosion stage's).
+  FieldWriter(const model::Model& model, const std::filesystem::path& dir,
+              const std::string& prefix = "");
   /// Closes the files if close() was not called (an error there is not
   /// reported).
   ~FieldWriter();
@@ -44,6 +48,7 @@ private:
 
   const model::Model& _model;
   std::filesystem::path _dir;
+  std::string _prefix; ///< of the file names
   std::filesystem::path _fields_file;
   std::uintmax_t _bytes_before = 0; ///< data_bytes() before the last step [B]
   std::unique_ptr<dolfinx::io::XDMFFile> _fields;

@@ -95,7 +95,10 @@ bool StepLoop::initial_step()
   const auto started = [&](int iterations)
   {
     if (_corrosion.active())
+    {
       _corrosion.record(0.0, _equilibrium, _x, iterations, 0, 0);
+      _recorder.record_corrosion(_x);
+    }
     else
       start_push(iterations);
   };

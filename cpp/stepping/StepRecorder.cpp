@@ -9,7 +9,7 @@ namespace pushout::stepping
 {
 StepRecorder::StepRecorder(const OutputPart& output, const std::filesystem::path& out,
                            const specimen::Scenario& scenario, solver::Equilibrium& equilibrium,
-                           record::RunReport& report)
+                           record::RunReport& report, bool corrosion)
     : _scenario(scenario), _equilibrium(equilibrium), _report(report),
       _reactions(equilibrium.model().create_vector())
 {
@@ -27,14 +27,32 @@ StepRecorder::StepRecorder(const OutputPart& output, const std::filesystem::path
                     });
   if (output.xdmf)
     _fields = std::make_unique<output::FieldWriter>(equilibrium.model(), out);
+  if (output.xdmf && corrosion)
+    _corrosion_fields =
+        std::make_unique<output::FieldWriter>(equilibrium.model(), out, "corrosion_");
 }
 
 void StepRecorder::close()
 {
-  if (!_fields)
+  for (std::unique_ptr<output::FieldWriter>* f : {&_corrosion_fields, &_fields})
+    if (*f)
+    {
+      mpi::collectively(_equilibrium.model().comm(), [&] { (*f)->close(); });
+      f->reset();
+    }
+}
+
+void StepRecorder::record_corrosion(Vec x)
+{
+  if (!_corrosion_fields)
     return;
-  mpi::collectively(_equilibrium.model().comm(), [&] { _fields->close(); });
-  _fields.reset();
+  const interrupt::Phase writing("writing step outputs", -1);
+  const double t_out = _report.seconds();
+  _equilibrium.update_displacement(x);
+  mpi::collectively(_equilibrium.model().comm(),
+                    [&] { _corrosion_fields->write(double(_corrosion_row)); });
+  ++_corrosion_row;
+  _report.summary().output_s += _report.seconds() - t_out;
 }
 
 void StepRecorder::record(Vec x, int iterations, int cuts, int step, int steps)

@@ -23,13 +23,21 @@ class StepRecorder
 public:
   /// Opens curve.csv (and fields.xdmf, interface.xdmf) in `out`; an error
   /// writing them on rank 0 is the same error on every process.
+  /// `corrosion`: the run has a corrosion stage, whose fields go to
+  /// corrosion_fields.xdmf (and corrosion_interface.xdmf, ...) with
+  /// output.xdmf.
   StepRecorder(const OutputPart& output, const std::filesystem::path& out,
                const specimen::Scenario& scenario, solver::Equilibrium& equilibrium,
-               record::RunReport& report);
+               record::RunReport& report, bool corrosion = false);
 
   /// Whether a row or a field reads the bulk (a condensed solver then
   /// recovers it after each step).
   bool bulk_needed() const { return _scenario.uses_bulk() || _fields != nullptr; }
+
+  /// With output.xdmf: the fields of a converged corrosion step (or step 0
+  /// before corrosion) in x, at the time of its corrosion.csv row. The
+  /// model's displacement is x's already (specimen::Corrosion::record).
+  void record_corrosion(Vec x);
 
   /// Records the converged state x of step `step` of `steps` (0: path
   /// following, which does not know its number of steps).
@@ -45,6 +53,8 @@ private:
   record::RunReport& _report;
   std::optional<output::CurveWriter> _curve; ///< rank 0 only
   std::unique_ptr<output::FieldWriter> _fields;
+  std::unique_ptr<output::FieldWriter> _corrosion_fields; ///< the corrosion stage's
+  int _corrosion_row = 0;
   solver::Vector _reactions;
   int _row = 0;
 };

@@ -17,7 +17,8 @@ random strength field and no crack planes:
    with x once it is visible, and cracks_at_surface counts it; summary.json
    lists it, and its surface_crack_width_mm is the last row's
    crack_width_mm; crack_pattern.csv and crack_pattern.png are written;
-   fields.xdmf has crack_opening, crack_normal and crack_damage.
+   fields.xdmf has crack_opening, crack_normal and crack_damage, and
+   corrosion_fields.xdmf has them at each corrosion.csv row.
 4. The same surface cracks on 1 and 2 processes (the columns are gathered
    from both): widths and lengths within Newton's tolerance, both runs at
    1e-10 (common.TIGHT_NEWTON: the default integration here is IMPL-EX,
@@ -116,6 +117,16 @@ with open(os.path.join(one, "fields.xdmf")) as f:
 check(all(f'Name="{n}"' in xdmf for n in ("crack_opening", "crack_normal", "crack_damage"))
       and os.path.getsize(os.path.join(one, "crack_pattern.png")) > 0,
       "fields.xdmf has the cells' cracks; crack_pattern.png drawn")
+# The corrosion stage's fields: one time per corrosion.csv row, the cracks
+# opening in them as the stage goes (row 0: after the thermal step, which
+# cracks a few points by nanometres; the last: the push's start).
+with h5py.File(os.path.join(one, "corrosion_fields.h5"), "r") as h5:
+    opening = h5["Function/crack_opening"]
+    times = sorted(opening.keys(), key=float)
+    widest = [float(np.max(opening[t][:])) for t in (times[0], times[-1])]
+check(times == [str(i) for i in range(len(rows))] and widest[0] < 0.01 * widest[1] and widest[1] > 0.01,
+      f"corrosion_fields: {len(times)} times for {len(rows)} corrosion.csv rows; the widest "
+      f"crack {widest[0] * 1e3:.3f} um after the thermal step, {widest[1] * 1e3:.1f} um at the end")
 
 # 4. Two processes.
 tight, two = out_dir("cover_crack_1_tight"), out_dir("cover_crack_2")
