@@ -98,7 +98,7 @@ std::string factor_failure_text(PCFailedReason reason)
   case PC_FACTOR_NUMERIC_ZEROPIVOT:
     return "zero pivot";
   case PC_FACTOR_OUTMEMORY:
-    return "out of memory";
+    return out_of_memory_text;
   case PC_NOERROR:
     return "";
   default:

@@ -246,8 +246,14 @@ private:
 };
 
 /// Why the last set-up of the preconditioner of `ksp` failed on any of its
-/// processes, in words ("zero pivot", ...; "" if it did not). Collective.
+/// processes, in words ("zero pivot", out_of_memory_text, ...; "" if it did
+/// not). Collective.
 std::string factorization_failure(KSP ksp);
+
+/// factorization_failure's words for a factorisation that ran out of
+/// memory, which the step loop does not cut (a smaller step needs as much):
+/// stepping::StepLoop::cut_back ends the run.
+inline constexpr const char* out_of_memory_text = "out of memory";
 
 /// Whether every entry of x is finite (collective).
 bool finite(Vec x);

@@ -8,10 +8,12 @@
 #include "../common/Interrupt.h"
 #include "../common/mpi_errors.h"
 #include "../record/NonFinite.h"
+#include "../solver/NewtonSolver.h"
 #include "StepLoopShared.h"
 #include <array>
 #include <iostream>
 #include <optional>
+#include <stdexcept>
 
 namespace pushout::stepping
 {
@@ -199,6 +201,14 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
 {
   if (stop_requested())
     return false;
+  // A factorisation out of memory fails at every step size alike: the run
+  // ends at once, as an error of the machine, not of convergence (exit 1).
+  if (reason.find(solver::out_of_memory_text) != std::string::npos)
+    throw std::runtime_error(
+        what + ": the LU factorisation ran out of memory (" + reason +
+        "); the model needs more memory than this machine or its limits (ulimit -v, a cgroup) "
+        "give: fewer elements (mesh.elements_per_quarter, mesh.elements_through_thickness), or "
+        "more processes on more machines");
   if (!stepper.failed(factor))
   {
     _summary.message = what + " did not converge with " + std::to_string(cuts) + " cuts, down to " +

@@ -103,6 +103,17 @@ p = subprocess.run([PUSHOUT, "run", SCENE, "--out", limited, "--quiet", "--set",
                    preexec_fn=lambda: resource.setrlimit(resource.RLIMIT_AS, (2500 << 20, 2500 << 20)))
 check(p.returncode == 2 and "available" in p.stderr,
       f"under ulimit -v 2.5 GB: exit {p.returncode}, {p.stderr.strip()[:120]!r}")
+# --force runs it into the limit: the LU out of memory ends the run at once
+# (exit 1, not retried in smaller steps and reported as non-convergence).
+t0 = time.time()
+p = subprocess.run([PUSHOUT, "run", SCENE, "--out", limited, "--quiet", "--force", "--set",
+                    "mesh.elements_per_quarter=32", "--set", "mesh.elements_through_thickness=16",
+                    "--set", "model.symmetry=full", "--set", "loading.steps=1"],
+                   capture_output=True, text=True, timeout=300,
+                   preexec_fn=lambda: resource.setrlimit(resource.RLIMIT_AS, (2500 << 20, 2500 << 20)))
+check(p.returncode == 1 and "ran out of memory" in p.stderr and summary(limited)["cuts"] == 0,
+      f"--force under the limit: exit {p.returncode} in {time.time() - t0:.1f} s, "
+      f"{summary(limited)['cuts']} cuts: {p.stderr.strip()[:100]!r}")
 
 # --force runs what the guard refuses (stopped once it is meshing).
 out = out_dir("guard_force")
