@@ -169,8 +169,11 @@ void claim(const fs::path& dir, const std::vector<fs::path>& inputs)
 {
   std::error_code ec;
   fs::create_directories(dir, ec);
+  if (fs::exists(dir) && !fs::is_directory(dir))
+    throw FolderError("--out '" + dir.string() + "' is a file, not a folder: name another");
   if (ec || !fs::is_directory(dir))
-    throw FolderError("--out '" + dir.string() + "': cannot create or write this folder");
+    throw FolderError("--out '" + dir.string() + "': cannot create or write this folder (" +
+                      (ec ? ec.message() : std::string("not a folder")) + ")");
   // Only a folder that a run of pushout has used (it leaves its lock file)
   // holds outputs to remove: a folder of the user's own keeps its files,
   // whatever their names.
