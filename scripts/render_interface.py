@@ -17,7 +17,6 @@ interface's where its corners lie on one circle about the axis.
 """
 import argparse
 import os
-import tomllib
 
 from paraview.simple import (AssignViewToLayout, ColorBy, CreateLayout, CreateRenderView,
                              ExtractBlock, GetColorTransferFunction, GetScalarBar, MergeBlocks,
@@ -82,6 +81,8 @@ def main():
     ap.add_argument("--title", default="")
     args = ap.parse_args()
     if args.center is None:
+        import tomllib  # Python 3.11 (Debian 12's pvbatch); --center needs none
+
         with open(os.path.join(args.run_dir, "scene.toml"), "rb") as f:
             args.center = tomllib.load(f)["geometry"]["tube_center"]
 

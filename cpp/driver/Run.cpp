@@ -143,7 +143,7 @@ std::string Simulation::set_up_fingerprint(const Scene& scene)
         s << k.path << "=" << to_toml(*v) << "\n";
   if (scene.model().pushout())
     s << "loading.thermal_tube_top=" << (scene.loading().tube_top_free ? "free" : "held") << "\n";
-  // A model cut by symmetry is only for runs without fields (mesh/symmetry.h).
+  // Fields take the whole slice under model.symmetry = "auto" (mesh/symmetry.h).
   s << "output.xdmf=" << scene.output().xdmf << "\n";
   for (const CrackSpec& c : scene.cracks())
     s << "crack.angle=" << (c.angle_deg ? std::to_string(*c.angle_deg) : "nearest_face") << "\n";

@@ -54,7 +54,7 @@ public:
 
   /// The scene keys the set-up depends on, as text: model, geometry, mesh,
   /// materials, solver keys, the thermal tube-top condition, the crack
-  /// planes' directions and output.xdmf (no model cut by symmetry with fields).
+  /// planes' directions and output.xdmf (which uncuts an "auto" symmetric model).
   static std::string set_up_fingerprint(const Scene& scene);
 
 private:

@@ -59,10 +59,10 @@ Side side_of(Symmetry s, double angle);
 Symmetry geometric_symmetry(const MeshInput& in);
 
 /// The planes the run is cut along: those of geometric_symmetry() of a
-/// push-out with model.symmetry = "symmetric", an even
-/// mesh.elements_per_quarter (without cracks) and no field output (fields
-/// cover the whole specimen); with "auto" only those that every crack plane
-/// lies on. `why` says why the model is not cut at all, or not about both
+/// push-out with model.symmetry = "symmetric" (its fields then the part's)
+/// and an even mesh.elements_per_quarter (without cracks); with "auto" only
+/// those that every crack plane lies on, and none with field output (fields
+/// cover the whole specimen). `why` says why the model is not cut at all, or not about both
 /// planes ("" if it is a quarter).
 Symmetry model_symmetry(const MeshInput& in, std::string& why);
 

@@ -211,6 +211,10 @@ void FieldWriter::write(double t)
               _cracks->write(u, t);
           }});
   // The step on disk: readable if the run is killed before it closes them.
-  mpi::throw_if_any(_model.comm(), !flush_hdf5_files(), cannot_write(_fields_file));
+  std::vector<std::filesystem::path> h5 = {_dir / (_prefix + "fields.h5"),
+                                           _dir / (_prefix + "interface.h5")};
+  if (_cracks)
+    h5.push_back(_dir / (_prefix + "cracks.h5"));
+  mpi::throw_if_any(_model.comm(), !flush_hdf5_files(h5), cannot_write(_fields_file));
 }
 } // namespace pushout::output

@@ -169,9 +169,10 @@ void claim(const fs::path& dir, const std::vector<fs::path>& inputs)
 {
   std::error_code ec;
   fs::create_directories(dir, ec);
-  if (fs::exists(dir) && !fs::is_directory(dir))
+  std::error_code status;
+  if (fs::exists(dir, status) && !fs::is_directory(dir, status))
     throw FolderError("--out '" + dir.string() + "' is a file, not a folder: name another");
-  if (ec || !fs::is_directory(dir))
+  if (ec || !fs::is_directory(dir, status))
     throw FolderError("--out '" + dir.string() + "': cannot create or write this folder (" +
                       (ec ? ec.message() : std::string("not a folder")) + ")");
   // Only a folder that a run of pushout has used (it leaves its lock file)

@@ -42,24 +42,37 @@ void xdmf_checked(std::unique_ptr<dolfinx::io::XDMFFile>& file, const std::files
   }
 }
 
-/// Flushes every HDF5 file the process has open (the XDMF files' data), so
-/// that the steps written so far can be read whatever ends the run: one
-/// killed under mpirun gets no time to close its files, and HDF5 files
-/// never flushed could not be opened at all. False if one failed.
-/// Collective: every process has the same files open, opened in the same
-/// order (their ids, sorted, the same).
-inline bool flush_hdf5_files()
+/// Flushes the HDF5 files `h5` (an XDMF file's data, by path), so that the
+/// steps written so far can be read whatever ends the run: one killed under
+/// mpirun gets no time to close its files, and HDF5 files never flushed
+/// could not be opened at all. Only these: a file given up after an error
+/// (xdmf_checked) stays open in the process, and must not be flushed again.
+/// False if one failed. Collective: each process flushes the same files in
+/// `h5`'s order.
+inline bool flush_hdf5_files(const std::vector<std::filesystem::path>& h5)
 {
   const ssize_t n = H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_FILE);
-  if (n <= 0)
-    return n == 0;
-  std::vector<hid_t> ids(static_cast<std::size_t>(n));
-  if (H5Fget_obj_ids(H5F_OBJ_ALL, H5F_OBJ_FILE, static_cast<std::size_t>(n), ids.data()) != n)
-    return false;
-  std::sort(ids.begin(), ids.end());
+  std::vector<hid_t> ids(static_cast<std::size_t>(std::max<ssize_t>(n, 0)));
+  if (n > 0 &&
+      H5Fget_obj_ids(H5F_OBJ_ALL, H5F_OBJ_FILE, static_cast<std::size_t>(n), ids.data()) != n)
+    ids.clear();
   bool ok = true;
-  for (const hid_t id : ids)
-    ok = H5Fflush(id, H5F_SCOPE_LOCAL) >= 0 && ok;
+  for (const std::filesystem::path& file : h5)
+  {
+    bool found = false;
+    for (const hid_t id : ids)
+    {
+      char name[4096] = {};
+      if (H5Fget_name(id, name, sizeof name) > 0 &&
+          std::filesystem::path(name).lexically_normal() == file.lexically_normal())
+      {
+        ok = H5Fflush(id, H5F_SCOPE_LOCAL) >= 0 && ok;
+        found = true;
+        break;
+      }
+    }
+    ok = ok && found;
+  }
   return ok;
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <sys/resource.h>
 
@@ -142,22 +143,30 @@ ResourceEstimate estimate_resources(const mesh::MeshInput& in, const SolverPart&
       std::max(e.meshing_mb + base_mb * (e.processes_here - 1), e.solve_mb * e.processes_here);
   // Each machine judges by its own memory; the tightest decides.
   e.available_mb = available_memory_mb();
-  // A per-process limit of the address space (ulimit -v): each process of
-  // the machine may take that much.
-  if (const double left = address_space_left_mb(); left >= 0)
-    e.available_mb = e.available_mb < 0 ? left * e.processes_here
-                                        : std::min(e.available_mb, left * e.processes_here);
   MPI_Allreduce(MPI_IN_PLACE, &e.available_mb, 1, MPI_DOUBLE, MPI_MIN, comm);
+  // A limit of each process's address space (ulimit -v; a batch system's
+  // per-process memory): the tightest process's.
+  const double left = address_space_left_mb();
+  double least = left < 0 ? std::numeric_limits<double>::infinity() : left;
+  MPI_Allreduce(MPI_IN_PLACE, &least, 1, MPI_DOUBLE, MPI_MIN, comm);
+  e.address_space_mb = std::isfinite(least) ? least : -1;
   return e;
 }
 
 void check_fits(const ResourceEstimate& e, const mesh::MeshInput& in, bool force)
 {
-  if (force || e.available_mb < 0 || e.machine_mb <= e.available_mb)
+  const bool machine = e.available_mb >= 0 && e.machine_mb > e.available_mb;
+  const bool process = e.address_space_mb >= 0 && e.peak_mb() > e.address_space_mb;
+  if (force || !(machine || process))
     return;
   std::ostringstream m;
-  m << "this run needs " << e.memory() << ", more than the " << gigabytes(e.available_mb)
-    << " available here (" << e.describe() << ")";
+  if (machine)
+    m << "this run needs " << e.memory() << ", more than the " << gigabytes(e.available_mb)
+      << " available here (" << e.describe() << ")";
+  else
+    m << "a process of this run needs about " << gigabytes(e.peak_mb()) << ", more than the "
+      << gigabytes(e.address_space_mb) << " its address space limit (ulimit -v) leaves ("
+      << e.describe() << ")";
   if (in.pushout)
     m << "; lower mesh.elements_per_quarter (" << in.mesh.elements_per_quarter
       << ") or mesh.elements_through_thickness (" << in.mesh.elements_through_thickness << ")"

@@ -37,6 +37,9 @@ struct ResourceEstimate
   double solve_mb = 0;     ///< one process's peak while solving [MB]
   double machine_mb = 0;   ///< all processes on this machine, at their peak [MB]
   double available_mb = 0; ///< memory available on this machine [MB]
+  /// The least address space a process may still map (ulimit -v) [MB]; -1:
+  /// no limit. Each process's peak must fit in it.
+  double address_space_mb = -1;
 
   /// The larger of the meshing and solving peaks of one process [MB]
   /// (summary.json: estimated_memory_mb).
@@ -68,7 +71,7 @@ void check_fits(const ResourceEstimate& estimate, const mesh::MeshInput& in, boo
 double available_memory_mb();
 
 /// What a limit of this process's address space (RLIMIT_AS, ulimit -v)
-/// leaves beyond what it maps already [MB]; -1: no limit. The estimate
-/// takes the smaller of the two (per process on the machine).
+/// leaves beyond what it maps already [MB]; -1: no limit. A process's
+/// estimated peak must fit in it (ResourceEstimate::address_space_mb).
 double address_space_left_mb();
 } // namespace pushout::record

@@ -129,6 +129,29 @@ std::string factorization_failure(KSP ksp)
   int worst = int(reason);
   MPI_Allreduce(MPI_IN_PLACE, &worst, 1, MPI_INT, MPI_MAX,
                 PetscObjectComm(reinterpret_cast<PetscObject>(ksp)));
+  // PETSc's MUMPS says "out of memory" for its workspace errors too
+  // (INFOG(1) -8, -9, -11 ... -15, which delayed pivots cause); only an
+  // allocation that failed (-13) is the machine's memory.
+  if (PCFailedReason(worst) == PC_FACTOR_OUTMEMORY)
+  {
+    PetscBool factor = PETSC_FALSE;
+    check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCLU, &factor),
+          "PetscObjectTypeCompare");
+    MatSolverType type = nullptr;
+    Mat F = nullptr;
+    if (factor)
+    {
+      check(PCFactorGetMatSolverType(pc, &type), "PCFactorGetMatSolverType");
+      check(PCFactorGetMatrix(pc, &F), "PCFactorGetMatrix");
+    }
+    if (type && std::string(type) == MATSOLVERMUMPS && F)
+    {
+      PetscInt infog1 = 0; // the same on every process
+      check(MatMumpsGetInfog(F, 1, &infog1), "MatMumpsGetInfog");
+      if (infog1 != -13)
+        return "MUMPS's workspace (INFOG(1) = " + std::to_string(infog1) + ")";
+    }
+  }
   return factor_failure_text(PCFailedReason(worst));
 }
 

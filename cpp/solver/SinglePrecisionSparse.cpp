@@ -213,7 +213,10 @@ PCFailedReason failed_reason(MUMPS_INT info)
     return PC_FACTOR_NUMERIC_ZEROPIVOT;
   if (info == error_structurally_singular)
     return PC_FACTOR_STRUCT_ZEROPIVOT;
-  if (workspace_error(info) || info == -13) // -13: an allocation failed
+  // -13: an allocation failed (the machine's memory; the step loop ends the
+  // run). A workspace still short after its retries is the pivoting's, which
+  // a smaller step may not need: another failure, cut as such.
+  if (info == -13)
     return PC_FACTOR_OUTMEMORY;
   return PC_FACTOR_OTHER;
 }

@@ -146,6 +146,7 @@ bool StepLoop::initial_step()
 
 void StepLoop::start_push(int iterations)
 {
+  _recorder.end_corrosion(); // the corrosion stage's fields whole, their memory back
   _corrosion.describe_cracks(_equilibrium, _x, _summary);
   // The damage the thermal step and the corrosion stage left.
   const interface::Interface& itf = _equilibrium.model().interface();

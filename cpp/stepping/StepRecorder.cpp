@@ -42,6 +42,14 @@ void StepRecorder::close()
     }
 }
 
+void StepRecorder::end_corrosion()
+{
+  if (!_corrosion_fields)
+    return;
+  mpi::collectively(_equilibrium.model().comm(), [&] { _corrosion_fields->close(); });
+  _corrosion_fields.reset();
+}
+
 void StepRecorder::record_corrosion(Vec x)
 {
   if (!_corrosion_fields)

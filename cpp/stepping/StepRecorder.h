@@ -39,6 +39,10 @@ public:
   /// model's displacement is x's already (specimen::Corrosion::record).
   void record_corrosion(Vec x);
 
+  /// Closes the corrosion stage's field files (at the push's start); an
+  /// error as close()'s. Collective.
+  void end_corrosion();
+
   /// Records the converged state x of step `step` of `steps` (0: path
   /// following, which does not know its number of steps).
   void record(Vec x, int iterations, int cuts, int step, int steps);

@@ -102,12 +102,15 @@ def interrupt_after_model_line(name, sets, in_newton=False):
 
 
 # Stopped in step 0 (the thermal step; Newton on the whole model): said as
-# such, no load step claimed, curve.csv has its header only.
+# such, no load step claimed, curve.csv has its header only. ("in step 0"
+# where the run stops at a Newton iteration's end, "during step 0" where an
+# iteration outlasts the grace period and the run is ended: a factorisation
+# on a loaded machine.)
 code, err, out = interrupt_after_model_line("interrupt_step0", ["solver.condensation=off"],
                                             in_newton=True)
 s = summary(out)
 check(code == 130 and s["interrupted"] and s["stopped_in"] == "step 0" and s["steps"] == 0 and
-      "in step 0" in s["message"] and "load steps" not in s["message"] and curve(out) == [],
+      s["message"].endswith("step 0") and "load steps" not in s["message"] and curve(out) == [],
       f"SIGINT in step 0: exit {code}, stopped_in {s['stopped_in']!r}, {s['message']!r}; {err.strip()!r}")
 
 # Stopped in the set-up (the condensation): no steps named, and summary.json
@@ -174,7 +177,9 @@ p.communicate(timeout=60)
 for name in ("fields.h5", "interface.h5"):
     with h5py.File(os.path.join(out, name), "r") as h5:
         steps = len(next(iter(h5["Function"].values())))
-    check(steps >= 5, f"SIGKILL: {name} opens, {steps} steps in it")
+    # curve.csv had rows 0-4: a row is written before its fields, so the
+    # last (row 4's) may have been cut short by the kill.
+    check(steps >= 4, f"SIGKILL: {name} opens, {steps} steps in it")
 
 # A fit stopped during its fitted run: exit 143, no fit.json, no best/ (a
 # part of the curve in best/ and a fit.json saying converged would pass for
