@@ -149,8 +149,7 @@ def plot_crack_pattern(fig, data, title, planes=None):
 
 
 def plot(fig, data, kind, title):
-    if kind == "crack_pattern":
-        return plot_crack_pattern(fig, data, title)
+    """A curve of `kind` (the crack pattern: plot_crack_pattern)."""
     ax = fig.add_subplot()
     if kind == "pushout":
         ax.plot([d * 1e3 for d in data.get("delta_mm", [])], data.get("tau_MPa", []), "o-", ms=3)

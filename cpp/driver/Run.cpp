@@ -176,11 +176,11 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, record::R
   const std::int64_t linear_before = _solver->linear_iterations();
 
   // Outputs and load steps.
-  stepping::StepRecorder recorder(scene.output(), opt.out, *scenario, *_equilibrium, report,
-                                  scene.corrosion().penetration > 0);
   specimen::Corrosion corrosion(scene.corrosion(), scene.crack_directions(),
                                 scene.cracking().embedded, opt.out, report, opt.comm, _data.copies,
                                 scene.geometry());
+  stepping::StepRecorder recorder(scene.output(), opt.out, *scenario, *_equilibrium, report,
+                                  corrosion.active());
   const Loading& loading = scene.loading();
   stepping::StepLoop loop(*scenario, corrosion, *_equilibrium, *_solver, recorder, report,
                           int(loading.max_cuts),
@@ -257,7 +257,6 @@ void check_before_run(const Scene& scene, const RunOptions& opt)
 
 output::Summary run(const Scene& scene, const RunOptions& opt)
 {
-  specimen::check_scene(scene);
   record::RunReport report(scene, opt.out, opt.quiet, opt.comm, opt.plot);
   note_scene(scene, report);
   return reporting_errors(report,

@@ -74,7 +74,8 @@ private:
 /// that is no size (std::runtime_error, exit 1). Collective.
 void check_before_run(const Scene& scene, const RunOptions& options);
 
-/// Runs the scene; writes curve.csv, summary.json, scene.toml (and
+/// Runs the scene, which check_before_run passed; writes curve.csv,
+/// summary.json, scene.toml (and
 /// curve.png, XDMF) into options.out. Returns the summary; a step that
 /// cannot converge ends the run with summary.converged = false.
 output::Summary run(const Scene& scene, const RunOptions& options);

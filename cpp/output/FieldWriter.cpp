@@ -12,7 +12,9 @@ namespace pushout::output
 {
 FieldWriter::FieldWriter(const model::Model& model, const std::filesystem::path& dir,
                          const std::string& prefix)
-    : _model(model), _dir(dir), _prefix(prefix), _fields_file(dir / (prefix + "fields.xdmf")),
+    : _model(model), _dir(dir),
+      _fields_file(dir / (prefix + "fields.xdmf")), _h5{dir / (prefix + "fields.h5"),
+                                                        dir / (prefix + "interface.h5")},
       _stress(model)
 {
   namespace fem = dolfinx::fem;
@@ -89,6 +91,7 @@ FieldWriter::FieldWriter(const model::Model& model, const std::filesystem::path&
       dir / (prefix + "interface.xdmf"));
   if (cracks.empty())
     return;
+  _h5.push_back(dir / (prefix + "cracks.h5"));
   // n is the crack's normal (opening), s1 axial, s2 radial.
   _cracks = std::make_unique<JointWriter>(
       comm, cracks, dof_x,
@@ -149,10 +152,10 @@ void FieldWriter::close()
 std::uintmax_t FieldWriter::data_bytes() const
 {
   std::uintmax_t total = 0;
-  for (const char* f : {"fields.h5", "interface.h5", "cracks.h5"})
+  for (const std::filesystem::path& f : _h5)
   {
     std::error_code ec;
-    const std::uintmax_t size = std::filesystem::file_size(_dir / (_prefix + f), ec);
+    const std::uintmax_t size = std::filesystem::file_size(f, ec);
     total += ec ? 0 : size;
   }
   return total;
@@ -211,10 +214,6 @@ void FieldWriter::write(double t)
               _cracks->write(u, t);
           }});
   // The step on disk: readable if the run is killed before it closes them.
-  std::vector<std::filesystem::path> h5 = {_dir / (_prefix + "fields.h5"),
-                                           _dir / (_prefix + "interface.h5")};
-  if (_cracks)
-    h5.push_back(_dir / (_prefix + "cracks.h5"));
-  mpi::throw_if_any(_model.comm(), !flush_hdf5_files(h5), cannot_write(_fields_file));
+  mpi::throw_if_any(_model.comm(), !flush_hdf5_files(_h5), cannot_write(_fields_file));
 }
 } // namespace pushout::output

@@ -17,6 +17,7 @@
 #include <dolfinx/io/XDMFFile.h>
 #include <filesystem>
 #include <memory>
+#include <vector>
 
 namespace pushout::output
 {
@@ -48,9 +49,9 @@ private:
 
   const model::Model& _model;
   std::filesystem::path _dir;
-  std::string _prefix; ///< of the file names
   std::filesystem::path _fields_file;
-  std::uintmax_t _bytes_before = 0; ///< data_bytes() before the last step [B]
+  std::vector<std::filesystem::path> _h5; ///< the HDF5 files of the XDMF files
+  std::uintmax_t _bytes_before = 0;       ///< data_bytes() before the last step [B]
   std::unique_ptr<dolfinx::io::XDMFFile> _fields;
   bool _open = true;
   std::unique_ptr<JointWriter> _interface, _cracks;

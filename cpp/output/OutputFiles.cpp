@@ -20,38 +20,21 @@ namespace fs = std::filesystem;
 /// it that it makes: a sweep's cases, a fit's runs).
 bool is_output_file(const std::string& name)
 {
-  static const char* const names[] = {"curve.csv",
-                                      "curve.png",
-                                      "corrosion.csv",
-                                      "corrosion.png",
-                                      "summary.json",
-                                      "scene.toml",
-                                      "fields.xdmf",
-                                      "fields.h5",
-                                      "interface.xdmf",
-                                      "interface.h5",
-                                      "cracks.xdmf",
-                                      "cracks.h5",
-                                      "sweep.csv",
-                                      "sweep.png",
-                                      "sweep_seeds.csv",
-                                      "fit.json",
-                                      "fit.csv",
-                                      "fit.png",
-                                      ".pushout-write-test",
-                                      "summary.json.tmp",
-                                      "crack_pattern.csv",
-                                      "crack_pattern.png",
-                                      "crack_planes.csv",
-                                      "corrosion_fields.xdmf",
-                                      "corrosion_fields.h5",
-                                      "corrosion_interface.xdmf",
-                                      "corrosion_interface.h5",
-                                      "corrosion_cracks.xdmf",
-                                      "corrosion_cracks.h5"};
+  static const char* const names[] = {
+      "curve.csv",         "curve.png",         "corrosion.csv",       "corrosion.png",
+      "summary.json",      "scene.toml",        "fields.xdmf",         "fields.h5",
+      "interface.xdmf",    "interface.h5",      "cracks.xdmf",         "cracks.h5",
+      "sweep.csv",         "sweep.png",         "sweep_seeds.csv",     "fit.json",
+      "fit.csv",           "fit.png",           ".pushout-write-test", "summary.json.tmp",
+      "crack_pattern.csv", "crack_pattern.png", "crack_planes.csv"};
   for (const char* n : names)
     if (name == n)
       return true;
+  // The corrosion stage's fields (output::FieldWriter's "corrosion_" files).
+  for (const char* n : {"fields", "interface", "cracks"})
+    for (const char* ext : {".xdmf", ".h5"})
+      if (name == std::string("corrosion_") + n + ext)
+        return true;
   return name.starts_with(".") && name.ends_with(".pushout-tmp"); // write_file's
 }
 

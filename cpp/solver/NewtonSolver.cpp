@@ -3,6 +3,7 @@
 #include "../common/mpi_errors.h"
 #include "../common/petsc_check.h"
 #include "NewtonHistory.h"
+#include "SinglePrecisionSparse.h"
 #include "Vector.h"
 #include <algorithm>
 #include <cmath>
@@ -98,7 +99,7 @@ std::string factor_failure_text(PCFailedReason reason)
   case PC_FACTOR_NUMERIC_ZEROPIVOT:
     return "zero pivot";
   case PC_FACTOR_OUTMEMORY:
-    return out_of_memory_text;
+    return "out of memory";
   case PC_NOERROR:
     return "";
   default:
@@ -130,8 +131,8 @@ std::string factorization_failure(KSP ksp)
   MPI_Allreduce(MPI_IN_PLACE, &worst, 1, MPI_INT, MPI_MAX,
                 PetscObjectComm(reinterpret_cast<PetscObject>(ksp)));
   // PETSc's MUMPS says "out of memory" for its workspace errors too
-  // (INFOG(1) -8, -9, -11 ... -15, which delayed pivots cause); only an
-  // allocation that failed (-13) is the machine's memory.
+  // (INFOG(1) -8, -9, -11 ... -15, which delayed pivots cause): cut as any
+  // failure. Only an allocation that failed is the machine's memory.
   if (PCFailedReason(worst) == PC_FACTOR_OUTMEMORY)
   {
     PetscBool factor = PETSC_FALSE;
@@ -148,9 +149,14 @@ std::string factorization_failure(KSP ksp)
     {
       PetscInt infog1 = 0; // the same on every process
       check(MatMumpsGetInfog(F, 1, &infog1), "MatMumpsGetInfog");
-      if (infog1 != -13)
+      if (infog1 != mumps_allocation_failed)
         return "MUMPS's workspace (INFOG(1) = " + std::to_string(infog1) + ")";
     }
+    throw std::runtime_error(
+        "the LU factorisation ran out of memory: the model needs more memory than this "
+        "machine or its limits (ulimit -v, a cgroup) give: fewer elements "
+        "(mesh.elements_per_quarter, mesh.elements_through_thickness), or more processes on "
+        "more machines");
   }
   return factor_failure_text(PCFailedReason(worst));
 }

@@ -246,14 +246,11 @@ private:
 };
 
 /// Why the last set-up of the preconditioner of `ksp` failed on any of its
-/// processes, in words ("zero pivot", out_of_memory_text, ...; "" if it did
-/// not). Collective.
+/// processes, in words ("zero pivot", ...; "" if it did not). Collective.
+/// An allocation that failed (MUMPS out of memory) throws instead, on every
+/// process alike: a smaller step needs as much memory, so the run ends (exit
+/// 1) rather than being cut.
 std::string factorization_failure(KSP ksp);
-
-/// factorization_failure's words for a factorisation that ran out of
-/// memory, which the step loop does not cut (a smaller step needs as much):
-/// stepping::StepLoop::cut_back ends the run.
-inline constexpr const char* out_of_memory_text = "out of memory";
 
 /// Whether every entry of x is finite (collective).
 bool finite(Vec x);

@@ -216,7 +216,7 @@ PCFailedReason failed_reason(MUMPS_INT info)
   // -13: an allocation failed (the machine's memory; the step loop ends the
   // run). A workspace still short after its retries is the pivoting's, which
   // a smaller step may not need: another failure, cut as such.
-  if (info == -13)
+  if (info == mumps_allocation_failed)
     return PC_FACTOR_OUTMEMORY;
   return PC_FACTOR_OTHER;
 }

@@ -36,4 +36,8 @@ namespace pushout::solver
 /// pivot, out of memory; the Newton solve fails with DIVERGED_LINEAR_SOLVE
 /// and the step is cut).
 void use_single_precision_sparse_lu(PC pc);
+
+/// MUMPS's INFOG(1) for an allocation that failed: the machine's memory
+/// (PC_FACTOR_OUTMEMORY; factorization_failure ends the run on it).
+inline constexpr int mumps_allocation_failed = -13;
 } // namespace pushout::solver

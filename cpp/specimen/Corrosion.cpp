@@ -75,8 +75,8 @@ void Corrosion::apply(double s, interface::Interface& itf) const
   itf.set_oxide(in.gap, in.compliance);
 }
 
-void Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iterations, int cuts,
-                       int step, bool numbered)
+int Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iterations, int cuts,
+                      int step, bool numbered)
 {
   eq.update_displacement(state); // the crack mouths read the model's displacement
   const model::Model& model = eq.model();
@@ -112,9 +112,9 @@ void Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iterati
                       if (_csv)
                         _csv->row(_row, values);
                     });
-  ++_row;
+  const int row = _row++;
   if (!_report.talk())
-    return;
+    return row;
   std::ostringstream line;
   line.precision(4);
   line << "corrosion " << step;
@@ -129,6 +129,7 @@ void Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iterati
   line << "  (newton " << iterations << (cuts ? ", cuts " + std::to_string(cuts) : "") << ", "
        << std::fixed << std::setprecision(2) << _report.seconds() << " s)";
   std::cout << line.str() << std::endl;
+  return row;
 }
 
 void Corrosion::describe_cracks(solver::Equilibrium& eq, Vec state, output::Summary& summary) const

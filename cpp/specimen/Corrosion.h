@@ -60,9 +60,11 @@ public:
   /// right on the joints) at s of corrosion step `step` (0: before
   /// corrosion): a corrosion.csv row and the progress line, which shows
   /// `step` of the nominal steps if `numbered` (not under dissipation
-  /// control, whose steps are not those). Collective.
-  void record(double s, solver::Equilibrium& eq, Vec state, int iterations, int cuts, int step,
-              bool numbered = true);
+  /// control, whose steps are not those). Returns the row's number (its
+  /// step column). The model's displacement is `state`'s after it.
+  /// Collective.
+  int record(double s, solver::Equilibrium& eq, Vec state, int iterations, int cuts, int step,
+             bool numbered = true);
 
   /// The force that works on the corrosion depth x [N]: the oxide's
   /// expansion does the work  int p dg0 dA = (beta - 1) N dx  on the

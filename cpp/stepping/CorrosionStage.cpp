@@ -42,8 +42,7 @@ bool StepLoop::corrode()
 
 void StepLoop::record_corrosion(int iterations, int cuts, int k, double s, bool numbered)
 {
-  _corrosion.record(s, _equilibrium, _x, iterations, cuts, k, numbered);
-  _recorder.record_corrosion(_x);
+  _recorder.record_corrosion(_corrosion.record(s, _equilibrium, _x, iterations, cuts, k, numbered));
   ++_summary.corrosion_steps;
   _summary.penetration_mm = _corrosion.penetration_at(s);
   if (s >= _corrosion.steps() - step_tolerance)

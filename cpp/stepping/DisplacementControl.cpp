@@ -218,7 +218,6 @@ StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, double in
   std::int64_t failed_points = 0;
   const double error = bulk->implex_error(failed_points);
   ImplexCheck c{error / bulk->implex_tolerance(), false, error, {}};
-  _implex_cut_short = false;
   std::ostringstream why;
   if (failed_points > 0)
   {
@@ -243,8 +242,6 @@ StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, double in
     const bool smallest = stepper.smallest() && (stepper.increment() <= jump_smallest_step ||
                                                  (_implex_jumped && !falling));
     c.jump = c.ratio > 1 && (snaps || smallest);
-    c.missed_at_smallest = c.ratio > 1 && !c.jump && stepper.smallest();
-    _implex_cut_short = c.missed_at_smallest;
     if (c.ratio <= 1 || c.jump)
     {
       if (c.jump) // said when the step is committed (count_implex)
@@ -263,6 +260,11 @@ StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, double in
     _implex_missed = error;
     _implex_missed_increment = increment;
     why << "IMPL-EX error " << error << " > cracking.implex_tolerance " << bulk->implex_tolerance();
+    if (stepper.smallest()) // no smaller step to try: the run stops on this
+      why << "; loading.max_cuts = " << _max_cuts << " stops the cuts at 2^-" << _max_cuts
+          << " of a step before a smaller one showed that the error stops falling with the "
+             "step, as where the cracks snap back: raise max_cuts (default 10) or "
+             "cracking.implex_tolerance";
   }
   rep.converged = false;
   rep.reason = why.str();

@@ -8,12 +8,10 @@
 #include "../common/Interrupt.h"
 #include "../common/mpi_errors.h"
 #include "../record/NonFinite.h"
-#include "../solver/NewtonSolver.h"
 #include "StepLoopShared.h"
 #include <array>
 #include <iostream>
 #include <optional>
-#include <stdexcept>
 
 namespace pushout::stepping
 {
@@ -98,8 +96,7 @@ bool StepLoop::initial_step()
   {
     if (_corrosion.active())
     {
-      _corrosion.record(0.0, _equilibrium, _x, iterations, 0, 0);
-      _recorder.record_corrosion(_x);
+      _recorder.record_corrosion(_corrosion.record(0.0, _equilibrium, _x, iterations, 0, 0));
     }
     else
       start_push(iterations);
@@ -202,28 +199,17 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
 {
   if (stop_requested())
     return false;
-  // A factorisation out of memory fails at every step size alike: the run
-  // ends at once, as an error of the machine, not of convergence (exit 1).
-  if (reason.find(solver::out_of_memory_text) != std::string::npos)
-    throw std::runtime_error(
-        what + ": the LU factorisation ran out of memory (" + reason +
-        "); the model needs more memory than this machine or its limits (ulimit -v, a cgroup) "
-        "give: fewer elements (mesh.elements_per_quarter, mesh.elements_through_thickness), or "
-        "more processes on more machines");
   if (!stepper.failed(factor))
   {
     _summary.message = what + " did not converge with " + std::to_string(cuts) + " cuts, down to " +
                        size(stepper.increment()) + " (" + reason + "); stopped";
-    if (_implex_cut_short) // IMPL-EX's error missed, and no smaller step is allowed
-      _summary.message += " (loading.max_cuts = " + std::to_string(_max_cuts) +
-                          " stops the cuts at 2^-" + std::to_string(_max_cuts) +
-                          " of a step before a smaller one showed that IMPL-EX's error stops "
-                          "falling with the step, as where the cracks snap back: raise "
-                          "max_cuts (default 10) or cracking.implex_tolerance)";
-    else if (_may_snap_back && _scenario.monotonic())
+    // A snap-back hint for a Newton failure; an IMPL-EX miss's reason says
+    // what to change itself (check_implex).
+    const bool newton_failed = reason.rfind("IMPL-EX", 0) != 0;
+    if (newton_failed && _may_snap_back && _scenario.monotonic())
       _summary.message += " (where the structure snaps back, loading.control = \"auto\" follows "
                           "it: docs/numerics.md, \"Dissipation control\")";
-    else if (_may_snap_back) // a push_path, which only displacement control runs
+    else if (newton_failed && _may_snap_back) // a push_path: only displacement control runs it
       _summary.message += " (where the structure snaps back on a push path, a damage viscosity "
                           "lets displacement control pass it: a softening layer's eta, or "
                           "cracking.viscosity with implicit cracks; docs/numerics.md, "

@@ -151,8 +151,6 @@ private:
     bool jump = false; ///< taken above the tolerance: no smaller step meets it
     double error = 0;  ///< the step's error (BulkCracking::implex_error)
     std::string said;  ///< a jump's progress line, said when it is committed
-    /// Missed at the smallest step loading.max_cuts allows, and no jump.
-    bool missed_at_smallest = false;
     /// Whether the next step may grow: IMPL-EX's error is first order in
     /// the step, so one above half the tolerance would miss it at twice the
     /// increment (a jump: smaller steps did not help there).
@@ -253,8 +251,6 @@ private:
   double _implex_missed = 0;
   double _implex_missed_increment = 0; ///< that try's increment of its stage's parameter
   bool _implex_jumped = false;         ///< the last committed step was an IMPL-EX jump
-  /// The last IMPL-EX check missed at the smallest step (cut_back's hint).
-  bool _implex_cut_short = false;
   /// The stage the loop is in, as summary.json's stopped_in says it when a
   /// signal stops the run: "step 0", "corrosion steps" or "load steps".
   const char* _stage = "step 0";

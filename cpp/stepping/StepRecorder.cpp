@@ -50,16 +50,13 @@ void StepRecorder::end_corrosion()
   _corrosion_fields.reset();
 }
 
-void StepRecorder::record_corrosion(Vec x)
+void StepRecorder::record_corrosion(int row)
 {
   if (!_corrosion_fields)
     return;
   const interrupt::Phase writing("writing step outputs", -1);
   const double t_out = _report.seconds();
-  _equilibrium.update_displacement(x);
-  mpi::collectively(_equilibrium.model().comm(),
-                    [&] { _corrosion_fields->write(double(_corrosion_row)); });
-  ++_corrosion_row;
+  mpi::collectively(_equilibrium.model().comm(), [&] { _corrosion_fields->write(double(row)); });
   _report.summary().output_s += _report.seconds() - t_out;
 }
 

@@ -35,9 +35,9 @@ public:
   bool bulk_needed() const { return _scenario.uses_bulk() || _fields != nullptr; }
 
   /// With output.xdmf: the fields of a converged corrosion step (or step 0
-  /// before corrosion) in x, at the time of its corrosion.csv row. The
-  /// model's displacement is x's already (specimen::Corrosion::record).
-  void record_corrosion(Vec x);
+  /// before corrosion) at the time of its corrosion.csv `row`, from the
+  /// model's displacement (which specimen::Corrosion::record set).
+  void record_corrosion(int row);
 
   /// Closes the corrosion stage's field files (at the push's start); an
   /// error as close()'s. Collective.
@@ -58,7 +58,6 @@ private:
   std::optional<output::CurveWriter> _curve; ///< rank 0 only
   std::unique_ptr<output::FieldWriter> _fields;
   std::unique_ptr<output::FieldWriter> _corrosion_fields; ///< the corrosion stage's
-  int _corrosion_row = 0;
   solver::Vector _reactions;
   int _row = 0;
 };
