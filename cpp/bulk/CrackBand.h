@@ -140,6 +140,10 @@ struct alignas(64) SecantOperator
   Voigt closing{};
   /// d sigma / d epsilon with the crack open [0] and closed [1] [MPa]
   std::array<Voigt66, 2> tangent{};
+  /// What the maps were made of: the crack's frame and band width (n, s1,
+  /// h), the history and the strength. The same again leaves them as they
+  /// are (a crack that unloads keeps its history from step to step).
+  std::array<double, 9> made_of{};
 };
 
 class CrackBand
@@ -214,6 +218,15 @@ public:
     const Voigt sigma0 = multiply(_C, strain);
     if (!before.cracked())
     {
+      // Below the strength whatever the principal axes: the largest
+      // principal stress is at most the largest Gershgorin row bound
+      // (most points, so their eigenproblem is skipped; the same decision).
+      if (gershgorin_bound(sigma0) < strength * _env.f_t)
+      {
+        r.stress = sigma0;
+        r.tangent = _C;
+        return r;
+      }
       Vec3 principal;
       Mat3 axes;
       symmetric_eigen(stress_tensor(sigma0), principal, axes);
@@ -297,18 +310,27 @@ public:
   /// [mm] as linear maps of the strain, into `op`: secant_apply() of it at a
   /// strain is secant_response() there. Written in place (an operator is
   /// 640 bytes, made at every point at every step); where `old` is
-  /// uncracked only op.cracked is, the rest is never read.
+  /// uncracked only op.cracked is, the rest is never read. Where `op` holds
+  /// the maps of the same crack at the same history and strength already
+  /// (op.made_of), they stay: the same numbers without making them again.
   void secant_operator(std::span<const double> old, double kappa, double strength,
                        SecantOperator& op) const
   {
     const CrackState<const double> state(old);
+    const bool was_cracked = op.cracked;
     op.cracked = state.cracked();
     if (!op.cracked)
       return;
+    kappa = std::max(kappa, laws::DamageHistory<const double>(state.law_state()).kappa());
+    const Vec3 n = state.normal(), s1 = state.tangent();
+    const std::array<double, 9> made_of = {
+        n[0], n[1], n[2], s1[0], s1[1], s1[2], state.band_width(), kappa, strength};
+    if (was_cracked && made_of == op.made_of)
+      return;
+    op.made_of = made_of;
     op.closing = {};
     const CrackPlane plane(*this, state, Voigt{});
     const laws::CamanhoDavila law = cohesive_law(plane.h, strength);
-    kappa = std::max(kappa, laws::DamageHistory<const double>(state.law_state()).kappa());
     const double g = law.secant(kappa);
     op.damage = law.damage(kappa);
     const std::array<double, 2> k_n = {g, law.k()};
@@ -380,6 +402,15 @@ public:
 
 private:
   static constexpr std::array<double, 2> zero_history = {0, 0};
+
+  /// An upper bound of the largest principal stress of `s` [MPa]: the
+  /// largest diagonal entry plus its row's off-diagonal magnitudes
+  /// (Gershgorin's circle theorem).
+  static double gershgorin_bound(const Voigt& s)
+  {
+    return std::max({s[0] + std::abs(s[5]) + std::abs(s[4]), s[1] + std::abs(s[5]) + std::abs(s[3]),
+                     s[2] + std::abs(s[4]) + std::abs(s[3])});
+  }
 
   /// A crack's plane at a point of stress sigma_0 = C : epsilon: its frame,
   /// C P, A / h, and the traction of sigma_0 on it.

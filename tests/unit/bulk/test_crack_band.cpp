@@ -462,3 +462,40 @@ TEST(CrackBand, SecantOperatorAppliedIsTheSecantResponse)
   EXPECT_LT(worst_stress, 1e-10);
   EXPECT_LT(worst_tangent, 1e-12);
 }
+
+// A point's operator is kept where it holds the maps of the same crack at
+// the same history and strength (SecantOperator::made_of), and made again
+// wherever one of them changed: over a sequence that returns to earlier
+// inputs, the kept operator is always the one made afresh, to the bit.
+TEST(CrackBand, SecantOperatorKeptOnlyForTheSameInputs)
+{
+  const CrackBand law(E, nu, exponential);
+  Path a{law, 2.0}, b{law, 1.5};
+  a.step({3e-4, 0, 0, 0, 0, 0});    // normal along x
+  b.step({0, 3e-4, 0, 2e-5, 0, 0}); // normal near y, another band width
+  ASSERT_TRUE(a.state[0] != 0 && b.state[0] != 0);
+  const State uncracked(CrackBand::state_size, 0.0);
+  const double ka = a.state[8], kb = b.state[8];
+  struct Input
+  {
+    const State* state;
+    double kappa, strength;
+  };
+  const std::vector<Input> sequence = {
+      {&a.state, ka, 1},       {&a.state, ka, 1},  {&a.state, 2 * ka, 1}, {&a.state, 2 * ka, 1.2},
+      {&b.state, 2 * ka, 1.2}, {&uncracked, 0, 1}, {&a.state, ka, 1},     {&b.state, kb, 1}};
+  SecantOperator kept;
+  for (const Input& in : sequence)
+  {
+    law.secant_operator(*in.state, in.kappa, in.strength, kept);
+    SecantOperator fresh;
+    law.secant_operator(*in.state, in.kappa, in.strength, fresh);
+    ASSERT_EQ(kept.cracked, fresh.cracked);
+    if (!fresh.cracked)
+      continue;
+    EXPECT_EQ(kept.regular, fresh.regular);
+    EXPECT_EQ(kept.damage, fresh.damage);
+    EXPECT_EQ(kept.closing, fresh.closing);
+    EXPECT_EQ(kept.tangent, fresh.tangent);
+  }
+}
