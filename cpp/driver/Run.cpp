@@ -51,8 +51,9 @@ void guard_size(const mesh::MeshInput& shape, const SolverPart& solver, const Ru
   s.symmetry = estimate.size.symmetry.name();
   report.publish();
   if (report.talk())
-    std::cout << "pushout: meshing " << estimate.size.cells << " cells (" << estimate.memory()
-              << " at the peak)" << std::endl;
+    std::cout << "pushout: meshing " << estimate.size.cells << " cells, " << estimate.size.dofs
+              << " dofs, " << estimate.size.joint_elements << " joint elements ("
+              << estimate.memory() << " at the peak)" << std::endl;
 }
 
 /// The model's size into the summary, and the progress line that says what
@@ -265,6 +266,14 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
                             auto simulation = std::make_unique<Simulation>(scene, opt, report);
                             simulation->load_steps(scene, opt, report);
                             const interrupt::Phase writing("writing outputs", -1); // never forced
+                            // The steps are done: a signal from here on
+                            // stops nothing (the outputs are whole and the
+                            // run ends as it would have; a second signal
+                            // still ends the process at once). Without
+                            // this, one after the writing was forced in the
+                            // phase that returns, exit 128 + signal beside
+                            // a summary that says converged.
+                            interrupt::acknowledge();
                             const output::Summary s = report.finish();
                             simulation.reset();
                             return s;

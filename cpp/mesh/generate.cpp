@@ -1,5 +1,6 @@
 #include "generate.h"
 #include "../scene/CrackPlanes.h"
+#include "../scene/SceneError.h"
 #include "cracks.h"
 #include "size.h"
 #include "symmetry.h"
@@ -271,8 +272,8 @@ double cache_limit_mb()
     char* end = nullptr;
     const double mb = std::strtod(v, &end);
     if (end == v || *end != '\0' || !(mb >= 0))
-      throw std::runtime_error(std::string("PUSHOUT_CACHE_MAX_MB = '") + v +
-                               "': a size in MB (>= 0) is needed");
+      throw SceneError(std::string("PUSHOUT_CACHE_MAX_MB = '") + v +
+                       "': a size in MB (>= 0) is needed");
     return mb;
   }
   return default_cache_limit_mb;

@@ -267,7 +267,8 @@ std::vector<KeyDef> make_keys()
        "mm",
        "push delta along a piecewise-linear path through these values, starting at 0, "
        "loading.steps_per_segment steps each (unload and reload, e.g. [0, 0.05, 0.03, 0.2]); "
-       "empty: the monotonic push to push_displacement in steps",
+       "empty: the monotonic push to push_displacement in steps. Under loading.control = "
+       "\"displacement\" only (each segment's steps are steps of delta)",
        -inf,
        inf,
        false,

@@ -5,8 +5,10 @@
 #pragma once
 
 #include "../common/petsc_check.h"
+#include "../scene/SceneError.h"
 #include <petscksp.h>
 #include <petscpc.h>
+#include <string>
 
 namespace pushout::solver
 {
@@ -39,6 +41,21 @@ void make_shell_preconditioner(PC pc, PetscErrorCode (*set_up)(PC),
 inline void make_gmres_flexible(KSP ksp)
 {
   using petsc::check;
+  // A side the user asked for that FGMRES has not (PETSc would fail in the
+  // first solve, "does not support preconditioner side LEFT"): refused
+  // before the steps, with what does have it (exit 2).
+  const char* prefix = nullptr;
+  check(KSPGetOptionsPrefix(ksp, &prefix), "KSPGetOptionsPrefix");
+  char side[32] = "";
+  PetscBool given = PETSC_FALSE;
+  check(PetscOptionsGetString(nullptr, prefix, "-ksp_pc_side", side, sizeof side, &given),
+        "PetscOptionsGetString");
+  if (given && std::string(side) != "right")
+    throw SceneError(std::string("-ksp_pc_side ") + side +
+                     ": GMRES on the single-precision LU (solver.precision = \"mixed\", the "
+                     "default) is flexible GMRES, which preconditions on the right only; "
+                     "solver.precision = \"double\" takes GMRES on the LU in double, "
+                     "which has the side you ask for");
   PetscInt restart;
   PetscErrorCode (*orthogonalize)(KSP, PetscInt);
   KSPGMRESCGSRefinementType refinement;

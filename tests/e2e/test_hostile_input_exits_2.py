@@ -102,6 +102,12 @@ for option in (["-ksp_type", "bogus"], ["-snes_max_it", "abc"], ["-snes_type", "
     refused(f"PETSc option {' '.join(option)}",
             ["run", GOOD_SCENE, "--out", out_dir("hostile_petsc"), "--quiet"] + option,
             ["PETSc option", option[1]], seconds=10)
+# A preconditioner side that the default solver's flexible GMRES has not:
+# refused with the key that has it (PETSc's own error, exit 1, came in the
+# first solve).
+refused("-ksp_pc_side left on the single-precision LU",
+        ["run", GOOD_SCENE, "--out", out_dir("hostile_pc_side"), "--quiet", "-ksp_pc_side", "left"],
+        ["-ksp_pc_side left", "solver.precision"], seconds=10)
 refused("a negative --max-cases", ["sweep", GOOD_SCENE, "--vary", "interface.0.mu=0.2,0.3",
                                    "--max-cases", "-5", "--out", out_dir("hostile_cases")],
         ["--max-cases", "-5"])

@@ -4,7 +4,8 @@ summary.json says it was interrupted (and not converged). Stopped in the
 corrosion stage, it says so (stopped_in "corrosion steps", the corrosion
 steps it finished, corrosion.csv keeping them); in step 0, the set-up or
 meshing, it names that alone. A closed pipe
-(`pushout run ... | head -3`) does not stop it. A sweep stops within a few
+(`pushout run ... | head -3`) does not stop it, nor does a signal once the
+last step is done (the outputs are written, exit 0). A sweep stops within a few
 seconds, without plotting. A run killed outright (SIGKILL, as mpirun's kill
 or an out-of-memory kill) leaves its fields (output.xdmf) readable with the
 steps it wrote: the HDF5 files are flushed after each step (they could not
@@ -74,6 +75,26 @@ check(p.returncode == 130 and s["interrupted"] and s["stopped_in"] == "corrosion
       said in err and "corrosion.csv keeps them" in err,
       f"SIGINT in the corrosion stage: exit {p.returncode}, stopped_in {s['stopped_in']!r}, "
       f"{s['message']!r}, corrosion.csv {len(rows)} rows; {err.strip()!r}")
+
+
+# A signal once the last step is done stops nothing: the outputs are
+# written whole (the plot too) and the run ends as it would have, exit 0.
+# Whatever the timing, the exit code and summary.json agree (a signal during
+# the writing was once forced as it ended: exit 143 beside "converged").
+for attempt in range(3):
+    out = out_dir(f"interrupt_after_last_step_{attempt}")
+    p = subprocess.Popen([PUSHOUT, "run", scene, "--out", out, "--set", "loading.steps=4"],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    while not (line := p.stdout.readline()).startswith("step 4/4") and line:
+        pass
+    p.send_signal(signal.SIGTERM)
+    _, err = p.communicate(timeout=120)
+    s = summary(out)
+    finished = (p.returncode == 0 and s["converged"] and not s["interrupted"]
+                and os.path.exists(os.path.join(out, "curve.png")))
+    stopped = p.returncode == 143 and s["interrupted"] and not s["converged"]
+    check(finished or stopped, f"SIGTERM after the last step ({attempt}): exit {p.returncode}, "
+          f"converged {s['converged']}, interrupted {s['interrupted']}; {err.strip()!r}")
 
 
 def interrupt_after_model_line(name, sets, in_newton=False):

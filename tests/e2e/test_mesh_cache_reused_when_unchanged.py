@@ -72,4 +72,6 @@ check(not summary(os.path.join(os.path.dirname(a), "cache_off_2"))["mesh_reused"
       and not (os.path.isdir(cache) and meshes()), "PUSHOUT_CACHE_MAX_MB=0 stores and reuses nothing")
 os.environ["PUSHOUT_CACHE_MAX_MB"] = "lots"
 p = run(scene, out_dir("cache_bad"), check=False)
-check(p.returncode != 0 and "PUSHOUT_CACHE_MAX_MB" in p.stderr, f"a bad bound is a clear error: {p.stderr.strip()!r}")
+# The user's input, as a bad option is: exit 2 (README's exit codes).
+check(p.returncode == 2 and "PUSHOUT_CACHE_MAX_MB" in p.stderr,
+      f"a bad bound is a clear error, exit 2: {p.returncode}, {p.stderr.strip()!r}")
