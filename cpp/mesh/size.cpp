@@ -80,7 +80,7 @@ SliceDivisions slice_divisions(const MeshInput& in)
   d.circumferential = in.mesh.elements_per_quarter;
   d.steel = in.mesh.steel_layers;
   d.thickness = in.mesh.elements_through_thickness;
-  const double h = std::numbers::pi / 2 * R / double(d.circumferential); // interface element [mm]
+  const double h = interface_element_size(R, d.circumferential); // [mm]
   d.ring = std::max<std::int64_t>(std::int64_t(std::floor((Rs - R) / h + 0.5)), 1);
 
   // One growth for every line, from the shortest way out Lr: towards ratio

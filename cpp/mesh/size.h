@@ -8,6 +8,7 @@
 #include "MeshInput.h"
 #include "symmetry.h"
 #include <cstdint>
+#include <numbers>
 
 namespace pushout::mesh
 {
@@ -55,6 +56,14 @@ struct SliceDivisions
   double growth = 1;
 };
 SliceDivisions slice_divisions(const MeshInput& in);
+
+/// The size of an interface element along the tube's circumference [mm]:
+/// a quarter of the circumference of radius `tube_radius` [mm] over
+/// `per_quarter` elements (mesh.elements_per_quarter).
+inline double interface_element_size(double tube_radius, std::int64_t per_quarter)
+{
+  return std::numbers::pi / 2 * tube_radius / double(per_quarter);
+}
 
 /// The most the graded block's elements grow from one to the next (and its
 /// first ones from the ring's, of the interface size): where reaching

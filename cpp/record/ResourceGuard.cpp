@@ -43,20 +43,30 @@ std::string gigabytes(double mb)
   s << std::fixed << std::setprecision(mb < 10240 ? 2 : 1) << mb / 1024 << " GB";
   return s.str();
 }
+
+/// The value [kB] of the line "`key` value kB" of a /proc file such as
+/// /proc/meminfo; -1 where there is none.
+double proc_kb(const char* file, const std::string& key)
+{
+  std::ifstream in(file);
+  for (std::string name; in >> name;)
+  {
+    if (name == key)
+    {
+      double kb = -1;
+      in >> kb;
+      return kb;
+    }
+    in.ignore(256, '\n');
+  }
+  return -1;
+}
 } // namespace
 
 double available_memory_mb()
 {
-  double available = -1;
-  std::ifstream meminfo("/proc/meminfo");
-  for (std::string key; meminfo >> key;)
-  {
-    double kb = 0;
-    meminfo >> kb;
-    if (key == "MemAvailable:")
-      available = kb / 1024;
-    meminfo.ignore(256, '\n');
-  }
+  const double kb = proc_kb("/proc/meminfo", "MemAvailable:");
+  double available = kb < 0 ? -1 : kb / 1024;
   // A cgroup (v2) limit, as in containers and batch jobs.
   std::ifstream max_file("/sys/fs/cgroup/memory.max"),
       current_file("/sys/fs/cgroup/memory.current");
@@ -78,14 +88,7 @@ double address_space_left_mb()
     return -1;
   // What this process maps already (libraries, MPI's and PETSc's regions)
   // counts against the limit.
-  double vm_kb = 0;
-  std::ifstream status("/proc/self/status");
-  for (std::string key; status >> key;)
-  {
-    if (key == "VmSize:")
-      status >> vm_kb;
-    status.ignore(256, '\n');
-  }
+  const double vm_kb = std::max(0.0, proc_kb("/proc/self/status", "VmSize:"));
   return std::max(0.0, double(limit.rlim_cur) / (1024.0 * 1024.0) - vm_kb / 1024);
 }
 

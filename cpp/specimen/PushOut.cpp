@@ -1,6 +1,7 @@
 #include "PushOut.h"
 #include "../laws/LawRegistry.h"
 #include "../mesh/cracks.h"
+#include "../mesh/size.h"
 #include "../mesh/symmetry.h"
 #include "../scene/SceneError.h"
 #include "../solver/Vector.h"
@@ -457,9 +458,9 @@ void check_loading(const Scene& scene)
 std::vector<std::string> PushOut::scene_notes(const Scene& scene)
 {
   const Geometry& g = scene.geometry();
-  const double h = std::numbers::pi / 2 * g.tube_radius() /
-                   double(scene.mesh().elements_per_quarter); // interface element [mm]
-  const double E = scene.concrete().E;                        // [MPa]
+  const double h =
+      mesh::interface_element_size(g.tube_radius(), scene.mesh().elements_per_quarter); // [mm]
+  const double E = scene.concrete().E;                                                  // [MPa]
   const bool nodal = scene.mesh().nodal_quadrature;
   std::vector<std::string> notes;
   // One note per layer, on its stiffest parameter (elastic's k_n and k_s
