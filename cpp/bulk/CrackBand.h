@@ -219,9 +219,12 @@ public:
     if (!before.cracked())
     {
       // Below the strength whatever the principal axes: the largest
-      // principal stress is at most the largest Gershgorin row bound
-      // (most points, so their eigenproblem is skipped; the same decision).
-      if (gershgorin_bound(sigma0) < strength * _env.f_t)
+      // principal stress is at most the largest Gershgorin row bound (most
+      // points, so their eigenproblem is skipped). The margin, far above the
+      // eigensolver's round-off of a few ulps of the stress, keeps the
+      // decision it makes where the bound is exact (equal normal stresses
+      // and one shear: the rounded eigenvalue may exceed the rounded bound).
+      if (gershgorin_bound(sigma0) + 1e-12 * largest_magnitude(sigma0) < strength * _env.f_t)
       {
         r.stress = sigma0;
         r.tangent = _C;
@@ -402,6 +405,15 @@ public:
 
 private:
   static constexpr std::array<double, 2> zero_history = {0, 0};
+
+  /// The largest magnitude of a component of `s` [MPa].
+  static double largest_magnitude(const Voigt& s)
+  {
+    double m = 0;
+    for (const double v : s)
+      m = std::max(m, std::abs(v));
+    return m;
+  }
 
   /// An upper bound of the largest principal stress of `s` [MPa]: the
   /// largest diagonal entry plus its row's off-diagonal magnitudes

@@ -264,15 +264,19 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
                           [&]
                           {
                             auto simulation = std::make_unique<Simulation>(scene, opt, report);
+                            // What the steps' phases return to: never forced
+                            // (the step loop looks at a signal that comes
+                            // before it starts).
+                            const interrupt::Phase writing("writing outputs", -1);
                             simulation->load_steps(scene, opt, report);
-                            const interrupt::Phase writing("writing outputs", -1); // never forced
-                            // The steps are done: a signal from here on
-                            // stops nothing (the outputs are whole and the
-                            // run ends as it would have; a second signal
-                            // still ends the process at once). Without
-                            // this, one after the writing was forced in the
-                            // phase that returns, exit 128 + signal beside
-                            // a summary that says converged.
+                            // The steps are done: a signal that the loop
+                            // did not see stops nothing (the outputs are
+                            // whole and the run ends as it would have; a
+                            // second signal still ends the process at
+                            // once). Without this, one after the writing
+                            // was forced in the phase that returned, exit
+                            // 128 + signal beside a summary that said
+                            // converged.
                             interrupt::acknowledge();
                             const output::Summary s = report.finish();
                             simulation.reset();

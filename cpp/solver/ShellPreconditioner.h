@@ -43,19 +43,21 @@ inline void make_gmres_flexible(KSP ksp)
   using petsc::check;
   // A side the user asked for that FGMRES has not (PETSc would fail in the
   // first solve, "does not support preconditioner side LEFT"): refused
-  // before the steps, with what does have it (exit 2).
+  // before the steps, with what does have it (exit 2). PETSc reads the
+  // value as it does (any case).
   const char* prefix = nullptr;
   check(KSPGetOptionsPrefix(ksp, &prefix), "KSPGetOptionsPrefix");
-  char side[32] = "";
+  PetscEnum side = PetscEnum(PC_RIGHT);
   PetscBool given = PETSC_FALSE;
-  check(PetscOptionsGetString(nullptr, prefix, "-ksp_pc_side", side, sizeof side, &given),
-        "PetscOptionsGetString");
-  if (given && std::string(side) != "right")
-    throw SceneError(std::string("-ksp_pc_side ") + side +
+  check(PetscOptionsGetEnum(nullptr, prefix, "-ksp_pc_side", PCSides, &side, &given),
+        "PetscOptionsGetEnum");
+  if (given && PCSide(side) != PC_RIGHT)
+    throw SceneError(std::string("-ksp_pc_side ") +
+                     (PCSide(side) == PC_LEFT ? "left" : "symmetric") +
                      ": GMRES on the single-precision LU (solver.precision = \"mixed\", the "
                      "default) is flexible GMRES, which preconditions on the right only; "
-                     "solver.precision = \"double\" takes GMRES on the LU in double, "
-                     "which has the side you ask for");
+                     "with solver.precision = \"double\" it is GMRES on the LU in double, "
+                     "which preconditions on the left too");
   PetscInt restart;
   PetscErrorCode (*orthogonalize)(KSP, PetscInt);
   KSPGMRESCGSRefinementType refinement;

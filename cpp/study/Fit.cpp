@@ -7,6 +7,7 @@
 #include "../common/mpi_errors.h"
 #include "../driver/exit_on_error.h"
 #include "../laws/LawRegistry.h"
+#include "../mesh/generate.h"
 #include "../output/OutputFiles.h"
 #include "../scene/Scene.h"
 #include "../scene/SceneError.h"
@@ -214,6 +215,7 @@ int fit(const FitOptions& opt)
             [&]
             {
               ProcessGroups::check(opt.ranks_per_case);
+              (void)mesh::cache_limit_mb(); // a $PUSHOUT_CACHE_MAX_MB that is no size
               data = read_measured(opt.data);
               const Scene scene = Scene::load(opt.scene_file, parse_overrides(opt.sets));
               if (!scene.model().pushout())

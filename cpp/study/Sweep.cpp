@@ -7,6 +7,7 @@
 #include "../common/mpi_errors.h"
 #include "../driver/Run.h"
 #include "../driver/exit_on_error.h"
+#include "../mesh/generate.h"
 #include "../output/OutputFiles.h"
 #include "../output/plot.h"
 #include "../scene/SceneError.h"
@@ -170,6 +171,7 @@ SweepPlan plan_sweep(const SweepOptions& opt)
   if (opt.vary.empty())
     throw SceneError("pushout sweep needs at least one --vary key=value,value,...");
   ProcessGroups::check(opt.ranks_per_case);
+  (void)mesh::cache_limit_mb(); // a $PUSHOUT_CACHE_MAX_MB that is no size: before any case
   for (const std::string& v : opt.vary)
   {
     plan.vary.push_back(parse_variation(v));

@@ -2,8 +2,9 @@
 parameters come again; a changed parameter makes a new mesh."""
 import shutil
 import os
+import subprocess
 
-from common import check, curve, out_dir, run, summary
+from common import PUSHOUT, check, curve, out_dir, run, summary
 
 scene = """
 [mesh]
@@ -75,3 +76,12 @@ p = run(scene, out_dir("cache_bad"), check=False)
 # The user's input, as a bad option is: exit 2 (README's exit codes).
 check(p.returncode == 2 and "PUSHOUT_CACHE_MAX_MB" in p.stderr,
       f"a bad bound is a clear error, exit 2: {p.returncode}, {p.stderr.strip()!r}")
+# So it is for a sweep and a fit, before any case (each case failed with
+# "mesh generation failed", exit 1, and the sweep with exit 3).
+scene_file = os.path.join(os.path.dirname(a), "cache_bad.toml")
+for command in (["sweep", scene_file, "--vary", "loading.steps=1,2"],
+                ["fit", scene_file, "--data", scene_file, "--free", "interface.0.k"]):
+    p = subprocess.run([PUSHOUT] + command + ["--out", out_dir(f"cache_bad_{command[0]}"), "--quiet"],
+                       capture_output=True, text=True, timeout=120)
+    check(p.returncode == 2 and "PUSHOUT_CACHE_MAX_MB" in p.stderr,
+          f"{command[0]}: a bad bound is exit 2 before any case: {p.returncode}, {p.stderr.strip()!r}")

@@ -499,3 +499,41 @@ TEST(CrackBand, SecantOperatorKeptOnlyForTheSameInputs)
     EXPECT_EQ(kept.tangent, fresh.tangent);
   }
 }
+
+// Onset is decided by the largest principal stress against the point's
+// strength (the eigensolver's), whatever shortcut update() takes for points
+// far below it: on states where the shortcut's bound is exact (equal normal
+// stresses and one shear) and at strengths within an ulp of that principal
+// stress, a crack appears exactly where the eigenvalue reaches the strength.
+TEST(CrackBand, OnsetWhereTheLargestPrincipalStressReachesTheStrength)
+{
+  const CrackBand law(E, nu, exponential);
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> U(-1, 1);
+  int cracked = 0, elastic = 0;
+  for (int trial = 0; trial < 2000; ++trial)
+  {
+    const double a = 1e-4 * U(gen);
+    const Voigt strain = {a, a, 1e-4 * U(gen), 0, 0, 2e-4 * U(gen)};
+    Vec3 principal;
+    Mat3 axes;
+    pushout::bulk::symmetric_eigen(
+        pushout::bulk::stress_tensor(pushout::bulk::multiply(law.stiffness(), strain)), principal,
+        axes);
+    if (!(principal[0] > 0))
+      continue;
+    const double at = principal[0] / f_t; // the strength that makes f_t equal it
+    for (const double strength : {std::nextafter(at, 0.0), at, std::nextafter(at, 2 * at)})
+    {
+      State now(CrackBand::state_size);
+      const State old(CrackBand::state_size, 0.0);
+      law.update(
+          old, strain, now, [](const Vec3&) { return 1.0; }, strength);
+      const bool expected = principal[0] >= strength * f_t;
+      EXPECT_EQ(now[0] != 0, expected) << "trial " << trial << ", strength " << strength;
+      (expected ? cracked : elastic) += 1;
+    }
+  }
+  EXPECT_GT(cracked, 100); // both sides were met
+  EXPECT_GT(elastic, 100);
+}
