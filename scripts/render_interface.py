@@ -10,10 +10,13 @@ tube surface to (arc length s = R theta, z) and draws one map per field,
 stacked, at the last (or the given) time step. Units: tractions MPa, s and
 z mm. The tube axis is RUN_DIR/scene.toml's geometry.tube_center (the
 resolved scene every run writes), unless --center gives it. The seam is at
-the block corner theta = 225 deg, where the mesh has a node line; cells are
-unrolled one by one so that none straddles the seam. The joint elements of
+the block corner theta = 225 deg, where a centred tube's mesh has a node
+line; cells are unrolled one by one, and one across the seam is kept whole
+(off the centre the node line lies a few degrees away, so s starts up to an
+element past 0). The joint elements of
 [[crack]] planes, also in interface.xdmf, are left out: a cell is the
-interface's where its corners lie on one circle about the axis.
+interface's where its corners lie on one circle about the axis. Prints
+what it drew: the unrolled extent and the cells kept of interface.xdmf's.
 """
 import argparse
 import os
@@ -99,6 +102,12 @@ def main():
         flat.OutputDataSetType = "vtkUnstructuredGrid"
         flat.Script = UNROLL.format(cx=args.center[0], cy=args.center[1])
         flat.UpdatePipeline(t)
+        if i == 0:  # what is drawn: the tube's cells, unrolled
+            info = flat.GetDataInformation()
+            b = info.GetBounds()
+            print(f"unrolled: s {b[0]:.6g} to {b[1]:.6g} mm, z {b[2]:.6g} to {b[3]:.6g} mm, "
+                  f"{info.GetNumberOfCells()} of {block.GetDataInformation().GetNumberOfCells()} "
+                  "cells (the others on crack planes)")
         view = CreateRenderView()
         view.ViewTime = t
         view.OrientationAxesVisibility = 0

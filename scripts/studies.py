@@ -364,8 +364,9 @@ class VirtualDisplay:
 
 def render_interface(folder, png, title):
     """Renders folder/interface.xdmf into png with pvbatch (scripts/render_interface.py),
-    under a virtual X server when no DISPLAY is set. Raises RenderError with one
-    clear line when it cannot."""
+    under a virtual X server when no DISPLAY is set; returns what the script
+    printed (the unrolled extent). Raises RenderError with one clear line when
+    it cannot."""
     pvbatch = shutil.which("pvbatch")
     if not pvbatch:
         raise RenderError("ParaView's pvbatch is missing: install paraview (scripts/setup.sh does)")
@@ -379,7 +380,7 @@ def render_interface(folder, png, title):
             with VirtualDisplay() as x:
                 p = subprocess.run(cmd, capture_output=True, text=True, env=x.env())
         if p.returncode == 0 and os.path.exists(png):
-            return
+            return p.stdout
         if "No module named 'paraview'" in p.stdout + p.stderr:
             raise RenderError(MISSING_PARAVIEW)
         time.sleep(1 + attempt)
