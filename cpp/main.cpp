@@ -17,6 +17,7 @@
 #include "driver/exit_on_error.h"
 #include "mesh/generate.h"
 #include "output/OutputFiles.h"
+#include "output/Summary.h"
 #include "record/ResourceGuard.h"
 #include "scene/SceneError.h"
 #include "study/Fit.h"
@@ -410,6 +411,13 @@ struct CommandLine
     return run_scene(scene_file, out, sets, quiet, force);
   }
 
+  /// The summary.json that `pushout run` writes (empty for sweep and fit).
+  std::filesystem::path run_summary() const
+  {
+    return app.got_subcommand("run") ? std::filesystem::path(out) / "summary.json"
+                                     : std::filesystem::path();
+  }
+
 private:
   /// The scene, the output folder, the overrides and the flags every
   /// command that runs takes; `ranks`: --ranks-per-case, for those that
@@ -500,14 +508,18 @@ std::string petsc_option_error()
 /// The exit code after the user's PETSc options (`given`) were checked: a
 /// PETSc option nothing read is most likely a typo of one (-snes_monitr):
 /// an error (exit 2) after a run that succeeded, unless `allow_unused`; a
-/// warning otherwise. Collective.
-int check_petsc_options(const std::set<std::string>& given, bool allow_unused, int rc)
+/// warning otherwise. `summary` (a run's summary.json; empty for sweep and
+/// fit) then lists them too. Collective.
+int check_petsc_options(const std::set<std::string>& given, bool allow_unused, int rc,
+                        const std::filesystem::path& summary)
 {
   const std::vector<std::string> unused = unused_petsc_options(given);
   if (unused.empty())
     return rc;
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  if (rank == 0 && !summary.empty())
+    pushout::output::add_unused_petsc_options(summary, unused);
   std::string list;
   for (const std::string& u : unused)
     list += (list.empty() ? "" : ", ") + u;
@@ -556,7 +568,7 @@ int main(int argc, char* argv[])
   try
   {
     rc = cli.run_command();
-    rc = check_petsc_options(option_names(petsc_options), cli.allow_unused, rc);
+    rc = check_petsc_options(option_names(petsc_options), cli.allow_unused, rc, cli.run_summary());
   }
   catch (const std::exception& e) // an error outside the runs of a sweep or fit
   {

@@ -1,6 +1,7 @@
 #include "Summary.h"
 #include "OutputFiles.h"
 #include <cmath>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 namespace pushout::output
@@ -73,6 +74,19 @@ void Summary::write(const std::filesystem::path& file) const
         {"interface_pairs", estimate.interface_pairs},
         {"peak_memory_mb", estimate.peak_memory_mb}}},
       {"stopped_in", stopped_in}};
+  write_file(file, j.dump(2) + "\n");
+}
+
+void add_unused_petsc_options(const std::filesystem::path& file,
+                              const std::vector<std::string>& unused)
+{
+  std::ifstream in(file);
+  if (!in)
+    return; // a run refused before it wrote one
+  nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  if (!j.is_object())
+    return;
+  j["unused_petsc_options"] = unused;
   write_file(file, j.dump(2) + "\n");
 }
 } // namespace pushout::output

@@ -109,4 +109,10 @@ struct Summary
   /// Writes it whole (output::write_file); throws if it cannot.
   void write(const std::filesystem::path& file) const;
 };
+
+/// Adds `unused_petsc_options` (the user's PETSc options that no solver
+/// read, known only once the command has ended) to the summary.json `file`
+/// a run wrote; nothing where there is none. Throws if it cannot write it.
+void add_unused_petsc_options(const std::filesystem::path& file,
+                              const std::vector<std::string>& unused);
 } // namespace pushout::output

@@ -5,7 +5,7 @@ import os
 import subprocess
 import time
 
-from common import COARSE_MESH, FRICTION_2, OUT_ROOT, PUSHOUT, check, out_dir
+from common import COARSE_MESH, FRICTION_2, OUT_ROOT, PUSHOUT, check, out_dir, summary
 
 GOOD = COARSE_MESH + FRICTION_2
 QUICK = ["--set", "loading.steps=1", "--set", "output.plot=false"]
@@ -197,10 +197,16 @@ for typo in (["--sett", "loading.steps=3"], ["--froce"], ["--bogus"]):
     refused(f"unknown option {typo[0]}", args, [typo[0], "pushout run --help"], seconds=10)
 args, out = run_args("petsc_typo", GOOD_SCENE, extra=QUICK + ["-snes_monitr"])
 refused("unused PETSc option", args, ["-snes_monitr", "--allow-unused-petsc-options"])
+# summary.json says so beside how the run ended (converged: its curve is whole).
+s = summary(out)
+check(s["converged"] and s.get("unused_petsc_options") == ["-snes_monitr"],
+      f"summary.json lists the unused option: {s.get('unused_petsc_options')!r}")
 args, out = run_args("petsc_allowed", GOOD_SCENE,
                      extra=QUICK + ["-snes_monitr", "--allow-unused-petsc-options"])
 p, _ = pushout(args)
 check(p.returncode == 0 and "-snes_monitr" in p.stderr, "unused PETSc option allowed: exit 0, a warning")
+check(summary(out).get("unused_petsc_options") == ["-snes_monitr"],
+      "summary.json lists an allowed unused option too")
 # Options of the default solver path pass, read or not by this scene's.
 args, out = run_args("petsc_ok", GOOD_SCENE, extra=QUICK + ["-snes_monitor", "-ksp_type", "gmres",
                                                             "-pc_type", "lu", "-snes_rtol", "1e-9",
