@@ -9,6 +9,7 @@
 #include "../laws/LawRegistry.h"
 #include "../mesh/generate.h"
 #include "../output/OutputFiles.h"
+#include "../record/ResourceGuard.h"
 #include "../scene/Scene.h"
 #include "../scene/SceneError.h"
 #include "../specimen/Scenario.h"
@@ -228,10 +229,27 @@ int fit(const FitOptions& opt)
                 throw SceneError("--data '" + opt.data.string() + "' has " +
                                  std::to_string(data.delta.size()) + " rows: more than the " +
                                  std::to_string(free.size()) + " free values are needed");
-              // The start must be a valid scene with the push to the data's end.
+            });
+        // The start must be a valid scene with the push to the data's end,
+        // that fits a group's processes (the size guard, as each run's, on a
+        // group of --ranks-per-case processes as the runs' will be), before
+        // the folder is touched: a refused fit leaves an earlier one's
+        // outputs there.
+        struct Group
+        {
+          MPI_Comm comm = MPI_COMM_NULL;
+          ~Group() { MPI_Comm_free(&comm); }
+        } group;
+        MPI_Comm_split(MPI_COMM_WORLD, rank / opt.ranks_per_case, rank, &group.comm);
+        mpi::collectively<SceneError, record::TooLarge>(
+            MPI_COMM_WORLD,
+            [&]
+            {
               std::vector<std::string> sets = opt.sets;
               sets.push_back("loading.push_displacement=" + number_text(data.delta.back()));
-              specimen::check_scene(Scene::load(opt.scene_file, parse_overrides(sets)));
+              driver::check_before_run(
+                  Scene::load(opt.scene_file, parse_overrides(sets)),
+                  driver::RunOptions{opt.out, opt.mesh_cache, opt.quiet, opt.force, group.comm});
             });
         // The folder is this fit's alone, without an earlier run's outputs
         // (output/OutputFiles.h); neither the scene nor the data may be

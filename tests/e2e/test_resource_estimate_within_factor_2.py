@@ -93,6 +93,16 @@ before = {f: os.path.getmtime(os.path.join(kept, f)) for f in ("curve.csv", "sum
 p = run(SCENE, kept, sets=["mesh.elements_per_quarter=2000"], check=False)
 check(p.returncode == 2 and all(os.path.getmtime(os.path.join(kept, f)) == t for f, t in before.items()),
       f"refused (exit {p.returncode}): the earlier run's curve.csv and summary.json stay")
+# So does a fit whose start is too large (it claimed the folder first).
+data = os.path.join(os.path.dirname(kept), "guard_fit_data.csv")
+with open(data, "w") as f:
+    f.write("delta_mm,tau_MPa\n" + "".join(f"{0.01 * i},{0.1 * i}\n" for i in range(1, 6)))
+p = subprocess.run([PUSHOUT, "fit", SCENE, "--data", data, "--free", "interface.0.mu", "--out", kept,
+                    "--quiet", "--set", "mesh.elements_per_quarter=2000"],
+                   capture_output=True, text=True, timeout=120)
+check(p.returncode == 2 and "mesh.elements_per_quarter (2000)" in p.stderr
+      and all(os.path.getmtime(os.path.join(kept, f)) == t for f, t in before.items()),
+      f"a fit refused (exit {p.returncode}, {p.stderr.strip()[:120]!r}): the earlier outputs stay")
 
 # A limit of the address space (ulimit -v) bounds the run as the machine's
 # memory does: a 5 GB run under a 2.5 GB limit is refused, not started.
