@@ -10,8 +10,8 @@ tube surface to (arc length s = R theta, z) and draws one map per field,
 stacked, at the last (or the given) time step. Units: tractions MPa, s and
 z mm. The tube axis is RUN_DIR/scene.toml's geometry.tube_center (the
 resolved scene every run writes), unless --center gives it. The seam is at
-the block corner theta = 225 deg, where a centred tube's mesh has a node
-line; cells are unrolled one by one, and one across the seam is kept whole
+theta = 225 deg, a block corner's direction and a node line of a centred
+tube's mesh; cells are unrolled one by one, and one across the seam is kept whole
 (off the centre the node line lies a few degrees away, so s starts up to an
 element past 0). The joint elements of
 [[crack]] planes, also in interface.xdmf, are left out: a cell is the

@@ -84,7 +84,9 @@ void add_unused_petsc_options(const std::filesystem::path& file,
   if (!in)
     return; // a run refused before it wrote one
   nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-  if (!j.is_object())
+  // Only this command's own: a run refused before it wrote one leaves an
+  // earlier run's (or a live run's, behind the folder's lock) as it is.
+  if (!j.is_object() || !j.contains("run_id") || j["run_id"] != run_id())
     return;
   j["unused_petsc_options"] = unused;
   write_file(file, j.dump(2) + "\n");

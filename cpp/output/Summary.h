@@ -112,7 +112,8 @@ struct Summary
 
 /// Adds `unused_petsc_options` (the user's PETSc options that no solver
 /// read, known only once the command has ended) to the summary.json `file`
-/// a run wrote; nothing where there is none. Throws if it cannot write it.
+/// that this command's run wrote (its run_id); nothing to another or where
+/// there is none. Throws if it cannot write it.
 void add_unused_petsc_options(const std::filesystem::path& file,
                               const std::vector<std::string>& unused);
 } // namespace pushout::output
