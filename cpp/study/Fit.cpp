@@ -7,7 +7,6 @@
 #include "../common/mpi_errors.h"
 #include "../driver/exit_on_error.h"
 #include "../laws/LawRegistry.h"
-#include "../mesh/generate.h"
 #include "../output/OutputFiles.h"
 #include "../record/ResourceGuard.h"
 #include "../scene/Scene.h"
@@ -216,7 +215,6 @@ int fit(const FitOptions& opt)
             [&]
             {
               ProcessGroups::check(opt.ranks_per_case);
-              (void)mesh::cache_limit_mb(); // a $PUSHOUT_CACHE_MAX_MB that is no size
               data = read_measured(opt.data);
               const Scene scene = Scene::load(opt.scene_file, parse_overrides(opt.sets));
               if (!scene.model().pushout())
@@ -237,10 +235,9 @@ int fit(const FitOptions& opt)
         // outputs there.
         struct Group
         {
-          MPI_Comm comm = MPI_COMM_NULL;
+          MPI_Comm comm;
           ~Group() { MPI_Comm_free(&comm); }
-        } group;
-        MPI_Comm_split(MPI_COMM_WORLD, rank / opt.ranks_per_case, rank, &group.comm);
+        } group{ProcessGroups::split(opt.ranks_per_case)};
         mpi::collectively<SceneError, record::TooLarge>(
             MPI_COMM_WORLD,
             [&]

@@ -13,6 +13,15 @@ void ProcessGroups::check(int ranks_per_case)
                      std::to_string(size) + " processes");
 }
 
+MPI_Comm ProcessGroups::split(int ranks_per_case)
+{
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm comm = MPI_COMM_NULL;
+  MPI_Comm_split(MPI_COMM_WORLD, rank / ranks_per_case, rank, &comm);
+  return comm;
+}
+
 ProcessGroups::ProcessGroups(int ranks_per_case)
 {
   int rank = 0, size = 1;
@@ -20,7 +29,7 @@ ProcessGroups::ProcessGroups(int ranks_per_case)
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   _count = size / ranks_per_case;
   _index = rank / ranks_per_case;
-  MPI_Comm_split(MPI_COMM_WORLD, _index, rank, &_comm);
+  _comm = split(ranks_per_case);
   int group_rank = 0;
   MPI_Comm_rank(_comm, &group_rank);
   _leader = group_rank == 0;

@@ -30,6 +30,10 @@ class ProcessGroups
 public:
   /// Throws SceneError unless `ranks_per_case` divides the processes.
   static void check(int ranks_per_case);
+  /// A new communicator of this process's group (ranks_per_case processes of
+  /// MPI_COMM_WORLD in rank order), for the caller to free; no agreement
+  /// moves to it. Collective on MPI_COMM_WORLD.
+  static MPI_Comm split(int ranks_per_case);
   explicit ProcessGroups(int ranks_per_case);
   ~ProcessGroups() { close(); }
   ProcessGroups(const ProcessGroups&) = delete;

@@ -79,8 +79,11 @@ check(p.returncode == 2 and "PUSHOUT_CACHE_MAX_MB" in p.stderr,
 # So it is for a sweep and a fit, before any case (each case failed with
 # "mesh generation failed", exit 1, and the sweep with exit 3).
 scene_file = os.path.join(os.path.dirname(a), "cache_bad.toml")
+data_file = os.path.join(os.path.dirname(a), "cache_bad_data.csv")
+with open(data_file, "w") as f:
+    f.write("delta_mm,tau_MPa\n0.001,0.1\n0.002,0.2\n0.003,0.3\n")
 for command in (["sweep", scene_file, "--vary", "loading.steps=1,2"],
-                ["fit", scene_file, "--data", scene_file, "--free", "interface.0.k"]):
+                ["fit", scene_file, "--data", data_file, "--free", "interface.0.mu"]):
     p = subprocess.run([PUSHOUT] + command + ["--out", out_dir(f"cache_bad_{command[0]}"), "--quiet"],
                        capture_output=True, text=True, timeout=120)
     check(p.returncode == 2 and "PUSHOUT_CACHE_MAX_MB" in p.stderr,
