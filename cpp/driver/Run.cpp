@@ -43,7 +43,8 @@ void note_scene(const Scene& scene, record::RunReport& report)
 void guard_size(const mesh::MeshInput& shape, const SolverPart& solver, const RunOptions& opt,
                 record::RunReport& report)
 {
-  const record::ResourceEstimate estimate = record::estimate_resources(shape, solver, opt.comm);
+  const record::ResourceEstimate estimate =
+      record::estimate_resources(shape, solver, opt.comm, opt.others_here);
   record::check_fits(estimate, shape, opt.force);
   output::Summary& s = report.summary();
   s.estimate = {estimate.size.dofs, estimate.size.cells, estimate.size.joint_elements,
@@ -252,7 +253,8 @@ void check_before_run(const Scene& scene, const RunOptions& opt)
 {
   specimen::check_scene(scene);
   const mesh::MeshInput shape = mesh::MeshInput::of(scene);
-  record::check_fits(record::estimate_resources(shape, scene.solver(), opt.comm), shape, opt.force);
+  record::check_fits(record::estimate_resources(shape, scene.solver(), opt.comm, opt.others_here),
+                     shape, opt.force);
   (void)mesh::cache_limit_mb(); // throws on a $PUSHOUT_CACHE_MAX_MB that is no size
 }
 

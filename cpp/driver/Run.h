@@ -30,6 +30,10 @@ struct RunOptions
   bool force = false;               ///< run even if the size guard says it cannot fit
   MPI_Comm comm = MPI_COMM_WORLD;   ///< the processes that run it (pushout sweep: a group)
   bool plot = true;                 ///< curve.png if output.plot (a sweep draws sweep.png)
+  /// Processes of other cases on this machine while this one runs (pushout
+  /// sweep and fit: study::ProcessGroups::others_here); the size guard
+  /// counts each at this run's peak.
+  int others_here = 0;
 };
 
 class Simulation

@@ -110,15 +110,19 @@ std::string ResourceEstimate::describe() const
 std::string ResourceEstimate::memory() const
 {
   std::string s = "about " + gigabytes(machine_mb) + " of memory";
-  if (processes_here > 1)
-    s += " (" + std::to_string(processes_here) + " processes)";
+  if (processes_here + others_here > 1)
+    s += " (" + std::to_string(processes_here + others_here) + " processes" +
+         (others_here > 0 ? ", " + std::to_string(others_here) + " of them running other cases"
+                          : std::string()) +
+         ")";
   return s;
 }
 
 ResourceEstimate estimate_resources(const mesh::MeshInput& in, const SolverPart& solver,
-                                    MPI_Comm comm)
+                                    MPI_Comm comm, int others_here)
 {
   ResourceEstimate e;
+  e.others_here = others_here;
   e.size = mesh::predict_size(in);
   MPI_Comm_size(comm, &e.processes);
   MPI_Comm local;
@@ -141,9 +145,12 @@ ResourceEstimate estimate_resources(const mesh::MeshInput& in, const SolverPart&
     solver_mb = lu / std::pow(P, lu_parallel_exponent);
   e.solve_mb = base_mb + mesh_arrays_mb_per_cell * double(e.size.cells_generated) + solver_mb;
   e.meshing_mb = base_mb + gmsh_mb_per_cell * double(e.size.cells_generated);
-  // Rank 0 meshes while the others wait; then every process solves.
+  // Rank 0 meshes while the others wait; then every process solves. The
+  // other cases' processes here as large as this run's, whatever they do.
+  const int here = e.processes_here + e.others_here;
   e.machine_mb =
-      std::max(e.meshing_mb + base_mb * (e.processes_here - 1), e.solve_mb * e.processes_here);
+      std::max(e.meshing_mb + base_mb * (e.processes_here - 1) + e.solve_mb * e.others_here,
+               e.solve_mb * here);
   // Each machine judges by its own memory; the tightest decides.
   e.available_mb = available_memory_mb();
   MPI_Allreduce(MPI_IN_PLACE, &e.available_mb, 1, MPI_DOUBLE, MPI_MIN, comm);
@@ -174,6 +181,8 @@ void check_fits(const ResourceEstimate& e, const mesh::MeshInput& in, bool force
     m << "; lower mesh.elements_per_quarter (" << in.mesh.elements_per_quarter
       << ") or mesh.elements_through_thickness (" << in.mesh.elements_through_thickness << ")"
       << (in.mesh.degree == 2 ? ", or use mesh.degree = 1" : std::string());
+  if (machine && e.others_here > 0)
+    m << "; or run fewer cases at once (a larger --ranks-per-case, or fewer processes)";
   m << "; --force runs it anyway";
   throw TooLarge(m.str());
 }

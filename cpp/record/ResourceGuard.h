@@ -29,10 +29,13 @@ namespace pushout::record
 struct ResourceEstimate
 {
   mesh::MeshSize size;
-  bool condensed = false;  ///< Newton on the condensed interface system
-  bool direct = true;      ///< the Newton systems are factored (LU)
-  int processes = 1;       ///< processes of the run
-  int processes_here = 1;  ///< of them, on this machine
+  bool condensed = false; ///< Newton on the condensed interface system
+  bool direct = true;     ///< the Newton systems are factored (LU)
+  int processes = 1;      ///< processes of the run
+  int processes_here = 1; ///< of them, on this machine
+  /// Processes of the same command's other groups on this machine (pushout
+  /// sweep and fit run cases at once), each counted at this run's peak.
+  int others_here = 0;
   double meshing_mb = 0;   ///< rank 0's peak while gmsh meshes [MB]
   double solve_mb = 0;     ///< one process's peak while solving [MB]
   double machine_mb = 0;   ///< all processes on this machine, at their peak [MB]
@@ -51,9 +54,10 @@ struct ResourceEstimate
 };
 
 /// The estimate for the mesh `in` describes, solved as `solver` asks, on
-/// `comm`'s processes. Collective.
+/// `comm`'s processes, beside `others_here` processes of other cases on this
+/// machine (ResourceEstimate::others_here). Collective.
 ResourceEstimate estimate_resources(const mesh::MeshInput& in, const SolverPart& solver,
-                                    MPI_Comm comm);
+                                    MPI_Comm comm, int others_here = 0);
 
 /// A run refused by the size guard (exit 2, like a bad scene).
 class TooLarge : public std::runtime_error

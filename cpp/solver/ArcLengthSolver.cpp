@@ -58,6 +58,20 @@ ArcLengthSolver::ArcLengthSolver(NonlinearProblem& problem, PathConstraint& cont
     : _problem(problem), _control(control),
       _policy(pc == NewtonSolver::Preconditioner::lagged, refactor_iterations)
 {
+  // A constructor that throws runs no destructor (NewtonSolver's).
+  try
+  {
+    set_up(problem);
+  }
+  catch (...)
+  {
+    release();
+    throw;
+  }
+}
+
+void ArcLengthSolver::set_up(NonlinearProblem& problem)
+{
   if (_policy.lagged())
   {
     _J = problem.create_operator();
@@ -84,6 +98,11 @@ ArcLengthSolver::ArcLengthSolver(NonlinearProblem& problem, PathConstraint& cont
 }
 
 ArcLengthSolver::~ArcLengthSolver()
+{
+  release();
+}
+
+void ArcLengthSolver::release() noexcept
 {
   petsc::check_nothrow(KSPDestroy(&_ksp), "KSPDestroy");
   petsc::check_nothrow(MatDestroy(&_J), "MatDestroy");

@@ -215,6 +215,9 @@ private:
   std::string iterate(Vec x, double lam, const std::function<void(double)>& set_load,
                       double& reactions, double& fnorm, double& c);
 
+  void set_up(NonlinearProblem& problem); ///< the constructor's work
+  void release() noexcept;                ///< destroys what set_up made
+
   NonlinearProblem& _problem;
   PathConstraint& _control;
   PreconditionerPolicy _policy;

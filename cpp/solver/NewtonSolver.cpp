@@ -228,6 +228,21 @@ bool NewtonSolver::linear_solver_from_options()
 NewtonSolver::NewtonSolver(NonlinearProblem& problem, Preconditioner pc, int refactor_iterations)
     : _problem(problem), _policy(pc == Preconditioner::lagged, refactor_iterations)
 {
+  // A constructor that throws runs no destructor: what set_up made so far
+  // is released here (a sweep's refused case goes on to the next one).
+  try
+  {
+    set_up(problem);
+  }
+  catch (...)
+  {
+    release();
+    throw;
+  }
+}
+
+void NewtonSolver::set_up(NonlinearProblem& problem)
+{
   _J = _policy.lagged() ? problem.create_operator() : problem.create_matrix();
   _F = problem.create_vector();
   check(SNESCreate(PetscObjectComm(reinterpret_cast<PetscObject>(_F)), &_snes), "SNESCreate");
@@ -406,6 +421,11 @@ PetscErrorCode NewtonSolver::convergence_test(SNES snes, PetscInt it, PetscReal 
 }
 
 NewtonSolver::~NewtonSolver()
+{
+  release();
+}
+
+void NewtonSolver::release() noexcept
 {
   petsc::check_nothrow(SNESDestroy(&_snes), "SNESDestroy");
   petsc::check_nothrow(MatDestroy(&_J), "MatDestroy");

@@ -186,6 +186,9 @@ public:
   static bool linear_solver_from_options();
 
 private:
+  void set_up(NonlinearProblem& problem); ///< the constructor's work
+  void release() noexcept;                ///< destroys what set_up made
+
   NonlinearProblem& _problem;
   SNES _snes = nullptr;
   PreconditionerPolicy _policy;

@@ -236,17 +236,20 @@ int fit(const FitOptions& opt)
         struct Group
         {
           MPI_Comm comm;
+          int others_here;
           ~Group() { MPI_Comm_free(&comm); }
-        } group{ProcessGroups::split(opt.ranks_per_case)};
+        } group{ProcessGroups::split(opt.ranks_per_case), 0};
+        group.others_here = ProcessGroups::others_here(group.comm);
         mpi::collectively<SceneError, record::TooLarge>(
             MPI_COMM_WORLD,
             [&]
             {
               std::vector<std::string> sets = opt.sets;
               sets.push_back("loading.push_displacement=" + number_text(data.delta.back()));
-              driver::check_before_run(
-                  Scene::load(opt.scene_file, parse_overrides(sets)),
-                  driver::RunOptions{opt.out, opt.mesh_cache, opt.quiet, opt.force, group.comm});
+              driver::check_before_run(Scene::load(opt.scene_file, parse_overrides(sets)),
+                                       driver::RunOptions{opt.out, opt.mesh_cache, opt.quiet,
+                                                          opt.force, group.comm, true,
+                                                          group.others_here});
             });
         // The folder is this fit's alone, without an earlier run's outputs
         // (output/OutputFiles.h); neither the scene nor the data may be
@@ -264,7 +267,8 @@ int fit(const FitOptions& opt)
     return set_up;
 
   ProcessGroups groups(opt.ranks_per_case);
-  Evaluator evaluator(opt, free, data, groups.comm(), groups.count(), groups.index());
+  Evaluator evaluator(opt, free, data, groups.comm(), groups.count(), groups.index(),
+                      groups.others_here());
   Problem problem{evaluator, free, talk, {}, {}, {}, {}, 0, t0};
   if (talk)
     std::cout << "pushout fit: " << free.size() << " values to " << data.delta.size()

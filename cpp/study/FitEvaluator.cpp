@@ -13,8 +13,10 @@ using driver::run_case;
 using driver::RunOutcome;
 
 Evaluator::Evaluator(const FitOptions& opt, const std::vector<Free>& free,
-                     const MeasuredCurve& data, MPI_Comm group, int groups, int group_index)
-    : _opt(opt), _free(free), _data(data), _group(group), _groups(groups), _group_index(group_index)
+                     const MeasuredCurve& data, MPI_Comm group, int groups, int group_index,
+                     int others_here)
+    : _opt(opt), _free(free), _data(data), _group(group), _groups(groups),
+      _group_index(group_index), _others_here(others_here)
 {
   int rank = 0;
   MPI_Comm_rank(group, &rank);
@@ -65,8 +67,8 @@ std::vector<double> Evaluator::run(const std::vector<double>& x, const std::file
                                    bool plot)
 {
   const RunOutcome o =
-      run_case(_opt.scene_file, sets_at(x), {out, _opt.mesh_cache, true, _opt.force, _group, plot},
-               _simulation);
+      run_case(_opt.scene_file, sets_at(x),
+               {out, _opt.mesh_cache, true, _opt.force, _group, plot, _others_here}, _simulation);
   std::vector<double> r(_data.delta.size(), 0.0);
   _last_exit_code = o.exit_code;
   if (o.exit_code > exit_code::signal(0))

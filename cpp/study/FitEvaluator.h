@@ -34,7 +34,7 @@ class Evaluator
 {
 public:
   Evaluator(const FitOptions& opt, const std::vector<Free>& free, const MeasuredCurve& data,
-            MPI_Comm group, int groups, int group_index);
+            MPI_Comm group, int groups, int group_index, int others_here);
 
   /// The residuals at each of `points` (scaled values); every process gets
   /// them all. Collective on MPI_COMM_WORLD.
@@ -64,6 +64,7 @@ private:
   const MeasuredCurve& _data;
   MPI_Comm _group;
   int _groups, _group_index;
+  int _others_here; ///< driver::RunOptions::others_here
   bool _leader = false;
   std::unique_ptr<driver::Simulation> _simulation; ///< the group's set-up, reused
   int _evaluations = 0, _failed = 0, _failed_total = 0;

@@ -22,6 +22,21 @@ MPI_Comm ProcessGroups::split(int ranks_per_case)
   return comm;
 }
 
+int ProcessGroups::others_here(MPI_Comm group)
+{
+  const auto here = [](MPI_Comm comm)
+  {
+    MPI_Comm local;
+    MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &local);
+    int size = 1;
+    MPI_Comm_size(local, &size);
+    MPI_Comm_free(&local);
+    return size;
+  };
+  const int all = here(MPI_COMM_WORLD);
+  return all - here(group);
+}
+
 ProcessGroups::ProcessGroups(int ranks_per_case)
 {
   int rank = 0, size = 1;
@@ -33,6 +48,7 @@ ProcessGroups::ProcessGroups(int ranks_per_case)
   int group_rank = 0;
   MPI_Comm_rank(_comm, &group_rank);
   _leader = group_rank == 0;
+  _others_here = others_here(_comm);
   mpi::set_run_processes(_comm);
 }
 

@@ -34,6 +34,9 @@ public:
   /// MPI_COMM_WORLD in rank order), for the caller to free; no agreement
   /// moves to it. Collective on MPI_COMM_WORLD.
   static MPI_Comm split(int ranks_per_case);
+  /// Processes on this machine that are not in `group` (the other groups',
+  /// which run other cases at once). Collective on MPI_COMM_WORLD.
+  static int others_here(MPI_Comm group);
   explicit ProcessGroups(int ranks_per_case);
   ~ProcessGroups() { close(); }
   ProcessGroups(const ProcessGroups&) = delete;
@@ -42,6 +45,8 @@ public:
   MPI_Comm comm() const { return _comm; }
   int count() const { return _count; }
   int index() const { return _index; }
+  /// others_here(comm()), counted when the groups were made.
+  int others_here() const { return _others_here; }
   /// Whether this process is its group's first.
   bool leader() const { return _leader; }
   /// Agreements on MPI_COMM_WORLD again; the groups' communicator freed.
@@ -49,7 +54,7 @@ public:
 
 private:
   MPI_Comm _comm = MPI_COMM_NULL;
-  int _count = 1, _index = 0;
+  int _count = 1, _index = 0, _others_here = 0;
   bool _leader = true;
 };
 

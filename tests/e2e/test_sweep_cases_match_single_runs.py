@@ -156,14 +156,20 @@ if MPI:
 else:
     print("SKIPPED (MPI part): mpirun not found")
 
-# 3. A case refused by the size guard.
-out = out_dir("sweep_refused")
-p = sweep(out, vary=["--vary", "mesh.elements_per_quarter=4,4000"])
-rows = table(out)
-check(p.returncode == 3 and rows[0]["converged"] == "1" and rows[1]["exit_code"] == "2"
-      and "memory" in rows[1]["message"],
-      f"the refused case is a row (exit {rows[1]['exit_code']}: {rows[1]['message'][:80]}...), "
-      f"the other ran; the sweep exits {p.returncode}")
+# 3. A case refused by the size guard. With two groups on this machine the
+# guard counts the other group's process beside the case's own, and says so.
+for name, processes, beside in (("sweep_refused", None, ""),
+                                ("sweep_refused_two_groups", 2 if MPI else 0,
+                                 "2 processes, 1 of them running other cases")):
+    if processes == 0:
+        continue
+    out = out_dir(name)
+    p = sweep(out, processes=processes, vary=["--vary", "mesh.elements_per_quarter=4,4000"])
+    rows = table(out)
+    check(p.returncode == 3 and rows[0]["converged"] == "1" and rows[1]["exit_code"] == "2"
+          and "memory" in rows[1]["message"] and beside in rows[1]["message"],
+          f"{name}: the refused case is a row (exit {rows[1]['exit_code']}: "
+          f"{rows[1]['message'][:120]}...), the other ran; the sweep exits {p.returncode}")
 
 # 4. Bad input.
 for what, vary, extra, n in (

@@ -1,0 +1,53 @@
+// The size guard's count of what runs at once on this machine
+// (record/ResourceGuard.h): a sweep's or a fit's other groups run other
+// cases beside this one, and each is counted at this run's peak.
+#include "../../../cpp/mesh/MeshInput.h"
+#include "../../../cpp/record/ResourceGuard.h"
+#include "../../../cpp/scene/Scene.h"
+#include <gtest/gtest.h>
+
+using pushout::Scene;
+using pushout::mesh::MeshInput;
+using pushout::record::check_fits;
+using pushout::record::estimate_resources;
+using pushout::record::ResourceEstimate;
+using pushout::record::TooLarge;
+
+TEST(ResourceGuard, OtherCasesOnThisMachineCountAtThisRunsPeak)
+{
+  const Scene scene = Scene::parse("[mesh]\nelements_per_quarter = 24\n");
+  const MeshInput in = MeshInput::of(scene);
+  const ResourceEstimate alone = estimate_resources(in, scene.solver(), MPI_COMM_SELF);
+  const ResourceEstimate beside = estimate_resources(in, scene.solver(), MPI_COMM_SELF, 3);
+  ASSERT_EQ(alone.processes_here, 1);
+  EXPECT_EQ(alone.others_here, 0);
+  // One process: its peak is the machine's.
+  EXPECT_DOUBLE_EQ(alone.machine_mb, alone.peak_mb());
+  // Three more cases as large: four solve peaks, or the meshing peak beside
+  // three solve peaks.
+  EXPECT_DOUBLE_EQ(beside.machine_mb,
+                   std::max(4 * alone.solve_mb, alone.meshing_mb + 3 * alone.solve_mb));
+  EXPECT_DOUBLE_EQ(beside.peak_mb(), alone.peak_mb()); // a process's own peak is unchanged
+  EXPECT_NE(beside.memory().find("4 processes, 3 of them running other cases"), std::string::npos)
+      << beside.memory();
+
+  // A machine with room for this run alone refuses it beside the others,
+  // and says what else to change.
+  ResourceEstimate fits_alone = beside;
+  fits_alone.available_mb = 1.5 * alone.machine_mb;
+  fits_alone.address_space_mb = -1;
+  ResourceEstimate only = alone;
+  only.available_mb = fits_alone.available_mb;
+  only.address_space_mb = -1;
+  EXPECT_NO_THROW(check_fits(only, in, false));
+  try
+  {
+    check_fits(fits_alone, in, false);
+    FAIL() << "four cases at once fit in the memory of 1.5 cases";
+  }
+  catch (const TooLarge& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("--ranks-per-case"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(check_fits(fits_alone, in, true)); // --force
+}
