@@ -140,10 +140,11 @@ struct alignas(64) SecantOperator
   Voigt closing{};
   /// d sigma / d epsilon with the crack open [0] and closed [1] [MPa]
   std::array<Voigt66, 2> tangent{};
-  /// What the maps were made of: the crack's frame and band width (n, s1,
-  /// h), the history and the strength. The same again leaves them as they
-  /// are (a crack that unloads keeps its history from step to step).
-  std::array<double, 9> made_of{};
+  /// What the maps were made of: the crack's normal and band width (n, h),
+  /// the history and the strength (not s1: an open crack's secant is the
+  /// same along every direction of its plane). The same again leaves them
+  /// as they are (a crack that unloads keeps its history from step to step).
+  std::array<double, 6> made_of{};
 };
 
 class CrackBand
@@ -325,9 +326,8 @@ public:
     if (!op.cracked)
       return;
     kappa = std::max(kappa, laws::DamageHistory<const double>(state.law_state()).kappa());
-    const Vec3 n = state.normal(), s1 = state.tangent();
-    const std::array<double, 9> made_of = {
-        n[0], n[1], n[2], s1[0], s1[1], s1[2], state.band_width(), kappa, strength};
+    const Vec3 n = state.normal();
+    const std::array<double, 6> made_of = {n[0], n[1], n[2], state.band_width(), kappa, strength};
     if (was_cracked && made_of == op.made_of)
       return;
     op.made_of = made_of;

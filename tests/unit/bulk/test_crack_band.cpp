@@ -476,14 +476,39 @@ TEST(CrackBand, SecantOperatorKeptOnlyForTheSameInputs)
   ASSERT_TRUE(a.state[0] != 0 && b.state[0] != 0);
   const State uncracked(CrackBand::state_size, 0.0);
   const double ka = a.state[8], kb = b.state[8];
+  // a's crack with one input changed at a time: the normal turned about s1,
+  // s1 turned about the normal (the frame stays orthonormal; the maps do
+  // not depend on s1, so they may be kept), the band width (state: flag, n
+  // at 1-3, s1 at 4-6, h at 7).
+  const auto turned = [](const State& s, int axis, int moved)
+  {
+    State t = s;
+    const double c = std::cos(0.1), si = std::sin(0.1);
+    Vec3 k{s[std::size_t(axis)], s[std::size_t(axis) + 1], s[std::size_t(axis) + 2]};
+    for (int i = 0; i < 3; ++i)
+    {
+      const double v = s[std::size_t(moved + i)];
+      // v turned about k (k . v = 0): v c + (k x v) sin
+      const int j = (i + 1) % 3, l = (i + 2) % 3;
+      const double kxv = k[std::size_t(j)] * s[std::size_t(moved + l)] -
+                         k[std::size_t(l)] * s[std::size_t(moved + j)];
+      t[std::size_t(moved + i)] = v * c + kxv * si;
+    }
+    return t;
+  };
+  const State n_turned = turned(a.state, 4, 1), s1_turned = turned(a.state, 1, 4);
+  State wider = a.state;
+  wider[7] *= 1.1;
   struct Input
   {
     const State* state;
     double kappa, strength;
   };
   const std::vector<Input> sequence = {
-      {&a.state, ka, 1},       {&a.state, ka, 1},  {&a.state, 2 * ka, 1}, {&a.state, 2 * ka, 1.2},
-      {&b.state, 2 * ka, 1.2}, {&uncracked, 0, 1}, {&a.state, ka, 1},     {&b.state, kb, 1}};
+      {&a.state, ka, 1},       {&a.state, ka, 1},        {&a.state, 2 * ka, 1},
+      {&a.state, 2 * ka, 1.2}, {&n_turned, 2 * ka, 1.2}, {&s1_turned, 2 * ka, 1.2},
+      {&wider, 2 * ka, 1.2},   {&a.state, 2 * ka, 1.2},  {&b.state, 2 * ka, 1.2},
+      {&uncracked, 0, 1},      {&a.state, ka, 1},        {&b.state, kb, 1}};
   SecantOperator kept;
   for (const Input& in : sequence)
   {
