@@ -104,7 +104,7 @@ void Interface::reset()
       throw std::invalid_argument("Interface: a law with more than " +
                                   std::to_string(max_state_size) + " state variables");
     sizes.push_back(law->state_size());
-    _softens.push_back(law->fracture_energy() > 0);
+    _softens.push_back(law->softens());
   }
   _state = InterfaceState(num_points(), sizes);
   _t_layer.assign(3 * num_points() * _layers.size(), 0.0);

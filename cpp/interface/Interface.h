@@ -172,7 +172,7 @@ public:
   };
   ShearSpread shear_spread() const;
 
-  /// Whether layer l softens (its law has a fracture energy: a damage law).
+  /// Whether layer l softens (InterfaceLaw::softens: a damage law).
   bool softens(std::size_t layer) const { return _softens[layer]; }
 
   /// Of layer l over this process's pairs: int D dA [mm^2] and the largest
@@ -231,7 +231,7 @@ private:
     return _t_layer.data() + 3 * (i * _layers.size() + l);
   }
   std::vector<double> _w_last; ///< jump per point, local frame, last evaluation [mm]
-  std::vector<bool> _softens;  ///< per layer: fracture_energy() > 0
+  std::vector<bool> _softens;  ///< per layer: InterfaceLaw::softens()
   /// The state, tractions and step inputs of the layers as before any step.
   void reset();
   std::vector<double> _t0, _w0; ///< softening traction, jump per point at the last commit

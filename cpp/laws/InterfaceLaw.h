@@ -76,6 +76,10 @@ public:
   /// plateau); 0 for laws that do not soften (elastic, friction). Sets the
   /// scale of dissipation-controlled steps (stepping/StepLoop.cpp).
   virtual double fracture_energy() const = 0;
+
+  /// Whether the law softens (releases a fracture energy): its joints then
+  /// take part in dissipation control.
+  bool softens() const { return fracture_energy() > 0; }
 };
 
 /// Wraps a law value type `L` (with `state_size`, `update`, `slip`,

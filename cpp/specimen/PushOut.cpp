@@ -350,7 +350,7 @@ namespace
 bool softens(const Scene& scene)
 {
   const auto law_softens = [](const LayerSpec& spec, const std::string& prefix)
-  { return laws::find_law(spec.law)->make(spec.params, prefix)->fracture_energy() > 0; };
+  { return laws::find_law(spec.law)->make(spec.params, prefix)->softens(); };
   bool any = scene.cracking().embedded;
   for (std::size_t i = 0; i < scene.layers().size(); ++i)
     any = any || law_softens(scene.layers()[i], "interface." + std::to_string(i) + ".");
