@@ -297,9 +297,9 @@ RunOutcome run_case(const std::filesystem::path& scene_file, const std::vector<s
         opt.comm,
         [&]
         {
-          const Scene scene = Scene::load(scene_file, parse_overrides(sets));
-          // A run that fails before its outputs must not leave an earlier
-          // run's in the folder (a fit reads curve.csv back).
+          // A run that fails before its outputs, its scene's values
+          // included, must not leave an earlier run's in the folder (a fit
+          // reads curve.csv back).
           int rank = 0;
           MPI_Comm_rank(opt.comm, &rank);
           if (rank == 0)
@@ -308,6 +308,7 @@ RunOutcome run_case(const std::filesystem::path& scene_file, const std::vector<s
             for (const char* f : {"curve.csv", "summary.json", "corrosion.csv"})
               std::filesystem::remove(opt.out / f);
           }
+          const Scene scene = Scene::load(scene_file, parse_overrides(sets));
           specimen::check_scene(scene);
           record::RunReport report(scene, opt.out, opt.quiet, opt.comm, opt.plot);
           note_scene(scene, report);

@@ -127,23 +127,20 @@ std::vector<Free> free_values(const Scene& scene, const FitOptions& opt)
         std::find_if(free.begin(), free.end(), [&](const Free& x) { return x.key == key; });
     if (f == free.end())
       throw SceneError("--bounds '" + b + "': '" + key + "' is not a --free key");
-    try
+    const std::string lo = b.substr(eq + 1, colon - eq - 1), hi = b.substr(colon + 1);
+    double lo_value = -HUGE_VAL, hi_value = HUGE_VAL;
+    if ((!lo.empty() && !finite_number(lo, lo_value)) ||
+        (!hi.empty() && !finite_number(hi, hi_value)))
+      throw SceneError("--bounds '" + b + "': the bounds must be finite numbers (or empty)");
+    if (lo_value > f->lo)
     {
-      const std::string lo = b.substr(eq + 1, colon - eq - 1), hi = b.substr(colon + 1);
-      if (!lo.empty() && std::stod(lo) > f->lo)
-      {
-        f->lo = std::stod(lo);
-        f->lo_exclusive = false;
-      }
-      if (!hi.empty() && std::stod(hi) < f->hi)
-      {
-        f->hi = std::stod(hi);
-        f->hi_exclusive = false;
-      }
+      f->lo = lo_value;
+      f->lo_exclusive = false;
     }
-    catch (const std::exception&)
+    if (hi_value < f->hi)
     {
-      throw SceneError("--bounds '" + b + "': the bounds must be numbers");
+      f->hi = hi_value;
+      f->hi_exclusive = false;
     }
   }
   for (const Free& f : free)

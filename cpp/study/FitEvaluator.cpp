@@ -78,8 +78,16 @@ std::vector<double> Evaluator::run(const std::vector<double>& x, const std::file
     ++_failed;
     _last_failure = o.message;
   }
-  if (!_leader)
+  // A run that failed outright (a bad value, an error) counts as tau = 0
+  // everywhere; one that stopped (no convergence, a signal) by what it
+  // reached.
+  if (!_leader || o.exit_code == exit_code::bad_input || o.exit_code == exit_code::failure)
+  {
+    if (_leader)
+      for (std::size_t i = 0; i < r.size(); ++i)
+        r[i] = -_data.tau[i];
     return r;
+  }
   std::vector<double> delta, tau;
   std::ifstream in(out / "curve.csv");
   std::string line;

@@ -13,6 +13,19 @@ namespace pushout::study
 {
 MeasuredCurve read_measured(const std::filesystem::path& file)
 {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status status = fs::status(file, ec);
+  if (ec || !fs::exists(status))
+    throw SceneError("--data '" + file.string() + "': cannot read it");
+  // Not a directory, a device or a pipe: those read as no curve, or forever.
+  if (!fs::is_regular_file(status))
+    throw SceneError("--data '" + file.string() + "' is not a regular file");
+  // A measured curve is some thousands of rows; a larger file is not one.
+  constexpr std::uintmax_t max_bytes = std::uintmax_t(64) << 20;
+  if (const std::uintmax_t bytes = fs::file_size(file, ec); !ec && bytes > max_bytes)
+    throw SceneError("--data '" + file.string() + "' is larger than " +
+                     std::to_string(max_bytes >> 20) + " MiB: not a measured curve");
   std::ifstream in(file);
   if (!in)
     throw SceneError("--data '" + file.string() + "': cannot read it");
@@ -47,19 +60,7 @@ MeasuredCurve read_measured(const std::filesystem::path& file)
     for (int k = 0; k < 2; ++k)
     {
       const std::size_t col = k == 0 ? cd : ct;
-      std::size_t used = 0;
-      try
-      {
-        if (col >= cells.size())
-          throw std::invalid_argument("missing");
-        v[k] = std::stod(cells[col], &used);
-      }
-      catch (const std::exception&)
-      {
-        used = 0;
-      }
-      if (used == 0 || cells[col].find_first_not_of(" \t", used) != std::string::npos ||
-          !std::isfinite(v[k]))
+      if (col >= cells.size() || !finite_number(cells[col], v[k]))
         throw SceneError("--data '" + file.string() + "' line " + std::to_string(row) + ": " +
                          header[col] + " '" + (col < cells.size() ? cells[col] : "") +
                          "' is not a number");

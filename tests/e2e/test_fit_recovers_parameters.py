@@ -13,12 +13,14 @@
    gives the same values to the optimizer's tolerance (fit_bound: TAO stops
    at a gradient 1e6 below its start, not at the optimum, and the order of
    MUMPS's and BLAS's sums moves where it stops).
-3. Bad input exits 2 with one message: no data file, a data file without
-   tau_MPa, a cell that is not a number, delta not increasing, a free key
+3. Bad input exits 2 with one message: no data file, a folder for it, a
+   data file without tau_MPa, a cell that is not a number, delta not increasing, a free key
    that does not exist, one that is not a number, bounds that exclude the
-   start, a curve with no positive tau.
+   start or are no numbers, a curve with no positive tau.
 4. A value the optimum drives onto its bound is a warning, in fit.json and
-   on stderr."""
+   on stderr.
+5. A run that fails outright counts as tau = 0, not as an earlier run's
+   curve."""
 import json
 import os
 import random
@@ -159,6 +161,7 @@ with open(bom, "wb") as f:
     f.write(b"\xef\xbb\xbfdelta_mm,tau_MPa\n0.02,1.0\n0.01,2\n0.03,2\n0.04,2\n")
 cases = [
     ("no data file", os.path.join(bad, "missing.csv"), {}, "cannot read"),
+    ("a folder for the data file", bad, {}, "not a regular file"),
     ("negative delta", write("behind.csv", "delta_mm,tau_MPa\n-0.01,1.0\n0.01,2\n0.03,2\n"), {},
      "is negative"),
     ("a byte order mark: the header read past it", bom, {}, "must increase"),
@@ -170,6 +173,8 @@ cases = [
     ("unknown key", data, {"free": ["interface.1.f_tt"]}, "no parameter"),
     ("not a number key", data, {"free": ["loading.control"]}, "not a number"),
     ("bounds exclude the start", data, {"extra": ["--bounds", "interface.1.c=5:10"]}, "exclude"),
+    ("a bound with a unit", data, {"extra": ["--bounds", "interface.1.c=5x:"]}, "finite numbers"),
+    ("a bound not a number", data, {"extra": ["--bounds", "interface.1.c=nan:100"]}, "finite numbers"),
     ("no positive tau", write("negative.csv", "delta_mm,tau_MPa\n0.01,-1.0\n0.02,-2\n0.03,-2\n"),
      {}, "no tau_MPa above 0"),
 ]
@@ -190,3 +195,25 @@ said = [w for w in r4["warnings"] if "interface.0.mu" in w and "sits on its boun
 check(r4["parameters"]["interface.0.mu"] < 1e-6 and said and "sits on its bound" in p.stderr,
       f"mu on its bound ({r4['parameters']['interface.0.mu']:.2e}) is a warning: {said}")
 
+
+# 5. A run that fails outright counts as tau = 0 everywhere, not as the curve
+# an earlier run left in its folder: from f_fr = f_t (3 MPa) the Jacobian's
+# forward difference makes f_fr > f_t, a scene refused when it is read. On
+# this falling curve tau = 0 fits better than the start, so the fit ends
+# there: exit 3, no scene, the model's tau 0 at every point. (Reading the
+# last run's curve instead, the difference was 0 and TAO jumped to f_fr =
+# 0, with a fitted scene.)
+falling = write("falling.csv", "delta_mm,tau_MPa\n" + "".join(
+    f"{0.01 * i:.2f},{t}\n" for i, t in enumerate(
+        (2.1576, 1.81306, 1.54473, 1.33576, 1.17301, 1.04626, 0.94755, 0.87067, 0.8108, 0.76417), 1)))
+out5 = out_dir("fit_failed_run")
+p = fit(out5, falling, free=["interface.1.f_fr"], start={"interface.1.f_fr": 3.0})
+with open(os.path.join(out5, "fit.json")) as f:
+    r5 = json.load(f)
+with open(os.path.join(out5, "fit.csv")) as f:
+    model = [float(line.split(",")[2]) for line in f.readlines()[1:]]
+check(p.returncode == 3 and r5["failed_runs"] >= 1 and "no valid scene" in p.stderr
+      and model and all(t == 0 for t in model)
+      and not os.path.exists(os.path.join(out5, "scene.toml")),
+      f"a failed run counts as tau = 0 (exit {p.returncode}, {r5['failed_runs']} failed runs, "
+      f"model tau {model[:3]}...)")
