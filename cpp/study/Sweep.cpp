@@ -11,6 +11,7 @@
 #include "../output/OutputFiles.h"
 #include "../output/plot.h"
 #include "../scene/SceneError.h"
+#include "../specimen/Scenario.h"
 #include "SweepTables.h"
 #include <algorithm>
 #include <chrono>
@@ -218,6 +219,7 @@ SweepPlan plan_sweep(const SweepOptions& opt)
       const Scene scene = Scene::load(opt.scene_file, parse_overrides(sets));
       if (scene.model().name() != plan.model_type)
         throw SceneError("a sweep runs one model type: vary other keys");
+      specimen::check_scene(scene); // the relations between keys, as a run checks them
       for (auto it = unread.begin(); it != unread.end();)
       {
         const std::string note = scene.unread_note(it->first);

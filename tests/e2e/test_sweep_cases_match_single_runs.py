@@ -176,6 +176,8 @@ for what, vary, extra, n in (
         ("no values", ["--vary", "interface.0.mu="], [], None),
         ("unknown key", ["--vary", "interface.0.muu=0.2"], [], None),
         ("not a number", ["--vary", "interface.0.mu=0.2,abc"], [], None),
+        # the second case's push is more than 10 % of the slice's thickness
+        ("values run refuses together", ["--vary", "loading.push_displacement=0.01,5.0"], [], None),
         ("ranks per case", VARY, ["--ranks-per-case", "2"], 3 if MPI else None)):
     if what == "ranks per case" and not MPI:
         continue
