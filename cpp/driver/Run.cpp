@@ -179,7 +179,8 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, record::R
 
   // Outputs and load steps.
   specimen::Corrosion corrosion(scene.corrosion(), scene.crack_directions(),
-                                scene.cracking().embedded, opt.out, report, opt.comm, _data.copies,
+                                scene.cracking().embedded, opt.out, report, opt.comm,
+                                mesh::Symmetry{_data.symmetry_planes[0], _data.symmetry_planes[1]},
                                 scene.geometry());
   stepping::StepRecorder recorder(scene.output(), opt.out, *scenario, *_equilibrium, report,
                                   corrosion.active());

@@ -74,6 +74,25 @@ Side side_of(Symmetry s, double angle)
   return Side::inside;
 }
 
+std::vector<double> images_of(Symmetry s, double angle)
+{
+  std::vector<double> rays = {angle};
+  for (const bool x_plane : {true, false})
+  {
+    if (!(x_plane ? s.x_plane : s.y_plane))
+      continue;
+    const std::size_t n = rays.size();
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const double image = reflected(rays[i], x_plane);
+      if (std::none_of(rays.begin(), rays.end(),
+                       [&](double b) { return angle_between(image, b) < same_direction; }))
+        rays.push_back(image);
+    }
+  }
+  return rays;
+}
+
 Symmetry geometric_symmetry(const MeshInput& in)
 {
   if (!in.pushout)

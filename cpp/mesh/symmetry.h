@@ -29,6 +29,7 @@
 #include "MeshInput.h"
 #include <array>
 #include <string>
+#include <vector>
 
 namespace pushout::mesh
 {
@@ -53,6 +54,11 @@ enum class Side
   outside
 };
 Side side_of(Symmetry s, double angle);
+
+/// The directions [rad] of a ray from the tube axis at `angle` and of its
+/// mirror images in the whole specimen, `angle` first: copies() of them,
+/// half as many for a ray on a symmetry plane (its own image about it).
+std::vector<double> images_of(Symmetry s, double angle);
 
 /// The planes the slice and its crack planes are symmetric about (geometry
 /// only: the meshes of the full and of the cut model are the same).

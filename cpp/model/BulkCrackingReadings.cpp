@@ -261,11 +261,12 @@ void BulkCracking::cell_fields(dolfinx::fem::Function<double>& opening,
       const bulk::CrackState<const double> s = points::crack_of(_trial, i);
       if (!s.cracked())
         continue;
-      d[dof] = std::max(d[dof], laws::DamageHistory<const double>(s.law_state()).damage());
       if (!(_opening_trial[3 * i] > widest))
         continue;
+      // The widest point's crack: its opening, normal and damage.
       widest = _opening_trial[3 * i];
       w[dof] = std::max(widest, 0.0); // closed: 0
+      d[dof] = laws::DamageHistory<const double>(s.law_state()).damage();
       const bulk::Vec3 normal_q = s.normal();
       std::copy(normal_q.begin(), normal_q.end(), n.begin() + 3 * std::size_t(vector_dof));
     }

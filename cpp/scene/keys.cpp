@@ -377,7 +377,8 @@ std::vector<KeyDef> make_keys()
        std::int64_t(20),
        "",
        "equal steps of x in the corrosion stage (cut in halves when Newton fails, as the "
-       "push); at most 100000 (a step takes milliseconds to seconds: more would run for days)",
+       "push, or when IMPL-EX cracks miss cracking.implex_tolerance; corrosion.csv has a row "
+       "per part); at most 100000 (a step takes milliseconds to seconds: more would run for days)",
        1,
        100000,
        false,

@@ -30,8 +30,9 @@ double widest_surface_crack(const std::vector<double>& mouths, const model::Crac
 
 Corrosion::Corrosion(const CorrosionPart& corrosion, const CrackDirections& cracks,
                      bool bulk_cracking, const std::filesystem::path& out,
-                     record::RunReport& report, MPI_Comm comm, int copies, const Geometry& slice)
-    : _out(out), _report(report), _comm(comm), _copies(copies)
+                     record::RunReport& report, MPI_Comm comm, mesh::Symmetry symmetry,
+                     const Geometry& slice)
+    : _out(out), _report(report), _comm(comm), _symmetry(symmetry)
 {
   for (double a : cracks.angles)
   {
@@ -89,14 +90,17 @@ int Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iteratio
   {
     bulk = cracking->totals();
     // The specimen's, as the push force is (a symmetric model's points and
-    // energy are a 1/copies part of them).
-    bulk.points *= _copies;
-    bulk.cracked_points *= _copies;
-    bulk.dissipated *= _copies;
+    // energy are a 1/copies part of them; its surface cracks and the crack
+    // planes' mouths, `widths`, are counted with their mirror images).
+    const int copies = _symmetry.copies();
+    bulk.points *= copies;
+    bulk.cracked_points *= copies;
+    bulk.dissipated *= copies;
     for (double w : widths)
       at_surface += w >= cracking->visible_width();
     for (const model::SurfaceCrack& c : bulk.surface)
-      at_surface += c.width_mm >= cracking->visible_width();
+      if (c.width_mm >= cracking->visible_width())
+        at_surface += int(mesh::images_of(_symmetry, c.angle_deg * std::numbers::pi / 180).size());
   }
   const double crack_width = widest_surface_crack(widths, bulk);
   std::vector<double> values = {x, p, crack_width};
@@ -170,15 +174,23 @@ void Corrosion::describe_cracks(solver::Equilibrium& eq, Vec state, output::Summ
   summary.surface_crack_width_mm = widest_surface_crack(mouth, bulk);
   if (cracking)
   {
+    // The specimen's surface cracks: a symmetric model's with their mirror
+    // images (as the crack planes are listed).
     for (const model::SurfaceCrack& s : bulk.surface)
       if (s.width_mm >= cracking->visible_width())
       {
-        output::Summary::Crack c;
-        c.plane = false;
-        c.angle_deg = s.angle_deg;
-        c.width_mm = s.width_mm;
-        c.length_mm = s.length_mm;
-        summary.cracks.push_back(c);
+        const std::vector<double> images =
+            mesh::images_of(_symmetry, s.angle_deg * std::numbers::pi / 180);
+        for (std::size_t i = 0; i < images.size(); ++i)
+        {
+          output::Summary::Crack c;
+          c.plane = false;
+          c.angle_deg = i == 0 ? s.angle_deg // the crack itself, as it was read
+                               : std::fmod(images[i] * 180 / std::numbers::pi + 720, 360);
+          c.width_mm = s.width_mm;
+          c.length_mm = s.length_mm;
+          summary.cracks.push_back(c);
+        }
       }
     write_crack_pattern(bulk.columns, mouth);
   }

@@ -21,6 +21,7 @@
 
 #include "../laws/Oxide.h"
 #include "../mesh/cracks.h"
+#include "../mesh/symmetry.h"
 #include "../model/Model.h"
 #include "../output/CurveWriter.h"
 #include "../output/Summary.h"
@@ -39,13 +40,13 @@ public:
   /// Opens corrosion.csv in `out` if `corrosion` has a stage (penetration
   /// > 0); `cracks`: the crack planes' directions; `bulk_cracking`: the
   /// concrete may crack anywhere ([cracking]); `comm`: the run's processes;
-  /// `copies`: the specimen is that many mirror images of the model
-  /// (mesh::MeshData::copies), so the concrete's cracked points and
-  /// dissipation are written as the specimen's (as the push force is);
+  /// `symmetry`: the model's mirror planes; the specimen is copies() mirror
+  /// images of the model, so the concrete's cracked points, dissipation and
+  /// surface cracks are written as the specimen's (as the push force is);
   /// `slice`: where the crack planes run (crack_planes.csv).
   Corrosion(const CorrosionPart& corrosion, const CrackDirections& cracks, bool bulk_cracking,
-            const std::filesystem::path& out, record::RunReport& report, MPI_Comm comm, int copies,
-            const Geometry& slice);
+            const std::filesystem::path& out, record::RunReport& report, MPI_Comm comm,
+            mesh::Symmetry symmetry, const Geometry& slice);
 
   /// Whether the scene has a corrosion stage (penetration > 0).
   bool active() const { return _x_final > 0; }
@@ -97,7 +98,7 @@ private:
   std::filesystem::path _out; ///< the output folder
   record::RunReport& _report;
   MPI_Comm _comm;
-  int _copies = 1;                         ///< mirror images of the model in the specimen
+  mesh::Symmetry _symmetry;                ///< the model's mirror planes
   std::optional<output::CurveWriter> _csv; ///< rank 0
   int _row = 0; ///< corrosion.csv's next row number (its step column, as curve.csv's)
 };
