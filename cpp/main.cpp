@@ -310,12 +310,14 @@ struct CommandLine
     sweep
         ->add_option("--vary", sweep_options.vary,
                      "a key and its values: key=v1,v2,... (repeatable)")
+        ->allow_extra_args(false) // one per --vary: a scene after it is the scene
         ->required();
     sweep
         ->add_option("--max-cases", sweep_options.max_cases,
                      "the most cases the sweep runs; more is refused (default " +
                          std::to_string(pushout::study::SweepOptions::default_max_cases) + ")")
-        ->check(CLI::Range(1, 100000000)); // a negative count would wrap round
+        ->check(CLI::Range(std::size_t(1), // a negative count would wrap round
+                           pushout::study::SweepOptions::largest_max_cases));
     fit = app.add_subcommand(
         "fit", "fit scene values (law parameters, loads) to a measured push-out curve by least "
                "squares (PETSc TAO); DIR/fit.json has them with their standard errors "
@@ -323,9 +325,12 @@ struct CommandLine
     common(fit, "scene file (TOML): the start values", &fit_options.ranks_per_case);
     fit->add_option("--data", fit_options.data, "measured curve: CSV with delta_mm, tau_MPa")
         ->required();
-    fit->add_option("--free", fit_options.free, "a scene key to fit (repeatable)")->required();
+    fit->add_option("--free", fit_options.free, "a scene key to fit (repeatable)")
+        ->allow_extra_args(false)
+        ->required();
     fit->add_option("--bounds", fit_options.bounds,
-                    "bounds of a free key: key=lo:hi (either may be empty; repeatable)");
+                    "bounds of a free key: key=lo:hi (either may be empty; repeatable)")
+        ->allow_extra_args(false);
     app.add_subcommand("keys", "print the scene keys (Markdown table)");
     app.add_subcommand("laws", "print the interface laws and their parameters");
   }
@@ -426,7 +431,9 @@ private:
   {
     cmd->add_option("scene", scene_file, scene_doc)->required();
     cmd->add_option("--out", out, "output folder")->required();
-    cmd->add_option("--set", sets, "override a scene key: key=value (repeatable)");
+    // One value per --set (and --vary, --free, --bounds): the scene may follow.
+    cmd->add_option("--set", sets, "override a scene key: key=value (repeatable)")
+        ->allow_extra_args(false);
     if (ranks)
       cmd->add_option("--ranks-per-case", *ranks,
                       "processes that run each model run together (default 1)");

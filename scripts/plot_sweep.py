@@ -101,7 +101,8 @@ def main():
             draw_group(ax, curves, color, (label + ", " if label else "") + seeds)
     ax.axhline(0, color="0.6", lw=0.5)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, ncol=2 if len(groups) > 8 else 1)
+    if ax.get_legend_handles_labels()[0]:  # a case without a curve draws nothing
+        ax.legend(fontsize=7, ncol=2 if len(groups) > 8 else 1)
     ax.set_title(f"sweep: {len(rows)} cases ({', '.join(keys)})"
                  + ("; the seeds of a case as its range" if seeded else ""), fontsize=9)
     fig.tight_layout()

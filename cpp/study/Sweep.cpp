@@ -194,7 +194,12 @@ SweepPlan plan_sweep(const SweepOptions& opt)
   {
     std::ostringstream s;
     s << std::setprecision(15) << "the --vary options make " << count << " cases, more than "
-      << opt.max_cases << ": --max-cases " << std::size_t(count) << " runs them";
+      << opt.max_cases;
+    if (count <= double(SweepOptions::largest_max_cases))
+      s << ": --max-cases " << std::size_t(count) << " runs them";
+    else
+      s << ", and more than the " << SweepOptions::largest_max_cases
+        << " one sweep runs: split the --vary values over several sweeps";
     throw SceneError(s.str());
   }
   plan.cases = cartesian_cases(plan.vary);
@@ -381,8 +386,15 @@ int write_sweep(const SweepOptions& opt, const SweepPlan& plan,
   }
   // A stopped sweep draws no sweep.png: plotting every curve takes
   // longer than a stop may (sweep.csv has the table).
-  const bool plot = plan.plot && stop_signal == 0;
+  // Nor does one whose cases all failed before a curve (refused, say).
+  const bool any_curve = std::any_of(
+      results.begin(), results.end(),
+      [&](const CaseResult& r)
+      { return std::filesystem::exists(opt.out / case_name(std::size_t(r.index)) / "curve.csv"); });
+  const bool plot = plan.plot && stop_signal == 0 && any_curve;
   std::string why;
+  if (plan.plot && stop_signal == 0 && !any_curve)
+    std::cerr << "pushout: warning: no sweep.png: no case wrote a curve" << std::endl;
   if (plot && !output::plot_sweep(opt.out, opt.out / "sweep.png", why))
     std::cerr << "pushout: warning: no sweep.png: " << why << std::endl;
   const auto converged = std::count_if(results.begin(), results.end(),

@@ -33,6 +33,8 @@ struct SweepOptions : ManyRunsOptions
   /// --max-cases: the most cases a sweep runs (more is refused, exit 2).
   std::size_t max_cases = default_max_cases;
   static constexpr std::size_t default_max_cases = 10000;
+  /// The largest --max-cases takes: a sweep of more is split by hand.
+  static constexpr std::size_t largest_max_cases = 100000000;
 };
 
 /// One varied key and its values, from "key=v1,v2,..." (commas inside

@@ -171,6 +171,14 @@ for name, processes, beside in (("sweep_refused", None, ""),
           f"{name}: the refused case is a row (exit {rows[1]['exit_code']}: "
           f"{rows[1]['message'][:120]}...), the other ran; the sweep exits {p.returncode}")
 
+# Every case refused: sweep.csv has them, and no sweep.png is drawn (no
+# curve to draw), which the sweep says.
+out = out_dir("sweep_all_refused")
+p = sweep(out, vary=["--vary", "mesh.elements_per_quarter=3000,4000"])
+check(p.returncode == 3 and len(table(out)) == 2 and not os.path.exists(os.path.join(out, "sweep.png"))
+      and "no case wrote a curve" in p.stderr and "plot:" not in p.stderr,
+      f"every case refused: exit {p.returncode}, no sweep.png ({p.stderr.strip()[-160:]!r})")
+
 # 4. Bad input.
 for what, vary, extra, n in (
         ("no values", ["--vary", "interface.0.mu="], [], None),
@@ -185,6 +193,23 @@ for what, vary, extra, n in (
     message = [line for line in p.stderr.splitlines() if line.startswith("pushout")]
     check(p.returncode == 2 and len(message) == 1,
           f"{what}: exit {p.returncode}, {message[0] if message else p.stderr[-300:]}")
+
+# More cases than --max-cases can allow (500^3 > 1e8): the message does not
+# offer a --max-cases that its range refuses.
+many = []
+for key, values in (("interface.0.mu", [0.001 * i for i in range(1, 501)]),
+                    ("loading.temperature_change", [-0.1 * i for i in range(1, 501)]),
+                    ("concrete.E", [20000 + i for i in range(1, 501)])):
+    many += ["--vary", key + "=" + ",".join(str(v) for v in values)]
+p = sweep(out_dir("sweep_bad"), vary=many)
+check(p.returncode == 2 and "split the --vary values" in p.stderr and "--max-cases 1" not in p.stderr,
+      f"125000000 cases: exit {p.returncode}, {p.stderr.strip()[:160]!r}")
+
+# A --set (or --vary) before the scene takes one value: the scene follows.
+p = subprocess.run([PUSHOUT, "run", "--set", "mesh.elements_per_quarter=4", SCENE, "--out",
+                    out_dir("sweep_set_first"), "--quiet", "--set", "mesh.elements_through_thickness=2",
+                    "--set", "loading.steps=2"], capture_output=True, text=True, timeout=300, env=ENV)
+check(p.returncode == 0, f"pushout run --set KEY=VALUE SCENE: exit {p.returncode} {p.stderr[-200:]}")
 
 # 5. A signal stops the sweep cleanly.
 out = out_dir("sweep_interrupted")
