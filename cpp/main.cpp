@@ -369,10 +369,14 @@ struct CommandLine
     // typo, not a PETSc option (those have one dash, each with at most one
     // value after it). A word after no option is an argument too many.
     bool after_option = false; // the last word was a PETSc option's name
+    const bool solves = !(app.got_subcommand("keys") || app.got_subcommand("laws"));
     for (const std::string& extra : app.remaining(true))
     {
       if (extra.rfind("--", 0) == 0)
         return usage_error("unknown option '" + extra.substr(0, extra.find('=')) + "'");
+      if (!solves) // keys and laws solve nothing: a PETSc option would be ignored
+        return usage_error("unexpected argument '" + extra + "' (" + command +
+                           " takes no options)");
       const bool name = extra.size() > 1 && extra[0] == '-' &&
                         !(std::isdigit(static_cast<unsigned char>(extra[1])) || extra[1] == '.');
       if (!name && !after_option)

@@ -94,6 +94,8 @@ refused("directory as the scene", args, ["/tmp", "regular file"], timeout=30, se
 refused("a second scene", ["run", GOOD_SCENE, GOOD_SCENE, "--out", out_dir("hostile_two")],
         ["unexpected argument", GOOD_SCENE])
 refused("a word after a command without arguments", ["keys", "extra"], ["unexpected argument", "extra"])
+refused("a PETSc option to a command that solves nothing", ["laws", "-snes_monitor"],
+        ["unexpected argument", "-snes_monitor", "laws takes no options"])
 # A PETSc option whose value PETSc cannot take, or a nonlinear solver that is
 # not Newton's (ksponly ran one linear solve a step and said it converged, 8 %
 # off): refused before the run.
