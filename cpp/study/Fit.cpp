@@ -305,6 +305,7 @@ int fit(const FitOptions& opt)
   outcome.sets = evaluator.sets_at(x);
   outcome.evaluations = evaluator.evaluations();
   outcome.failed_runs = evaluator.failed();
+  outcome.refused_runs = evaluator.refused();
   outcome.iterations = problem.iterations;
   int code = outcome.converged ? exit_code::done : exit_code::not_converged;
   if (rank == 0)

@@ -24,17 +24,21 @@ Evaluator::Evaluator(const FitOptions& opt, const std::vector<Free>& free,
 }
 
 std::vector<std::vector<double>>
-Evaluator::residuals(const std::vector<std::vector<double>>& points)
+Evaluator::residuals(const std::vector<std::vector<double>>& points, std::vector<bool>* failed)
 {
-  const std::size_t m = _data.delta.size();
-  std::vector<double> all(points.size() * m, 0.0);
+  // Per point its m residuals, then 1 if its run failed outright.
+  const std::size_t m = _data.delta.size(), stride = m + 1;
+  std::vector<double> all(points.size() * stride, 0.0);
   for (std::size_t k = 0; k < points.size(); ++k)
     if (int(k % std::size_t(_groups)) == _group_index)
     {
       const std::vector<double> r =
           run(points[k], _opt.out / ".runs" / ("group_" + std::to_string(_group_index)));
       if (_leader)
-        std::copy(r.begin(), r.end(), all.begin() + std::ptrdiff_t(k * m));
+      {
+        std::copy(r.begin(), r.end(), all.begin() + std::ptrdiff_t(k * stride));
+        all[k * stride + m] = _failed_outright ? 1 : 0;
+      }
     }
   MPI_Allreduce(MPI_IN_PLACE, all.data(), int(all.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
   int signal = std::max(interrupt::received(), _signal);
@@ -44,14 +48,30 @@ Evaluator::residuals(const std::vector<std::vector<double>>& points)
     interrupt::acknowledge();
     throw Interrupted(signal);
   }
-  int failed = _failed;
-  MPI_Allreduce(&failed, &_failed_total, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
+  int here[2] = {_failed, _refused}, total[2] = {0, 0};
+  MPI_Allreduce(here, total, 2, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
+  _failed_total = total[0];
+  _refused_total = total[1];
   _evaluations += int(points.size());
   std::vector<std::vector<double>> out;
+  if (failed)
+    failed->assign(points.size(), false);
   for (std::size_t k = 0; k < points.size(); ++k)
-    out.emplace_back(all.begin() + std::ptrdiff_t(k * m),
-                     all.begin() + std::ptrdiff_t((k + 1) * m));
+  {
+    out.emplace_back(all.begin() + std::ptrdiff_t(k * stride),
+                     all.begin() + std::ptrdiff_t(k * stride + m));
+    if (failed)
+      (*failed)[k] = all[k * stride + m] != 0;
+  }
   return out;
+}
+
+double Evaluator::failed_residual() const
+{
+  double largest = 0;
+  for (double t : _data.tau)
+    largest = std::max(largest, std::abs(t));
+  return failed_run_factor * largest;
 }
 
 std::vector<std::string> Evaluator::sets_at(const std::vector<double>& x) const
@@ -73,19 +93,23 @@ std::vector<double> Evaluator::run(const std::vector<double>& x, const std::file
   _last_exit_code = o.exit_code;
   if (o.exit_code > exit_code::signal(0))
     _signal = o.exit_code - exit_code::signal(0);
-  if (o.exit_code != 0 && _leader) // once per group: the count is summed over processes
+  // Once per group: the counts are summed over processes. Values the scene
+  // refuses are the fit's to avoid (a misfit), not a run that failed.
+  if (o.exit_code == exit_code::bad_input && _leader)
+    ++_refused;
+  else if (o.exit_code != 0 && _leader)
   {
     ++_failed;
     _last_failure = o.message;
   }
-  // A run that failed outright (a bad value, an error) counts as tau = 0
-  // everywhere; one that stopped (no convergence, a signal) by what it
-  // reached.
-  if (!_leader || o.exit_code == exit_code::bad_input || o.exit_code == exit_code::failure)
+  // A run that failed outright (a bad value, an error) counts as
+  // failed_residual() everywhere; one that stopped (no convergence, a
+  // signal) by what it reached.
+  _failed_outright = o.exit_code == exit_code::bad_input || o.exit_code == exit_code::failure;
+  if (!_leader || _failed_outright)
   {
     if (_leader)
-      for (std::size_t i = 0; i < r.size(); ++i)
-        r[i] = -_data.tau[i];
+      std::fill(r.begin(), r.end(), failed_residual());
     return r;
   }
   std::vector<double> delta, tau;

@@ -37,8 +37,18 @@ public:
             MPI_Comm group, int groups, int group_index, int others_here);
 
   /// The residuals at each of `points` (scaled values); every process gets
-  /// them all. Collective on MPI_COMM_WORLD.
-  std::vector<std::vector<double>> residuals(const std::vector<std::vector<double>>& points);
+  /// them all, and `failed` (if given) whether each point's run failed
+  /// outright (its residuals then failed_residual()). Collective on
+  /// MPI_COMM_WORLD.
+  std::vector<std::vector<double>> residuals(const std::vector<std::vector<double>>& points,
+                                             std::vector<bool>* failed = nullptr);
+
+  /// The residual at every point of a run that failed outright (a value the
+  /// scene refuses, such as f_fr > f_t, or an error) [MPa]:
+  /// failed_run_factor times the largest |tau| measured, beyond any run's
+  /// misfit, so that TAO's line search steps back from such values.
+  double failed_residual() const;
+  static constexpr double failed_run_factor = 1e3;
 
   /// The --set overrides of the scene at scaled values x.
   std::vector<std::string> sets_at(const std::vector<double>& x) const;
@@ -54,7 +64,10 @@ public:
   /// A signal that stopped a run of any process, or came here (collective
   /// on MPI_COMM_WORLD).
   int signal_anywhere() const;
+  /// Runs that did not converge or ended with an error, on every process.
   int failed() const { return _failed_total; }
+  /// Runs whose values the scene refused (failed_residual()).
+  int refused() const { return _refused_total; }
   const std::string& last_failure() const { return _last_failure; }
   void release() { _simulation.reset(); }
 
@@ -67,9 +80,10 @@ private:
   int _others_here; ///< driver::RunOptions::others_here
   bool _leader = false;
   std::unique_ptr<driver::Simulation> _simulation; ///< the group's set-up, reused
-  int _evaluations = 0, _failed = 0, _failed_total = 0;
+  int _evaluations = 0, _failed = 0, _failed_total = 0, _refused = 0, _refused_total = 0;
   int _signal = 0; ///< a run stopped by this signal
   int _last_exit_code = exit_code::done;
+  bool _failed_outright = false; ///< this group's last run
   std::string _last_failure;
 };
 } // namespace pushout::study

@@ -75,6 +75,7 @@ int write_fit(const FitOptions& opt, const MeasuredCurve& data, const std::vecto
   j["points"] = m;
   j["evaluations"] = fit.evaluations;
   j["failed_runs"] = fit.failed_runs;
+  j["refused_runs"] = fit.refused_runs;
   j["iterations"] = fit.iterations;
   j["converged"] = fit.converged;
   j["reason"] = fit.reason;
@@ -135,12 +136,23 @@ int write_fit(const FitOptions& opt, const MeasuredCurve& data, const std::vecto
               << (fit.failed_runs ? "; " + std::to_string(fit.failed_runs) +
                                         " runs did not converge: " + fit.failure
                                   : std::string())
-              << "); " << (opt.out / "fit.json").string() << " has where it stopped" << std::endl;
+              << "); " << (opt.out / "fit.json").string() << " has where it stopped"
+              << (fit.refused_runs
+                      ? "; " + std::to_string(fit.refused_runs) +
+                            " runs were at values the scene refuses: the best fit may lie beyond "
+                            "a relation between keys (such as f_fr <= f_t), which a --bounds "
+                            "at the relation lets the fit end on"
+                      : std::string())
+              << std::endl;
   if (talk)
   {
     std::cout << "pushout fit: rms " << std::setprecision(6) << std::sqrt(rss / double(m))
-              << " MPa after " << fit.evaluations << " runs, " << std::fixed << std::setprecision(1)
-              << fit.wall_s << " s:" << std::defaultfloat << std::endl;
+              << " MPa after " << fit.evaluations << " runs"
+              << (fit.refused_runs
+                      ? " (" + std::to_string(fit.refused_runs) + " at values the scene refuses)"
+                      : std::string())
+              << ", " << std::fixed << std::setprecision(1) << fit.wall_s
+              << " s:" << std::defaultfloat << std::endl;
     for (std::size_t k = 0; k < free.size(); ++k)
       std::cout << "  " << free[k].key << " = " << std::setprecision(6) << x[k] * free[k].scale
                 << " +- " << stats.se[k] << std::endl;

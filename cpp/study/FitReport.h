@@ -20,7 +20,8 @@ struct FitOutcome
   FitStatistics statistics;      ///< at x
   std::vector<std::string> sets; ///< the --set overrides of the fitted scene
   int evaluations = 0;           ///< runs made
-  int failed_runs = 0;           ///< runs that did not converge
+  int failed_runs = 0;           ///< runs that did not converge or ended with an error
+  int refused_runs = 0;          ///< runs at values the scene refused (counted as a misfit)
   int iterations = 0;            ///< TAO's
   bool converged = false;        ///< TAO converged, and every run did
   std::string reason;            ///< why TAO stopped (PETSc's name)

@@ -83,15 +83,41 @@ void Problem::evaluate(const std::vector<double>& x, Mat J)
       points.push_back(x);
       points.back()[j] += h[j];
     }
-  const auto r = evaluator.residuals(points);
+  std::vector<bool> failed;
+  auto r = evaluator.residuals(points, &failed);
   if (!known)
   {
     x_last = x;
     r_last = r[0];
+    last_failed = failed[0];
   }
   if (!J)
     return;
   const std::size_t first = known ? 0 : 1, m = r_last.size();
+  // A difference whose run failed outright (x + h beyond a relation between
+  // keys, such as f_fr = f_t) is taken backwards where the base run did not
+  // fail and the bound leaves room; else its column holds the failure.
+  std::vector<std::size_t> again;
+  points.clear();
+  for (std::size_t j = 0; j < x.size(); ++j)
+    if (failed[first + j] && !last_failed && h[j] > 0 &&
+        x[j] - h[j] >= free[j].tao_lo() / free[j].scale)
+    {
+      h[j] = -h[j];
+      points.push_back(x);
+      points.back()[j] += h[j];
+      again.push_back(j);
+    }
+  if (!again.empty())
+  {
+    std::vector<bool> back_failed;
+    const auto back = evaluator.residuals(points, &back_failed);
+    for (std::size_t k = 0; k < again.size(); ++k)
+      if (back_failed[k]) // both ways fail: the forward failure stays
+        h[again[k]] = -h[again[k]];
+      else
+        r[first + again[k]] = back[k];
+  }
   x_jacobian = x;
   jacobian.assign(m * x.size(), 0.0);
   for (std::size_t j = 0; j < x.size(); ++j)

@@ -24,6 +24,7 @@ struct Problem
   std::vector<double> jacobian;       ///< its entries, column-major (m x n)
   int iterations = 0;
   std::chrono::steady_clock::time_point t0;
+  bool last_failed = false; ///< whether x_last's run failed outright
 
   /// The scaled values in X.
   std::vector<double> values(Vec X) const;
@@ -34,7 +35,8 @@ struct Problem
   void fill(Mat J) const;
 
   /// The residuals at x and, if `J`, the forward-difference Jacobian there
-  /// (one batch of runs over the groups).
+  /// (one batch of runs over the groups; a difference whose run fails
+  /// outright is taken backwards, in a second batch).
   void evaluate(const std::vector<double>& x, Mat J);
 };
 

@@ -19,8 +19,9 @@
    start or are no numbers, a curve with no positive tau.
 4. A value the optimum drives onto its bound is a warning, in fit.json and
    on stderr.
-5. A run that fails outright counts as tau = 0, not as an earlier run's
-   curve."""
+5. Values the scene refuses (f_fr > f_t) count as a large misfit, a
+   difference that lands there is taken backwards, and the fit stays on
+   valid values."""
 import json
 import os
 import random
@@ -196,24 +197,41 @@ check(r4["parameters"]["interface.0.mu"] < 1e-6 and said and "sits on its bound"
       f"mu on its bound ({r4['parameters']['interface.0.mu']:.2e}) is a warning: {said}")
 
 
-# 5. A run that fails outright counts as tau = 0 everywhere, not as the curve
-# an earlier run left in its folder: from f_fr = f_t (3 MPa) the Jacobian's
-# forward difference makes f_fr > f_t, a scene refused when it is read. On
-# this falling curve tau = 0 fits better than the start, so the fit ends
-# there: exit 3, no scene, the model's tau 0 at every point. (Reading the
-# last run's curve instead, the difference was 0 and TAO jumped to f_fr =
-# 0, with a fitted scene.)
+# 5. Values the scene refuses (f_fr > f_t: a relation between keys, which no
+# bound of f_fr alone expresses) count as a misfit of 1000 times the largest
+# measured tau, and a forward difference that lands there is taken
+# backwards. (a) From f_fr = f_t (3 MPa) on a falling curve the fit takes
+# f_fr down to its bound 0 and converges (exit 0), the refused difference
+# counted in refused_runs, not as a failed run. (Reading the curve an
+# earlier run left in its folder instead, the difference was 0; counting a
+# refused run as tau = 0, better than the start on this curve, the fit
+# ended beyond the relation with no valid scene: exit 3 either way.)
 falling = write("falling.csv", "delta_mm,tau_MPa\n" + "".join(
     f"{0.01 * i:.2f},{t}\n" for i, t in enumerate(
         (2.1576, 1.81306, 1.54473, 1.33576, 1.17301, 1.04626, 0.94755, 0.87067, 0.8108, 0.76417), 1)))
-out5 = out_dir("fit_failed_run")
+out5 = out_dir("fit_on_a_relation")
 p = fit(out5, falling, free=["interface.1.f_fr"], start={"interface.1.f_fr": 3.0})
 with open(os.path.join(out5, "fit.json")) as f:
     r5 = json.load(f)
-with open(os.path.join(out5, "fit.csv")) as f:
-    model = [float(line.split(",")[2]) for line in f.readlines()[1:]]
-check(p.returncode == 3 and r5["failed_runs"] >= 1 and "no valid scene" in p.stderr
-      and model and all(t == 0 for t in model)
-      and not os.path.exists(os.path.join(out5, "scene.toml")),
-      f"a failed run counts as tau = 0 (exit {p.returncode}, {r5['failed_runs']} failed runs, "
-      f"model tau {model[:3]}...)")
+check(p.returncode == 0 and r5["refused_runs"] >= 1 and r5["failed_runs"] == 0
+      and r5["parameters"]["interface.1.f_fr"] < 1e-6
+      and os.path.exists(os.path.join(out5, "scene.toml")),
+      f"a start on f_fr = f_t: exit {p.returncode}, {r5['refused_runs']} refused and "
+      f"{r5['failed_runs']} failed runs, f_fr = {r5['parameters']['interface.1.f_fr']:.3g}")
+# (b) A curve 20 % above the model's at f_fr = f_t: the best fit lies beyond
+# the relation. The fit stays on valid values (a scene.toml), and says
+# where it was heading.
+high = out_dir("fit_high_model")
+run(SCENE, high, sets=COARSE + ["loading.push_displacement=0.1", "interface.1.f_fr=3.0"])
+rows = curve(high)[1:]
+above = write("above.csv", "delta_mm,tau_MPa\n" + "".join(
+    f"{r['delta_mm']!r},{1.2 * r['tau_MPa']!r}\n" for r in rows[3::4]))
+out5b = out_dir("fit_beyond_a_relation")
+p = fit(out5b, above, free=["interface.1.f_fr"], start={"interface.1.f_fr": 2.0})
+with open(os.path.join(out5b, "fit.json")) as f:
+    r5b = json.load(f)
+check(r5b["refused_runs"] >= 1 and r5b["parameters"]["interface.1.f_fr"] <= 3.0
+      and os.path.exists(os.path.join(out5b, "scene.toml"))
+      and (p.returncode == 0 or "a relation between keys" in p.stderr),
+      f"the best fit beyond f_fr = f_t: exit {p.returncode}, f_fr = "
+      f"{r5b['parameters']['interface.1.f_fr']:.4g}, {r5b['refused_runs']} refused runs")
