@@ -233,10 +233,9 @@ int fit(const FitOptions& opt)
         struct Group
         {
           MPI_Comm comm;
-          int others_here;
           ~Group() { MPI_Comm_free(&comm); }
-        } group{ProcessGroups::split(opt.ranks_per_case), 0};
-        group.others_here = ProcessGroups::others_here(group.comm);
+        } group{ProcessGroups::split(opt.ranks_per_case)};
+        const int others_here = ProcessGroups::others_here(group.comm);
         mpi::collectively<SceneError, record::TooLarge>(
             MPI_COMM_WORLD,
             [&]
@@ -246,7 +245,7 @@ int fit(const FitOptions& opt)
               driver::check_before_run(Scene::load(opt.scene_file, parse_overrides(sets)),
                                        driver::RunOptions{opt.out, opt.mesh_cache, opt.quiet,
                                                           opt.force, group.comm, true,
-                                                          group.others_here});
+                                                          others_here});
             });
         // The folder is this fit's alone, without an earlier run's outputs
         // (output/OutputFiles.h); neither the scene nor the data may be
