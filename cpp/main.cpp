@@ -310,14 +310,13 @@ struct CommandLine
     sweep
         ->add_option("--vary", sweep_options.vary,
                      "a key and its values: key=v1,v2,... (repeatable)")
-        ->allow_extra_args(false) // one per --vary: a scene after it is the scene
+        ->allow_extra_args(false) // one value per flag (as --set): the scene may follow
         ->required();
-    sweep
+    sweep // from 1: a negative count would wrap round
         ->add_option("--max-cases", sweep_options.max_cases,
                      "the most cases the sweep runs; more is refused (default " +
                          std::to_string(pushout::study::SweepOptions::default_max_cases) + ")")
-        ->check(CLI::Range(std::size_t(1), // a negative count would wrap round
-                           pushout::study::SweepOptions::largest_max_cases));
+        ->check(CLI::Range(std::size_t(1), pushout::study::SweepOptions::largest_max_cases));
     fit = app.add_subcommand(
         "fit", "fit scene values (law parameters, loads) to a measured push-out curve by least "
                "squares (PETSc TAO); DIR/fit.json has them with their standard errors "
@@ -369,12 +368,11 @@ struct CommandLine
     // typo, not a PETSc option (those have one dash, each with at most one
     // value after it). A word after no option is an argument too many.
     bool after_option = false; // the last word was a PETSc option's name
-    const bool solves = !(app.got_subcommand("keys") || app.got_subcommand("laws"));
     for (const std::string& extra : app.remaining(true))
     {
       if (extra.rfind("--", 0) == 0)
         return usage_error("unknown option '" + extra.substr(0, extra.find('=')) + "'");
-      if (!solves) // keys and laws solve nothing: a PETSc option would be ignored
+      if (command == "keys" || command == "laws") // nothing to solve
         return usage_error("unexpected argument '" + extra + "' (" + command +
                            " takes no options)");
       const bool name = extra.size() > 1 && extra[0] == '-' &&
@@ -435,7 +433,6 @@ private:
   {
     cmd->add_option("scene", scene_file, scene_doc)->required();
     cmd->add_option("--out", out, "output folder")->required();
-    // One value per --set (and --vary, --free, --bounds): the scene may follow.
     cmd->add_option("--set", sets, "override a scene key: key=value (repeatable)")
         ->allow_extra_args(false);
     if (ranks)
