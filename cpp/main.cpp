@@ -374,7 +374,7 @@ struct CommandLine
         return usage_error("unknown option '" + extra.substr(0, extra.find('=')) + "'");
       if (command == "keys" || command == "laws") // nothing to solve
         return usage_error("unexpected argument '" + extra + "' (" + command +
-                           " takes no options)");
+                           " takes no arguments)");
       const bool name = extra.size() > 1 && extra[0] == '-' &&
                         !(std::isdigit(static_cast<unsigned char>(extra[1])) || extra[1] == '.');
       if (!name && !after_option)

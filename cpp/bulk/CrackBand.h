@@ -313,7 +313,7 @@ public:
   /// secant_response() of the committed state `old` at the history `kappa`
   /// [mm] as linear maps of the strain, into `op`: secant_apply() of it at a
   /// strain is secant_response() there. Written in place (an operator is
-  /// 640 bytes, made at every point at every step); where `old` is
+  /// 704 bytes, made at every point at every step); where `old` is
   /// uncracked only op.cracked is, the rest is never read. Where `op` holds
   /// the maps of the same crack at the same history and strength already
   /// (op.made_of), they stay: the same numbers without making them again.

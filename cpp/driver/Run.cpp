@@ -67,7 +67,7 @@ void describe_model(const mesh::MeshInput& shape, const mesh::MeshData& data,
   output::Summary& s = report.summary();
   s.dofs = model.num_dofs();
   s.cells = std::int64_t(data.num_cells());
-  const mesh::Symmetry symmetry{data.symmetry_planes[0], data.symmetry_planes[1]};
+  const mesh::Symmetry symmetry = mesh::symmetry_of(data);
   s.symmetry = symmetry.name();
   std::int64_t local_pairs = 0; // joint elements: interface and crack planes
   for (const interface::Interface* joints : model.joints())
@@ -180,8 +180,7 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, record::R
   // Outputs and load steps.
   specimen::Corrosion corrosion(scene.corrosion(), scene.crack_directions(),
                                 scene.cracking().embedded, opt.out, report, opt.comm,
-                                mesh::Symmetry{_data.symmetry_planes[0], _data.symmetry_planes[1]},
-                                scene.geometry());
+                                mesh::symmetry_of(_data), scene.geometry());
   stepping::StepRecorder recorder(scene.output(), opt.out, *scenario, *_equilibrium, report,
                                   corrosion.active());
   const Loading& loading = scene.loading();

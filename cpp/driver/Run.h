@@ -32,7 +32,7 @@ struct RunOptions
   bool plot = true;                 ///< curve.png if output.plot (a sweep draws sweep.png)
   /// Processes of other cases on this machine while this one runs (pushout
   /// sweep and fit: study::ProcessGroups::others_here); the size guard
-  /// counts each at this run's peak.
+  /// counts each at this run's solving peak.
   int others_here = 0;
 };
 

@@ -55,6 +55,12 @@ enum class Side
 };
 Side side_of(Symmetry s, double angle);
 
+/// The planes `mesh` was cut along (MeshData::symmetry_planes).
+inline Symmetry symmetry_of(const MeshData& mesh)
+{
+  return {mesh.symmetry_planes[0], mesh.symmetry_planes[1]};
+}
+
 /// The directions [rad] of a ray from the tube axis at `angle` and of its
 /// mirror images in the whole specimen, `angle` first: copies() of them,
 /// half as many for a ray on a symmetry plane (its own image about it).

@@ -34,7 +34,7 @@ struct ResourceEstimate
   int processes = 1;      ///< processes of the run
   int processes_here = 1; ///< of them, on this machine
   /// Processes of the same command's other groups on this machine (pushout
-  /// sweep and fit run cases at once), each counted at this run's peak.
+  /// sweep and fit run cases at once), each counted at this run's solving peak (solve_mb).
   int others_here = 0;
   double meshing_mb = 0;   ///< rank 0's peak while gmsh meshes [MB]
   double solve_mb = 0;     ///< one process's peak while solving [MB]

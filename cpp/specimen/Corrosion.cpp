@@ -26,6 +26,31 @@ double widest_surface_crack(const std::vector<double>& mouths, const model::Crac
     widest = std::max(widest, bulk.surface.front().width_mm);
   return widest;
 }
+
+/// The specimen's visible surface cracks of the concrete: those of `bulk`
+/// at least `visible_width` wide [mm], each with its mirror images in a model
+/// cut by `symmetry` (a crack along a symmetry plane once), as the crack
+/// planes are counted.
+std::vector<model::SurfaceCrack> visible_surface_cracks(const model::CrackingTotals& bulk,
+                                                        double visible_width,
+                                                        mesh::Symmetry symmetry)
+{
+  std::vector<model::SurfaceCrack> cracks;
+  for (const model::SurfaceCrack& s : bulk.surface)
+    if (s.width_mm >= visible_width)
+    {
+      const std::vector<double> images =
+          mesh::images_of(symmetry, s.angle_deg * std::numbers::pi / 180);
+      for (std::size_t i = 0; i < images.size(); ++i)
+      {
+        model::SurfaceCrack c = s;
+        if (i > 0) // the crack itself keeps its angle as it was read
+          c.angle_deg = std::fmod(images[i] * 180 / std::numbers::pi + 720, 360);
+        cracks.push_back(c);
+      }
+    }
+  return cracks;
+}
 } // namespace
 
 Corrosion::Corrosion(const CorrosionPart& corrosion, const CrackDirections& cracks,
@@ -98,9 +123,7 @@ int Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iteratio
     bulk.dissipated *= copies;
     for (double w : widths)
       at_surface += w >= cracking->visible_width();
-    for (const model::SurfaceCrack& c : bulk.surface)
-      if (c.width_mm >= cracking->visible_width())
-        at_surface += int(mesh::images_of(_symmetry, c.angle_deg * std::numbers::pi / 180).size());
+    at_surface += int(visible_surface_cracks(bulk, cracking->visible_width(), _symmetry).size());
   }
   const double crack_width = widest_surface_crack(widths, bulk);
   std::vector<double> values = {x, p, crack_width};
@@ -174,24 +197,16 @@ void Corrosion::describe_cracks(solver::Equilibrium& eq, Vec state, output::Summ
   summary.surface_crack_width_mm = widest_surface_crack(mouth, bulk);
   if (cracking)
   {
-    // The specimen's surface cracks: a symmetric model's with their mirror
-    // images (as the crack planes are listed).
-    for (const model::SurfaceCrack& s : bulk.surface)
-      if (s.width_mm >= cracking->visible_width())
-      {
-        const std::vector<double> images =
-            mesh::images_of(_symmetry, s.angle_deg * std::numbers::pi / 180);
-        for (std::size_t i = 0; i < images.size(); ++i)
-        {
-          output::Summary::Crack c;
-          c.plane = false;
-          c.angle_deg = i == 0 ? s.angle_deg // the crack itself, as it was read
-                               : std::fmod(images[i] * 180 / std::numbers::pi + 720, 360);
-          c.width_mm = s.width_mm;
-          c.length_mm = s.length_mm;
-          summary.cracks.push_back(c);
-        }
-      }
+    for (const model::SurfaceCrack& s :
+         visible_surface_cracks(bulk, cracking->visible_width(), _symmetry))
+    {
+      output::Summary::Crack c;
+      c.plane = false;
+      c.angle_deg = s.angle_deg;
+      c.width_mm = s.width_mm;
+      c.length_mm = s.length_mm;
+      summary.cracks.push_back(c);
+    }
     write_crack_pattern(bulk.columns, mouth);
   }
 }

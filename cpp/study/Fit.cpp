@@ -235,7 +235,7 @@ int fit(const FitOptions& opt)
           MPI_Comm comm;
           ~Group() { MPI_Comm_free(&comm); }
         } group{ProcessGroups::split(opt.ranks_per_case)};
-        const int others_here = ProcessGroups::others_here(group.comm);
+        const int others_here = ProcessGroups::others_here(group.comm, int(free.size()) + 1);
         mpi::collectively<SceneError, record::TooLarge>(
             MPI_COMM_WORLD,
             [&]
@@ -264,7 +264,7 @@ int fit(const FitOptions& opt)
 
   ProcessGroups groups(opt.ranks_per_case);
   Evaluator evaluator(opt, free, data, groups.comm(), groups.count(), groups.index(),
-                      groups.others_here());
+                      groups.others_here(int(free.size()) + 1));
   Problem problem{evaluator, free, talk, {}, {}, {}, {}, 0, t0};
   if (talk)
     std::cout << "pushout fit: " << free.size() << " values to " << data.delta.size()

@@ -1,6 +1,7 @@
 #include "ManyRuns.h"
 #include "../common/mpi_errors.h"
 #include "../scene/SceneError.h"
+#include <algorithm>
 
 namespace pushout::study
 {
@@ -22,19 +23,36 @@ MPI_Comm ProcessGroups::split(int ranks_per_case)
   return comm;
 }
 
-int ProcessGroups::others_here(MPI_Comm group)
+namespace
 {
-  const auto here = [](MPI_Comm comm)
-  {
-    MPI_Comm local;
-    MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &local);
-    int size = 1;
-    MPI_Comm_size(local, &size);
-    MPI_Comm_free(&local);
-    return size;
-  };
-  const int all = here(MPI_COMM_WORLD);
-  return all - here(group);
+/// The processes of `comm` on this machine.
+int processes_here(MPI_Comm comm)
+{
+  MPI_Comm local;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &local);
+  int size = 1;
+  MPI_Comm_size(local, &size);
+  MPI_Comm_free(&local);
+  return size;
+}
+
+/// Of `here` processes on this machine, `group_here` in the group: the others
+/// that run, at most runs_at_once - 1 groups of as many.
+int others_running(int here, int group_here, int runs_at_once)
+{
+  return std::min(here - group_here, std::max(0, runs_at_once - 1) * group_here);
+}
+} // namespace
+
+int ProcessGroups::others_here(MPI_Comm group, int runs_at_once)
+{
+  const int here = processes_here(MPI_COMM_WORLD);
+  return others_running(here, processes_here(group), runs_at_once);
+}
+
+int ProcessGroups::others_here(int runs_at_once) const
+{
+  return others_running(_here, _group_here, runs_at_once);
 }
 
 ProcessGroups::ProcessGroups(int ranks_per_case)
@@ -48,7 +66,8 @@ ProcessGroups::ProcessGroups(int ranks_per_case)
   int group_rank = 0;
   MPI_Comm_rank(_comm, &group_rank);
   _leader = group_rank == 0;
-  _others_here = others_here(_comm);
+  _here = processes_here(MPI_COMM_WORLD);
+  _group_here = processes_here(_comm);
   mpi::set_run_processes(_comm);
 }
 

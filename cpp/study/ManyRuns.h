@@ -34,9 +34,12 @@ public:
   /// MPI_COMM_WORLD in rank order), for the caller to free; no agreement
   /// moves to it. Collective on MPI_COMM_WORLD.
   static MPI_Comm split(int ranks_per_case);
-  /// Processes on this machine that are not in `group` (the other groups',
-  /// which run other cases at once). Collective on MPI_COMM_WORLD.
-  static int others_here(MPI_Comm group);
+  /// Processes on this machine of the other groups that run cases beside
+  /// `group`'s, when at most `runs_at_once` cases run at a time (a sweep's
+  /// cases; a fit's batch, the base point and one per free value): a group
+  /// with none to run is idle. Collective on
+  /// MPI_COMM_WORLD.
+  static int others_here(MPI_Comm group, int runs_at_once);
   explicit ProcessGroups(int ranks_per_case);
   ~ProcessGroups() { close(); }
   ProcessGroups(const ProcessGroups&) = delete;
@@ -45,8 +48,8 @@ public:
   MPI_Comm comm() const { return _comm; }
   int count() const { return _count; }
   int index() const { return _index; }
-  /// others_here(comm()), counted when the groups were made.
-  int others_here() const { return _others_here; }
+  /// others_here(comm(), runs_at_once), from the counts made with the groups.
+  int others_here(int runs_at_once) const;
   /// Whether this process is its group's first.
   bool leader() const { return _leader; }
   /// Agreements on MPI_COMM_WORLD again; the groups' communicator freed.
@@ -54,7 +57,8 @@ public:
 
 private:
   MPI_Comm _comm = MPI_COMM_NULL;
-  int _count = 1, _index = 0, _others_here = 0;
+  int _count = 1, _index = 0;
+  int _here = 1, _group_here = 1; ///< this machine's processes: all, this group's
   bool _leader = true;
 };
 

@@ -345,10 +345,11 @@ CasesRun run_cases(const SweepOptions& opt, const SweepPlan& plan, ProcessGroups
     sets.insert(sets.end(), cases[std::size_t(index)].begin(), cases[std::size_t(index)].end());
     // Quiet, and no curve.png per case: sweep.png overlays them.
     CaseResult r;
-    static_cast<RunOutcome&>(r) = run_case(opt.scene_file, sets,
-                                           {opt.out / case_name(std::size_t(index)), opt.mesh_cache,
-                                            true, opt.force, group, false, groups.others_here()},
-                                           simulation);
+    static_cast<RunOutcome&>(r) =
+        run_case(opt.scene_file, sets,
+                 {opt.out / case_name(std::size_t(index)), opt.mesh_cache, true, opt.force, group,
+                  false, groups.others_here(int(cases.size()))},
+                 simulation);
     r.index = index;
     if (r.exit_code > 128)
       run.stop_signal = r.exit_code - 128;

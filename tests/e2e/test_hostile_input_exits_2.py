@@ -95,7 +95,7 @@ refused("a second scene", ["run", GOOD_SCENE, GOOD_SCENE, "--out", out_dir("host
         ["unexpected argument", GOOD_SCENE])
 refused("a word after a command without arguments", ["keys", "extra"], ["unexpected argument", "extra"])
 refused("a PETSc option to a command that solves nothing", ["laws", "-snes_monitor"],
-        ["unexpected argument", "-snes_monitor", "laws takes no options"])
+        ["unexpected argument", "-snes_monitor", "laws takes no arguments"])
 # A PETSc option whose value PETSc cannot take, or a nonlinear solver that is
 # not Newton's (ksponly ran one linear solve a step and said it converged, 8 %
 # off): refused before the run.

@@ -505,10 +505,11 @@ TEST(CrackBand, SecantOperatorKeptOnlyForTheSameInputs)
     double kappa, strength;
   };
   const std::vector<Input> sequence = {
-      {&a.state, ka, 1},       {&a.state, ka, 1},        {&a.state, 2 * ka, 1},
-      {&a.state, 2 * ka, 1.2}, {&n_turned, 2 * ka, 1.2}, {&s1_turned, 2 * ka, 1.2},
-      {&wider, 2 * ka, 1.2},   {&a.state, 2 * ka, 1.2},  {&b.state, 2 * ka, 1.2},
-      {&uncracked, 0, 1},      {&a.state, ka, 1},        {&b.state, kb, 1}};
+      {&a.state, ka, 1},         {&a.state, ka, 1},        {&a.state, 2 * ka, 1},
+      {&a.state, 2 * ka, 1.2},   {&n_turned, 2 * ka, 1.2}, {&a.state, 2 * ka, 1.2},
+      {&s1_turned, 2 * ka, 1.2}, // kept from a's: only s1 differs
+      {&wider, 2 * ka, 1.2},     {&a.state, 2 * ka, 1.2},  {&b.state, 2 * ka, 1.2},
+      {&uncracked, 0, 1},        {&a.state, ka, 1},        {&b.state, kb, 1}};
   SecantOperator kept;
   for (const Input& in : sequence)
   {

@@ -1,6 +1,6 @@
 // The size guard's count of what runs at once on this machine
 // (record/ResourceGuard.h): a sweep's or a fit's other groups run other
-// cases beside this one, and each is counted at this run's peak.
+// cases beside this one, and each is counted at this run's solving peak.
 #include "../../../cpp/mesh/MeshInput.h"
 #include "../../../cpp/record/ResourceGuard.h"
 #include "../../../cpp/scene/Scene.h"
@@ -13,7 +13,7 @@ using pushout::record::estimate_resources;
 using pushout::record::ResourceEstimate;
 using pushout::record::TooLarge;
 
-TEST(ResourceGuard, OtherCasesOnThisMachineCountAtThisRunsPeak)
+TEST(ResourceGuard, OtherCasesOnThisMachineCountAtThisRunsSolvingPeak)
 {
   const Scene scene = Scene::parse("[mesh]\nelements_per_quarter = 24\n");
   const MeshInput in = MeshInput::of(scene);
