@@ -23,7 +23,7 @@ constexpr double load_difference_fraction = 1e-7;
 
 /// The corrosion stage: the constraints and temperature of step 0, the
 /// interface's oxide inputs of depth x(s); each step takes the pseudo-time
-/// of one nominal push step (as step 0 does), for viscous laws.
+/// of the push's first step (as step 0 does), for viscous laws.
 bool StepLoop::corrode()
 {
   const double step_time = _scenario.time_at(1.0) - _scenario.time_at(0.0);

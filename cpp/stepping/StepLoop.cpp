@@ -85,9 +85,10 @@ bool StepLoop::run(Control control)
 
 /// Step 0: the thermal step or preload, if the scenario has one, in parts
 /// (its load scaled, cut in halves like a load step) when it does not
-/// converge whole. It takes the pseudo-time of one nominal load step, so
-/// that a viscous damage layer damages in it as it would in one step of the
-/// push (with dt = 0 its damage would freeze). With a corrosion stage, the
+/// converge whole. It takes the pseudo-time of the push's first load step
+/// (time_at(1) - time_at(0): with loading.step_growth the first, smallest,
+/// step), so that a viscous damage layer damages in it as it would in that
+/// step of the push (with dt = 0 its damage would freeze). With a corrosion stage, the
 /// push starts after it.
 bool StepLoop::initial_step()
 {
