@@ -117,11 +117,10 @@ std::vector<KeyDef> law_keys()
        0.0,
        "mm",
        "damage viscosity of the concrete's cracks, as the damage laws' eta: pseudo-time "
-       "constant in mm of push; a corrosion step lasts the push's first step's pseudo-time "
-       "(push_displacement / loading.steps, the first of the growing steps with "
-       "loading.step_growth; with push_path, its first segment's length / "
-       "steps_per_segment), so the corrosion stage's cracks depend on those too; 0: rate "
-       "independent",
+       "constant in mm of push; a corrosion step lasts the push's first step's (push_"
+       "displacement / loading.steps, or the first growing step with step_growth; with "
+       "push_path, its first segment's length / steps_per_segment), so the corrosion "
+       "stage's cracks depend on those too; 0: rate independent",
        0,
        inf,
        false,
