@@ -63,6 +63,16 @@ double proc_kb(const char* file, const std::string& key)
 }
 } // namespace
 
+int processes_on_this_machine(MPI_Comm comm)
+{
+  MPI_Comm local;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &local);
+  int size = 1;
+  MPI_Comm_size(local, &size);
+  MPI_Comm_free(&local);
+  return size;
+}
+
 double available_memory_mb()
 {
   const double kb = proc_kb("/proc/meminfo", "MemAvailable:");
@@ -125,10 +135,7 @@ ResourceEstimate estimate_resources(const mesh::MeshInput& in, const SolverPart&
   e.others_here = others_here;
   e.size = mesh::predict_size(in);
   MPI_Comm_size(comm, &e.processes);
-  MPI_Comm local;
-  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &local);
-  MPI_Comm_size(local, &e.processes_here);
-  MPI_Comm_free(&local);
+  e.processes_here = processes_on_this_machine(comm);
 
   std::string why;
   e.condensed =

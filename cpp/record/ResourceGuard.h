@@ -70,6 +70,10 @@ public:
 /// available here (or `force`).
 void check_fits(const ResourceEstimate& estimate, const mesh::MeshInput& in, bool force);
 
+/// The processes of `comm` on this machine (MPI_COMM_TYPE_SHARED).
+/// Collective on `comm`.
+int processes_on_this_machine(MPI_Comm comm);
+
 /// Memory available to new allocations on this machine [MB]: MemAvailable
 /// of /proc/meminfo, or less under a cgroup memory limit.
 double available_memory_mb();

@@ -1,11 +1,11 @@
 #include "Scene.h"
 #include "../laws/ParameterError.h"
+#include "InputFile.h"
 #include "SceneError.h"
 #include "TomlNesting.h"
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <sstream>
 #include <toml++/toml.h>
@@ -368,33 +368,8 @@ std::vector<Override> parse_overrides(const std::vector<std::string>& texts)
 
 Scene Scene::load(const std::filesystem::path& file, const std::vector<Override>& overrides)
 {
-  namespace fs = std::filesystem;
-  const std::string name = "scene file '" + file.string() + "'";
-  std::error_code ec;
-  const fs::file_status status = fs::status(file, ec);
-  if (ec || !fs::exists(status))
-    throw SceneError("cannot read " + name);
-  // Not a directory, a device or a pipe: those read as no scene, or forever.
-  if (!fs::is_regular_file(status))
-    throw SceneError(name + " is not a regular file");
-  const auto too_large = [&]
-  {
-    return SceneError(name + " is larger than " + std::to_string(max_scene_bytes >> 20) +
-                      " MiB: not a scene");
-  };
-  if (fs::file_size(file, ec) > max_scene_bytes && !ec)
-    throw too_large();
-  std::ifstream in(file, std::ios::binary);
-  if (!in)
-    throw SceneError("cannot read " + name);
-  // At most one byte more than the limit, should the file grow meanwhile.
-  std::string text(max_scene_bytes + 1, '\0');
-  in.read(text.data(), std::streamsize(text.size()));
-  text.resize(std::size_t(in.gcount()));
-  if (text.size() > max_scene_bytes)
-    throw too_large();
-  if (in.bad())
-    throw SceneError("cannot read " + name);
+  const std::string text =
+      read_input_file(file, "scene file '" + file.string() + "'", max_scene_bytes, "a scene");
   return parse(text, overrides, file.string());
 }
 

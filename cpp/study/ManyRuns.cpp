@@ -1,5 +1,6 @@
 #include "ManyRuns.h"
 #include "../common/mpi_errors.h"
+#include "../record/ResourceGuard.h"
 #include "../scene/SceneError.h"
 #include <algorithm>
 
@@ -25,17 +26,6 @@ MPI_Comm ProcessGroups::split(int ranks_per_case)
 
 namespace
 {
-/// The processes of `comm` on this machine.
-int processes_here(MPI_Comm comm)
-{
-  MPI_Comm local;
-  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &local);
-  int size = 1;
-  MPI_Comm_size(local, &size);
-  MPI_Comm_free(&local);
-  return size;
-}
-
 /// Of `here` processes on this machine, `group_here` in the group: the others
 /// that run, at most runs_at_once - 1 groups of as many.
 int others_running(int here, int group_here, int runs_at_once)
@@ -46,8 +36,8 @@ int others_running(int here, int group_here, int runs_at_once)
 
 int ProcessGroups::others_here(MPI_Comm group, int runs_at_once)
 {
-  const int here = processes_here(MPI_COMM_WORLD);
-  return others_running(here, processes_here(group), runs_at_once);
+  const int here = record::processes_on_this_machine(MPI_COMM_WORLD);
+  return others_running(here, record::processes_on_this_machine(group), runs_at_once);
 }
 
 int ProcessGroups::others_here(int runs_at_once) const
@@ -66,8 +56,8 @@ ProcessGroups::ProcessGroups(int ranks_per_case)
   int group_rank = 0;
   MPI_Comm_rank(_comm, &group_rank);
   _leader = group_rank == 0;
-  _here = processes_here(MPI_COMM_WORLD);
-  _group_here = processes_here(_comm);
+  _here = record::processes_on_this_machine(MPI_COMM_WORLD);
+  _group_here = record::processes_on_this_machine(_comm);
   mpi::set_run_processes(_comm);
 }
 

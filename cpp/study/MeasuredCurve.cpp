@@ -1,11 +1,12 @@
 // The measured curve of a fit (MeasuredCurve.h): its reading, with an error
 // that says what is wrong with the file, and its interpolation.
 #include "MeasuredCurve.h"
+#include "../scene/InputFile.h"
 #include "../scene/SceneError.h"
 #include "text.h"
 #include <algorithm>
 #include <cmath>
-#include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -13,22 +14,9 @@ namespace pushout::study
 {
 MeasuredCurve read_measured(const std::filesystem::path& file)
 {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::file_status status = fs::status(file, ec);
-  if (ec || !fs::exists(status))
-    throw SceneError("--data '" + file.string() + "': cannot read it");
-  // Not a directory, a device or a pipe: those read as no curve, or forever.
-  if (!fs::is_regular_file(status))
-    throw SceneError("--data '" + file.string() + "' is not a regular file");
-  // A measured curve is some thousands of rows; a larger file is not one.
-  constexpr std::uintmax_t max_bytes = std::uintmax_t(64) << 20;
-  if (const std::uintmax_t bytes = fs::file_size(file, ec); !ec && bytes > max_bytes)
-    throw SceneError("--data '" + file.string() + "' is larger than " +
-                     std::to_string(max_bytes >> 20) + " MiB: not a measured curve");
-  std::ifstream in(file);
-  if (!in)
-    throw SceneError("--data '" + file.string() + "': cannot read it");
+  // A measured curve is some thousands of rows: 64 MiB is not one.
+  std::istringstream in(read_input_file(file, "--data '" + file.string() + "'",
+                                        std::uintmax_t(64) << 20, "a measured curve"));
   std::string line;
   if (!std::getline(in, line))
     throw SceneError("--data '" + file.string() + "' is empty");
