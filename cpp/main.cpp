@@ -11,8 +11,8 @@
 #include "common/Interrupt.h"
 #include "common/exit_codes.h"
 #include "common/mpi_errors.h"
-#include "common/mpi_start.h"
 #include "common/petsc_check.h"
+#include "driver/PetscOptions.h"
 #include "driver/Run.h"
 #include "driver/exit_on_error.h"
 #include "mesh/generate.h"
@@ -32,11 +32,7 @@
 #include <filesystem>
 #include <iostream>
 #include <optional>
-#include <petscsnes.h>
 #include <petscsys.h>
-#include <petsctao.h>
-#include <set>
-#include <sstream>
 
 namespace
 {
@@ -196,93 +192,6 @@ bool first_process()
   std::_Exit(pushout::exit_code::failure);
 }
 
-/// The names of the PETSc options on the command line ("-snes_monitor"):
-/// the words that start with a dash and a letter (a negative number is a
-/// value).
-std::set<std::string> option_names(const std::vector<std::string>& words)
-{
-  std::set<std::string> names;
-  for (const std::string& w : words)
-    if (w.size() > 1 && w[0] == '-' && std::isalpha(static_cast<unsigned char>(w[1])))
-      names.insert(w);
-  return names;
-}
-
-/// The user's PETSc options (`given`, from the command line) that nothing
-/// read, on every process alike: an option read on any process counts as
-/// read. The default solver path's options (SNES, KSP, PC, MUMPS, TAO and
-/// this program's own) count as read even where this run did not create
-/// that solver. Defaults the program sets itself (solver/NewtonSolver.cpp)
-/// are not the user's: a run with -pc_type gamg never reads its
-/// -pc_factor_mat_solver_type.
-std::vector<std::string> unused_petsc_options(const std::set<std::string>& given)
-{
-  using pushout::petsc::check;
-  PetscInt left = 0;
-  check(PetscOptionsLeftGet(nullptr, &left, nullptr, nullptr), "PetscOptionsLeftGet");
-  if (left > 0)
-  {
-    // Objects of the default path read their options; none of them solves.
-    SNES snes;
-    check(SNESCreate(PETSC_COMM_SELF, &snes), "SNESCreate");
-    check(SNESSetFromOptions(snes), "SNESSetFromOptions");
-    KSP ksp;
-    check(SNESGetKSP(snes, &ksp), "SNESGetKSP");
-    check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
-    check(SNESDestroy(&snes), "SNESDestroy");
-    Mat A, F;
-    check(MatCreateSeqAIJ(PETSC_COMM_SELF, 1, 1, 1, nullptr, &A), "MatCreateSeqAIJ");
-    check(MatSetValue(A, 0, 0, 1.0, INSERT_VALUES), "MatSetValue");
-    check(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-    check(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-    if (MatGetFactor(A, MATSOLVERMUMPS, MAT_FACTOR_LU, &F) == 0)
-    {
-      MatFactorInfo info;
-      check(MatFactorInfoInitialize(&info), "MatFactorInfoInitialize");
-      check(MatLUFactorSymbolic(F, A, nullptr, nullptr, &info), "MatLUFactorSymbolic");
-      check(MatDestroy(&F), "MatDestroy");
-    }
-    check(MatDestroy(&A), "MatDestroy");
-    Tao tao;
-    check(TaoCreate(PETSC_COMM_SELF, &tao), "TaoCreate");
-    check(TaoSetFromOptions(tao), "TaoSetFromOptions");
-    check(TaoDestroy(&tao), "TaoDestroy");
-    for (const char* own : {"-arc_monitor", "-options_left"}) // read by pushout, or at the end
-    {
-      PetscBool set;
-      check(PetscOptionsHasName(nullptr, nullptr, own, &set), "PetscOptionsHasName");
-    }
-  }
-  // Rank 0's list; each is unused where no process read it.
-  char** names = nullptr;
-  char** values = nullptr;
-  check(PetscOptionsLeftGet(nullptr, &left, &names, &values), "PetscOptionsLeftGet");
-  std::string list;
-  for (PetscInt i = 0; i < left; ++i)
-    list += std::string("-") + names[i] + "\n";
-  check(PetscOptionsLeftRestore(nullptr, &left, &names, &values), "PetscOptionsLeftRestore");
-  int length = int(list.size());
-  MPI_Bcast(&length, 1, MPI_INT, 0, MPI_COMM_WORLD);
-  list.resize(std::size_t(length));
-  MPI_Bcast(list.data(), length, MPI_CHAR, 0, MPI_COMM_WORLD);
-  std::vector<std::string> candidates;
-  std::istringstream in(list);
-  for (std::string name; std::getline(in, name);)
-    candidates.push_back(name);
-  std::vector<int> used(candidates.size(), 0);
-  for (std::size_t i = 0; i < candidates.size(); ++i)
-  {
-    PetscBool u = PETSC_FALSE;
-    check(PetscOptionsUsed(nullptr, candidates[i].c_str(), &u), "PetscOptionsUsed");
-    used[i] = u ? 1 : 0;
-  }
-  MPI_Allreduce(MPI_IN_PLACE, used.data(), int(used.size()), MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  std::vector<std::string> unused;
-  for (std::size_t i = 0; i < candidates.size(); ++i)
-    if (!used[i] && given.count(candidates[i]))
-      unused.push_back(candidates[i]);
-  return unused;
-}
 /// The command line: the commands, their options and what they were given.
 /// Built in place (its options write into its members).
 struct CommandLine
@@ -450,104 +359,6 @@ private:
   }
 };
 
-/// Starts PETSc (and MPI) with `options`; false after saying why.
-bool start_petsc(char* program, std::vector<std::string>& options)
-{
-  std::vector<char*> petsc_argv = {program};
-  for (std::string& o : options)
-    petsc_argv.push_back(o.data());
-  petsc_argv.push_back(nullptr);
-  int petsc_argc = int(petsc_argv.size()) - 1;
-  char** petsc_args = petsc_argv.data();
-  pushout::mpi::prepare_singleton_start();
-  try
-  {
-    pushout::petsc::check(PetscInitialize(&petsc_argc, &petsc_args, nullptr, nullptr),
-                          "PetscInitialize");
-    // PETSc prints nothing of an error: it reaches the user once, as the
-    // exception of the checked call (common/petsc_check.h).
-    pushout::petsc::check(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr),
-                          "PetscPushErrorHandler");
-  }
-  catch (const std::exception& e)
-  {
-    std::cerr << "pushout: error: " << e.what() << std::endl;
-    return false;
-  }
-  return true;
-}
-
-/// The user's PETSc options as the default solver's objects read them (a
-/// SNES, its KSP and PC): PETSc's message where one cannot take its value
-/// (-ksp_type bogus, -snes_max_it abc), else "". Found before the run, it
-/// is a usage error (exit 2), not a run that fails in its first solve. The
-/// same on every process (each reads the same options).
-std::string petsc_option_error()
-{
-  using pushout::petsc::check;
-  SNES snes;
-  check(SNESCreate(PETSC_COMM_SELF, &snes), "SNESCreate");
-  std::string error;
-  try
-  {
-    check(SNESSetFromOptions(snes), "SNESSetFromOptions");
-    // The load steps are Newton's method with a line search on the laws'
-    // consistent tangents, and their stop tests and cuts read its
-    // iterations: another SNES (ksponly took one linear solve and said it
-    // converged; qn failed inside) is no solver of pushout's.
-    SNESType type = nullptr;
-    check(SNESGetType(snes, &type), "SNESGetType");
-    if (type && std::string(type) != SNESNEWTONLS)
-      error = std::string("-snes_type ") + type +
-              ": pushout's load steps run Newton's method with a line search (newtonls, the "
-              "default; -snes_linesearch_type chooses the line search)";
-    KSP ksp;
-    check(SNESGetKSP(snes, &ksp), "SNESGetKSP");
-    check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
-  }
-  catch (const pushout::petsc::Error& e)
-  {
-    error = e.what();
-  }
-  check(SNESDestroy(&snes), "SNESDestroy");
-  return error;
-}
-
-/// The exit code after the user's PETSc options (`given`) were checked: a
-/// PETSc option nothing read is most likely a typo of one (-snes_monitr):
-/// an error (exit 2) after a run that succeeded, unless `allow_unused`; a
-/// warning otherwise. `summary` (a run's summary.json; empty for sweep and
-/// fit) then lists them too. Collective.
-int check_petsc_options(const std::set<std::string>& given, bool allow_unused, int rc,
-                        const std::filesystem::path& summary)
-{
-  const std::vector<std::string> unused = unused_petsc_options(given);
-  if (unused.empty())
-    return rc;
-  int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  std::string list;
-  for (const std::string& u : unused)
-    list += (list.empty() ? "" : ", ") + u;
-  const bool error = !allow_unused && rc == pushout::exit_code::done;
-  if (rank == 0)
-    std::cerr << "pushout: " << (error ? "error" : "warning") << ": PETSc option"
-              << (unused.size() > 1 ? "s " : " ") << list
-              << " not read by any solver (a typo?); --allow-unused-petsc-options accepts "
-              << (unused.size() > 1 ? "them" : "it") << std::endl;
-  // Said above whatever comes of it: a summary that cannot be written again
-  // (the disk full since) changes no exit code.
-  if (rank == 0 && !summary.empty())
-    try
-    {
-      pushout::output::add_unused_petsc_options(summary, unused);
-    }
-    catch (const std::exception& e)
-    {
-      std::cerr << "pushout: warning: summary.json does not list them: " << e.what() << std::endl;
-    }
-  return error ? pushout::exit_code::bad_input : rc;
-}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -567,9 +378,9 @@ int main(int argc, char* argv[])
     return pushout::exit_code::done;
   }
   std::vector<std::string> petsc_options = cli.petsc_options();
-  if (!start_petsc(argv[0], petsc_options))
+  if (!pushout::driver::start_petsc(argv[0], petsc_options))
     return pushout::exit_code::failure;
-  if (const std::string bad = petsc_option_error(); !bad.empty())
+  if (const std::string bad = pushout::driver::petsc_option_error(); !bad.empty())
   {
     if (first_process())
       std::cerr << "pushout: error: a PETSc option: " << bad << std::endl;
@@ -585,7 +396,8 @@ int main(int argc, char* argv[])
   try
   {
     rc = cli.run_command();
-    rc = check_petsc_options(option_names(petsc_options), cli.allow_unused, rc, cli.run_summary());
+    rc = pushout::driver::check_petsc_options(pushout::driver::option_names(petsc_options),
+                                              cli.allow_unused, rc, cli.run_summary());
   }
   catch (const std::exception& e) // an error outside the runs of a sweep or fit
   {
