@@ -6,8 +6,7 @@ namespace pushout
 {
 namespace
 {
-/// The crack and its law: whether the concrete cracks, the softening law,
-/// its damage viscosity.
+/// The crack and its law: whether the concrete cracks, the softening law.
 std::vector<KeyDef> law_keys()
 {
   using K = KeyType;
@@ -67,6 +66,17 @@ std::vector<KeyDef> law_keys()
        true,
        {},
        A::pushout},
+  };
+}
+
+/// How the cracks are integrated over a step: implicitly or by IMPL-EX,
+/// and the damage viscosity.
+std::vector<KeyDef> integration_keys()
+{
+  using K = KeyType;
+  using A = Applies;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  return {
       {"cracking.integration",
        K::string,
        std::string("auto"),
@@ -215,7 +225,7 @@ std::vector<KeyDef> cracking_keys()
   // with a random tensile strength (bulk/StrengthField.h). In progress:
   // off unless cracking.model = "embedded".
   std::vector<KeyDef> keys = law_keys();
-  for (auto part : {field_keys, reading_keys})
+  for (auto part : {integration_keys, field_keys, reading_keys})
   {
     std::vector<KeyDef> more = part();
     keys.insert(keys.end(), more.begin(), more.end());

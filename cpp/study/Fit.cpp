@@ -193,17 +193,16 @@ int run_fitted(const FitOptions& opt, Evaluator& evaluator, ProcessGroups& group
   }
   return signal;
 }
-} // namespace
-
-int fit(const FitOptions& opt)
+/// The fit's inputs, read and checked before its folder is touched: the
+/// measured curve into `data`, the free values into `free`; the start a
+/// valid scene with the push to the data's end that fits a group's
+/// processes; the folder claimed. exit_code::done, or the refusal's code
+/// (said once).
+int prepare(const FitOptions& opt, MeasuredCurve& data, std::vector<Free>& free)
 {
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  const bool talk = rank == 0 && !opt.quiet;
-  const auto t0 = std::chrono::steady_clock::now();
-  MeasuredCurve data;
-  std::vector<Free> free;
-  const int set_up = driver::exit_code_of(
+  return driver::exit_code_of(
       "pushout fit", "error",
       [&]
       {
@@ -259,7 +258,18 @@ int fit(const FitOptions& opt)
             });
         return exit_code::done;
       });
-  if (set_up != exit_code::done)
+}
+} // namespace
+
+int fit(const FitOptions& opt)
+{
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  const bool talk = rank == 0 && !opt.quiet;
+  const auto t0 = std::chrono::steady_clock::now();
+  MeasuredCurve data;
+  std::vector<Free> free;
+  if (const int set_up = prepare(opt, data, free); set_up != exit_code::done)
     return set_up;
 
   ProcessGroups groups(opt.ranks_per_case);
