@@ -1,7 +1,9 @@
 #include "Interface.h"
+#include "../common/BlockAdd.h"
 #include "../common/petsc_check.h"
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -194,8 +196,10 @@ bool Interface::assemble(std::span<const double> u, std::span<double> f, Mat A)
 {
   const std::size_t nq = _q.weights.size();
   bool ok = true;
-  PetscErrorCode inserted = 0;    // the first failed insertion into A (checked after the loop)
-  const int n = _n, rows = 6 * n; // nodes per side, rows of Ke
+  const int n = _n, rows = 6 * n;     // nodes per side, rows of Ke
+  std::optional<petsc::BlockAdd> add; // into A
+  if (A)
+    add.emplace(A);
   for (std::size_t p = 0; p < num_pairs(); ++p)
   {
     const std::int32_t* b = _blocks.data() + 2 * n * p;
@@ -263,10 +267,12 @@ bool Interface::assemble(std::span<const double> u, std::span<double> f, Mat A)
                   _Ke[rows * (row + r) + col + k] += c * Db[3 * r + k];
             }
     }
-    if (A && inserted == 0)
-      inserted = MatSetValuesBlockedLocal(A, 2 * n, b, 2 * n, b, _Ke.data(), ADD_VALUES);
+    if (add)
+    {
+      const std::span<const std::int32_t> nodes(b, std::size_t(2 * n));
+      (*add)(nodes, nodes, _Ke);
+    }
   }
-  petsc::check(inserted, "MatSetValuesBlockedLocal");
   return ok;
 }
 

@@ -1,5 +1,6 @@
 #include "BulkCracking.h"
 #include "../bulk/StrengthField.h"
+#include "../common/BlockAdd.h"
 #include "../scene/SceneError.h"
 #include "BulkCrackingPoints.h"
 #include "CrackingCells.h"
@@ -10,6 +11,7 @@
 #include <dolfinx/fem/petsc.h>
 #include <dolfinx/fem/utils.h>
 #include <dolfinx/la/petsc.h>
+#include <functional>
 #include <sstream>
 
 namespace pushout::model
@@ -389,7 +391,8 @@ void BulkCracking::add_forces(std::span<double> f) const
 
 void BulkCracking::add_tangent(Mat A) const
 {
-  fem::assemble_matrix(dolfinx::la::petsc::Matrix::set_block_fn(A, ADD_VALUES), *_a, {});
+  petsc::BlockAdd add(A);
+  fem::assemble_matrix(std::ref(add), *_a, {});
 }
 
 void BulkCracking::add_tangent_change(Mat A, std::vector<double>& assembled)
@@ -432,6 +435,7 @@ void BulkCracking::add_tangent_change(Mat A, std::vector<double>& assembled)
   const fem::Form<double> form =
       fem::create_form<double>(*form_cracking_a_crack, _a->function_spaces(),
                                {{"d_C", _d_C_change}}, {}, {{fem::IntegralType::cell, &tags}});
-  fem::assemble_matrix(dolfinx::la::petsc::Matrix::set_block_fn(A, ADD_VALUES), form, {});
+  petsc::BlockAdd add(A);
+  fem::assemble_matrix(std::ref(add), form, {});
 }
 } // namespace pushout::model
