@@ -1,6 +1,5 @@
 #include "Interface.h"
 #include "../common/BlockAdd.h"
-#include "../common/petsc_check.h"
 #include <algorithm>
 #include <cmath>
 #include <optional>
