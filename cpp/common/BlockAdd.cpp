@@ -35,17 +35,32 @@ BlockAdd::BlockAdd(Mat A) : _A(A)
   check(MatGetRowIJ(A, 0, PETSC_FALSE, PETSC_FALSE, &_n, &_ia, &_ja, &done), "MatGetRowIJ");
   if (!done)
     return;
-  if (map)
+  // A constructor that throws runs no destructor: what was got so far is
+  // given back here.
+  try
   {
-    _maps = {map, col_map};
-    for (int k = 0; k < 2; ++k)
-      check(ISLocalToGlobalMappingGetBlockIndices(_maps[k], &_blocks[k]),
-            "ISLocalToGlobalMappingGetBlockIndices");
+    if (map)
+    {
+      _maps = {map, col_map};
+      for (int k = 0; k < 2; ++k)
+        check(ISLocalToGlobalMappingGetBlockIndices(_maps[k], &_blocks[k]),
+              "ISLocalToGlobalMappingGetBlockIndices");
+    }
+    check(MatSeqAIJGetArray(A, &_a), "MatSeqAIJGetArray");
   }
-  check(MatSeqAIJGetArray(A, &_a), "MatSeqAIJGetArray");
+  catch (...)
+  {
+    restore();
+    throw;
+  }
 }
 
 BlockAdd::~BlockAdd()
+{
+  restore();
+}
+
+void BlockAdd::restore() noexcept
 {
   // Not thrown from a destructor: said, as PETSc's other unchecked calls.
   if (_a)

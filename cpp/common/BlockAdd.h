@@ -44,6 +44,9 @@ public:
   bool in_place() const { return _a != nullptr; }
 
 private:
+  /// Gives back the matrix's rows, values and maps that were got.
+  void restore() noexcept;
+
   Mat _A;
   PetscScalar* _a = nullptr;     ///< the values, in place
   const PetscInt* _ia = nullptr; ///< row starts
