@@ -40,11 +40,11 @@ void note_scene(const Scene& scene, record::RunReport& report)
 
 /// Before meshing: the size guard (throws TooLarge unless the run fits or
 /// --force), its estimate into the summary and the first progress line.
-void guard_size(const mesh::MeshInput& shape, const SolverPart& solver, const RunOptions& opt,
+void guard_size(const mesh::MeshInput& shape, const Scene& scene, const RunOptions& opt,
                 record::RunReport& report)
 {
-  const record::ResourceEstimate estimate =
-      record::estimate_resources(shape, solver, opt.comm, opt.others_here);
+  const record::ResourceEstimate estimate = record::estimate_resources(
+      shape, scene.solver(), scene.cracking(), opt.comm, opt.others_here);
   record::check_fits(estimate, shape, opt.force);
   output::Summary& s = report.summary();
   s.estimate = {estimate.size.dofs, estimate.size.cells, estimate.size.joint_elements,
@@ -105,7 +105,7 @@ Simulation::Simulation(const Scene& scene, const RunOptions& opt, record::RunRep
 {
   output::Summary& summary = report.summary();
   const mesh::MeshInput shape = mesh::MeshInput::of(scene);
-  guard_size(shape, scene.solver(), opt, report);
+  guard_size(shape, scene, opt, report);
 
   // Mesh.
   std::optional<interrupt::Phase> phase(std::in_place, "meshing", 0);
@@ -253,7 +253,8 @@ void check_before_run(const Scene& scene, const RunOptions& opt)
 {
   specimen::check_scene(scene);
   const mesh::MeshInput shape = mesh::MeshInput::of(scene);
-  record::check_fits(record::estimate_resources(shape, scene.solver(), opt.comm, opt.others_here),
+  record::check_fits(record::estimate_resources(shape, scene.solver(), scene.cracking(), opt.comm,
+                                                opt.others_here),
                      shape, opt.force);
   (void)mesh::cache_limit_mb(); // throws on a $PUSHOUT_CACHE_MAX_MB that is no size
 }

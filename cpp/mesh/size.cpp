@@ -139,6 +139,7 @@ MeshSize predict_size(const MeshInput& in)
   {
     // meshes/single_joint.geo: two stacked unit cells, one joint element.
     s.cells = s.cells_generated = 2;
+    s.concrete_cells = 1; // the upper cell
     // Two stacked cells whose shared face is the interface: no node shared.
     s.nodes = 2 * (p + 1) * (p + 1) * (p + 1);
     s.joint_elements = 1;
@@ -172,6 +173,7 @@ MeshSize predict_size(const MeshInput& in)
   }
   s.cells_generated = full_around * radial * d.thickness;
   s.cells = around * radial * d.thickness;
+  s.concrete_cells = around * (d.ring + d.graded) * d.thickness;
   s.joint_elements = around * d.thickness;
   // Node positions of the degree: around the tube (a closed ring for the
   // full model, an arc for a part), along a radius (the interface position

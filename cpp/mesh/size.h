@@ -16,6 +16,7 @@ struct MeshSize
 {
   std::int64_t cells = 0;           ///< hexahedra of the model (a part or the full slice)
   std::int64_t cells_generated = 0; ///< hexahedra gmsh generates (always the full slice)
+  std::int64_t concrete_cells = 0;  ///< of the model's hexahedra, the concrete's
   std::int64_t nodes = 0;           ///< mesh nodes, interface nodes counted twice
   std::int64_t dofs = 0;            ///< displacement dofs (3 per node of the degree)
   std::int64_t joint_elements = 0;  ///< joint elements (interface and crack planes)

@@ -1,5 +1,6 @@
 #include "ResourceGuard.h"
 #include "../solver/Condensation.h"
+#include "../solver/LoadStepSolver.h"
 #include "../solver/NewtonSolver.h"
 #include <algorithm>
 #include <cmath>
@@ -22,8 +23,11 @@ constexpr double dense_bytes_per_entry = 32;       // Schur complement, its LU, 
 constexpr double gmsh_mb_per_cell = 0.35e-3;       // gmsh's mesh and its reading
 constexpr double mesh_arrays_mb_per_cell = 0.1e-3; // MeshData on every process
 constexpr double lu_parallel_exponent = 0.6;       // MUMPS's share per process: P^-0.6
-constexpr double iterative_mb_per_dof = 5.2e-3;    // matrices, Krylov basis, AMG levels
+constexpr double iterative_mb_per_dof = 4.2e-3;    // matrices, Krylov basis, AMG levels
 constexpr double iterative_parallel_exponent = 0.5;
+constexpr double single_lu_share = 0.6;          // s: the LU in single precision
+constexpr double cracking_mb_per_point = 3.0e-3; // a cracking point's state, maps and matrices
+constexpr double cracking_points_per_cell = 8;   // forms/cracking.py: 2 x 2 x 2
 
 /// Dofs of the largest cut through the specimen (ResourceGuard.h: F).
 double separator_dofs(const mesh::MeshInput& in, const mesh::MeshSize& size)
@@ -129,7 +133,7 @@ std::string ResourceEstimate::memory() const
 }
 
 ResourceEstimate estimate_resources(const mesh::MeshInput& in, const SolverPart& solver,
-                                    MPI_Comm comm, int others_here)
+                                    const CrackingPart& cracking, MPI_Comm comm, int others_here)
 {
   ResourceEstimate e;
   e.others_here = others_here;
@@ -137,8 +141,14 @@ ResourceEstimate estimate_resources(const mesh::MeshInput& in, const SolverPart&
   MPI_Comm_size(comm, &e.processes);
   e.processes_here = processes_on_this_machine(comm);
 
+  using Concrete = solver::NewtonSolver::Concrete;
+  const Concrete concrete = !cracking.embedded ? Concrete::linear
+                            : cracking.implex  ? Concrete::implex_cracks
+                                               : Concrete::cracks;
   std::string why;
+  // Concrete that may crack is not condensed (Condensation::possible).
   e.condensed =
+      concrete == Concrete::linear &&
       solver::Condensation::chosen(solver.condensation, e.processes, e.size.interface_dofs, why);
   e.direct = solver::NewtonSolver::direct_factorization();
   const double n = double(e.size.dofs), P = double(e.processes);
@@ -149,7 +159,14 @@ ResourceEstimate estimate_resources(const mesh::MeshInput& in, const SolverPart&
   if (e.condensed)
     solver_mb = condensed_lu_factor * lu + dense_bytes_per_entry * n_i * n_i / 1e6;
   else if (e.direct)
-    solver_mb = lu / std::pow(P, lu_parallel_exponent);
+    solver_mb =
+        (solver::LoadStepSolver::single_precision_lu(solver, concrete) ? single_lu_share : 1.0) *
+        lu / std::pow(P, lu_parallel_exponent);
+  // Every concrete point's crack band, an upper bound where cracking.radius
+  // keeps some of them linear; shared out over the processes.
+  if (concrete != Concrete::linear)
+    solver_mb +=
+        cracking_mb_per_point * cracking_points_per_cell * double(e.size.concrete_cells) / P;
   e.solve_mb = base_mb + mesh_arrays_mb_per_cell * double(e.size.cells_generated) + solver_mb;
   e.meshing_mb = base_mb + gmsh_mb_per_cell * double(e.size.cells_generated);
   // Rank 0 meshes while the others wait; then every process solves. The

@@ -6,16 +6,22 @@
 // fitted (bench/memory_estimate.py keeps the table of estimate against
 // measurement; docs/performance.md says how the law was found):
 //
-//   solve   = base + mesh arrays + c_p n sqrt(F) / P^0.6          (whole model, LU)
+//   solve   = base + mesh arrays + s c_p n sqrt(F) / P^0.6        (whole model, LU)
 //           = base + mesh arrays + 1.3 c_p n sqrt(F) + 32 n_I^2 B   (condensed)
-//           = base + mesh arrays + 5.2 kB n / P^0.5     (iterative: -pc_type gamg ...)
+//           = base + mesh arrays + 4.2 kB n / P^0.5     (iterative: -pc_type gamg ...)
+//             + 3 kB per cracking point / P             (cracks anywhere, [cracking])
 //   meshing = base + 0.35 kB per generated hexahedron (gmsh, rank 0)
 //
 // n the dofs, F the dofs of the largest cut through the specimen (the
 // nested-dissection separator: the radial-by-thickness section, twice for
 // the closed ring of the full model), P the processes, n_I the interface
 // dofs; MUMPS's LU fill grows like n sqrt(F) on these slices. c_1 = 4.2e-4
-// MB, c_2 = 5.5e-4 MB (triquadratic: denser rows); base 110 MB.
+// MB, c_2 = 5.5e-4 MB (triquadratic: denser rows); base 110 MB; s = 0.6 for
+// the LU in single precision under GMRES (solver.precision = "mixed",
+// LoadStepSolver::single_precision_lu), 1 in double. The cracking points are
+// 8 per concrete hexahedron (every one: an upper bound where
+// cracking.radius keeps some linear); with them the bulk is never
+// condensed.
 #pragma once
 
 #include "../mesh/size.h"
@@ -57,7 +63,8 @@ struct ResourceEstimate
 /// `comm`'s processes, beside `others_here` processes of other cases on this
 /// machine (ResourceEstimate::others_here). Collective.
 ResourceEstimate estimate_resources(const mesh::MeshInput& in, const SolverPart& solver,
-                                    MPI_Comm comm, int others_here = 0);
+                                    const CrackingPart& cracking, MPI_Comm comm,
+                                    int others_here = 0);
 
 /// A run refused by the size guard (exit 2, like a bad scene).
 class TooLarge : public std::runtime_error

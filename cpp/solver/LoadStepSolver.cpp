@@ -25,7 +25,8 @@ LoadStepSolver::LoadStepSolver(Equilibrium& eq, bool condense, NewtonSolver::Pre
 {
 }
 
-std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const SolverPart& part)
+NewtonSolver::Preconditioner LoadStepSolver::preconditioner(const SolverPart& part,
+                                                            NewtonSolver::Concrete concrete)
 {
   // Concrete that cracks softens at many points at once, and GMRES on a
   // lagged LU then needs many iterations or fails: on the corroded demo
@@ -34,16 +35,30 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
   // It takes the Jacobian's LU whatever solver.preconditioner says.
   // IMPL-EX cracks leave a step's bulk linear but for closure
   // (BulkCracking::implex): the solver of a linear bulk.
+  return part.lagged_preconditioner && concrete != NewtonSolver::Concrete::cracks
+             ? NewtonSolver::Preconditioner::lagged
+             : NewtonSolver::Preconditioner::jacobian;
+}
+
+bool LoadStepSolver::single_precision_lu(const SolverPart& part, NewtonSolver::Concrete concrete)
+{
+  // GMRES runs on a lagged LU, and on the implicit cracks' LU of every
+  // Jacobian in mixed precision (NewtonSolver::set_default_options);
+  // Equilibrium::configure then factors it in single precision.
+  return part.mixed_precision &&
+         (preconditioner(part, concrete) == NewtonSolver::Preconditioner::lagged ||
+          concrete == NewtonSolver::Concrete::cracks);
+}
+
+std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const SolverPart& part)
+{
   using Concrete = NewtonSolver::Concrete;
   const model::BulkCracking* bulk = eq.model().bulk_cracking();
   const Concrete concrete = !bulk            ? Concrete::linear
                             : bulk->implex() ? Concrete::implex_cracks
                                              : Concrete::cracks;
-  const bool nonsmooth_bulk = concrete == Concrete::cracks;
-  const bool overridden = part.lagged_preconditioner && nonsmooth_bulk;
-  const bool lagged = part.lagged_preconditioner && !overridden;
-  const auto pc =
-      lagged ? NewtonSolver::Preconditioner::lagged : NewtonSolver::Preconditioner::jacobian;
+  const auto pc = preconditioner(part, concrete);
+  const bool lagged = pc == NewtonSolver::Preconditioner::lagged;
   int processes = 1;
   MPI_Comm_size(eq.model().comm(), &processes);
   NewtonSolver::set_default_options(pc, concrete, part.mixed_precision);
@@ -63,7 +78,7 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
   // The whole model's linear solver as NewtonSolver::set_default_options
   // and Equilibrium::configure make it (the LU in single precision under
   // GMRES), unless the user's PETSc options chose another.
-  const bool single = part.mixed_precision && (lagged || nonsmooth_bulk);
+  const bool single = single_precision_lu(part, concrete);
   const std::string whole_linear =
       NewtonSolver::linear_solver_from_options() ? ", the linear solver of the PETSc options"
       : lagged ? std::string(", GMRES on a lagged LU") + (single ? " in single precision" : "")
@@ -84,7 +99,7 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
   solver->set_first_tangent(part.first_tangent_converged && concrete != Concrete::implex_cracks);
   solver->_inexact = part.inexact_newton;
   solver->_whole.set_inexact(part.inexact_newton);
-  if (nonsmooth_bulk)
+  if (concrete == Concrete::cracks)
   {
     // l2 first (set_default_options), then backtracking.
     solver->_whole.set_fallback_line_search("bt");

@@ -33,6 +33,15 @@ public:
   /// processes); sets PETSc's default Newton options for the preconditioner
   /// policy. Throws SceneError if solver.condensation = "on" is not possible.
   static std::unique_ptr<LoadStepSolver> make(Equilibrium& eq, const SolverPart& part);
+  /// The whole model's preconditioner policy that make() takes for
+  /// `concrete`: solver.preconditioner, but the LU of every Jacobian for the
+  /// implicit cracks.
+  static NewtonSolver::Preconditioner preconditioner(const SolverPart& part,
+                                                     NewtonSolver::Concrete concrete);
+  /// Whether the whole model's LU is factored in single precision under
+  /// GMRES (solver.precision = "mixed" where GMRES runs on the LU), unless
+  /// the user's PETSc options chose another solver.
+  static bool single_precision_lu(const SolverPart& part, NewtonSolver::Concrete concrete);
 
   /// What Newton runs on: "the N interface jumps (bulk condensed)" or "the
   /// whole model" (with " (not condensed: why)" when the choice was not the

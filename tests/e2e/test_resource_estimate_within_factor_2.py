@@ -64,10 +64,18 @@ check(all(s["estimate"][k] == s[k] for k in ("dofs", "cells", "interface_pairs")
       f"single joint: predicted size = meshed ({s['dofs']} dofs)")
 
 # Memory within a factor 2 of the measurement (bench/memory_estimate.py has
-# the table over sizes), on the condensed and on the whole-model path.
-for name, sets in {"condensed": [], "whole": ["solver.condensation=\"off\""]}.items():
+# the table over sizes), on the condensed and on the whole-model path, and
+# with cracks anywhere in the concrete (the corroded demo with them, its
+# first corrosion step: the whole slice, not condensed).
+CRACKING = os.path.join(os.environ.get("PUSHOUT_SOURCE_DIR", "."), "demo",
+                        "pushout_corroded_cracking.toml")
+for name, scene, sets in [("condensed", SCENE, ["mesh.elements_per_quarter=24"]),
+                          ("whole", SCENE, ["mesh.elements_per_quarter=24",
+                                            "solver.condensation=\"off\""]),
+                          ("cracking", CRACKING, ["corrosion.steps=1",
+                                                  "corrosion.penetration=0.001"])]:
     out = out_dir(f"guard_memory_{name}")
-    run(SCENE, out, sets=["mesh.elements_per_quarter=24"] + sets + SHORT)
+    run(scene, out, sets=sets + SHORT)
     s = summary(out)
     ratio = s["estimate"]["peak_memory_mb"] / s["peak_memory_mb"]
     check(0.5 < ratio < 2, f"{name}: estimated {s['estimate']['peak_memory_mb']:.0f} MB vs measured "

@@ -1,6 +1,7 @@
-// The size guard's count of what runs at once on this machine
-// (record/ResourceGuard.h): a sweep's or a fit's other groups run other
-// cases beside this one, and each is counted at this run's solving peak.
+// The size guard (record/ResourceGuard.h): its count of what runs at once on
+// this machine (a sweep's or a fit's other groups run other cases beside
+// this one, and each is counted at this run's solving peak), and the solver
+// path its estimate takes.
 #include "../../../cpp/mesh/MeshInput.h"
 #include "../../../cpp/record/ResourceGuard.h"
 #include "../../../cpp/scene/Scene.h"
@@ -17,8 +18,10 @@ TEST(ResourceGuard, OtherCasesOnThisMachineCountAtThisRunsSolvingPeak)
 {
   const Scene scene = Scene::parse("[mesh]\nelements_per_quarter = 24\n");
   const MeshInput in = MeshInput::of(scene);
-  const ResourceEstimate alone = estimate_resources(in, scene.solver(), MPI_COMM_SELF);
-  const ResourceEstimate beside = estimate_resources(in, scene.solver(), MPI_COMM_SELF, 3);
+  const ResourceEstimate alone =
+      estimate_resources(in, scene.solver(), scene.cracking(), MPI_COMM_SELF);
+  const ResourceEstimate beside =
+      estimate_resources(in, scene.solver(), scene.cracking(), MPI_COMM_SELF, 3);
   ASSERT_EQ(alone.processes_here, 1);
   EXPECT_EQ(alone.others_here, 0);
   // One process: its peak is the machine's.
@@ -50,4 +53,44 @@ TEST(ResourceGuard, OtherCasesOnThisMachineCountAtThisRunsSolvingPeak)
     EXPECT_NE(std::string(e.what()).find("--ranks-per-case"), std::string::npos) << e.what();
   }
   EXPECT_NO_THROW(check_fits(fits_alone, in, true)); // --force
+}
+
+namespace
+{
+ResourceEstimate estimate_of(const std::string& scene_text)
+{
+  const Scene scene = Scene::parse(scene_text);
+  return estimate_resources(MeshInput::of(scene), scene.solver(), scene.cracking(), MPI_COMM_SELF);
+}
+} // namespace
+
+TEST(ResourceGuard, CrackingConcreteIsSolvedWholeWithItsPointsCounted)
+{
+  // The whole slice, so that both models have the same mesh.
+  const std::string slice = "[model]\nsymmetry = \"full\"\n[mesh]\nelements_per_quarter = ";
+  const std::string whole = "[solver]\ncondensation = \"off\"\n";
+  const std::string cracks = "[cracking]\nmodel = \"embedded\"\n";
+  const ResourceEstimate linear = estimate_of(slice + "16\n" + whole);
+  const ResourceEstimate cracking = estimate_of(slice + "16\n" + cracks);
+  const ResourceEstimate condensed = estimate_of(slice + "16\n");
+  ASSERT_EQ(cracking.size.dofs, linear.size.dofs);
+  EXPECT_TRUE(condensed.condensed);
+  EXPECT_FALSE(cracking.condensed) << "concrete that may crack is not condensed";
+  // What the cracks add is their points' share, in proportion to the
+  // concrete's cells: a finer mesh, more of them.
+  const ResourceEstimate linear_fine = estimate_of(slice + "24\n" + whole);
+  const ResourceEstimate cracking_fine = estimate_of(slice + "24\n" + cracks);
+  const double added = cracking.solve_mb - linear.solve_mb;
+  const double added_fine = cracking_fine.solve_mb - linear_fine.solve_mb;
+  EXPECT_GT(added, 0);
+  EXPECT_NEAR(added_fine / added,
+              double(cracking_fine.size.concrete_cells) / double(cracking.size.concrete_cells),
+              1e-12);
+  // The concrete is the model's cells but the tube's.
+  EXPECT_GT(cracking.size.concrete_cells, 0);
+  EXPECT_LT(cracking.size.concrete_cells, cracking.size.cells);
+  // The LU in double (solver.precision) takes more than in single.
+  const ResourceEstimate in_double =
+      estimate_of(slice + "16\n" + whole + "precision = \"double\"\n");
+  EXPECT_GT(in_double.solve_mb, linear.solve_mb);
 }
