@@ -77,7 +77,8 @@ TEST(ResourceGuard, CrackingConcreteIsSolvedWholeWithItsPointsCounted)
   EXPECT_TRUE(condensed.condensed);
   EXPECT_FALSE(cracking.condensed) << "concrete that may crack is not condensed";
   // What the cracks add is their points' share, in proportion to the
-  // concrete's cells: a finer mesh, more of them.
+  // concrete's cells: a finer mesh, more of them (the same ratio but for the
+  // round-off of sums of some 1e3 MB, 1e-13 MB).
   const ResourceEstimate linear_fine = estimate_of(slice + "24\n" + whole);
   const ResourceEstimate cracking_fine = estimate_of(slice + "24\n" + cracks);
   const double added = cracking.solve_mb - linear.solve_mb;
