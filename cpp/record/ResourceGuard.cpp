@@ -146,10 +146,8 @@ ResourceEstimate estimate_resources(const mesh::MeshInput& in, const SolverPart&
                             : cracking.implex  ? Concrete::implex_cracks
                                                : Concrete::cracks;
   std::string why;
-  // Concrete that may crack is not condensed (Condensation::possible).
-  e.condensed =
-      concrete == Concrete::linear &&
-      solver::Condensation::chosen(solver.condensation, e.processes, e.size.interface_dofs, why);
+  e.condensed = solver::Condensation::chosen(solver.condensation, e.processes,
+                                             e.size.interface_dofs, cracking.embedded, why);
   e.direct = solver::NewtonSolver::direct_factorization();
   const double n = double(e.size.dofs), P = double(e.processes);
   const double c = in.mesh.degree == 2 ? lu_mb_degree2 : lu_mb_degree1;

@@ -121,21 +121,19 @@ bool Condensation::possible(const Equilibrium& eq, std::string& why)
 {
   int size = 1;
   MPI_Comm_size(PetscObjectComm(reinterpret_cast<PetscObject>(eq.model().stiffness())), &size);
-  if (eq.model().bulk_cracking())
-  {
-    why = "the concrete may crack ([cracking]): its bulk is not linear";
-    return false;
-  }
-  return possible(size, interface_dofs(eq.model()), why);
+  return possible(size, interface_dofs(eq.model()), eq.model().bulk_cracking() != nullptr, why);
 }
 
-bool Condensation::possible(int processes, std::int64_t n_interface, std::string& why)
+bool Condensation::possible(int processes, std::int64_t n_interface, bool bulk_cracks,
+                            std::string& why)
 {
   char pc_type[64] = "";
   PetscBool pc_set = PETSC_FALSE;
   check(PetscOptionsGetString(nullptr, nullptr, "-pc_type", pc_type, sizeof(pc_type), &pc_set),
         "PetscOptionsGetString");
-  if (processes > 1)
+  if (bulk_cracks)
+    why = "the concrete may crack ([cracking]): its bulk is not linear";
+  else if (processes > 1)
     why = "more than one process";
   else if (pc_set && std::string(pc_type) != "lu")
     why = std::string("-pc_type ") + pc_type + " (condensed systems are solved by dense LU)";
@@ -147,11 +145,11 @@ bool Condensation::possible(int processes, std::int64_t n_interface, std::string
 }
 
 bool Condensation::chosen(SolverPart::Condensation mode, int processes, std::int64_t n_interface,
-                          std::string& why)
+                          bool bulk_cracks, std::string& why)
 {
   if (mode == SolverPart::Condensation::off)
     return false;
-  if (!possible(processes, n_interface, why))
+  if (!possible(processes, n_interface, bulk_cracks, why))
     return false;
   if (mode == SolverPart::Condensation::automatic && n_interface > default_max_dofs)
   {

@@ -70,19 +70,21 @@ public:
   /// matrices of the node-pair jumps, 3000 x 3000).
   static constexpr std::int64_t default_max_dofs = 6000;
 
-  /// Whether the model can be condensed (its interface has node pairs, one
-  /// process, an LU preconditioner); `why` says why not.
+  /// Whether the model can be condensed (a linear bulk, its interface has
+  /// node pairs, one process, an LU preconditioner); `why` says why not.
   static bool possible(const Equilibrium& eq, std::string& why);
   /// The same from the numbers alone (the run's processes and interface
-  /// dofs), so that it can be decided before the model exists.
-  static bool possible(int processes, std::int64_t interface_dofs, std::string& why);
+  /// dofs, and whether the concrete may crack), so that it can be decided
+  /// before the model exists.
+  static bool possible(int processes, std::int64_t interface_dofs, bool bulk_cracks,
+                       std::string& why);
 
   /// Whether Newton runs on the condensed system for solver.condensation =
   /// `mode`: "auto" condenses what is possible up to default_max_dofs. `why`
   /// says why not ("" when "off" was asked for); "on" when it is not
   /// possible is the caller's error to report.
   static bool chosen(SolverPart::Condensation mode, int processes, std::int64_t interface_dofs,
-                     std::string& why);
+                     bool bulk_cracks, std::string& why);
 
   /// Number of joint dofs, both sides of every node pair (6 per pair).
   static std::int64_t interface_dofs(const model::Model& model);

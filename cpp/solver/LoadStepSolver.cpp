@@ -64,10 +64,8 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
   NewtonSolver::set_default_options(pc, concrete, part.mixed_precision);
   const std::int64_t interface_dofs = Condensation::interface_dofs(eq.model());
   std::string why;
-  // Condensation::possible(eq) says why not when the concrete may crack.
-  const bool condense = part.condensation != SolverPart::Condensation::off &&
-                        Condensation::possible(eq, why) &&
-                        Condensation::chosen(part.condensation, processes, interface_dofs, why);
+  const bool condense =
+      Condensation::chosen(part.condensation, processes, interface_dofs, bulk != nullptr, why);
   const bool required = part.condensation == SolverPart::Condensation::on;
   if (!condense && required)
     throw SceneError("solver.condensation = \"on\" is not possible here: " + why);
