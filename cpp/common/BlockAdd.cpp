@@ -1,4 +1,5 @@
 #include "BlockAdd.h"
+#include "build_or_release.h"
 #include "petsc_check.h"
 #include <algorithm>
 #include <stdexcept>
@@ -35,24 +36,19 @@ BlockAdd::BlockAdd(Mat A) : _A(A)
   check(MatGetRowIJ(A, 0, PETSC_FALSE, PETSC_FALSE, &_n, &_ia, &_ja, &done), "MatGetRowIJ");
   if (!done)
     return;
-  // A constructor that throws runs no destructor: what was got so far is
-  // given back here.
-  try
-  {
-    if (map)
-    {
-      _maps = {map, col_map};
-      for (int k = 0; k < 2; ++k)
-        check(ISLocalToGlobalMappingGetBlockIndices(_maps[k], &_blocks[k]),
-              "ISLocalToGlobalMappingGetBlockIndices");
-    }
-    check(MatSeqAIJGetArray(A, &_a), "MatSeqAIJGetArray");
-  }
-  catch (...)
-  {
-    restore();
-    throw;
-  }
+  build_or_release(
+      [&]
+      {
+        if (map)
+        {
+          _maps = {map, col_map};
+          for (int k = 0; k < 2; ++k)
+            check(ISLocalToGlobalMappingGetBlockIndices(_maps[k], &_blocks[k]),
+                  "ISLocalToGlobalMappingGetBlockIndices");
+        }
+        check(MatSeqAIJGetArray(A, &_a), "MatSeqAIJGetArray");
+      },
+      [this] { restore(); });
 }
 
 BlockAdd::~BlockAdd()

@@ -142,9 +142,7 @@ ResourceEstimate estimate_resources(const mesh::MeshInput& in, const SolverPart&
   e.processes_here = processes_on_this_machine(comm);
 
   using Concrete = solver::NewtonSolver::Concrete;
-  const Concrete concrete = !cracking.embedded ? Concrete::linear
-                            : cracking.implex  ? Concrete::implex_cracks
-                                               : Concrete::cracks;
+  const Concrete concrete = solver::LoadStepSolver::concrete(cracking.embedded, cracking.implex);
   std::string why;
   e.condensed = solver::Condensation::chosen(solver.condensation, e.processes,
                                              e.size.interface_dofs, cracking.embedded, why);

@@ -1,5 +1,6 @@
 #include "ArcLengthSolver.h"
 #include "../common/Interrupt.h"
+#include "../common/build_or_release.h"
 #include "../common/mpi_errors.h"
 #include "../common/petsc_check.h"
 #include "NewtonHistory.h"
@@ -58,16 +59,7 @@ ArcLengthSolver::ArcLengthSolver(NonlinearProblem& problem, PathConstraint& cont
     : _problem(problem), _control(control),
       _policy(pc == NewtonSolver::Preconditioner::lagged, refactor_iterations)
 {
-  // A constructor that throws runs no destructor (NewtonSolver's).
-  try
-  {
-    set_up(problem);
-  }
-  catch (...)
-  {
-    release();
-    throw;
-  }
+  build_or_release([&] { set_up(problem); }, [this] { release(); });
 }
 
 void ArcLengthSolver::set_up(NonlinearProblem& problem)

@@ -5,6 +5,7 @@
 // mathematics. Its use per Newton iteration is in CondensationNewton.cpp,
 // the loads and the whole model's displacements in CondensationLoads.cpp.
 #include "Condensation.h"
+#include "../common/build_or_release.h"
 #include "../common/petsc_check.h"
 #include "DenseArray.h"
 #include <algorithm>
@@ -162,15 +163,7 @@ bool Condensation::chosen(SolverPart::Condensation mode, int processes, std::int
 
 Condensation::Condensation(Equilibrium& eq) : _eq(eq)
 {
-  try
-  {
-    build();
-  }
-  catch (...)
-  {
-    release(); // what was made so far
-    throw;
-  }
+  build_or_release([this] { build(); }, [this] { release(); });
 }
 
 void Condensation::build()
@@ -446,7 +439,7 @@ Condensation::~Condensation()
   release();
 }
 
-void Condensation::release()
+void Condensation::release() noexcept
 {
   for (Vec* v : {&_b, &_r, &_d_b, &_g, &_rest, &_Tv, &_Zr, &_v_ext, &_Tv_ext})
     petsc::check_nothrow(VecDestroy(v), "VecDestroy");

@@ -145,7 +145,7 @@ private:
   /// The constructor's work, the steps below in turn; release() frees what
   /// they made (also when one throws part way).
   void build();
-  void release();
+  void release() noexcept;
   /// Numbers the jumps set by set (3 per node pair, 1 for a pair of a mirror
   /// set on a coordinate plane: _minus, _plus, _ext_of_jump, _jump_of_ext,
   /// _set_end) and the joint dofs (_gamma, and each jump's ends in it).

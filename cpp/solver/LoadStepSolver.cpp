@@ -54,9 +54,7 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
 {
   using Concrete = NewtonSolver::Concrete;
   const model::BulkCracking* bulk = eq.model().bulk_cracking();
-  const Concrete concrete = !bulk            ? Concrete::linear
-                            : bulk->implex() ? Concrete::implex_cracks
-                                             : Concrete::cracks;
+  const Concrete concrete = LoadStepSolver::concrete(bulk != nullptr, bulk && bulk->implex());
   const auto pc = preconditioner(part, concrete);
   const bool lagged = pc == NewtonSolver::Preconditioner::lagged;
   int processes = 1;

@@ -33,6 +33,14 @@ public:
   /// processes); sets PETSc's default Newton options for the preconditioner
   /// policy. Throws SceneError if solver.condensation = "on" is not possible.
   static std::unique_ptr<LoadStepSolver> make(Equilibrium& eq, const SolverPart& part);
+  /// The concrete's kind as the solvers take it: linear without cracks
+  /// ([cracking] absent), else its cracks' integration (cracking.integration
+  /// as resolved: `implex`). make() and the size guard both ask this.
+  static NewtonSolver::Concrete concrete(bool cracks, bool implex)
+  {
+    using Concrete = NewtonSolver::Concrete;
+    return !cracks ? Concrete::linear : implex ? Concrete::implex_cracks : Concrete::cracks;
+  }
   /// The whole model's preconditioner policy that make() takes for
   /// `concrete`: solver.preconditioner, but the LU of every Jacobian for the
   /// implicit cracks.

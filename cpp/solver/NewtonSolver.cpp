@@ -1,5 +1,6 @@
 #include "NewtonSolver.h"
 #include "../common/Interrupt.h"
+#include "../common/build_or_release.h"
 #include "../common/mpi_errors.h"
 #include "../common/petsc_check.h"
 #include "NewtonHistory.h"
@@ -228,17 +229,7 @@ bool NewtonSolver::linear_solver_from_options()
 NewtonSolver::NewtonSolver(NonlinearProblem& problem, Preconditioner pc, int refactor_iterations)
     : _problem(problem), _policy(pc == Preconditioner::lagged, refactor_iterations)
 {
-  // A constructor that throws runs no destructor: what set_up made so far
-  // is released here (a sweep's refused case goes on to the next one).
-  try
-  {
-    set_up(problem);
-  }
-  catch (...)
-  {
-    release();
-    throw;
-  }
+  build_or_release([&] { set_up(problem); }, [this] { release(); });
 }
 
 void NewtonSolver::set_up(NonlinearProblem& problem)
