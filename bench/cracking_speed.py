@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The cost of cracks anywhere in the concrete against the one-plane
-corroded demo, side by side in one run (docs/cracking.md, "Speed").
+corroded demo, side by side in one run (docs/cracking-speed.md).
 
 Cases (the paper's mesh 16/8, one thread per process, one after the
 other):

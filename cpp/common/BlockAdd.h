@@ -9,7 +9,7 @@
 // column, shared by the block's three rows. MatSetValuesBlockedLocal expands
 // every block index into three, maps them and searches for every entry;
 // on the corroded demo with cracks that was most of the time the cracking
-// tangent's change took to assemble (docs/cracking.md, "Speed of a step").
+// tangent's change took to assemble (docs/cracking-speed.md).
 // Elsewhere (several processes, another matrix type) it is
 // MatSetValuesBlockedLocal itself.
 #pragma once

@@ -91,7 +91,7 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
   // IMPL-EX: a step's secant tangent is known at its start (the cracks'
   // extrapolated damage), and the last step's is not it; from it a step
   // without a crack that closes converges in one iteration (the bench's
-  // corroded demo: 342 iterations against 412, docs/cracking.md "Speed").
+  // corroded demo: 342 iterations against 412, docs/cracking-speed.md).
   solver->set_first_tangent(part.first_tangent_converged && concrete != Concrete::implex_cracks);
   solver->_inexact = part.inexact_newton;
   solver->_whole.set_inexact(part.inexact_newton);

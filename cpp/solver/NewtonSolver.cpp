@@ -262,7 +262,7 @@ void NewtonSolver::set_up(NonlinearProblem& problem)
 
 // The safeguard on the forcing term of inexact Newton (C. T. Kelley,
 // Iterative Methods for Linear and Nonlinear Equations, SIAM 1995, ch. 6;
-// docs/cracking.md "Speed of a step"): from the second
+// docs/cracking-speed.md): from the second
 // iteration on (from the first where a prediction made ||F_0|| smaller than
 // solve()'s reference), the linear residual need not go below half of what
 // Newton's test still asks, tolerance(), for the next iterate to pass it;

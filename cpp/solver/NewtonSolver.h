@@ -126,7 +126,7 @@ public:
   /// the test asks for, too). On the
   /// bench's corroded demo with IMPL-EX cracks: 1 688 back-solves instead of
   /// 2 103, the same Newton iterations, τ within 2e-6 of its value
-  /// (docs/cracking.md, "Speed of a step"). Only with
+  /// (docs/cracking-speed.md). Only with
   /// Preconditioner::lagged (elsewhere every iteration has its own LU),
   /// where GMRES measures the true residual (flexible GMRES on the LU in
   /// single precision, right-preconditioned GMRES on the LU in double; a
@@ -168,7 +168,7 @@ public:
   /// order of cracking.implex_tolerance (2.5e-3 by default; 1e-2 when this
   /// was measured), and a Newton tolerance more than three decades below it
   /// does not show in the curve. On the
-  /// bench's corroded demo (docs/cracking.md, "Speed of a step") τ and p
+  /// bench's corroded demo (docs/cracking-speed.md) τ and p
   /// moved by 7e-7 and 4e-8 of their largest values against 1e-10, in 29
   /// instead of 64 factorisations and 71 s instead of 101 s. The implicit
   /// cracks keep 1e-10: at 1e-6 their non-smooth Newton stalled on the same

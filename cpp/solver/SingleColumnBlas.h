@@ -7,8 +7,8 @@
 // OpenBLAS takes those through its matrix-matrix machinery: its small-
 // matrix kernel and, in strsm, a packed copy of each front's triangle made
 // before it is used once. The same operations as sgemv and strsv stream
-// each factor entry once. On the bench's IMPL-EX case (docs/cracking.md,
-// "Speed of a step") a back-solve took about 12 ms instead of 15.3 ms.
+// each factor entry once. On the bench's IMPL-EX case
+// (docs/cracking-speed.md) a back-solve took about 12 ms instead of 15.3 ms.
 //
 // How: SingleColumnBlas.cpp defines sgemm_ and strsm_ in the program. The
 // dynamic linker binds MUMPS's calls (and any other caller's) to the

@@ -466,7 +466,7 @@ void StepLoop::DissipationSteps::check_implex(Try& t)
   Stepper& stepper = t.energy_step ? _energy : _by_lambda;
   // An energy step's error that a smaller release does not lower is the
   // floor of IMPL-EX's error where thousands of cracks switch between
-  // loading and unloading (docs/cracking.md "Still to come" 1), not a snap.
+  // loading and unloading (docs/cracking-speed.md), not a snap.
   t.implex = _loop.check_implex(t.rep, t.energy_step ? t.dG_step : t.lambda_new - _lambda, stepper,
                                 t.energy_step ? "a smaller release does not lower it" : nullptr);
 }
