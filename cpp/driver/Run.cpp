@@ -210,6 +210,8 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, record::R
   // live: destroying a MUMPS factor is collective, so a process must not
   // leave with it while the others go on (common/mpi_errors.h).
   summary.converged = mpi::collectively(opt.comm, [&] { return loop.run(control); });
+  if (const model::BulkCracking* cracking = _model->bulk_cracking())
+    corrosion.note_edge_cracks(cracking->edge_cracks());
 
   phase.emplace("writing outputs", -1);
   summary.solve_s = report.seconds() - t0 - summary.output_s;

@@ -82,6 +82,9 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
         << "for all the concrete";
     throw SceneError(why.str());
   }
+  _radius = part.radius;
+  if (part.radius > 0)
+    _edge = region_edge(*mesh, material, _cells);
   _d_sigma = quadrature_function(functionspace_form_cracking_L_crack, "d_sigma", mesh);
   _d_C = quadrature_function(functionspace_form_cracking_a_crack, "d_C", mesh);
   _d_C_change = quadrature_function(functionspace_form_cracking_a_crack, "d_C", mesh);

@@ -36,6 +36,17 @@
 
 namespace pushout::model
 {
+/// The cracks at the edge of the cracking region (cracking.radius > 0): the
+/// cells there share a vertex with concrete that stays linear, so a crack
+/// that reaches them cannot run on. Over all processes.
+struct EdgeCracks
+{
+  double radius = 0;               ///< cracking.radius [mm] (0: all the concrete, no edge)
+  std::int64_t points = 0;         ///< quadrature points of the cells at the edge
+  std::int64_t cracked_points = 0; ///< of those, cracked
+  double max_opening = 0;          ///< the widest normal opening w . n there [mm]
+};
+
 /// What the concrete's cracks add up to over all processes (collective).
 struct CrackingTotals
 {
@@ -49,6 +60,7 @@ struct CrackingTotals
   /// The cracking concrete's columns through the thickness (the crack
   /// pattern seen along the tube axis); on process 0 only.
   std::vector<CrackColumn> columns;
+  EdgeCracks edge; ///< at the edge of the cracking region
 };
 
 class BulkCracking
@@ -192,6 +204,9 @@ public:
   /// committed one: a converged step's, recorded before its commit
   /// (stepping/StepRecorder.h). Collective.
   CrackingTotals totals();
+  /// The committed cracks at the edge of the cracking region (none where
+  /// every concrete cell may crack). Collective.
+  EdgeCracks edge_cracks() const { return edge_of(_committed, _opening); }
 
   /// Per cell, the widest crack of its points (of the last evaluate()):
   /// its normal opening w . n [mm] (0: none), unit normal and damage, into
@@ -231,6 +246,10 @@ private:
   /// Gathers the columns on process 0 and reads the surface cracks there;
   /// into `t`. Collective.
   void read_surface(CrackingTotals& t) const;
+  /// The cracks of `state` (_committed or _trial) at the region's edge,
+  /// their normal openings in `opening` (_opening or _opening_trial).
+  /// Collective.
+  EdgeCracks edge_of(const std::vector<double>& state, const std::vector<double>& opening) const;
 
   /// IMPL-EX: the crack band's own update of every point from the committed
   /// state to the strain of the model's displacement, into the trial state
@@ -305,6 +324,8 @@ private:
   std::shared_ptr<const dolfinx::fem::Function<double>> _u; ///< the model's displacement [mm]
   bulk::CrackBand _band;
   std::vector<std::int32_t> _cells;       ///< cracking cells (local, owned), sorted
+  std::vector<std::size_t> _edge;         ///< of _cells, those at the region's edge (region_edge)
+  double _radius = 0;                     ///< cracking.radius [mm]
   std::vector<double> _strength;          ///< [cell][point] f_t factor of the field
   std::vector<double> _committed, _trial; ///< [cell][point][CrackBand::state_size]
   std::vector<double> _dissipated;        ///< [cell][point] committed energy density [N mm/mm^3]

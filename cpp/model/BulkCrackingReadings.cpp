@@ -300,6 +300,28 @@ CrackingTotals BulkCracking::totals()
   MPI_Allreduce(MPI_IN_PLACE, &t.dissipated, 1, MPI_DOUBLE, MPI_SUM, comm);
   MPI_Allreduce(MPI_IN_PLACE, &t.max_opening, 1, MPI_DOUBLE, MPI_MAX, comm);
   read_surface(t);
+  t.edge = edge_of(_trial, _opening_trial);
   return t;
+}
+
+EdgeCracks BulkCracking::edge_of(const std::vector<double>& state,
+                                 const std::vector<double>& opening) const
+{
+  EdgeCracks e;
+  e.radius = _radius;
+  const std::size_t n_points = _cells.empty() ? 0 : _strength.size() / _cells.size();
+  e.points = std::int64_t(_edge.size() * n_points);
+  for (std::size_t k : _edge)
+    for (std::size_t i = k * n_points; i < (k + 1) * n_points; ++i)
+      if (points::crack_of(state, i).cracked())
+      {
+        ++e.cracked_points;
+        e.max_opening = std::max(e.max_opening, opening[3 * i]);
+      }
+  MPI_Comm comm = _mesh->comm();
+  MPI_Allreduce(MPI_IN_PLACE, &e.points, 1, MPI_INT64_T, MPI_SUM, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &e.cracked_points, 1, MPI_INT64_T, MPI_SUM, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &e.max_opening, 1, MPI_DOUBLE, MPI_MAX, comm);
+  return e;
 }
 } // namespace pushout::model

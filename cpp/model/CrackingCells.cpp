@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <dolfinx/common/IndexMap.h>
+#include <dolfinx/la/Vector.h>
 #include <dolfinx/mesh/Topology.h>
+#include <functional>
 
 namespace pushout::model
 {
@@ -45,6 +47,35 @@ std::vector<std::int32_t> cracking_cells(const dolfinx::mesh::Mesh& mesh,
                          cells.push_back(c);
                      });
   return cells;
+}
+
+std::vector<std::size_t> region_edge(const dolfinx::mesh::Mesh& mesh,
+                                     const std::vector<std::int32_t>& material,
+                                     const std::vector<std::int32_t>& cells)
+{
+  // The vertices of the concrete that may not crack, marked on every
+  // process that holds them (summed onto the owner, then sent back).
+  const auto& topology = mesh.topology();
+  const auto& cell_vertices = *topology.connectivity(3, 0);
+  dolfinx::la::Vector<double> linear(topology.index_map(0), 1);
+  std::span<double> mark = linear.mutable_array();
+  for_concrete_cells(mesh, material, {0, 0},
+                     [&](std::int32_t c, double)
+                     {
+                       if (!std::binary_search(cells.begin(), cells.end(), c))
+                         for (std::int32_t v : cell_vertices.links(c))
+                           mark[v] = 1;
+                     });
+  linear.scatter_rev(std::plus<double>());
+  linear.scatter_fwd();
+  std::vector<std::size_t> edge;
+  for (std::size_t k = 0; k < cells.size(); ++k)
+  {
+    const auto vertices = cell_vertices.links(cells[k]);
+    if (std::any_of(vertices.begin(), vertices.end(), [&](std::int32_t v) { return mark[v] > 0; }))
+      edge.push_back(k);
+  }
+  return edge;
 }
 
 double nearest_concrete_centre(const dolfinx::mesh::Mesh& mesh,

@@ -1,5 +1,7 @@
 // Which cells of the concrete may crack: those whose centre lies within
-// cracking.radius of the tube axis (docs/cracking.md), on this process.
+// cracking.radius of the tube axis (docs/cracking.md), on this process, and
+// which of them lie at the edge of that region, where a crack that reaches
+// it meets concrete that stays linear.
 #pragma once
 
 #include <array>
@@ -15,6 +17,14 @@ namespace pushout::model
 std::vector<std::int32_t> cracking_cells(const dolfinx::mesh::Mesh& mesh,
                                          const std::vector<std::int32_t>& material, double radius,
                                          std::array<double, 2> axis);
+
+/// Of `cells` (cracking_cells' list), the positions of those at the edge of
+/// the cracking region: sharing a vertex with a concrete cell that may not
+/// crack, on any process. None when every concrete cell may crack.
+/// Collective.
+std::vector<std::size_t> region_edge(const dolfinx::mesh::Mesh& mesh,
+                                     const std::vector<std::int32_t>& material,
+                                     const std::vector<std::int32_t>& cells);
 
 /// The least distance of an owned concrete cell's centre from the tube
 /// `axis` [mm] (infinity if none).

@@ -28,6 +28,13 @@ void Summary::write(const std::filesystem::path& file) const
   nlohmann::json damage_list = nlohmann::json::array();
   for (const LayerDamage& d : initial_damage)
     damage_list.push_back({{"layer", d.layer}, {"mean", d.mean}, {"max", d.max}});
+  nlohmann::json edge; // null without an edge
+  if (cracking_edge)
+    edge = {{"radius_mm", cracking_edge->radius_mm},
+            {"points", cracking_edge->points},
+            {"cracked_points", cracking_edge->cracked_points},
+            {"max_opening_mm", cracking_edge->max_opening_mm},
+            {"reached_in", cracking_edge->reached_in}};
   const nlohmann::json j = {
       {"run_id", run_id},
       {"converged", converged},
@@ -46,6 +53,7 @@ void Summary::write(const std::filesystem::path& file) const
       {"cracking_integration", cracking_integration},
       {"implex_error_max", implex ? nlohmann::json(implex_error_max) : nlohmann::json()},
       {"implex_jumps", implex ? nlohmann::json(implex_jumps) : nlohmann::json()},
+      {"cracking_edge", edge},
       {"penetration_mm", penetration_mm},
       {"permanent_displacements_mm", permanent_displacements_mm},
       {"cracks", crack_list},

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,18 @@ struct Summary
   /// Of its steps, those taken above the tolerance: the cracks snapped back
   /// under the load's control, and no smaller step met it.
   int implex_jumps = 0;
+  /// With cracking.radius > 0: the cracks at the edge of the cracking
+  /// region at the end of the run (model::EdgeCracks, the specimen's
+  /// points as the other counts), and the corrosion step they first
+  /// reached it in ("": none, or only in the push). Null otherwise.
+  struct CrackingEdge
+  {
+    double radius_mm = 0;
+    std::int64_t points = 0, cracked_points = 0;
+    double max_opening_mm = 0;
+    std::string reached_in;
+  };
+  std::optional<CrackingEdge> cracking_edge;
   double penetration_mm = 0; ///< corrosion depth x reached [mm]
   /// Where each unloading of the push ended at zero force
   /// (loading.unload_to = "zero_force"): the tube's permanent displacement.

@@ -151,7 +151,8 @@ std::vector<KeyDef> field_keys()
        0.0,
        "mm",
        "the concrete may crack within this distance from the tube axis (element centres); 0: "
-       "all of it. Outside, it stays linear elastic",
+       "all of it. Outside, it stays linear elastic; a run notes cracks that reach the edge "
+       "(summary.json cracking_edge)",
        0,
        inf,
        false,

@@ -114,6 +114,7 @@ int Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iteratio
   if (model::BulkCracking* cracking = eq.model().bulk_cracking())
   {
     bulk = cracking->totals();
+    watch_edge(bulk.edge, step, x);
     // The specimen's, as the push force is (a symmetric model's points and
     // energy are a 1/copies part of them; its surface cracks and the crack
     // planes' mouths, `widths`, are counted with their mirror images).
@@ -157,6 +158,45 @@ int Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iteratio
        << std::fixed << std::setprecision(2) << _report.seconds() << " s)";
   std::cout << line.str() << std::endl;
   return row;
+}
+
+void Corrosion::watch_edge(const model::EdgeCracks& edge, int step, double x)
+{
+  if (!_edge_reached.empty() || edge.cracked_points == 0)
+    return;
+  std::ostringstream when;
+  when.precision(4);
+  when << "corrosion step " << step << " (x = " << x * 1e3 << " um)";
+  _edge_reached = when.str();
+  if (_report.talk())
+    std::cout << "pushout: note: cracks reached the edge of the cracking region (cracking.radius = "
+              << edge.radius << " mm) in " << _edge_reached << "; the concrete beyond stays linear"
+              << std::endl;
+}
+
+void Corrosion::note_edge_cracks(model::EdgeCracks edge)
+{
+  if (edge.radius <= 0)
+    return; // all the concrete may crack: no edge
+  const int copies = _symmetry.copies();
+  _report.summary().cracking_edge =
+      output::Summary::CrackingEdge{edge.radius, edge.points * copies, edge.cracked_points * copies,
+                                    edge.max_opening, _edge_reached};
+  if (edge.cracked_points == 0 && _edge_reached.empty())
+    return;
+  std::ostringstream note;
+  note.precision(4);
+  note << "cracks reached the edge of the cracking region (cracking.radius = " << edge.radius
+       << " mm)" << (_edge_reached.empty() ? " in the push" : " in " + _edge_reached)
+       << "; at the end " << edge.cracked_points * copies << " of the " << edge.points * copies
+       << " points of its outermost elements are cracked, the widest opening "
+       << edge.max_opening * 1e3
+       << " um. The concrete beyond stays linear, so cracks cannot run on there, and the "
+          "pattern near the edge is the radius's, not the material's: a larger cracking.radius "
+          "(0: all the concrete) lets them";
+  _report.summary().notes.push_back(note.str());
+  if (_report.talk())
+    std::cout << "pushout: note: " << note.str() << std::endl;
 }
 
 void Corrosion::describe_cracks(solver::Equilibrium& eq, Vec state, output::Summary& summary) const

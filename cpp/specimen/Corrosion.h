@@ -79,6 +79,14 @@ public:
   /// crack_pattern.csv (and .png). Collective.
   void describe_cracks(solver::Equilibrium& eq, Vec state, output::Summary& summary) const;
 
+  /// At the end of the run, with the model's committed cracks at the edge
+  /// of the cracking region (`edge`): if any cracked there, a note (the
+  /// progress line and summary.json's notes) of how many and how wide, and
+  /// since when (the first corrosion step that record() found them in):
+  /// the concrete beyond cracking.radius stays linear, so the pattern
+  /// there is the radius's, not the material's. Nothing if none did.
+  void note_edge_cracks(model::EdgeCracks edge);
+
 private:
   /// crack_pattern.csv: the cracking concrete's columns through the
   /// thickness, their centre, mean widest opening, size and four corners
@@ -101,6 +109,10 @@ private:
   mesh::Symmetry _symmetry;                ///< the model's mirror planes
   std::optional<output::CurveWriter> _csv; ///< rank 0
   int _row = 0; ///< corrosion.csv's next row number (its step column, as curve.csv's)
+  /// The corrosion step whose record() first found cracks at the edge of
+  /// the cracking region ("": none yet), said then on the progress line.
+  std::string _edge_reached;
+  void watch_edge(const model::EdgeCracks& edge, int step, double x);
 };
 
 /// The normal force N = -int t_n dA [N] and the area A [mm^2] of the whole
