@@ -187,8 +187,8 @@ void Corrosion::note_edge_cracks(model::EdgeCracks edge)
   std::ostringstream note;
   note.precision(4);
   note << "cracks reached the edge of the cracking region (cracking.radius = " << edge.radius
-       << " mm)" << (_edge_reached.empty() ? " in the push" : " in " + _edge_reached)
-       << "; at the end " << edge.cracked_points * copies << " of the " << edge.points * copies
+       << " mm)" << (_edge_reached.empty() ? "" : " in " + _edge_reached) << "; at the end "
+       << edge.cracked_points * copies << " of the " << edge.points * copies
        << " points of its outermost elements are cracked, the widest opening "
        << edge.max_opening * 1e3
        << " um. The concrete beyond stays linear, so cracks cannot run on there, and the "
