@@ -309,6 +309,8 @@ EdgeCracks BulkCracking::edge_of(const std::vector<double>& state,
 {
   EdgeCracks e;
   e.radius = _radius;
+  if (_radius <= 0)
+    return e; // no edge (a scene value: every process returns here)
   const std::size_t n_points = _cells.empty() ? 0 : _strength.size() / _cells.size();
   e.points = std::int64_t(_edge.size() * n_points);
   for (std::size_t k : _edge)
@@ -319,8 +321,10 @@ EdgeCracks BulkCracking::edge_of(const std::vector<double>& state,
         e.max_opening = std::max(e.max_opening, opening[3 * i]);
       }
   MPI_Comm comm = _mesh->comm();
-  MPI_Allreduce(MPI_IN_PLACE, &e.points, 1, MPI_INT64_T, MPI_SUM, comm);
-  MPI_Allreduce(MPI_IN_PLACE, &e.cracked_points, 1, MPI_INT64_T, MPI_SUM, comm);
+  std::int64_t counts[2] = {e.points, e.cracked_points};
+  MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_INT64_T, MPI_SUM, comm);
+  e.points = counts[0];
+  e.cracked_points = counts[1];
   MPI_Allreduce(MPI_IN_PLACE, &e.max_opening, 1, MPI_DOUBLE, MPI_MAX, comm);
   return e;
 }

@@ -59,13 +59,12 @@ std::vector<std::size_t> region_edge(const dolfinx::mesh::Mesh& mesh,
   const auto& cell_vertices = *topology.connectivity(3, 0);
   dolfinx::la::Vector<double> linear(topology.index_map(0), 1);
   std::span<double> mark = linear.mutable_array();
-  for_concrete_cells(mesh, material, {0, 0},
-                     [&](std::int32_t c, double)
-                     {
-                       if (!std::binary_search(cells.begin(), cells.end(), c))
-                         for (std::int32_t v : cell_vertices.links(c))
-                           mark[v] = 1;
-                     });
+  const std::int32_t n_owned = topology.index_map(3)->size_local();
+  for (std::int32_t c = 0; c < n_owned; ++c)
+    if (material[topology.original_cell_index[c]] == pushout::mesh::concrete &&
+        !std::binary_search(cells.begin(), cells.end(), c))
+      for (std::int32_t v : cell_vertices.links(c))
+        mark[v] = 1;
   linear.scatter_rev(std::plus<double>());
   linear.scatter_fwd();
   std::vector<std::size_t> edge;

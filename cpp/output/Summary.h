@@ -38,7 +38,8 @@ struct Summary
   /// With cracking.radius > 0: the cracks at the edge of the cracking
   /// region at the end of the run (model::EdgeCracks, the specimen's
   /// points as the other counts), and the corrosion step they first
-  /// reached it in ("": none, or only in the push). Null otherwise.
+  /// reached it in ("": no corrosion step found them; without a corrosion
+  /// stage, always). Null otherwise.
   struct CrackingEdge
   {
     double radius_mm = 0;

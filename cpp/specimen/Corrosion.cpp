@@ -160,6 +160,17 @@ int Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iteratio
   return row;
 }
 
+namespace
+{
+/// The head of what the run says of cracks at the edge of `radius` [mm].
+std::string edge_reached(double radius)
+{
+  std::ostringstream s;
+  s << "cracks reached the edge of the cracking region (cracking.radius = " << radius << " mm)";
+  return s.str();
+}
+} // namespace
+
 void Corrosion::watch_edge(const model::EdgeCracks& edge, int step, double x)
 {
   if (!_edge_reached.empty() || edge.cracked_points == 0)
@@ -169,9 +180,8 @@ void Corrosion::watch_edge(const model::EdgeCracks& edge, int step, double x)
   when << "corrosion step " << step << " (x = " << x * 1e3 << " um)";
   _edge_reached = when.str();
   if (_report.talk())
-    std::cout << "pushout: note: cracks reached the edge of the cracking region (cracking.radius = "
-              << edge.radius << " mm) in " << _edge_reached << "; the concrete beyond stays linear"
-              << std::endl;
+    std::cout << "pushout: note: " << edge_reached(edge.radius) << " in " << _edge_reached
+              << "; the concrete beyond stays linear" << std::endl;
 }
 
 void Corrosion::note_edge_cracks(model::EdgeCracks edge)
@@ -186,9 +196,8 @@ void Corrosion::note_edge_cracks(model::EdgeCracks edge)
     return;
   std::ostringstream note;
   note.precision(4);
-  note << "cracks reached the edge of the cracking region (cracking.radius = " << edge.radius
-       << " mm)" << (_edge_reached.empty() ? "" : " in " + _edge_reached) << "; at the end "
-       << edge.cracked_points * copies << " of the " << edge.points * copies
+  note << edge_reached(edge.radius) << (_edge_reached.empty() ? "" : " in " + _edge_reached)
+       << "; at the end " << edge.cracked_points * copies << " of the " << edge.points * copies
        << " points of its outermost elements are cracked, the widest opening "
        << edge.max_opening * 1e3
        << " um. The concrete beyond stays linear, so cracks cannot run on there, and the "
