@@ -189,6 +189,8 @@ private:
   // --- PathFollowing.cpp ---
 
   bool path_following();
+  /// The steps of path following, one member function per part of a step.
+  class PathSteps;
   /// A displacement-controlled step of the load factor (pseudo-time: its
   /// change), IMPL-EX cracks extrapolated by `extrapolation`
   /// (set_crack_extrapolation).
