@@ -171,7 +171,7 @@ bool StepLoop::zero_force_step(const Stage& stage, int k, int cuts, double s0, d
     _equilibrium.apply_constraints(_x);
     rep = _solver.solve(_x);
     _summary.newton_iterations += rep.iterations;
-    if (!rep.converged)
+    if (!rep.converged || !crack_band_updated(rep))
     {
       revert();
       return std::nullopt;
@@ -191,8 +191,8 @@ bool StepLoop::zero_force_step(const Stage& stage, int k, int cuts, double s0, d
   case ZeroForceResult::Outcome::try_failed:
     if (!stopped) // else the summary says so
       _summary.message = "load step " + std::to_string(k) +
-                         ": a try at the zero force of the unloading did not converge (" +
-                         rep.reason + "); stopped";
+                         ": a try at the zero force of the unloading failed (" + rep.reason +
+                         "); stopped";
     return false;
   default:
     revert();
@@ -209,6 +209,32 @@ std::function<double(double)> StepLoop::extrapolation(std::function<double(doubl
   return load;
 }
 
+namespace
+{
+/// What a crack band update that failed at `points` points says.
+std::string update_failed_at(std::int64_t points)
+{
+  return "the crack band's update failed at " + std::to_string(points) +
+         (points == 1 ? " point" : " points");
+}
+} // namespace
+
+bool StepLoop::crack_band_updated(solver::SolveReport& rep)
+{
+  model::BulkCracking* bulk = _equilibrium.model().bulk_cracking();
+  if (!bulk || !bulk->implex())
+    return true;
+  std::int64_t failed_points = 0;
+  bulk->implex_error(failed_points); // the update commit() then keeps
+  if (test_fail_crack_band_update())
+    ++failed_points;
+  if (failed_points == 0)
+    return true;
+  rep.converged = false;
+  rep.reason = "IMPL-EX: " + update_failed_at(failed_points);
+  return false;
+}
+
 StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, double increment,
                                              const Stepper& stepper, const char* why_taken)
 {
@@ -223,7 +249,7 @@ StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, double in
   {
     // The crack band's own update failed there: cut the step (as the
     // implicit cracks would), never take it.
-    why << "IMPL-EX: the crack band's update failed at " << failed_points << " points";
+    why << "IMPL-EX: " << update_failed_at(failed_points);
     c.ratio = 2;
   }
   else

@@ -169,6 +169,11 @@ private:
   /// cracks snap back under the load's control).
   ImplexCheck check_implex(solver::SolveReport& rep, double increment, const Stepper& stepper,
                            const char* why_taken = nullptr);
+  /// IMPL-EX cracks: whether the crack band's own update at a converged
+  /// step's strain worked at every point (what commit() keeps; else `rep`
+  /// fails, its reason said), for a step taken without check_implex (one
+  /// found by its force, zero_force_step). True without IMPL-EX cracks.
+  bool crack_band_updated(solver::SolveReport& rep);
   /// summary.json's implex_error_max and implex_jumps, and a jump's progress
   /// line: a checked step that is committed (a try may still be reverted
   /// after its check).

@@ -74,4 +74,10 @@ bool test_fail_step_to_final()
   ++failed;
   return true;
 }
+
+bool test_fail_crack_band_update()
+{
+  static const bool set = std::getenv("PUSHOUT_TEST_FAIL_CRACK_BAND_UPDATE") != nullptr;
+  return set;
+}
 } // namespace pushout::stepping

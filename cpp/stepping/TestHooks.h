@@ -20,7 +20,10 @@
 // tests/e2e/test_implex_tends_to_implicit.py); with
 // PUSHOUT_TEST_FAIL_TO_FINAL=n, the first n converged path-following tries
 // that end at the final delta are taken as failed (the fallback of steps of
-// delta, tests/e2e/test_arc_length_follows_snap_back.py).
+// delta, tests/e2e/test_arc_length_follows_snap_back.py); with
+// PUSHOUT_TEST_FAIL_CRACK_BAND_UPDATE set, the IMPL-EX crack band's update
+// of every try at the zero force of an unloading fails at one point more
+// than it did (tests/e2e/test_push_path_unloads_and_reloads.py).
 #pragma once
 
 #include <mpi.h>
@@ -54,4 +57,9 @@ bool test_no_step_prediction();
 /// taken as failed (StepLoop::path_following); n in the whole process (a
 /// sweep's first cases only).
 bool test_fail_step_to_final();
+
+/// PUSHOUT_TEST_FAIL_CRACK_BAND_UPDATE: the IMPL-EX crack band's update at
+/// a zero-force try's strain fails at one point more than it did
+/// (StepLoop::crack_band_updated; the same on every process).
+bool test_fail_crack_band_update();
 } // namespace pushout::stepping

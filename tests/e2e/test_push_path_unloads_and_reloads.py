@@ -23,10 +23,18 @@
 4. Scene errors: a path that does not start at 0, push_path with step
    growth or with dissipation control: exit 2 and a message naming the key.
 5. A path within a thin slice's small-displacement range runs, whatever
-   the (unread) push_displacement, and the unread keys are noted."""
+   the (unread) push_displacement, and the unread keys are noted.
+6. IMPL-EX cracks in the concrete (the coarse corroded slice with cracks
+   anywhere): pushed to 10 um and unloaded, the unloading ends at zero force
+   (|P| within the search's 1e-6 of the largest force) with a permanent
+   displacement. A try at the zero force is taken without IMPL-EX's error
+   check (its size is the force's), but not where the crack band's own
+   update failed: with a test hook that fails it at one point, the run stops
+   there, exit 3, and says so; nothing of that try is committed."""
 import os
 
-from common import COARSE_MESH, EXP_SOFT, FRICTION_2, OUT_ROOT, check, curve, out_dir, run, summary
+from common import (COARSE_MESH, EXP_SOFT, FRICTION_2, OUT_ROOT, check, cracking_corroded_demo, curve,
+                    out_dir, run, summary)
 
 THERMAL = "[loading]\ntemperature_change = -25.0\nsteps_per_segment = {n}\npush_path = {path}\n"
 ZERO = 'unload_to = "zero_force"\n'
@@ -127,3 +135,28 @@ check(p.returncode == 0 and "loading.steps not read: loading.push_path sets the 
 notes = summary(out)["notes"]
 check(len(notes) == 1 and notes[0].startswith("loading.steps not read"),
       f"summary.json keeps the note: {notes}")
+
+# 6. IMPL-EX cracks: the zero force found, and a failed crack band update
+# there stops the run.
+cracked = cracking_corroded_demo(0.012, 6, seed=1).replace(
+    "[loading]\n", "[loading]\npush_path = [0.0, 0.01, 0.0]\nsteps_per_segment = 4\n" + ZERO)
+out = out_dir("push_path_implex_cracks")
+run(cracked, out)
+c, s = curve(out), summary(out)
+P_max = max(abs(r["P_N"]) for r in c)
+check(len(s["permanent_displacements_mm"]) == 1 and abs(c[-1]["P_N"]) < 1e-6 * P_max
+      and 0 < c[-1]["delta_mm"] < 0.01,
+      f"IMPL-EX cracks: the unloading ends at P = {c[-1]['P_N']:.2e} N (largest {P_max:.0f} N), "
+      f"delta = {c[-1]['delta_mm'] * 1e3:.3f} um")
+failed = out_dir("push_path_implex_cracks_failed_update")
+os.environ["PUSHOUT_TEST_FAIL_CRACK_BAND_UPDATE"] = "1"
+try:
+    p = run(cracked, failed, check=False)
+finally:
+    del os.environ["PUSHOUT_TEST_FAIL_CRACK_BAND_UPDATE"]
+f = curve(failed)
+check(p.returncode == 3 and "zero force of the unloading failed" in p.stderr
+      and "crack band's update failed at 1 point" in p.stderr and len(f) == len(c) - 1
+      and summary(failed)["permanent_displacements_mm"] == [],
+      f"a failed crack band update at the zero force: exit {p.returncode}, {len(f)} rows against "
+      f"{len(c) - 1} before it, {p.stderr.strip()[-300:]!r}")
