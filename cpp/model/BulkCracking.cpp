@@ -301,7 +301,7 @@ bool BulkCracking::update_points()
                                       ? update_point(c, i, strain, now)
                                       : _band.held_uncracked(old, strain, now);
         if (_loading[i] && at_committed_strain(i, strain))
-          r.tangent = loading_tangent(c, i, strain);
+          loading_tangent(c, i, strain, r.tangent);
         ok = ok && r.status == bulk::CrackBandResult::Status::ok;
         std::copy(r.stress.begin(), r.stress.end(), _stress_trial.begin() + voigt * i);
         _dissipated_step[i] = r.dissipation;
@@ -329,14 +329,16 @@ bool BulkCracking::at_committed_strain(std::size_t i, const bulk::Voigt& strain)
   return change <= probe * size;
 }
 
-bulk::Voigt66 BulkCracking::loading_tangent(std::size_t c, std::size_t i,
-                                            const bulk::Voigt& strain) const
+void BulkCracking::loading_tangent(std::size_t c, std::size_t i, const bulk::Voigt& strain,
+                                   bulk::Voigt66& tangent) const
 {
   bulk::Voigt probed;
   for (int k = 0; k < voigt; ++k)
     probed[k] = strain[k] * (1 + probe);
   std::array<double, state> scratch;
-  return update_point(c, i, probed, scratch).tangent;
+  const bulk::CrackBandResult r = update_point(c, i, probed, scratch);
+  if (r.status == bulk::CrackBandResult::Status::ok) // else its tangent is not one
+    tangent = r.tangent;
 }
 
 bool BulkCracking::energy_release(std::span<double> gradient, double& G)

@@ -298,8 +298,10 @@ private:
   /// tangent instead keeps the first iteration of every step (and the
   /// gradient of energy_release()) on the path, as the joints' energy
   /// release does (interface::Interface::loading_probe). The probe's trial
-  /// state is thrown away.
-  bulk::Voigt66 loading_tangent(std::size_t c, std::size_t i, const bulk::Voigt& strain) const;
+  /// state is thrown away. Into `tangent`, which keeps the tangent at
+  /// `strain` itself if the probe's update fails.
+  void loading_tangent(std::size_t c, std::size_t i, const bulk::Voigt& strain,
+                       bulk::Voigt66& tangent) const;
 
   /// The integral over this process's cracking cells of a value per point
   /// [value's unit times mm^3].
