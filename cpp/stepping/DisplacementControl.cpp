@@ -138,7 +138,7 @@ bool StepLoop::nominal_steps(const Stage& stage)
       revert();
       const std::string what =
           steps == 1 ? stage.step_name : stage.step_name + " " + std::to_string(k);
-      if (!cut_back(stepper, cuts, what, rep.reason, fraction, implex.cut_factor()))
+      if (!cut_back(stepper, cuts, what, rep.reason, fraction, implex.cut_factor(), s_try - s))
         return false;
     }
   }

@@ -392,9 +392,11 @@ bool StepLoop::DissipationSteps::failed(const std::string& name, const Try& t)
 {
   _loop.revert();
   Stepper& stepper = t.energy_step ? _energy : _by_lambda;
+  // The last step of lambda, clipped to lambda_final, is cut from its own size.
+  const double tried = t.energy_step ? stepper.increment() : (t.lambda_new - _lambda) / _h_nominal;
   if (!_loop.cut_back(stepper, _cuts, (t.energy_step ? "dissipation-controlled " : "") + name,
                       t.rep.reason, t.energy_step ? _energy_words : _step_words,
-                      t.implex.cut_factor()))
+                      t.implex.cut_factor(), tried))
     return false;
   // A step of lambda that failed short (below min_probe_increment) is
   // retried under dissipation control; a step of energy that nothing along

@@ -196,11 +196,11 @@ void StepLoop::revert()
 }
 
 bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
-                        const std::string& reason, const Words& size, double factor)
+                        const std::string& reason, const Words& size, double factor, double tried)
 {
   if (stop_requested())
     return false;
-  if (!stepper.failed(factor))
+  if (!stepper.failed(factor, tried))
   {
     _summary.message = what + " did not converge with " + std::to_string(cuts) + " cuts, down to " +
                        size(stepper.increment()) + " (" + reason + "); stopped";

@@ -29,6 +29,7 @@
 #include "TestHooks.h" // test_failure_at_setup, for driver/Run.cpp
 #include <algorithm>
 #include <functional>
+#include <limits>
 #include <string>
 
 namespace pushout::stepping
@@ -77,10 +78,12 @@ private:
   /// After a failed try (reverted): false (with the summary's message) if
   /// the step cannot be cut again or a signal stops the run; otherwise
   /// halves the increment (until it is at most `factor` times what it
-  /// was: Stepper::failed), counts the cut and says so. `what` names the
+  /// was, or than `tried`, the failed try's increment where it was clipped
+  /// short: Stepper::failed), counts the cut and says so. `what` names the
   /// step, `size(increment)` words its size.
   bool cut_back(Stepper& stepper, int& cuts, const std::string& what, const std::string& reason,
-                const Words& size, double factor = 0.5);
+                const Words& size, double factor = 0.5,
+                double tried = std::numeric_limits<double>::infinity());
   /// Whether a signal asked to stop (agreed on by all processes); first an
   /// error of any process since the last agreement is thrown on all.
   bool stop_requested();

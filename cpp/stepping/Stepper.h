@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace pushout::stepping
 {
@@ -39,14 +40,17 @@ public:
 
   /// After a failed try: halves the increment, or halves it until it is at
   /// most `factor` times what it was (an error that says by how much);
-  /// false if it is already the smallest allowed.
-  bool failed(double factor = 0.5)
+  /// false if it is already the smallest allowed. `tried`: the failed try's
+  /// own increment where next() clipped it short of the increment (at the
+  /// end of a nominal step); the cut is from it, else the retry could be
+  /// the same try.
+  bool failed(double factor = 0.5, double tried = std::numeric_limits<double>::infinity())
   {
     _easy = 0;
     const double smallest = std::ldexp(1.0, -_max_cuts);
     if (_ds <= smallest)
       return false;
-    const double target = factor * _ds;
+    const double target = factor * std::min(_ds, tried);
     do
       _ds /= 2;
     while (_ds > target && _ds > smallest);

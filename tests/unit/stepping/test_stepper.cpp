@@ -100,6 +100,26 @@ TEST(Stepper, AFailureByAKnownFactorCutsAtOnce)
   EXPECT_TRUE(Stepper(5, easy).failed(0.7)); // at least one halving
 }
 
+// A try that next() clipped at the end of a nominal step (0.75 -> 1 with
+// an increment of 0.5) is cut from its own size: halved from 0.5 only, the
+// retry would be the same try from 0.75 to 1 again.
+TEST(Stepper, AClippedTryIsCutFromItsOwnSize)
+{
+  Stepper stepper(5, easy);
+  stepper.failed(); // 0.5
+  EXPECT_EQ(stepper.next(0.75, 1.0), 1.0);
+  EXPECT_TRUE(stepper.failed(0.5, 0.25));
+  EXPECT_EQ(stepper.increment(), 0.125);
+  EXPECT_EQ(stepper.next(0.75, 1.0), 0.875);
+  // A known factor from the try's size: 0.8 / 3 of 0.125 -> 1/32.
+  EXPECT_TRUE(stepper.failed(0.8 / 3, 0.125));
+  EXPECT_EQ(stepper.increment(), 1.0 / 32);
+  // A try the size of the increment is cut as before.
+  Stepper whole(5, easy);
+  EXPECT_TRUE(whole.failed(0.5, 1.0));
+  EXPECT_EQ(whole.increment(), 0.5);
+}
+
 TEST(Stepper, ATryThatMayNotGrowIsNotEasy)
 {
   Stepper stepper(5, easy);
