@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <memory>
 #include <set>
 #include <string>
 
@@ -428,30 +429,34 @@ void NewtonSolver::release() noexcept
 double NewtonSolver::time_linear_solve(Vec x)
 {
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(x));
-  Vec F, dx;
-  check(VecDuplicate(x, &F), "VecDuplicate");
-  check(VecDuplicate(x, &dx), "VecDuplicate");
+  // Owned, so that an error on the way (a failed factorisation, the
+  // problem's) frees them, the factors too: a sweep goes on to its next
+  // case.
+  Vec v;
+  check(VecDuplicate(x, &v), "VecDuplicate");
+  const Vector F(v);
+  check(VecDuplicate(x, &v), "VecDuplicate");
+  const Vector dx(v);
+  KSP k;
+  check(KSPCreate(comm, &k), "KSPCreate");
+  const std::unique_ptr<_p_KSP, void (*)(KSP)> ksp(
+      k, [](KSP p) { petsc::check_nothrow(KSPDestroy(&p), "KSPDestroy"); });
   _problem.residual(x, F);
   check(VecScale(F, -1.0), "VecScale");
   _problem.jacobian(x, _J);
-  KSP ksp;
-  check(KSPCreate(comm, &ksp), "KSPCreate");
-  check(KSPSetOperators(ksp, _J, _J), "KSPSetOperators");
-  check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
-  _problem.configure(ksp);
+  check(KSPSetOperators(k, _J, _J), "KSPSetOperators");
+  check(KSPSetFromOptions(k), "KSPSetFromOptions");
+  _problem.configure(k);
   MPI_Barrier(comm);
   const double t0 = MPI_Wtime();
-  check(KSPSetUp(ksp), "KSPSetUp");
-  if (const std::string why = factorization_failure(ksp); !why.empty())
+  check(KSPSetUp(k), "KSPSetUp");
+  if (const std::string why = factorization_failure(k); !why.empty())
     throw std::runtime_error("solver.time_linear_solve: the factorisation of the first load "
                              "step's Jacobian failed (" +
                              why + ")");
-  check(KSPSolve(ksp, F, dx), "KSPSolve");
+  check(KSPSolve(k, F, dx), "KSPSolve");
   MPI_Barrier(comm);
   const double t = MPI_Wtime() - t0;
-  check(KSPDestroy(&ksp), "KSPDestroy");
-  check(VecDestroy(&F), "VecDestroy");
-  check(VecDestroy(&dx), "VecDestroy");
   _problem.forget_trial_state();
   return t;
 }
@@ -465,11 +470,11 @@ SolveReport NewtonSolver::solve(Vec x, double reference)
     // The first solve of a run starts from the virgin interface state and
     // the constraints of the run (their dofs never change, only values):
     // the Jacobian at zero displacement is the elastic tangent.
-    Vec zero;
-    check(VecDuplicate(x, &zero), "VecDuplicate");
+    Vec v;
+    check(VecDuplicate(x, &v), "VecDuplicate");
+    const Vector zero(v); // freed if the Jacobian throws
     check(VecSet(zero, 0.0), "VecSet");
     _problem.jacobian(zero, _P);
-    check(VecDestroy(&zero), "VecDestroy");
     _policy.P_filled();
   }
   // The last converged tangent, if nothing evaluated another since (path
