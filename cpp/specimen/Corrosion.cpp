@@ -177,7 +177,10 @@ void Corrosion::watch_edge(const model::EdgeCracks& edge, int step, double x)
     return;
   std::ostringstream when;
   when.precision(4);
-  when << "corrosion step " << step << " (x = " << x * 1e3 << " um)";
+  // The progress lines' step (of corrosion.steps, or of dissipation
+  // control's) and the row that corrosion.csv numbers.
+  when << "corrosion step " << step << " (x = " << x * 1e3 << " um; corrosion.csv step " << _row
+       << ")";
   _edge_reached = when.str();
   if (_report.talk())
     std::cout << "pushout: note: " << edge_reached(edge.radius) << " in " << _edge_reached
