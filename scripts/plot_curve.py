@@ -88,63 +88,156 @@ def draw(csv_path, png, kind, title):
     FigureCanvasAgg(fig)
     title = title or os.path.basename(os.path.dirname(os.path.abspath(csv_path)))
     if kind == "crack_pattern":
-        # The crack planes of the run, beside its crack_pattern.csv.
-        planes = os.path.join(os.path.dirname(os.path.abspath(csv_path)), "crack_planes.csv")
+        # The crack planes of the run and its resolved scene (the slice's
+        # outline), beside its crack_pattern.csv.
+        folder = os.path.dirname(os.path.abspath(csv_path))
+        planes = os.path.join(folder, "crack_planes.csv")
         plot_crack_pattern(fig, read(csv_path), title,
-                           read(planes) if os.path.exists(planes) else None)
+                           read(planes) if os.path.exists(planes) else None,
+                           read_scene(os.path.join(folder, "scene.toml")))
     else:
         plot(fig, read(csv_path), kind, title)
     fig.savefig(png)
 
 
-def draw_crack_pattern(ax, data, top=None, planes=None):
+def read_scene(path):
+    """The slice of a run's resolved scene.toml that the crack pattern draws:
+    {"shape", "width", "center", "tube_outer", "tube_inner", "radius"} [mm];
+    None without the file (or a scene of another model)."""
+    if not os.path.exists(path):
+        return None
+    import tomllib
+    with open(path, "rb") as f:
+        scene = tomllib.load(f)
+    g, c = scene.get("geometry", {}), scene.get("cracking", {})
+    if "width" not in g or "tube_outer_diameter" not in g:
+        return None
+    shape = g.get("outer_shape", "square")
+    # A circle slice is centred on the tube (the scene refuses another centre).
+    center = g.get("tube_center", [g["width"] / 2] * 2) if shape == "square" else [g["width"] / 2] * 2
+    return {"shape": shape, "width": g["width"], "center": center,
+            "tube_outer": g["tube_outer_diameter"], "tube_inner": g.get("tube_inner_diameter", 0.0),
+            "radius": c.get("radius", 0.0)}
+
+
+def cell_outlines(data):
+    """Each column's cell of crack_pattern.csv as its four corners [mm]."""
+    return [[(data[f"corner_{k}_x_mm"][i], data[f"corner_{k}_y_mm"][i]) for k in range(4)]
+            for i in range(len(data.get("x_mm", [])))]
+
+
+def slice_notes(data, slice_):
+    """What the crack pattern's figure says under it of a part model's
+    mirror images and of cracking.radius ("" for neither)."""
+    if not slice_:
+        return ""
+    notes = []
+    planes = mirrors(cell_outlines(data), slice_)
+    if planes:
+        notes.append(f"mirrored about the dashed symmetry plane{'s' if len(planes) > 1 else ''} "
+                     "(the model is a part of the slice)")
+    if slice_["radius"] > 0:
+        notes.append(f"pale: linear beyond cracking.radius = {slice_['radius']:g} mm")
+    return "; ".join(notes)
+
+
+def mirrors(outlines, slice_):
+    """The symmetry planes a part model's cells lie on one side of: "x"
+    (x = xc, cells at x >= xc) and/or "y", where the slice spans both sides
+    (a half or quarter model: its cells are drawn with their mirror images,
+    as the readings count the specimen's cracks)."""
+    if not outlines or not slice_:
+        return []
+    tol = 1e-6 * slice_["width"]
+    xc, yc = slice_["center"]
+    found = []
+    for axis, c in ((0, xc), (1, yc)):
+        if 0 < c < slice_["width"] and all(p[axis] >= c - tol for o in outlines for p in o):
+            found.append("xy"[axis])
+    return found
+
+
+def draw_crack_pattern(ax, data, top=None, planes=None, slice_=None):
     """The slice seen along the tube axis on `ax`: each column its cell's
     outline, coloured by its opening on a log scale from 1 um (below: the
     lightest colour) to `top` [mm] (default: the widest); `planes`
     (crack_planes.csv's columns): each crack plane a line from the tube to
     the outer face, coloured by its mouth opening on the same scale and
-    labelled with it. Returns the coloured collection (for a colour
-    bar)."""
+    labelled with it. With `slice_` (read_scene): the slice's outline, the
+    concrete that may not crack (cracking.radius) in its own colour, the
+    tube, and a half or quarter model's cells with their mirror images
+    (the symmetry planes dashed). Returns the coloured collection (for a
+    colour bar)."""
     from matplotlib.collections import PatchCollection
     from matplotlib.colors import LogNorm
-    from matplotlib.patches import Polygon
+    from matplotlib.patches import Circle, Polygon, Rectangle
     floor = 1e-3  # mm
     xs = data.get("x_mm", [])
     opening = data.get("opening_mm", [])
     mouths = (planes or {}).get("mouth_mm", [])
     top = top or max([floor * 10] + opening + mouths)
-    outlines = [[(data[f"corner_{k}_x_mm"][i], data[f"corner_{k}_y_mm"][i]) for k in range(4)]
-                for i in range(len(xs))]
+    outlines = cell_outlines(data)
+    values = [max(w, floor) for w in opening]
+    planes_of_symmetry = mirrors(outlines, slice_)
+    for axis in planes_of_symmetry:
+        c = slice_["center"]["xy".index(axis)]
+        images = [[(2 * c - x, y) if axis == "x" else (x, 2 * c - y) for x, y in o] for o in outlines]
+        outlines, values = outlines + images, values + values
     cells = PatchCollection([Polygon(o) for o in outlines], cmap="inferno_r",
-                            norm=LogNorm(floor, top), linewidths=0)
-    cells.set_array([max(w, floor) for w in opening])
+                            norm=LogNorm(floor, top), linewidths=0, zorder=2)
+    cells.set_array(values)
+    if slice_:
+        w, (xc, yc) = slice_["width"], slice_["center"]
+        linear = {"fc": "#dce6f0", "ec": "none", "zorder": 1}  # concrete that stays linear
+        edge = {"fc": "none", "ec": "black", "lw": 0.8, "zorder": 4}
+        if slice_["shape"] == "circle":
+            ax.add_patch(Circle((xc, yc), w / 2, **linear))
+            ax.add_patch(Circle((xc, yc), w / 2, **edge))
+        else:
+            ax.add_patch(Rectangle((0, 0), w, w, **linear))
+            ax.add_patch(Rectangle((0, 0), w, w, **edge))
+        ax.add_patch(Circle((xc, yc), slice_["tube_outer"] / 2, fc="0.6", ec="black", lw=0.6,
+                            zorder=3))
+        ax.add_patch(Circle((xc, yc), slice_["tube_inner"] / 2, fc="white", ec="black", lw=0.6,
+                            zorder=3))
+        for axis in planes_of_symmetry:
+            if axis == "x":
+                ax.plot([xc, xc], [0, w], color="0.3", lw=0.7, ls="--", zorder=2.5)
+            else:
+                ax.plot([0, w], [yc, yc], color="0.3", lw=0.7, ls="--", zorder=2.5)
+        ax.set_xlim(-0.02 * w, 1.02 * w)
+        ax.set_ylim(-0.02 * w, 1.02 * w)
+        ax.set_facecolor("white")
+    else:
+        if xs:
+            ax.set_xlim(min(p[0] for o in outlines for p in o), max(p[0] for o in outlines for p in o))
+            ax.set_ylim(min(p[1] for o in outlines for p in o), max(p[1] for o in outlines for p in o))
+        ax.set_facecolor("0.85")  # where the concrete may not crack, and the tube
     ax.add_collection(cells)
-    if xs:
-        ax.set_xlim(min(p[0] for o in outlines for p in o), max(p[0] for o in outlines for p in o))
-        ax.set_ylim(min(p[1] for o in outlines for p in o), max(p[1] for o in outlines for p in o))
-    ax.set_facecolor("0.85")  # where the concrete may not crack, and the tube
     ax.set_aspect("equal")
     for i, w in enumerate(mouths):
         x = [planes["x_inner_mm"][i], planes["x_outer_mm"][i]]
         y = [planes["y_inner_mm"][i], planes["y_outer_mm"][i]]
-        ax.plot(x, y, color=cells.cmap(cells.norm(max(w, floor))), lw=2.5, solid_capstyle="butt")
-        ax.plot(x, y, color="C0", lw=0.6, ls="--")  # marks it a plane, however narrow
+        ax.plot(x, y, color=cells.cmap(cells.norm(max(w, floor))), lw=2.5, solid_capstyle="butt",
+                zorder=5)
+        ax.plot(x, y, color="C0", lw=0.6, ls="--", zorder=5)  # marks it a plane, however narrow
         at = (x[0] + 0.8 * (x[1] - x[0]), y[0] + 0.8 * (y[1] - y[0]))  # inside the slice
         ax.annotate(f"plane {int(planes['plane'][i])}: {w * 1e3:.3g} µm", at,
-                    fontsize=7, color="C0", ha="center", va="center",
+                    fontsize=7, color="C0", ha="center", va="center", zorder=6,
                     bbox={"boxstyle": "round,pad=0.2", "fc": "white", "alpha": 0.8, "lw": 0})
     return cells
 
 
-def plot_crack_pattern(fig, data, title, planes=None):
+def plot_crack_pattern(fig, data, title, planes=None, slice_=None):
     """The crack pattern of one run (draw_crack_pattern) with its colour bar."""
     ax = fig.add_subplot()
-    cells = draw_crack_pattern(ax, data, planes=planes)
-    ax.set_xlabel("x [mm]")
+    cells = draw_crack_pattern(ax, data, planes=planes, slice_=slice_)
+    notes = slice_notes(data, slice_)
+    ax.set_xlabel("x [mm]" + (f"\n{notes}" if notes else ""), fontsize=None if not notes else 8)
     ax.set_ylabel("y [mm]")
     fig.colorbar(cells, ax=ax, label="crack opening, mean through the thickness [mm]"
                  + ("\n(planes: mouth opening)" if planes else ""))
-    ax.set_title(f"crack pattern at the start of the push: {title}")
+    ax.set_title(f"crack pattern at the start of the push\n{title}", fontsize=10)
     fig.tight_layout()
 
 
