@@ -318,12 +318,14 @@ PetscErrorCode NewtonSolver::jacobian_callback(SNES snes, Vec x, Mat J, Mat P, v
         {
           // The step's first iteration: the tangent (and preconditioner) of the
           // last converged step, as they are.
+          self->_factored_now = false;
           check(KSPSetReusePreconditioner(ksp, PETSC_TRUE), "KSPSetReusePreconditioner");
           return;
         }
         if (self->in_linear_tail(iteration))
         {
           // The factorisation at hand, as it is (set_tail_reuse).
+          self->_factored_now = false;
           check(KSPSetReusePreconditioner(ksp, PETSC_TRUE), "KSPSetReusePreconditioner");
           return;
         }
@@ -332,8 +334,8 @@ PetscErrorCode NewtonSolver::jacobian_callback(SNES snes, Vec x, Mat J, Mat P, v
         PetscInt its = 0;
         check(KSPGetIterationNumber(ksp, &its), "KSPGetIterationNumber"); // the previous solve's
         self->_policy.solved(its);
-        check(KSPSetReusePreconditioner(
-                  ksp, self->_policy.update(self->_problem, J, P) ? PETSC_FALSE : PETSC_TRUE),
+        self->_factored_now = self->_policy.update(self->_problem, J, P);
+        check(KSPSetReusePreconditioner(ksp, self->_factored_now ? PETSC_FALSE : PETSC_TRUE),
               "KSPSetReusePreconditioner");
       });
 }
@@ -487,6 +489,17 @@ SolveReport NewtonSolver::solve(Vec x, double reference)
   const Vector start(copy); // destroyed on every way out
   check(VecCopy(x, start), "VecCopy");
   SolveReport r = attempt_from_tangents(x, start);
+  if (!r.converged && _failed_on_stale_lu)
+  {
+    // GMRES failed on the LU of an earlier iterate: the same step again,
+    // its first iteration on a fresh one (the failure queued it), before
+    // the step loop cuts it.
+    check(VecCopy(start, x), "VecCopy");
+    _tangent_converged = false;
+    const int before = r.iterations;
+    r = attempt(x);
+    r.iterations += before;
+  }
   if (r.converged || r.stalled || _fallback_line_search.empty())
     return r;
   // The same step again with the other line search, before the step loop
@@ -539,6 +552,7 @@ SolveReport NewtonSolver::attempt(Vec x)
   check(SNESGetKSP(_snes, &ksp), "SNESGetKSP");
   PetscInt linear_before = 0, linear_after = 0;
   check(KSPGetTotalIterations(ksp, &linear_before), "KSPGetTotalIterations");
+  _failed_on_stale_lu = false;
   const PetscErrorCode code = SNESSolve(_snes, nullptr, x);
   // Every Krylov iteration, those of a failed linear solve too.
   check(KSPGetTotalIterations(ksp, &linear_after), "KSPGetTotalIterations");
@@ -584,8 +598,11 @@ SolveReport NewtonSolver::attempt(Vec x)
   }
   if (reason == SNES_DIVERGED_LINEAR_SOLVE)
   {
-    if (const std::string why = factorization_failure(ksp); !why.empty())
+    const std::string why = factorization_failure(ksp);
+    if (!why.empty())
       r.reason += " (" + why + ")";
+    // Not a factorisation that failed: Krylov on an earlier iterate's LU.
+    _failed_on_stale_lu = why.empty() && _policy.lagged() && !_factored_now;
   }
   if (!r.converged)
     _policy.refresh(); // a retry starts from a fresh factorisation

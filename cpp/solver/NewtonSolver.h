@@ -16,7 +16,11 @@
 //    jump) and is refreshed from the current J, at the start of a Newton
 //    iteration, only when the previous linear solve needed more than
 //    `refactor_iterations` GMRES iterations or failed. A MUMPS solve costs
-//    about 1/20 of a factorisation here, so this saves most of them.
+//    about 1/20 of a factorisation here, so this saves most of them. A
+//    Newton solve that fails as GMRES falls short on the LU of an earlier
+//    iterate is tried again, its first iteration on a fresh LU, before the
+//    step loop would cut the step (with -ksp_max_it 6 on a coarse corroded
+//    slice with IMPL-EX cracks, 15 cuts instead of 26).
 //
 // The first iteration of a load step takes, by default, the tangent and the
 // preconditioner of the last converged step as they are (the continuation
@@ -204,8 +208,15 @@ private:
   double _reference = 0;             ///< solve()'s reference of the current solve [N]
   bool _stop_when_stalled = false;   ///< set_stop_when_stalled
   bool _stalled = false;             ///< the current solve stalled
-  PetscReal _ksp_rtol = 1e-10;       ///< -ksp_rtol, the linear solves' floor
-  bool _inexact = false;             ///< set_inexact
+  /// The last Jacobian callback factored the preconditioner afresh (lagged:
+  /// from that iterate's Jacobian), so a linear solve that failed after it
+  /// did not fail for a stale LU.
+  bool _factored_now = false;
+  /// The last attempt failed in a linear solve on a lagged LU of an earlier
+  /// iterate (solve() tries the step again on a fresh one).
+  bool _failed_on_stale_lu = false;
+  PetscReal _ksp_rtol = 1e-10;         ///< -ksp_rtol, the linear solves' floor
+  bool _inexact = false;               ///< set_inexact
   std::int64_t _linear_iterations = 0; ///< linear_iterations()
 
 public:

@@ -11,6 +11,9 @@
 //   -snes_max_it (50).
 // - A predicted start (NewtonSolver::solve's reference): Newton's relative
 //   test is of the step's own residual, not of the prediction's.
+// - A lagged LU that has gone stale (F = A x - b with A changed between
+//   solves): GMRES stopped short on it fails the Newton solve, which is
+//   tried again on a fresh LU before the step loop would cut it.
 #include "common/petsc_check.h"
 #include "solver/NewtonHistory.h"
 #include "solver/NewtonSolver.h"
@@ -288,4 +291,64 @@ TEST(PredictedStart, TheFirstLinearSolveStopsAtWhatTheStepsTestNeeds)
   // 1e-10 |b| and GMRES stops at half of it: 0.5 x 1e-10 |b| / (1e-3 |b|).
   EXPECT_DOUBLE_EQ(first_linear_rtol(0.0), 1e-10);
   EXPECT_NEAR(first_linear_rtol(std::hypot(b[0], b[1])), 5e-8, 1e-12);
+}
+
+namespace
+{
+/// F = A x - b, J = A: linear, with A set between solves (a step loop's
+/// new tangent).
+class Linear : public unit::TwoUnknowns
+{
+public:
+  std::array<double, 4> A = {2, 0, 0, 1};
+  std::array<double, 2> F(const std::array<double, 2>& x) override
+  {
+    return {A[0] * x[0] + A[1] * x[1] - b[0], A[2] * x[0] + A[3] * x[1] - b[1]};
+  }
+  std::array<double, 4> J(const std::array<double, 2>&) override { return A; }
+  /// GMRES of one iteration on the LU (right-preconditioned, as the lagged
+  /// default): exact on the LU of the Jacobian itself, short on the LU of
+  /// another where P^-1 J has two eigenvalues and the right-hand side is
+  /// not an eigenvector.
+  void configure(KSP ksp) const override
+  {
+    check(KSPSetType(ksp, KSPGMRES), "KSPSetType");
+    check(KSPSetPCSide(ksp, PC_RIGHT), "KSPSetPCSide");
+    PC pc;
+    check(KSPGetPC(ksp, &pc), "KSPGetPC");
+    check(PCSetType(pc, PCLU), "PCSetType");
+    PetscReal rtol, abstol, dtol;
+    PetscInt max_it;
+    check(KSPGetTolerances(ksp, &rtol, &abstol, &dtol, &max_it), "KSPGetTolerances");
+    check(KSPSetTolerances(ksp, rtol, abstol, dtol, 1), "KSPSetTolerances");
+  }
+};
+} // namespace
+
+TEST(StaleLu, AFailedLinearSolveOnAStaleLuIsTriedOnAFreshOne)
+{
+  solver::NewtonSolver::set_default_options(solver::NewtonSolver::Preconditioner::lagged);
+  Linear problem;
+  Vec x = problem.create_vector();
+  check(VecSet(x, 0.0), "VecSet");
+  {
+    solver::NewtonSolver newton(problem, solver::NewtonSolver::Preconditioner::lagged);
+    newton.set_first_tangent(false); // each solve's first iteration on its own tangent
+    // The first solve: the lagged LU is A's (the Jacobian at x = 0).
+    const solver::SolveReport first = newton.solve(x);
+    EXPECT_TRUE(first.converged) << first.reason;
+    EXPECT_EQ(newton.factorizations(), 1);
+    // A new A: the lagged LU is stale (P^-1 J = diag(2, 3), F = (1, 6)),
+    // its GMRES iteration falls short, and the solve is tried again on the
+    // LU of the new A, which solves it.
+    problem.A = {4, 0, 0, 3};
+    const solver::SolveReport second = newton.solve(x);
+    EXPECT_TRUE(second.converged) << second.reason;
+    EXPECT_EQ(newton.factorizations(), 2);
+    const std::array<double, 2> at = Linear::values(x);
+    EXPECT_NEAR(at[0], b[0] / 4, 1e-10 * b[0]); // Newton's -snes_rtol on |F(x)|, dF/dx >= 1
+    EXPECT_NEAR(at[1], b[1] / 3, 1e-10 * b[1]);
+  }
+  check(VecDestroy(&x), "VecDestroy");
+  solver::NewtonSolver::set_default_options(solver::NewtonSolver::Preconditioner::jacobian);
 }
