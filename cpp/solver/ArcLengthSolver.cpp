@@ -3,6 +3,7 @@
 #include "../common/build_or_release.h"
 #include "../common/mpi_errors.h"
 #include "../common/petsc_check.h"
+#include "FactorizationFailure.h"
 #include "NewtonHistory.h"
 #include "Vector.h"
 #include <algorithm>

@@ -259,18 +259,7 @@ private:
                                          PetscReal fnorm, SNESConvergedReason* reason, void* ctx);
 };
 
-/// Why the last set-up of the preconditioner of `ksp` failed on any of its
-/// processes, in words ("zero pivot", ...; "" if it did not). Collective.
-/// An allocation that failed (MUMPS out of memory) throws instead, on every
-/// process alike: a smaller step needs as much memory, so the run ends (exit
-/// 1) rather than being cut.
-std::string factorization_failure(KSP ksp);
-
 /// Whether every entry of x is finite (collective).
 bool finite(Vec x);
 
-/// Whether a PETSc error code is a zero pivot of a factorisation that raises
-/// an error instead of recording a failed reason (PETSc's dense LU: the
-/// condensed systems', on one process).
-bool zero_pivot_error(PetscErrorCode code);
 } // namespace pushout::solver
