@@ -433,28 +433,29 @@ SolveReport NewtonSolver::solve(Vec x, double reference)
     // GMRES failed on the LU of an earlier iterate: the same step again,
     // its first iteration on a fresh one (the failure queued it), before
     // the step loop cuts it.
-    check(VecCopy(start, x), "VecCopy");
-    _tangent_converged = false;
-    const int before = r.iterations;
-    r = attempt(x);
-    r.iterations += before;
+    r = again(x, start, r);
   }
   if (r.converged || r.stalled || _fallback_line_search.empty())
     return r;
   // The same step again with the other line search, before the step loop
   // cuts it (set_fallback_line_search).
-  check(VecCopy(start, x), "VecCopy");
-  _tangent_converged = false;
   SNESLineSearch search;
   check(SNESGetLineSearch(_snes, &search), "SNESGetLineSearch");
   SNESLineSearchType type;
   check(SNESLineSearchGetType(search, &type), "SNESLineSearchGetType");
   const std::string usual = type;
   check(SNESLineSearchSetType(search, _fallback_line_search.c_str()), "SNESLineSearchSetType");
-  const int before = r.iterations;
-  r = attempt(x);
-  r.iterations += before;
+  r = again(x, start, r);
   check(SNESLineSearchSetType(search, usual.c_str()), "SNESLineSearchSetType");
+  return r;
+}
+
+SolveReport NewtonSolver::again(Vec x, Vec start, const SolveReport& failed)
+{
+  check(VecCopy(start, x), "VecCopy");
+  _tangent_converged = false;
+  SolveReport r = attempt(x);
+  r.iterations += failed.iterations;
   return r;
 }
 
@@ -470,13 +471,7 @@ SolveReport NewtonSolver::attempt_from_tangents(Vec x, Vec start)
   // stress matrix: 78 cuts and 7 519 Newton iterations without the retry).
   SolveReport r = attempt(x);
   if (!r.converged && !r.stalled)
-  {
-    check(VecCopy(start, x), "VecCopy");
-    _tangent_converged = false;
-    const int first = r.iterations;
-    r = attempt(x);
-    r.iterations += first;
-  }
+    r = again(x, start, r);
   return r;
 }
 

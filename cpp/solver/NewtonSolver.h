@@ -243,6 +243,10 @@ private:
   /// attempt(), from the last converged tangent if it is to be taken, then
   /// once more from the tangent at the initial guess `start` if that failed.
   SolveReport attempt_from_tangents(Vec x, Vec start);
+  /// After the attempt `failed`: the same step again from `start`, from the
+  /// tangent at it (and the fresh LU a failure queues), its iterations and
+  /// `failed`'s counted.
+  SolveReport again(Vec x, Vec start, const SolveReport& failed);
   /// newton_tolerance() of this solve with the tolerances of `snes`, of the
   /// larger of ||F_0|| and solve()'s reference.
   double tolerance(SNES snes) const;
