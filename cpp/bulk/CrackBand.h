@@ -398,7 +398,10 @@ public:
     double opening = 0;
     for (int j = 0; j < 6; ++j)
       opening += op.closing[j] * strain[j];
-    const int side = op.regular[0] && opening > 0 ? secant_open : secant_closed;
+    // An undamaged crack (D = 0: its secant is the penalty) has the same map
+    // on both sides: open, as secant_response() labels it, so that a sign
+    // change of its opening is not a crack that opens or closes.
+    const int side = op.regular[0] && (opening > 0 || op.damage == 0) ? secant_open : secant_closed;
     return op.regular[0] && op.regular[side] ? side : secant_failed;
   }
   static constexpr int secant_open = 0, secant_closed = 1, secant_failed = 2, secant_elastic = 3;

@@ -185,6 +185,10 @@ void NewtonSolver::set_up(NonlinearProblem& problem)
   }
   else
     check(SNESSetJacobian(_snes, _J, _J, jacobian_callback, this), "SNESSetJacobian");
+  // A Jacobian that failed (a law at a point, agreed across the processes in
+  // jacobian_callback) ends the solve as DIVERGED_JACOBIAN_DOMAIN: PETSc
+  // reads SNESSetJacobianDomainError only when asked to check it.
+  check(SNESSetCheckJacobianDomainError(_snes, PETSC_TRUE), "SNESSetCheckJacobianDomainError");
   // Before the options: -snes_convergence_test still replaces it.
   check(SNESSetConvergenceTest(_snes, convergence_test, this, nullptr), "SNESSetConvergenceTest");
   check(SNESSetFromOptions(_snes), "SNESSetFromOptions");

@@ -463,6 +463,35 @@ TEST(CrackBand, SecantOperatorAppliedIsTheSecantResponse)
   EXPECT_LT(worst_tangent, 1e-12);
 }
 
+// An undamaged crack (its history at most w0: the secant is the penalty)
+// has one map on both sides of closure. secant_response() calls it open
+// whatever the strain; the side BulkCracking::evaluate reads must too, or a
+// sign change of its opening would count as a crack that opens or closes
+// and its cells' tangent would be assembled again for nothing.
+TEST(CrackBand, AnUndamagedCrackIsOpenOnBothSides)
+{
+  const CrackBand law(E, nu, exponential);
+  Path path{law, 2.0};
+  path.step({3e-4, 0, 0, 0, 0, 0}); // a crack normal to x
+  ASSERT_NE(path.state[0], 0);
+  State undamaged = path.state;
+  undamaged[8] = 0; // its history kappa: none
+  SecantOperator op;
+  law.secant_operator(undamaged, 0, 1, op);
+  ASSERT_EQ(op.damage, 0);
+  for (const double e_xx : {1e-4, -1e-4}) // opening, then closing the crack
+  {
+    const Voigt strain = {e_xx, 0, 0, 0, 0, 0};
+    const CrackBandResult direct = law.secant_response(undamaged, strain, 0);
+    ASSERT_EQ(direct.status, CrackBandResult::Status::ok);
+    EXPECT_FALSE(direct.closed) << e_xx;
+    EXPECT_EQ(CrackBand::secant_side(op, strain), CrackBand::secant_open) << e_xx;
+    EXPECT_FALSE(law.secant_apply(op, strain).closed) << e_xx;
+    // The elastic response either way: no damage, the penalty both sides.
+    EXPECT_NEAR(direct.stress[0], law.secant_apply(op, strain).stress[0], 1e-12 * E * 1e-4);
+  }
+}
+
 // A point's operator is kept where it holds the maps of the same crack at
 // the same history and strength (SecantOperator::made_of), and made again
 // wherever one of them changed: over a sequence that returns to earlier

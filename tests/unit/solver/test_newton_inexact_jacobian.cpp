@@ -14,6 +14,8 @@
 // - A lagged LU that has gone stale (F = A x - b with A changed between
 //   solves): GMRES stopped short on it fails the Newton solve, which is
 //   tried again on a fresh LU before the step loop would cut it.
+// - A Jacobian that fails (a law at a point) fails the solve, with PETSc's
+//   DIVERGED_JACOBIAN_DOMAIN, however good the matrix it left.
 #include "common/petsc_check.h"
 #include "solver/NewtonHistory.h"
 #include "solver/NewtonSolver.h"
@@ -351,4 +353,39 @@ TEST(StaleLu, AFailedLinearSolveOnAStaleLuIsTriedOnAFreshOne)
   }
   check(VecDestroy(&x), "VecDestroy");
   solver::NewtonSolver::set_default_options(solver::NewtonSolver::Preconditioner::jacobian);
+}
+
+namespace
+{
+/// The cubic F of InexactJacobian whose Jacobian evaluations fail from the
+/// `fail_from`-th on (as a law at a point would), leaving the true matrix.
+class FailingJacobian : public InexactJacobian
+{
+public:
+  int fail_from = 2;
+  bool jacobian(Vec x, Mat J_out) override
+  {
+    InexactJacobian::jacobian(x, J_out);
+    return jacobians < fail_from;
+  }
+};
+} // namespace
+
+TEST(JacobianDomainError, AFailedJacobianFailsTheSolve)
+{
+  solver::NewtonSolver::set_default_options(solver::NewtonSolver::Preconditioner::jacobian);
+  FailingJacobian problem;
+  Vec x = problem.create_vector();
+  check(VecSet(x, 0.0), "VecSet");
+  solver::SolveReport report;
+  {
+    solver::NewtonSolver newton(problem, solver::NewtonSolver::Preconditioner::jacobian);
+    report = newton.solve(x);
+  }
+  check(VecDestroy(&x), "VecDestroy");
+  // The matrix is the true Jacobian, so Newton would converge on it (about
+  // six iterations, TailReuse above): only the failure can stop it.
+  EXPECT_FALSE(report.converged);
+  EXPECT_EQ(report.reason.rfind("DIVERGED_JACOBIAN_DOMAIN", 0), 0u) << report.reason;
+  EXPECT_LE(report.iterations, 2) << report.reason;
 }
