@@ -43,7 +43,8 @@ def read_curve(folder, row):
 
 def draw_group(ax, curves, color, label):
     """A seed group: each converged seed thin, and their mean and range where
-    every x only grows (else the thin curves alone)."""
+    every x only grows (else the thin curves alone); a group with no
+    converged seed is named in the legend all the same."""
     for x, y in curves:
         ax.plot(x, y, "-", lw=0.7, alpha=0.45, color=color)
     if len(curves) >= 2 and all(np.all(np.diff(x) > 0) for x, _ in curves):
@@ -55,6 +56,8 @@ def draw_group(ax, curves, color, label):
         ax.plot(grid, ys.mean(axis=0), "-", lw=1.8, color=color, label=label + ": mean, range")
     elif curves:
         ax.plot([], [], "-", lw=1.2, color=color, label=label)
+    else:  # no seed converged: the group is still named, so that it is seen
+        ax.plot([], [], ":", lw=1.2, color=color, label=label + ": none converged")
 
 
 def main():
@@ -85,6 +88,8 @@ def main():
         for row in members:
             read = read_curve(args.folder, row)
             if read is None:
+                if not seeded:  # failed before its curve's first row: named all the same
+                    ax.plot([], [], ":", lw=1.2, color=color, label=label + " (no curve)")
                 continue
             x, y, labels = read
             ax.set(xlabel=labels[0], ylabel=labels[1])

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -33,6 +34,17 @@ using driver::RunOutcome;
 using driver::Simulation;
 namespace
 {
+/// Whether the CSV file at `path` exists and has a row after its header.
+bool has_rows(const std::filesystem::path& path)
+{
+  std::ifstream in(path);
+  std::string line;
+  int lines = 0;
+  while (lines < 2 && std::getline(in, line))
+    lines += !line.empty();
+  return lines == 2;
+}
+
 /// The results of every process's cases on rank 0 (others: empty).
 std::vector<CaseResult> gather(const std::vector<CaseResult>& mine)
 {
@@ -387,11 +399,13 @@ int write_sweep(const SweepOptions& opt, const SweepPlan& plan,
   }
   // A stopped sweep draws no sweep.png: plotting every curve takes
   // longer than a stop may (sweep.csv has the table).
-  // Nor does one whose cases all failed before a curve (refused, say).
-  const bool any_curve = std::any_of(
-      results.begin(), results.end(),
-      [&](const CaseResult& r)
-      { return std::filesystem::exists(opt.out / case_name(std::size_t(r.index)) / "curve.csv"); });
+  // Nor does one whose cases all failed before a curve's first row
+  // (refused, say, or failed in the corrosion stage: a curve.csv of its
+  // header alone).
+  const bool any_curve =
+      std::any_of(results.begin(), results.end(),
+                  [&](const CaseResult& r)
+                  { return has_rows(opt.out / case_name(std::size_t(r.index)) / "curve.csv"); });
   const bool plot = plan.plot && stop_signal == 0 && any_curve;
   std::string why;
   if (plan.plot && stop_signal == 0 && !any_curve)

@@ -52,11 +52,12 @@ MPI = [MPIRUN, "--allow-run-as-root", "--oversubscribe"] if MPIRUN else None
 ENV = dict(os.environ, OMPI_MCA_btl_vader_single_copy_mechanism="none")
 
 
-def sweep(out, extra=(), processes=None, vary=VARY):
+def sweep(out, extra=(), processes=None, vary=VARY, env=None):
     cmd = [PUSHOUT, "sweep", SCENE, "--out", out, "--quiet"] + COARSE + list(vary) + list(extra)
     if processes:
         cmd = MPI + ["-n", str(processes)] + cmd
-    return subprocess.run(cmd, capture_output=True, text=True, timeout=600, env=ENV)
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=600,
+                          env=dict(ENV, **(env or {})))
 
 
 def table(out):
@@ -178,6 +179,18 @@ p = sweep(out, vary=["--vary", "mesh.elements_per_quarter=3000,4000"])
 check(p.returncode == 3 and len(table(out)) == 2 and not os.path.exists(os.path.join(out, "sweep.png"))
       and "no case wrote a curve" in p.stderr and "plot:" not in p.stderr,
       f"every case refused: exit {p.returncode}, no sweep.png ({p.stderr.strip()[-160:]!r})")
+
+# Every case failed at its first solve (a test hook: each solve's result is
+# not a number), so each curve.csv is its header alone: no sweep.png either
+# (an empty plot), and the sweep says so.
+out = out_dir("sweep_all_failed_before_a_row")
+p = sweep(out, vary=["--vary", "interface.0.mu=0.2,0.4"], env={"PUSHOUT_TEST_NONFINITE_FROM": "1"})
+headers_only = all(len(open(os.path.join(out, f"case_{i:03d}", "curve.csv")).readlines()) == 1
+                   for i in range(2))
+check(p.returncode == 3 and headers_only and not os.path.exists(os.path.join(out, "sweep.png"))
+      and "no case wrote a curve" in p.stderr,
+      f"every case failed before a row: exit {p.returncode}, curves of their header alone "
+      f"{headers_only}, no sweep.png ({p.stderr.strip()[-160:]!r})")
 
 # 4. Bad input.
 for what, vary, extra, n in (
