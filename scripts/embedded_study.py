@@ -124,20 +124,40 @@ def spread(values):
     return statistics.mean(values), min(values), max(values)
 
 
-def group_table(table):
-    """Per tube, beta and x: the seeds' mean, min and max."""
+def group_table(table, runs, study):
+    """Per tube, beta and x: the converged seeds' mean, min and max; `seeds`
+    counts the converged ones, `seeds_run` every one run (as sweep_seeds.csv's
+    converged and seeds)."""
     groups = {}
     for r in table:
         groups.setdefault((r["tube"], r["beta"], r["x_um"]), []).append(r)
+    ran = {}
+    for (s_, name) in runs:
+        if s_ == study:
+            where, beta, _, x = parse(name)
+            ran[(where, beta, x)] = ran.get((where, beta, x), 0) + 1
     out = []
     for (tube, beta, x), rs in sorted(groups.items()):
-        row = {"tube": tube, "beta": beta, "x_um": x, "seeds": len(rs)}
+        row = {"tube": tube, "beta": beta, "x_um": x, "seeds": len(rs),
+               "seeds_run": ran.get((tube, beta, x), len(rs))}
         for key in ("p_after_corrosion_MPa", "surface_crack_um", "tau_peak_MPa", "tau_residual_MPa"):
             mean, lo, hi = spread([r[key] for r in rs])
             row.update({f"{key}_mean": mean, f"{key}_min": lo, f"{key}_max": hi})
         row["cover_crack_seeds"] = sum(r["cracks_at_surface"] >= 1 for r in rs)
         out.append(row)
     return out
+
+
+def seed_count(groups):
+    """'5 seeds', or where a group lost some: '5 seeds, 4 converged in 1 group'."""
+    run = max(g["seeds_run"] for g in groups)
+    short = [g for g in groups if g["seeds"] < g["seeds_run"]]
+    if not short:
+        return f"{run} seeds"
+    fewest = min(g["seeds"] for g in short)
+    if len(short) == 1:
+        return f"{run} seeds, {fewest} converged in 1 group"
+    return f"{run} seeds, as few as {fewest} converged in {len(short)} groups"
 
 
 def plot_bond(plt, out, groups, table, study):
@@ -166,7 +186,7 @@ def plot_bond(plt, out, groups, table, study):
                  (" (IMPL-EX)" if STUDIES[study][0] == "implex" else "") +
                  (", the strain predictor" if STUDIES[study][3] == "strain" else "") +
                  (", the paper's mesh" if on_paper_mesh(study) else "") +
-                 " (5 seeds of a cov 0.15 strength field: mean and range)")
+                 f" ({seed_count(groups)} of a cov 0.15 strength field: mean and range)")
     fig.tight_layout()
     fig.savefig(os.path.join(out, f"{study}_residual_bond.png"))
     plt.close(fig)
@@ -208,7 +228,7 @@ def report(plt, out, runs, study="corroded_embedded"):
     if not table:
         return []
     seeds = sorted({parse(n)[2] for (s_, n) in runs if s_ == study})
-    groups = group_table(table)
+    groups = group_table(table, runs, study)
     for path, rows in ((f"{study}.csv", table), (f"{study}_groups.csv", groups)):
         with open(os.path.join(out, path), "w", newline="") as f:
             w = csv.DictWriter(f, fieldnames=list(rows[0]))
