@@ -176,7 +176,9 @@ std::vector<KeyDef> field_keys()
        K::number,
        5.0,
        "mm",
-       "correlation length l of the strength field: correlation exp(-(r/l)^2) at distance r",
+       "correlation length l of the strength field: its logarithm's correlation is "
+       "exp(-(r/l)^2) at distance r; the strength's own is below that by at most "
+       "ln(1 + strength_cov^2) / 2 of it (2 % at strength_cov 0.2)",
        0,
        inf,
        true,

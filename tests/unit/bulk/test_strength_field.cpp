@@ -53,25 +53,47 @@ TEST(StrengthField, GaussianCorrelationOverTheDeclaredLength)
   // corr(g(x), g(x + r e)) = exp(-(r/l)^2): at r = l, 0.368; at 3 l, 1e-4.
   // The sample correlation's standard error is (1 - rho^2) / sqrt(n): 4 of
   // them as tolerance.
+  // Along each axis and a diagonal: a field constant along one of them (a
+  // wave vector's component lost) would have correlation 1 there.
   const double l = 5.0;
   const std::array<double, 3> x = {3.0, 4.0, 5.0};
-  for (double r : {0.5 * l, l, 3 * l})
-  {
-    std::vector<double> a, b;
-    for (int seed = 0; seed < seeds; ++seed)
+  for (const std::array<double, 3>& e :
+       {std::array<double, 3>{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.6, 0, 0.8}})
+    for (double r : {0.5 * l, l, 3 * l})
     {
-      const StrengthField field(0.2, l, std::uint64_t(seed));
-      a.push_back(field.gaussian(x));
-      b.push_back(field.gaussian({x[0] + r * 0.6, x[1], x[2] + r * 0.8}));
+      std::vector<double> a, b;
+      for (int seed = 0; seed < seeds; ++seed)
+      {
+        const StrengthField field(0.2, l, std::uint64_t(seed));
+        a.push_back(field.gaussian(x));
+        b.push_back(field.gaussian({x[0] + r * e[0], x[1] + r * e[1], x[2] + r * e[2]}));
+      }
+      const auto [ma, sa] = moments(a);
+      const auto [mb, sb] = moments(b);
+      double cross = 0;
+      for (int i = 0; i < seeds; ++i)
+        cross += (a[i] - ma) * (b[i] - mb);
+      const double rho = cross / ((seeds - 1) * sa * sb), expected = std::exp(-(r / l) * (r / l));
+      EXPECT_NEAR(rho, expected, 4 * (1 - expected * expected) / std::sqrt(double(seeds)))
+          << "r = " << r << " mm along (" << e[0] << ", " << e[1] << ", " << e[2] << ")";
     }
-    const auto [ma, sa] = moments(a);
-    const auto [mb, sb] = moments(b);
-    double cross = 0;
-    for (int i = 0; i < seeds; ++i)
-      cross += (a[i] - ma) * (b[i] - mb);
-    const double rho = cross / ((seeds - 1) * sa * sb), expected = std::exp(-(r / l) * (r / l));
-    EXPECT_NEAR(rho, expected, 4 * (1 - expected * expected) / std::sqrt(double(seeds)))
-        << "r = " << r << " mm";
+}
+
+TEST(StrengthField, StandardGaussianEverywhereOverSeeds)
+{
+  // g has mean 0 and variance 1 at any point, the origin too (where every
+  // mode's phase alone makes it: phases that were not uniform would show
+  // there). Tolerances: 4 standard errors, 1 / sqrt(n) for the mean and
+  // sqrt(2 / n) for the variance of a Gaussian.
+  for (const std::array<double, 3>& x :
+       {std::array<double, 3>{0, 0, 0}, {50.0, 25.0, 10.0}, {-7.0, 91.0, 0.5}})
+  {
+    std::vector<double> g;
+    for (int seed = 0; seed < seeds; ++seed)
+      g.push_back(StrengthField(0.2, 5.0, std::uint64_t(seed)).gaussian(x));
+    const auto [mean, sd] = moments(g);
+    EXPECT_NEAR(mean, 0.0, 4 / std::sqrt(double(seeds))) << x[0] << ", " << x[1] << ", " << x[2];
+    EXPECT_NEAR(sd * sd, 1.0, 4 * std::sqrt(2.0 / seeds)) << x[0] << ", " << x[1] << ", " << x[2];
   }
 }
 
