@@ -26,8 +26,9 @@
 # Units: mm, N, MPa. Compiled by FFCx at build time (see CMakeLists.txt).
 import basix
 from ufl import (Coefficient, Constant, FiniteElement, FunctionSpace, Mesh,
-                 SpatialCoordinate, TestFunction, TrialFunction, VectorElement,
-                 as_matrix, as_vector, dot, dx, grad, hexahedron, inner, sym)
+                 SpatialCoordinate, TensorElement, TestFunction, TrialFunction,
+                 VectorElement, as_matrix, as_vector, dot, dx, grad, hexahedron, inner,
+                 sym)
 
 DEGREE = 2  # of the quadrature rule
 coordinate_element = VectorElement("Lagrange", hexahedron, 1)
@@ -75,5 +76,16 @@ points, _ = basix.make_quadrature(basix.CellType.hexahedron, DEGREE)
 strain = voigt_strain(u_h) - alpha * dT * as_vector([1.0, 1.0, 1.0, 0.0, 0.0, 0.0])
 position = SpatialCoordinate(mesh)
 
-forms = [L_crack, a_crack, M_points]
+# The cracks' share of the cell-averaged stress that fields.xdmf writes
+# (cpp/output/StressProjection.cpp, with forms/elasticity.py's L_stress: the
+# elastic C : eps_e): d_sigma as a tensor against the DG0 tensor test
+# function of that projection.
+S_cell = FunctionSpace(mesh, TensorElement("DG", hexahedron, 0))
+tau = TestFunction(S_cell)
+d_sigma_tensor = as_matrix([[d_sigma[0], d_sigma[5], d_sigma[4]],
+                            [d_sigma[5], d_sigma[1], d_sigma[3]],
+                            [d_sigma[4], d_sigma[3], d_sigma[2]]])
+L_stress_crack = inner(d_sigma_tensor, tau) * at_points
+
+forms = [L_crack, a_crack, M_points, L_stress_crack]
 expressions = [(strain, points), (position, points)]

@@ -90,6 +90,7 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
   _d_C_change = quadrature_function(functionspace_form_cracking_a_crack, "d_C", mesh);
   _release_gradient = quadrature_function(functionspace_form_cracking_L_crack, "d_sigma", mesh);
   _point_value = quadrature_function(functionspace_form_cracking_M_points, "point_value", mesh);
+  _stress_share = quadrature_function(functionspace_form_cracking_L_crack, "d_sigma", mesh);
   _region = std::make_shared<dolfinx::mesh::MeshTags<std::int32_t>>(
       mesh, 3, std::vector<std::int32_t>(_cells),
       std::vector<std::int32_t>(_cells.size(), region_tag));

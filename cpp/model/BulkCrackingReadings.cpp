@@ -7,6 +7,8 @@
 #include "cracking.h"
 #include <algorithm>
 #include <cmath>
+#include <dolfinx/fem/assembler.h>
+#include <dolfinx/fem/utils.h>
 #include <map>
 #include <mpi.h>
 #include <numeric>
@@ -275,6 +277,32 @@ void BulkCracking::cell_fields(dolfinx::fem::Function<double>& opening,
   normal.x()->scatter_fwd();
   damage.x()->scatter_fwd();
 }
+void BulkCracking::add_stress_share(std::span<double> L,
+                                    std::shared_ptr<const dolfinx::fem::FunctionSpace> S) const
+{
+  namespace fem = dolfinx::fem;
+  if (!_L_stress_share)
+  {
+    const std::map<fem::IntegralType, const dolfinx::mesh::MeshTags<int>*> subdomains = {
+        {fem::IntegralType::cell, _region.get()}};
+    _L_stress_share = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+        *form_cracking_L_stress_crack, {S}, {{"d_sigma", _stress_share}}, {}, subdomains));
+  }
+  const bulk::Voigt66& C = _band.stiffness();
+  const points::PointValues share_at(*_stress_share, points::voigt);
+  const int n_points = expression_cracking_strain->num_points;
+  for (std::size_t c = 0; c < _cells.size(); ++c)
+    for (int q = 0; q < n_points; ++q)
+    {
+      const std::size_t i = c * std::size_t(n_points) + q;
+      const bulk::Voigt elastic = bulk::multiply(C, points::voigt_at(_strain_values, i));
+      const std::span<double> share = share_at(_cells[c], q);
+      for (int k = 0; k < points::voigt; ++k)
+        share[k] = _stress_trial[points::voigt * i + k] - elastic[k];
+    }
+  fem::assemble_vector(L, *_L_stress_share);
+}
+
 CrackingTotals BulkCracking::totals()
 {
   // A failure was the converged step's, and is not one. IMPL-EX: the

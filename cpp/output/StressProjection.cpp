@@ -8,7 +8,7 @@ namespace pushout::output
 {
 using dolfinx::fem::Function;
 
-StressProjection::StressProjection(const model::Model& model)
+StressProjection::StressProjection(const model::Model& model) : _cracking(model.bulk_cracking())
 {
   namespace fem = dolfinx::fem;
   auto S = std::make_shared<fem::FunctionSpace>(
@@ -45,6 +45,8 @@ const Function<double>& StressProjection::update()
   std::span<double> s = _sigma->x()->mutable_array();
   std::fill(s.begin(), s.end(), 0.0);
   dolfinx::fem::assemble_vector(s, *_L_stress);
+  if (_cracking) // cracked concrete: the crack band's stress, not the elastic one
+    _cracking->add_stress_share(s, _sigma->function_space());
   for (const auto& [block, inv] : _inverse_volume)
     for (int i = 0; i < 9; ++i)
       s[9 * block + i] *= inv;

@@ -128,6 +128,21 @@ with h5py.File(os.path.join(one, "corrosion_fields.h5"), "r") as h5:
 check(times == [str(i) for i in range(len(rows))] and widest[0] < 0.01 * widest[1] and widest[1] > 0.01,
       f"corrosion_fields: {len(times)} times for {len(rows)} corrosion.csv rows; the widest "
       f"crack {widest[0] * 1e3:.3f} um after the thermal step, {widest[1] * 1e3:.1f} um at the end")
+# The cells' stress is the cracked concrete's: across the widest crack (its
+# point's normal, damage near 1) the cell carries about the law's traction
+# at that opening, f_t exp(-c w), below 0.1 f_t here; the elastic stress of
+# its strain would be some hundred MPa (fields.xdmf wrote that until the
+# crack band's share was added).
+with h5py.File(os.path.join(one, "fields.h5"), "r") as h5:
+    last = sorted(h5["Function/stress"].keys(), key=float)[0]  # the push's start
+    stress = h5["Function/stress"][last][:].reshape(-1, 3, 3)
+    opening = h5["Function/crack_opening"][last][:].ravel()
+    normal = h5["Function/crack_normal"][last][:].reshape(-1, 3)
+cell = int(np.argmax(opening))
+across = float(normal[cell] @ stress[cell] @ normal[cell])
+check(opening[cell] > 0.05 and abs(across) < 0.1 * f_t,
+      f"fields.xdmf's stress across the widest crack ({opening[cell] * 1e3:.1f} um): {across:.3f} MPa, "
+      f"the law's traction there {f_t * math.exp(-30 * opening[cell]):.3f} MPa")
 
 # 4. Two processes.
 tight, two = out_dir("cover_crack_1_tight"), out_dir("cover_crack_2")
