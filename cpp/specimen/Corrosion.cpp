@@ -149,11 +149,15 @@ int Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iteratio
   if (numbered)
     line << "/" << _steps;
   line << "  x = " << x * 1e3 << " um  p = " << p << " MPa";
-  if (!widths.empty() || model.bulk_cracking())
+  if (const model::BulkCracking* cracking = model.bulk_cracking())
+    // The gauge's reading of the widest surface crack, and how many count
+    // as visible (corrosion.csv's crack_width_mm and cracks_at_surface).
+    line << "  widest surface crack " << crack_width * 1e3 << " um (" << at_surface
+         << (at_surface == 1 ? " crack" : " cracks") << " >= " << cracking->visible_width() * 1e3
+         << " um)  cracked points " << bulk.cracked_points << "/" << bulk.points
+         << " (widest inside " << bulk.max_opening * 1e3 << " um)";
+  else if (!widths.empty())
     line << "  crack width = " << crack_width * 1e3 << " um";
-  if (model.bulk_cracking())
-    line << " (" << at_surface << " at the surface)  cracked points " << bulk.cracked_points << "/"
-         << bulk.points << " (widest inside " << bulk.max_opening * 1e3 << " um)";
   line << "  (newton " << iterations << (cuts ? ", cuts " + std::to_string(cuts) : "") << ", "
        << std::fixed << std::setprecision(2) << _report.seconds() << " s)";
   std::cout << line.str() << std::endl;

@@ -93,18 +93,20 @@ bool StepLoop::run(Control control)
 bool StepLoop::initial_step()
 {
   _scenario.apply_load(0.0, _equilibrium);
-  const auto started = [&](int iterations)
+  // Step 0 is one row whatever its parts (their iterations summed; its
+  // cuts, as a load step's row has them).
+  const auto started = [&](int iterations, int cuts)
   {
     if (_corrosion.active())
     {
-      _recorder.record_corrosion(_corrosion.record(0.0, _equilibrium, _x, iterations, 0, 0));
+      _recorder.record_corrosion(_corrosion.record(0.0, _equilibrium, _x, iterations, cuts, 0));
     }
     else
-      start_push(iterations);
+      start_push(iterations, cuts);
   };
   if (!_scenario.initial_solve())
   {
-    started(0);
+    started(0, 0);
     commit();
     return true;
   }
@@ -133,16 +135,16 @@ bool StepLoop::initial_step()
                         [&](double fraction)
                         { _scenario.apply_initial_load(fraction, _equilibrium); },
                         [&](double s0, double s1) { return (s1 - s0) * step_time; },
-                        [&](int its, int, int, double fraction)
+                        [&](int its, int cuts, int, double fraction)
                         {
                           iterations += its;
                           if (fraction >= 1.0 - step_tolerance)
-                            started(iterations);
+                            started(iterations, cuts);
                         },
                         false, extrapolation([](double fraction) { return fraction; })});
 }
 
-void StepLoop::start_push(int iterations)
+void StepLoop::start_push(int iterations, int cuts)
 {
   _recorder.end_corrosion(); // the corrosion stage's fields whole, their memory back
   _corrosion.describe_cracks(_equilibrium, _x, _summary);
@@ -163,7 +165,7 @@ void StepLoop::start_push(int iterations)
     const solver::ReadView x(_x);
     _scenario.start_loading(x.span());
   }
-  _recorder.record(_x, iterations, 0, 0, _scenario.steps()); // before the commit
+  _recorder.record(_x, iterations, cuts, 0, _scenario.steps()); // before the commit
 }
 
 void StepLoop::set_time_increment(double dt)

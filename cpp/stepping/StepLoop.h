@@ -64,8 +64,9 @@ private:
   // --- StepLoop.cpp: step 0 and what the controls share ---
 
   bool initial_step();
-  /// The push's start: the scenario's reference state and curve row 0.
-  void start_push(int iterations);
+  /// The push's start: the scenario's reference state and curve row 0
+  /// (with the iterations and cuts of the step that reached it).
+  void start_push(int iterations, int cuts = 0);
 
   /// The pseudo-time increment of the step, for every set of joints.
   void set_time_increment(double dt);

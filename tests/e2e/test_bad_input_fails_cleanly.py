@@ -58,6 +58,12 @@ cases = [
      GOOD.replace("elements_per_quarter = 4", "elements_per_quarter = 8") +
      '\n[cracking]\nmodel = "embedded"\nstrength_cov = 0.8\n', [],
      ["cracking.strength_cov", "mean f_t"]),
+    # A softening so steep that the largest elements (the square's corners)
+    # would snap back: where the element is and how large, and what helps.
+    ("crack band too wide at the mean f_t",
+     GOOD.replace("elements_per_quarter = 4", "elements_per_quarter = 8") +
+     '\n[cracking]\nmodel = "embedded"\nc = 150.0\n', [],
+     ["mm across", "lower cracking.c", "cracking.radius"]),
     # Steps that grow where the control takes equal steps of its own.
     ("step growth under arc length", GOOD, ["loading.control=arc_length", "loading.step_growth=2"],
      ["loading.step_growth", "arc_length"]),
