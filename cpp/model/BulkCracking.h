@@ -215,11 +215,12 @@ public:
   void cell_fields(dolfinx::fem::Function<double>& opening, dolfinx::fem::Function<double>& normal,
                    dolfinx::fem::Function<double>& damage) const;
   /// Adds the cracks' share of the stress, the integral of (sigma - C :
-  /// eps_e) : tau over the cracking cells (of the last evaluate(), as
-  /// cell_fields), to `L`, the vector of forms/elasticity.py's L_stress on
-  /// its DG0 tensor space `S`: with it, L over the cells' volumes is the
-  /// cell-averaged stress of the cracked concrete, not the elastic one
-  /// (output/StressProjection.h).
+  /// eps_e) : tau over the cracking cells, to `L`, the vector of
+  /// forms/elasticity.py's L_stress on its DG0 tensor space `S`: with it, L
+  /// over the cells' volumes is the cell-averaged stress of the cracked
+  /// concrete, not the elastic one (output/StressProjection.h). sigma at the
+  /// strain of the last evaluate(), as the step commits it (IMPL-EX: the
+  /// crack band's own update there, as cell_fields reports the cracks).
   void add_stress_share(std::span<double> L,
                         std::shared_ptr<const dolfinx::fem::FunctionSpace> S) const;
 
@@ -398,7 +399,7 @@ private:
   /// per point (integrate())
   std::shared_ptr<dolfinx::fem::Function<double>> _release_gradient, _point_value;
   /// add_stress_share()'s sigma - C : eps_e (on _d_sigma's space), and its
-  /// form (made at the first call, on the caller's space: an output's cache)
+  /// form (made on the caller's space, again for another: an output's cache)
   std::shared_ptr<dolfinx::fem::Function<double>> _stress_share;
   mutable std::shared_ptr<dolfinx::fem::Form<double>> _L_stress_share;
   std::unique_ptr<dolfinx::fem::Expression<double>> _strain;

@@ -85,7 +85,9 @@ print(f"the cover crack picked by {picked} of {len(SEEDS)} seeds")
 # 3. Every two seeds' patterns differ (the same mesh: the same columns).
 for a in SEEDS:
     for b in SEEDS:
-        if a < b and len(patterns.get(a, [])) == len(patterns.get(b, [])) > 0:
+        if a < b:
+            check(len(patterns[a]) == len(patterns[b]) > 0,
+                  f"seeds {a} and {b}: {len(patterns[a])} and {len(patterns[b])} columns")
             widest = max(patterns[a] + patterns[b])
             differ = max(abs(x - y) for x, y in zip(patterns[a], patterns[b]))
             check(differ > 0.01 * widest,

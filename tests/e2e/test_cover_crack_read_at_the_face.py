@@ -20,7 +20,8 @@ random strength field and no crack planes:
    fields.xdmf has crack_opening, crack_normal and crack_damage, and
    corrosion_fields.xdmf has them at each corrosion.csv row.
 4. The same surface cracks on 1 and 2 processes (the columns are gathered
-   from both): widths and lengths within Newton's tolerance, both runs at
+   from both): widths and lengths within a tenth of the gauge's resolution
+   (another crack read would differ by the resolution at least), both runs at
    1e-10 (common.TIGHT_NEWTON: the default integration here is IMPL-EX,
    whose Newton stops at 1e-6, where a point at its strength may crack in
    one run and not the other).
@@ -47,8 +48,7 @@ import os
 import h5py
 import numpy as np
 
-from common import (TIGHT_NEWTON, check, corrosion, cracking_corroded_demo, newton_bound, out_dir,
-                    run, solved_unknowns, summary)
+from common import TIGHT_NEWTON, check, corrosion, cracking_corroded_demo, out_dir, run, summary
 
 f_t, cov, E = 3.0, 0.15, 30000.0  # MPa; concrete.E's default
 axis = (50.0, 25.0)  # the tube axis of the demo [mm]
@@ -134,15 +134,24 @@ check(times == [str(i) for i in range(len(rows))] and widest[0] < 0.01 * widest[
 # its strain would be some hundred MPa (fields.xdmf wrote that until the
 # crack band's share was added).
 with h5py.File(os.path.join(one, "fields.h5"), "r") as h5:
-    last = sorted(h5["Function/stress"].keys(), key=float)[0]  # the push's start
-    stress = h5["Function/stress"][last][:].reshape(-1, 3, 3)
-    opening = h5["Function/crack_opening"][last][:].ravel()
-    normal = h5["Function/crack_normal"][last][:].reshape(-1, 3)
+    first = sorted(h5["Function/stress"].keys(), key=float)[0]  # the push's start
+    stress = h5["Function/stress"][first][:].reshape(-1, 3, 3)
+    opening = h5["Function/crack_opening"][first][:].ravel()
+    normal = h5["Function/crack_normal"][first][:].reshape(-1, 3)
+with h5py.File(os.path.join(one, "corrosion_fields.h5"), "r") as h5:
+    last = sorted(h5["Function/stress"].keys(), key=float)[-1]  # the corrosion's end
+    stress_corroded = h5["Function/stress"][last][:].reshape(-1, 3, 3)
 cell = int(np.argmax(opening))
 across = float(normal[cell] @ stress[cell] @ normal[cell])
 check(opening[cell] > 0.05 and abs(across) < 0.1 * f_t,
       f"fields.xdmf's stress across the widest crack ({opening[cell] * 1e3:.1f} um): {across:.3f} MPa, "
       f"the law's traction there {f_t * math.exp(-30 * opening[cell]):.3f} MPa")
+# The corrosion's last row and the push's first are one state: the same
+# stress, computed alike (the crack band's own at the strain, not the
+# step's IMPL-EX prediction), so to round-off.
+drift = float(np.max(np.abs(stress_corroded - stress)))
+check(drift <= 1e-9 * float(np.max(np.abs(stress))),
+      f"the stress at the corrosion's end and the push's start: the same to {drift:.1e} MPa")
 
 # 4. Two processes.
 tight, two = out_dir("cover_crack_1_tight"), out_dir("cover_crack_2")
@@ -150,11 +159,13 @@ run(scene, tight, extra=TIGHT_NEWTON)
 run(scene, two, extra=TIGHT_NEWTON, mpirun=2)
 concrete = [c for c in summary(tight)["cracks"] if c["source"] == "concrete"]
 concrete2 = [c for c in summary(two)["cracks"] if c["source"] == "concrete"]
-# Each run converged every step to TIGHT_NEWTON: widths and lengths to
-# Newton's bound over the rows, of the widest crack (newton_bound).
-tight_rows = corrosion(tight)
-TOL = (newton_bound(len(tight_rows), solved_unknowns(summary(tight)))
-       * max(r["crack_width_mm"] for r in tight_rows))  # mm
+# A surface crack is a run of face columns each reading more than the
+# gauge's resolution (5 um here), so a run that read another crack (a
+# column more or less, a column lost in the gathering from the processes)
+# differs by 5 um at least; the same crack moves by what Newton's
+# tolerance (TIGHT_NEWTON) moves the displacement, measured 4e-15 mm. A
+# tenth of the resolution tells the two apart.
+TOL = 0.1 * 0.005  # mm
 same = len(concrete2) == len(concrete) and all(
     abs(a["width_mm"] - b["width_mm"]) < TOL and abs(a["length_mm"] - b["length_mm"]) < TOL
     and abs(a["angle_deg"] - b["angle_deg"]) < 1e-6 for a, b in zip(concrete, concrete2))
@@ -162,7 +173,7 @@ check(same, f"1 and 2 processes: the same {len(concrete)} surface crack(s) (to {
 
 # 5. A crack that counts only from 1 mm: the same widths (the gauge still
 # resolves 5 um), none counted; at TIGHT_NEWTON against the tight run, so
-# that the two agree to Newton's tolerance (TOL) whatever the machine.
+# that the two read the same crack (TOL) whatever the machine.
 wide = out_dir("cover_crack_1_visible_1mm")
 run(scene, wide, sets=["cracking.visible_width=1"], extra=TIGHT_NEWTON)
 w_wide, w_tight = ([r["crack_width_mm"] for r in corrosion(o)] for o in (wide, tight))
