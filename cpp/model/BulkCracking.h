@@ -200,6 +200,15 @@ public:
   /// Every point back to uncracked (a model reused for another scene).
   void reset();
 
+  /// The trial state as a converged step commits it, at the model's
+  /// displacement: with IMPL-EX the crack band's own update there
+  /// (implicit_update, made once per displacement; commit() then finds it
+  /// made), nothing otherwise. What the outputs read (add_stress_share).
+  void settle()
+  {
+    if (_implex)
+      implicit_update();
+  }
   /// Totals of the state at the model's displacement, evaluated from the
   /// committed one: a converged step's, recorded before its commit
   /// (stepping/StepRecorder.h). Collective.
@@ -218,9 +227,9 @@ public:
   /// eps_e) : tau over the cracking cells, to `L`, the vector of
   /// forms/elasticity.py's L_stress on its DG0 tensor space `S`: with it, L
   /// over the cells' volumes is the cell-averaged stress of the cracked
-  /// concrete, not the elastic one (output/StressProjection.h). sigma at the
-  /// strain of the last evaluate(), as the step commits it (IMPL-EX: the
-  /// crack band's own update there, as cell_fields reports the cracks).
+  /// concrete, not the elastic one (output/StressProjection.h). sigma of the
+  /// trial state, settle()d: as the step commits it and as cell_fields
+  /// reports the cracks (a logic error otherwise).
   void add_stress_share(std::span<double> L,
                         std::shared_ptr<const dolfinx::fem::FunctionSpace> S) const;
 

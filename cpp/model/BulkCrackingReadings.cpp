@@ -12,6 +12,7 @@
 #include <map>
 #include <mpi.h>
 #include <numeric>
+#include <stdexcept>
 #include <tuple>
 
 namespace pushout::model
@@ -281,6 +282,8 @@ void BulkCracking::add_stress_share(std::span<double> L,
                                     std::shared_ptr<const dolfinx::fem::FunctionSpace> S) const
 {
   namespace fem = dolfinx::fem;
+  if (_implex && !_trial_implicit) // evaluate() left the step's prediction in _stress_trial
+    throw std::logic_error("BulkCracking::add_stress_share: the cracks are not settle()d");
   if (!_L_stress_share || _L_stress_share->function_spaces()[0] != S)
   {
     const std::map<fem::IntegralType, const dolfinx::mesh::MeshTags<int>*> subdomains = {
@@ -291,27 +294,14 @@ void BulkCracking::add_stress_share(std::span<double> L,
   const bulk::Voigt66& C = _band.stiffness();
   const points::PointValues share_at(*_stress_share, points::voigt);
   const int n_points = expression_cracking_strain->num_points;
-  std::array<double, points::state> scratch;
   for (std::size_t c = 0; c < _cells.size(); ++c)
     for (int q = 0; q < n_points; ++q)
     {
       const std::size_t i = c * std::size_t(n_points) + q;
-      const bulk::Voigt strain = points::voigt_at(_strain_values, i);
-      bulk::Voigt sigma = points::voigt_at(_stress_trial, i);
-      if (_implex)
-      {
-        // The crack band's own update at the strain, as the step commits it
-        // (implicit_update): an evaluate() since then left the step's
-        // secant stress in _stress_trial. As implicit_update, a point whose
-        // update fails keeps what it has.
-        const bulk::CrackBandResult r = update_point(c, i, strain, scratch);
-        if (r.status == bulk::CrackBandResult::Status::ok)
-          sigma = r.stress;
-      }
-      const bulk::Voigt elastic = bulk::multiply(C, strain);
+      const bulk::Voigt elastic = bulk::multiply(C, points::voigt_at(_strain_values, i));
       const std::span<double> share = share_at(_cells[c], q);
       for (int k = 0; k < points::voigt; ++k)
-        share[k] = sigma[k] - elastic[k];
+        share[k] = _stress_trial[points::voigt * i + k] - elastic[k];
     }
   fem::assemble_vector(L, *_L_stress_share);
 }

@@ -56,7 +56,13 @@ void StepRecorder::record_corrosion(int row)
     return;
   const interrupt::Phase writing("writing step outputs", -1);
   const double t_out = _report.seconds();
-  mpi::collectively(_equilibrium.model().comm(), [&] { _corrosion_fields->write(double(row)); });
+  mpi::collectively(_equilibrium.model().comm(),
+                    [&]
+                    {
+                      if (model::BulkCracking* cracking = _equilibrium.model().bulk_cracking())
+                        cracking->settle(); // as record()
+                      _corrosion_fields->write(double(row));
+                    });
   _report.summary().output_s += _report.seconds() - t_out;
 }
 
@@ -84,7 +90,15 @@ void StepRecorder::record(Vec x, int iterations, int cuts, int step, int steps)
                         _curve->row(_row, values);
                     });
   if (_fields)
-    mpi::collectively(_equilibrium.model().comm(), [&] { _fields->write(double(_row)); });
+    mpi::collectively(_equilibrium.model().comm(),
+                      [&]
+                      {
+                        // The cracks as the step commits them (the reactions'
+                        // evaluation above holds IMPL-EX's prediction).
+                        if (model::BulkCracking* cracking = _equilibrium.model().bulk_cracking())
+                          cracking->settle();
+                        _fields->write(double(_row));
+                      });
   ++_row;
   _report.summary().output_s += _report.seconds() - t_out;
   if (!_report.talk())
