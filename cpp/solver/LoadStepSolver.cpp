@@ -95,10 +95,9 @@ std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const Solv
   solver->set_first_tangent(part.first_tangent_converged && concrete != Concrete::implex_cracks);
   solver->_inexact = part.inexact_newton;
   solver->_whole.set_inexact(part.inexact_newton);
+  solver->_whole.set_fallback_line_search(NewtonSolver::fallback_line_search(concrete));
   if (concrete == Concrete::cracks)
   {
-    // l2 first (set_default_options), then backtracking.
-    solver->_whole.set_fallback_line_search("bt");
     // Linear tails keep their factorisation: the bench's corroded demo with
     // cracks, on its mesh of 8e10d4d, 150 s against 185 s without (334
     // against 471 factorisations; docs/cracking.md, "Newton"). A stalled

@@ -168,6 +168,18 @@ public:
   static void set_default_options(Preconditioner pc, Concrete concrete = Concrete::linear,
                                   bool single_precision_lu = false);
 
+  /// The line search a failed solve is tried again with
+  /// (set_fallback_line_search), for the line search set_default_options
+  /// takes: with cracks solved in every iteration bt after l2; with IMPL-EX
+  /// cracks l2 after bt (inside a snap of the centred cover a bt solve made
+  /// |F| fall by 0.9 an iteration, 50 iterations at the smallest step, where
+  /// l2 and full steps converge: docs/cracking.md, "IMPL-EX"); none without
+  /// cracks.
+  static const char* fallback_line_search(Concrete concrete)
+  {
+    return concrete == Concrete::cracks ? "bt" : concrete == Concrete::implex_cracks ? "l2" : "";
+  }
+
   /// -snes_rtol and -ksp_rtol of IMPL-EX cracks: a step's error is of the
   /// order of cracking.implex_tolerance (2.5e-3 by default; 1e-2 when this
   /// was measured), and a Newton tolerance more than three decades below it

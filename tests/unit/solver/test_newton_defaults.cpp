@@ -42,6 +42,26 @@ TEST(NewtonDefaults, EachRunGetsItsOwnLineSearch)
   EXPECT_EQ(line_search(), "bt");
 }
 
+// A failed solve is tried again with the other line search where the
+// concrete cracks: each fallback differs from the first line search.
+TEST(NewtonDefaults, CrackingConcreteFallsBackOnTheOtherLineSearch)
+{
+  const auto pc = NewtonSolver::Preconditioner::lagged;
+  for (const auto concrete :
+       {NewtonSolver::Concrete::cracks, NewtonSolver::Concrete::implex_cracks})
+  {
+    NewtonSolver::set_default_options(pc, concrete);
+    const std::string fallback = NewtonSolver::fallback_line_search(concrete);
+    EXPECT_FALSE(fallback.empty());
+    EXPECT_NE(fallback, line_search());
+  }
+  EXPECT_EQ(std::string(NewtonSolver::fallback_line_search(NewtonSolver::Concrete::implex_cracks)),
+            "l2");
+  EXPECT_EQ(std::string(NewtonSolver::fallback_line_search(NewtonSolver::Concrete::linear)), "");
+  NewtonSolver::set_default_options(NewtonSolver::Preconditioner::jacobian,
+                                    NewtonSolver::Concrete::linear); // as the other tests expect
+}
+
 // IMPL-EX cracks stop Newton and GMRES at NewtonSolver::implex_rtol, and the
 // next run without them is back at 1e-10 (a sweep's cases share a process);
 // a run whose LU is the solver keeps no GMRES default of an earlier one.
