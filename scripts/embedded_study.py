@@ -32,11 +32,12 @@ SCENE = "pushout_corroded_embedded.toml"
 # cracking.implex_predictor (None: the default, "strain"; the series run
 # before it became the default name "history", so that they rerun with the
 # predictor they ran with, though not bit for bit: step 0 extrapolates its
-# parts since de9cf8a; docs/corrosion.md).
+# parts since de9cf8a; the paper's-mesh series ran with "history" until its
+# rerun after a2cc244; docs/corrosion.md).
 STUDIES = {
     "corroded_embedded": ("implicit", False, None, None),
     "corroded_embedded_implex": ("implex", False, None, "history"),
-    "corroded_embedded_paper_mesh": ("implex", True, None, "history"),
+    "corroded_embedded_paper_mesh": ("implex", True, None, "strain"),
     "corroded_embedded_implex_strain": ("implex", False, None, "strain"),
 }
 VISIBLE_UM = 50.0  # the [cracking] visible_width default: a surface crack counts from here

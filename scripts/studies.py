@@ -45,9 +45,10 @@ Studies (each run keeps its resolved scene.toml next to its curve.csv):
               "auto" takes there) and the history predictor
               (cracking.implex_predictor = "history", the default when it
               ran; not in the studies run by default).
-  corroded_embedded_paper_mesh  corroded_embedded_implex on the paper's
-              mesh (16 per quarter, 8 through the thickness) instead of
-              12 / 4 (not in the studies run by default).
+  corroded_embedded_paper_mesh  corroded_embedded_implex_strain on the
+              paper's mesh (16 per quarter, 8 through the thickness) instead
+              of 12 / 4 (the history predictor until the rerun after
+              a2cc244; not in the studies run by default).
   corroded_embedded_implex_strain  corroded_embedded_implex with the strain
               predictor (cracking.implex_predictor = "strain", the default;
               not in the studies run by default).
