@@ -116,7 +116,8 @@ struct CrackBandResult
   {
     ok,
     not_converged, ///< the crack's 3 x 3 equilibrium did not converge
-    band_too_wide  ///< h >= max_band_width(): the point would snap back
+    band_too_wide, ///< h >= max_band_width(): the point would snap back
+    not_finite     ///< the strain is not finite (an iterate that blew up)
   } status = Status::ok;
 };
 
@@ -217,6 +218,11 @@ public:
     const CrackState<const double> before(old);
     const CrackState<double> after(now);
     const Voigt sigma0 = multiply(_C, strain);
+    if (!finite(strain))
+    {
+      r.status = CrackBandResult::Status::not_finite;
+      return r;
+    }
     if (!before.cracked())
     {
       // Below the strength whatever the principal axes: the largest
@@ -275,7 +281,9 @@ public:
     const Voigt sigma0 = multiply(_C, strain);
     r.stress = sigma0;
     r.tangent = _C;
-    if (!state.cracked())
+    if (!finite(strain))
+      r.status = CrackBandResult::Status::not_finite;
+    if (!state.cracked() || r.status != CrackBandResult::Status::ok)
       return r;
     const CrackPlane plane(*this, state, sigma0);
     const laws::CamanhoDavila law = cohesive_law(plane.h, strength);
@@ -375,7 +383,8 @@ public:
       r.stress = multiply(_C, strain);
       r.tangent = _C;
       if (side == secant_failed)
-        r.status = CrackBandResult::Status::not_converged;
+        r.status = finite(strain) ? CrackBandResult::Status::not_converged
+                                  : CrackBandResult::Status::not_finite;
       return r;
     }
     r.closed = side == secant_closed;
@@ -389,10 +398,13 @@ public:
   /// secant_apply() picks it: op.tangent[secant_open] or
   /// op.tangent[secant_closed], or C (secant_elastic: uncracked;
   /// secant_failed: that side's crack equilibrium is singular, and
-  /// secant_response() fails). What an evaluation needs without the
-  /// result's copy of the tangent.
+  /// secant_response() fails; or the strain is not finite, cracked or
+  /// not). What an evaluation needs without the result's copy of the
+  /// tangent.
   static int secant_side(const SecantOperator& op, const Voigt& strain)
   {
+    if (!finite(strain))
+      return secant_failed; // an iterate that blew up: no map answers it
     if (!op.cracked)
       return secant_elastic;
     double opening = 0;
@@ -408,6 +420,15 @@ public:
 
 private:
   static constexpr std::array<double, 2> zero_history = {0, 0};
+
+  /// Whether every component of `e` is finite.
+  static bool finite(const Voigt& e)
+  {
+    double sum = 0;
+    for (const double v : e)
+      sum += v;
+    return std::isfinite(sum); // an inf or a NaN anywhere makes the sum one
+  }
 
   /// The largest magnitude of a component of `s` [MPa].
   static double largest_magnitude(const Voigt& s)

@@ -4,6 +4,7 @@
 // reclosure, rotated loadings, and the consistent tangent against finite
 // differences.
 #include "bulk/CrackBand.h"
+#include <cmath>
 #include <gtest/gtest.h>
 #include <iostream>
 #include <random>
@@ -660,4 +661,36 @@ TEST(CrackBand, OnsetWhereTheLargestPrincipalStressReachesTheStrength)
   }
   EXPECT_GT(cracked, 100); // both sides were met
   EXPECT_GT(elastic, 100);
+}
+
+// A strain that is not finite (an iterate that blew up) is an error of every
+// response, at an uncracked point too: before, an uncracked point answered
+// it with a NaN stress and status ok, so only the residual's norm said so.
+TEST(CrackBand, AStrainThatIsNotFiniteFailsEveryResponse)
+{
+  const CrackBand law(E, nu, exponential);
+  Path path{law, 2.0};
+  path.step({3e-4, 0, 0, 0, 0, 0}); // a crack normal to x
+  const State uncracked(CrackBand::state_size, 0.0);
+  SecantOperator cracked_op, uncracked_op;
+  law.secant_operator(path.state, 0, 1, cracked_op);
+  law.secant_operator(uncracked, 0, 1, uncracked_op);
+  ASSERT_TRUE(cracked_op.cracked);
+  ASSERT_FALSE(uncracked_op.cracked);
+  const auto band = [](const Vec3&) { return 2.0; };
+  for (const double bad : {std::nan(""), double(INFINITY), -double(INFINITY)})
+  {
+    const Voigt strain = {1e-5, 0, bad, 0, 0, 0};
+    for (const State& old : {uncracked, path.state})
+    {
+      State trial(old.size());
+      EXPECT_EQ(law.update(old, strain, trial, band).status, CrackBandResult::Status::not_finite);
+      EXPECT_EQ(law.secant_response(old, strain, 0).status, CrackBandResult::Status::not_finite);
+    }
+    for (const SecantOperator* op : {&cracked_op, &uncracked_op})
+    {
+      EXPECT_EQ(CrackBand::secant_side(*op, strain), CrackBand::secant_failed);
+      EXPECT_EQ(law.secant_apply(*op, strain).status, CrackBandResult::Status::not_finite);
+    }
+  }
 }
