@@ -107,8 +107,9 @@ def main():
     with open(os.path.join(RESULTS, "cracking_mesh.md"), "w") as f:
         f.write("# Cracks anywhere: one case of the corroded study on five meshes\n\n"
                 "Made by `bench/cracking_mesh.py` (one thread per run, this machine, one run "
-                f"each): {CASE} with the scene and keys of the study {STUDY}; the mesh is elements per quarter "
-                "/ through the thickness, the differences are from the finest.\n\n")
+                f"each): {CASE} with the scene and keys of the study {STUDY}; the mesh is "
+                "elements per quarter / through the thickness, the differences are from the "
+                "finest.\n\n")
         f.write(markdown_table(list(rows[0].keys()), rows))
         f.write("\n![curves](cracking_mesh.png)\n")
 

@@ -217,12 +217,12 @@ public:
     std::copy(old.begin(), old.begin() + state_size, now.begin());
     const CrackState<const double> before(old);
     const CrackState<double> after(now);
-    const Voigt sigma0 = multiply(_C, strain);
     if (!finite(strain))
     {
       r.status = CrackBandResult::Status::not_finite;
       return r;
     }
+    const Voigt sigma0 = multiply(_C, strain);
     if (!before.cracked())
     {
       // Below the strength whatever the principal axes: the largest
@@ -282,8 +282,11 @@ public:
     r.stress = sigma0;
     r.tangent = _C;
     if (!finite(strain))
+    {
       r.status = CrackBandResult::Status::not_finite;
-    if (!state.cracked() || r.status != CrackBandResult::Status::ok)
+      return r;
+    }
+    if (!state.cracked())
       return r;
     const CrackPlane plane(*this, state, sigma0);
     const laws::CamanhoDavila law = cohesive_law(plane.h, strength);
