@@ -99,6 +99,14 @@ private:
   std::span<T> _s;
 };
 
+/// Whether CrackBand::update() computes the tangent, or leaves it zero
+/// (IMPL-EX's updates keep the state and the stress, and never read it).
+enum class Tangent
+{
+  compute,
+  skip
+};
+
 /// What an update returns.
 struct CrackBandResult
 {
@@ -208,11 +216,14 @@ public:
   /// writes the trial state `now` (same size). `band_width(n)` gives the
   /// element's size along a unit normal n [mm] (called when a crack is
   /// inserted); `strength` is the point's f_t over the envelope's; `dt` the
-  /// step's pseudo-time increment (viscous damage).
+  /// step's pseudo-time increment (viscous damage). With Tangent::skip the
+  /// result's tangent stays zero, and everything else is as computed.
   template <typename BandWidth>
   CrackBandResult update(std::span<const double> old, const Voigt& strain, std::span<double> now,
-                         BandWidth&& band_width, double strength = 1, double dt = 0) const
+                         BandWidth&& band_width, double strength = 1, double dt = 0,
+                         Tangent tangent = Tangent::compute) const
   {
+    const bool with_tangent = tangent == Tangent::compute;
     CrackBandResult r;
     std::copy(old.begin(), old.begin() + state_size, now.begin());
     const CrackState<const double> before(old);
@@ -234,7 +245,8 @@ public:
       if (gershgorin_bound(sigma0) + 1e-12 * largest_magnitude(sigma0) < strength * _env.f_t)
       {
         r.stress = sigma0;
-        r.tangent = _C;
+        if (with_tangent)
+          r.tangent = _C;
         return r;
       }
       Vec3 principal;
@@ -243,7 +255,8 @@ public:
       if (!(principal[0] >= strength * _env.f_t))
       {
         r.stress = sigma0;
-        r.tangent = _C;
+        if (with_tangent)
+          r.tangent = _C;
         return r;
       }
       // Onset: a crack normal to the largest principal stress.
@@ -260,7 +273,7 @@ public:
       return r;
     }
     solve_crack(before.cracked() ? before.law_state() : std::span<const double>(zero_history),
-                after, sigma0, strength, dt, r);
+                after, sigma0, strength, dt, with_tangent, r);
     return r;
   }
 
@@ -582,13 +595,12 @@ private:
   /// The columns of J^-1 into `Jinv`; false if J is singular.
   static bool inverse_columns(const Mat3& J, std::array<Vec3, 3>& Jinv)
   {
+    Mat3 inverse;
+    if (!invert3(J, inverse))
+      return false;
     for (int k = 0; k < 3; ++k)
-    {
-      Vec3 e{};
-      e[k] = 1;
-      if (!solve3(J, e, Jinv[k]))
-        return false;
-    }
+      for (int i = 0; i < 3; ++i)
+        Jinv[k][i] = inverse[3 * i + k];
     return true;
   }
 
@@ -598,22 +610,39 @@ private:
   void point_response(const CrackPlane& plane, const Voigt& sigma0, const Vec3& w,
                       const std::array<Vec3, 3>& Jinv, CrackBandResult& r) const
   {
-    r.stress = sigma0;
+    r.stress = point_stress(plane, sigma0, w);
+    r.tangent = tangent_of(plane, Jinv);
+  }
+
+  /// sigma = C (epsilon - P w / h) [MPa].
+  static Voigt point_stress(const CrackPlane& plane, const Voigt& sigma0, const Vec3& w)
+  {
+    Voigt stress = sigma0;
     for (int k = 0; k < 3; ++k)
       for (int i = 0; i < 6; ++i)
-        r.stress[i] -= plane.CP[k][i] * w[k] / plane.h;
-    r.tangent = tangent_of(plane, Jinv);
+        stress[i] -= plane.CP[k][i] * w[k] / plane.h;
+    return stress;
   }
 
   /// d sigma / d epsilon = C - (1/h) (C P) J^-1 (C P)^T, J^-1 by columns.
   Voigt66 tangent_of(const CrackPlane& plane, const std::array<Vec3, 3>& Jinv) const
   {
+    // M = J^-1 (C P)^T / h (3 x 6) first: 54 + 108 products instead of the
+    // 324 of the four-index sum.
+    std::array<Voigt, 3> M{};
+    for (int k = 0; k < 3; ++k)
+    {
+      for (int l = 0; l < 3; ++l)
+        for (int j = 0; j < 6; ++j)
+          M[k][j] += Jinv[l][k] * plane.CP[l][j];
+      for (int j = 0; j < 6; ++j)
+        M[k][j] /= plane.h;
+    }
     Voigt66 T = _C;
     for (int i = 0; i < 6; ++i)
-      for (int j = 0; j < 6; ++j)
-        for (int k = 0; k < 3; ++k)
-          for (int l = 0; l < 3; ++l)
-            T[6 * i + j] -= plane.CP[k][i] * Jinv[l][k] * plane.CP[l][j] / plane.h;
+      for (int k = 0; k < 3; ++k)
+        for (int j = 0; j < 6; ++j)
+          T[6 * i + j] -= plane.CP[k][i] * M[k][j];
     return T;
   }
 
@@ -629,9 +658,11 @@ private:
     return J;
   }
 
-  /// The crack's equilibrium and the point's stress and tangent.
+  /// The crack's equilibrium and the point's stress, and its tangent if
+  /// `with_tangent`.
   void solve_crack(std::span<const double> law_old, const CrackState<double>& state,
-                   const Voigt& sigma0, double strength, double dt, CrackBandResult& r) const
+                   const Voigt& sigma0, double strength, double dt, bool with_tangent,
+                   CrackBandResult& r) const
   {
     CrackEquilibrium eq(*this, law_old, state, sigma0, strength, dt);
     // Converged when the traction balance holds to 1e-10 f_t, or to the
@@ -641,13 +672,18 @@ private:
                  1e-14 * (std::abs(eq.s0[0]) + std::abs(eq.s0[1]) + std::abs(eq.s0[2])));
     Vec3 w{};
     std::array<Vec3, 3> Jinv; // columns of J^-1 at w
-    const bool ok = eq.solve(w, tol) && inverse_columns(eq.jacobian(), Jinv);
+    // A singular J at w fails the update with or without the tangent.
+    const bool ok = eq.solve(w, tol) &&
+                    (with_tangent ? inverse_columns(eq.jacobian(), Jinv) : regular3(eq.jacobian()));
     if (!ok)
     {
       r.status = CrackBandResult::Status::not_converged;
       return;
     }
-    point_response(eq, sigma0, w, Jinv, r);
+    if (with_tangent)
+      point_response(eq, sigma0, w, Jinv, r);
+    else
+      r.stress = point_stress(eq, sigma0, w);
     r.opening = rotate(eq.R, w);
     const laws::DamageHistory<double> now(eq.law_now);
     r.damage = now.damage();

@@ -82,22 +82,53 @@ inline Voigt band_strain(const Vec3& w, const Vec3& n)
           w[0] * n[1] + w[1] * n[0]};
 }
 
-/// Solves A x = b for a 3 x 3 A; false if A is singular to round-off.
-inline bool solve3(const Mat3& A, const Vec3& b, Vec3& x)
+/// The adjugate of a 3 x 3 A (A^-1 = adjugate / det) and its determinant;
+/// false if A is singular to round-off (|det| <= 1e-14 max|a_ij|^3).
+inline bool adjugate3(const Mat3& A, Mat3& adj, double& det)
 {
-  const double det = A[0] * (A[4] * A[8] - A[5] * A[7]) - A[1] * (A[3] * A[8] - A[5] * A[6]) +
-                     A[2] * (A[3] * A[7] - A[4] * A[6]);
+  det = A[0] * (A[4] * A[8] - A[5] * A[7]) - A[1] * (A[3] * A[8] - A[5] * A[6]) +
+        A[2] * (A[3] * A[7] - A[4] * A[6]);
   double scale = 0;
   for (double a : A)
     scale = std::max(scale, std::abs(a));
   if (!(std::abs(det) > 1e-14 * scale * scale * scale))
     return false;
-  const Mat3 inv = {
-      A[4] * A[8] - A[5] * A[7], A[2] * A[7] - A[1] * A[8], A[1] * A[5] - A[2] * A[4],
-      A[5] * A[6] - A[3] * A[8], A[0] * A[8] - A[2] * A[6], A[2] * A[3] - A[0] * A[5],
-      A[3] * A[7] - A[4] * A[6], A[1] * A[6] - A[0] * A[7], A[0] * A[4] - A[1] * A[3]};
+  adj = {A[4] * A[8] - A[5] * A[7], A[2] * A[7] - A[1] * A[8], A[1] * A[5] - A[2] * A[4],
+         A[5] * A[6] - A[3] * A[8], A[0] * A[8] - A[2] * A[6], A[2] * A[3] - A[0] * A[5],
+         A[3] * A[7] - A[4] * A[6], A[1] * A[6] - A[0] * A[7], A[0] * A[4] - A[1] * A[3]};
+  return true;
+}
+
+/// Solves A x = b for a 3 x 3 A; false if A is singular to round-off.
+inline bool solve3(const Mat3& A, const Vec3& b, Vec3& x)
+{
+  Mat3 adj;
+  double det;
+  if (!adjugate3(A, adj, det))
+    return false;
   for (int i = 0; i < 3; ++i)
-    x[i] = (inv[3 * i] * b[0] + inv[3 * i + 1] * b[1] + inv[3 * i + 2] * b[2]) / det;
+    x[i] = (adj[3 * i] * b[0] + adj[3 * i + 1] * b[1] + adj[3 * i + 2] * b[2]) / det;
+  return true;
+}
+
+/// Whether a 3 x 3 A is regular, as solve3() and invert3() decide it.
+inline bool regular3(const Mat3& A)
+{
+  Mat3 adj;
+  double det;
+  return adjugate3(A, adj, det);
+}
+
+/// A^-1 of a 3 x 3 A (row-major), each entry as solve3() of a unit vector
+/// gives it; false if A is singular to round-off (as solve3()).
+inline bool invert3(const Mat3& A, Mat3& inverse)
+{
+  Mat3 adj;
+  double det;
+  if (!adjugate3(A, adj, det))
+    return false;
+  for (int k = 0; k < 9; ++k)
+    inverse[k] = adj[k] / det;
   return true;
 }
 

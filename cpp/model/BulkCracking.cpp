@@ -215,12 +215,12 @@ double BulkCracking::band_width(std::size_t cell, const bulk::Vec3& n) const
 }
 
 bulk::CrackBandResult BulkCracking::update_point(std::size_t c, std::size_t i,
-                                                 const bulk::Voigt& strain,
-                                                 std::span<double> now) const
+                                                 const bulk::Voigt& strain, std::span<double> now,
+                                                 bulk::Tangent tangent) const
 {
   return _band.update(
       std::span<const double>(_committed.data() + state * i, state), strain, now,
-      [&](const bulk::Vec3& n) { return band_width(c, n); }, _strength[i], _dt);
+      [&](const bulk::Vec3& n) { return band_width(c, n); }, _strength[i], _dt, tangent);
 }
 
 void BulkCracking::commit()

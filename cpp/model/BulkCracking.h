@@ -336,9 +336,11 @@ private:
   /// vertices along n [mm] (bulk/CrackBand.h).
   double band_width(std::size_t cell, const bulk::Vec3& n) const;
   /// The crack band's own update of point i (of cracking cell c) from its
-  /// committed state to `strain`, the new state into `now`.
+  /// committed state to `strain`, the new state into `now`; its tangent only
+  /// with bulk::Tangent::compute.
   bulk::CrackBandResult update_point(std::size_t c, std::size_t i, const bulk::Voigt& strain,
-                                     std::span<double> now) const;
+                                     std::span<double> now,
+                                     bulk::Tangent tangent = bulk::Tangent::compute) const;
 
   std::shared_ptr<dolfinx::mesh::Mesh> _mesh;
   std::shared_ptr<const dolfinx::fem::Function<double>> _u; ///< the model's displacement [mm]

@@ -27,7 +27,8 @@ void BulkCracking::make_secants()
       bulk::Voigt strain;
       for (int k = 0; k < voigt; ++k)
         strain[k] = _strain_committed[voigt * i + k] + _extrapolation * _strain_step[voigt * i + k];
-      const bulk::CrackBandResult r = update_point(i / std::size_t(n_points), i, strain, predicted);
+      const bulk::CrackBandResult r =
+          update_point(i / std::size_t(n_points), i, strain, predicted, bulk::Tangent::skip);
       // Uncracked there, or its update failed: the history predictor's map.
       if (r.status == bulk::CrackBandResult::Status::ok && crack_of(predicted, 0).cracked())
       {
@@ -112,8 +113,10 @@ void BulkCracking::implicit_update()
     for (int q = 0; q < n_points; ++q)
     {
       const std::size_t i = c * std::size_t(n_points) + q;
-      const bulk::CrackBandResult r = update_point(
-          c, i, voigt_at(_strain_values, i), std::span<double>(_trial.data() + state * i, state));
+      // The state, stress and dissipation; the step's tangent is its maps'.
+      const bulk::CrackBandResult r =
+          update_point(c, i, voigt_at(_strain_values, i),
+                       std::span<double>(_trial.data() + state * i, state), bulk::Tangent::skip);
       // A point whose crack's equilibrium fails keeps its committed state,
       // counted: implex_error() says so, and the step is cut.
       if (r.status != bulk::CrackBandResult::Status::ok)

@@ -694,3 +694,50 @@ TEST(CrackBand, AStrainThatIsNotFiniteFailsEveryResponse)
     }
   }
 }
+
+// IMPL-EX's updates ask for no tangent (Tangent::skip): the same state,
+// stress, opening, damage, dissipation and status as the update with it,
+// bit for bit (the same arithmetic), and a zero tangent, on a path through
+// onset, softening, unloading, closure and a band too wide to soften.
+TEST(CrackBand, AnUpdateWithoutTheTangentIsTheUpdateWithIt)
+{
+  const CrackBand law(E, nu, exponential);
+  std::mt19937 gen(7);
+  const Mat3 Q = random_rotation(gen);
+  for (const double h : {2.0, 10 * law.max_band_width()})
+  {
+    Path path{law, h};
+    const auto band = [&](const Vec3&) { return h; };
+    int compared = 0, damaged = 0;
+    CrackBandResult::Status last = CrackBandResult::Status::ok;
+    for (const double eps : {5e-5, 1.2e-4, 3e-4, 1e-3, 4e-4, 0.0, -2e-4, 1.5e-3})
+    {
+      const Voigt strain = rotated(Q, {eps, -0.2 * eps, 0.1 * eps, 0, 0, 0});
+      State with(path.state.size()), without(path.state.size());
+      const CrackBandResult a = law.update(path.state, strain, with, band);
+      const CrackBandResult b =
+          law.update(path.state, strain, without, band, 1, 0, pushout::bulk::Tangent::skip);
+      EXPECT_EQ(a.status, b.status);
+      EXPECT_EQ(with, without);
+      EXPECT_EQ(a.stress, b.stress);
+      EXPECT_EQ(a.opening, b.opening);
+      EXPECT_EQ(a.damage, b.damage);
+      EXPECT_EQ(a.dissipation, b.dissipation);
+      for (double t : b.tangent)
+        EXPECT_EQ(t, 0.0);
+      ++compared;
+      damaged += a.damage > 0;
+      last = a.status;
+      if (a.status != CrackBandResult::Status::ok)
+        break; // the too-wide band: refused at onset
+      path.state = with;
+    }
+    if (h == 2.0)
+    {
+      EXPECT_EQ(compared, 8);
+      EXPECT_GE(damaged, 5); // softened, unloaded, closed, reloaded
+    }
+    else
+      EXPECT_EQ(last, CrackBandResult::Status::band_too_wide);
+  }
+}
