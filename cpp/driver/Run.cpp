@@ -38,6 +38,21 @@ void note_scene(const Scene& scene, record::RunReport& report)
       std::cout << "pushout: note: " << note << std::endl;
 }
 
+/// Whether the first progress line may say that the mesh comes from the
+/// cache (generate() still says so if the file proves unreadable, and
+/// reports an error of the .geo file or of the cache's bound itself).
+bool mesh_cached(const mesh::MeshInput& shape, const std::filesystem::path& cache_dir)
+{
+  try
+  {
+    return mesh::in_cache(shape, cache_dir);
+  }
+  catch (const std::exception&)
+  {
+    return false;
+  }
+}
+
 /// Before meshing: the size guard (throws TooLarge unless the run fits or
 /// --force), its estimate into the summary and the first progress line.
 void guard_size(const mesh::MeshInput& shape, const Scene& scene, const RunOptions& opt,
@@ -52,9 +67,11 @@ void guard_size(const mesh::MeshInput& shape, const Scene& scene, const RunOptio
   s.symmetry = estimate.size.symmetry.name();
   report.publish();
   if (report.talk())
-    std::cout << "pushout: meshing " << estimate.size.cells << " cells, " << estimate.size.dofs
-              << " dofs, " << estimate.size.joint_elements << " joint elements ("
-              << estimate.memory() << " at the peak)" << std::endl;
+    std::cout << "pushout: "
+              << (mesh_cached(shape, opt.mesh_cache) ? "the cached mesh, " : "meshing ")
+              << estimate.size.cells << " cells, " << estimate.size.dofs << " dofs, "
+              << estimate.size.joint_elements << " joint elements (" << estimate.memory()
+              << " at the peak)" << std::endl;
 }
 
 /// The model's size into the summary, and the progress line that says what

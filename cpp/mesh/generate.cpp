@@ -322,8 +322,11 @@ void prune_cache(const std::filesystem::path& cache_dir, double limit_mb,
 
 namespace
 {
-/// gmsh on this process: the cached or a new mesh.
-MeshData generate_here(const MeshInput& in, const std::filesystem::path& cache_dir, bool& reused)
+/// The cache's file of the mesh `in` describes, and the hash of its inputs
+/// (the mesher's version, the .geo text and its constants) that the file
+/// holds.
+std::filesystem::path cache_file(const MeshInput& in, const std::filesystem::path& cache_dir,
+                                 std::uint64_t& inputs)
 {
   const auto [geo, constants] = geo_for(in);
   std::ostringstream key;
@@ -332,11 +335,18 @@ MeshData generate_here(const MeshInput& in, const std::filesystem::path& cache_d
     key << name << "=" << std::setprecision(17) << value << ";";
   Fnv1a inputs_hash;
   inputs_hash.add(key.str().data(), key.str().size());
-  const std::uint64_t inputs = inputs_hash.value();
+  inputs = inputs_hash.value();
   std::ostringstream hex;
   hex << std::hex << std::setw(16) << std::setfill('0') << inputs;
-  const std::filesystem::path cached =
-      cache_dir / (geo.stem().string() + "-" + hex.str() + std::string(cache_extension));
+  return cache_dir / (geo.stem().string() + "-" + hex.str() + std::string(cache_extension));
+}
+
+/// gmsh on this process: the cached or a new mesh.
+MeshData generate_here(const MeshInput& in, const std::filesystem::path& cache_dir, bool& reused)
+{
+  const auto [geo, constants] = geo_for(in);
+  std::uint64_t inputs;
+  const std::filesystem::path cached = cache_file(in, cache_dir, inputs);
 
   MeshData m;
   const double limit_mb = cache_limit_mb();
@@ -383,6 +393,13 @@ MeshData generate_here(const MeshInput& in, const std::filesystem::path& cache_d
   return m;
 }
 } // namespace
+
+bool in_cache(const MeshInput& in, const std::filesystem::path& cache_dir)
+{
+  std::uint64_t inputs;
+  std::error_code ec;
+  return cache_limit_mb() > 0 && std::filesystem::exists(cache_file(in, cache_dir, inputs), ec);
+}
 
 MeshData generate(const MeshInput& in, const std::filesystem::path& cache_dir, bool& reused,
                   MPI_Comm comm)

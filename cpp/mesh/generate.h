@@ -20,6 +20,10 @@ namespace pushout::mesh
 MeshData generate(const MeshInput& in, const std::filesystem::path& cache_dir, bool& reused,
                   MPI_Comm comm = MPI_COMM_WORLD);
 
+/// Whether the cache holds a file of the mesh `in` describes (generate()
+/// then reads it, unless it is found unreadable). On this process alone.
+bool in_cache(const MeshInput& in, const std::filesystem::path& cache_dir);
+
 /// Default cache folder: $PUSHOUT_CACHE_DIR, else $XDG_CACHE_HOME/pushout,
 /// else ~/.cache/pushout.
 std::filesystem::path default_cache_dir();

@@ -17,11 +17,17 @@ cache = os.path.join(os.environ.get("PUSHOUT_TEST_OUT", "/tmp"), "mesh-cache-tes
 shutil.rmtree(cache, ignore_errors=True)
 os.environ["PUSHOUT_CACHE_DIR"] = cache
 a, b, c = out_dir("cache_a"), out_dir("cache_b"), out_dir("cache_c")
-run(scene, a)
-run(scene, b)
+first_line = lambda p: p.stdout.splitlines()[0]  # noqa: E731  the size guard's
+pa = run(scene, a, quiet=False)
+pb = run(scene, b, quiet=False)
 run(scene, c, sets=["mesh.steel_layers=2"])
 check(not summary(a)["mesh_reused"], "first run generates the mesh")
 check(summary(b)["mesh_reused"], "second run reuses it")
+# The first progress line says which, before either begins (it said
+# "meshing" for a cached mesh too).
+check(first_line(pa).startswith("pushout: meshing "), f"the first run says it meshes: {first_line(pa)!r}")
+check(first_line(pb).startswith("pushout: the cached mesh, "),
+      f"the second says the mesh comes from the cache: {first_line(pb)!r}")
 check(not summary(c)["mesh_reused"], "another steel_layers makes a new mesh")
 strip = lambda rows: [{k: v for k, v in r.items() if k != "wall_s"} for r in rows]  # noqa: E731
 check(strip(curve(a)) == strip(curve(b)), "same curve from the cached mesh")
