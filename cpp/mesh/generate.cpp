@@ -322,13 +322,13 @@ void prune_cache(const std::filesystem::path& cache_dir, double limit_mb,
 
 namespace
 {
-/// The cache's file of the mesh `in` describes, and the hash of its inputs
-/// (the mesher's version, the .geo text and its constants) that the file
-/// holds.
-std::filesystem::path cache_file(const MeshInput& in, const std::filesystem::path& cache_dir,
-                                 std::uint64_t& inputs)
+/// The cache's file of the mesh of `geo` with its `constants`, and the
+/// hash of its inputs (the mesher's version, the .geo text and the
+/// constants) that the file holds.
+std::filesystem::path cache_file(const std::filesystem::path& geo,
+                                 const std::vector<std::pair<std::string, double>>& constants,
+                                 const std::filesystem::path& cache_dir, std::uint64_t& inputs)
 {
-  const auto [geo, constants] = geo_for(in);
   std::ostringstream key;
   key << "mesher " << mesher_version << ";" << read_file(geo);
   for (const auto& [name, value] : constants)
@@ -346,7 +346,7 @@ MeshData generate_here(const MeshInput& in, const std::filesystem::path& cache_d
 {
   const auto [geo, constants] = geo_for(in);
   std::uint64_t inputs;
-  const std::filesystem::path cached = cache_file(in, cache_dir, inputs);
+  const std::filesystem::path cached = cache_file(geo, constants, cache_dir, inputs);
 
   MeshData m;
   const double limit_mb = cache_limit_mb();
@@ -396,9 +396,12 @@ MeshData generate_here(const MeshInput& in, const std::filesystem::path& cache_d
 
 bool in_cache(const MeshInput& in, const std::filesystem::path& cache_dir)
 {
+  if (!(cache_limit_mb() > 0))
+    return false;
+  const auto [geo, constants] = geo_for(in);
   std::uint64_t inputs;
   std::error_code ec;
-  return cache_limit_mb() > 0 && std::filesystem::exists(cache_file(in, cache_dir, inputs), ec);
+  return std::filesystem::exists(cache_file(geo, constants, cache_dir, inputs), ec);
 }
 
 MeshData generate(const MeshInput& in, const std::filesystem::path& cache_dir, bool& reused,
