@@ -697,8 +697,10 @@ TEST(CrackBand, AStrainThatIsNotFiniteFailsEveryResponse)
 
 // IMPL-EX's updates ask for no tangent (Tangent::skip): the same state,
 // stress, opening, damage, dissipation and status as the update with it,
-// bit for bit (the same arithmetic), and a zero tangent, on a path through
-// onset, softening, unloading, closure and a band too wide to soften.
+// and a zero tangent, on a path through onset, softening, unloading,
+// closure and a band too wide to soften. Equal to the bit, not to a
+// tolerance: both run the same operations in the same order (the crack's
+// equilibrium and CrackBand's point_stress), only the tangent's are left out.
 TEST(CrackBand, AnUpdateWithoutTheTangentIsTheUpdateWithIt)
 {
   const CrackBand law(E, nu, exponential);
