@@ -24,6 +24,7 @@
 #include <iomanip>
 #include <iostream>
 #include <mpi.h>
+#include <optional>
 #include <sstream>
 
 namespace pushout::study
@@ -70,10 +71,6 @@ double value_of(const Scene& scene, const std::string& key, Free& f)
   const double* d = std::get_if<double>(v);
   if (!d)
     throw SceneError("--free '" + key + "': not a number key (" + to_toml(*v) + ")");
-  // A key the scene does not read would leave the curve unchanged: the fit
-  // could not move it.
-  if (const std::string note = scene.unread_note(key); !note.empty())
-    throw SceneError("--free '" + key + "': the scene does not read it (" + note + ")");
   if (const KeyDef* def = find_key(key))
   {
     f.lo = def->min;
@@ -100,6 +97,47 @@ std::string first_message(const std::string& mine, MPI_Comm comm)
   std::string message = rank == first ? mine : std::string(std::size_t(length), ' ');
   MPI_Bcast(message.data(), int(length), MPI_CHAR, first, comm);
   return message;
+}
+
+/// A value within `f`'s bounds away from 0 (the middle of finite bounds).
+double off_zero(const Free& f)
+{
+  const bool lo = std::isfinite(f.lo), hi = std::isfinite(f.hi);
+  const double mid = lo && hi ? (f.lo + f.hi) / 2 : lo ? f.lo + 1 : hi ? f.hi - 1 : 1;
+  return mid != 0 ? mid : hi ? f.hi : 1;
+}
+
+/// Throws SceneError for a free scene key that the scene reads at none of
+/// the values the fit may give: it would leave the curve unchanged, and the
+/// fit could not move it. Whether a key is read may hang on another key's
+/// being 0 (cracking.correlation_length on cracking.strength_cov,
+/// corrosion.beta on corrosion.penetration): a free key that starts at 0
+/// is tried away from it, within its bounds, so that two keys freed
+/// together are both read when the fit can make them so.
+void check_read(const Scene& scene, const std::vector<Free>& free, const FitOptions& opt)
+{
+  auto scene_key = [](const Free& f) { return find_key(f.key) != nullptr; };
+  std::vector<std::string> sets = opt.sets;
+  for (const Free& f : free)
+    if (scene_key(f) && f.start == 0)
+      sets.push_back(f.key + "=" + number_text(off_zero(f)));
+  std::optional<Scene> moved;
+  if (sets.size() > opt.sets.size())
+  {
+    try
+    {
+      moved = Scene::load(opt.scene_file, parse_overrides(sets));
+    }
+    catch (const SceneError&)
+    {
+      // Not a valid scene away from 0: the start's reading stands.
+    }
+  }
+  for (const Free& f : free)
+    if (const std::string note =
+            scene_key(f) ? (moved ? *moved : scene).unread_note(f.key) : std::string();
+        !note.empty())
+      throw SceneError("--free '" + f.key + "': the scene does not read it (" + note + ")");
 }
 
 /// The free values with their starts and bounds; throws SceneError.
@@ -160,6 +198,7 @@ std::vector<Free> free_values(const Scene& scene, const FitOptions& opt)
                        start.str());
     }
   }
+  check_read(scene, free, opt);
   return free;
 }
 

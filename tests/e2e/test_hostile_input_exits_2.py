@@ -185,6 +185,20 @@ with open(fit_data, "w") as f:
 fit = ["fit", GOOD_SCENE, "--data", fit_data, "--out", out_dir("hostile_fit"), "--quiet"]
 refused("fit: a free key not read", fit + ["--free", "corrosion.beta"],
         ["corrosion.beta", "does not read", "corrosion.penetration = 0"], seconds=10)
+# A key read only once another free key leaves 0 (the strength field's
+# correlation length, freed with its coefficient of variation that starts at
+# 0) passes the check: the fit can make the scene read it. It is refused
+# here by the next check, two rows for two free values, which runs nothing.
+two_rows = os.path.join(OUT_ROOT, "hostile_fit_two_rows.csv")
+with open(two_rows, "w") as f:
+    f.write("delta_mm,tau_MPa\n0.002,1.0\n0.004,1.5\n")
+fit_cracking = ["fit", GOOD_SCENE, "--data", two_rows, "--out", out_dir("hostile_fit"), "--quiet",
+                "--set", "cracking.model=embedded"]
+refused("fit: a free key alone not read", fit_cracking + ["--free", "cracking.correlation_length"],
+        ["cracking.correlation_length", "does not read", "cracking.strength_cov = 0"], seconds=10)
+refused("fit: a free key read once another leaves 0",
+        fit_cracking + ["--free", "cracking.strength_cov", "--free", "cracking.correlation_length"],
+        ["2 rows", "2 free values"], seconds=10)
 refused("fit: bounds with lo above hi", fit + ["--free", "interface.0.mu", "--bounds", "interface.0.mu=0.5:0.1"],
         ["interface.0.mu", "lo is not below hi"], seconds=10)
 for cmd in ([], ["run"], ["sweep"]):
