@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <gtest/gtest.h>
+#include <mpi.h>
 #include <petscmat.h>
 #include <stdexcept>
 #include <vector>
@@ -124,4 +125,90 @@ TEST(BlockAdd, MatrixNotAssembledGoesThroughPetsc)
   check(MatSetValuesBlockedLocal(B, 3, e.data(), 3, e.data(), element(3, 5.0).data(), ADD_VALUES),
         "MatSetValuesBlockedLocal");
   expect_same(A, B);
+}
+
+namespace
+{
+/// A parallel AIJ matrix of block size 3 over the processes of
+/// PETSC_COMM_WORLD (a sequential one on one process): each owns three
+/// nodes, 3r to 3r + 2, and sees the next process's first node as a
+/// ghost, its local block 3; the pattern of the elements `parallel_elements`,
+/// filled with values and assembled.
+const std::vector<std::vector<std::int32_t>> parallel_elements = {{0, 1, 2}, {2, 3}, {1, 3}};
+
+Mat make_parallel_matrix()
+{
+  int rank = 0, size = 1;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  Mat A;
+  check(MatCreate(PETSC_COMM_WORLD, &A), "MatCreate");
+  check(MatSetSizes(A, 3 * bs, 3 * bs, PETSC_DETERMINE, PETSC_DETERMINE), "MatSetSizes");
+  check(MatSetType(A, MATAIJ), "MatSetType");
+  check(MatSetBlockSize(A, bs), "MatSetBlockSize");
+  check(MatSeqAIJSetPreallocation(A, 4 * bs, nullptr), "MatSeqAIJSetPreallocation");
+  check(MatMPIAIJSetPreallocation(A, 4 * bs, nullptr, 4 * bs, nullptr),
+        "MatMPIAIJSetPreallocation");
+  const std::array<PetscInt, 4> global = {3 * rank, 3 * rank + 1, 3 * rank + 2,
+                                          3 * ((rank + 1) % size)};
+  ISLocalToGlobalMapping map;
+  check(
+      ISLocalToGlobalMappingCreate(PETSC_COMM_WORLD, bs, 4, global.data(), PETSC_COPY_VALUES, &map),
+      "ISLocalToGlobalMappingCreate");
+  check(MatSetLocalToGlobalMapping(A, map, map), "MatSetLocalToGlobalMapping");
+  check(ISLocalToGlobalMappingDestroy(&map), "ISLocalToGlobalMappingDestroy");
+  for (const std::vector<std::int32_t>& e : parallel_elements)
+    check(MatSetValuesBlockedLocal(A, PetscInt(e.size()), e.data(), PetscInt(e.size()), e.data(),
+                                   element(e.size(), double(e[0] + 7 * rank)).data(), ADD_VALUES),
+          "MatSetValuesBlockedLocal");
+  assemble(A);
+  return A;
+}
+} // namespace
+
+// Under mpirun (tests/CMakeLists.txt) the matrix is parallel: the owned
+// rows are added in place into its diagonal part (owned columns) and its
+// off-diagonal one (the ghost's columns), the ghost's rows go to their
+// owner at the assembly. Compared exactly: the same additions in the same
+// order, the ghost rows' at the assembly in both.
+TEST(BlockAdd, AddsInPlaceAsMatSetValuesBlockedLocalOnEveryProcess)
+{
+  int rank = 0;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  Mat A = make_parallel_matrix(), B = make_parallel_matrix();
+  const std::vector<std::vector<std::int32_t>> elements = {{2, 3}, {0, 1, 2}, {3, -1, 1}};
+  {
+    BlockAdd add(A);
+    EXPECT_TRUE(add.in_place());
+    for (std::size_t e = 0; e < elements.size(); ++e)
+      add(elements[e], elements[e], element(elements[e].size(), 10.0 + double(e + rank)));
+  }
+  for (std::size_t e = 0; e < elements.size(); ++e)
+    check(MatSetValuesBlockedLocal(B, PetscInt(elements[e].size()), elements[e].data(),
+                                   PetscInt(elements[e].size()), elements[e].data(),
+                                   element(elements[e].size(), 10.0 + double(e + rank)).data(),
+                                   ADD_VALUES),
+          "MatSetValuesBlockedLocal");
+  assemble(A);
+  assemble(B);
+  PetscInt first = 0, end = 0;
+  check(MatGetOwnershipRange(A, &first, &end), "MatGetOwnershipRange");
+  for (PetscInt i = first; i < end; ++i)
+  {
+    PetscInt na = 0, nb = 0;
+    const PetscInt *ca = nullptr, *cb = nullptr;
+    const PetscScalar *va = nullptr, *vb = nullptr;
+    check(MatGetRow(A, i, &na, &ca, &va), "MatGetRow");
+    const std::vector<PetscInt> cols_a(ca, ca + na);
+    const std::vector<PetscScalar> values_a(va, va + na);
+    check(MatRestoreRow(A, i, &na, &ca, &va), "MatRestoreRow");
+    check(MatGetRow(B, i, &nb, &cb, &vb), "MatGetRow");
+    const std::vector<PetscInt> cols_b(cb, cb + nb);
+    const std::vector<PetscScalar> values_b(vb, vb + nb);
+    check(MatRestoreRow(B, i, &nb, &cb, &vb), "MatRestoreRow");
+    EXPECT_EQ(cols_a, cols_b) << "row " << i;
+    EXPECT_EQ(values_a, values_b) << "row " << i;
+  }
+  MatDestroy(&A);
+  MatDestroy(&B);
 }

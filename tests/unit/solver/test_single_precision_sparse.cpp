@@ -5,7 +5,7 @@
 // same pattern are factored again (the analysis kept); a singular matrix is
 // a failed preconditioner (zero pivot), not an error, and the next regular
 // values on its pattern are factored again. On PETSC_COMM_WORLD: the ctest
-// unit_single_precision_sparse_two_processes runs them on two processes
+// unit_two_processes runs them on two processes
 // (each giving MUMPS its rows), `unit` on one.
 #include "common/petsc_check.h"
 #include "solver/ShellPreconditioner.h"
