@@ -97,7 +97,10 @@ void BlockAdd::restore() noexcept
   for (Part& part : _parts)
   {
     if (part.a)
+    {
       check_nothrow(MatSeqAIJRestoreArray(part.M, &part.a), "MatSeqAIJRestoreArray");
+      part.a = nullptr;
+    }
     if (part.ia)
     {
       PetscBool done;
