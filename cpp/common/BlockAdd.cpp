@@ -23,8 +23,24 @@ bool is_type(Mat A, const char* type)
 BlockAdd::BlockAdd(Mat A) : _A(A)
 {
   const bool seq = is_type(A, MATSEQAIJ), mpi = is_type(A, MATMPIAIJ);
-  PetscBool assembled = PETSC_FALSE;
-  check(MatAssembled(A, &assembled), "MatAssembled");
+  Mat diagonal = A, off_diagonal = nullptr; // the parts with the rows' values
+  if (mpi)
+  {
+    check(MatMPIAIJGetSeqAIJ(A, &diagonal, &off_diagonal, &_ghost_columns), "MatMPIAIJGetSeqAIJ");
+    check(MatGetSize(off_diagonal, nullptr, &_n_ghost_columns), "MatGetSize");
+  }
+  // Assembled, so that each row's columns are final and sorted. A parallel
+  // matrix's parts are asked, not the matrix itself: a ghost node's rows
+  // added since its assembly (this class's, for another BlockAdd before
+  // the matrix is assembled again) wait in its stash and leave the parts
+  // as they are. Its off-diagonal part's columns must be those of its
+  // sorted ghost columns (none before the first assembly).
+  PetscBool assembled = PETSC_FALSE, off_assembled = PETSC_TRUE;
+  check(MatAssembled(diagonal, &assembled), "MatAssembled");
+  if (off_diagonal)
+    check(MatAssembled(off_diagonal, &off_assembled), "MatAssembled");
+  assembled =
+      PetscBool(assembled && off_assembled && (!mpi || _ghost_columns || _n_ghost_columns == 0));
   PetscInt block = 0;
   check(MatGetBlockSize(A, &block), "MatGetBlockSize");
   ISLocalToGlobalMapping map = nullptr, col_map = nullptr;
@@ -45,14 +61,8 @@ BlockAdd::BlockAdd(Mat A) : _A(A)
   build_or_release(
       [&]
       {
-        if (seq)
-          _parts[0].M = A;
-        else
-        {
-          check(MatMPIAIJGetSeqAIJ(A, &_parts[0].M, &_parts[1].M, &_ghost_columns),
-                "MatMPIAIJGetSeqAIJ");
-          check(MatGetSize(_parts[1].M, nullptr, &_n_ghost_columns), "MatGetSize");
-        }
+        _parts[0].M = diagonal;
+        _parts[1].M = off_diagonal;
         for (Part& part : _parts)
           if (part.M && !get(part.M, part))
           {

@@ -1,7 +1,8 @@
 // petsc::BlockAdd (common/BlockAdd.h) adds element matrices of 3 x 3 blocks
 // as MatSetValuesBlockedLocal(..., ADD_VALUES) does: in place into an
-// assembled sequential AIJ matrix (through its local-to-global map of
-// blocks), skipping negative indices; a block outside the pattern is an
+// assembled AIJ matrix (through its local-to-global map of blocks; on
+// several processes the owned rows, a ghost node's rows through the
+// stash), skipping negative indices; a block outside the pattern is an
 // error; a matrix it cannot add to in place (not assembled) goes through
 // MatSetValuesBlockedLocal.
 #include "common/BlockAdd.h"
@@ -177,10 +178,14 @@ TEST(BlockAdd, AddsInPlaceAsMatSetValuesBlockedLocalOnEveryProcess)
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   Mat A = make_parallel_matrix(), B = make_parallel_matrix();
   const std::vector<std::vector<std::int32_t>> elements = {{2, 3}, {0, 1, 2}, {3, -1, 1}};
+  // Two additions before the assembly, as a Jacobian's joints and cracks:
+  // the second is in place too, though the first left a ghost node's rows
+  // in the matrix's stash.
+  for (const std::size_t first : {std::size_t(0), std::size_t(2)})
   {
     BlockAdd add(A);
-    EXPECT_TRUE(add.in_place());
-    for (std::size_t e = 0; e < elements.size(); ++e)
+    EXPECT_TRUE(add.in_place()) << "the addition from element " << first;
+    for (std::size_t e = first; e < (first == 0 ? 2 : elements.size()); ++e)
       add(elements[e], elements[e], element(elements[e].size(), 10.0 + double(e + rank)));
   }
   for (std::size_t e = 0; e < elements.size(); ++e)
