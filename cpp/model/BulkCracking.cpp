@@ -287,15 +287,21 @@ void BulkCracking::evaluate_strains()
   _strain->eval(std::span<const std::int32_t>(_cells), rows);
 }
 
+bool BulkCracking::evaluated_here() const
+{
+  const std::span<const double> u = _u->x()->array();
+  return _evaluated.valid && _evaluated.trial_version == _trial_version &&
+         std::equal(u.begin(), u.end(), _evaluated.u.begin(), _evaluated.u.end());
+}
+
 bool BulkCracking::evaluate()
 {
   // The last evaluation stands where nothing it read has changed since: the
   // displacement, bit for bit, and the state and settings (trial_version).
   // The Jacobian at the residual's iterate asks for it again.
-  const std::span<const double> u = _u->x()->array();
-  if (_evaluated.valid && _evaluated.trial_version == _trial_version &&
-      std::equal(u.begin(), u.end(), _evaluated.u.begin(), _evaluated.u.end()))
+  if (evaluated_here())
     return _evaluated.ok;
+  const std::span<const double> u = _u->x()->array();
   _trial_implicit = false;
   evaluate_strains();
   bool tangent_changed = true;

@@ -277,6 +277,9 @@ private:
   /// The strain at every point from the model's displacement, into
   /// _strain_values.
   void evaluate_strains();
+  /// Whether evaluate()'s last evaluation stands: nothing it read (the
+  /// displacement, bit for bit, the state and settings) has changed since.
+  bool evaluated_here() const;
   /// evaluate()'s implicit cracks: the crack band's update of every point
   /// from the committed state to _strain_values, into the trial state and
   /// the forms' coefficients. Whether every point's update converged.

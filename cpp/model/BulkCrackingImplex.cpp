@@ -104,11 +104,14 @@ void BulkCracking::implicit_update()
 {
   if (_trial_implicit) // since the last evaluate(): the same displacement
     return;
+  // The strains of the last evaluation where it stands (the converged
+  // iterate's residual made it), else made again.
+  if (!evaluated_here())
+    evaluate_strains();
   _trial_implicit = true;
   ++_trial_version;
   _implicit_failures = 0;
   const int n_points = expression_cracking_strain->num_points;
-  evaluate_strains();
   for (std::size_t c = 0; c < _cells.size(); ++c)
     for (int q = 0; q < n_points; ++q)
     {
