@@ -381,3 +381,42 @@ TEST_F(CrackedSlice, WithoutNewCracksOnlyTheCommittedOnesAnswer)
   cracking().allow_new_cracks(true);
   VecDestroy(&F_held);
 }
+
+TEST_F(ImplexCrackedSlice, StepUpdateKeepsTheEvaluationsStrainsOnlyWhereTheyHold)
+{
+  // IMPL-EX's update after a step (BulkCracking::settle, implicit_update)
+  // takes the strains of the last evaluation where it holds (the converged
+  // iterate's residual), else makes them from the model's displacement.
+  // Each settled state is compared with one settled after a revert, which
+  // cannot keep them; its dissipation tells the states apart (the cracks
+  // grow beyond the committed stretch). Bit for bit: the same strains give
+  // the same operations.
+  Vec x1, x2;
+  for (Vec* w : {&x1, &x2})
+    VecDuplicate(x, w);
+  ASSERT_NO_FATAL_FAILURE(grow_and_extrapolate());
+  stretch(x1, 2.3e-4, 1e-5, 11);
+  stretch(x2, 2.5e-4, 1e-5, 12);
+  // Evaluated at `evaluated_at`, then (unless the same) displaced to
+  // `settled_at` without an evaluation; `revert` in between forgets the
+  // evaluation.
+  auto dissipation = [&](Vec evaluated_at, Vec settled_at, bool revert)
+  {
+    EXPECT_TRUE(eq->internal_forces(evaluated_at, F));
+    if (revert)
+      cracking().revert();
+    if (settled_at != evaluated_at)
+      eq->update_displacement(settled_at);
+    cracking().settle();
+    const double d = cracking().dissipation();
+    cracking().revert();
+    return d;
+  };
+  const double at_x1 = dissipation(x1, x1, true), at_x2 = dissipation(x2, x2, true);
+  EXPECT_GT(at_x2, at_x1) << "the cracks did not grow further at x2";
+  EXPECT_EQ(dissipation(x2, x2, false), at_x2) << "the evaluation's strains, kept";
+  EXPECT_EQ(dissipation(x1, x2, false), at_x2) << "displaced after the evaluation";
+  EXPECT_EQ(dissipation(x2, x1, false), at_x1) << "displaced after the evaluation";
+  for (Vec* w : {&x1, &x2})
+    VecDestroy(w);
+}
