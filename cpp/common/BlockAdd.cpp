@@ -64,7 +64,7 @@ BlockAdd::BlockAdd(Mat A) : _A(A)
         _parts[0].M = diagonal;
         _parts[1].M = off_diagonal;
         for (Part& part : _parts)
-          if (part.M && !get(part.M, part))
+          if (part.M && !get(part))
           {
             restore();
             _parts = {};
@@ -81,18 +81,17 @@ BlockAdd::BlockAdd(Mat A) : _A(A)
       [this] { restore(); });
 }
 
-bool BlockAdd::get(Mat M, Part& part)
+bool BlockAdd::get(Part& part)
 {
   PetscBool done = PETSC_FALSE;
-  check(MatGetRowIJ(M, 0, PETSC_FALSE, PETSC_FALSE, &part.n, &part.ia, &part.ja, &done),
+  check(MatGetRowIJ(part.M, 0, PETSC_FALSE, PETSC_FALSE, &part.n, &part.ia, &part.ja, &done),
         "MatGetRowIJ");
   if (!done)
   {
     part.ia = part.ja = nullptr;
     return false;
   }
-  part.M = M;
-  check(MatSeqAIJGetArray(M, &part.a), "MatSeqAIJGetArray");
+  check(MatSeqAIJGetArray(part.M, &part.a), "MatSeqAIJGetArray");
   return true;
 }
 

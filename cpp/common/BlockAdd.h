@@ -59,8 +59,9 @@ private:
     PetscInt n = 0;               ///< rows
   };
 
-  /// Gets `M`'s rows and values into `part`; false if PETSc has no rows.
-  static bool get(Mat M, Part& part);
+  /// Gets the rows and values of `part.M` into `part`; false if PETSc has
+  /// no rows.
+  static bool get(Part& part);
   /// Gives back the matrix's rows, values and maps that were got.
   void restore() noexcept;
   /// Adds the block at global row `row` (owned) and global column `col`
