@@ -65,7 +65,8 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
       _axis(slice.tube_center), _tube_radius(slice.tube_radius()),
       _visible_width(part.visible_width), _cut(cut_by_symmetry), _implex(part.implex),
       _implex_tolerance(part.implex_tolerance), _predict_strain(part.predict_strain),
-      _E(concrete.E), _nu(concrete.nu), _dT(std::make_shared<fem::Constant<double>>(0.0))
+      _E(concrete.E), _nu(concrete.nu), _alpha(concrete.alpha),
+      _dT(std::make_shared<fem::Constant<double>>(0.0))
 {
   // A radius that takes in no concrete would leave it linear without a
   // word: refused, the same on every process (the count is summed, the
@@ -134,6 +135,7 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
   _loading.assign(_strength.size(), false);
   _kappa_step.assign(_strength.size(), 0.0);
   _closed.assign(_strength.size(), 0);
+  _tangent_written.assign(_cells.size(), 1);
   if (_implex)
     _secant.resize(_strength.size());
   _stress_trial.assign(_strength.size() * voigt, 0.0);
@@ -294,21 +296,39 @@ bool BulkCracking::evaluated_here() const
          std::equal(u.begin(), u.end(), _evaluated.u.begin(), _evaluated.u.end());
 }
 
-bool BulkCracking::evaluate()
+bool BulkCracking::evaluate_points(bool stresses)
 {
   // The last evaluation stands where nothing it read has changed since: the
   // displacement, bit for bit, and the state and settings (trial_version).
   // The Jacobian at the residual's iterate asks for it again.
   if (evaluated_here())
+  {
+    if (stresses && !_evaluated.stresses)
+    {
+      apply_stresses(); // the same evaluation, completed
+      _evaluated.stresses = true;
+    }
     return _evaluated.ok;
+  }
   const std::span<const double> u = _u->x()->array();
   _trial_implicit = false;
   evaluate_strains();
   bool tangent_changed = true;
-  const bool ok = _implex ? apply_secants(tangent_changed) : update_points();
+  bool ok = true;
+  if (_implex)
+  {
+    ok = apply_sides(tangent_changed);
+    if (stresses)
+      apply_stresses();
+  }
+  else
+  {
+    ok = update_points();
+    stresses = true;
+  }
   if (tangent_changed)
     ++_tangent_version;
-  _evaluated = {true, ++_trial_version, {u.begin(), u.end()}, ok};
+  _evaluated = {true, ++_trial_version, {u.begin(), u.end()}, ok, stresses};
   return ok;
 }
 
@@ -341,6 +361,7 @@ bool BulkCracking::update_points()
         for (int k = 0; k < voigt_sq; ++k)
           d_C[k] = r.tangent[k] - C[k];
       });
+  std::fill(_tangent_written.begin(), _tangent_written.end(), 1);
   return ok;
 }
 
@@ -434,14 +455,20 @@ void BulkCracking::add_tangent_change(Mat A, std::vector<double>& assembled)
   {
     add_tangent(A);
     assembled.assign(now.begin(), now.end());
+    std::fill(_tangent_written.begin(), _tangent_written.end(), 0);
     return;
   }
-  // The cells with a point whose tangent changed, and the change there.
+  // The cells with a point whose tangent changed, and the change there:
+  // among those whose tangent an evaluation wrote since the last call.
   const int n_points = expression_cracking_strain->num_points;
   std::vector<std::int32_t> changed;
   const PointValues d_C_at(*_d_C, voigt_sq), change_at(*_d_C_change, voigt_sq);
-  for (const std::int32_t cell : _cells)
+  for (std::size_t c = 0; c < _cells.size(); ++c)
   {
+    if (!_tangent_written[c])
+      continue;
+    _tangent_written[c] = 0;
+    const std::int32_t cell = _cells[c];
     bool differs = false;
     for (int q = 0; q < n_points; ++q)
     {

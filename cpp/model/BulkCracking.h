@@ -153,7 +153,17 @@ public:
   /// not converge): the step is to be cut. At the displacement of the last
   /// evaluation, with trial_version() unchanged, that evaluation stands.
   /// Local to the process.
-  bool evaluate();
+  bool evaluate() { return evaluate_points(true); }
+  /// IMPL-EX: evaluate() as far as the tangent goes: each point's side of
+  /// closure, and the tangent's coefficient where it changed; not the
+  /// stresses nor the forces' coefficient. At fixed sides a step's cracks'
+  /// forces are linear in the strain, so the kept K plus tangent gives them
+  /// (Equilibrium::internal_forces, with free_expansion()). evaluate() at the
+  /// same displacement completes it. False if a point's map failed.
+  bool evaluate_tangent() { return evaluate_points(false); }
+  /// The concrete's thermal expansion [1/degC]: the free strain of every
+  /// cracking cell is free_expansion() dT I (forms/cracking.py's strain).
+  double free_expansion() const { return _alpha; }
   /// Adds the forces of the last evaluate() to f (local with ghosts; the
   /// caller sums the ghosts into their owners) [N].
   void add_forces(std::span<double> f) const;
@@ -166,7 +176,9 @@ public:
   /// `assembled` becomes the last evaluate()'s. So A keeps K plus the
   /// current tangent from call to call at the cost of the cells whose
   /// cracks changed (IMPL-EX: on the bench's corroded demo, a quarter of
-  /// the cracking cells per step; Equilibrium::bulk_tangent).
+  /// the cracking cells per step; Equilibrium::bulk_tangent). Only the
+  /// cells whose tangent an evaluation changed since the last call are
+  /// compared with `assembled`: one such sum per model.
   void add_tangent_change(Mat A, std::vector<double>& assembled);
 
   /// The energy the cracks release from the committed state to the
@@ -274,6 +286,8 @@ private:
   /// (no forms' coefficients); once per converged step (the displacement
   /// does not move between the step's check, record and commit).
   void implicit_update();
+  /// evaluate() (`stresses`) or evaluate_tangent().
+  bool evaluate_points(bool stresses);
   /// The strain at every point from the model's displacement, into
   /// _strain_values.
   void evaluate_strains();
@@ -284,11 +298,16 @@ private:
   /// from the committed state to _strain_values, into the trial state and
   /// the forms' coefficients. Whether every point's update converged.
   bool update_points();
-  /// evaluate()'s IMPL-EX cracks: every point's response to _strain_values
-  /// by its step's secant maps (made at the step's first evaluation), into
-  /// the trial stress and the forms' coefficients. Whether every map
-  /// answered; `tangent_changed`: whether some point's tangent changed.
-  bool apply_secants(bool& tangent_changed);
+  /// evaluate()'s IMPL-EX cracks: every point's side of closure at
+  /// _strain_values by its step's secant maps (made at the step's first
+  /// evaluation), and the tangent's coefficient where it changed. Whether
+  /// every map answered; `tangent_changed`: whether some point's tangent
+  /// changed.
+  bool apply_sides(bool& tangent_changed);
+  /// evaluate()'s IMPL-EX cracks after apply_sides(): every point's stress
+  /// by the map of its side, into the trial stress and the forces'
+  /// coefficient.
+  void apply_stresses();
   /// IMPL-EX: every point's secant maps for the step (_secant), from the
   /// committed state and the last step's growth, extrapolated by
   /// set_extrapolation()'s ratio: of the history, or of the strain
@@ -375,6 +394,7 @@ private:
   double _implex_tolerance = 0;        ///< cracking.implex_tolerance
   bool _predict_strain = false;        ///< cracking.implex_predictor = "strain"
   double _E = 0, _nu = 0;              ///< the concrete's [MPa], [-]
+  double _alpha = 0;                   ///< the concrete's thermal expansion [1/degC]
   double _extrapolation = 0;           ///< set_extrapolation
   /// IMPL-EX: the trial state is implicit_update()'s, and no evaluate()
   /// came after it
@@ -390,6 +410,9 @@ private:
   /// 1 closed, 2 neither (its map failed, elastic); its tangent changes
   /// with it
   std::vector<std::uint8_t> _closed;
+  /// [cell] an evaluation changed a point's tangent coefficient since the
+  /// last add_tangent_change()
+  std::vector<std::uint8_t> _tangent_written;
   /// [point] IMPL-EX: the response at the committed state and the
   /// extrapolated history as linear maps (CrackBand::secant_operator), the
   /// same at every evaluation of a step; current unless something was
@@ -404,6 +427,7 @@ private:
     std::uint64_t trial_version = 0; ///< trial_version() after it
     std::vector<double> u;           ///< its displacement (with ghosts) [mm]
     bool ok = false;                 ///< its result
+    bool stresses = false;           ///< the stresses made too (not evaluate_tangent())
   } _evaluated;                      ///< evaluate()'s last evaluation
   std::shared_ptr<dolfinx::fem::Constant<double>> _dT;
   std::shared_ptr<dolfinx::fem::Function<double>> _d_sigma, _d_C;

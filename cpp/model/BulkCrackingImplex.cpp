@@ -42,7 +42,19 @@ void BulkCracking::make_secants()
   _secant_current = true;
 }
 
-bool BulkCracking::apply_secants(bool& tangent_changed)
+namespace
+{
+/// The map of `op` that answers `strain`: its open or closed side's, or
+/// none, C (uncracked, or the map failed); `side` secant_side()'s.
+const bulk::Voigt66* secant_map(const bulk::SecantOperator& op, int side)
+{
+  return side == bulk::CrackBand::secant_open || side == bulk::CrackBand::secant_closed
+             ? &op.tangent[side]
+             : nullptr;
+}
+} // namespace
+
+bool BulkCracking::apply_sides(bool& tangent_changed)
 {
   // The step's maps, made at its first evaluation: each point's tangent
   // (d_C) is written then, and afterwards only where its crack opens or
@@ -54,16 +66,10 @@ bool BulkCracking::apply_secants(bool& tangent_changed)
   const bulk::Voigt66& C = _band.stiffness();
   bool ok = true;
   for_each_point(
-      [&](std::size_t, std::size_t i, const bulk::Voigt& strain, std::span<double> d_sigma,
-          auto d_C_at)
+      [&](std::size_t c, std::size_t i, const bulk::Voigt& strain, std::span<double>, auto d_C_at)
       {
         const bulk::SecantOperator& op = _secant[i];
         const int side = bulk::CrackBand::secant_side(op, strain);
-        // The map that answers; none: C (uncracked, or the map failed).
-        const bulk::Voigt66* T =
-            side == bulk::CrackBand::secant_open || side == bulk::CrackBand::secant_closed
-                ? &op.tangent[side]
-                : nullptr;
         ok = ok && side != bulk::CrackBand::secant_failed;
         // The side of closure as _closed keeps it (a failed map answers C,
         // and so does an uncracked point, on the open side).
@@ -74,11 +80,39 @@ bool BulkCracking::apply_secants(bool& tangent_changed)
           _closed[i] = closed;
           tangent_changed = true;
         }
-        const bulk::Voigt elastic = bulk::multiply(C, strain);
+        if (write_tangent)
+        {
+          // A step's new maps are mostly last step's (a crack that unloads
+          // keeps its history): the cell is marked where a value changed.
+          const bulk::Voigt66* T = secant_map(op, side);
+          const std::span<double> d_C = d_C_at();
+          bool changed = false;
+          for (int k = 0; k < voigt_sq; ++k)
+          {
+            const double value = T ? (*T)[k] - C[k] : 0.0;
+            changed = changed || d_C[k] != value;
+            d_C[k] = value;
+          }
+          if (changed)
+            _tangent_written[c] = 1;
+        }
+      });
+  return ok;
+}
+
+void BulkCracking::apply_stresses()
+{
+  const bulk::Voigt66& C = _band.stiffness();
+  for_each_point(
+      [&](std::size_t, std::size_t i, const bulk::Voigt& strain, std::span<double> d_sigma, auto)
+      {
+        const bulk::SecantOperator& op = _secant[i];
+        const bulk::Voigt66* T = secant_map(op, bulk::CrackBand::secant_side(op, strain));
         double* stress = _stress_trial.data() + voigt * i;
         if (T)
         {
           const bulk::Voigt s = bulk::multiply(*T, strain);
+          const bulk::Voigt elastic = bulk::multiply(C, strain);
           for (int k = 0; k < voigt; ++k)
           {
             stress[k] = s[k];
@@ -87,17 +121,11 @@ bool BulkCracking::apply_secants(bool& tangent_changed)
         }
         else
         {
+          const bulk::Voigt elastic = bulk::multiply(C, strain);
           std::copy(elastic.begin(), elastic.end(), stress);
           std::fill(d_sigma.begin(), d_sigma.end(), 0.0);
         }
-        if (write_tangent)
-        {
-          const std::span<double> d_C = d_C_at();
-          for (int k = 0; k < voigt_sq; ++k)
-            d_C[k] = T ? (*T)[k] - C[k] : 0.0;
-        }
       });
-  return ok;
 }
 
 void BulkCracking::implicit_update()
@@ -137,7 +165,9 @@ void BulkCracking::implicit_update()
 
 double BulkCracking::implex_error(std::int64_t& failed_points)
 {
-  // The stress the step converged with, before the update replaces it.
+  // The stress the step converged with, before the update replaces it (its
+  // last evaluation may have been evaluate_tangent()'s).
+  evaluate();
   const std::vector<double> stepped = _stress_trial;
   implicit_update();
   double sums[2] = {

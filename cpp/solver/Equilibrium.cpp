@@ -19,7 +19,8 @@ namespace
 {
 /// Test hook, not a scene key (tests/e2e/test_implex_tends_to_implicit.py):
 /// with PUSHOUT_TEST_NO_TANGENT_CACHE set, IMPL-EX cracks' tangent is
-/// assembled afresh at every Newton iteration, as for implicit cracks.
+/// assembled afresh at every Newton iteration, and their forces from the
+/// crack band's stresses at every residual, as for implicit cracks.
 bool test_no_tangent_cache()
 {
   static const bool set = std::getenv("PUSHOUT_TEST_NO_TANGENT_CACHE") != nullptr;
@@ -41,6 +42,9 @@ Equilibrium::~Equilibrium()
     petsc::check_nothrow(MatDestroy(&_bulk_tangent), "MatDestroy");
   if (_f_thermal)
     petsc::check_nothrow(VecDestroy(&_f_thermal), "VecDestroy");
+  for (Vec* v : {&_free_expansion, &_expansion_load, &_shifted})
+    if (*v)
+      petsc::check_nothrow(VecDestroy(v), "VecDestroy");
   petsc::check_nothrow(VecDestroy(&_f_external), "VecDestroy");
 }
 
@@ -137,17 +141,62 @@ Mat Equilibrium::bulk_tangent()
   return _bulk_tangent;
 }
 
+void Equilibrium::kept_tangent_forces(Vec x, Vec F)
+{
+  const Mat M = bulk_tangent();
+  if (_dT == 0.0)
+  {
+    check(MatMult(M, x, F), "MatMult");
+    return;
+  }
+  if (!_free_expansion || _expansion_dT != _dT)
+  {
+    if (!_free_expansion)
+      for (Vec* v : {&_free_expansion, &_expansion_load, &_shifted})
+        *v = create_vector();
+    // u_T = alpha dT X at the nodes: its strain is alpha dT I on every
+    // cracking cell (all of one concrete).
+    const double scale = _model.bulk_cracking()->free_expansion() * _dT;
+    const std::vector<double> X = _model.space()->tabulate_dof_coordinates(false); // [node][3]
+    double* a;
+    check(VecGetArray(_free_expansion, &a), "VecGetArray");
+    PetscInt n_owned;
+    check(VecGetLocalSize(_free_expansion, &n_owned), "VecGetLocalSize");
+    for (PetscInt i = 0; i < n_owned; ++i)
+      a[i] = scale * X[i];
+    check(VecRestoreArray(_free_expansion, &a), "VecRestoreArray");
+    check(MatMult(_model.stiffness(), _free_expansion, _expansion_load), "MatMult");
+    check(VecAXPY(_expansion_load, -1.0, _f_thermal), "VecAXPY");
+    _expansion_dT = _dT;
+  }
+  check(VecWAXPY(_shifted, -1.0, _free_expansion, x), "VecWAXPY");
+  check(MatMult(M, _shifted, F), "MatMult");
+  check(VecAXPY(F, 1.0, _expansion_load), "VecAXPY");
+}
+
 bool Equilibrium::internal_forces(Vec x, Vec F)
 {
   update_displacement(x);
   std::span<double> fi = _f_interface.mutable_array();
   std::fill(fi.begin(), fi.end(), 0.0);
-  const bool ok = assemble_joints(fi, nullptr);
+  bool ok = true;
+  model::BulkCracking* cracking = _model.bulk_cracking();
+  if (cracking && cracking->implex() && !test_no_tangent_cache())
+  {
+    // The cracks' forces by the kept tangent, brought up to where a crack
+    // opens or closes; the Jacobian at this iterate then finds it current.
+    ok = assemble_interfaces(fi, nullptr);
+    ok = cracking->evaluate_tangent() && ok;
+    kept_tangent_forces(x, F);
+  }
+  else
+  {
+    ok = assemble_joints(fi, nullptr);
+    check(MatMult(_model.stiffness(), x, F), "MatMult");
+    if (_f_thermal)
+      check(VecAXPY(F, -1.0, _f_thermal), "VecAXPY");
+  }
   _f_interface.scatter_rev(std::plus<double>());
-
-  check(MatMult(_model.stiffness(), x, F), "MatMult");
-  if (_f_thermal)
-    check(VecAXPY(F, -1.0, _f_thermal), "VecAXPY");
   check(VecAXPY(F, -1.0, _f_external), "VecAXPY");
   double* f;
   check(VecGetArray(F, &f), "VecGetArray");
@@ -294,8 +343,9 @@ bool Equilibrium::jacobian(Vec x, Mat J)
     // The cracks' secant tangent is the step's at every iteration but where
     // a crack opens or closes (BulkCracking::tangent_version): K plus it is
     // kept, and only the joints' tangent is added afresh. The crack band is
-    // evaluated first (it may open or close a crack).
-    ok = cracking->evaluate();
+    // evaluated first (it may open or close a crack), as far as the tangent
+    // goes: the residual at this iterate has done it.
+    ok = cracking->evaluate_tangent();
     check(MatCopy(bulk_tangent(), J, SAME_NONZERO_PATTERN), "MatCopy");
     ok = assemble_interfaces(fi, J) && ok;
   }

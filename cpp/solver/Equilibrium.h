@@ -106,6 +106,20 @@ private:
   /// assembled again only when that tangent changed
   /// (BulkCracking::tangent_version). Collective.
   Mat bulk_tangent();
+  /// IMPL-EX cracks, after BulkCracking::evaluate_tangent(): K x plus the
+  /// cracks' forces less the thermal load, into F, by the kept K plus
+  /// cracks' tangent M. At fixed sides of closure the cracks' forces are
+  /// A (x - u_T), A their tangent and u_T the displacement whose strain is
+  /// the concrete's free strain (alpha dT I on the cracking cells, exact on
+  /// the trilinear cells), so that K x + f_crack - f_thermal = M (x - u_T)
+  /// + (K u_T - f_thermal): one product, as K x is, where assembling
+  /// f_crack took its own pass over every cracking point. Collective.
+  void kept_tangent_forces(Vec x, Vec F);
+
+  Vec _free_expansion = nullptr; ///< u_T of kept_tangent_forces() [mm]
+  Vec _expansion_load = nullptr; ///< K u_T - f_thermal there [N]
+  Vec _shifted = nullptr;        ///< x - u_T there [mm]
+  double _expansion_dT = 0;      ///< the dT of _free_expansion [degC]
 
   model::Model& _model;
   Vec _f_thermal = nullptr, _f_external = nullptr;

@@ -32,8 +32,10 @@ a face), corroded to x = 30 um in 15 steps and pushed 5 um:
    1e-6 a point whose stress lands within it of its strength may crack on
    one and not the other.
 5. A step's tangent is kept from one Newton iteration to the next until a
-   crack opens or closes (Equilibrium::jacobian): the same p(x) and Newton
-   iterations as with the tangent assembled at every iteration. A kept
+   crack opens or closes (Equilibrium::jacobian), and the residual takes
+   the cracks' forces from it (Equilibrium::internal_forces): the same p(x)
+   and Newton iterations as with the tangent assembled at every iteration
+   and the forces from the crack band's stresses. A kept
    tangent that missed a crack closing would not move the converged p, but
    GMRES would solve with a wrong Jacobian and Newton would need more
    iterations; the sums of additions differ in order (the joints' and the
