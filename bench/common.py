@@ -36,13 +36,19 @@ def markdown_table(header, rows):
     return "\n".join(lines) + "\n"
 
 
-def arguments(doc, out_folder):
+def arguments(doc, out_folder, repeat=False):
     """The options of a bench that runs cases into results/OUT_FOLDER:
     --pushout, --out, --reuse (keep runs that have a summary) and --only
-    (the cases to run); `doc` is the script's docstring (its --help)."""
+    (the cases to run), and with `repeat` --repeat N (rounds of the timed
+    cases); `doc` is the script's docstring (its --help)."""
     ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--pushout", default=PUSHOUT)
     ap.add_argument("--out", default=os.path.join(ROOT, "results", out_folder))
     ap.add_argument("--reuse", action="store_true")
     ap.add_argument("--only", nargs="*", default=None)
-    return ap.parse_args()
+    if repeat:
+        ap.add_argument("--repeat", type=int, default=1, metavar="N")
+    args = ap.parse_args()
+    if repeat and args.repeat < 1:
+        ap.error(f"--repeat must be at least 1, not {args.repeat}")
+    return args
