@@ -17,8 +17,9 @@ other):
                   0.15, seed 1: the whole slice),
                   displacement control (the default), the implicit cracks
                   (cracking.integration = "implicit");
-  embedded_auto   the same under loading.control = "auto" (dissipation;
-                  the implicit cracks, as integration "auto" takes there);
+  embedded_auto   the same specimen at the scene's integration ("auto":
+                  IMPL-EX under every control) under loading.control =
+                  "auto" (dissipation control where the cracks snap back);
   embedded_implex the same with IMPL-EX cracks (cracking.integration =
                   "implex", what its default "auto" takes under displacement
                   control; cracking.implex_tolerance at its default 0.0025,
