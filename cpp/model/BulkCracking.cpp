@@ -13,6 +13,7 @@
 #include <dolfinx/la/petsc.h>
 #include <functional>
 #include <sstream>
+#include <stdexcept>
 
 namespace pushout::model
 {
@@ -439,6 +440,8 @@ double BulkCracking::integrate(const std::function<double(std::size_t)>& value_a
 
 void BulkCracking::add_forces(std::span<double> f) const
 {
+  if (_evaluated.valid && !_evaluated.stresses)
+    throw std::logic_error("BulkCracking::add_forces after evaluate_tangent(): evaluate() first");
   fem::assemble_vector(f, *_L);
 }
 
@@ -456,8 +459,13 @@ void BulkCracking::add_tangent_change(Mat A, std::vector<double>& assembled)
     add_tangent(A);
     assembled.assign(now.begin(), now.end());
     std::fill(_tangent_written.begin(), _tangent_written.end(), 0);
+    _tangent_written_for = &assembled;
     return;
   }
+  // Another sum than the last call's: its values may differ anywhere.
+  if (&assembled != _tangent_written_for)
+    std::fill(_tangent_written.begin(), _tangent_written.end(), 1);
+  _tangent_written_for = &assembled;
   // The cells with a point whose tangent changed, and the change there:
   // among those whose tangent an evaluation wrote since the last call.
   const int n_points = expression_cracking_strain->num_points;

@@ -158,19 +158,22 @@ public:
   /// closure, and the tangent's coefficient where it changed; not the
   /// stresses nor the forces' coefficient. At fixed sides a step's cracks'
   /// forces are linear in the strain, so the kept K plus tangent gives them
-  /// (Equilibrium::internal_forces, with free_expansion()). evaluate() at the
+  /// (Equilibrium::internal_forces, with thermal_expansion()). evaluate() at the
   /// same displacement completes it. False if a point's map failed.
   bool evaluate_tangent() { return evaluate_points(false); }
   /// The concrete's thermal expansion [1/degC]: the free strain of every
-  /// cracking cell is free_expansion() dT I (forms/cracking.py's strain).
-  double free_expansion() const { return _alpha; }
+  /// cracking cell is thermal_expansion() dT I (forms/cracking.py's strain).
+  double thermal_expansion() const { return _alpha; }
   /// Adds the forces of the last evaluate() to f (local with ghosts; the
-  /// caller sums the ghosts into their owners) [N].
+  /// caller sums the ghosts into their owners) [N]. Not after an
+  /// evaluate_tangent(), which leaves the forces' coefficient as it was (a
+  /// logic error).
   void add_forces(std::span<double> f) const;
-  /// Adds the tangent of the last evaluate() to A (before its final
+  /// Adds the tangent of the last evaluation (evaluate() or
+  /// evaluate_tangent()) to A (before its final
   /// assembly) [N/mm].
   void add_tangent(Mat A) const;
-  /// Adds to A what the tangent of the last evaluate() adds beyond
+  /// Adds to A what the tangent of the last evaluation adds beyond
   /// `assembled`, the tangent's point values last added to A (empty: none,
   /// the whole tangent), integrated over the cells where it changed only;
   /// `assembled` becomes the last evaluate()'s. So A keeps K plus the
@@ -178,7 +181,8 @@ public:
   /// cracks changed (IMPL-EX: on the bench's corroded demo, a quarter of
   /// the cracking cells per step; Equilibrium::bulk_tangent). Only the
   /// cells whose tangent an evaluation changed since the last call are
-  /// compared with `assembled`: one such sum per model.
+  /// compared with `assembled`, if it is the last call's; another's is
+  /// compared at every cell (a second such sum on the model).
   void add_tangent_change(Mat A, std::vector<double>& assembled);
 
   /// The energy the cracks release from the committed state to the
@@ -413,6 +417,9 @@ private:
   /// [cell] an evaluation changed a point's tangent coefficient since the
   /// last add_tangent_change()
   std::vector<std::uint8_t> _tangent_written;
+  /// The `assembled` of the last add_tangent_change(), whose values
+  /// _tangent_written's unmarked cells hold
+  const std::vector<double>* _tangent_written_for = nullptr;
   /// [point] IMPL-EX: the response at the committed state and the
   /// extrapolated history as linear maps (CrackBand::secant_operator), the
   /// same at every evaluation of a step; current unless something was

@@ -72,8 +72,9 @@ bool BulkCracking::apply_sides(bool& tangent_changed)
       [&](std::size_t c, std::size_t i, const bulk::Voigt& strain, std::span<double>, auto d_C_at)
       {
         // What picks the side, a few points ahead: the points' maps lie
-        // 704 bytes apart, too far for the processor to fetch them ahead
-        // by itself, and this loop does little else.
+        // sizeof(SecantOperator), 704 bytes, apart, too far for the
+        // processor to fetch them ahead by itself, and this loop does
+        // little else (a builtin of GCC and Clang).
         if (i + prefetch_ahead < _secant.size())
           __builtin_prefetch(&_secant[i + prefetch_ahead]);
         const bulk::SecantOperator& op = _secant[i];

@@ -156,8 +156,8 @@ void Equilibrium::kept_tangent_forces(Vec x, Vec F)
         *v = create_vector();
     // u_T = alpha dT X at the nodes: its strain is alpha dT I on every
     // cracking cell (all of one concrete).
-    const double scale = _model.bulk_cracking()->free_expansion() * _dT;
-    const std::vector<double> X = _model.space()->tabulate_dof_coordinates(false); // [node][3]
+    const double scale = _model.bulk_cracking()->thermal_expansion() * _dT;        // strain [-]
+    const std::vector<double> X = _model.space()->tabulate_dof_coordinates(false); // [node][3] mm
     double* a;
     check(VecGetArray(_free_expansion, &a), "VecGetArray");
     PetscInt n_owned;
@@ -269,7 +269,10 @@ bool Equilibrium::residual(Vec x, Vec F, double& reaction_norm)
 // F = K x + f_int - f_thermal - f_external: floor = C eps (||K||_inf ||x||
 // + ||f_thermal|| + ||f_external|| + ||f_int||), C = residual_floor_factor
 // (NonlinearProblem.h). The term of K x dominates when the tube moves as a
-// body: K x is then a sum of large terms that cancel.
+// body: K x is then a sum of large terms that cancel. With IMPL-EX cracks
+// the cracks' forces are in K x's product (kept_tangent_forces: (K + A)
+// (x - u_T), A softer than K where it is not zero), and K u_T - f_thermal
+// cancels to the size of f_thermal's term.
 double Equilibrium::residual_floor(Vec x)
 {
   if (_K_norm < 0)

@@ -102,7 +102,7 @@ private:
   bool assemble_interfaces(std::span<double> f, Mat A);
   /// The same, and the concrete's cracks' forces and tangent too.
   bool assemble_joints(std::span<double> f, Mat A);
-  /// IMPL-EX cracks: K plus the cracks' tangent of the last evaluate(),
+  /// IMPL-EX cracks: K plus the cracks' tangent of the last evaluation,
   /// assembled again only when that tangent changed
   /// (BulkCracking::tangent_version). Collective.
   Mat bulk_tangent();

@@ -36,11 +36,12 @@ a face), corroded to x = 30 um in 15 steps and pushed 5 um:
    the cracks' forces from it (Equilibrium::internal_forces): the same p(x)
    and Newton iterations as with the tangent assembled at every iteration
    and the forces from the crack band's stresses. A kept
-   tangent that missed a crack closing would not move the converged p, but
-   GMRES would solve with a wrong Jacobian and Newton would need more
-   iterations; the sums of additions differ in order (the joints' and the
-   cracks' tangents), so the counts may differ by round-off, by one (both
-   at SNES_RTOL, as 4). PETSc's log shows the test hook at work: the kept
+   tangent that missed a crack closing would now move the converged p (the
+   residual is made of it), where the bound 1e-6 MPa holds p; a Jacobian
+   that missed it would cost Newton iterations. The sums of additions
+   differ in order (the joints' and the cracks' tangents, the residual's
+   forces), so the counts may differ by round-off, by one (both at
+   SNES_RTOL, as 4). PETSc's log shows the test hook at work: the kept
    tangent's own assemblies.
 6. IMPL-EX's own Newton tolerance (common.IMPLEX_RTOL, the default) against
    SNES_RTOL: p(x) within the bound of Newton's tolerance on the two runs
