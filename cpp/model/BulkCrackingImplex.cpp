@@ -118,10 +118,10 @@ void BulkCracking::apply_stresses()
         const bulk::SecantOperator& op = _secant[i];
         const bulk::Voigt66* T = secant_map(op, bulk::CrackBand::secant_side(op, strain));
         double* stress = _stress_trial.data() + voigt * i;
+        const bulk::Voigt elastic = bulk::multiply(C, strain);
         if (T)
         {
           const bulk::Voigt s = bulk::multiply(*T, strain);
-          const bulk::Voigt elastic = bulk::multiply(C, strain);
           for (int k = 0; k < voigt; ++k)
           {
             stress[k] = s[k];
@@ -130,7 +130,6 @@ void BulkCracking::apply_stresses()
         }
         else
         {
-          const bulk::Voigt elastic = bulk::multiply(C, strain);
           std::copy(elastic.begin(), elastic.end(), stress);
           std::fill(d_sigma.begin(), d_sigma.end(), 0.0);
         }

@@ -59,6 +59,37 @@ void Equilibrium::set_temperature_change(double dT)
   if (_f_thermal)
     check(VecDestroy(&_f_thermal), "VecDestroy");
   _f_thermal = dT != 0.0 ? _model.thermal_load(dT) : nullptr;
+  make_free_expansion();
+}
+
+bool Equilibrium::kept_tangent() const
+{
+  const model::BulkCracking* cracking = _model.bulk_cracking();
+  return cracking && cracking->implex() && !test_no_tangent_cache();
+}
+
+void Equilibrium::make_free_expansion()
+{
+  for (Vec* v : {&_free_expansion, &_expansion_load, &_shifted})
+    if (*v)
+      check(VecDestroy(v), "VecDestroy");
+  if (_dT == 0.0 || !kept_tangent())
+    return;
+  for (Vec* v : {&_free_expansion, &_expansion_load, &_shifted})
+    *v = create_vector();
+  // u_T = alpha dT X at the nodes: its strain is alpha dT I on every
+  // cracking cell (all of one concrete).
+  const double scale = _model.bulk_cracking()->thermal_expansion() * _dT;        // strain [-]
+  const std::vector<double> X = _model.space()->tabulate_dof_coordinates(false); // [node][3] mm
+  double* a;
+  check(VecGetArray(_free_expansion, &a), "VecGetArray");
+  PetscInt n_owned;
+  check(VecGetLocalSize(_free_expansion, &n_owned), "VecGetLocalSize");
+  for (PetscInt i = 0; i < n_owned; ++i)
+    a[i] = scale * X[i];
+  check(VecRestoreArray(_free_expansion, &a), "VecRestoreArray");
+  check(MatMult(_model.stiffness(), _free_expansion, _expansion_load), "MatMult");
+  check(VecAXPY(_expansion_load, -1.0, _f_thermal), "VecAXPY");
 }
 
 void Equilibrium::set_external_forces(const std::vector<std::pair<std::int32_t, double>>& forces)
@@ -144,30 +175,10 @@ Mat Equilibrium::bulk_tangent()
 void Equilibrium::kept_tangent_forces(Vec x, Vec F)
 {
   const Mat M = bulk_tangent();
-  if (_dT == 0.0)
+  if (!_free_expansion) // dT = 0: no free strain
   {
     check(MatMult(M, x, F), "MatMult");
     return;
-  }
-  if (!_free_expansion || _expansion_dT != _dT)
-  {
-    if (!_free_expansion)
-      for (Vec* v : {&_free_expansion, &_expansion_load, &_shifted})
-        *v = create_vector();
-    // u_T = alpha dT X at the nodes: its strain is alpha dT I on every
-    // cracking cell (all of one concrete).
-    const double scale = _model.bulk_cracking()->thermal_expansion() * _dT;        // strain [-]
-    const std::vector<double> X = _model.space()->tabulate_dof_coordinates(false); // [node][3] mm
-    double* a;
-    check(VecGetArray(_free_expansion, &a), "VecGetArray");
-    PetscInt n_owned;
-    check(VecGetLocalSize(_free_expansion, &n_owned), "VecGetLocalSize");
-    for (PetscInt i = 0; i < n_owned; ++i)
-      a[i] = scale * X[i];
-    check(VecRestoreArray(_free_expansion, &a), "VecRestoreArray");
-    check(MatMult(_model.stiffness(), _free_expansion, _expansion_load), "MatMult");
-    check(VecAXPY(_expansion_load, -1.0, _f_thermal), "VecAXPY");
-    _expansion_dT = _dT;
   }
   check(VecWAXPY(_shifted, -1.0, _free_expansion, x), "VecWAXPY");
   check(MatMult(M, _shifted, F), "MatMult");
@@ -180,13 +191,12 @@ bool Equilibrium::internal_forces(Vec x, Vec F)
   std::span<double> fi = _f_interface.mutable_array();
   std::fill(fi.begin(), fi.end(), 0.0);
   bool ok = true;
-  model::BulkCracking* cracking = _model.bulk_cracking();
-  if (cracking && cracking->implex() && !test_no_tangent_cache())
+  if (kept_tangent())
   {
     // The cracks' forces by the kept tangent, brought up to where a crack
     // opens or closes; the Jacobian at this iterate then finds it current.
     ok = assemble_interfaces(fi, nullptr);
-    ok = cracking->evaluate_tangent() && ok;
+    ok = _model.bulk_cracking()->evaluate_tangent() && ok;
     kept_tangent_forces(x, F);
   }
   else
@@ -340,15 +350,14 @@ bool Equilibrium::jacobian(Vec x, Mat J)
   std::span<double> fi = _f_interface.mutable_array();
   std::fill(fi.begin(), fi.end(), 0.0);
   bool ok = true;
-  model::BulkCracking* cracking = _model.bulk_cracking();
-  if (cracking && cracking->implex() && !test_no_tangent_cache())
+  if (kept_tangent())
   {
     // The cracks' secant tangent is the step's at every iteration but where
     // a crack opens or closes (BulkCracking::tangent_version): K plus it is
     // kept, and only the joints' tangent is added afresh. The crack band is
     // evaluated first (it may open or close a crack), as far as the tangent
     // goes: the residual at this iterate has done it.
-    ok = cracking->evaluate_tangent();
+    ok = _model.bulk_cracking()->evaluate_tangent();
     check(MatCopy(bulk_tangent(), J, SAME_NONZERO_PATTERN), "MatCopy");
     ok = assemble_interfaces(fi, J) && ok;
   }

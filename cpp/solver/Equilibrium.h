@@ -115,11 +115,13 @@ private:
   /// + (K u_T - f_thermal): one product, as K x is, where assembling
   /// f_crack took its own pass over every cracking point. Collective.
   void kept_tangent_forces(Vec x, Vec F);
-
-  Vec _free_expansion = nullptr; ///< u_T of kept_tangent_forces() [mm]
-  Vec _expansion_load = nullptr; ///< K u_T - f_thermal there [N]
-  Vec _shifted = nullptr;        ///< x - u_T there [mm]
-  double _expansion_dT = 0;      ///< the dT of _free_expansion [degC]
+  /// Whether the residual and Jacobian take the IMPL-EX cracks' kept
+  /// tangent (not with the test hook PUSHOUT_TEST_NO_TANGENT_CACHE).
+  bool kept_tangent() const;
+  /// kept_tangent_forces()' u_T and K u_T - f_thermal for _dT (none at
+  /// 0, or without the kept tangent); with the thermal load, once per
+  /// temperature change.
+  void make_free_expansion();
 
   model::Model& _model;
   Vec _f_thermal = nullptr, _f_external = nullptr;
@@ -131,6 +133,9 @@ private:
   dolfinx::la::Vector<double> _g_energy; ///< dG/du of energy_release(), local with ghosts
   double _K_norm = -1;                   ///< ||K||_inf, once needed [N/mm]
   bool _single_precision = false;
+  Vec _free_expansion = nullptr;           ///< u_T of kept_tangent_forces() [mm]
+  Vec _expansion_load = nullptr;           ///< K u_T - f_thermal there [N]
+  Vec _shifted = nullptr;                  ///< x - u_T there [mm]
   Mat _bulk_tangent = nullptr;             ///< bulk_tangent()
   std::uint64_t _bulk_tangent_version = 0; ///< of the cracks' tangent in it
   /// The cracks' tangent in _bulk_tangent (BulkCracking::add_tangent_change)
