@@ -80,7 +80,12 @@ public:
   double visible_width() const { return _visible_width; }
 
   /// The temperature change whose free strain the stress does not see [degC].
+  /// Equilibrium::set_temperature_change sets it with the thermal load and
+  /// the IMPL-EX residual's free-strain shift, which are made of the same
+  /// value (Equilibrium::kept_tangent_forces refuses a different one).
   void set_temperature_change(double dT);
+  /// What set_temperature_change() set [degC].
+  double temperature_change() const { return _dT->value[0]; }
   /// The step's pseudo-time increment, for the cracks' damage viscosity
   /// (cracking.viscosity) [mm of push].
   void set_time_increment(double dt)

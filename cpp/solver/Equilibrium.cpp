@@ -9,6 +9,7 @@
 #include <dolfinx/la/petsc.h>
 #include <limits>
 #include <petscksp.h>
+#include <stdexcept>
 #include <string>
 
 namespace pushout::solver
@@ -174,6 +175,11 @@ Mat Equilibrium::bulk_tangent()
 
 void Equilibrium::kept_tangent_forces(Vec x, Vec F)
 {
+  // The shift by u_T is of this object's dT; the crack band's strains must
+  // be of the same (set_temperature_change sets both).
+  if (_model.bulk_cracking()->temperature_change() != _dT)
+    throw std::logic_error("Equilibrium: the crack band's temperature change was set other than "
+                           "through Equilibrium::set_temperature_change");
   const Mat M = bulk_tangent();
   if (!_free_expansion) // dT = 0: no free strain
   {
