@@ -466,6 +466,20 @@ std::vector<double> Model::crack_mouth_openings() const
   return width;
 }
 
+std::vector<std::int64_t> Model::input_numbering() const
+{
+  if (_degree != 1)
+    return {};
+  const int bs = block_size();
+  std::vector<std::int64_t> position(std::size_t(index_map().size_local()) * std::size_t(bs), -1);
+  for (std::size_t node = 0; node < _node_block.size(); ++node)
+    if (owned(_node_block[node]))
+      for (int c = 0; c < bs; ++c)
+        position[std::size_t(_node_block[node]) * std::size_t(bs) + std::size_t(c)] =
+            std::int64_t(node) * bs + c;
+  return position;
+}
+
 std::int64_t Model::num_dofs() const
 {
   return index_map().size_global() * block_size();

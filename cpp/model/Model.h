@@ -132,6 +132,13 @@ public:
   std::int32_t node_block(std::int64_t node) const { return _node_block[node]; }
   /// Whether a local dof block is owned by this process (not a ghost).
   bool owned(std::int32_t block) const { return block >= 0 && block < index_map().size_local(); }
+  /// Each owned dof's position in the input numbering of the dofs, in the
+  /// order of this process's rows: block_size() times its node's input
+  /// index (MeshData), plus its component. No partition changes it, so the
+  /// LU on several processes can be ordered as on one
+  /// (solver::use_single_precision_sparse_lu). Empty for P2, whose edge
+  /// dofs are no input nodes.
+  std::vector<std::int64_t> input_numbering() const;
 
   /// A jump of the steel-concrete interface averaged over it, as a linear
   /// functional s = a . u [mm].

@@ -401,7 +401,7 @@ void Equilibrium::configure(KSP ksp) const
   // the LU only steers it. Flexible GMRES: its residual is the Jacobian's own, whatever
   // the rounding of the preconditioner (SinglePrecisionSparse.h); the
   // tolerance stays.
-  use_single_precision_sparse_lu(pc);
+  use_single_precision_sparse_lu(pc, _model.input_numbering());
   make_gmres_flexible(ksp);
 }
 } // namespace pushout::solver

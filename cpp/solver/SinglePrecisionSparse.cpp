@@ -6,6 +6,7 @@
 #include <petscmat.h>
 #include <smumps_c.h>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pushout::solver
@@ -18,7 +19,10 @@ namespace
 // used here (MUMPS 5 users' guide: ICNTL(k) is icntl[k - 1]).
 constexpr MUMPS_INT job_init = -1, job_end = -2, job_analyse = 1, job_factor = 2, job_solve = 3;
 constexpr int icntl_error_stream = 0, icntl_diagnostic_stream = 1, icntl_global_stream = 2,
-              icntl_print_level = 3, icntl_workspace_percent = 13, icntl_distributed_matrix = 17;
+              icntl_print_level = 3, icntl_column_permutation = 5, icntl_ordering = 6,
+              icntl_workspace_percent = 13, icntl_distributed_matrix = 17;
+/// ICNTL(7): the ordering given in PERM_IN; MUMPS's automatic choice.
+constexpr MUMPS_INT ordering_given = 1, ordering_automatic = 7;
 /// INFOG(1) of a numerically and of a structurally singular matrix.
 constexpr MUMPS_INT error_singular = -10, error_structurally_singular = -6;
 /// INFOG(1) of the workspace errors that a larger ICNTL(14) cures.
@@ -42,6 +46,11 @@ struct Factors
   std::vector<MUMPS_INT> rows, cols;
   std::vector<float> values;
   std::vector<float> rhs; ///< the whole right-hand side on the host; empty elsewhere
+  /// Several processes: this process's rows' positions in a numbering that
+  /// no partition changes (use_single_precision_sparse_lu), or empty; and
+  /// the host's order of the rows made in it for MUMPS (PERM_IN, 1-based).
+  std::vector<std::int64_t> numbering;
+  std::vector<MUMPS_INT> order;
   /// More than one process: the right-hand side gathered on the first
   /// (MUMPS's host), where MUMPS takes it and leaves the solution.
   VecScatter to_host = nullptr;
@@ -60,6 +69,15 @@ struct Factors
   }
 };
 
+/// MUMPS's quiet settings (Factors::id, and the ordering's own analysis).
+void quiet(SMUMPS_STRUC_C& id)
+{
+  id.icntl[icntl_error_stream] = -1;
+  id.icntl[icntl_diagnostic_stream] = -1;
+  id.icntl[icntl_global_stream] = -1;
+  id.icntl[icntl_print_level] = 0;
+}
+
 void initialise(Factors& f, MPI_Comm comm)
 {
   int processes = 1;
@@ -74,10 +92,7 @@ void initialise(Factors& f, MPI_Comm comm)
                              std::to_string(f.id.infog[0]));
   f.initialised = true;
   // Quiet: a failure is reported through the preconditioner's failed reason.
-  f.id.icntl[icntl_error_stream] = -1;
-  f.id.icntl[icntl_diagnostic_stream] = -1;
-  f.id.icntl[icntl_global_stream] = -1;
-  f.id.icntl[icntl_print_level] = 0;
+  quiet(f.id);
   f.workspace_percent = f.id.icntl[icntl_workspace_percent];
   // More than one process: each gives its own rows (ICNTL(18) = 3, the
   // distributed assembled matrix); the right-hand side and the solution
@@ -150,6 +165,85 @@ void read_rows(Factors& f, Mat P, bool new_pattern)
   }
 }
 
+/// Several processes: the order of the rows (PERM_IN) that MUMPS would pick
+/// on one process, made on the host from every process's pattern
+/// renumbered by f.numbering (collective). Empty where there is no
+/// numbering, where it is not a permutation of the rows, or where that
+/// analysis fails: MUMPS then orders the rows itself.
+std::vector<MUMPS_INT> partition_free_order(Factors& f, MPI_Comm comm, PetscInt n)
+{
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  // Each process's rows are a contiguous range, in rank order: the host
+  // gathers the positions of all rows, and the pattern's coordinates.
+  const auto gather = [&](const auto* mine, int count, MPI_Datatype type, auto& all)
+  {
+    const std::size_t processes = static_cast<std::size_t>(size);
+    std::vector<int> counts(processes), displs(processes + 1, 0);
+    MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
+    for (int p = 0; p < size; ++p)
+      displs[std::size_t(p) + 1] = displs[std::size_t(p)] + counts[std::size_t(p)];
+    all.resize(rank == 0 ? std::size_t(displs[processes]) : 0);
+    MPI_Gatherv(mine, count, type, all.data(), counts.data(), displs.data(), type, 0, comm);
+  };
+  std::vector<std::int64_t> position;
+  std::vector<MUMPS_INT> rows, cols;
+  gather(f.numbering.data(), int(f.numbering.size()), MPI_INT64_T, position);
+  gather(f.rows.data(), int(f.rows.size()), MPI_INT, rows);
+  gather(f.cols.data(), int(f.cols.size()), MPI_INT, cols);
+  if (rank != 0)
+    return {};
+  // A permutation of the rows, or nothing (an empty numbering included).
+  std::vector<MUMPS_INT> row_at(std::size_t(n), 0); // 1-based row at each position
+  if (position.size() != std::size_t(n))
+    return {};
+  for (std::size_t r = 0; r < position.size(); ++r)
+  {
+    const std::int64_t p = position[r];
+    if (p < 0 || p >= n || row_at[std::size_t(p)] != 0)
+      return {};
+    row_at[std::size_t(p)] = MUMPS_INT(r + 1);
+  }
+  // The pattern in that numbering, ordered by MUMPS on this process alone
+  // (its automatic choice, as with one process; the values are not needed
+  // for a symmetric ordering, so no column permutation by them).
+  for (std::size_t k = 0; k < rows.size(); ++k)
+  {
+    rows[k] = MUMPS_INT(position[std::size_t(rows[k] - 1)] + 1);
+    cols[k] = MUMPS_INT(position[std::size_t(cols[k] - 1)] + 1);
+  }
+  std::vector<float> ones(rows.size(), 1.0f);
+  SMUMPS_STRUC_C alone{};
+  alone.comm_fortran = MUMPS_INT(MPI_Comm_c2f(MPI_COMM_SELF));
+  alone.par = 1;
+  alone.sym = 0;
+  alone.job = job_init;
+  smumps_c(&alone);
+  if (alone.infog[0] < 0)
+    return {};
+  quiet(alone);
+  alone.icntl[icntl_column_permutation] = 0;
+  alone.n = MUMPS_INT(n);
+  alone.nnz = MUMPS_INT8(rows.size());
+  alone.irn = rows.data();
+  alone.jcn = cols.data();
+  alone.a = ones.data();
+  alone.job = job_analyse;
+  smumps_c(&alone);
+  std::vector<MUMPS_INT> order;
+  if (alone.infog[0] >= 0)
+  {
+    // SYM_PERM(p): the pivot at which position p is eliminated.
+    order.resize(std::size_t(n));
+    for (std::size_t p = 0; p < std::size_t(n); ++p)
+      order[std::size_t(row_at[p] - 1)] = alone.sym_perm[p];
+  }
+  alone.job = job_end;
+  smumps_c(&alone);
+  return order;
+}
+
 /// P's values, and the analysis of its pattern (ordering, symbolic
 /// factorisation) once per matrix and nonzero pattern, agreed on by every
 /// process (the analysis is collective). Whether the analysis of P's
@@ -186,6 +280,17 @@ bool load(Factors& f, Mat P)
     // Another matrix may have another layout: the gather is made anew.
     check(VecScatterDestroy(&f.to_host), "VecScatterDestroy");
     check(VecDestroy(&f.on_host), "VecDestroy");
+    if (f.distributed)
+    {
+      // The order one process would make, if the host could make it; the
+      // host's choice, sent to all, as the analysis is collective.
+      const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(P));
+      f.order = partition_free_order(f, comm, rows);
+      int given = f.order.empty() ? 0 : 1;
+      MPI_Bcast(&given, 1, MPI_INT, 0, comm);
+      f.id.icntl[icntl_ordering] = given ? ordering_given : ordering_automatic;
+      f.id.perm_in = f.order.empty() ? nullptr : f.order.data();
+    }
     f.id.job = job_analyse;
     smumps_c(&f.id);
     const bool analysed = f.id.infog[0] >= 0; // INFOG: the same on every process
@@ -329,13 +434,39 @@ PetscErrorCode apply(PC pc, Vec x, Vec y)
 }
 } // namespace
 
-void use_single_precision_sparse_lu(PC pc)
+/// The start of the preconditioner's name (-ksp_view).
+constexpr const char* lu_name = "sparse LU in single precision";
+
+void use_single_precision_sparse_lu(PC pc, std::vector<std::int64_t> numbering)
 {
-  make_shell_preconditioner<Factors>(
-      pc, set_up, apply,
-      single_column_blas_bound()
-          ? "sparse LU in single precision (MUMPS, pushout; its one-column BLAS calls by "
-            "sgemv/strsv)"
-          : "sparse LU in single precision (MUMPS, pushout)");
+  const std::string name =
+      lu_name + std::string(single_column_blas_bound()
+                                ? " (MUMPS, pushout; its one-column BLAS calls by sgemv/strsv)"
+                                : " (MUMPS, pushout)");
+  make_shell_preconditioner<Factors>(pc, set_up, apply, name.c_str());
+  Factors* f;
+  check(PCShellGetContext(pc, &f), "PCShellGetContext");
+  f->numbering = std::move(numbering);
+}
+
+SparseFactors single_precision_lu_factors(PC pc)
+{
+  PetscBool shell = PETSC_FALSE;
+  check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCSHELL, &shell),
+        "PetscObjectTypeCompare");
+  if (!shell)
+    return {};
+  const char* name = nullptr;
+  check(PCShellGetName(pc, &name), "PCShellGetName");
+  if (!name || std::string(name).rfind(lu_name, 0) != 0)
+    return {};
+  Factors* f;
+  check(PCShellGetContext(pc, &f), "PCShellGetContext");
+  if (!f->factored)
+    return {};
+  // INFOG(29); negative: in millions (MUMPS 5 users' guide).
+  const MUMPS_INT entries = f->id.infog[28];
+  return {entries >= 0 ? std::int64_t(entries) : -std::int64_t(entries) * 1000000,
+          int(f->id.infog[6])};
 }
 } // namespace pushout::solver

@@ -24,7 +24,9 @@
 // as in double precision; the curve differs by Newton's tolerance.
 #pragma once
 
+#include <cstdint>
 #include <petscpc.h>
+#include <vector>
 
 namespace pushout::solver
 {
@@ -35,7 +37,29 @@ namespace pushout::solver
 /// factorisation is reported as PETSc's own are (PCGetFailedReason: a zero
 /// pivot, out of memory; the Newton solve fails with DIVERGED_LINEAR_SOLVE
 /// and the step is cut).
-void use_single_precision_sparse_lu(PC pc);
+///
+/// `numbering`: this process's rows' positions in a numbering of the
+/// matrix's rows that no partition changes (Model::input_numbering), or
+/// empty. On several processes MUMPS's own ordering (PORD: Debian's MUMPS
+/// has neither METIS nor SCOTCH) depends on the numbering of the rows it is
+/// given, which is the partition's: on the paper's mesh with cracking
+/// concrete, 37.2 million entries in the factors and 4.1e10 flops on two
+/// processes against 29.9 million and 2.3e10 on one. With a numbering, the
+/// first process orders the whole pattern in it (an analysis of its own,
+/// as one process would make) and MUMPS takes that order (ICNTL(7) = 1):
+/// 30.3 million and 2.3e10 on two. One process, or no numbering (or one
+/// that is not a permutation): MUMPS orders the rows as given.
+void use_single_precision_sparse_lu(PC pc, std::vector<std::int64_t> numbering = {});
+
+/// What MUMPS says of the factors of a `pc` made by
+/// use_single_precision_sparse_lu, after its last factorisation.
+struct SparseFactors
+{
+  std::int64_t entries = -1; ///< in the factors, on all processes (INFOG(29)); -1: none
+  int ordering = 0;          ///< INFOG(7): 1 the order given, 2 AMF, 4 PORD, ...; 0: none
+};
+/// None before a factorisation, or for another preconditioner.
+SparseFactors single_precision_lu_factors(PC pc);
 
 /// MUMPS's INFOG(1) for an allocation that failed: the machine's memory
 /// (PC_FACTOR_OUTMEMORY; factorization_failure ends the run on it).

@@ -23,11 +23,14 @@
 #include "model/Model.h"
 #include "scene/Scene.h"
 #include "solver/Equilibrium.h"
+#include "solver/SinglePrecisionSparse.h"
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <dolfinx/la/Vector.h>
 #include <functional>
 #include <gtest/gtest.h>
+#include <petscksp.h>
 #include <random>
 #include <stdexcept>
 
@@ -523,4 +526,65 @@ TEST_F(ImplexCrackedSlice, ResidualByTheKeptTangentIsTheAssembledForces)
   EXPECT_THROW(eq->internal_forces(xc, F), std::logic_error);
   for (Vec* w : {&xc, &x2, &G, &Ky})
     VecDestroy(w);
+}
+
+TEST_F(ImplexCrackedSlice, LuOrderedInTheInputNumbering)
+{
+  // Each process's rows' positions in the mesh's input numbering
+  // (Model::input_numbering): together a permutation of the rows, each
+  // block_size() times its node's input index plus its component. Given to
+  // the single-precision LU, which takes it on several processes
+  // (SinglePrecisionSparse.h), it factors the Jacobian so that GMRES
+  // solves with it.
+  const std::vector<std::int64_t> mine = model->input_numbering();
+  const std::int64_t bs = model->block_size();
+  ASSERT_EQ(std::int64_t(mine.size()), std::int64_t(model->index_map().size_local()) * bs);
+  for (std::size_t r = 0; r < mine.size(); ++r)
+  {
+    ASSERT_GE(mine[r], 0) << "row " << r;
+    EXPECT_EQ(mine[r] % bs, std::int64_t(r) % bs) << "row " << r;
+    EXPECT_EQ(model->node_block(mine[r] / bs), std::int32_t(std::int64_t(r) / bs)) << "row " << r;
+  }
+  int count = int(mine.size()), processes = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &processes);
+  std::vector<int> counts(static_cast<std::size_t>(processes));
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  std::vector<int> displs = {0};
+  for (int c : counts)
+    displs.push_back(displs.back() + c);
+  std::vector<std::int64_t> all(std::size_t(displs.back()));
+  MPI_Allgatherv(mine.data(), count, MPI_INT64_T, all.data(), counts.data(), displs.data(),
+                 MPI_INT64_T, MPI_COMM_WORLD);
+  ASSERT_EQ(std::int64_t(all.size()), model->num_dofs());
+  std::sort(all.begin(), all.end());
+  for (std::size_t k = 0; k < all.size(); ++k)
+    ASSERT_EQ(all[k], std::int64_t(k)) << "not a permutation of the rows";
+
+  // The LU of the Jacobian at the fixture's cracked state.
+  Mat J = eq->create_matrix();
+  ASSERT_TRUE(eq->jacobian(x, J));
+  KSP ksp;
+  KSPCreate(MPI_COMM_WORLD, &ksp);
+  KSPSetType(ksp, KSPGMRES);
+  KSPSetOperators(ksp, J, J);
+  KSPSetTolerances(ksp, 1e-10, 1e-30, PETSC_DEFAULT, 200);
+  PC pc;
+  KSPGetPC(ksp, &pc);
+  PCSetType(pc, PCLU);
+  PCFactorSetMatSolverType(pc, MATSOLVERMUMPS);
+  eq->set_single_precision(true);
+  eq->configure(ksp); // flexible GMRES on the single-precision LU
+  Vec b, y;
+  VecDuplicate(x, &b);
+  VecDuplicate(x, &y);
+  MatMult(J, x, b);
+  KSPSolve(ksp, b, y);
+  KSPConvergedReason reason;
+  KSPGetConvergedReason(ksp, &reason);
+  EXPECT_GT(reason, 0);
+  EXPECT_EQ(solver::single_precision_lu_factors(pc).ordering == 1, processes > 1);
+  VecDestroy(&b);
+  VecDestroy(&y);
+  KSPDestroy(&ksp);
+  MatDestroy(&J);
 }
