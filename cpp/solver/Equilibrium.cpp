@@ -175,11 +175,6 @@ Mat Equilibrium::bulk_tangent()
 
 void Equilibrium::kept_tangent_forces(Vec x, Vec F)
 {
-  // The shift by u_T is of this object's dT; the crack band's strains must
-  // be of the same (set_temperature_change sets both).
-  if (_model.bulk_cracking()->temperature_change() != _dT)
-    throw std::logic_error("Equilibrium: the crack band's temperature change was set other than "
-                           "through Equilibrium::set_temperature_change");
   const Mat M = bulk_tangent();
   if (!_free_expansion) // dT = 0: no free strain
   {
@@ -193,6 +188,11 @@ void Equilibrium::kept_tangent_forces(Vec x, Vec F)
 
 bool Equilibrium::internal_forces(Vec x, Vec F)
 {
+  // The kept residual's shift by u_T is of this object's dT; the crack
+  // band's strains must be of the same (set_temperature_change sets both).
+  if (kept_tangent() && _model.bulk_cracking()->temperature_change() != _dT)
+    throw std::logic_error("Equilibrium: the crack band's temperature change was set other than "
+                           "through Equilibrium::set_temperature_change");
   update_displacement(x);
   std::span<double> fi = _f_interface.mutable_array();
   std::fill(fi.begin(), fi.end(), 0.0);

@@ -3,8 +3,10 @@
 #include "ShellPreconditioner.h"
 #include "SingleColumnBlas.h"
 #include <cmath>
+#include <limits>
 #include <petscmat.h>
 #include <smumps_c.h>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -23,6 +25,9 @@ constexpr int icntl_error_stream = 0, icntl_diagnostic_stream = 1, icntl_global_
               icntl_workspace_percent = 13, icntl_distributed_matrix = 17;
 /// ICNTL(7): the ordering given in PERM_IN; MUMPS's automatic choice.
 constexpr MUMPS_INT ordering_given = 1, ordering_automatic = 7;
+/// ICNTL(28): the analysis sequential; MUMPS's automatic choice.
+constexpr int icntl_analysis = 27;
+constexpr MUMPS_INT analysis_sequential = 1, analysis_automatic = 0;
 /// INFOG(1) of a numerically and of a structurally singular matrix.
 constexpr MUMPS_INT error_singular = -10, error_structurally_singular = -6;
 /// INFOG(1) of the workspace errors that a larger ICNTL(14) cures.
@@ -165,36 +170,16 @@ void read_rows(Factors& f, Mat P, bool new_pattern)
   }
 }
 
-/// Several processes: the order of the rows (PERM_IN) that MUMPS would pick
-/// on one process, made on the host from every process's pattern
-/// renumbered by f.numbering (collective). Empty where there is no
-/// numbering, where it is not a permutation of the rows, or where that
-/// analysis fails: MUMPS then orders the rows itself.
-std::vector<MUMPS_INT> partition_free_order(Factors& f, MPI_Comm comm, PetscInt n)
+/// The order of the rows (PERM_IN, 1-based) that MUMPS picks alone on this
+/// process for the pattern `rows`, `cols` (1-based, n rows) renumbered by
+/// `position` (each row's place, 0-based): in that numbering, as one
+/// process would order it (its automatic choice; no column permutation, as
+/// the values are not given). Empty if `position` is not a permutation of
+/// the rows, or if MUMPS fails.
+std::vector<MUMPS_INT> order_in_numbering(PetscInt n, const std::vector<std::int64_t>& position,
+                                          std::vector<MUMPS_INT>& rows,
+                                          std::vector<MUMPS_INT>& cols)
 {
-  int rank = 0, size = 1;
-  MPI_Comm_rank(comm, &rank);
-  MPI_Comm_size(comm, &size);
-  // Each process's rows are a contiguous range, in rank order: the host
-  // gathers the positions of all rows, and the pattern's coordinates.
-  const auto gather = [&](const auto* mine, int count, MPI_Datatype type, auto& all)
-  {
-    const std::size_t processes = static_cast<std::size_t>(size);
-    std::vector<int> counts(processes), displs(processes + 1, 0);
-    MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
-    for (int p = 0; p < size; ++p)
-      displs[std::size_t(p) + 1] = displs[std::size_t(p)] + counts[std::size_t(p)];
-    all.resize(rank == 0 ? std::size_t(displs[processes]) : 0);
-    MPI_Gatherv(mine, count, type, all.data(), counts.data(), displs.data(), type, 0, comm);
-  };
-  std::vector<std::int64_t> position;
-  std::vector<MUMPS_INT> rows, cols;
-  gather(f.numbering.data(), int(f.numbering.size()), MPI_INT64_T, position);
-  gather(f.rows.data(), int(f.rows.size()), MPI_INT, rows);
-  gather(f.cols.data(), int(f.cols.size()), MPI_INT, cols);
-  if (rank != 0)
-    return {};
-  // A permutation of the rows, or nothing (an empty numbering included).
   std::vector<MUMPS_INT> row_at(std::size_t(n), 0); // 1-based row at each position
   if (position.size() != std::size_t(n))
     return {};
@@ -205,9 +190,6 @@ std::vector<MUMPS_INT> partition_free_order(Factors& f, MPI_Comm comm, PetscInt 
       return {};
     row_at[std::size_t(p)] = MUMPS_INT(r + 1);
   }
-  // The pattern in that numbering, ordered by MUMPS on this process alone
-  // (its automatic choice, as with one process; the values are not needed
-  // for a symmetric ordering, so no column permutation by them).
   for (std::size_t k = 0; k < rows.size(); ++k)
   {
     rows[k] = MUMPS_INT(position[std::size_t(rows[k] - 1)] + 1);
@@ -234,13 +216,76 @@ std::vector<MUMPS_INT> partition_free_order(Factors& f, MPI_Comm comm, PetscInt 
   std::vector<MUMPS_INT> order;
   if (alone.infog[0] >= 0)
   {
-    // SYM_PERM(p): the pivot at which position p is eliminated.
+    // SYM_PERM(p): the step at which the variable in position p is
+    // eliminated; PERM_IN(row) likewise, for the row in that position.
     order.resize(std::size_t(n));
     for (std::size_t p = 0; p < std::size_t(n); ++p)
       order[std::size_t(row_at[p] - 1)] = alone.sym_perm[p];
   }
   alone.job = job_end;
   smumps_c(&alone);
+  return order;
+}
+
+/// Several processes: the order of the rows (PERM_IN) that the host makes
+/// in f.numbering (order_in_numbering) from every process's pattern
+/// (collective; the host's answer, the others' empty). Empty, so that
+/// MUMPS orders the rows itself, where a process has no numbering of its
+/// `local_rows` rows (P2, or another layout), where the pattern is too
+/// large to gather in MPI's int counts, or where the host cannot make it.
+std::vector<MUMPS_INT> partition_free_order(Factors& f, MPI_Comm comm, PetscInt n,
+                                            PetscInt local_rows)
+{
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  // Agreed by all: whether every process numbers its rows, and whether the
+  // pattern fits in int counts and displacements.
+  std::int64_t sums[2] = {f.numbering.size() == std::size_t(local_rows) ? 0 : 1,
+                          std::int64_t(f.rows.size())};
+  MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_INT64_T, MPI_SUM, comm);
+  if (sums[0] > 0 || sums[1] > std::numeric_limits<int>::max())
+  {
+    if (rank == 0)
+      petsc::check_nothrow(
+          PetscInfo(nullptr, "single-precision LU: MUMPS orders the rows itself (%s)\n",
+                    sums[0] > 0 ? "no numbering of every row" : "pattern too large to gather"),
+          "PetscInfo");
+    return {};
+  }
+  // Each process's rows are a contiguous range, in rank order: the host
+  // gathers the positions of all rows, and the pattern's coordinates.
+  const auto gather = [&](const auto* mine, int count, MPI_Datatype type, auto& all)
+  {
+    const std::size_t processes = static_cast<std::size_t>(size);
+    std::vector<int> counts(processes), displs(processes + 1, 0);
+    MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
+    for (int p = 0; p < size; ++p)
+      displs[std::size_t(p) + 1] = displs[std::size_t(p)] + counts[std::size_t(p)];
+    all.resize(rank == 0 ? std::size_t(displs[processes]) : 0);
+    MPI_Gatherv(mine, count, type, all.data(), counts.data(), displs.data(), type, 0, comm);
+  };
+  std::vector<std::int64_t> position;
+  std::vector<MUMPS_INT> rows, cols;
+  gather(f.numbering.data(), int(f.numbering.size()), MPI_INT64_T, position);
+  gather(f.rows.data(), int(f.rows.size()), MPI_INT, rows);
+  gather(f.cols.data(), int(f.cols.size()), MPI_INT, cols);
+  if (rank != 0)
+    return {};
+  std::vector<MUMPS_INT> order;
+  try // nothing thrown past here: the others wait for the host's answer
+  {
+    order = order_in_numbering(n, position, rows, cols);
+  }
+  catch (const std::exception&)
+  {
+    order.clear();
+  }
+  if (order.empty())
+    petsc::check_nothrow(PetscInfo(nullptr, "single-precision LU: MUMPS orders the rows itself "
+                                            "(the numbering is no permutation of the rows, or its "
+                                            "analysis failed)\n"),
+                         "PetscInfo");
   return order;
 }
 
@@ -282,13 +327,18 @@ bool load(Factors& f, Mat P)
     check(VecDestroy(&f.on_host), "VecDestroy");
     if (f.distributed)
     {
-      // The order one process would make, if the host could make it; the
-      // host's choice, sent to all, as the analysis is collective.
+      // The order the host makes in the numbering given, if it can; its
+      // answer sent to all, as the analysis is collective. A given order
+      // needs the sequential analysis (ICNTL(28) = 1), whatever parallel
+      // ordering tools MUMPS was built with.
       const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(P));
-      f.order = partition_free_order(f, comm, rows);
+      PetscInt local_rows;
+      check(MatGetLocalSize(P, &local_rows, nullptr), "MatGetLocalSize");
+      f.order = partition_free_order(f, comm, rows, local_rows);
       int given = f.order.empty() ? 0 : 1;
       MPI_Bcast(&given, 1, MPI_INT, 0, comm);
       f.id.icntl[icntl_ordering] = given ? ordering_given : ordering_automatic;
+      f.id.icntl[icntl_analysis] = given ? analysis_sequential : analysis_automatic;
       f.id.perm_in = f.order.empty() ? nullptr : f.order.data();
     }
     f.id.job = job_analyse;

@@ -43,12 +43,15 @@ namespace pushout::solver
 /// empty. On several processes MUMPS's own ordering (PORD: Debian's MUMPS
 /// has neither METIS nor SCOTCH) depends on the numbering of the rows it is
 /// given, which is the partition's: on the paper's mesh with cracking
-/// concrete, 37.2 million entries in the factors and 4.1e10 flops on two
-/// processes against 29.9 million and 2.3e10 on one. With a numbering, the
-/// first process orders the whole pattern in it (an analysis of its own,
-/// as one process would make) and MUMPS takes that order (ICNTL(7) = 1):
-/// 30.3 million and 2.3e10 on two. One process, or no numbering (or one
-/// that is not a permutation): MUMPS orders the rows as given.
+/// concrete, 37.2 million entries in the factors and 4.15e10 flops on two
+/// processes against 29.9 million and 2.30e10 on one (in dolfinx's
+/// numbering). With a numbering, the first process orders the whole
+/// pattern in it, as one process would order it in that numbering (an
+/// analysis of its own, once per pattern), and MUMPS takes that order
+/// (ICNTL(7) = 1): 30.3 million entries and 2.31e10 flops on two processes.
+/// One process, no numbering on some process, or one that is not a
+/// permutation of the rows: MUMPS orders the rows as given (PetscInfo says
+/// so on several processes).
 void use_single_precision_sparse_lu(PC pc, std::vector<std::int64_t> numbering = {});
 
 /// What MUMPS says of the factors of a `pc` made by

@@ -567,6 +567,9 @@ TEST_F(ImplexCrackedSlice, LuOrderedInTheInputNumbering)
   KSPCreate(MPI_COMM_WORLD, &ksp);
   KSPSetType(ksp, KSPGMRES);
   KSPSetOperators(ksp, J, J);
+  // The single-precision LU of this small slice's Jacobian alone leaves
+  // about 2e-6 of the residual; GMRES on it reaches 1e-10 in two or three
+  // iterations (measured; 200 only bounds a broken preconditioner).
   KSPSetTolerances(ksp, 1e-10, 1e-30, PETSC_DEFAULT, 200);
   PC pc;
   KSPGetPC(ksp, &pc);
