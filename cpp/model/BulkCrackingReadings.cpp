@@ -2,6 +2,7 @@
 // totals a step records (cracked points, dissipation, the widest crack),
 // the cells' places on the slice, the gauge's reading at the outer faces
 // (SurfaceCracks.h) and the per-cell fields of fields.xdmf.
+#include "../common/mpi_gather.h"
 #include "../laws/CamanhoDavila.h"
 #include "BulkCrackingPoints.h"
 #include "cracking.h"
@@ -199,17 +200,10 @@ void BulkCracking::read_surface(CrackingTotals& t) const
 
   // Process 0 sums the cells of each column (same face, same centre).
   MPI_Comm comm = _mesh->comm();
-  int rank = 0, size = 1;
+  int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  MPI_Comm_size(comm, &size);
-  int count = int(mine.size());
-  std::vector<int> counts(rank == 0 ? size : 0), offsets(counts.size(), 0);
-  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
-  for (std::size_t r = 1; r < counts.size(); ++r)
-    offsets[r] = offsets[r - 1] + counts[r - 1];
-  std::vector<double> all(rank == 0 ? std::size_t(offsets.back() + counts.back()) : 0);
-  MPI_Gatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE,
-              0, comm);
+  const std::vector<double> all =
+      mpi::gather_to_first(comm, mine.data(), int(mine.size()), MPI_DOUBLE);
   std::vector<double> flat; // the surface cracks, 3 numbers each
   if (rank == 0)
   {

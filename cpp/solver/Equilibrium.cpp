@@ -401,7 +401,11 @@ void Equilibrium::configure(KSP ksp) const
   // the LU only steers it. Flexible GMRES: its residual is the Jacobian's own, whatever
   // the rounding of the preconditioner (SinglePrecisionSparse.h); the
   // tolerance stays.
-  use_single_precision_sparse_lu(pc, _model.input_numbering());
+  // On several processes, the numbering MUMPS's ordering is made in.
+  int processes = 1;
+  MPI_Comm_size(_model.comm(), &processes);
+  use_single_precision_sparse_lu(pc, processes > 1 ? _model.input_numbering()
+                                                   : std::vector<std::int64_t>{});
   make_gmres_flexible(ksp);
 }
 } // namespace pushout::solver

@@ -1,4 +1,5 @@
 #include "SinglePrecisionSparse.h"
+#include "../common/mpi_gather.h"
 #include "../common/petsc_check.h"
 #include "ShellPreconditioner.h"
 #include "SingleColumnBlas.h"
@@ -177,8 +178,7 @@ void read_rows(Factors& f, Mat P, bool new_pattern)
 /// the values are not given). Empty if `position` is not a permutation of
 /// the rows, or if MUMPS fails.
 std::vector<MUMPS_INT> order_in_numbering(PetscInt n, const std::vector<std::int64_t>& position,
-                                          std::vector<MUMPS_INT>& rows,
-                                          std::vector<MUMPS_INT>& cols)
+                                          std::vector<MUMPS_INT> rows, std::vector<MUMPS_INT> cols)
 {
   std::vector<MUMPS_INT> row_at(std::size_t(n), 0); // 1-based row at each position
   if (position.size() != std::size_t(n))
@@ -255,27 +255,18 @@ std::vector<MUMPS_INT> partition_free_order(Factors& f, MPI_Comm comm, PetscInt 
   }
   // Each process's rows are a contiguous range, in rank order: the host
   // gathers the positions of all rows, and the pattern's coordinates.
-  const auto gather = [&](const auto* mine, int count, MPI_Datatype type, auto& all)
-  {
-    const std::size_t processes = static_cast<std::size_t>(size);
-    std::vector<int> counts(processes), displs(processes + 1, 0);
-    MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
-    for (int p = 0; p < size; ++p)
-      displs[std::size_t(p) + 1] = displs[std::size_t(p)] + counts[std::size_t(p)];
-    all.resize(rank == 0 ? std::size_t(displs[processes]) : 0);
-    MPI_Gatherv(mine, count, type, all.data(), counts.data(), displs.data(), type, 0, comm);
-  };
-  std::vector<std::int64_t> position;
-  std::vector<MUMPS_INT> rows, cols;
-  gather(f.numbering.data(), int(f.numbering.size()), MPI_INT64_T, position);
-  gather(f.rows.data(), int(f.rows.size()), MPI_INT, rows);
-  gather(f.cols.data(), int(f.cols.size()), MPI_INT, cols);
+  const std::vector<std::int64_t> position =
+      mpi::gather_to_first(comm, f.numbering.data(), int(f.numbering.size()), MPI_INT64_T);
+  std::vector<MUMPS_INT> rows =
+      mpi::gather_to_first(comm, f.rows.data(), int(f.rows.size()), MPI_INT);
+  std::vector<MUMPS_INT> cols =
+      mpi::gather_to_first(comm, f.cols.data(), int(f.cols.size()), MPI_INT);
   if (rank != 0)
     return {};
   std::vector<MUMPS_INT> order;
   try // nothing thrown past here: the others wait for the host's answer
   {
-    order = order_in_numbering(n, position, rows, cols);
+    order = order_in_numbering(n, position, std::move(rows), std::move(cols));
   }
   catch (const std::exception&)
   {

@@ -5,6 +5,7 @@
 #include "../common/Interrupt.h"
 #include "../common/exit_codes.h"
 #include "../common/mpi_errors.h"
+#include "../common/mpi_gather.h"
 #include "../driver/Run.h"
 #include "../driver/exit_on_error.h"
 #include "../mesh/generate.h"
@@ -59,21 +60,17 @@ std::vector<CaseResult> gather(const std::vector<CaseResult>& mine)
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
-  const int length = int(text.size());
-  const auto n = std::size_t(size);
-  std::vector<int> lengths(n, 0), offsets(n + 1, 0);
-  MPI_Gather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
-  for (int p = 0; p < size; ++p)
-    offsets[std::size_t(p) + 1] = offsets[std::size_t(p)] + lengths[std::size_t(p)];
-  std::string all(std::size_t(rank == 0 ? offsets.back() : 0), ' ');
-  MPI_Gatherv(text.data(), length, MPI_CHAR, all.data(), lengths.data(), offsets.data(), MPI_CHAR,
-              0, MPI_COMM_WORLD);
+  std::vector<int> offsets;
+  const std::vector<char> gathered =
+      mpi::gather_to_first(MPI_COMM_WORLD, text.data(), int(text.size()), MPI_CHAR, &offsets);
   std::vector<CaseResult> results;
   if (rank != 0)
     return results;
+  const std::string all(gathered.begin(), gathered.end());
   for (int p = 0; p < size; ++p)
-    for (const auto& e : nlohmann::json::parse(all.substr(std::size_t(offsets[std::size_t(p)]),
-                                                          std::size_t(lengths[std::size_t(p)]))))
+    for (const auto& e : nlohmann::json::parse(
+             all.substr(std::size_t(offsets[std::size_t(p)]),
+                        std::size_t(offsets[std::size_t(p) + 1] - offsets[std::size_t(p)]))))
     {
       CaseResult r;
       r.index = e["index"].get<int>();
