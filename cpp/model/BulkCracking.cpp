@@ -278,7 +278,7 @@ void BulkCracking::reset()
   revert();
 }
 
-void BulkCracking::set_temperature_change(double dT)
+void BulkCracking::set_temperature_change(double dT, TemperatureKey)
 {
   _dT->value = {dT};
   ++_trial_version;

@@ -34,6 +34,11 @@
 #include <span>
 #include <vector>
 
+namespace pushout::solver
+{
+class Equilibrium;
+}
+
 namespace pushout::model
 {
 /// The cracks at the edge of the cracking region (cracking.radius > 0): the
@@ -79,11 +84,18 @@ public:
   /// cracking.visible_width: a surface crack counts from this width [mm].
   double visible_width() const { return _visible_width; }
 
+  /// Who may set the temperature change: only Equilibrium can make one.
+  class TemperatureKey
+  {
+    friend class solver::Equilibrium;
+    TemperatureKey() = default;
+  };
   /// The temperature change whose free strain the stress does not see [degC].
-  /// Equilibrium::set_temperature_change sets it with the thermal load and
-  /// the IMPL-EX residual's free-strain shift, which are made of the same
-  /// value (Equilibrium::kept_tangent_forces refuses a different one).
-  void set_temperature_change(double dT);
+  /// Only Equilibrium::set_temperature_change sets it (the key), with the
+  /// thermal load and the IMPL-EX residual's free-strain shift, which are
+  /// made of the same value; Equilibrium::internal_forces refuses a crack
+  /// band whose value another Equilibrium on the same model set since.
+  void set_temperature_change(double dT, TemperatureKey);
   /// What set_temperature_change() set [degC].
   double temperature_change() const { return _dT->value[0]; }
   /// The step's pseudo-time increment, for the cracks' damage viscosity

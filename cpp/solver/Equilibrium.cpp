@@ -56,7 +56,7 @@ void Equilibrium::set_temperature_change(double dT)
   _dT = dT;
   ++_load_version;
   if (model::BulkCracking* cracking = _model.bulk_cracking())
-    cracking->set_temperature_change(dT);
+    cracking->set_temperature_change(dT, {});
   if (_f_thermal)
     check(VecDestroy(&_f_thermal), "VecDestroy");
   _f_thermal = dT != 0.0 ? _model.thermal_load(dT) : nullptr;
@@ -189,10 +189,12 @@ void Equilibrium::kept_tangent_forces(Vec x, Vec F)
 bool Equilibrium::internal_forces(Vec x, Vec F)
 {
   // The kept residual's shift by u_T is of this object's dT; the crack
-  // band's strains must be of the same (set_temperature_change sets both).
+  // band's strains must be of the same (set_temperature_change sets both,
+  // and only an Equilibrium can set the crack band's: another one on the
+  // same model may have set it since).
   if (kept_tangent() && _model.bulk_cracking()->temperature_change() != _dT)
-    throw std::logic_error("Equilibrium: the crack band's temperature change was set other than "
-                           "through Equilibrium::set_temperature_change");
+    throw std::logic_error("Equilibrium: the crack band's temperature change was set by another "
+                           "Equilibrium on the same model since this one's");
   update_displacement(x);
   std::span<double> fi = _f_interface.mutable_array();
   std::fill(fi.begin(), fi.end(), 0.0);

@@ -12,6 +12,22 @@
 
 namespace pushout::solver
 {
+namespace detail
+{
+/// The name under which a shell made by make_shell_preconditioner carries
+/// its Context's tag (PETSc's composed functions end in "_C").
+inline constexpr const char* context_tag_name = "PushoutShellContext_C";
+
+/// One function per Context type, composed on the shell as its tag: its
+/// address says which Context the shell holds. The body reads a static of
+/// its own, so that no linker folds two of them into one.
+template <typename Context> void context_tag()
+{
+  static volatile char own = 0;
+  (void)own;
+}
+} // namespace detail
+
 /// Makes `pc` a PCSHELL with a new Context, deleted with the PC, that PETSc
 /// sets up with `set_up` (on new operators) and applies with `apply`.
 template <typename Context>
@@ -26,12 +42,39 @@ void make_shell_preconditioner(PC pc, PetscErrorCode (*set_up)(PC),
     delete context;
     return code;
   };
+  // A shell already (PCSetType would keep it as it is): the old one goes
+  // first, its context with it.
+  PetscBool shell = PETSC_FALSE;
+  check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCSHELL, &shell),
+        "PetscObjectTypeCompare");
+  if (shell)
+    check(PCSetType(pc, PCNONE), "PCSetType");
   check(PCSetType(pc, PCSHELL), "PCSetType");
   check(PCShellSetDestroy(pc, destroy), "PCShellSetDestroy"); // first: it owns the context
+  // The tag; PCSetType to another type and PCDestroy drop it with the
+  // shell (they drop every composed function).
+  check(PetscObjectComposeFunction(reinterpret_cast<PetscObject>(pc), detail::context_tag_name,
+                                   &detail::context_tag<Context>),
+        "PetscObjectComposeFunction");
   check(PCShellSetContext(pc, new Context), "PCShellSetContext");
   check(PCShellSetSetUp(pc, set_up), "PCShellSetSetUp");
   check(PCShellSetApply(pc, apply), "PCShellSetApply");
   check(PCShellSetName(pc, name), "PCShellSetName");
+}
+
+/// The Context of `pc` if make_shell_preconditioner<Context> made it (by
+/// the tag it composed, not the shell's name); nullptr for any other PC.
+template <typename Context> Context* shell_context(PC pc)
+{
+  using petsc::check;
+  void (*tag)(void) = nullptr;
+  check(PetscObjectQueryFunction(reinterpret_cast<PetscObject>(pc), detail::context_tag_name, &tag),
+        "PetscObjectQueryFunction");
+  if (tag != &detail::context_tag<Context>)
+    return nullptr;
+  Context* context = nullptr;
+  check(PCShellGetContext(pc, &context), "PCShellGetContext");
+  return context;
 }
 
 /// Makes a GMRES `ksp` flexible (FGMRES, right preconditioning) keeping

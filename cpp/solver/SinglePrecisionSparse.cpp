@@ -93,10 +93,12 @@ void initialise(Factors& f, MPI_Comm comm)
   f.id.sym = 0; // unsymmetric: friction makes the Jacobian so
   f.id.job = job_init;
   smumps_c(&f.id);
+  // Ended in ~Factors even where the start failed, as PETSc's own MUMPS
+  // interface ends an instance whose start it called.
+  f.initialised = true;
   if (f.id.infog[0] < 0)
     throw std::runtime_error("MUMPS (single precision) could not start: INFOG(1) = " +
                              std::to_string(f.id.infog[0]));
-  f.initialised = true;
   // Quiet: a failure is reported through the preconditioner's failed reason.
   quiet(f.id);
   f.workspace_percent = f.id.icntl[icntl_workspace_percent];
@@ -202,8 +204,13 @@ std::vector<MUMPS_INT> order_in_numbering(PetscInt n, const std::vector<std::int
   alone.sym = 0;
   alone.job = job_init;
   smumps_c(&alone);
+  std::vector<MUMPS_INT> order;
   if (alone.infog[0] < 0)
-    return {};
+  {
+    alone.job = job_end; // as ~Factors does after a failed start
+    smumps_c(&alone);
+    return order;
+  }
   quiet(alone);
   alone.icntl[icntl_column_permutation] = 0;
   alone.n = MUMPS_INT(n);
@@ -213,7 +220,6 @@ std::vector<MUMPS_INT> order_in_numbering(PetscInt n, const std::vector<std::int
   alone.a = ones.data();
   alone.job = job_analyse;
   smumps_c(&alone);
-  std::vector<MUMPS_INT> order;
   if (alone.infog[0] >= 0)
   {
     // SYM_PERM(p): the step at which the variable in position p is
@@ -492,18 +498,8 @@ void use_single_precision_sparse_lu(PC pc, std::vector<std::int64_t> numbering)
 
 SparseFactors single_precision_lu_factors(PC pc)
 {
-  PetscBool shell = PETSC_FALSE;
-  check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCSHELL, &shell),
-        "PetscObjectTypeCompare");
-  if (!shell)
-    return {};
-  const char* name = nullptr;
-  check(PCShellGetName(pc, &name), "PCShellGetName");
-  if (!name || std::string(name).rfind(lu_name, 0) != 0)
-    return {};
-  Factors* f;
-  check(PCShellGetContext(pc, &f), "PCShellGetContext");
-  if (!f->factored)
+  const Factors* f = shell_context<Factors>(pc);
+  if (!f || !f->factored)
     return {};
   // INFOG(29); negative: in millions (MUMPS 5 users' guide).
   const MUMPS_INT entries = f->id.infog[28];

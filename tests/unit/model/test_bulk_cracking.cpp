@@ -221,10 +221,9 @@ TEST_F(CrackedSlice, JacobianKeepsTheResidualsEvaluationOnlyWhereItHolds)
   EXPECT_GT(max_difference(kept, held), 0.0) << "no point cracked anew at x2";
   // Whatever else may change the next evaluation changes the version.
   for (const auto& change :
-       std::vector<std::function<void()>>{[&] { cracking().revert(); },
-                                          [&] { cracking().set_time_increment(0.01); },
-                                          [&] { cracking().set_temperature_change(-10.0); },
-                                          [&] { cracking().allow_new_cracks(true); }})
+       std::vector<std::function<void()>>{
+           [&] { cracking().revert(); }, [&] { cracking().set_time_increment(0.01); },
+           [&] { eq->set_temperature_change(-10.0); }, [&] { cracking().allow_new_cracks(true); }})
   {
     const std::uint64_t before = cracking().trial_version();
     change();
@@ -520,9 +519,9 @@ TEST_F(ImplexCrackedSlice, ResidualByTheKeptTangentIsTheAssembledForces)
   double off = 1;
   ASSERT_NO_FATAL_FAILURE(off = mismatch(*model, -5.0, xc, F, G, Ky));
   EXPECT_LT(off, 1e-11) << "a second sum";
-  // The crack band's temperature change set past Equilibrium: the shift by
-  // u_T would be of another dT, so the residual refuses it.
-  cracking().set_temperature_change(-7.0);
+  // The crack band's temperature change set by the other Equilibrium since
+  // eq's: eq's shift by u_T would be of another dT, so its residual refuses.
+  other.set_temperature_change(-7.0);
   EXPECT_THROW(eq->internal_forces(xc, F), std::logic_error);
   for (Vec* w : {&xc, &x2, &G, &Ky})
     VecDestroy(w);
