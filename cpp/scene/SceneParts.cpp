@@ -163,6 +163,13 @@ std::vector<Scene::Unread> Scene::unread(const std::string& set) const
     if (_cracking.strength_cov == 0)
       note(changed({"cracking.seed", "cracking.correlation_length"}),
            "cracking.strength_cov = 0 makes the tensile strength uniform (no random field)");
+    if (!_cracking.implex)
+      note(changed({"cracking.implex_tolerance", "cracking.implex_predictor"}),
+           _cracking.viscosity > 0 && string("cracking.integration") == "auto"
+               ? "cracking.integration = \"auto\" with a cracking.viscosity integrates the "
+                 "cracks implicitly (IMPL-EX takes no viscosity)"
+               : "cracking.integration = \"implicit\" solves each step's cracks; they are "
+                 "IMPL-EX's");
   }
   // The push: a path, or a monotonic push to push_displacement.
   if (!_loading.push_path.empty())

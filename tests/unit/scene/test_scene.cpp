@@ -233,6 +233,24 @@ TEST(Scene, UnreadCrackingKeysAreNamed)
   EXPECT_TRUE(Scene::parse("", {{"corrosion.beta", "3"}, {"corrosion.penetration", "0.01"}})
                   .unread_keys()
                   .empty());
+  // IMPL-EX's keys where the cracks are integrated implicitly: asked for,
+  // or chosen by auto for a viscosity.
+  const std::vector<Override> implex_keys = {{"cracking.implex_tolerance", "0.01"},
+                                             {"cracking.implex_predictor", "history"}};
+  EXPECT_TRUE(Scene::parse(cracks, implex_keys).unread_keys().empty());
+  for (const Override& implicit_by :
+       std::vector<Override>{{"cracking.integration", "implicit"}, {"cracking.viscosity", "0.001"}})
+  {
+    std::vector<Override> set = implex_keys;
+    set.push_back(implicit_by);
+    const std::vector<std::string> implicit = Scene::parse(cracks, set).unread_keys();
+    ASSERT_EQ(implicit.size(), 1u) << implicit_by.path;
+    EXPECT_EQ(implicit[0].rfind("cracking.implex_tolerance, cracking.implex_predictor not read", 0),
+              0u)
+        << implicit[0];
+    EXPECT_NE(implicit[0].find(implicit_by.path == "cracking.viscosity" ? "viscosity" : "implicit"),
+              std::string::npos);
+  }
 }
 
 // unread_note says why a key is not read whatever its value (its default
@@ -249,6 +267,12 @@ TEST(Scene, UnreadNoteWhateverTheValue)
   const Scene field = Scene::parse("[cracking]\nmodel = \"embedded\"\nstrength_cov = 0.15\n");
   EXPECT_EQ(field.unread_note("cracking.seed"), "");
   EXPECT_NE(field.unread_note("cracking.w_c2").find("exponential_softening"), std::string::npos);
+  EXPECT_EQ(field.unread_note("cracking.implex_tolerance"), "");
+  const Scene implicit =
+      Scene::parse("[cracking]\nmodel = \"embedded\"\nintegration = \"implicit\"\n");
+  EXPECT_EQ(implicit.unread_note("cracking.implex_tolerance")
+                .rfind("cracking.implex_tolerance not read", 0),
+            0u);
 }
 
 TEST(Scene, OverridesReachTablesAndLayers)
