@@ -151,11 +151,13 @@ int Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iteratio
   line << "  x = " << x * 1e3 << " um  p = " << p << " MPa";
   if (const model::BulkCracking* cracking = model.bulk_cracking())
     // The gauge's reading of the widest surface crack, and how many count
-    // as visible (corrosion.csv's crack_width_mm and cracks_at_surface).
+    // as visible (corrosion.csv's crack_width_mm and cracks_at_surface);
+    // then the largest normal opening at any one point, the faces' too
+    // (a point's own, not a gauge's reading across a crack).
     line << "  widest surface crack " << crack_width * 1e3 << " um (" << at_surface
          << (at_surface == 1 ? " crack" : " cracks") << " >= " << cracking->visible_width() * 1e3
          << " um)  cracked points " << bulk.cracked_points << "/" << bulk.points
-         << " (widest inside " << bulk.max_opening * 1e3 << " um)";
+         << " (widest at a point " << bulk.max_opening * 1e3 << " um)";
   else if (!widths.empty())
     line << "  crack width = " << crack_width * 1e3 << " um";
   line << "  (newton " << iterations << (cuts ? ", cuts " + std::to_string(cuts) : "") << ", "

@@ -59,6 +59,8 @@ bool StepLoop::nominal_steps(const Stage& stage)
   const int steps = stage.steps;
   Stepper stepper(_max_cuts, easy_tries(_equilibrium.model()));
   forget_implex_misses(); // another stage, another parameter
+  const auto step_name = [&](int k)
+  { return steps == 1 ? stage.step_name : stage.step_name + " " + std::to_string(k); };
   const Words fraction = [](double increment)
   {
     std::ostringstream s;
@@ -129,16 +131,15 @@ bool StepLoop::nominal_steps(const Stage& stage)
         // growth is the snap's).
         if (stage.extrapolate_by)
           d_load_last = implex.jump ? 0.0 : stage.extrapolate_by(s_try) - stage.extrapolate_by(s);
-        count_implex(implex);
+        count_implex(implex, step_name(k));
         commit();
         s = s_try;
         stepper.converged(rep.iterations, implex.may_grow());
         continue;
       }
       revert();
-      const std::string what =
-          steps == 1 ? stage.step_name : stage.step_name + " " + std::to_string(k);
-      if (!cut_back(stepper, cuts, what, rep.reason, fraction, implex.cut_factor(), s_try - s))
+      if (!cut_back(stepper, cuts, step_name(k), rep.reason, fraction, implex.cut_factor(),
+                    s_try - s))
         return false;
     }
   }
@@ -297,7 +298,7 @@ StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, double in
   return c;
 }
 
-void StepLoop::count_implex(const ImplexCheck& c)
+void StepLoop::count_implex(const ImplexCheck& c, const std::string& step)
 {
   _implex_jumped = c.jump; // a committed step's: jumped or not
   if (!(c.ratio > 0))
@@ -305,7 +306,7 @@ void StepLoop::count_implex(const ImplexCheck& c)
   _summary.implex_jumps += c.jump ? 1 : 0;
   _summary.implex_error_max = std::max(_summary.implex_error_max, c.error);
   if (!c.said.empty() && _report.talk())
-    std::cout << c.said << std::endl;
+    std::cout << step << ": " << c.said << std::endl;
 }
 
 void StepLoop::forget_implex_misses()

@@ -424,7 +424,7 @@ void StepLoop::DissipationSteps::accept(int k, const std::string& name, const Tr
     ++_loop._summary.loose_steps;
     say(name + ": " + t.rep.reason);
   }
-  _loop.count_implex(t.implex);
+  _loop.count_implex(t.implex, name);
   _loop.commit();
   (t.energy_step ? _energy : _by_lambda).converged(t.rep.iterations, t.implex.may_grow());
   // After a jump of the load the last step's growth predicts nothing; an

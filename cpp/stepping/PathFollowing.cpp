@@ -174,7 +174,7 @@ bool StepLoop::PathSteps::accept(int k, const Try& t, const ImplexCheck& implex)
   _loop._recorder.record(_loop._x, t.rep.iterations, _cuts, k,
                          0); // before the commit: StepRecorder.h
   ++_loop._summary.steps;
-  _loop.count_implex(implex);
+  _loop.count_implex(implex, "path-following step " + std::to_string(k));
   _loop.commit();
   _d_lambda_prev = t.lambda_new - _lambda;
   _d_slip_prev = slip_new - _slip;

@@ -181,7 +181,7 @@ private:
   /// summary.json's implex_error_max and implex_jumps, and a jump's progress
   /// line: a checked step that is committed (a try may still be reverted
   /// after its check).
-  void count_implex(const ImplexCheck& c);
+  void count_implex(const ImplexCheck& c, const std::string& step);
   /// A new stage (or a change between steps of energy and of the load):
   /// the last missed error and jump are another parameter's.
   void forget_implex_misses();
