@@ -498,6 +498,16 @@ std::vector<std::string> PushOut::scene_notes(const Scene& scene)
     check("interface." + std::to_string(i) + ".", scene.layers()[i]);
   for (std::size_t i = 0; i < scene.cracks().size(); ++i)
     check("crack." + std::to_string(i) + ".", scene.cracks()[i].layer);
+  // Cracks anywhere on a model cut by symmetry (asked for: auto keeps the
+  // whole slice): they are held symmetric (docs/cracking.md, "Reading the
+  // cracks").
+  std::string why;
+  if (scene.cracking().embedded && scene.model().symmetry == ModelPart::Symmetry::symmetric &&
+      mesh::model_symmetry(mesh::MeshInput::of(scene), why).copies() > 1)
+    notes.push_back("model.symmetry = \"symmetric\" holds the concrete's cracks symmetric: a "
+                    "crack on a symmetry plane opens a band on each side of it, where the whole "
+                    "slice may open one off the plane; the bond after cracking may differ by "
+                    "some 15 % (model.symmetry = \"auto\" keeps the whole slice)");
   return notes;
 }
 

@@ -48,3 +48,20 @@ TEST(SceneNotes, SingleJointHasNone)
       scene_notes(Scene::parse("[model]\ntype = \"single_joint\"\n", {{"interface.0.k", "1e9"}}))
           .empty());
 }
+
+TEST(SceneNotes, CracksOnACutModelHeldSymmetric)
+{
+  // Cracks anywhere with a uniform strength: auto keeps the whole slice;
+  // model.symmetry = "symmetric" cuts it and is noted, unless the slice has
+  // no symmetry plane to cut on (the tube off centre both ways).
+  const std::string cracks = "[cracking]\nmodel = \"embedded\"\n";
+  EXPECT_TRUE(scene_notes(Scene::parse(cracks)).empty());
+  const auto cut = scene_notes(Scene::parse(cracks, {{"model.symmetry", "symmetric"}}));
+  ASSERT_EQ(cut.size(), 1u);
+  EXPECT_EQ(cut[0].rfind("model.symmetry = \"symmetric\" holds the concrete's cracks", 0), 0u)
+      << cut[0];
+  EXPECT_TRUE(scene_notes(Scene::parse(cracks, {{"model.symmetry", "symmetric"},
+                                                {"geometry.tube_center", "[45.0, 40.0]"}}))
+                  .empty());
+  EXPECT_TRUE(scene_notes(Scene::parse("", {{"model.symmetry", "symmetric"}})).empty());
+}
