@@ -271,6 +271,10 @@ def plot(fig, data, kind, title):
         ax.plot(data.get("u_s_mm", []), data.get("F_s_N", []), "o-", ms=3)
         ax.set_xlabel("shear displacement $u_s$ [mm]")
         ax.set_ylabel("shear force $F_s$ [N]")
+    if not any(data.get(k) for k in ("delta_mm", "penetration_mm", "u_s_mm")):
+        # A run that failed before its first row: say so, not blank axes.
+        ax.text(0.5, 0.65, "no converged step\n(summary.json: message)", ha="center",
+                va="center", transform=ax.transAxes, color="0.3")
     ax.axhline(0, color="0.6", lw=0.5)
     ax.grid(alpha=0.3)
     ax.set_title(title)
