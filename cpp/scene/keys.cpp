@@ -35,8 +35,10 @@ std::vector<KeyDef> make_keys()
        "with symmetry conditions (about one of them: a half), the same curve at a fraction of "
        "the dofs; a crack plane on a symmetry plane keeps one face. It does not cut where two "
        "crack planes are mirror images of each other: the cut would make them open alike, and "
-       "the whole slice may open one. symmetric: cuts there too (the symmetric solution), "
-       "with output.xdmf too (its fields are the part's); full: always the whole slice",
+       "the whole slice may open one; nor with [cracking] (a crack may open on one side of a "
+       "symmetry plane only). symmetric: cuts there too (the symmetric solution; with "
+       "[cracking] a uniform strength only, and noted), with output.xdmf too (its fields are the "
+       "part's); full: always the whole slice",
        -inf,
        inf,
        false,

@@ -51,12 +51,14 @@ Equilibrium::~Equilibrium()
 
 void Equilibrium::set_temperature_change(double dT)
 {
+  model::BulkCracking* cracking = _model.bulk_cracking();
+  // The crack band's, also where another Equilibrium on the model set it.
+  if (cracking && cracking->temperature_change() != dT)
+    cracking->set_temperature_change(dT, {});
   if (dT == _dT)
     return; // the thermal load is assembled once per temperature change
   _dT = dT;
   ++_load_version;
-  if (model::BulkCracking* cracking = _model.bulk_cracking())
-    cracking->set_temperature_change(dT, {});
   if (_f_thermal)
     check(VecDestroy(&_f_thermal), "VecDestroy");
   _f_thermal = dT != 0.0 ? _model.thermal_load(dT) : nullptr;

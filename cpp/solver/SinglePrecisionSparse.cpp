@@ -93,12 +93,17 @@ void initialise(Factors& f, MPI_Comm comm)
   f.id.sym = 0; // unsymmetric: friction makes the Jacobian so
   f.id.job = job_init;
   smumps_c(&f.id);
-  // Ended in ~Factors even where the start failed, as PETSc's own MUMPS
-  // interface ends an instance whose start it called.
-  f.initialised = true;
   if (f.id.infog[0] < 0)
+  {
+    // Ended even though its start failed, as PETSc's own MUMPS interface
+    // ends an instance whose start it called; `initialised` stays false.
+    const MUMPS_INT error = f.id.infog[0];
+    f.id.job = job_end;
+    smumps_c(&f.id);
     throw std::runtime_error("MUMPS (single precision) could not start: INFOG(1) = " +
-                             std::to_string(f.id.infog[0]));
+                             std::to_string(error));
+  }
+  f.initialised = true;
   // Quiet: a failure is reported through the preconditioner's failed reason.
   quiet(f.id);
   f.workspace_percent = f.id.icntl[icntl_workspace_percent];

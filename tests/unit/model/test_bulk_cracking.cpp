@@ -523,6 +523,9 @@ TEST_F(ImplexCrackedSlice, ResidualByTheKeptTangentIsTheAssembledForces)
   // eq's: eq's shift by u_T would be of another dT, so its residual refuses.
   other.set_temperature_change(-7.0);
   EXPECT_THROW(eq->internal_forces(xc, F), std::logic_error);
+  // eq's own set again: the crack band's is eq's once more.
+  eq->set_temperature_change(-5.0);
+  EXPECT_TRUE(eq->internal_forces(xc, F));
   for (Vec* w : {&xc, &x2, &G, &Ky})
     VecDestroy(w);
 }

@@ -248,8 +248,11 @@ TEST(Scene, UnreadCrackingKeysAreNamed)
     EXPECT_EQ(implicit[0].rfind("cracking.implex_tolerance, cracking.implex_predictor not read", 0),
               0u)
         << implicit[0];
-    EXPECT_NE(implicit[0].find(implicit_by.path == "cracking.viscosity" ? "viscosity" : "implicit"),
-              std::string::npos);
+    EXPECT_NE(implicit[0].find(implicit_by.path == "cracking.viscosity"
+                                   ? "\"auto\" with a cracking.viscosity"
+                                   : "cracking.integration = \"implicit\""),
+              std::string::npos)
+        << implicit[0];
   }
 }
 

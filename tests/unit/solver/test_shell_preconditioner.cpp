@@ -4,6 +4,7 @@
 // since are not taken for it; a shell made again deletes its old context.
 #include "common/petsc_check.h"
 #include "solver/ShellPreconditioner.h"
+#include "solver/SinglePrecision.h"
 #include "solver/SinglePrecisionSparse.h"
 #include <gtest/gtest.h>
 #include <petscpc.h>
@@ -51,9 +52,16 @@ TEST(ShellPreconditioner, ContextKnownByItsTagNotByItsName)
   EXPECT_EQ(solver::shell_context<First>(pc)->value, 1);
   EXPECT_EQ(solver::shell_context<Second>(pc), nullptr) << "another context type";
 
+  // Made again with the same context type: a new context, the old deleted.
+  ASSERT_EQ(First::live, 1);
+  First* first = solver::shell_context<First>(pc);
+  first->value = 7;
+  solver::make_shell_preconditioner<First>(pc, set_up, apply, "first again");
+  EXPECT_EQ(First::live, 1);
+  ASSERT_NE(solver::shell_context<First>(pc), nullptr);
+  EXPECT_EQ(solver::shell_context<First>(pc)->value, 1);
   // Made again with another context: the old one is deleted, and the tag
   // follows the new one.
-  ASSERT_EQ(First::live, 1);
   solver::make_shell_preconditioner<Second>(pc, set_up, apply, "second");
   EXPECT_EQ(First::live, 0);
   EXPECT_EQ(solver::shell_context<First>(pc), nullptr);
@@ -79,6 +87,9 @@ TEST(ShellPreconditioner, TheSparseLuIsNotTakenFromAShellOfItsName)
   PC pc = new_pc();
   solver::make_shell_preconditioner<First>(pc, set_up, apply,
                                            "sparse LU in single precision (MUMPS, pushout)");
+  EXPECT_EQ(solver::single_precision_lu_factors(pc).entries, -1);
+  // Nor from the dense single-precision LU's.
+  solver::use_single_precision_lu(pc);
   EXPECT_EQ(solver::single_precision_lu_factors(pc).entries, -1);
   check(PCDestroy(&pc), "PCDestroy");
 }
