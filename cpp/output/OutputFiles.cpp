@@ -2,6 +2,7 @@
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <fcntl.h>
 #include <iomanip>
 #include <random>
@@ -130,22 +131,31 @@ void write_file(const fs::path& file, const std::string& text)
   std::ostringstream name;
   name << "." << file.filename().string() << "." << ::getpid() << "." << writes++ << ".pushout-tmp";
   const fs::path tmp = file.parent_path() / name.str();
+  int error = 0; // errno of the first call that failed
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-  bool ok = fd >= 0;
-  for (std::size_t done = 0; ok && done < text.size();)
+  if (fd < 0)
+    error = errno;
+  for (std::size_t done = 0; error == 0 && done < text.size();)
   {
     const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
     if (n < 0 && errno == EINTR)
       continue;
-    ok = n > 0;
-    done += ok ? std::size_t(n) : 0;
+    if (n <= 0)
+      error = n < 0 ? errno : ENOSPC; // a write of nothing: no room
+    done += n > 0 ? std::size_t(n) : 0;
   }
-  if (fd >= 0 && ::close(fd) != 0)
-    ok = false;
-  if (ok && ::rename(tmp.c_str(), file.c_str()) == 0)
+  if (fd >= 0 && ::close(fd) != 0 && error == 0)
+    error = errno;
+  if (error == 0 && ::rename(tmp.c_str(), file.c_str()) == 0)
     return;
+  if (error == 0)
+    error = errno; // the rename's (the name is a folder, say)
   ::unlink(tmp.c_str());
-  throw std::runtime_error(cannot_write(file));
+  // A full disk as every writer says it; another cause by its own name.
+  throw std::runtime_error(error == ENOSPC || error == EDQUOT
+                               ? cannot_write(file)
+                               : "cannot write " + file.string() + " (" + std::strerror(error) +
+                                     ")");
 }
 
 void claim(const fs::path& dir, const std::vector<fs::path>& inputs)

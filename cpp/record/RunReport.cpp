@@ -1,4 +1,5 @@
 #include "RunReport.h"
+#include "../common/mpi_errors.h"
 #include "../output/OutputFiles.h"
 #include "../output/plot.h"
 #include <iostream>
@@ -80,10 +81,16 @@ RunReport::RunReport(const Scene& scene, const std::filesystem::path& out, bool 
     _summary.cracking_integration = scene.cracking().implex ? "implex" : "implicit";
   _summary.processes = size;
   _summary.run_id = output::run_id();
-  if (_rank == 0)
-    output::write_file(_out / "scene.toml", scene.to_toml());
-  if (_rank == 0 && plot && scene.output().plot)
-    _plotter.emplace();
+  // Agreed here: a failure on the first process alone would leave the
+  // others in the run's collectives while it waits to agree.
+  mpi::collectively(comm,
+                    [&]
+                    {
+                      if (_rank == 0)
+                        output::write_file(_out / "scene.toml", scene.to_toml());
+                      if (_rank == 0 && plot && scene.output().plot)
+                        _plotter.emplace();
+                    });
   publish();
 }
 

@@ -1,4 +1,5 @@
 #include "Equilibrium.h"
+#include "../common/mpi_errors.h"
 #include "../common/petsc_check.h"
 #include "RigidBodyModes.h"
 #include "ShellPreconditioner.h"
@@ -63,6 +64,18 @@ void Equilibrium::set_temperature_change(double dT)
     check(VecDestroy(&_f_thermal), "VecDestroy");
   _f_thermal = dT != 0.0 ? _model.thermal_load(dT) : nullptr;
   make_free_expansion();
+}
+
+void Equilibrium::set_constraints(Constraints c)
+{
+  // Each process holds its own dofs: the tube's top, say, on some of them
+  // only. A version that moved on those alone would send the others down
+  // another path through the solver's collectives (a lagged LU refreshed
+  // here and reused there), so all of them agree.
+  if (!mpi::all(_model.comm(), c.dofs == _bc.dofs))
+    ++_constraint_version;
+  _bc = std::move(c);
+  ++_load_version;
 }
 
 bool Equilibrium::kept_tangent() const

@@ -37,13 +37,10 @@ public:
   void set_temperature_change(double dT);
   /// External nodal forces [N]: local unblocked dof -> value.
   void set_external_forces(const std::vector<std::pair<std::int32_t, double>>& forces);
-  void set_constraints(Constraints c)
-  {
-    if (c.dofs != _bc.dofs)
-      ++_constraint_version;
-    _bc = std::move(c);
-    ++_load_version;
-  }
+  /// The prescribed dofs and values (collective: constraint_version() moves
+  /// on every process when the dofs change on any, so that all of them
+  /// refresh their factorisations together).
+  void set_constraints(Constraints c);
   /// A number that changes whenever the loads or prescribed values may have
   /// changed (linear_rhs() is the same while it is).
   int load_version() const { return _load_version; }

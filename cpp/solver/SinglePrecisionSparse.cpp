@@ -69,9 +69,8 @@ struct Factors
       id.job = job_end;
       smumps_c(&id);
     }
-    // Not checked: a destructor does not throw.
-    VecScatterDestroy(&to_host);
-    VecDestroy(&on_host);
+    petsc::check_nothrow(VecScatterDestroy(&to_host), "VecScatterDestroy");
+    petsc::check_nothrow(VecDestroy(&on_host), "VecDestroy");
   }
 };
 

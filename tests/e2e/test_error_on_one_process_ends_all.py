@@ -2,7 +2,8 @@
 an `mpirun -n 2` run ends the whole run within seconds, non-zero, with one
 message on stderr (rank 0's, or the failing process's own when the other
 waits in a collective it skipped), never a hang. The failures on one
-process come from a test hook of the step loop (PUSHOUT_TEST_FAIL_RANK,
+process come from a run folder whose scene.toml cannot be written (the
+first process writes it) and from a test hook of the step loop (PUSHOUT_TEST_FAIL_RANK,
 PUSHOUT_TEST_FAIL_AT: stepping/StepLoop.cpp), during the set-up and during the
 load steps. A PETSc error (a solver type that does not exist) is one clear
 message too, without PETSc's traceback, on 1 and 2 processes. mpirun adds
@@ -29,10 +30,13 @@ with open(scene, "w") as f:
             "[loading]\ntemperature_change = -25.0\npush_displacement = 0.05\nsteps = 5\n")
 
 
-def run(name, processes, extra=(), env=None):
-    """Runs the scene; returns (exit code, stderr, wall time [s]); a run
-    still going after 60 s is killed (with its processes) and fails."""
+def run(name, processes, extra=(), env=None, prepare=None):
+    """Runs the scene (`prepare(out)` first, if given); returns (exit code,
+    stderr, wall time [s]); a run still going after 60 s is killed (with its
+    processes) and fails."""
     out = out_dir("mpi_errors_" + name)
+    if prepare:
+        prepare(out)
     cmd = [PUSHOUT, "run", scene, "--out", out, "--quiet", "--set", "output.plot=false", *extra]
     if processes > 1:
         cmd = [MPIRUN, "--allow-run-as-root", "--oversubscribe", "-n", str(processes)] + cmd
@@ -72,6 +76,15 @@ for at, words in (("setup", ["error:", "test failure on process 1 at setup"]),
     one_message(name, err, words)
     if at == "step":  # the load steps before the failure stay in curve.csv
         check(len(curve(out)) == 3, f"{name}: curve.csv keeps step 0 and the 2 load steps")
+
+# A file that only the first process writes, and cannot (scene.toml is a
+# folder there): the others must not go on into the run's collectives.
+name = "scene_toml_unwritable"
+rc, err, wall, _ = run(name, 2, prepare=lambda out: os.makedirs(os.path.join(out, "scene.toml")))
+check(rc != 0, f"{name}: exit {rc} (non-zero)")
+check(wall < 30, f"{name}: ended {wall:.1f} s after the start")
+one_message(name, err, ["error:", "cannot write", "scene.toml", "Is a directory"])
+check("did not come to agree" not in err, f"{name}: the processes agreed on it")
 
 bad_solver = ["-pc_type", "lu", "-pc_factor_mat_solver_type", "nonexistent"]
 for processes, sets in ((1, ["--set", "solver.condensation=off"]), (2, [])):
