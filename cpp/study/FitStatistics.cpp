@@ -4,9 +4,21 @@
 #include "text.h"
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace pushout::study
 {
+namespace
+{
+/// A correlation as the warning gives it: three decimals (-0.990).
+std::string correlation_text(double c)
+{
+  char text[16];
+  std::snprintf(text, sizeof text, "%.3f", c);
+  return text;
+}
+} // namespace
+
 namespace
 {
 using petsc::check;
@@ -86,7 +98,7 @@ FitStatistics statistics(Mat J, const std::vector<double>& r, const std::vector<
       for (std::size_t k = j + 1; k < n; ++k)
         if (std::abs(st.corr[j][k]) > identifiable_correlation)
           st.warnings.push_back(free[j].key + " and " + free[k].key + " are correlated (" +
-                                number_text(std::round(st.corr[j][k] * 1000) / 1000) +
+                                correlation_text(st.corr[j][k]) +
                                 "): the data do not determine them separately");
   }
   else
