@@ -191,9 +191,10 @@ SweepPlan plan_sweep(const SweepOptions& opt)
         throw SceneError("'" + last.key +
                          "' is given in two --vary options: give its values in one");
     if (const std::string twice = repeated_value(last); !twice.empty())
-      throw SceneError("--vary '" + v + "' gives the value " + twice +
-                       " twice: each case would run again (and a seed would count twice in "
-                       "sweep_seeds.csv)");
+      throw SceneError(
+          "--vary '" + v + "' gives the value " + twice + " twice: each case would run again" +
+          (last.key == "cracking.seed" ? " (and the seed would count twice in sweep_seeds.csv)"
+                                       : ""));
   }
   // The count before the cases are made (it may not fit in memory).
   double count = 1;

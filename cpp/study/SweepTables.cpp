@@ -111,9 +111,14 @@ CaseNumbers case_numbers(const std::filesystem::path& folder, const std::string&
   if (x == curve.end() || y == curve.end() || y->second.empty())
     return n;
   const std::vector<double>& ys = y->second;
-  const auto peak = std::max_element(ys.begin(), ys.end());
-  n[0] = *peak;
-  n[1] = x->second[std::size_t(peak - ys.begin())];
+  // The peak of the load steps: the first row is step 0's (the thermal
+  // step, before any push), no peak of a case stopped before the push.
+  if (ys.size() > 1)
+  {
+    const auto peak = std::max_element(ys.begin() + 1, ys.end());
+    n[0] = *peak;
+    n[1] = x->second[std::size_t(peak - ys.begin())];
+  }
   n[2] = ys.back();
   n[3] = x->second.back();
   steps = ys.size() - 1;
