@@ -60,11 +60,7 @@ void guard_size(const mesh::MeshInput& shape, const Scene& scene, const RunOptio
 {
   const record::ResourceEstimate estimate = record::estimate_resources(
       shape, scene.solver(), scene.cracking(), opt.comm, opt.others_here);
-  // Agreed: each machine counts its own processes and memory, so where a
-  // run's processes sit unevenly on several machines the verdict differs
-  // between them (a case of a sweep refused on some processes only).
-  mpi::collectively<SceneError, record::TooLarge>(
-      opt.comm, [&] { record::check_fits(estimate, shape, opt.force); });
+  record::check_fits(estimate, shape, opt.force);
   output::Summary& s = report.summary();
   s.estimate = {estimate.size.dofs, estimate.size.cells, estimate.size.joint_elements,
                 estimate.peak_mb()};

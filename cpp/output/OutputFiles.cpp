@@ -118,9 +118,11 @@ void lock(const fs::path& dir)
 }
 } // namespace
 
-std::string cannot_write(const fs::path& file)
+std::string cannot_write(const fs::path& file, int error)
 {
-  return "cannot write " + file.string() + " (disk full?)";
+  const bool full = error == ENOSPC || error == EDQUOT;
+  return "cannot write " + file.string() + " (" + (full ? "disk full?" : std::strerror(error)) +
+         ")";
 }
 
 void write_file(const fs::path& file, const std::string& text)
@@ -151,11 +153,7 @@ void write_file(const fs::path& file, const std::string& text)
   if (error == 0)
     error = errno; // the rename's (the name is a folder, say)
   ::unlink(tmp.c_str());
-  // A full disk as every writer says it; another cause by its own name.
-  throw std::runtime_error(error == ENOSPC || error == EDQUOT
-                               ? cannot_write(file)
-                               : "cannot write " + file.string() + " (" + std::strerror(error) +
-                                     ")");
+  throw std::runtime_error(cannot_write(file, error));
 }
 
 void claim(const fs::path& dir, const std::vector<fs::path>& inputs)

@@ -13,6 +13,7 @@
 // run can be read as this run's.
 #pragma once
 
+#include <cerrno>
 #include <filesystem>
 #include <mpi.h>
 #include <stdexcept>
@@ -29,8 +30,10 @@ public:
   using std::runtime_error::runtime_error;
 };
 
-/// The message of an output that could not be written.
-std::string cannot_write(const std::filesystem::path& file);
+/// The message of an output that could not be written, for the errno of
+/// the call that failed: a full disk (ENOSPC, EDQUOT: "disk full?", also
+/// where the cause is not known) or the cause's own name.
+std::string cannot_write(const std::filesystem::path& file, int error = ENOSPC);
 
 /// Writes `text` as the whole of `file` (through a temporary file in the
 /// same folder, renamed when complete); throws std::runtime_error

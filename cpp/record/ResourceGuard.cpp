@@ -171,7 +171,11 @@ ResourceEstimate estimate_resources(const mesh::MeshInput& in, const SolverPart&
   e.machine_mb =
       std::max(e.meshing_mb + base_mb * (e.processes_here - 1) + e.solve_mb * e.others_here,
                e.solve_mb * here);
-  // Each machine judges by its own memory; the tightest decides.
+  // Each machine judges by its own memory and processes; the tightest
+  // decides, the same on every process (so check_fits' verdict is), also
+  // where a run's processes sit unevenly on several machines.
+  MPI_Allreduce(MPI_IN_PLACE, &e.machine_mb, 1, MPI_DOUBLE, MPI_MAX, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &e.processes_here, 1, MPI_INT, MPI_MAX, comm);
   e.available_mb = available_memory_mb();
   MPI_Allreduce(MPI_IN_PLACE, &e.available_mb, 1, MPI_DOUBLE, MPI_MIN, comm);
   // A limit of each process's address space (ulimit -v; a batch system's

@@ -38,14 +38,14 @@ struct ResourceEstimate
   bool condensed = false; ///< Newton on the condensed interface system
   bool direct = true;     ///< the Newton systems are factored (LU)
   int processes = 1;      ///< processes of the run
-  int processes_here = 1; ///< of them, on this machine
+  int processes_here = 1; ///< of them, on one machine (the most on any)
   /// Processes of the same command's other groups on this machine (pushout
   /// sweep and fit run cases at once), each counted at this run's solving peak (solve_mb).
   int others_here = 0;
   double meshing_mb = 0;   ///< rank 0's peak while gmsh meshes [MB]
   double solve_mb = 0;     ///< one process's peak while solving [MB]
-  double machine_mb = 0;   ///< all processes on this machine, at their peak [MB]
-  double available_mb = 0; ///< memory available on this machine [MB]
+  double machine_mb = 0;   ///< all processes on one machine, at their peak (the most on any) [MB]
+  double available_mb = 0; ///< memory available on one machine (the least on any) [MB]
   /// The least address space a process may still map (ulimit -v) [MB]; -1:
   /// no limit. Each process's peak must fit in it.
   double address_space_mb = -1;

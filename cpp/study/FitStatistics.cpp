@@ -17,10 +17,7 @@ std::string correlation_text(double c)
   std::snprintf(text, sizeof text, "%.3f", c);
   return text;
 }
-} // namespace
 
-namespace
-{
 using petsc::check;
 
 /// Two values whose correlation exceeds this are not separately
