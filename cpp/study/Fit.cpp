@@ -202,6 +202,24 @@ std::vector<Free> free_values(const Scene& scene, const FitOptions& opt)
   return free;
 }
 
+/// How finely a fit resolves `scene`'s curve (docs/fitting.md, "Method").
+/// A curve of the joints and crack planes is smooth in its keys to Newton's
+/// tolerance: forward differences of 1e-4 (truncation error near 1e-4,
+/// noise near 1e-10), and Bates and Watts' offset of 1e-3. With cracks
+/// anywhere in the concrete IMPL-EX's error control chooses the steps, and
+/// the curve jumps as they change with the keys (measured on the coarse
+/// cracking demo: tau by 7e-5 to 1.1e-4 MPa at a 1e-4 change of f_t, 15 %
+/// of the difference itself). A step of 1e-2 makes those jumps 100 times
+/// smaller against the difference; the offset still cannot fall below the
+/// jumps against the data's scatter (0.028 on that demo with 0.5 % noise),
+/// so 0.05 ends the fit: 5 % of the confidence region's radius.
+Resolution resolution_of(const Scene& scene)
+{
+  if (scene.cracking().embedded)
+    return {1e-2, 0.05};
+  return {1e-4, 1e-3};
+}
+
 /// The fitted run at x (scaled values), with its outputs, in DIR/best
 /// (group 0; rank 0 leads it); its exit code into `exit_code_best`. Then
 /// the runs' set-ups and the groups are freed. Returns the signal that
@@ -237,7 +255,8 @@ int run_fitted(const FitOptions& opt, Evaluator& evaluator, ProcessGroups& group
 /// valid scene with the push to the data's end that fits a group's
 /// processes; the folder claimed. exit_code::done, or the refusal's code
 /// (said once).
-int prepare(const FitOptions& opt, MeasuredCurve& data, std::vector<Free>& free)
+int prepare(const FitOptions& opt, MeasuredCurve& data, std::vector<Free>& free,
+            Resolution& resolution)
 {
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
@@ -258,6 +277,7 @@ int prepare(const FitOptions& opt, MeasuredCurve& data, std::vector<Free>& free)
                 throw SceneError(
                     "pushout fit runs a monotonic push: leave 'loading.push_path' empty");
               free = free_values(scene, opt);
+              resolution = resolution_of(scene);
               if (data.delta.size() <= free.size())
                 throw SceneError("--data '" + opt.data.string() + "' has " +
                                  std::to_string(data.delta.size()) + " rows: more than the " +
@@ -308,13 +328,14 @@ int fit(const FitOptions& opt)
   const auto t0 = std::chrono::steady_clock::now();
   MeasuredCurve data;
   std::vector<Free> free;
-  if (const int set_up = prepare(opt, data, free); set_up != exit_code::done)
+  Resolution resolution{};
+  if (const int set_up = prepare(opt, data, free, resolution); set_up != exit_code::done)
     return set_up;
 
   ProcessGroups groups(opt.ranks_per_case);
   Evaluator evaluator(opt, free, data, groups.comm(), groups.count(), groups.index(),
                       groups.others_here(int(free.size()) + 1));
-  Problem problem{evaluator, free, talk, {}, {}, {}, {}, 0, t0};
+  Problem problem{evaluator, free, resolution, talk, t0, {}, {}, {}, {}, false, 0};
   if (talk)
     std::cout << "pushout fit: " << free.size() << " values to " << data.delta.size()
               << " points of " << opt.data.string() << "; " << groups.count()
@@ -354,7 +375,8 @@ int fit(const FitOptions& opt)
   outcome.evaluations = evaluator.evaluations();
   outcome.failed_runs = evaluator.failed();
   outcome.refused_runs = evaluator.refused();
-  outcome.iterations = problem.iterations;
+  outcome.iterations = solver.iterations();
+  outcome.relative_offset = solver.offset();
   int code = outcome.converged ? exit_code::done : exit_code::not_converged;
   if (rank == 0)
   {

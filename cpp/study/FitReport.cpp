@@ -77,6 +77,7 @@ int write_fit(const FitOptions& opt, const MeasuredCurve& data, const std::vecto
   j["failed_runs"] = fit.failed_runs;
   j["refused_runs"] = fit.refused_runs;
   j["iterations"] = fit.iterations;
+  j["relative_offset"] = fit.relative_offset; // null where infinite (an exact fit)
   j["converged"] = fit.converged;
   j["reason"] = fit.reason;
   j["warnings"] = stats.warnings;

@@ -7,6 +7,7 @@
 #include "Fit.h"
 #include "FitStatistics.h"
 #include "FreeValue.h"
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,7 @@ struct FitOutcome
   int failed_runs = 0;           ///< runs that did not converge or ended with an error
   int refused_runs = 0;          ///< runs at values the scene refused (counted as a misfit)
   int iterations = 0;            ///< TAO's
+  double relative_offset = NAN;  ///< at x (FitStatistics.h)
   bool converged = false;        ///< TAO converged, and every run did
   std::string reason;            ///< why TAO stopped (PETSc's name)
   std::string failure;           ///< why a run failed ("" if none did)

@@ -113,4 +113,32 @@ FitStatistics statistics(Mat J, const std::vector<double>& r, const std::vector<
   }
   return st;
 }
+
+double relative_offset(const std::vector<double>& jacobian, const std::vector<double>& r)
+{
+  const std::size_t m = r.size(), n = m == 0 ? 0 : jacobian.size() / m;
+  if (n == 0 || m <= n)
+    return INFINITY;
+  std::vector<std::vector<double>> JtJ(n, std::vector<double>(n, 0.0)), inverse;
+  std::vector<double> Jtr(n, 0.0);
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t i = 0; i < m; ++i)
+    {
+      Jtr[j] += jacobian[j * m + i] * r[i];
+      for (std::size_t k = 0; k < n; ++k)
+        JtJ[j][k] += jacobian[j * m + i] * jacobian[k * m + i];
+    }
+  if (!invert(JtJ, inverse))
+    return INFINITY;
+  double projected = 0, rss = 0; // |P r|^2 = (J^T r)^T (J^T J)^-1 J^T r, |r|^2 [MPa^2]
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t k = 0; k < n; ++k)
+      projected += Jtr[j] * inverse[j][k] * Jtr[k];
+  for (double v : r)
+    rss += v * v;
+  const double rest = rss - projected;
+  if (!(rest > 0))
+    return INFINITY;
+  return std::sqrt(std::max(projected, 0.0) / double(n)) / std::sqrt(rest / double(m - n));
+}
 } // namespace pushout::study

@@ -27,4 +27,13 @@ struct FitStatistics
 /// (m - n), cov = s^2 (J^T J)^-1 in the keys' units (docs/fitting.md).
 FitStatistics statistics(Mat J, const std::vector<double>& r, const std::vector<Free>& free,
                          const std::vector<double>& x);
+
+/// The relative offset of Bates and Watts (1981, Technometrics 23:179-183)
+/// at residuals r [MPa] with Jacobian `jacobian` (column-major, r.size() x
+/// n, of any scaling of the values): with P the projection onto J's columns,
+///   sqrt(|P r|^2 / n) / sqrt(|r - P r|^2 / (m - n)),
+/// the Gauss-Newton step still to go measured against the radius of the
+/// values' confidence region. Infinite where J^T J is singular or the
+/// residuals lie in J's columns (data the model meets exactly).
+double relative_offset(const std::vector<double>& jacobian, const std::vector<double>& r);
 } // namespace pushout::study

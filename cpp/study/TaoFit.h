@@ -7,29 +7,50 @@
 #include "FitEvaluator.h"
 #include "FreeValue.h"
 #include <chrono>
+#include <cmath>
 #include <petsctao.h>
 #include <string>
 #include <vector>
 
 namespace pushout::study
 {
+/// How finely a fit can resolve its curve's dependence on the values
+/// (docs/fitting.md, "Method").
+struct Resolution
+{
+  /// The relative step of the Jacobian's forward differences (of the scaled
+  /// values, which start at 1).
+  double difference_step;
+  /// A fit whose relative offset (FitStatistics.h) falls below this has
+  /// converged: the Gauss-Newton step still to go is this fraction of the
+  /// radius of the values' confidence region, however far the gradient is
+  /// from TAO's test (which noise in the model's curve may hold up).
+  double offset_tolerance;
+};
+
 /// What TAO's callbacks share.
 struct Problem
 {
   Evaluator& evaluator;
   const std::vector<Free>& free;
+  Resolution resolution;
   bool talk = false;
+  std::chrono::steady_clock::time_point t0;
   std::vector<double> x_last, r_last; ///< the last base point and its residuals
   std::vector<double> x_jacobian;     ///< where the last Jacobian was formed
   std::vector<double> jacobian;       ///< its entries, column-major (m x n)
-  int iterations = 0;
-  std::chrono::steady_clock::time_point t0;
-  bool last_failed = false; ///< whether x_last's run failed outright
+  bool last_failed = false;           ///< whether x_last's run failed outright
+  int jacobians = 0; ///< the Jacobians formed (TAO's line search asks one at each trial point)
 
   /// The scaled values in X.
   std::vector<double> values(Vec X) const;
   /// The root mean square of the last residuals [MPa].
   double rms() const;
+  /// The relative offset (FitStatistics.h) at x, from its residuals and
+  /// Jacobian; NaN if the last Jacobian was formed elsewhere.
+  double offset_at(const std::vector<double>& x) const;
+  /// The progress line of TAO's iteration `iteration` at x.
+  void report(int iteration, const std::vector<double>& x, double offset) const;
 
   /// The stored Jacobian into J.
   void fill(Mat J) const;
@@ -58,9 +79,19 @@ struct TaoFit
   /// values) with `problem`'s residuals and the Jacobian J evaluated there.
   /// Throws Interrupted when a signal stopped the runs.
   std::vector<double> solve(Problem& problem);
-  /// Whether TAO converged (a positive reason).
+  /// Whether the fit converged: TAO's gradient test, or the relative offset
+  /// at the optimum below the problem's offset_tolerance.
   bool converged() const;
-  /// Why TAO stopped, by PETSc's name.
+  /// Why TAO stopped, by PETSc's name (CONVERGED_RELATIVE_OFFSET for the
+  /// offset's test).
   std::string reason() const;
+  /// TAO's iterations.
+  int iterations() const;
+  /// The relative offset at the optimum (after solve()).
+  double offset() const { return final_offset; }
+
+private:
+  double offset_tolerance;
+  double final_offset = INFINITY;
 };
 } // namespace pushout::study

@@ -1,0 +1,39 @@
+// Bates and Watts' relative offset (study/FitStatistics.h), against hand
+// computations: the Gauss-Newton step still to go against the radius of the
+// confidence region, the same whatever the scaling of the values.
+#include "../../../cpp/study/FitStatistics.h"
+#include <cmath>
+#include <gtest/gtest.h>
+
+using pushout::study::relative_offset;
+
+TEST(FitStatistics, RelativeOffsetOfOneValue)
+{
+  // One value fitting a constant: J = (1, 1, 1, 1), r = (1, -1, 2, 0) MPa.
+  // P r is the mean 0.5 at each point: |P r|^2 = 1, |r - P r|^2 = 6 - 1 = 5,
+  // so the offset is sqrt(1 / 1) / sqrt(5 / 3).
+  const std::vector<double> J{1, 1, 1, 1}, r{1, -1, 2, 0};
+  EXPECT_NEAR(relative_offset(J, r), 1 / std::sqrt(5.0 / 3.0), 1e-14);
+  // Scaling the value (its column) leaves the projection as it is.
+  EXPECT_NEAR(relative_offset({3, 3, 3, 3}, r), 1 / std::sqrt(5.0 / 3.0), 1e-14);
+}
+
+TEST(FitStatistics, RelativeOffsetOfTwoValues)
+{
+  // A line a + b t at t = 0, 1, 2, 3 (columns 1 and t), r = (1, 0, 0, 1):
+  // J^T r = (2, 3), J^T J = [[4, 6], [6, 14]], |P r|^2 = (J^T r)^T (J^T
+  // J)^-1 J^T r = (14*4 - 2*6*2*3 + 4*9) / 20 = 1, |r|^2 = 2.
+  const std::vector<double> J{1, 1, 1, 1, 0, 1, 2, 3}, r{1, 0, 0, 1};
+  EXPECT_NEAR(relative_offset(J, r), std::sqrt(1.0 / 2) / std::sqrt(1.0 / 2), 1e-14);
+  // At the optimum (r orthogonal to both columns) nothing is left to go.
+  EXPECT_NEAR(relative_offset(J, {1, -1, -1, 1}), 0.0, 1e-14);
+}
+
+TEST(FitStatistics, RelativeOffsetUndefined)
+{
+  // A value that does not change the curve (J^T J singular), residuals the
+  // model meets exactly (in J's columns), no more points than values.
+  EXPECT_TRUE(std::isinf(relative_offset({0, 0, 0}, {1, 2, 3})));
+  EXPECT_TRUE(std::isinf(relative_offset({1, 1, 1}, {2, 2, 2})));
+  EXPECT_TRUE(std::isinf(relative_offset({1}, {1})));
+}
