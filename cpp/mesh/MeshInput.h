@@ -16,6 +16,7 @@ struct MeshInput
   bool fields = false;        ///< output.xdmf (model.symmetry "auto" then takes the whole slice)
   bool bulk_cracking = false; ///< cracking.model = "embedded": cracks anywhere in the concrete
   bool cracked() const { return !cracks.angles.empty(); }
+  bool operator==(const MeshInput&) const = default; ///< the same mesh
 
   static MeshInput of(const Scene& scene)
   {

@@ -3,6 +3,7 @@
 #include "../common/BlockAdd.h"
 #include "../scene/SceneError.h"
 #include "BulkCrackingPoints.h"
+#include "CrackBandCheck.h"
 #include "CrackingCells.h"
 #include "cracking.h"
 #include <algorithm>
@@ -44,14 +45,6 @@ struct Rows
   std::size_t columns;
   double& operator()(std::size_t row, std::size_t column) { return data[row * columns + column]; }
 };
-
-/// The softening envelope of [cracking] (laws/Envelope.h).
-laws::Envelope envelope_of(const CrackingPart& part)
-{
-  if (part.linear_softening)
-    return {laws::Envelope::Kind::linear, part.f_t, part.w_c2, 0.0, 0.0};
-  return {laws::Envelope::Kind::exponential, part.f_t, 0.0, 0.0, part.c};
-}
 
 } // namespace
 
@@ -148,59 +141,17 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
     cover = std::min(cover, part.radius - _tube_radius);
   _nominal_fracture_energy = _band.envelope().softening_energy() * slice.thickness * cover;
 
-  refuse_bands_too_wide(part, n_points);
-}
-
-void BulkCracking::refuse_bands_too_wide(const CrackingPart& part, int n_points) const
-{
-  // The worst point: its element's diagonal over the widest band its crack
-  // can soften over (max_band_width, at the point's strength); and the
-  // worst ratio at the mean strength (the field's strongest points aside).
-  struct
-  {
-    double ratio;
-    int rank;
-  } worst{0, 0};
-  double worst_mean = 0;
-  std::array<double, 4> where{}; // the worst element's diagonal, band [mm], centre x, y [mm]
-  MPI_Comm_rank(_mesh->comm(), &worst.rank);
+  // The crack band's size condition on this process's cells, agreed by all.
+  BandSizeCheck check(_band, part);
   for (std::size_t c = 0; c < _cells.size(); ++c)
   {
     const double diagonal =
         std::hypot(band_width(c, {1, 0, 0}), band_width(c, {0, 1, 0}), band_width(c, {0, 0, 1}));
     for (int q = 0; q < n_points; ++q)
-    {
-      const double band = _band.max_band_width(_strength[c * n_points + q]);
-      if (diagonal / band > worst.ratio)
-      {
-        worst.ratio = diagonal / band;
-        where = {diagonal, band, _places[c].x, _places[c].y}; // place_cells() came first
-      }
-    }
-    worst_mean = std::max(worst_mean, diagonal / _band.max_band_width(1.0));
+      check.add(diagonal, {_places[c].x, _places[c].y}, _strength[c * n_points + q]);
   }
-  MPI_Allreduce(MPI_IN_PLACE, &worst, 1, MPI_DOUBLE_INT, MPI_MAXLOC, _mesh->comm());
-  MPI_Allreduce(MPI_IN_PLACE, &worst_mean, 1, MPI_DOUBLE, MPI_MAX, _mesh->comm());
-  // The same value on every process: all refuse the scene together (exit 2).
-  if (worst.ratio < 1)
-    return;
-  MPI_Bcast(where.data(), 4, MPI_DOUBLE, worst.rank, _mesh->comm());
-  std::ostringstream why;
-  why << "cracking: the concrete element at (" << std::round(where[2] * 10) / 10 << ", "
-      << std::round(where[3] * 10) / 10 << ") mm, " << std::round(where[0] * 10) / 10
-      << " mm across, is " << worst.ratio << " times the widest band its crack can soften over "
-      << "there without snapping back (" << std::round(where[1] * 100) / 100
-      << " mm: mu / |d sigma / d w|, docs/cracking.md)";
-  if (worst_mean < 1) // only where the field raises f_t
-    why << ", at a point where the strength field (cracking.strength_cov = " << part.strength_cov
-        << ") raises f_t (at the mean f_t " << worst_mean << " times)";
-  why << ". A softening less steep widens the band: "
-      << (part.linear_softening ? "raise cracking.w_c2" : "lower cracking.c")
-      << " (a larger G_F) or lower cracking.f_t"
-      << (worst_mean < 1 ? ", or lower cracking.strength_cov" : "")
-      << "; or keep the largest elements (the square slice's corners, which "
-         "mesh.elements_per_quarter hardly refines) linear with cracking.radius";
-  throw SceneError(why.str());
+  check.agree(_mesh->comm());
+  check.refuse_if_too_wide();
 }
 
 double BulkCracking::band_width(std::size_t cell, const bulk::Vec3& n) const

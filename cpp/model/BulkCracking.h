@@ -368,13 +368,6 @@ private:
   /// [value's unit times mm^3].
   double integrate(const std::function<double(std::size_t)>& value_at_point);
 
-  /// The size condition of the crack band (bulk/CrackBand.h): a band may be
-  /// as wide as its cell's bounding-box diagonal (no extent along a normal
-  /// exceeds it), and must soften without snapping back there, at every
-  /// point's strength. Throws SceneError, on every process, where it would
-  /// not, naming what to change (the field's spread where only its
-  /// strongest points fail).
-  void refuse_bands_too_wide(const CrackingPart& part, int n_points) const;
   /// Band width of a cracking cell along a unit normal n: the extent of its
   /// vertices along n [mm] (bulk/CrackBand.h).
   double band_width(std::size_t cell, const bulk::Vec3& n) const;

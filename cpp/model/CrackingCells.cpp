@@ -43,7 +43,7 @@ std::vector<std::int32_t> cracking_cells(const dolfinx::mesh::Mesh& mesh,
   for_concrete_cells(mesh, material, axis,
                      [&](std::int32_t c, double r)
                      {
-                       if (radius <= 0 || r <= radius)
+                       if (may_crack(r, radius))
                          cells.push_back(c);
                      });
   return cells;

@@ -11,6 +11,13 @@
 
 namespace pushout::model
 {
+/// Whether a concrete cell whose centre lies `distance` [mm] from the tube
+/// axis may crack, within cracking.radius `radius` [mm] (0: all of them).
+inline bool may_crack(double distance, double radius)
+{
+  return radius <= 0 || distance <= radius;
+}
+
 /// The owned concrete cells (`material`, by original cell index) whose
 /// centre lies within `radius` [mm] of the tube `axis` (x, y) [mm]; every
 /// owned concrete cell if radius <= 0.

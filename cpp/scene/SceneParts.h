@@ -59,6 +59,7 @@ struct Geometry
     const auto [x, y] = tube_center;
     return circle ? width / 2 : std::min({x, y, width - x, width - y});
   }
+  bool operator==(const Geometry&) const = default;
 };
 
 /// [mesh] (paper §4.1).
@@ -70,6 +71,7 @@ struct MeshPart
   double outer_size_ratio{};                 ///< outer / interface element size
   int degree{};                              ///< bulk displacement: 1 or 2
   bool nodal_quadrature{};                   ///< interface_quadrature: nodal (else 2x2 Gauss)
+  bool operator==(const MeshPart&) const = default;
 };
 
 /// [concrete] and [steel] (paper Table 1).
@@ -187,5 +189,6 @@ struct CrackDirections
   std::vector<double> angles; ///< [rad, in [0, 2 pi)]
   std::vector<bool> snapped;  ///< moved onto a block corner
   std::vector<double> asked;  ///< the scene's angle [rad] before snapping
+  bool operator==(const CrackDirections&) const = default;
 };
 } // namespace pushout

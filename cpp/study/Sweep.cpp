@@ -9,8 +9,10 @@
 #include "../driver/Run.h"
 #include "../driver/exit_on_error.h"
 #include "../mesh/generate.h"
+#include "../model/CrackBandCheck.h"
 #include "../output/OutputFiles.h"
 #include "../output/plot.h"
+#include "../record/ResourceGuard.h"
 #include "../scene/SceneError.h"
 #include "../specimen/Scenario.h"
 #include "SweepTables.h"
@@ -173,6 +175,57 @@ struct SweepPlan
   bool plot = false;
 };
 
+/// The crack band's size condition (model/CrackBandCheck.h) of a sweep's
+/// cases with cracks anywhere, which needs each case's mesh: each distinct
+/// mesh made once, here (the cache keeps it for the case's run), unless the
+/// size guard will refuse its case anyway or the mesh cannot be made (its
+/// case then stops in its row, as without this check).
+class BandCheck
+{
+public:
+  explicit BandCheck(const ManyRunsOptions& opt) : _opt(opt) {}
+
+  /// Throws SceneError if `scene`'s elements are too wide for its crack
+  /// band. Collective on MPI_COMM_WORLD.
+  void operator()(const Scene& scene)
+  {
+    if (!scene.cracking().embedded)
+      return;
+    const mesh::MeshInput shape = mesh::MeshInput::of(scene);
+    auto made = std::find_if(_meshes.begin(), _meshes.end(),
+                             [&](const auto& m) { return m.first == shape; });
+    if (made == _meshes.end())
+    {
+      try // the whole run's estimate, which meshing alone is far below
+      {
+        record::check_fits(
+            record::estimate_resources(shape, scene.solver(), scene.cracking(), MPI_COMM_WORLD),
+            shape, _opt.force);
+      }
+      catch (const record::TooLarge&)
+      {
+        return; // its case is refused when it starts, with the guard's words
+      }
+      bool reused = false;
+      try
+      {
+        _meshes.emplace_back(shape, mesh::generate(shape, _opt.mesh_cache, reused, MPI_COMM_WORLD));
+      }
+      catch (const std::runtime_error&) // on every process (mesh::generate)
+      {
+        return; // its case fails when it starts, in its row
+      }
+      made = std::prev(_meshes.end());
+    }
+    model::refuse_bands_too_wide(made->second, scene.concrete(), scene.cracking(),
+                                 scene.geometry());
+  }
+
+private:
+  const ManyRunsOptions& _opt;
+  std::vector<std::pair<mesh::MeshInput, mesh::MeshData>> _meshes;
+};
+
 /// Reads every case's scene, so that a bad value stops the sweep before any
 /// case runs; throws SceneError.
 SweepPlan plan_sweep(const SweepOptions& opt)
@@ -225,6 +278,7 @@ SweepPlan plan_sweep(const SweepOptions& opt)
   std::map<std::string, std::string> unread;
   for (const Variation& v : plan.vary)
     unread[v.key] = "";
+  BandCheck check_bands(opt);
   for (std::size_t i = 0; i < plan.cases.size(); ++i)
   {
     std::vector<std::string> sets = opt.sets;
@@ -235,6 +289,7 @@ SweepPlan plan_sweep(const SweepOptions& opt)
       if (scene.model().name() != plan.model_type)
         throw SceneError("a sweep runs one model type: vary other keys");
       specimen::check_scene(scene); // the relations between keys, as a run checks them
+      check_bands(scene);
       for (auto it = unread.begin(); it != unread.end();)
       {
         const std::string note = scene.unread_note(it->first);

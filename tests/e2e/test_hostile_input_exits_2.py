@@ -170,6 +170,18 @@ refused("sweep: a key no case reads", sweep + ["--vary", "cracking.seed=1,2"],
         ["cracking.seed", "no case reads a varied key", "cracking.model"], seconds=10)
 refused("sweep: a value twice", sweep + ["--vary", "interface.0.mu=0.3,0.2,0.30"],
         ["interface.0.mu", "0.30 twice"], seconds=10)
+# A case whose elements are too wide for its crack band (the square's
+# corners at 8 elements per quarter, c 150 1/mm), which needs the mesh, is
+# refused before any case runs (it used to run case_000 and refuse case_001
+# in its row, exit 3), in the words and numbers a run of that case gives
+# (the sweep checks the whole mesh, the run each process's elements).
+too_wide = ["--set", "cracking.model=embedded", "--set", "mesh.elements_per_quarter=8"]
+err = refused("sweep: a crack band too wide", sweep + too_wide + ["--vary", "cracking.c=30,150"],
+              ["case_001 (cracking.c=150)", "mm across", "lower cracking.c"], seconds=10)
+run_err = pushout(["run", GOOD_SCENE, "--out", out_dir("hostile_too_wide"), "--quiet"] + too_wide
+                  + ["--set", "cracking.c=150"])[0].stderr.strip()
+check(err.split("): ", 1)[1] == run_err.split("error in scene: ", 1)[1],
+      f"sweep and run refuse alike: {run_err[:200]!r}")
 
 # 10. Command-line usage errors: one line, exit 2, a hint.
 refused("run without --out", ["run", GOOD_SCENE], ["--out", "pushout run --help"])

@@ -1,0 +1,148 @@
+// The crack band's size condition on the whole mesh (CrackBandCheck.h).
+#include "CrackBandCheck.h"
+#include "../bulk/StrengthField.h"
+#include "../scene/SceneError.h"
+#include "CrackingCells.h"
+#include "cracking.h"
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace pushout::model
+{
+namespace
+{
+/// The width [mm] of cell c's nodes along each axis.
+std::array<double, 3> extent(const mesh::MeshData& data, std::size_t c)
+{
+  std::array<double, 3> lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+  for (int k = 0; k < 8; ++k)
+    for (int d = 0; d < 3; ++d)
+    {
+      const double x = data.x[3 * std::size_t(data.cells[8 * c + k]) + d];
+      lo[d] = std::min(lo[d], x);
+      hi[d] = std::max(hi[d], x);
+    }
+  return {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
+}
+
+/// The concrete cells of `data` that may crack (CrackingCells.h's rule,
+/// the centre's distance summed as there).
+std::vector<std::size_t> cracking_cells(const mesh::MeshData& data, double radius,
+                                        std::array<double, 2> axis)
+{
+  std::vector<std::size_t> cells;
+  for (std::size_t c = 0; c < data.num_cells(); ++c)
+  {
+    if (data.material[c] != mesh::concrete)
+      continue;
+    double centre[2] = {0, 0};
+    for (int k = 0; k < 8; ++k)
+      for (int d = 0; d < 2; ++d)
+        centre[d] += data.x[3 * std::size_t(data.cells[8 * c + k]) + d] / 8.0;
+    if (may_crack(std::hypot(centre[0] - axis[0], centre[1] - axis[1]), radius))
+      cells.push_back(c);
+  }
+  return cells;
+}
+
+/// The position [mm] of reference point X in cell c: the trilinear map of
+/// the hexahedron, its nodes in DOLFINx's order (vertex i at the corner
+/// whose x, y, z are bits 0, 1, 2 of i).
+std::array<double, 3> position(const mesh::MeshData& data, std::size_t c, const double* X)
+{
+  std::array<double, 3> p{0, 0, 0};
+  for (int k = 0; k < 8; ++k)
+  {
+    double phi = 1;
+    for (int d = 0; d < 3; ++d)
+      phi *= (k >> d & 1) ? X[d] : 1 - X[d];
+    for (int d = 0; d < 3; ++d)
+      p[d] += phi * data.x[3 * std::size_t(data.cells[8 * c + k]) + d];
+  }
+  return p;
+}
+} // namespace
+
+laws::Envelope envelope_of(const CrackingPart& part)
+{
+  if (part.linear_softening)
+    return {laws::Envelope::Kind::linear, part.f_t, part.w_c2, 0.0, 0.0};
+  return {laws::Envelope::Kind::exponential, part.f_t, 0.0, 0.0, part.c};
+}
+
+BandSizeCheck::BandSizeCheck(const bulk::CrackBand& band, const CrackingPart& part)
+    : _band(band), _part(part), _mean_band(band.max_band_width(1.0))
+{
+}
+
+void BandSizeCheck::add(double diagonal, std::array<double, 2> centre, double strength)
+{
+  const double width = _band.max_band_width(strength);
+  if (diagonal / width > _worst)
+  {
+    _worst = diagonal / width;
+    _where = {diagonal, width, centre[0], centre[1]};
+  }
+  _worst_mean = std::max(_worst_mean, diagonal / _mean_band);
+}
+
+void BandSizeCheck::agree(MPI_Comm comm)
+{
+  struct
+  {
+    double ratio;
+    int rank;
+  } worst{_worst, 0};
+  MPI_Comm_rank(comm, &worst.rank);
+  MPI_Allreduce(MPI_IN_PLACE, &worst, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &_worst_mean, 1, MPI_DOUBLE, MPI_MAX, comm);
+  MPI_Bcast(_where.data(), 4, MPI_DOUBLE, worst.rank, comm);
+  _worst = worst.ratio;
+}
+
+void BandSizeCheck::refuse_if_too_wide() const
+{
+  if (_worst < 1)
+    return;
+  std::ostringstream why;
+  why << "cracking: the concrete element at (" << std::round(_where[2] * 10) / 10 << ", "
+      << std::round(_where[3] * 10) / 10 << ") mm, " << std::round(_where[0] * 10) / 10
+      << " mm across, is " << _worst << " times the widest band its crack can soften over "
+      << "there without snapping back (" << std::round(_where[1] * 100) / 100
+      << " mm: mu / |d sigma / d w|, docs/cracking.md)";
+  if (_worst_mean < 1) // only where the field raises f_t
+    why << ", at a point where the strength field (cracking.strength_cov = " << _part.strength_cov
+        << ") raises f_t (at the mean f_t " << _worst_mean << " times)";
+  why << ". A softening less steep widens the band: "
+      << (_part.linear_softening ? "raise cracking.w_c2" : "lower cracking.c")
+      << " (a larger G_F) or lower cracking.f_t"
+      << (_worst_mean < 1 ? ", or lower cracking.strength_cov" : "")
+      << "; or keep the largest elements (the square slice's corners, which "
+         "mesh.elements_per_quarter hardly refines) linear with cracking.radius";
+  throw SceneError(why.str());
+}
+
+void refuse_bands_too_wide(const mesh::MeshData& data, const Material& concrete,
+                           const CrackingPart& part, const Geometry& slice)
+{
+  if (!part.embedded)
+    return;
+  const bulk::CrackBand band(concrete.E, concrete.nu, envelope_of(part), part.viscosity);
+  const bulk::StrengthField field(part.strength_cov, part.correlation_length,
+                                  std::uint64_t(part.seed));
+  BandSizeCheck check(band, part);
+  const int n_points = expression_cracking_position->num_points;
+  const double* X = expression_cracking_position->points;
+  constexpr std::array<double, 3> middle{0.5, 0.5, 0.5};
+  for (const std::size_t c : cracking_cells(data, part.radius, slice.tube_center))
+  {
+    const auto [dx, dy, dz] = extent(data, c);
+    const double diagonal = std::hypot(dx, dy, dz);
+    const std::array<double, 3> centre = position(data, c, middle.data());
+    for (int q = 0; q < n_points; ++q)
+      check.add(diagonal, {centre[0], centre[1]}, field.factor(position(data, c, X + 3 * q)));
+  }
+  check.refuse_if_too_wide();
+}
+} // namespace pushout::model
