@@ -313,6 +313,8 @@ struct CommandLine
       o.mesh_cache = pushout::mesh::default_cache_dir();
       o.quiet = quiet;
       o.force = force;
+      o.petsc_options = pushout::driver::option_names(petsc_options());
+      o.allow_unused = allow_unused;
     };
     if (app.got_subcommand("fit"))
     {

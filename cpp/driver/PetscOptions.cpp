@@ -14,16 +14,7 @@
 
 namespace pushout::driver
 {
-namespace
-{
-/// The user's PETSc options (`given`, from the command line) that nothing
-/// read, on every process alike: an option read on any process counts as
-/// read. The default solver path's options (SNES, KSP, PC, MUMPS, TAO and
-/// this program's own) count as read even where this run did not create
-/// that solver. Defaults the program sets itself (solver/NewtonSolver.cpp)
-/// are not the user's: a run with -pc_type gamg never reads its
-/// -pc_factor_mat_solver_type.
-std::vector<std::string> unused_petsc_options(const std::set<std::string>& given)
+std::vector<std::string> unused_petsc_options(const std::set<std::string>& given, MPI_Comm comm)
 {
   using pushout::petsc::check;
   PetscInt left = 0;
@@ -61,7 +52,7 @@ std::vector<std::string> unused_petsc_options(const std::set<std::string>& given
       check(PetscOptionsHasName(nullptr, nullptr, own, &set), "PetscOptionsHasName");
     }
   }
-  // Rank 0's list; each is unused where no process read it.
+  // The first process's list; each is unused where no process read it.
   char** names = nullptr;
   char** values = nullptr;
   check(PetscOptionsLeftGet(nullptr, &left, &names, &values), "PetscOptionsLeftGet");
@@ -70,9 +61,9 @@ std::vector<std::string> unused_petsc_options(const std::set<std::string>& given
     list += std::string("-") + names[i] + "\n";
   check(PetscOptionsLeftRestore(nullptr, &left, &names, &values), "PetscOptionsLeftRestore");
   int length = int(list.size());
-  MPI_Bcast(&length, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  MPI_Bcast(&length, 1, MPI_INT, 0, comm);
   list.resize(std::size_t(length));
-  MPI_Bcast(list.data(), length, MPI_CHAR, 0, MPI_COMM_WORLD);
+  MPI_Bcast(list.data(), length, MPI_CHAR, 0, comm);
   std::vector<std::string> candidates;
   std::istringstream in(list);
   for (std::string name; std::getline(in, name);)
@@ -84,14 +75,13 @@ std::vector<std::string> unused_petsc_options(const std::set<std::string>& given
     check(PetscOptionsUsed(nullptr, candidates[i].c_str(), &u), "PetscOptionsUsed");
     used[i] = u ? 1 : 0;
   }
-  MPI_Allreduce(MPI_IN_PLACE, used.data(), int(used.size()), MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  MPI_Allreduce(MPI_IN_PLACE, used.data(), int(used.size()), MPI_INT, MPI_MAX, comm);
   std::vector<std::string> unused;
   for (std::size_t i = 0; i < candidates.size(); ++i)
     if (!used[i] && given.count(candidates[i]))
       unused.push_back(candidates[i]);
   return unused;
 }
-} // namespace
 
 std::set<std::string> option_names(const std::vector<std::string>& words)
 {
@@ -159,17 +149,43 @@ std::string petsc_option_error()
   return error;
 }
 
+namespace
+{
+/// "-a, -b".
+std::string listed(const std::vector<std::string>& names)
+{
+  std::string list;
+  for (const std::string& n : names)
+    list += (list.empty() ? "" : ", ") + n;
+  return list;
+}
+} // namespace
+
+void warn_unread_options(const std::set<std::string>& given, bool allow_unused, MPI_Comm comm,
+                         bool say, const std::string& first_runs, const std::string& command)
+{
+  if (allow_unused || given.empty())
+    return;
+  const std::vector<std::string> unused = unused_petsc_options(given, comm);
+  if (!say || unused.empty())
+    return;
+  const bool many = unused.size() > 1;
+  std::cerr << "pushout: warning: PETSc option" << (many ? "s " : " ") << listed(unused)
+            << " not read by " << first_runs << " (a typo?); the " << command
+            << " goes on (an option that no run reads fails it at the end, exit 2; "
+               "--allow-unused-petsc-options accepts "
+            << (many ? "them" : "it") << ")" << std::endl;
+}
+
 int check_petsc_options(const std::set<std::string>& given, bool allow_unused, int rc,
                         const std::filesystem::path& summary)
 {
-  const std::vector<std::string> unused = unused_petsc_options(given);
+  const std::vector<std::string> unused = unused_petsc_options(given, MPI_COMM_WORLD);
   if (unused.empty())
     return rc;
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  std::string list;
-  for (const std::string& u : unused)
-    list += (list.empty() ? "" : ", ") + u;
+  const std::string list = listed(unused);
   const bool error = !allow_unused && rc == pushout::exit_code::done;
   if (rank == 0)
     std::cerr << "pushout: " << (error ? "error" : "warning") << ": PETSc option"

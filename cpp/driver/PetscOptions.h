@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <mpi.h>
 #include <set>
 #include <string>
 #include <vector>
@@ -24,6 +25,24 @@ bool start_petsc(char* program, std::vector<std::string>& options);
 /// is a usage error (exit 2), not a run that fails in its first solve. The
 /// same on every process (each reads the same options).
 std::string petsc_option_error();
+
+/// The user's PETSc options (`given`, from the command line) that nothing
+/// read so far, alike on every process of `comm`: an option read on any of
+/// them counts as read. The default solver path's options (SNES, KSP, PC,
+/// MUMPS, TAO and this program's own) count as read even where no solver
+/// of that kind was made. Defaults the program sets itself
+/// (solver/NewtonSolver.cpp) are not the user's: a run with -pc_type gamg
+/// never reads its -pc_factor_mat_solver_type. Collective on `comm`.
+std::vector<std::string> unused_petsc_options(const std::set<std::string>& given, MPI_Comm comm);
+
+/// After the first runs of a sweep or a fit (`first_runs` names them): a
+/// warning, said where `say`, of the user's PETSc options (`given`) that
+/// their solvers did not read on `comm`'s processes, most likely typos
+/// (-ksp_rtoll): a long `command` need not run to its end, where
+/// check_petsc_options finds them, to learn of them. Nothing unless
+/// `allow_unused` is false. Collective on `comm`.
+void warn_unread_options(const std::set<std::string>& given, bool allow_unused, MPI_Comm comm,
+                         bool say, const std::string& first_runs, const std::string& command);
 
 /// The exit code after the user's PETSc options (`given`) were checked: a
 /// PETSc option nothing read is most likely a typo of one (-snes_monitr):

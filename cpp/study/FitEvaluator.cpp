@@ -2,6 +2,7 @@
 // process groups, each run read back from its curve.csv as residuals at the
 // measured points.
 #include "FitEvaluator.h"
+#include "../driver/PetscOptions.h"
 #include "text.h"
 #include <algorithm>
 #include <cstdlib>
@@ -52,6 +53,13 @@ Evaluator::residuals(const std::vector<std::vector<double>>& points, std::vector
   MPI_Allreduce(here, total, 2, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
   _failed_total = total[0];
   _refused_total = total[1];
+  if (_evaluations == 0) // every process is here (the sums above)
+  {
+    int rank = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    driver::warn_unread_options(_opt.petsc_options, _opt.allow_unused, MPI_COMM_WORLD, rank == 0,
+                                "the fit's first runs", "fit");
+  }
   _evaluations += int(points.size());
   std::vector<std::vector<double>> out;
   if (failed)

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <mpi.h>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,8 @@ struct ManyRunsOptions
   int ranks_per_case = 1; ///< processes per run (--ranks-per-case)
   bool quiet = false;
   bool force = false;
+  std::set<std::string> petsc_options; ///< the PETSc options given (their names)
+  bool allow_unused = false;           ///< --allow-unused-petsc-options
 };
 
 /// The processes of MPI_COMM_WORLD in groups of ranks_per_case

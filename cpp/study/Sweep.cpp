@@ -6,6 +6,7 @@
 #include "../common/exit_codes.h"
 #include "../common/mpi_errors.h"
 #include "../common/mpi_gather.h"
+#include "../driver/PetscOptions.h"
 #include "../driver/Run.h"
 #include "../driver/exit_on_error.h"
 #include "../mesh/generate.h"
@@ -393,6 +394,7 @@ CasesRun run_cases(const SweepOptions& opt, const SweepPlan& plan, ProcessGroups
   const interrupt::Phase phase("sweep", interrupt::stop_grace_s);
   CasesRun run;
   std::unique_ptr<Simulation> simulation; // the group's last set-up
+  bool first_case = true;
   for (;;)
   {
     int index = next_case(window, leader, group);
@@ -418,6 +420,10 @@ CasesRun run_cases(const SweepOptions& opt, const SweepPlan& plan, ProcessGroups
     r.index = index;
     if (r.exit_code > 128)
       run.stop_signal = r.exit_code - 128;
+    if (first_case) // collective on the group; said once, by the first process
+      driver::warn_unread_options(opt.petsc_options, opt.allow_unused, group, rank == 0,
+                                  case_name(std::size_t(index)), "sweep");
+    first_case = false;
     if (!leader)
       continue;
     run.mine.push_back(r);

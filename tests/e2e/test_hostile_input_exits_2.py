@@ -235,6 +235,18 @@ p, _ = pushout(args)
 check(p.returncode == 0 and "-snes_monitr" in p.stderr, "unused PETSc option allowed: exit 0, a warning")
 check(summary(out).get("unused_petsc_options") == ["-snes_monitr"],
       "summary.json lists an allowed unused option too")
+# In a sweep the typo is said after the first case, before the next runs
+# (a long sweep need not run to its end to tell), and fails it at the end.
+p = subprocess.run([PUSHOUT, "sweep", GOOD_SCENE, "--out", out_dir("hostile_sweep_typo"),
+                    "--vary", "interface.0.mu=0.3,0.4", "-snes_monitr"] + QUICK,
+                   stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=60)
+lines = p.stdout.splitlines()
+warned = [i for i, line in enumerate(lines) if "warning: PETSc option -snes_monitr not read by "
+          "case_000" in line]
+second = [i for i, line in enumerate(lines) if line.startswith("sweep: case_001")]
+check(p.returncode == 2 and warned and second and warned[0] < second[0]
+      and "-snes_monitr not read by any solver" in lines[-1],
+      f"a sweep's PETSc typo said after its first case: exit {p.returncode}, {lines[-3:]!r}")
 # Options of the default solver path pass, read or not by this scene's.
 args, out = run_args("petsc_ok", GOOD_SCENE, extra=QUICK + ["-snes_monitor", "-ksp_type", "gmres",
                                                             "-pc_type", "lu", "-snes_rtol", "1e-9",
