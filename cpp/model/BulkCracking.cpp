@@ -71,11 +71,7 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
   {
     double nearest = nearest_concrete_centre(*mesh, material, slice.tube_center); // [mm]
     MPI_Allreduce(MPI_IN_PLACE, &nearest, 1, MPI_DOUBLE, MPI_MIN, mesh->comm());
-    std::ostringstream why;
-    why << "'cracking.radius' = " << part.radius << " mm takes in no concrete element: the "
-        << "nearest element centre is " << nearest << " mm from the tube axis; raise it, or 0 "
-        << "for all the concrete";
-    throw SceneError(why.str());
+    throw SceneError(takes_no_concrete(part.radius, nearest));
   }
   _radius = part.radius;
   if (part.radius > 0)

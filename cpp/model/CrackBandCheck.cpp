@@ -26,26 +26,6 @@ std::array<double, 3> extent(const mesh::MeshData& data, std::size_t c)
   return {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
 }
 
-/// The concrete cells of `data` that may crack (CrackingCells.h's rule,
-/// the centre's distance summed as there).
-std::vector<std::size_t> cracking_cells(const mesh::MeshData& data, double radius,
-                                        std::array<double, 2> axis)
-{
-  std::vector<std::size_t> cells;
-  for (std::size_t c = 0; c < data.num_cells(); ++c)
-  {
-    if (data.material[c] != mesh::concrete)
-      continue;
-    double centre[2] = {0, 0};
-    for (int k = 0; k < 8; ++k)
-      for (int d = 0; d < 2; ++d)
-        centre[d] += data.x[3 * std::size_t(data.cells[8 * c + k]) + d] / 8.0;
-    if (may_crack(std::hypot(centre[0] - axis[0], centre[1] - axis[1]), radius))
-      cells.push_back(c);
-  }
-  return cells;
-}
-
 /// The position [mm] of reference point X in cell c: the trilinear map of
 /// the hexahedron, its nodes in DOLFINx's order (vertex i at the corner
 /// whose x, y, z are bits 0, 1, 2 of i).
@@ -61,6 +41,30 @@ std::array<double, 3> position(const mesh::MeshData& data, std::size_t c, const 
       p[d] += phi * data.x[3 * std::size_t(data.cells[8 * c + k]) + d];
   }
   return p;
+}
+
+/// The concrete cells of `data` that may crack (CrackingCells.h's rule,
+/// the centre's distance summed as there), and the least distance of a
+/// concrete cell's centre from the axis [mm].
+std::vector<std::size_t> cracking_cells(const mesh::MeshData& data, double radius,
+                                        std::array<double, 2> axis, double& nearest)
+{
+  std::vector<std::size_t> cells;
+  nearest = INFINITY;
+  for (std::size_t c = 0; c < data.num_cells(); ++c)
+  {
+    if (data.material[c] != mesh::concrete)
+      continue;
+    double centre[2] = {0, 0};
+    for (int k = 0; k < 8; ++k)
+      for (int d = 0; d < 2; ++d)
+        centre[d] += data.x[3 * std::size_t(data.cells[8 * c + k]) + d] / 8.0;
+    const double distance = std::hypot(centre[0] - axis[0], centre[1] - axis[1]);
+    nearest = std::min(nearest, distance);
+    if (may_crack(distance, radius))
+      cells.push_back(c);
+  }
+  return cells;
 }
 } // namespace
 
@@ -123,11 +127,16 @@ void BandSizeCheck::refuse_if_too_wide() const
   throw SceneError(why.str());
 }
 
-void refuse_bands_too_wide(const mesh::MeshData& data, const Material& concrete,
-                           const CrackingPart& part, const Geometry& slice)
+void check_cracking_mesh(const mesh::MeshData& data, const Material& concrete,
+                         const CrackingPart& part, const Geometry& slice)
 {
   if (!part.embedded)
     return;
+  double nearest = INFINITY;
+  const std::vector<std::size_t> cells =
+      cracking_cells(data, part.radius, slice.tube_center, nearest);
+  if (cells.empty())
+    throw SceneError(takes_no_concrete(part.radius, nearest));
   const bulk::CrackBand band(concrete.E, concrete.nu, envelope_of(part), part.viscosity);
   const bulk::StrengthField field(part.strength_cov, part.correlation_length,
                                   std::uint64_t(part.seed));
@@ -135,7 +144,7 @@ void refuse_bands_too_wide(const mesh::MeshData& data, const Material& concrete,
   const int n_points = expression_cracking_position->num_points;
   const double* X = expression_cracking_position->points;
   constexpr std::array<double, 3> middle{0.5, 0.5, 0.5};
-  for (const std::size_t c : cracking_cells(data, part.radius, slice.tube_center))
+  for (const std::size_t c : cells)
   {
     const auto [dx, dy, dz] = extent(data, c);
     const double diagonal = std::hypot(dx, dy, dz);

@@ -41,11 +41,12 @@ private:
   std::array<double, 4> _where{}; ///< the worst element's diagonal, band [mm], centre x, y [mm]
 };
 
-/// The size condition on the whole mesh `data` (every process holds it, so
-/// all decide alike): the elements that may crack (CrackingCells.h), their
-/// quadrature points (BulkCracking's) mapped from the hexahedra's nodes.
-/// Throws SceneError as BandSizeCheck does; nothing to check without
-/// cracks anywhere.
-void refuse_bands_too_wide(const mesh::MeshData& data, const Material& concrete,
-                           const CrackingPart& part, const Geometry& slice);
+/// The checks of [cracking] that need the mesh, on the whole mesh `data`
+/// (every process holds it, so all decide alike): a cracking.radius that
+/// takes in no concrete cell (CrackingCells.h), and the size condition on
+/// the elements that may crack, at their quadrature points (BulkCracking's)
+/// mapped from the hexahedra's nodes. Throws SceneError in the words a run
+/// refuses the scene in; nothing to check without cracks anywhere.
+void check_cracking_mesh(const mesh::MeshData& data, const Material& concrete,
+                         const CrackingPart& part, const Geometry& slice);
 } // namespace pushout::model

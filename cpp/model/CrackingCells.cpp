@@ -6,6 +6,7 @@
 #include <dolfinx/la/Vector.h>
 #include <dolfinx/mesh/Topology.h>
 #include <functional>
+#include <sstream>
 
 namespace pushout::model
 {
@@ -75,6 +76,15 @@ std::vector<std::size_t> region_edge(const dolfinx::mesh::Mesh& mesh,
       edge.push_back(k);
   }
   return edge;
+}
+
+std::string takes_no_concrete(double radius, double nearest)
+{
+  std::ostringstream why;
+  why << "'cracking.radius' = " << radius << " mm takes in no concrete element: the "
+      << "nearest element centre is " << nearest << " mm from the tube axis; raise it, or 0 "
+      << "for all the concrete";
+  return why.str();
 }
 
 double nearest_concrete_centre(const dolfinx::mesh::Mesh& mesh,

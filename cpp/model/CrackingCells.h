@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <dolfinx/mesh/Mesh.h>
+#include <string>
 #include <vector>
 
 namespace pushout::model
@@ -32,6 +33,10 @@ std::vector<std::int32_t> cracking_cells(const dolfinx::mesh::Mesh& mesh,
 std::vector<std::size_t> region_edge(const dolfinx::mesh::Mesh& mesh,
                                      const std::vector<std::int32_t>& material,
                                      const std::vector<std::int32_t>& cells);
+
+/// The refusal of a cracking.radius `radius` [mm] that takes in no concrete
+/// cell, the nearest centre `nearest` [mm] from the tube axis.
+std::string takes_no_concrete(double radius, double nearest);
 
 /// The least distance of an owned concrete cell's centre from the tube
 /// `axis` [mm] (infinity if none).

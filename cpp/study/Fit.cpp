@@ -335,7 +335,7 @@ int fit(const FitOptions& opt)
   ProcessGroups groups(opt.ranks_per_case);
   Evaluator evaluator(opt, free, data, groups.comm(), groups.count(), groups.index(),
                       groups.others_here(int(free.size()) + 1));
-  Problem problem{evaluator, free, resolution, talk, t0, {}, {}, {}, {}, false, 0};
+  Problem problem{evaluator, free, resolution, talk, t0, {}, {}, {}, {}, false};
   if (talk)
     std::cout << "pushout fit: " << free.size() << " values to " << data.delta.size()
               << " points of " << opt.data.string() << "; " << groups.count()

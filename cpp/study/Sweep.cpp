@@ -28,6 +28,7 @@
 #include <mpi.h>
 #include <nlohmann/json.hpp>
 #include <numeric>
+#include <optional>
 #include <sstream>
 
 namespace pushout::study
@@ -176,28 +177,29 @@ struct SweepPlan
   bool plot = false;
 };
 
-/// The crack band's size condition (model/CrackBandCheck.h) of a sweep's
-/// cases with cracks anywhere, which needs each case's mesh: each distinct
-/// mesh made once, here (the cache keeps it for the case's run), unless the
-/// size guard will refuse its case anyway or the mesh cannot be made (its
-/// case then stops in its row, as without this check).
-class BandCheck
+/// The checks of a sweep's cases with cracks anywhere that need each case's
+/// mesh (model::check_cracking_mesh): the mesh made here, or read from the
+/// cache (which then serves the case's run), unless the size guard refuses
+/// it on all the processes together (the case's own guard, when it starts,
+/// counts the other groups' processes too), or it cannot be made (its case
+/// then stops in its row, as without this check). One mesh is kept, for the
+/// next cases that share it.
+class MeshChecks
 {
 public:
-  explicit BandCheck(const ManyRunsOptions& opt) : _opt(opt) {}
+  explicit MeshChecks(const ManyRunsOptions& opt) : _opt(opt) {}
 
-  /// Throws SceneError if `scene`'s elements are too wide for its crack
-  /// band. Collective on MPI_COMM_WORLD.
+  /// Throws SceneError where `scene`'s mesh does not suit its cracks.
+  /// Collective on MPI_COMM_WORLD.
   void operator()(const Scene& scene)
   {
     if (!scene.cracking().embedded)
       return;
     const mesh::MeshInput shape = mesh::MeshInput::of(scene);
-    auto made = std::find_if(_meshes.begin(), _meshes.end(),
-                             [&](const auto& m) { return m.first == shape; });
-    if (made == _meshes.end())
+    if (!_mesh || _mesh->first != shape)
     {
-      try // the whole run's estimate, which meshing alone is far below
+      _mesh.reset(); // one mesh in memory at a time
+      try            // the whole run's estimate, which meshing alone is far below
       {
         record::check_fits(
             record::estimate_resources(shape, scene.solver(), scene.cracking(), MPI_COMM_WORLD),
@@ -210,21 +212,19 @@ public:
       bool reused = false;
       try
       {
-        _meshes.emplace_back(shape, mesh::generate(shape, _opt.mesh_cache, reused, MPI_COMM_WORLD));
+        _mesh.emplace(shape, mesh::generate(shape, _opt.mesh_cache, reused, MPI_COMM_WORLD));
       }
       catch (const std::runtime_error&) // on every process (mesh::generate)
       {
         return; // its case fails when it starts, in its row
       }
-      made = std::prev(_meshes.end());
     }
-    model::refuse_bands_too_wide(made->second, scene.concrete(), scene.cracking(),
-                                 scene.geometry());
+    model::check_cracking_mesh(_mesh->second, scene.concrete(), scene.cracking(), scene.geometry());
   }
 
 private:
   const ManyRunsOptions& _opt;
-  std::vector<std::pair<mesh::MeshInput, mesh::MeshData>> _meshes;
+  std::optional<std::pair<mesh::MeshInput, mesh::MeshData>> _mesh;
 };
 
 /// Reads every case's scene, so that a bad value stops the sweep before any
@@ -279,7 +279,7 @@ SweepPlan plan_sweep(const SweepOptions& opt)
   std::map<std::string, std::string> unread;
   for (const Variation& v : plan.vary)
     unread[v.key] = "";
-  BandCheck check_bands(opt);
+  MeshChecks check_mesh(opt);
   for (std::size_t i = 0; i < plan.cases.size(); ++i)
   {
     std::vector<std::string> sets = opt.sets;
@@ -290,7 +290,7 @@ SweepPlan plan_sweep(const SweepOptions& opt)
       if (scene.model().name() != plan.model_type)
         throw SceneError("a sweep runs one model type: vary other keys");
       specimen::check_scene(scene); // the relations between keys, as a run checks them
-      check_bands(scene);
+      check_mesh(scene);
       for (auto it = unread.begin(); it != unread.end();)
       {
         const std::string note = scene.unread_note(it->first);

@@ -42,7 +42,8 @@ PetscErrorCode jacobian_callback(Tao, Vec X, Mat J, Mat, void* ctx)
 }
 
 /// TAO's own test (its gradient's tolerances, its iteration limit), then the
-/// relative offset's (Resolution::offset_tolerance); the progress line.
+/// relative offset's (Resolution::offset_tolerance), which also ends a fit
+/// at its iteration limit as converged where it is met; the progress line.
 PetscErrorCode convergence_test(Tao tao, void* ctx)
 {
   return petsc::callback(
@@ -59,7 +60,8 @@ PetscErrorCode convergence_test(Tao tao, void* ctx)
         p.report(int(iteration), x, offset);
         TaoConvergedReason reason;
         check(TaoGetConvergedReason(tao, &reason), "TaoGetConvergedReason");
-        if (reason == TAO_CONTINUE_ITERATING && offset < p.resolution.offset_tolerance)
+        if ((reason == TAO_CONTINUE_ITERATING || reason == TAO_DIVERGED_MAXITS) &&
+            offset < p.resolution.offset_tolerance)
           check(TaoSetConvergedReason(tao, TAO_CONVERGED_USER), "TaoSetConvergedReason");
       });
 }
@@ -86,7 +88,24 @@ double Problem::offset_at(const std::vector<double>& x) const
 {
   if (x != x_jacobian || x != x_last)
     return NAN;
-  return relative_offset(jacobian, r_last);
+  // The step still to go is along the values free to move: one on a bound
+  // that the gradient pushes beyond it stays there (TAO's bounded step).
+  const std::size_t m = r_last.size();
+  std::vector<double> columns;
+  for (std::size_t j = 0; j < free.size(); ++j)
+  {
+    double g = 0; // d(|r|^2 / 2) / dx_j
+    for (std::size_t i = 0; i < m; ++i)
+      g += jacobian[j * m + i] * r_last[i];
+    const double tol = 1e-6; // of the scaled value, as FitStatistics' "on its bound"
+    const bool on_lo = x[j] <= free[j].tao_lo() / free[j].scale + tol;
+    const bool on_hi = x[j] >= free[j].tao_hi() / free[j].scale - tol;
+    if ((on_lo && g > 0) || (on_hi && g < 0))
+      continue;
+    columns.insert(columns.end(), jacobian.begin() + std::ptrdiff_t(j * m),
+                   jacobian.begin() + std::ptrdiff_t((j + 1) * m));
+  }
+  return columns.empty() ? 0.0 : relative_offset(columns, r_last);
 }
 
 void Problem::report(int iteration, const std::vector<double>& x, double offset) const
@@ -94,8 +113,12 @@ void Problem::report(int iteration, const std::vector<double>& x, double offset)
   if (!talk)
     return;
   std::ostringstream s;
-  s << "fit: iteration " << iteration << ", rms " << std::setprecision(6) << rms()
-    << " MPa, offset " << std::setprecision(3) << offset << " at";
+  s << "fit: iteration " << iteration;
+  if (std::isnan(offset)) // x is not the last point tried: TAO went back to it
+    s << ": the line search found no step; back at";
+  else
+    s << ", rms " << std::setprecision(6) << rms() << " MPa, offset " << std::setprecision(3)
+      << offset << " at";
   for (std::size_t j = 0; j < x.size(); ++j)
     s << " " << free[j].key << " = " << std::setprecision(8) << x[j] * free[j].scale;
   s << " (" << evaluator.evaluations() << " runs, " << std::fixed << std::setprecision(1)
@@ -165,7 +188,6 @@ void Problem::evaluate(const std::vector<double>& x, Mat J)
     for (std::size_t i = 0; i < m; ++i)
       jacobian[j * m + i] = (r[first + j][i] - r_last[i]) / h[j];
   fill(J);
-  ++jacobians;
 }
 
 void Problem::fill(Mat J) const
@@ -180,7 +202,6 @@ void Problem::fill(Mat J) const
 }
 
 TaoFit::TaoFit(const std::vector<Free>& free, PetscInt m, Problem& problem)
-    : offset_tolerance(problem.resolution.offset_tolerance)
 {
   const PetscInt n = PetscInt(free.size());
   check(TaoCreate(PETSC_COMM_SELF, &tao), "TaoCreate");
@@ -250,16 +271,14 @@ bool TaoFit::converged() const
 {
   TaoConvergedReason reason;
   check(TaoGetConvergedReason(tao, &reason), "TaoGetConvergedReason");
-  // A line search that fails at the optimum (the curve's noise) is no
-  // failure of the fit when the offset is met there.
-  return reason > 0 || final_offset < offset_tolerance;
+  return reason > 0;
 }
 
 std::string TaoFit::reason() const
 {
   TaoConvergedReason reason;
   check(TaoGetConvergedReason(tao, &reason), "TaoGetConvergedReason");
-  if (reason == TAO_CONVERGED_USER || (reason <= 0 && final_offset < offset_tolerance))
+  if (reason == TAO_CONVERGED_USER) // the only test of ours (convergence_test)
     return "CONVERGED_RELATIVE_OFFSET";
   return TaoConvergedReasons[reason];
 }

@@ -40,14 +40,14 @@ struct Problem
   std::vector<double> x_jacobian;     ///< where the last Jacobian was formed
   std::vector<double> jacobian;       ///< its entries, column-major (m x n)
   bool last_failed = false;           ///< whether x_last's run failed outright
-  int jacobians = 0; ///< the Jacobians formed (TAO's line search asks one at each trial point)
 
   /// The scaled values in X.
   std::vector<double> values(Vec X) const;
   /// The root mean square of the last residuals [MPa].
   double rms() const;
   /// The relative offset (FitStatistics.h) at x, from its residuals and
-  /// Jacobian; NaN if the last Jacobian was formed elsewhere.
+  /// Jacobian, over the values not held on a bound (0 if none is free);
+  /// NaN if the last Jacobian was formed elsewhere.
   double offset_at(const std::vector<double>& x) const;
   /// The progress line of TAO's iteration `iteration` at x.
   void report(int iteration, const std::vector<double>& x, double offset) const;
@@ -80,7 +80,7 @@ struct TaoFit
   /// Throws Interrupted when a signal stopped the runs.
   std::vector<double> solve(Problem& problem);
   /// Whether the fit converged: TAO's gradient test, or the relative offset
-  /// at the optimum below the problem's offset_tolerance.
+  /// below the problem's offset_tolerance (at the iteration limit too).
   bool converged() const;
   /// Why TAO stopped, by PETSc's name (CONVERGED_RELATIVE_OFFSET for the
   /// offset's test).
@@ -91,7 +91,6 @@ struct TaoFit
   double offset() const { return final_offset; }
 
 private:
-  double offset_tolerance;
   double final_offset = INFINITY;
 };
 } // namespace pushout::study

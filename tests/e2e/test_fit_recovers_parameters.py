@@ -19,7 +19,7 @@
    that does not exist, one that is not a number, bounds that exclude the
    start or are no numbers, a curve with no positive tau.
 4. A value the optimum drives onto its bound is a warning, in fit.json and
-   on stderr.
+   on stderr, and the relative offset leaves it out.
 5. Values the scene refuses (f_fr > f_t) count as a large misfit, a
    difference that lands there is taken backwards, and the fit stays on
    valid values.
@@ -211,6 +211,12 @@ with open(os.path.join(out4, "fit.json")) as f:
 said = [w for w in r4["warnings"] if "interface.0.mu" in w and "sits on its bound" in w]
 check(r4["parameters"]["interface.0.mu"] < 1e-6 and said and "sits on its bound" in p.stderr,
       f"mu on its bound ({r4['parameters']['interface.0.mu']:.2e}) is a warning: {said}")
+# The step still to go is along the values free to move: none here (mu
+# held on its bound by a gradient that pushes it beyond), so the relative
+# offset is 0, not the unconstrained step's (7.2 before it left such values
+# out).
+check(p.returncode == 0 and r4["converged"] and r4["relative_offset"] == 0,
+      f"mu on its bound: exit {p.returncode}, {r4['reason']}, offset {r4['relative_offset']}")
 
 
 # 5. Values the scene refuses (f_fr > f_t: a relation between keys, which no

@@ -182,6 +182,11 @@ run_err = pushout(["run", GOOD_SCENE, "--out", out_dir("hostile_too_wide"), "--q
                   + ["--set", "cracking.c=150"])[0].stderr.strip()
 check(err.split("): ", 1)[1] == run_err.split("error in scene: ", 1)[1],
       f"sweep and run refuse alike: {run_err[:200]!r}")
+# So is a cracking radius that takes in no concrete element (the nearest
+# centre is 10.78 mm from the axis on this mesh).
+refused("sweep: a cracking radius short of the concrete",
+        sweep + too_wide + ["--vary", "cracking.radius=30,10.2"],
+        ["case_001 (cracking.radius=10.2)", "takes in no concrete element"], seconds=10)
 
 # 10. Command-line usage errors: one line, exit 2, a hint.
 refused("run without --out", ["run", GOOD_SCENE], ["--out", "pushout run --help"])
