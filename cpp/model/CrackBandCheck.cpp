@@ -1,4 +1,5 @@
-// The crack band's size condition on the whole mesh (CrackBandCheck.h).
+// The checks of [cracking] that need the mesh: the crack band's size
+// condition (BandSizeCheck) and the cracking region (CrackBandCheck.h).
 #include "CrackBandCheck.h"
 #include "../bulk/StrengthField.h"
 #include "../scene/SceneError.h"

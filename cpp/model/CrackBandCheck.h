@@ -1,8 +1,9 @@
 // The crack band's size condition (docs/cracking.md): every element that may
 // crack must be narrower, across its diagonal, than the widest band its
 // crack can soften over without snapping back, at every quadrature point's
-// strength. BulkCracking checks its own elements when a run builds it; a
-// sweep checks each case on the whole mesh before any case runs.
+// strength; and a cracking region must take in some concrete. BulkCracking
+// checks its own elements when a run builds it; a sweep checks each case on
+// the whole mesh before any case runs (check_cracking_mesh).
 #pragma once
 
 #include "../bulk/CrackBand.h"
