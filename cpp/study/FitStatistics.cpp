@@ -61,6 +61,22 @@ bool invert(std::vector<std::vector<double>> a, std::vector<std::vector<double>>
   }
   return true;
 }
+/// J^T J of the column-major m x n `jacobian`, each column j divided by
+/// scale[j] (none: 1).
+std::vector<std::vector<double>> normal_matrix(const double* jacobian, std::size_t m, std::size_t n,
+                                               const std::vector<double>& scale = {})
+{
+  std::vector<std::vector<double>> JtJ(n, std::vector<double>(n, 0.0));
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      for (std::size_t i = 0; i < m; ++i)
+        JtJ[j][k] += jacobian[j * m + i] * jacobian[k * m + i];
+      if (!scale.empty())
+        JtJ[j][k] /= scale[j] * scale[k];
+    }
+  return JtJ;
+}
 } // namespace
 
 FitStatistics statistics(Mat J, const std::vector<double>& r, const std::vector<Free>& free,
@@ -68,16 +84,13 @@ FitStatistics statistics(Mat J, const std::vector<double>& r, const std::vector<
 {
   const std::size_t n = free.size(), m = r.size();
   FitStatistics st;
-  std::vector<std::vector<double>> JtJ(n, std::vector<double>(n, 0.0));
-  {
-    const PetscScalar* a;
-    check(MatDenseGetArrayRead(J, &a), "MatDenseGetArrayRead");
-    for (std::size_t j = 0; j < n; ++j)
-      for (std::size_t k = 0; k < n; ++k)
-        for (std::size_t i = 0; i < m; ++i)
-          JtJ[j][k] += a[j * m + i] / free[j].scale * a[k * m + i] / free[k].scale;
-    check(MatDenseRestoreArrayRead(J, &a), "MatDenseRestoreArrayRead");
-  }
+  std::vector<double> scale(n);
+  for (std::size_t j = 0; j < n; ++j)
+    scale[j] = free[j].scale; // J is of the scaled values: J^T J in the keys' units
+  const PetscScalar* a;
+  check(MatDenseGetArrayRead(J, &a), "MatDenseGetArrayRead");
+  const std::vector<std::vector<double>> JtJ = normal_matrix(a, m, n, scale);
+  check(MatDenseRestoreArrayRead(J, &a), "MatDenseRestoreArrayRead");
   for (double v : r)
     st.rss += v * v;
   const double s2 = st.rss / double(m > n ? m - n : 1);
@@ -103,14 +116,10 @@ FitStatistics statistics(Mat J, const std::vector<double>& r, const std::vector<
   // A value the optimum pushes onto a bound is not a fit of it: the data
   // want it beyond (a different model, or data the model cannot make).
   for (std::size_t k = 0; k < n; ++k)
-  {
-    const double v = x[k] * free[k].scale, tol = 1e-6 * free[k].scale;
-    for (const double bound : {free[k].lo, free[k].hi})
-      if (std::isfinite(bound) && std::abs(v - bound) <= tol)
-        st.warnings.push_back(free[k].key + " = " + number_text(v) +
-                              " sits on its bound: the best fit would take it beyond, so the "
-                              "model does not describe these data well there");
-  }
+    if (free[k].on_lo(x[k]) || free[k].on_hi(x[k]))
+      st.warnings.push_back(free[k].key + " = " + number_text(x[k] * free[k].scale) +
+                            " sits on its bound: the best fit would take it beyond, so the "
+                            "model does not describe these data well there");
   return st;
 }
 
@@ -119,16 +128,12 @@ double relative_offset(const std::vector<double>& jacobian, const std::vector<do
   const std::size_t m = r.size(), n = m == 0 ? 0 : jacobian.size() / m;
   if (n == 0 || m <= n)
     return INFINITY;
-  std::vector<std::vector<double>> JtJ(n, std::vector<double>(n, 0.0)), inverse;
+  std::vector<std::vector<double>> inverse;
   std::vector<double> Jtr(n, 0.0);
   for (std::size_t j = 0; j < n; ++j)
     for (std::size_t i = 0; i < m; ++i)
-    {
       Jtr[j] += jacobian[j * m + i] * r[i];
-      for (std::size_t k = 0; k < n; ++k)
-        JtJ[j][k] += jacobian[j * m + i] * jacobian[k * m + i];
-    }
-  if (!invert(JtJ, inverse))
+  if (!invert(normal_matrix(jacobian.data(), m, n), inverse))
     return INFINITY;
   double projected = 0, rss = 0; // |P r|^2 = (J^T r)^T (J^T J)^-1 J^T r, |r|^2 [MPa^2]
   for (std::size_t j = 0; j < n; ++j)

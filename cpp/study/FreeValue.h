@@ -29,5 +29,15 @@ struct Free
   {
     return hi_exclusive ? std::min(hi - 1e-9 * scale, std::nextafter(hi, -INFINITY)) : hi;
   }
+  /// Whether the scaled value x sits on its lower (upper) bound: within 1e-6
+  /// of the scale, which tao_lo's and tao_hi's 1e-9 lie within.
+  bool on_lo(double x) const
+  {
+    return std::isfinite(lo) && std::abs(x * scale - lo) <= 1e-6 * scale;
+  }
+  bool on_hi(double x) const
+  {
+    return std::isfinite(hi) && std::abs(x * scale - hi) <= 1e-6 * scale;
+  }
 };
 } // namespace pushout::study

@@ -97,10 +97,7 @@ double Problem::offset_at(const std::vector<double>& x) const
     double g = 0; // d(|r|^2 / 2) / dx_j
     for (std::size_t i = 0; i < m; ++i)
       g += jacobian[j * m + i] * r_last[i];
-    const double tol = 1e-6; // of the scaled value, as FitStatistics' "on its bound"
-    const bool on_lo = x[j] <= free[j].tao_lo() / free[j].scale + tol;
-    const bool on_hi = x[j] >= free[j].tao_hi() / free[j].scale - tol;
-    if ((on_lo && g > 0) || (on_hi && g < 0))
+    if ((free[j].on_lo(x[j]) && g > 0) || (free[j].on_hi(x[j]) && g < 0))
       continue;
     columns.insert(columns.end(), jacobian.begin() + std::ptrdiff_t(j * m),
                    jacobian.begin() + std::ptrdiff_t((j + 1) * m));

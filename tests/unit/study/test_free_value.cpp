@@ -21,3 +21,19 @@ TEST(FreeValue, AnExcludedBoundStaysExcludedThroughTheScale)
   Free h{"mu", 0.4, 0.0, INFINITY, 0.4, false};
   EXPECT_EQ(h.tao_lo(), 0.0);
 }
+
+TEST(FreeValue, OnItsBoundWithinAMillionthOfTheScale)
+{
+  // mu >= 0, started at 0.4 (TAO's variable x = mu / 0.4): on its bound
+  // within 1e-6 of the scale, as the fit's warning and its offset read it.
+  Free f{"mu", 0.4, 0.0, 1.0, 0.4, false};
+  EXPECT_TRUE(f.on_lo(0.0));
+  EXPECT_TRUE(f.on_lo(0.9e-6));
+  EXPECT_FALSE(f.on_lo(1.1e-6 / 0.4 * 1.0));
+  EXPECT_TRUE(f.on_hi(1.0 / 0.4));
+  EXPECT_FALSE(f.on_hi(0.5));
+  // TAO's bound of an excluded lower bound counts as on it.
+  Free g{"f_t", 3.0, 0.0, INFINITY, 3.0, true};
+  EXPECT_TRUE(g.on_lo(g.tao_lo() / g.scale));
+  EXPECT_FALSE(g.on_hi(1e300)); // no upper bound
+}
