@@ -1,7 +1,8 @@
 // `pushout fit`: the values of chosen scene keys (law parameters, loads)
 // that make the model's push-out curve match a measured one, by least
-// squares with PETSc TAO (bounded regularised Gauss-Newton, TAOBRGN, with
-// a forward-difference Jacobian), and how well each value is determined.
+// squares with PETSc TAO (Gauss-Newton as its bounded Newton line search,
+// TAOBNLS, with a forward-difference Jacobian), and how well each value is
+// determined.
 //
 //   residual r_i = tau_model(delta_i) - tau_data_i, i = 1..m (MPa)
 //

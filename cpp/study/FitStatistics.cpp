@@ -61,10 +61,10 @@ bool invert(std::vector<std::vector<double>> a, std::vector<std::vector<double>>
   }
   return true;
 }
-/// J^T J of the column-major m x n `jacobian`, each column j divided by
-/// scale[j] (none: 1).
+} // namespace
+
 std::vector<std::vector<double>> normal_matrix(const double* jacobian, std::size_t m, std::size_t n,
-                                               const std::vector<double>& scale = {})
+                                               const std::vector<double>& scale)
 {
   std::vector<std::vector<double>> JtJ(n, std::vector<double>(n, 0.0));
   for (std::size_t j = 0; j < n; ++j)
@@ -77,7 +77,6 @@ std::vector<std::vector<double>> normal_matrix(const double* jacobian, std::size
     }
   return JtJ;
 }
-} // namespace
 
 FitStatistics statistics(Mat J, const std::vector<double>& r, const std::vector<Free>& free,
                          const std::vector<double>& x)

@@ -28,6 +28,11 @@ struct FitStatistics
 FitStatistics statistics(Mat J, const std::vector<double>& r, const std::vector<Free>& free,
                          const std::vector<double>& x);
 
+/// J^T J of the column-major m x n `jacobian`, each column j divided by
+/// scale[j] (none: 1).
+std::vector<std::vector<double>> normal_matrix(const double* jacobian, std::size_t m, std::size_t n,
+                                               const std::vector<double>& scale = {});
+
 /// The relative offset of Bates and Watts (1981, Technometrics 23:179-183)
 /// at residuals r [MPa] with Jacobian `jacobian` (column-major, r.size() x
 /// n, of any scaling of the values): with P the projection onto J's columns,

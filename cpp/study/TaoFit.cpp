@@ -17,33 +17,62 @@ namespace
 {
 using petsc::check;
 
-PetscErrorCode residual_callback(Tao, Vec X, Vec F, void* ctx)
+PetscErrorCode objective_callback(Tao, Vec X, PetscReal* f, void* ctx)
 {
   return petsc::callback(
       [&]
       {
         Problem& p = *static_cast<Problem*>(ctx);
-        p.evaluate(p.values(X), nullptr);
-        PetscScalar* f;
-        check(VecGetArray(F, &f), "VecGetArray");
-        std::copy(p.r_last.begin(), p.r_last.end(), f);
-        check(VecRestoreArray(F, &f), "VecRestoreArray");
+        p.evaluate(p.values(X), false);
+        *f = p.objective();
       });
 }
 
-PetscErrorCode jacobian_callback(Tao, Vec X, Mat J, Mat, void* ctx)
+/// f and its gradient J^T r.
+PetscErrorCode objective_gradient_callback(Tao, Vec X, PetscReal* f, Vec G, void* ctx)
 {
   return petsc::callback(
       [&]
       {
         Problem& p = *static_cast<Problem*>(ctx);
-        p.evaluate(p.values(X), J);
+        p.evaluate(p.values(X), true);
+        *f = p.objective();
+        const std::size_t m = p.r_last.size();
+        PetscScalar* g;
+        check(VecGetArray(G, &g), "VecGetArray");
+        for (std::size_t j = 0; j < p.free.size(); ++j)
+        {
+          g[j] = 0;
+          for (std::size_t i = 0; i < m; ++i)
+            g[j] += p.jacobian[j * m + i] * p.r_last[i];
+        }
+        check(VecRestoreArray(G, &g), "VecRestoreArray");
+      });
+}
+
+/// Gauss-Newton's Hessian J^T J.
+PetscErrorCode hessian_callback(Tao, Vec X, Mat H, Mat, void* ctx)
+{
+  return petsc::callback(
+      [&]
+      {
+        Problem& p = *static_cast<Problem*>(ctx);
+        p.evaluate(p.values(X), true);
+        const std::size_t n = p.free.size();
+        const auto JtJ = normal_matrix(p.jacobian.data(), p.r_last.size(), n);
+        for (std::size_t j = 0; j < n; ++j)
+          for (std::size_t k = 0; k < n; ++k)
+            check(MatSetValue(H, PetscInt(j), PetscInt(k), JtJ[j][k], INSERT_VALUES),
+                  "MatSetValue");
+        check(MatAssemblyBegin(H, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+        check(MatAssemblyEnd(H, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
       });
 }
 
 /// TAO's own test (its gradient's tolerances, its iteration limit), then the
 /// relative offset's (Resolution::offset_tolerance), which also ends a fit
-/// at its iteration limit as converged where it is met; the progress line.
+/// at its iteration limit as converged where it is met, and its floor
+/// (Resolution::stall_ratio); the progress line.
 PetscErrorCode convergence_test(Tao tao, void* ctx)
 {
   return petsc::callback(
@@ -60,9 +89,21 @@ PetscErrorCode convergence_test(Tao tao, void* ctx)
         p.report(int(iteration), x, offset);
         TaoConvergedReason reason;
         check(TaoGetConvergedReason(tao, &reason), "TaoGetConvergedReason");
-        if ((reason == TAO_CONTINUE_ITERATING || reason == TAO_DIVERGED_MAXITS) &&
-            offset < p.resolution.offset_tolerance)
+        const bool going = reason == TAO_CONTINUE_ITERATING || reason == TAO_DIVERGED_MAXITS;
+        // Settled: inside the confidence region, the offset fell by less
+        // than the ratio asks in two iterations running, each on a Jacobian
+        // of its own (the steps left are the curve's jumps).
+        const bool stalled = p.resolution.stall_ratio > 0 && offset < 1 &&
+                             offset > p.resolution.stall_ratio * p.last_offset;
+        p.stalls = stalled ? p.stalls + 1 : 0;
+        const bool settled = p.stalls >= 2;
+        if (going && (offset < p.resolution.offset_tolerance || settled))
+        {
+          p.at_resolution = offset >= p.resolution.offset_tolerance;
           check(TaoSetConvergedReason(tao, TAO_CONVERGED_USER), "TaoSetConvergedReason");
+        }
+        if (!std::isnan(offset))
+          p.last_offset = offset;
       });
 }
 } // namespace
@@ -82,6 +123,14 @@ double Problem::rms() const
   for (double r : r_last)
     s += r * r;
   return std::sqrt(s / double(r_last.size()));
+}
+
+double Problem::objective() const
+{
+  double s = 0;
+  for (double r : r_last)
+    s += r * r;
+  return s / 2;
 }
 
 double Problem::offset_at(const std::vector<double>& x) const
@@ -123,19 +172,16 @@ void Problem::report(int iteration, const std::vector<double>& x, double offset)
   std::cout << s.str() << std::endl;
 }
 
-void Problem::evaluate(const std::vector<double>& x, Mat J)
+void Problem::evaluate(const std::vector<double>& x, bool with_jacobian)
 {
-  if (J && x == x_jacobian && x == x_last) // TAO asks again at the same point
-  {
-    fill(J);
-    return;
-  }
-  std::vector<std::vector<double>> points;
   const bool known = x == x_last;
+  if (known && (!with_jacobian || x == x_jacobian)) // TAO asks again at the same point
+    return;
+  std::vector<std::vector<double>> points;
   if (!known)
     points.push_back(x);
   std::vector<double> h(x.size());
-  if (J)
+  if (with_jacobian)
     for (std::size_t j = 0; j < x.size(); ++j)
     {
       h[j] = resolution.difference_step * std::max(std::abs(x[j]), 1e-3);
@@ -152,7 +198,7 @@ void Problem::evaluate(const std::vector<double>& x, Mat J)
     r_last = r[0];
     last_failed = failed[0];
   }
-  if (!J)
+  if (!with_jacobian)
     return;
   const std::size_t first = known ? 0 : 1, m = r_last.size();
   // A difference whose run failed outright (x + h beyond a relation between
@@ -184,7 +230,6 @@ void Problem::evaluate(const std::vector<double>& x, Mat J)
   for (std::size_t j = 0; j < x.size(); ++j)
     for (std::size_t i = 0; i < m; ++i)
       jacobian[j * m + i] = (r[first + j][i] - r_last[i]) / h[j];
-  fill(J);
 }
 
 void Problem::fill(Mat J) const
@@ -198,16 +243,16 @@ void Problem::fill(Mat J) const
   check(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
 }
 
-TaoFit::TaoFit(const std::vector<Free>& free, PetscInt m, Problem& problem)
+TaoFit::TaoFit(const std::vector<Free>& free, PetscInt m, Problem& problem) : _problem(problem)
 {
   const PetscInt n = PetscInt(free.size());
   check(TaoCreate(PETSC_COMM_SELF, &tao), "TaoCreate");
-  check(TaoSetType(tao, TAOBRGN), "TaoSetType");
+  check(TaoSetType(tao, TAOBNLS), "TaoSetType");
   check(VecCreateSeq(PETSC_COMM_SELF, n, &X), "VecCreateSeq");
   check(VecDuplicate(X, &lo), "VecDuplicate");
   check(VecDuplicate(X, &hi), "VecDuplicate");
-  check(VecCreateSeq(PETSC_COMM_SELF, m, &F), "VecCreateSeq");
   check(MatCreateSeqDense(PETSC_COMM_SELF, m, n, nullptr, &J), "MatCreateSeqDense");
+  check(MatCreateSeqDense(PETSC_COMM_SELF, n, n, nullptr, &H), "MatCreateSeqDense");
   for (PetscInt j = 0; j < n; ++j)
   {
     const Free& f = free[std::size_t(j)];
@@ -226,31 +271,28 @@ TaoFit::TaoFit(const std::vector<Free>& free, PetscInt m, Problem& problem)
   }
   check(TaoSetSolution(tao, X), "TaoSetSolution");
   check(TaoSetVariableBounds(tao, lo, hi), "TaoSetVariableBounds");
-  check(TaoSetResidualRoutine(tao, F, residual_callback, &problem), "TaoSetResidualRoutine");
-  check(TaoSetJacobianResidualRoutine(tao, J, J, jacobian_callback, &problem),
-        "TaoSetJacobianResidualRoutine");
+  check(TaoSetObjective(tao, objective_callback, &problem), "TaoSetObjective");
+  check(TaoSetObjectiveAndGradient(tao, nullptr, objective_gradient_callback, &problem),
+        "TaoSetObjectiveAndGradient");
+  check(TaoSetHessian(tao, H, H, hessian_callback, &problem), "TaoSetHessian");
+  TaoLineSearch line_search;
+  check(TaoGetLineSearch(tao, &line_search), "TaoGetLineSearch");
+  check(TaoLineSearchSetType(line_search, problem.resolution.line_search), "TaoLineSearchSetType");
   // Converged when the gradient fell by 1e6 from the start (the
   // differences' noise floor is near 1e-10 of it) or below 1e-12 [MPa^2].
   check(TaoSetTolerances(tao, 1e-12, 0.0, 1e-6), "TaoSetTolerances");
   check(TaoSetMaximumIterations(tao, 50), "TaoSetMaximumIterations");
+  check(TaoSetConvergenceTest(tao, convergence_test, &problem), "TaoSetConvergenceTest");
   check(TaoSetFromOptions(tao), "TaoSetFromOptions");
-  // BRGN iterates in its subsolver, whose test decides (it takes the
-  // tolerances and the limit above when it is set up).
-  Tao iterating = tao;
-  PetscBool brgn;
-  check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(tao), TAOBRGN, &brgn),
-        "PetscObjectTypeCompare");
-  if (brgn)
-    check(TaoBRGNGetSubsolver(tao, &iterating), "TaoBRGNGetSubsolver");
-  check(TaoSetConvergenceTest(iterating, convergence_test, &problem), "TaoSetConvergenceTest");
 }
 
 TaoFit::~TaoFit()
 {
   petsc::check_nothrow(TaoDestroy(&tao), "TaoDestroy");
-  for (Vec* v : {&X, &F, &lo, &hi})
+  for (Vec* v : {&X, &lo, &hi})
     petsc::check_nothrow(VecDestroy(v), "VecDestroy");
-  petsc::check_nothrow(MatDestroy(&J), "MatDestroy");
+  for (Mat* a : {&J, &H})
+    petsc::check_nothrow(MatDestroy(a), "MatDestroy");
 }
 
 std::vector<double> TaoFit::solve(Problem& problem)
@@ -259,7 +301,8 @@ std::vector<double> TaoFit::solve(Problem& problem)
   check(TaoSolve(tao), "TaoSolve");
   // At the optimum: residuals and the Jacobian (of the scaled values).
   std::vector<double> x = problem.values(X);
-  problem.evaluate(x, J);
+  problem.evaluate(x, true);
+  problem.fill(J);
   final_offset = problem.offset_at(x);
   return x;
 }
@@ -275,8 +318,8 @@ std::string TaoFit::reason() const
 {
   TaoConvergedReason reason;
   check(TaoGetConvergedReason(tao, &reason), "TaoGetConvergedReason");
-  if (reason == TAO_CONVERGED_USER) // the only test of ours (convergence_test)
-    return "CONVERGED_RELATIVE_OFFSET";
+  if (reason == TAO_CONVERGED_USER) // the tests of ours (convergence_test)
+    return _problem.at_resolution ? "CONVERGED_MODEL_RESOLUTION" : "CONVERGED_RELATIVE_OFFSET";
   return TaoConvergedReasons[reason];
 }
 

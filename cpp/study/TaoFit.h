@@ -1,7 +1,10 @@
-// The least-squares solver of a fit (Fit.h): PETSc TAO's bounded regularised
-// Gauss-Newton (TAOBRGN) on the scaled values x = value / scale, the same
-// on every process (PETSC_COMM_SELF), whose residual and forward-difference
-// Jacobian callbacks are batches of the fit's runs (FitEvaluator.h).
+// The least-squares solver of a fit (Fit.h): Gauss-Newton on the scaled
+// values x = value / scale, as PETSc TAO's bounded Newton line search
+// (TAOBNLS) on f = |r|^2 / 2 with the gradient J^T r and the Hessian J^T J,
+// the same on every process (PETSC_COMM_SELF). Its callbacks are batches of
+// the fit's runs (FitEvaluator.h): the objective one run, the gradient the
+// forward-difference Jacobian's n more (Resolution::line_search says what
+// the line search asks for at the points it tries).
 #pragma once
 
 #include "FitEvaluator.h"
@@ -26,6 +29,16 @@ struct Resolution
   /// radius of the values' confidence region, however far the gradient is
   /// from TAO's test (which noise in the model's curve may hold up).
   double offset_tolerance;
+  /// A curve that jumps with the values (cracks anywhere) puts a floor
+  /// under the offset: where it stays above `stall_ratio` of the last
+  /// iteration's, below 1, in two iterations running, the fit has reached
+  /// the model's resolution (0: no such test, the curve being smooth).
+  double stall_ratio = 0;
+  /// TAO's line search: More and Thuente's (TAOLINESEARCHMT) asks for the
+  /// gradient at each point it tries, n + 1 runs, and its curvature test
+  /// thrashes on a curve that jumps; Armijo's backtracking
+  /// (TAOLINESEARCHARMIJO) asks for the objective alone, one run.
+  TaoLineSearchType line_search = TAOLINESEARCHMT;
 };
 
 /// What TAO's callbacks share.
@@ -40,11 +53,16 @@ struct Problem
   std::vector<double> x_jacobian;     ///< where the last Jacobian was formed
   std::vector<double> jacobian;       ///< its entries, column-major (m x n)
   bool last_failed = false;           ///< whether x_last's run failed outright
+  double last_offset = NAN;           ///< the offset at the last iteration
+  int stalls = 0;                     ///< iterations running that it stalled
+  bool at_resolution = false;         ///< stopped by Resolution::stall_ratio
 
   /// The scaled values in X.
   std::vector<double> values(Vec X) const;
   /// The root mean square of the last residuals [MPa].
   double rms() const;
+  /// The objective |r|^2 / 2 at the last base point [MPa^2].
+  double objective() const;
   /// The relative offset (FitStatistics.h) at x, from its residuals and
   /// Jacobian, over the values not held on a bound (0 if none is free);
   /// NaN if the last Jacobian was formed elsewhere.
@@ -55,20 +73,22 @@ struct Problem
   /// The stored Jacobian into J.
   void fill(Mat J) const;
 
-  /// The residuals at x and, if `J`, the forward-difference Jacobian there
-  /// (one batch of runs over the groups; a difference whose run fails
-  /// outright is taken backwards, in a second batch).
-  void evaluate(const std::vector<double>& x, Mat J);
+  /// The residuals at x and, if `with_jacobian`, the forward-difference
+  /// Jacobian there (one batch of runs over the groups; a difference whose
+  /// run fails outright is taken backwards, in a second batch). Nothing is
+  /// run again at the last point.
+  void evaluate(const std::vector<double>& x, bool with_jacobian);
 };
 
-/// The TAO solver of a fit (bounded regularised Gauss-Newton, TAOBRGN) on
-/// the scaled values x = value / scale, with its vectors: the start and the
-/// bounds of `free`, the m residuals and their Jacobian; freed when it goes.
+/// The TAO solver of a fit (Gauss-Newton as TAOBNLS) on the scaled values
+/// x = value / scale, with its vectors: the start and the bounds of `free`,
+/// the Jacobian of the m residuals and the Hessian J^T J; freed when it
+/// goes.
 struct TaoFit
 {
   Tao tao = nullptr;
-  Vec X = nullptr, F = nullptr, lo = nullptr, hi = nullptr;
-  Mat J = nullptr;
+  Vec X = nullptr, lo = nullptr, hi = nullptr;
+  Mat J = nullptr, H = nullptr;
 
   TaoFit(const std::vector<Free>& free, PetscInt m, Problem& problem);
   ~TaoFit();
@@ -80,10 +100,11 @@ struct TaoFit
   /// Throws Interrupted when a signal stopped the runs.
   std::vector<double> solve(Problem& problem);
   /// Whether the fit converged: TAO's gradient test, or the relative offset
-  /// below the problem's offset_tolerance (at the iteration limit too).
+  /// below the problem's offset_tolerance (at the iteration limit too), or
+  /// settled below 1 at the model's resolution (Resolution::stall_ratio).
   bool converged() const;
   /// Why TAO stopped, by PETSc's name (CONVERGED_RELATIVE_OFFSET for the
-  /// offset's test).
+  /// offset's test, CONVERGED_MODEL_RESOLUTION for its floor).
   std::string reason() const;
   /// TAO's iterations.
   int iterations() const;
@@ -91,6 +112,7 @@ struct TaoFit
   double offset() const { return final_offset; }
 
 private:
+  Problem& _problem;
   double final_offset = INFINITY;
 };
 } // namespace pushout::study

@@ -24,8 +24,10 @@
    difference that lands there is taken backwards, and the fit stays on
    valid values.
 6. With cracks anywhere in the concrete, whose curve jumps with IMPL-EX's
-   steps, the fit converges on the relative offset, in a few iterations,
-   each value within 2 standard errors of the truth."""
+   steps, the fit converges on the relative offset, or where it settles at
+   the model's resolution (with a warning), in a few iterations, each value
+   within 2 standard errors of the truth: with 1 % noise, and with 0.1 %
+   on a finer mesh, where the former line search thrashed."""
 import json
 import os
 import random
@@ -98,13 +100,13 @@ def fit(out, data, free=tuple(START), extra=(), processes=None, start=START):
                           env=dict(os.environ, OMPI_MCA_btl_vader_single_copy_mechanism="none"))
 
 
-def measured(truth, name):
-    """The push rows of the run in `truth` plus Gaussian noise of 1 % of
-    their peak (seeded), as a measured curve NAME/measured.csv; its path and
-    the noise [MPa]."""
+def measured(truth, name, level=0.01):
+    """The push rows of the run in `truth` plus Gaussian noise of `level` (1
+    %) of their peak (seeded), as a measured curve NAME/measured.csv; its
+    path and the noise [MPa]."""
     rows = curve(truth)[1:]
     random.seed(7)
-    noise = 0.01 * max(r["tau_MPa"] for r in rows)
+    noise = level * max(r["tau_MPa"] for r in rows)
     path = os.path.join(out_dir(name), "measured.csv")
     os.makedirs(os.path.dirname(path), exist_ok=True)
     with open(path, "w") as f:
@@ -264,33 +266,52 @@ check(r5b["refused_runs"] >= 1 and r5b["parameters"]["interface.1.f_fr"] <= 3.0
 # the keys, and the gradient never falls 1e6 below its start: the fit used
 # to run until TAO's line search failed (exit 3 after 237 runs at ten TAO
 # iterations, on the demo with 8 elements per quarter). It now takes
-# differences of 1e-2 and stops on Bates and Watts' relative offset (0.05
-# for such a scene: the step still to go 5 % of the confidence region's
-# radius). The cracking demo on the coarse mesh, truth f_t 3 MPa and mu
-# 0.4, plus 1 % noise, from f_t 3.6 and mu 0.3: measured, converged at
-# offset 0.024 in 5 iterations (21 runs, 15 s), each value within 0.3 se of
-# the truth. The bound on runs (60) is three times that: a fit that
-# wanders on the jumps' noise floor takes hundreds.
+# differences of 1e-2, backtracks on the objective alone, and stops on
+# Bates and Watts' relative offset (0.05 for such a scene: the step still
+# to go 5 % of the confidence region's radius), or where the offset settles
+# below 1 (the jumps against the data's scatter: the model's resolution,
+# with a warning). Truth f_t 3 MPa and mu 0.4, from f_t 3.6 and mu 0.3:
+# (a) the cracking demo on 4 elements per quarter plus 1 % noise: measured,
+#     settled at offset 0.36 in 7 iterations (32 runs, 20 s), each value
+#     within 0.6 se of the truth;
+# (b) on 8 elements per quarter plus 0.1 % noise, where TAO's former line
+#     search (More and Thuente's, n + 1 runs at each point it tried)
+#     thrashed on the jumps (141 runs by iteration 6, 189 by iteration 7,
+#     the offset settled at 0.14; stopped by hand): measured, offset 0.013
+#     in 7 iterations (24 runs, 52 s).
+# The bound on runs (60) is about twice theirs: a fit that wanders on the
+# jumps' noise floor takes hundreds. Where the offset settles depends on the
+# point (the jumps), so either stop passes: below 0.05, or below 1 with the
+# warning; each value within 2 se of the truth (and within offset sqrt(n)
+# se of where another step would take it: 2 + 1.4 se at most).
 CRACKING = os.path.join(SOURCE, "demo", "pushout_corroded_cracking.toml")
-CRACKING_COARSE = ["mesh.elements_per_quarter=4", "mesh.elements_through_thickness=2",
-                   "corrosion.steps=4", "corrosion.penetration=0.02", "loading.steps=10",
-                   "loading.push_displacement=0.05"]
 CRACKING_TRUTH = {"cracking.f_t": 3.0, "interface.0.mu": 0.4}
-truth6 = out_dir("fit_cracking_truth")
-run(CRACKING, truth6, sets=CRACKING_COARSE)
-data6, _ = measured(truth6, "fit_cracking_data")
-out6 = out_dir("fit_cracking")
-cmd = [PUSHOUT, "fit", CRACKING, "--data", data6, "--out", out6, "--quiet",
-       "--free", "cracking.f_t", "--free", "interface.0.mu"]
-for s in CRACKING_COARSE + ["cracking.f_t=3.6", "interface.0.mu=0.3"]:
-    cmd += ["--set", s]
-p = subprocess.run(cmd, capture_output=True, text=True, timeout=900)
-with open(os.path.join(out6, "fit.json")) as f:
-    r6 = json.load(f)
-check(p.returncode == 0 and r6["converged"] and r6["reason"] == "CONVERGED_RELATIVE_OFFSET"
-      and r6["relative_offset"] < 0.05 and r6["evaluations"] <= 60,
-      f"cracks anywhere: exit {p.returncode}, {r6['reason']} at offset {r6['relative_offset']} "
-      f"in {r6['iterations']} iterations, {r6['evaluations']} runs, {r6['wall_s']:.1f} s")
-for k, v in CRACKING_TRUTH.items():
-    got, se = r6["parameters"][k], r6["standard_errors"][k]
-    check(abs(got - v) < 2 * se, f"cracks anywhere: {k} = {got:.5g} +- {se:.2g} (truth {v})")
+for per_quarter, level in ((4, 0.01), (8, 0.001)):
+    coarse = [f"mesh.elements_per_quarter={per_quarter}", "mesh.elements_through_thickness=2",
+              "corrosion.steps=4", "corrosion.penetration=0.02", "loading.steps=10",
+              "loading.push_displacement=0.05"]
+    name = f"{per_quarter} per quarter, {100 * level:g} % noise"
+    truth6 = out_dir(f"fit_cracking_truth_{per_quarter}")
+    run(CRACKING, truth6, sets=coarse)
+    data6, _ = measured(truth6, f"fit_cracking_data_{per_quarter}", level)
+    out6 = out_dir(f"fit_cracking_{per_quarter}")
+    cmd = [PUSHOUT, "fit", CRACKING, "--data", data6, "--out", out6, "--quiet",
+           "--free", "cracking.f_t", "--free", "interface.0.mu"]
+    for s in coarse + ["cracking.f_t=3.6", "interface.0.mu=0.3"]:
+        cmd += ["--set", s]
+    p = subprocess.run(cmd, capture_output=True, text=True, timeout=900)
+    with open(os.path.join(out6, "fit.json")) as f:
+        r6 = json.load(f)
+    offset = r6["relative_offset"]
+    settled = [w for w in r6["warnings"] if w.startswith("the relative offset settled at")]
+    stop_ok = ((r6["reason"] == "CONVERGED_RELATIVE_OFFSET" and offset < 0.05 and not settled)
+               or (r6["reason"] == "CONVERGED_MODEL_RESOLUTION" and 0.05 <= offset < 1
+                   and len(settled) == 1 and settled[0] in p.stderr))
+    check(p.returncode == 0 and r6["converged"] and stop_ok and r6["evaluations"] <= 60,
+          f"cracks anywhere, {name}: exit {p.returncode}, {r6['reason']} at offset {offset} "
+          f"in {r6['iterations']} iterations, {r6['evaluations']} runs, {r6['wall_s']:.1f} s"
+          + (f" ({settled[0]})" if settled else ""))
+    for k, v in CRACKING_TRUTH.items():
+        got, se = r6["parameters"][k], r6["standard_errors"][k]
+        check(abs(got - v) < 2 * se,
+              f"cracks anywhere, {name}: {k} = {got:.5g} +- {se:.2g} (truth {v})")
