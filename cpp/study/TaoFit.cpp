@@ -1,6 +1,7 @@
 // The least-squares solver of a fit (TaoFit.h): TAO's set-up, its callbacks
-// (residuals, forward-difference Jacobian from one batch of runs, the
-// convergence test) and the progress line of each iteration.
+// (the objective, its gradient by the forward-difference Jacobian, the
+// Gauss-Newton Hessian, the convergence test) and the progress line of each
+// iteration.
 #include "TaoFit.h"
 #include "../common/Interrupt.h"
 #include "../common/petsc_check.h"
@@ -117,20 +118,17 @@ std::vector<double> Problem::values(Vec X) const
   return x;
 }
 
-double Problem::rms() const
-{
-  double s = 0;
-  for (double r : r_last)
-    s += r * r;
-  return std::sqrt(s / double(r_last.size()));
-}
-
 double Problem::objective() const
 {
   double s = 0;
   for (double r : r_last)
     s += r * r;
   return s / 2;
+}
+
+double Problem::rms() const
+{
+  return std::sqrt(2 * objective() / double(r_last.size()));
 }
 
 double Problem::offset_at(const std::vector<double>& x) const
