@@ -340,7 +340,7 @@ int fit(const FitOptions& opt)
   ProcessGroups groups(opt.ranks_per_case);
   Evaluator evaluator(opt, free, data, groups.comm(), groups.count(), groups.index(),
                       groups.others_here(int(free.size()) + 1));
-  Problem problem{evaluator, free, resolution, talk, t0, {}, {}, {}, {}, false, NAN, 0, false};
+  Problem problem(evaluator, free, resolution, talk, t0);
   if (talk)
     std::cout << "pushout fit: " << free.size() << " values to " << data.delta.size()
               << " points of " << opt.data.string() << "; " << groups.count()

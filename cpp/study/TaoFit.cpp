@@ -81,6 +81,8 @@ PetscErrorCode convergence_test(Tao tao, void* ctx)
       {
         Problem& p = *static_cast<Problem*>(ctx);
         check(TaoDefaultConvergenceTest(tao, nullptr), "TaoDefaultConvergenceTest");
+        if (tao != p.tao) // a solver BNLS runs inside (-tao_bnk_max_cg_its)
+          return;
         Vec X;
         check(TaoGetSolution(tao, &X), "TaoGetSolution");
         PetscInt iteration;
@@ -93,10 +95,15 @@ PetscErrorCode convergence_test(Tao tao, void* ctx)
         const bool going = reason == TAO_CONTINUE_ITERATING || reason == TAO_DIVERGED_MAXITS;
         // Settled: inside the confidence region, the offset fell by less
         // than the ratio asks in two iterations running, each on a Jacobian
-        // of its own (the steps left are the curve's jumps).
-        const bool stalled = p.resolution.stall_ratio > 0 && offset < 1 &&
-                             offset > p.resolution.stall_ratio * p.last_offset;
-        p.stalls = stalled ? p.stalls + 1 : 0;
+        // of its own (the steps left are the curve's jumps). Counted once
+        // per iteration (BNLS may test its start twice).
+        if (iteration != p.last_iteration)
+        {
+          const bool stalled = p.resolution.stall_ratio > 0 && offset < 1 &&
+                               offset > p.resolution.stall_ratio * p.last_offset;
+          p.stalls = stalled ? p.stalls + 1 : 0;
+          p.last_iteration = iteration;
+        }
         const bool settled = p.stalls >= 2;
         if (going && (offset < p.resolution.offset_tolerance || settled))
         {
@@ -172,6 +179,12 @@ void Problem::report(int iteration, const std::vector<double>& x, double offset)
 
 void Problem::evaluate(const std::vector<double>& x, bool with_jacobian)
 {
+  if (x == x_jacobian && x != x_last) // back where a line search started
+  {
+    x_last = x;
+    r_last = r_jacobian;
+    last_failed = jacobian_base_failed;
+  }
   const bool known = x == x_last;
   if (known && (!with_jacobian || x == x_jacobian)) // TAO asks again at the same point
     return;
@@ -224,6 +237,8 @@ void Problem::evaluate(const std::vector<double>& x, bool with_jacobian)
         r[first + again[k]] = back[k];
   }
   x_jacobian = x;
+  r_jacobian = r_last;
+  jacobian_base_failed = last_failed;
   jacobian.assign(m * x.size(), 0.0);
   for (std::size_t j = 0; j < x.size(); ++j)
     for (std::size_t i = 0; i < m; ++i)
@@ -245,6 +260,7 @@ TaoFit::TaoFit(const std::vector<Free>& free, PetscInt m, Problem& problem) : _p
 {
   const PetscInt n = PetscInt(free.size());
   check(TaoCreate(PETSC_COMM_SELF, &tao), "TaoCreate");
+  problem.tao = tao;
   check(TaoSetType(tao, TAOBNLS), "TaoSetType");
   check(VecCreateSeq(PETSC_COMM_SELF, n, &X), "VecCreateSeq");
   check(VecDuplicate(X, &lo), "VecDuplicate");
@@ -273,6 +289,12 @@ TaoFit::TaoFit(const std::vector<Free>& free, PetscInt m, Problem& problem) : _p
   check(TaoSetObjectiveAndGradient(tao, nullptr, objective_gradient_callback, &problem),
         "TaoSetObjectiveAndGradient");
   check(TaoSetHessian(tao, H, H, hessian_callback, &problem), "TaoSetHessian");
+  // The whole Gauss-Newton step each iteration: BNLS's default Krylov
+  // solver (KSPSTCG) bounds it by a trust radius that a short step cuts to
+  // a quarter of itself, and the next step with it.
+  KSP ksp;
+  check(TaoGetKSP(tao, &ksp), "TaoGetKSP");
+  check(KSPSetType(ksp, KSPCG), "KSPSetType");
   TaoLineSearch line_search;
   check(TaoGetLineSearch(tao, &line_search), "TaoGetLineSearch");
   check(TaoLineSearchSetType(line_search, problem.resolution.line_search), "TaoLineSearchSetType");

@@ -44,16 +44,26 @@ struct Resolution
 /// What TAO's callbacks share.
 struct Problem
 {
+  Problem(Evaluator& evaluator, const std::vector<Free>& free, Resolution resolution, bool talk,
+          std::chrono::steady_clock::time_point t0)
+      : evaluator(evaluator), free(free), resolution(resolution), talk(talk), t0(t0)
+  {
+  }
+
   Evaluator& evaluator;
   const std::vector<Free>& free;
   Resolution resolution;
-  bool talk = false;
+  bool talk;
   std::chrono::steady_clock::time_point t0;
   std::vector<double> x_last, r_last; ///< the last base point and its residuals
   std::vector<double> x_jacobian;     ///< where the last Jacobian was formed
+  std::vector<double> r_jacobian;     ///< the residuals there
   std::vector<double> jacobian;       ///< its entries, column-major (m x n)
   bool last_failed = false;           ///< whether x_last's run failed outright
-  double last_offset = NAN;           ///< the offset at the last iteration
+  bool jacobian_base_failed = false;  ///< whether x_jacobian's run did
+  Tao tao = nullptr;                  ///< the solver whose iterations these are
+  PetscInt last_iteration = -1;       ///< the iteration last tested
+  double last_offset = NAN;           ///< the offset at that iteration
   int stalls = 0;                     ///< iterations running that it stalled
   bool at_resolution = false;         ///< stopped by Resolution::stall_ratio
 
@@ -76,7 +86,8 @@ struct Problem
   /// The residuals at x and, if `with_jacobian`, the forward-difference
   /// Jacobian there (one batch of runs over the groups; a difference whose
   /// run fails outright is taken backwards, in a second batch). Nothing is
-  /// run again at the last point.
+  /// run again at the last point, nor at the last Jacobian's (where a line
+  /// search that found no step goes back to).
   void evaluate(const std::vector<double>& x, bool with_jacobian);
 };
 
