@@ -59,6 +59,8 @@ public:
                           bool plot = false);
 
   int evaluations() const { return _evaluations; }
+  /// The groups that share a batch of runs.
+  int groups() const { return _groups; }
   /// The exit code of this group's last run.
   int last_exit_code() const { return _last_exit_code; }
   /// A signal that stopped a run of any process, or came here (collective

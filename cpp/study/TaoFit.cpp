@@ -177,20 +177,47 @@ void Problem::report(int iteration, const std::vector<double>& x, double offset)
   std::cout << s.str() << std::endl;
 }
 
+namespace
+{
+/// Whether a and b are the same point, to the round-off of a line search's
+/// x0 + t s against ours.
+bool same_point(const std::vector<double>& a, const std::vector<double>& b)
+{
+  for (std::size_t j = 0; j < a.size(); ++j)
+    if (std::abs(a[j] - b[j]) > 1e-14 * std::max(1.0, std::abs(a[j])))
+      return false;
+  return true;
+}
+} // namespace
+
 void Problem::evaluate(const std::vector<double>& x, bool with_jacobian)
 {
-  if (x == x_jacobian && x != x_last) // back where a line search started
-  {
-    x_last = x;
-    r_last = r_jacobian;
-    last_failed = jacobian_base_failed;
-  }
+  if (x != x_last)
+    for (const KnownPoint& k : known_points)
+      if (same_point(k.x, x))
+      {
+        x_last = x;
+        r_last = k.r;
+        last_failed = k.failed;
+        break;
+      }
   const bool known = x == x_last;
   if (known && (!with_jacobian || x == x_jacobian)) // TAO asks again at the same point
     return;
   std::vector<std::vector<double>> points;
   if (!known)
     points.push_back(x);
+  // A point tried alone (Armijo's backtracking from x_jacobian): the other
+  // groups run the points it would try next, halfway back again and again
+  // (the same to round-off: same_point).
+  const std::size_t ahead =
+      known || with_jacobian || x_jacobian.empty() ? 0 : std::size_t(evaluator.groups() - 1);
+  for (std::size_t k = 1; k <= ahead; ++k)
+  {
+    points.push_back(x);
+    for (std::size_t j = 0; j < x.size(); ++j)
+      points.back()[j] = x_jacobian[j] + std::ldexp(x[j] - x_jacobian[j], -int(k));
+  }
   std::vector<double> h(x.size());
   if (with_jacobian)
     for (std::size_t j = 0; j < x.size(); ++j)
@@ -209,6 +236,8 @@ void Problem::evaluate(const std::vector<double>& x, bool with_jacobian)
     r_last = r[0];
     last_failed = failed[0];
   }
+  for (std::size_t k = 1; k <= ahead; ++k)
+    known_points.push_back({points[k], r[k], failed[k]});
   if (!with_jacobian)
     return;
   const std::size_t first = known ? 0 : 1, m = r_last.size();
@@ -237,8 +266,7 @@ void Problem::evaluate(const std::vector<double>& x, bool with_jacobian)
         r[first + again[k]] = back[k];
   }
   x_jacobian = x;
-  r_jacobian = r_last;
-  jacobian_base_failed = last_failed;
+  known_points = {{x, r_last, last_failed}};
   jacobian.assign(m * x.size(), 0.0);
   for (std::size_t j = 0; j < x.size(); ++j)
     for (std::size_t i = 0; i < m; ++i)

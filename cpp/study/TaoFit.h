@@ -41,6 +41,14 @@ struct Resolution
   TaoLineSearchType line_search = TAOLINESEARCHMT;
 };
 
+/// Scaled values whose run is known, with its residuals [MPa] and whether
+/// it failed outright.
+struct KnownPoint
+{
+  std::vector<double> x, r;
+  bool failed = false;
+};
+
 /// What TAO's callbacks share.
 struct Problem
 {
@@ -57,15 +65,16 @@ struct Problem
   std::chrono::steady_clock::time_point t0;
   std::vector<double> x_last, r_last; ///< the last base point and its residuals
   std::vector<double> x_jacobian;     ///< where the last Jacobian was formed
-  std::vector<double> r_jacobian;     ///< the residuals there
   std::vector<double> jacobian;       ///< its entries, column-major (m x n)
   bool last_failed = false;           ///< whether x_last's run failed outright
-  bool jacobian_base_failed = false;  ///< whether x_jacobian's run did
-  Tao tao = nullptr;                  ///< the solver whose iterations these are
-  PetscInt last_iteration = -1;       ///< the iteration last tested
-  double last_offset = NAN;           ///< the offset at that iteration
-  int stalls = 0;                     ///< iterations running that it stalled
-  bool at_resolution = false;         ///< stopped by Resolution::stall_ratio
+  /// x_jacobian's run (where a line search that finds no step goes back
+  /// to), and the points ahead of its line search run with another.
+  std::vector<KnownPoint> known_points;
+  Tao tao = nullptr;            ///< the solver whose iterations these are
+  PetscInt last_iteration = -1; ///< the iteration last tested
+  double last_offset = NAN;     ///< the offset at that iteration
+  int stalls = 0;               ///< iterations running that it stalled
+  bool at_resolution = false;   ///< stopped by Resolution::stall_ratio
 
   /// The scaled values in X.
   std::vector<double> values(Vec X) const;
@@ -86,8 +95,9 @@ struct Problem
   /// The residuals at x and, if `with_jacobian`, the forward-difference
   /// Jacobian there (one batch of runs over the groups; a difference whose
   /// run fails outright is taken backwards, in a second batch). Nothing is
-  /// run again at the last point, nor at the last Jacobian's (where a line
-  /// search that found no step goes back to).
+  /// run again at a known point (the last, known_points). With several
+  /// groups, a point that a line search tries alone comes with the next
+  /// ones its backtracking would try, in the same batch.
   void evaluate(const std::vector<double>& x, bool with_jacobian);
 };
 
