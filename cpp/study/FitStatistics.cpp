@@ -78,6 +78,17 @@ std::vector<std::vector<double>> normal_matrix(const double* jacobian, std::size
   return JtJ;
 }
 
+std::vector<double> transpose_times(const std::vector<double>& jacobian,
+                                    const std::vector<double>& r)
+{
+  const std::size_t m = r.size(), n = m == 0 ? 0 : jacobian.size() / m;
+  std::vector<double> Jtr(n, 0.0);
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t i = 0; i < m; ++i)
+      Jtr[j] += jacobian[j * m + i] * r[i];
+  return Jtr;
+}
+
 FitStatistics statistics(Mat J, const std::vector<double>& r, const std::vector<Free>& free,
                          const std::vector<double>& x)
 {
@@ -128,10 +139,7 @@ double relative_offset(const std::vector<double>& jacobian, const std::vector<do
   if (n == 0 || m <= n)
     return INFINITY;
   std::vector<std::vector<double>> inverse;
-  std::vector<double> Jtr(n, 0.0);
-  for (std::size_t j = 0; j < n; ++j)
-    for (std::size_t i = 0; i < m; ++i)
-      Jtr[j] += jacobian[j * m + i] * r[i];
+  const std::vector<double> Jtr = transpose_times(jacobian, r);
   if (!invert(normal_matrix(jacobian.data(), m, n), inverse))
     return INFINITY;
   double projected = 0, rss = 0; // |P r|^2 = (J^T r)^T (J^T J)^-1 J^T r, |r|^2 [MPa^2]

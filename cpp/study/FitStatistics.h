@@ -33,6 +33,11 @@ FitStatistics statistics(Mat J, const std::vector<double>& r, const std::vector<
 std::vector<std::vector<double>> normal_matrix(const double* jacobian, std::size_t m, std::size_t n,
                                                const std::vector<double>& scale = {});
 
+/// J^T r of the column-major r.size() x n `jacobian` (the gradient of
+/// |r|^2 / 2 in the values J differentiates by).
+std::vector<double> transpose_times(const std::vector<double>& jacobian,
+                                    const std::vector<double>& r);
+
 /// The relative offset of Bates and Watts (1981, Technometrics 23:179-183)
 /// at residuals r [MPa] with Jacobian `jacobian` (column-major, r.size() x
 /// n, of any scaling of the values): with P the projection onto J's columns,

@@ -38,15 +38,10 @@ PetscErrorCode objective_gradient_callback(Tao, Vec X, PetscReal* f, Vec G, void
         Problem& p = *static_cast<Problem*>(ctx);
         p.evaluate(p.values(X), true);
         *f = p.objective();
-        const std::size_t m = p.r_last.size();
+        const std::vector<double> gradient = transpose_times(p.jacobian, p.r_last);
         PetscScalar* g;
         check(VecGetArray(G, &g), "VecGetArray");
-        for (std::size_t j = 0; j < p.free.size(); ++j)
-        {
-          g[j] = 0;
-          for (std::size_t i = 0; i < m; ++i)
-            g[j] += p.jacobian[j * m + i] * p.r_last[i];
-        }
+        std::copy(gradient.begin(), gradient.end(), g);
         check(VecRestoreArray(G, &g), "VecRestoreArray");
       });
 }
@@ -145,13 +140,11 @@ double Problem::offset_at(const std::vector<double>& x) const
   // The step still to go is along the values free to move: one on a bound
   // that the gradient pushes beyond it stays there (TAO's bounded step).
   const std::size_t m = r_last.size();
+  const std::vector<double> g = transpose_times(jacobian, r_last); // d(|r|^2 / 2) / dx
   std::vector<double> columns;
   for (std::size_t j = 0; j < free.size(); ++j)
   {
-    double g = 0; // d(|r|^2 / 2) / dx_j
-    for (std::size_t i = 0; i < m; ++i)
-      g += jacobian[j * m + i] * r_last[i];
-    if ((free[j].on_lo(x[j]) && g > 0) || (free[j].on_hi(x[j]) && g < 0))
+    if ((free[j].on_lo(x[j]) && g[j] > 0) || (free[j].on_hi(x[j]) && g[j] < 0))
       continue;
     columns.insert(columns.end(), jacobian.begin() + std::ptrdiff_t(j * m),
                    jacobian.begin() + std::ptrdiff_t((j + 1) * m));

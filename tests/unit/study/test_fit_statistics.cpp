@@ -1,6 +1,7 @@
 // Bates and Watts' relative offset (study/FitStatistics.h), against hand
 // computations: the Gauss-Newton step still to go against the radius of the
-// confidence region, the same whatever the scaling of the values.
+// confidence region, the same whatever the scaling of the values; the
+// gradient J^T r and the Gauss-Newton Hessian J^T J that TAO minimises with.
 #include "../../../cpp/study/FitStatistics.h"
 #include <cmath>
 #include <gtest/gtest.h>
@@ -36,4 +37,14 @@ TEST(FitStatistics, RelativeOffsetUndefined)
   EXPECT_TRUE(std::isinf(relative_offset({0, 0, 0}, {1, 2, 3})));
   EXPECT_TRUE(std::isinf(relative_offset({1, 1, 1}, {2, 2, 2})));
   EXPECT_TRUE(std::isinf(relative_offset({1}, {1})));
+}
+
+TEST(FitStatistics, GradientAndGaussNewtonHessian)
+{
+  // The line of RelativeOffsetOfTwoValues: J^T r = (2, 3) and J^T J = [[4,
+  // 6], [6, 14]], by hand; TAO's gradient and Hessian of |r|^2 / 2.
+  const std::vector<double> J{1, 1, 1, 1, 0, 1, 2, 3}, r{1, 0, 0, 1};
+  EXPECT_EQ(pushout::study::transpose_times(J, r), (std::vector<double>{2, 3}));
+  const auto H = pushout::study::normal_matrix(J.data(), 4, 2);
+  EXPECT_EQ(H, (std::vector<std::vector<double>>{{4, 6}, {6, 14}}));
 }
