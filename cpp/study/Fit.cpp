@@ -376,6 +376,7 @@ int fit(const FitOptions& opt)
   // Why a run failed, from any process (the failure may have been another
   // group's).
   outcome.failure = first_message(evaluator.last_failure(), MPI_COMM_WORLD);
+  outcome.refusal = first_message(evaluator.last_refusal(), MPI_COMM_WORLD);
   outcome.sets = evaluator.sets_at(x);
   outcome.evaluations = evaluator.evaluations();
   outcome.failed_runs = evaluator.failed();

@@ -104,7 +104,11 @@ std::vector<double> Evaluator::run(const std::vector<double>& x, const std::file
   // Once per group: the counts are summed over processes. Values the scene
   // refuses are the fit's to avoid (a misfit), not a run that failed.
   if (o.exit_code == exit_code::bad_input && _leader)
+  {
     ++_refused;
+    const std::string said = "error in scene: "; // the run's words, less what the fit says
+    _last_refusal = o.message.rfind(said, 0) == 0 ? o.message.substr(said.size()) : o.message;
+  }
   else if (o.exit_code != 0 && _leader)
   {
     ++_failed;

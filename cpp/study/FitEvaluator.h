@@ -71,6 +71,8 @@ public:
   /// Runs whose values the scene refused (failed_residual()).
   int refused() const { return _refused_total; }
   const std::string& last_failure() const { return _last_failure; }
+  /// Why the scene refused this group's last refused run ("" if none).
+  const std::string& last_refusal() const { return _last_refusal; }
   void release() { _simulation.reset(); }
 
 private:
@@ -86,6 +88,6 @@ private:
   int _signal = 0; ///< a run stopped by this signal
   int _last_exit_code = exit_code::done;
   bool _failed_outright = false; ///< this group's last run
-  std::string _last_failure;
+  std::string _last_failure, _last_refusal;
 };
 } // namespace pushout::study

@@ -76,6 +76,7 @@ int write_fit(const FitOptions& opt, const MeasuredCurve& data, const std::vecto
   j["evaluations"] = fit.evaluations;
   j["failed_runs"] = fit.failed_runs;
   j["refused_runs"] = fit.refused_runs;
+  j["refusal"] = fit.refusal; // "" where none was refused
   j["iterations"] = fit.iterations;
   j["relative_offset"] = fit.relative_offset; // null where infinite (an exact fit)
   j["converged"] = fit.converged;
@@ -140,9 +141,9 @@ int write_fit(const FitOptions& opt, const MeasuredCurve& data, const std::vecto
               << "); " << (opt.out / "fit.json").string() << " has where it stopped"
               << (fit.refused_runs
                       ? "; " + std::to_string(fit.refused_runs) +
-                            " runs were at values the scene refuses: the best fit may lie beyond "
-                            "a relation between keys (such as f_fr <= f_t), which a --bounds "
-                            "at the relation lets the fit end on"
+                            " runs were at values the scene refuses (one of them: " + fit.refusal +
+                            "): the best fit may lie beyond a relation between keys (such as "
+                            "f_fr <= f_t), which a --bounds at the relation lets the fit end on"
                       : std::string())
               << std::endl;
   if (talk)

@@ -28,6 +28,7 @@ struct FitOutcome
   bool converged = false;        ///< TAO converged, and every run did
   std::string reason;            ///< why TAO stopped (PETSc's name)
   std::string failure;           ///< why a run failed ("" if none did)
+  std::string refusal;           ///< why the scene refused a run ("" if none)
   double wall_s = 0;             ///< the fit's wall time [s]
 };
 

@@ -22,7 +22,7 @@
    on stderr, and the relative offset leaves it out.
 5. Values the scene refuses (f_fr > f_t) count as a large misfit, a
    difference that lands there is taken backwards, and the fit stays on
-   valid values.
+   valid values; fit.json and the error say why the scene refused one.
 6. With cracks anywhere in the concrete, whose curve jumps with IMPL-EX's
    steps, the fit converges on the relative offset, or where it settles at
    the model's resolution (with a warning), in a few iterations, each value
@@ -255,10 +255,13 @@ p = fit(out5b, above, free=["interface.1.f_fr"], start={"interface.1.f_fr": 2.0}
 with open(os.path.join(out5b, "fit.json")) as f:
     r5b = json.load(f)
 check(r5b["refused_runs"] >= 1 and r5b["parameters"]["interface.1.f_fr"] <= 3.0
+      and "must not exceed 'interface.1.f_t'" in r5b["refusal"]
+      and (p.returncode == 0 or r5b["refusal"] in p.stderr)
       and os.path.exists(os.path.join(out5b, "scene.toml"))
       and (p.returncode == 0 or "a relation between keys" in p.stderr),
       f"the best fit beyond f_fr = f_t: exit {p.returncode}, f_fr = "
-      f"{r5b['parameters']['interface.1.f_fr']:.4g}, {r5b['refused_runs']} refused runs")
+      f"{r5b['parameters']['interface.1.f_fr']:.4g}, {r5b['refused_runs']} refused runs, "
+      f"one of them said: {r5b['refusal']!r}")
 
 
 # 6. Cracks anywhere in the concrete (docs/fitting.md, "Method"). IMPL-EX's
