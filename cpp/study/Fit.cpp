@@ -16,6 +16,7 @@
 #include "FitReport.h"
 #include "FitStatistics.h"
 #include "FreeValue.h"
+#include "MeshChecks.h"
 #include "TaoFit.h"
 #include "text.h"
 #include <algorithm>
@@ -305,10 +306,11 @@ int prepare(const FitOptions& opt, MeasuredCurve& data, std::vector<Free>& free,
             {
               std::vector<std::string> sets = opt.sets;
               sets.push_back("loading.push_displacement=" + number_text(data.delta.back()));
-              driver::check_before_run(Scene::load(opt.scene_file, parse_overrides(sets)),
-                                       driver::RunOptions{opt.out, opt.mesh_cache, opt.quiet,
-                                                          opt.force, group.comm, true,
-                                                          others_here});
+              const Scene start = Scene::load(opt.scene_file, parse_overrides(sets));
+              driver::check_before_run(start, driver::RunOptions{opt.out, opt.mesh_cache, opt.quiet,
+                                                                 opt.force, group.comm, true,
+                                                                 others_here});
+              MeshChecks{opt}(start); // the crack band against the elements
             });
         // The folder is this fit's alone, without an earlier run's outputs
         // (output/OutputFiles.h); neither the scene nor the data may be

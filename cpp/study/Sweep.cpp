@@ -10,12 +10,11 @@
 #include "../driver/Run.h"
 #include "../driver/exit_on_error.h"
 #include "../mesh/generate.h"
-#include "../model/CrackBandCheck.h"
 #include "../output/OutputFiles.h"
 #include "../output/plot.h"
-#include "../record/ResourceGuard.h"
 #include "../scene/SceneError.h"
 #include "../specimen/Scenario.h"
+#include "MeshChecks.h"
 #include "SweepTables.h"
 #include <algorithm>
 #include <chrono>
@@ -28,7 +27,6 @@
 #include <mpi.h>
 #include <nlohmann/json.hpp>
 #include <numeric>
-#include <optional>
 #include <sstream>
 
 namespace pushout::study
@@ -175,56 +173,6 @@ struct SweepPlan
   std::vector<std::size_t> order; ///< the cases in the order they are taken
   std::string model_type;
   bool plot = false;
-};
-
-/// The checks of a sweep's cases with cracks anywhere that need each case's
-/// mesh (model::check_cracking_mesh): the mesh made here, or read from the
-/// cache (which then serves the case's run), unless the size guard refuses
-/// it on all the processes together (the case's own guard, when it starts,
-/// counts the other groups' processes too), or it cannot be made (its case
-/// then stops in its row, as without this check). One mesh is kept, for the
-/// next cases that share it.
-class MeshChecks
-{
-public:
-  explicit MeshChecks(const ManyRunsOptions& opt) : _opt(opt) {}
-
-  /// Throws SceneError where `scene`'s mesh does not suit its cracks.
-  /// Collective on MPI_COMM_WORLD.
-  void operator()(const Scene& scene)
-  {
-    if (!scene.cracking().embedded)
-      return;
-    const mesh::MeshInput shape = mesh::MeshInput::of(scene);
-    if (!_mesh || _mesh->first != shape)
-    {
-      _mesh.reset(); // one mesh in memory at a time
-      try            // the whole run's estimate, which meshing alone is far below
-      {
-        record::check_fits(
-            record::estimate_resources(shape, scene.solver(), scene.cracking(), MPI_COMM_WORLD),
-            shape, _opt.force);
-      }
-      catch (const record::TooLarge&)
-      {
-        return; // its case is refused when it starts, with the guard's words
-      }
-      bool reused = false;
-      try
-      {
-        _mesh.emplace(shape, mesh::generate(shape, _opt.mesh_cache, reused, MPI_COMM_WORLD));
-      }
-      catch (const std::runtime_error&) // on every process (mesh::generate)
-      {
-        return; // its case fails when it starts, in its row
-      }
-    }
-    model::check_cracking_mesh(_mesh->second, scene.concrete(), scene.cracking(), scene.geometry());
-  }
-
-private:
-  const ManyRunsOptions& _opt;
-  std::optional<std::pair<mesh::MeshInput, mesh::MeshData>> _mesh;
 };
 
 /// Reads every case's scene, so that a bad value stops the sweep before any

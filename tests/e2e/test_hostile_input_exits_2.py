@@ -216,6 +216,17 @@ refused("fit: a free key alone not read", fit_cracking + ["--free", "cracking.co
 refused("fit: a free key read once another leaves 0",
         fit_cracking + ["--free", "cracking.strength_cov", "--free", "cracking.correlation_length"],
         ["2 rows", "2 free values"], seconds=10)
+# A fit whose start's crack band is too wide for its elements is refused
+# before any run, in the run's words (it used to run two refused runs and
+# exit 3 with CONVERGED_GATOL), and leaves no folder.
+too_wide_out = out_dir("hostile_fit_too_wide")
+fit_too_wide = ["fit", GOOD_SCENE, "--data", fit_data, "--out", too_wide_out, "--quiet",
+                "--free", "cracking.f_t"] + too_wide
+err = refused("fit: a crack band too wide", fit_too_wide + ["--set", "cracking.c=150"],
+              ["mm across", "lower cracking.c"], seconds=10)
+check(err.split("pushout fit: error: ", 1)[-1] == run_err.split("error in scene: ", 1)[1]
+      and not os.path.exists(too_wide_out),
+      f"fit and run refuse alike, no folder: {err[:200]!r}")
 refused("fit: bounds with lo above hi", fit + ["--free", "interface.0.mu", "--bounds", "interface.0.mu=0.5:0.1"],
         ["interface.0.mu", "lo is not below hi"], seconds=10)
 for cmd in ([], ["run"], ["sweep"]):
