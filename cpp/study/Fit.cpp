@@ -354,7 +354,7 @@ int fit(const FitOptions& opt)
   FitOutcome outcome;
   try
   {
-    outcome.x = solver.solve(problem);
+    outcome.x = solver.solve();
   }
   catch (const Interrupted& e)
   {

@@ -336,15 +336,15 @@ TaoFit::~TaoFit()
     petsc::check_nothrow(MatDestroy(a), "MatDestroy");
 }
 
-std::vector<double> TaoFit::solve(Problem& problem)
+std::vector<double> TaoFit::solve()
 {
   const interrupt::Phase phase("fit", interrupt::stop_grace_s);
   check(TaoSolve(tao), "TaoSolve");
   // At the optimum: residuals and the Jacobian (of the scaled values).
-  std::vector<double> x = problem.values(X);
-  problem.evaluate(x, true);
-  problem.fill(J);
-  final_offset = problem.offset_at(x);
+  std::vector<double> x = _problem.values(X);
+  _problem.evaluate(x, true);
+  _problem.fill(J);
+  final_offset = _problem.offset_at(x);
   return x;
 }
 

@@ -117,9 +117,9 @@ struct TaoFit
   TaoFit& operator=(const TaoFit&) = delete;
 
   /// Runs TAO (the watcher's phase "fit"); returns the optimum (scaled
-  /// values) with `problem`'s residuals and the Jacobian J evaluated there.
+  /// values) with the problem's residuals and the Jacobian J evaluated there.
   /// Throws Interrupted when a signal stopped the runs.
-  std::vector<double> solve(Problem& problem);
+  std::vector<double> solve();
   /// Whether the fit converged: TAO's gradient test, or the relative offset
   /// below the problem's offset_tolerance (at the iteration limit too), or
   /// settled below 1 at the model's resolution (Resolution::stall_ratio).
