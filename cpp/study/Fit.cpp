@@ -256,11 +256,12 @@ int run_fitted(const FitOptions& opt, Evaluator& evaluator, ProcessGroups& group
   }
   return signal;
 }
+
 /// The fit's inputs, read and checked before its folder is touched: the
 /// measured curve into `data`, the free values into `free`; the start a
 /// valid scene with the push to the data's end that fits a group's
-/// processes; the folder claimed. exit_code::done, or the refusal's code
-/// (said once).
+/// processes, and whose mesh suits its cracks anywhere; the folder claimed. exit_code::done, or the
+/// refusal's code (said once).
 int prepare(const FitOptions& opt, MeasuredCurve& data, std::vector<Free>& free,
             Resolution& resolution)
 {
@@ -300,18 +301,22 @@ int prepare(const FitOptions& opt, MeasuredCurve& data, std::vector<Free>& free,
           ~Group() { MPI_Comm_free(&comm); }
         } group{ProcessGroups::split(opt.ranks_per_case)};
         const int others_here = ProcessGroups::others_here(group.comm, int(free.size()) + 1);
+        std::vector<std::string> sets = opt.sets;
+        sets.push_back("loading.push_displacement=" + number_text(data.delta.back()));
         mpi::collectively<SceneError, record::TooLarge>(
             MPI_COMM_WORLD,
             [&]
             {
-              std::vector<std::string> sets = opt.sets;
-              sets.push_back("loading.push_displacement=" + number_text(data.delta.back()));
-              const Scene start = Scene::load(opt.scene_file, parse_overrides(sets));
-              driver::check_before_run(start, driver::RunOptions{opt.out, opt.mesh_cache, opt.quiet,
-                                                                 opt.force, group.comm, true,
-                                                                 others_here});
-              MeshChecks{opt}(start); // the crack band against the elements
+              driver::check_before_run(Scene::load(opt.scene_file, parse_overrides(sets)),
+                                       driver::RunOptions{opt.out, opt.mesh_cache, opt.quiet,
+                                                          opt.force, group.comm, true,
+                                                          others_here});
             });
+        // With cracks anywhere, the crack band against the start's elements
+        // (collective on MPI_COMM_WORLD, so once every group passed its guard).
+        mpi::collectively<SceneError>(
+            MPI_COMM_WORLD,
+            [&] { MeshChecks{opt}(Scene::load(opt.scene_file, parse_overrides(sets))); });
         // The folder is this fit's alone, without an earlier run's outputs
         // (output/OutputFiles.h); neither the scene nor the data may be
         // among them.

@@ -25,7 +25,8 @@ Evaluator::Evaluator(const FitOptions& opt, const std::vector<Free>& free,
 }
 
 std::vector<std::vector<double>>
-Evaluator::residuals(const std::vector<std::vector<double>>& points, std::vector<bool>* failed)
+Evaluator::residuals(const std::vector<std::vector<double>>& points, std::vector<bool>* failed,
+                     std::size_t counted)
 {
   // Per point its m residuals, then 1 if its run failed outright.
   const std::size_t m = _data.delta.size(), stride = m + 1;
@@ -33,6 +34,7 @@ Evaluator::residuals(const std::vector<std::vector<double>>& points, std::vector
   for (std::size_t k = 0; k < points.size(); ++k)
     if (int(k % std::size_t(_groups)) == _group_index)
     {
+      _counting = k < counted;
       const std::vector<double> r =
           run(points[k], _opt.out / ".runs" / ("group_" + std::to_string(_group_index)));
       if (_leader)
@@ -41,6 +43,7 @@ Evaluator::residuals(const std::vector<std::vector<double>>& points, std::vector
         all[k * stride + m] = _failed_outright ? 1 : 0;
       }
     }
+  _counting = true; // a run of its own (the fitted one) counts
   MPI_Allreduce(MPI_IN_PLACE, all.data(), int(all.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
   int signal = std::max(interrupt::received(), _signal);
   MPI_Allreduce(MPI_IN_PLACE, &signal, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
@@ -49,10 +52,7 @@ Evaluator::residuals(const std::vector<std::vector<double>>& points, std::vector
     interrupt::acknowledge();
     throw Interrupted(signal);
   }
-  int here[2] = {_failed, _refused}, total[2] = {0, 0};
-  MPI_Allreduce(here, total, 2, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
-  _failed_total = total[0];
-  _refused_total = total[1];
+  sum_counts();
   if (_evaluations == 0) // every process is here (the sums above)
   {
     int rank = 0;
@@ -91,6 +91,41 @@ std::vector<std::string> Evaluator::sets_at(const std::vector<double>& x) const
   return sets;
 }
 
+void Evaluator::tally(int code, const std::string& message)
+{
+  // Values the scene refuses are the fit's to avoid (a misfit), not a run
+  // that failed.
+  if (code == exit_code::bad_input)
+  {
+    ++_refused;
+    const std::string said = "error in scene: "; // the run's words, less what the fit says
+    _last_refusal = message.rfind(said, 0) == 0 ? message.substr(said.size()) : message;
+  }
+  else if (code != 0)
+  {
+    ++_failed;
+    _last_failure = message;
+  }
+}
+
+void Evaluator::count(const std::vector<double>& x)
+{
+  if (const auto it = _pending.find(x); it != _pending.end())
+  {
+    tally(it->second.first, it->second.second);
+    _pending.erase(it);
+  }
+  sum_counts();
+}
+
+void Evaluator::sum_counts()
+{
+  int here[2] = {_failed, _refused}, total[2] = {0, 0};
+  MPI_Allreduce(here, total, 2, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
+  _failed_total = total[0];
+  _refused_total = total[1];
+}
+
 std::vector<double> Evaluator::run(const std::vector<double>& x, const std::filesystem::path& out,
                                    bool plot)
 {
@@ -101,19 +136,12 @@ std::vector<double> Evaluator::run(const std::vector<double>& x, const std::file
   _last_exit_code = o.exit_code;
   if (o.exit_code > exit_code::signal(0))
     _signal = o.exit_code - exit_code::signal(0);
-  // Once per group: the counts are summed over processes. Values the scene
-  // refuses are the fit's to avoid (a misfit), not a run that failed.
-  if (o.exit_code == exit_code::bad_input && _leader)
-  {
-    ++_refused;
-    const std::string said = "error in scene: "; // the run's words, less what the fit says
-    _last_refusal = o.message.rfind(said, 0) == 0 ? o.message.substr(said.size()) : o.message;
-  }
-  else if (o.exit_code != 0 && _leader)
-  {
-    ++_failed;
-    _last_failure = o.message;
-  }
+  // Once per group: the counts are summed over processes. A run ahead
+  // counts once the fit uses it (count()).
+  if (_leader && _counting)
+    tally(o.exit_code, o.message);
+  else if (_leader && o.exit_code != 0)
+    _pending[x] = {o.exit_code, o.message};
   // A run that failed outright (a bad value, an error) counts as
   // failed_residual() everywhere; one that stopped (no convergence, a
   // signal) by what it reached.

@@ -9,7 +9,9 @@
 #include "../driver/Run.h"
 #include "Fit.h"
 #include "FreeValue.h"
+#include <cstdint>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <mpi.h>
 #include <stdexcept>
@@ -38,10 +40,16 @@ public:
 
   /// The residuals at each of `points` (scaled values); every process gets
   /// them all, and `failed` (if given) whether each point's run failed
-  /// outright (its residuals then failed_residual()). Collective on
+  /// outright (its residuals then failed_residual()). The points from
+  /// `counted` on are runs ahead: a failure or refusal of theirs counts
+  /// only once count() is called with the point. Collective on
   /// MPI_COMM_WORLD.
   std::vector<std::vector<double>> residuals(const std::vector<std::vector<double>>& points,
-                                             std::vector<bool>* failed = nullptr);
+                                             std::vector<bool>* failed = nullptr,
+                                             std::size_t counted = SIZE_MAX);
+  /// A run ahead at x is used: its failure or refusal counts now (nothing
+  /// if it was neither). Collective on MPI_COMM_WORLD.
+  void count(const std::vector<double>& x);
 
   /// The residual at every point of a run that failed outright (a value the
   /// scene refuses, such as f_fr > f_t, or an error) [MPa]:
@@ -88,6 +96,15 @@ private:
   int _signal = 0; ///< a run stopped by this signal
   int _last_exit_code = exit_code::done;
   bool _failed_outright = false; ///< this group's last run
+  bool _counting = true;         ///< whether this group's run counts now
   std::string _last_failure, _last_refusal;
+  /// This group's runs ahead that failed or were refused, not yet counted:
+  /// their exit codes and messages (leader).
+  std::map<std::vector<double>, std::pair<int, std::string>> _pending;
+
+  /// Counts a run's exit `code` with its `message` (leader).
+  void tally(int code, const std::string& message);
+  /// The totals over the processes. Collective on MPI_COMM_WORLD.
+  void sum_counts();
 };
 } // namespace pushout::study

@@ -192,6 +192,7 @@ void Problem::evaluate(const std::vector<double>& x, bool with_jacobian)
         x_last = x;
         r_last = k.r;
         last_failed = k.failed;
+        evaluator.count(k.x); // a run ahead, used
         break;
       }
   const bool known = x == x_last;
@@ -222,7 +223,7 @@ void Problem::evaluate(const std::vector<double>& x, bool with_jacobian)
       points.back()[j] += h[j];
     }
   std::vector<bool> failed;
-  auto r = evaluator.residuals(points, &failed);
+  auto r = evaluator.residuals(points, &failed, points.size() - ahead);
   if (!known)
   {
     x_last = x;

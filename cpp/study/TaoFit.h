@@ -2,9 +2,10 @@
 // values x = value / scale, as PETSc TAO's bounded Newton line search
 // (TAOBNLS) on f = |r|^2 / 2 with the gradient J^T r and the Hessian J^T J,
 // the same on every process (PETSC_COMM_SELF). Its callbacks are batches of
-// the fit's runs (FitEvaluator.h): the objective one run, the gradient the
-// forward-difference Jacobian's n more (Resolution::line_search says what
-// the line search asks for at the points it tries).
+// the fit's runs (FitEvaluator.h): the objective one run (and, with several
+// groups, the points a backtracking line search would try next), the
+// gradient the forward-difference Jacobian's n more (Resolution::line_search
+// says what the line search asks for at the points it tries).
 #pragma once
 
 #include "FitEvaluator.h"
@@ -68,7 +69,7 @@ struct Problem
   std::vector<double> jacobian;       ///< its entries, column-major (m x n)
   bool last_failed = false;           ///< whether x_last's run failed outright
   /// x_jacobian's run (where a line search that finds no step goes back
-  /// to), and the points ahead of its line search run with another.
+  /// to), and the points of its line search that other groups ran ahead.
   std::vector<KnownPoint> known_points;
   Tao tao = nullptr;            ///< the solver whose iterations these are
   PetscInt last_iteration = -1; ///< the iteration last tested
