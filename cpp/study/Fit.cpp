@@ -260,8 +260,8 @@ int run_fitted(const FitOptions& opt, Evaluator& evaluator, ProcessGroups& group
 /// The fit's inputs, read and checked before its folder is touched: the
 /// measured curve into `data`, the free values into `free`; the start a
 /// valid scene with the push to the data's end that fits a group's
-/// processes, and whose mesh suits its cracks anywhere; the folder claimed. exit_code::done, or the
-/// refusal's code (said once).
+/// processes, and whose mesh suits its cracks anywhere; the folder
+/// claimed. exit_code::done, or the refusal's code (said once).
 int prepare(const FitOptions& opt, MeasuredCurve& data, std::vector<Free>& free,
             Resolution& resolution)
 {

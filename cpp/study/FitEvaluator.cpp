@@ -34,16 +34,15 @@ Evaluator::residuals(const std::vector<std::vector<double>>& points, std::vector
   for (std::size_t k = 0; k < points.size(); ++k)
     if (int(k % std::size_t(_groups)) == _group_index)
     {
-      _counting = k < counted;
       const std::vector<double> r =
-          run(points[k], _opt.out / ".runs" / ("group_" + std::to_string(_group_index)));
+          run(points[k], _opt.out / ".runs" / ("group_" + std::to_string(_group_index)), false,
+              k < counted);
       if (_leader)
       {
         std::copy(r.begin(), r.end(), all.begin() + std::ptrdiff_t(k * stride));
         all[k * stride + m] = _failed_outright ? 1 : 0;
       }
     }
-  _counting = true; // a run of its own (the fitted one) counts
   MPI_Allreduce(MPI_IN_PLACE, all.data(), int(all.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
   int signal = std::max(interrupt::received(), _signal);
   MPI_Allreduce(MPI_IN_PLACE, &signal, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
@@ -127,7 +126,7 @@ void Evaluator::sum_counts()
 }
 
 std::vector<double> Evaluator::run(const std::vector<double>& x, const std::filesystem::path& out,
-                                   bool plot)
+                                   bool plot, bool counts)
 {
   const RunOutcome o =
       run_case(_opt.scene_file, sets_at(x),
@@ -138,7 +137,7 @@ std::vector<double> Evaluator::run(const std::vector<double>& x, const std::file
     _signal = o.exit_code - exit_code::signal(0);
   // Once per group: the counts are summed over processes. A run ahead
   // counts once the fit uses it (count()).
-  if (_leader && _counting)
+  if (_leader && counts)
     tally(o.exit_code, o.message);
   else if (_leader && o.exit_code != 0)
     _pending[x] = {o.exit_code, o.message};

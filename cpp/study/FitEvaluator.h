@@ -63,8 +63,10 @@ public:
 
   /// One run at scaled values x into `out` on this group; its residuals
   /// (leader), the curve held flat after its last row if it stopped short.
+  /// A failure or refusal counts at once if `counts`, else once count() is
+  /// called with x (a run ahead).
   std::vector<double> run(const std::vector<double>& x, const std::filesystem::path& out,
-                          bool plot = false);
+                          bool plot = false, bool counts = true);
 
   int evaluations() const { return _evaluations; }
   /// The groups that share a batch of runs.
@@ -96,7 +98,6 @@ private:
   int _signal = 0; ///< a run stopped by this signal
   int _last_exit_code = exit_code::done;
   bool _failed_outright = false; ///< this group's last run
-  bool _counting = true;         ///< whether this group's run counts now
   std::string _last_failure, _last_refusal;
   /// This group's runs ahead that failed or were refused, not yet counted:
   /// their exit codes and messages (leader).
