@@ -360,6 +360,7 @@ RunOutcome run_case(const std::filesystem::path& scene_file, const std::vector<s
   {
     r.exit_code = exit_code::bad_input;
     r.message = e.what();
+    r.too_large = true;
   }
   catch (const std::exception& e)
   {

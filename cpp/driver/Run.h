@@ -91,7 +91,8 @@ struct RunOutcome
 {
   int exit_code = 1;
   double wall_s = 0;
-  std::string message; ///< why it did not converge ("" if it did)
+  std::string message;    ///< why it did not converge ("" if it did)
+  bool too_large = false; ///< refused (exit 2) by the size guard, not by the scene
 };
 
 /// One run of many (pushout sweep, fit): the scene file with `sets`, run

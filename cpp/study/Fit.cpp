@@ -240,6 +240,7 @@ int run_fitted(const FitOptions& opt, Evaluator& evaluator, ProcessGroups& group
   if (groups.index() == 0)
     evaluator.run(x, opt.out / "best", true);
   exit_code_best = evaluator.last_exit_code();
+  evaluator.sum_counts(); // the fitted run's failure or refusal counts too
   evaluator.release();
   groups.close();
   const int signal = evaluator.signal_anywhere();
@@ -384,6 +385,11 @@ int fit(const FitOptions& opt)
   // group's).
   outcome.failure = first_message(evaluator.last_failure(), MPI_COMM_WORLD);
   outcome.refusal = first_message(evaluator.last_refusal(), MPI_COMM_WORLD);
+  if (outcome.refusal.empty()) // none by the scene: by the size guard, if any
+  {
+    outcome.refusal = first_message(evaluator.last_size_refusal(), MPI_COMM_WORLD);
+    outcome.refusal_by_size = !outcome.refusal.empty();
+  }
   outcome.sets = evaluator.sets_at(x);
   outcome.evaluations = evaluator.evaluations();
   outcome.failed_runs = evaluator.failed();

@@ -90,20 +90,25 @@ std::vector<std::string> Evaluator::sets_at(const std::vector<double>& x) const
   return sets;
 }
 
-void Evaluator::tally(int code, const std::string& message)
+void Evaluator::tally(const RunOutcome& o)
 {
-  // Values the scene refuses are the fit's to avoid (a misfit), not a run
-  // that failed.
-  if (code == exit_code::bad_input)
+  // Values the scene (or the size guard) refuses are the fit's to avoid (a
+  // misfit), not a run that failed.
+  if (o.exit_code == exit_code::bad_input && o.too_large)
+  {
+    ++_refused;
+    _last_size_refusal = o.message;
+  }
+  else if (o.exit_code == exit_code::bad_input)
   {
     ++_refused;
     const std::string said = "error in scene: "; // the run's words, less what the fit says
-    _last_refusal = message.rfind(said, 0) == 0 ? message.substr(said.size()) : message;
+    _last_refusal = o.message.rfind(said, 0) == 0 ? o.message.substr(said.size()) : o.message;
   }
-  else if (code != 0)
+  else if (o.exit_code != 0)
   {
     ++_failed;
-    _last_failure = message;
+    _last_failure = o.message;
   }
 }
 
@@ -111,7 +116,7 @@ void Evaluator::count(const std::vector<double>& x)
 {
   if (const auto it = _pending.find(x); it != _pending.end())
   {
-    tally(it->second.first, it->second.second);
+    tally(it->second);
     _pending.erase(it);
   }
   sum_counts();
@@ -138,9 +143,9 @@ std::vector<double> Evaluator::run(const std::vector<double>& x, const std::file
   // Once per group: the counts are summed over processes. A run ahead
   // counts once the fit uses it (count()).
   if (_leader && counts)
-    tally(o.exit_code, o.message);
+    tally(o);
   else if (_leader && o.exit_code != 0)
-    _pending[x] = {o.exit_code, o.message};
+    _pending[x] = o;
   // A run that failed outright (a bad value, an error) counts as
   // failed_residual() everywhere; one that stopped (no convergence, a
   // signal) by what it reached.

@@ -81,9 +81,16 @@ public:
   /// Runs whose values the scene refused (failed_residual()).
   int refused() const { return _refused_total; }
   const std::string& last_failure() const { return _last_failure; }
-  /// Why the scene refused this group's last refused run ("" if none).
+  /// Why the scene refused this group's last run it refused ("" if none).
   const std::string& last_refusal() const { return _last_refusal; }
+  /// Why the size guard refused this group's last run it refused ("" if
+  /// none): the machine's memory, which other work may take during a fit.
+  const std::string& last_size_refusal() const { return _last_size_refusal; }
   void release() { _simulation.reset(); }
+  /// The failed and refused runs' totals over the processes, brought up to
+  /// date (residuals() and count() do it; a run of its own needs it).
+  /// Collective on MPI_COMM_WORLD.
+  void sum_counts();
 
 private:
   const FitOptions& _opt;
@@ -98,14 +105,12 @@ private:
   int _signal = 0; ///< a run stopped by this signal
   int _last_exit_code = exit_code::done;
   bool _failed_outright = false; ///< this group's last run
-  std::string _last_failure, _last_refusal;
+  std::string _last_failure, _last_refusal, _last_size_refusal;
   /// This group's runs ahead that failed or were refused, not yet counted:
-  /// their exit codes and messages (leader).
-  std::map<std::vector<double>, std::pair<int, std::string>> _pending;
+  /// their outcomes (leader).
+  std::map<std::vector<double>, driver::RunOutcome> _pending;
 
-  /// Counts a run's exit `code` with its `message` (leader).
-  void tally(int code, const std::string& message);
-  /// The totals over the processes. Collective on MPI_COMM_WORLD.
-  void sum_counts();
+  /// Counts a run's outcome (leader).
+  void tally(const driver::RunOutcome& o);
 };
 } // namespace pushout::study

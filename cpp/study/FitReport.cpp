@@ -62,6 +62,25 @@ nlohmann::json fitted_values(const std::vector<Free>& free, const std::vector<do
 }
 } // namespace
 
+std::string not_converged_message(const FitOutcome& fit, const std::filesystem::path& fit_json)
+{
+  std::string m = "the fit did not converge (" + fit.reason;
+  if (fit.failed_runs)
+    m += "; " + std::to_string(fit.failed_runs) + " runs did not converge: " + fit.failure;
+  m += "); " + fit_json.string() + " has where it stopped";
+  if (fit.refused_runs && fit.refusal_by_size)
+    m += "; " + std::to_string(fit.refused_runs) +
+         " runs were refused (one of them: " + fit.refusal +
+         "): this machine could not hold their models, which a --bounds on the "
+         "values that enlarge them keeps the fit off";
+  else if (fit.refused_runs)
+    m += "; " + std::to_string(fit.refused_runs) +
+         " runs were at values the scene refuses (one of them: " + fit.refusal +
+         "): the best fit may lie beyond a relation between keys (such as f_fr <= f_t), which a "
+         "--bounds at the relation lets the fit end on";
+  return m;
+}
+
 int write_fit(const FitOptions& opt, const MeasuredCurve& data, const std::vector<Free>& free,
               const FitOutcome& fit, bool talk)
 {
@@ -134,17 +153,7 @@ int write_fit(const FitOptions& opt, const MeasuredCurve& data, const std::vecto
     std::cerr << "pushout: error: the fitted values make no valid scene (" << scene_refused
               << "); no scene.toml" << std::endl;
   if (!fit.converged)
-    std::cerr << "pushout: error: the fit did not converge (" << fit.reason
-              << (fit.failed_runs ? "; " + std::to_string(fit.failed_runs) +
-                                        " runs did not converge: " + fit.failure
-                                  : std::string())
-              << "); " << (opt.out / "fit.json").string() << " has where it stopped"
-              << (fit.refused_runs
-                      ? "; " + std::to_string(fit.refused_runs) +
-                            " runs were at values the scene refuses (one of them: " + fit.refusal +
-                            "): the best fit may lie beyond a relation between keys (such as "
-                            "f_fr <= f_t), which a --bounds at the relation lets the fit end on"
-                      : std::string())
+    std::cerr << "pushout: error: " << not_converged_message(fit, opt.out / "fit.json")
               << std::endl;
   if (talk)
   {

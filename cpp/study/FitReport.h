@@ -8,6 +8,7 @@
 #include "FitStatistics.h"
 #include "FreeValue.h"
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -29,8 +30,14 @@ struct FitOutcome
   std::string reason;            ///< why TAO stopped (PETSc's name)
   std::string failure;           ///< why a run failed ("" if none did)
   std::string refusal;           ///< why the scene refused a run ("" if none)
+  bool refusal_by_size = false;  ///< `refusal` is the size guard's (the scene refused none)
   double wall_s = 0;             ///< the fit's wall time [s]
 };
+
+/// Why the fit did not converge, and where to look (the error's words,
+/// less "pushout: error: "): TAO's reason, the failed runs' and the refused
+/// runs' count, one of their reasons and what to do about them.
+std::string not_converged_message(const FitOutcome& fit, const std::filesystem::path& fit_json);
 
 /// Writes the fit's files into opt.out, says what is wrong on stderr (its
 /// warnings, no convergence) and, if `talk`, the fitted values on stdout.
