@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <sstream>
 #include <toml++/toml.h>
@@ -364,6 +365,20 @@ std::vector<Override> parse_overrides(const std::vector<std::string>& texts)
   for (const std::string& t : texts)
     o.push_back(parse_override(t));
   return o;
+}
+
+std::string integer_in_decimal(const std::string& value)
+{
+  try
+  {
+    const toml::table holder = toml::parse("v = " + value);
+    if (const auto v = holder["v"].value_exact<std::int64_t>())
+      return std::to_string(*v);
+  }
+  catch (const toml::parse_error&)
+  {
+  }
+  return value;
 }
 
 Scene Scene::load(const std::filesystem::path& file, const std::vector<Override>& overrides)

@@ -26,6 +26,10 @@ struct Override
 Override parse_override(const std::string& text);
 /// Each of `texts` parsed.
 std::vector<Override> parse_overrides(const std::vector<std::string>& texts);
+/// An override's `value` as typed, but a TOML integer in decimal digits
+/// ("0x10", "0o20", "0b10000" and "1_6" all give "16"): the value the scene
+/// reads, in one spelling.
+std::string integer_in_decimal(const std::string& value);
 
 class Scene
 {

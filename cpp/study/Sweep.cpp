@@ -128,6 +128,9 @@ Variation parse_variation(const std::string& text)
       value += c;
   }
   v.values.push_back(value);
+  // One spelling of a value in sweep.csv and its tables (and the repeated
+  // values found as numbers).
+  std::transform(v.values.begin(), v.values.end(), v.values.begin(), integer_in_decimal);
   if (depth != 0 ||
       std::any_of(v.values.begin(), v.values.end(), [](const std::string& s) { return s.empty(); }))
     throw SceneError("--vary '" + text + "': an empty value or unbalanced [ ]");

@@ -346,3 +346,14 @@ TEST(Scene, CrackTablesTakeAnAngleAndALaw)
   EXPECT_EQ(again.cracks()[1].layer.params, s.cracks()[1].layer.params);
   EXPECT_NE(error_of("[[crack]]\nangle = 400.0\n").find("crack.0.angle"), std::string::npos);
 }
+
+TEST(Scene, AnIntegerOverrideHasOneSpelling)
+{
+  using pushout::integer_in_decimal;
+  for (const char* v : {"0x10", "0o20", "0b10000", "1_6", "16", "+16"})
+    EXPECT_EQ(integer_in_decimal(v), "16") << v;
+  EXPECT_EQ(integer_in_decimal("-9223372036854775808"), "-9223372036854775808");
+  for (const char* v :
+       {"1.5", "1e2", "007", "0x", "[1, 2]", "true", "name", "99999999999999999999"})
+    EXPECT_EQ(integer_in_decimal(v), v) << v;
+}

@@ -3,6 +3,8 @@
 // count the converged seeds alone.
 #include "../../../cpp/study/SweepTables.h"
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <gtest/gtest.h>
 
 using namespace pushout::study;
@@ -85,4 +87,49 @@ TEST(SweepTables, OneSeedValueOrNoSeedKeyMakesNoGroups)
   ASSERT_EQ(groups.size(), 1u);
   EXPECT_TRUE(groups[0].values.empty());
   EXPECT_DOUBLE_EQ(groups[0].mean[0], 1.5);
+}
+
+// sweep.csv's numbers from case folders written here: the peak is of the
+// load steps (step 0's row, the thermal step, is not one of them, however
+// large), a case stopped at step 0 has no peak, and p and the crack width
+// are the push's start.
+TEST(SweepTables, ThePeakIsOfTheLoadStepsAlone)
+{
+  const std::filesystem::path out =
+      std::filesystem::temp_directory_path() /
+      ("pushout_sweep_tables_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  std::filesystem::remove_all(out);
+  auto write = [&](const std::string& name, const std::string& curve, const std::string& summary)
+  {
+    std::filesystem::create_directories(out / name);
+    std::ofstream(out / name / "curve.csv") << curve;
+    std::ofstream(out / name / "summary.json") << summary;
+  };
+  write("case_000",
+        "step,delta_mm,tau_MPa,p_MPa\n0,0,9,4.5\n1,0.01,1.5,4.4\n2,0.02,2.5,4.3\n3,0.03,2,4.2\n",
+        R"({"surface_crack_width_mm": 0.125})");
+  write("case_001", "step,delta_mm,tau_MPa,p_MPa\n0,0,7,4.0\n", "{}");
+  const std::vector<Variation> vary = {{"interface.0.mu", {"0.3", "0.4"}}};
+  std::vector<CaseResult> results(2);
+  results[0].index = 0;
+  results[0].exit_code = 0;
+  results[1].index = 1;
+  results[1].exit_code = 3;
+  results[1].message = "step 1: Newton did not converge, \"cut\" 10 times";
+  write_tables(out, "pushout", vary, cartesian_cases(vary), results);
+
+  std::ifstream in(out / "sweep.csv");
+  std::string header, row0, row1;
+  std::getline(in, header);
+  std::getline(in, row0);
+  std::getline(in, row1);
+  EXPECT_EQ(header, "case,interface.0.mu,peak_tau_MPa,delta_at_peak_mm,tau_last_MPa,"
+                    "delta_last_mm,p_before_push_MPa,crack_width_mm,steps,converged,exit_code,"
+                    "wall_s,message");
+  EXPECT_EQ(row0, "case_000,0.3,2.5,0.02,2,0.03,4.5,0.125,3,1,0,0,");
+  // No load step: no peak, its last point step 0's; the message quoted.
+  EXPECT_EQ(row1, "case_001,0.4,nan,nan,7,0,4,nan,0,0,3,0,"
+                  "\"step 1: Newton did not converge, \"\"cut\"\" 10 times\"");
+  EXPECT_FALSE(std::filesystem::exists(out / "sweep_seeds.csv"));
+  std::filesystem::remove_all(out);
 }
