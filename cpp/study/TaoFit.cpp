@@ -97,6 +97,8 @@ PetscErrorCode convergence_test(Tao tao, void* ctx)
           const bool stalled = p.resolution.stall_ratio > 0 && offset < 1 &&
                                offset > p.resolution.stall_ratio * p.last_offset;
           p.stalls = stalled ? p.stalls + 1 : 0;
+          p.searches_failed = p.failed_in_search ? p.searches_failed + 1 : 0;
+          p.failed_in_search = false;
           p.last_iteration = iteration;
         }
         const bool settled = p.stalls >= 2;
@@ -104,6 +106,11 @@ PetscErrorCode convergence_test(Tao tao, void* ctx)
         {
           p.at_resolution = offset >= p.resolution.offset_tolerance;
           check(TaoSetConvergedReason(tao, TAO_CONVERGED_USER), "TaoSetConvergedReason");
+        }
+        else if (going && p.searches_failed >= Problem::searches_failed_to_stop)
+        {
+          p.at_refused_values = true;
+          check(TaoSetConvergedReason(tao, TAO_DIVERGED_USER), "TaoSetConvergedReason");
         }
         if (!std::isnan(offset))
           p.last_offset = offset;
@@ -192,6 +199,7 @@ void Problem::evaluate(const std::vector<double>& x, bool with_jacobian)
         x_last = x;
         r_last = k.r;
         last_failed = k.failed;
+        failed_in_search = failed_in_search || (k.failed && !with_jacobian);
         evaluator.count(k.x); // a run ahead, used
         break;
       }
@@ -229,6 +237,7 @@ void Problem::evaluate(const std::vector<double>& x, bool with_jacobian)
     x_last = x;
     r_last = r[0];
     last_failed = failed[0];
+    failed_in_search = failed_in_search || (last_failed && !with_jacobian);
   }
   for (std::size_t k = 1; k <= ahead; ++k)
     known_points.push_back({points[k], r[k], failed[k]});
@@ -278,6 +287,29 @@ void Problem::fill(Mat J) const
   check(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
 }
 
+namespace
+{
+/// The settings of a fit's solver (of type TAOBNLS), then the user's
+/// -tao_* options.
+void set_options(Tao tao, const Resolution& resolution)
+{
+  // The whole Gauss-Newton step each iteration: BNLS's default Krylov
+  // solver (KSPSTCG) bounds it by a trust radius that a short step cuts to
+  // a quarter of itself, and the next step with it.
+  KSP ksp;
+  check(TaoGetKSP(tao, &ksp), "TaoGetKSP");
+  check(KSPSetType(ksp, KSPCG), "KSPSetType");
+  TaoLineSearch line_search;
+  check(TaoGetLineSearch(tao, &line_search), "TaoGetLineSearch");
+  check(TaoLineSearchSetType(line_search, resolution.line_search), "TaoLineSearchSetType");
+  // Converged when the gradient fell by 1e6 from the start (the
+  // differences' noise floor is near 1e-10 of it) or below 1e-12 [MPa^2].
+  check(TaoSetTolerances(tao, 1e-12, 0.0, 1e-6), "TaoSetTolerances");
+  check(TaoSetMaximumIterations(tao, 50), "TaoSetMaximumIterations");
+  check(TaoSetFromOptions(tao), "TaoSetFromOptions");
+}
+} // namespace
+
 TaoFit::TaoFit(const std::vector<Free>& free, PetscInt m, Problem& problem) : _problem(problem)
 {
   const PetscInt n = PetscInt(free.size());
@@ -311,21 +343,26 @@ TaoFit::TaoFit(const std::vector<Free>& free, PetscInt m, Problem& problem) : _p
   check(TaoSetObjectiveAndGradient(tao, nullptr, objective_gradient_callback, &problem),
         "TaoSetObjectiveAndGradient");
   check(TaoSetHessian(tao, H, H, hessian_callback, &problem), "TaoSetHessian");
-  // The whole Gauss-Newton step each iteration: BNLS's default Krylov
-  // solver (KSPSTCG) bounds it by a trust radius that a short step cuts to
-  // a quarter of itself, and the next step with it.
-  KSP ksp;
-  check(TaoGetKSP(tao, &ksp), "TaoGetKSP");
-  check(KSPSetType(ksp, KSPCG), "KSPSetType");
-  TaoLineSearch line_search;
-  check(TaoGetLineSearch(tao, &line_search), "TaoGetLineSearch");
-  check(TaoLineSearchSetType(line_search, problem.resolution.line_search), "TaoLineSearchSetType");
-  // Converged when the gradient fell by 1e6 from the start (the
-  // differences' noise floor is near 1e-10 of it) or below 1e-12 [MPa^2].
-  check(TaoSetTolerances(tao, 1e-12, 0.0, 1e-6), "TaoSetTolerances");
-  check(TaoSetMaximumIterations(tao, 50), "TaoSetMaximumIterations");
   check(TaoSetConvergenceTest(tao, convergence_test, &problem), "TaoSetConvergenceTest");
-  check(TaoSetFromOptions(tao), "TaoSetFromOptions");
+  set_options(tao, problem.resolution);
+}
+
+std::string TaoFit::option_error(Resolution resolution)
+{
+  Tao tao;
+  check(TaoCreate(PETSC_COMM_SELF, &tao), "TaoCreate");
+  std::string error;
+  try
+  {
+    check(TaoSetType(tao, TAOBNLS), "TaoSetType");
+    set_options(tao, resolution);
+  }
+  catch (const petsc::Error& e)
+  {
+    error = e.what();
+  }
+  check(TaoDestroy(&tao), "TaoDestroy");
+  return error;
 }
 
 TaoFit::~TaoFit()
@@ -362,6 +399,8 @@ std::string TaoFit::reason() const
   check(TaoGetConvergedReason(tao, &reason), "TaoGetConvergedReason");
   if (reason == TAO_CONVERGED_USER) // the tests of ours (convergence_test)
     return _problem.at_resolution ? "CONVERGED_MODEL_RESOLUTION" : "CONVERGED_RELATIVE_OFFSET";
+  if (reason == TAO_DIVERGED_USER)
+    return "DIVERGED_REFUSED_VALUES";
   return TaoConvergedReasons[reason];
 }
 

@@ -76,6 +76,17 @@ struct Problem
   double last_offset = NAN;     ///< the offset at that iteration
   int stalls = 0;               ///< iterations running that it stalled
   bool at_resolution = false;   ///< stopped by Resolution::stall_ratio
+  /// Whether a point a line search tried since the last iteration failed
+  /// outright (a value the scene refuses, or an error).
+  bool failed_in_search = false;
+  /// Iterations running whose line search met such a point.
+  int searches_failed = 0;
+  /// Stopped where the line search met such points in
+  /// searches_failed_to_stop iterations running: the best fit lies beyond
+  /// a relation between keys (f_fr <= f_t), where Armijo's backtracking
+  /// would creep towards the relation to TAO's iteration limit.
+  bool at_refused_values = false;
+  static constexpr int searches_failed_to_stop = 3;
 
   /// The scaled values in X.
   std::vector<double> values(Vec X) const;
@@ -114,6 +125,11 @@ struct TaoFit
 
   TaoFit(const std::vector<Free>& free, PetscInt m, Problem& problem);
   ~TaoFit();
+  /// What PETSc says of the -tao_* options given (a type or line search it
+  /// has not, a value it cannot read) on a solver set up as a fit's is;
+  /// "" if nothing. Checked before a fit starts, so that such an option
+  /// refuses it at once (exit 2).
+  static std::string option_error(Resolution resolution);
   TaoFit(const TaoFit&) = delete;
   TaoFit& operator=(const TaoFit&) = delete;
 

@@ -23,6 +23,8 @@
 5. Values the scene refuses (f_fr > f_t) count as a large misfit, a
    difference that lands there is taken backwards, and the fit stays on
    valid values; fit.json and the error say why the scene refused one.
+   With Armijo's line search it stops once three iterations running met
+   refused values (DIVERGED_REFUSED_VALUES).
 6. With cracks anywhere in the concrete, whose curve jumps with IMPL-EX's
    steps, the fit converges on the relative offset, or where it settles at
    the model's resolution (with a warning), in a few iterations, each value
@@ -262,6 +264,23 @@ check(r5b["refused_runs"] >= 1 and r5b["parameters"]["interface.1.f_fr"] <= 3.0
       f"the best fit beyond f_fr = f_t: exit {p.returncode}, f_fr = "
       f"{r5b['parameters']['interface.1.f_fr']:.4g}, {r5b['refused_runs']} refused runs, "
       f"one of them said: {r5b['refusal']!r}")
+# (c) The same with Armijo's backtracking (the line search of fits with cracks
+# anywhere), which finds a decrease towards the relation at every iteration
+# and crept on for 14 iterations and 383 runs before its line search failed:
+# the fit stops once the line search met refused values in three iterations
+# running (DIVERGED_REFUSED_VALUES, exit 3, the relation's hint), on valid
+# values. Iterations: the first step that crosses the relation plus those
+# three, with one to spare.
+out5c = out_dir("fit_beyond_a_relation_armijo")
+p = fit(out5c, above, free=["interface.1.f_fr"], start={"interface.1.f_fr": 2.0},
+        extra=["-tao_ls_type", "armijo"])
+with open(os.path.join(out5c, "fit.json")) as f:
+    r5c = json.load(f)
+check(p.returncode == 3 and r5c["reason"] == "DIVERGED_REFUSED_VALUES" and r5c["iterations"] <= 5
+      and r5c["parameters"]["interface.1.f_fr"] <= 3.0 and "relation between keys" in p.stderr
+      and os.path.exists(os.path.join(out5c, "scene.toml")),
+      f"Armijo beyond f_fr = f_t: exit {p.returncode}, {r5c['reason']} after {r5c['iterations']} "
+      f"iterations and {r5c['evaluations']} runs, f_fr = {r5c['parameters']['interface.1.f_fr']:.6g}")
 
 
 # 6. Cracks anywhere in the concrete (docs/fitting.md, "Method"). IMPL-EX's

@@ -229,6 +229,15 @@ check(err.split("pushout fit: error: ", 1)[-1] == run_err.split("error in scene:
       f"fit and run refuse alike, no folder: {err[:200]!r}")
 refused("fit: bounds with lo above hi", fit + ["--free", "interface.0.mu", "--bounds", "interface.0.mu=0.5:0.1"],
         ["interface.0.mu", "lo is not below hi"], seconds=10)
+# A -tao_* option TAO cannot take (a line search it has not, a value that
+# is no number) refuses the fit before any run, and leaves no folder.
+tao_out = out_dir("hostile_fit_tao_option")
+fit_tao = ["fit", GOOD_SCENE, "--data", fit_data, "--out", tao_out, "--quiet", "--free", "interface.0.mu"]
+refused("fit: a line search TAO has not", fit_tao + ["-tao_ls_type", "mt"],
+        ["a PETSc option", "TaoLineSearch type mt"], seconds=10)
+refused("fit: a TAO option that is no number", fit_tao + ["-tao_max_it", "many"],
+        ["a PETSc option", "many"], seconds=10)
+check(not os.path.exists(tao_out), "a fit refused for its TAO option leaves no folder")
 for cmd in ([], ["run"], ["sweep"]):
     p, _ = pushout(cmd + ["--help"])
     check(p.returncode == 0 and "--out" in p.stdout or not cmd, f"pushout {' '.join(cmd)} --help: exit 0, help")
