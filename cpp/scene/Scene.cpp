@@ -369,6 +369,8 @@ std::vector<Override> parse_overrides(const std::vector<std::string>& texts)
 
 std::string integer_in_decimal(const std::string& value)
 {
+  if (too_deep_at(value)) // apply_override refuses it, before the parser sees it
+    return value;
   try
   {
     const toml::table holder = toml::parse("v = " + value);

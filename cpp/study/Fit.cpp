@@ -238,9 +238,8 @@ int run_fitted(const FitOptions& opt, Evaluator& evaluator, ProcessGroups& group
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   if (groups.index() == 0)
-    evaluator.run(x, opt.out / "best", true);
+    evaluator.run(x, opt.out / "best", true, Evaluator::Counts::never);
   exit_code_best = evaluator.last_exit_code();
-  evaluator.sum_counts(); // the fitted run's failure or refusal counts too
   evaluator.release();
   groups.close();
   const int signal = evaluator.signal_anywhere();

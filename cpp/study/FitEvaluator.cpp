@@ -36,7 +36,7 @@ Evaluator::residuals(const std::vector<std::vector<double>>& points, std::vector
     {
       const std::vector<double> r =
           run(points[k], _opt.out / ".runs" / ("group_" + std::to_string(_group_index)), false,
-              k < counted);
+              k < counted ? Counts::now : Counts::when_used);
       if (_leader)
       {
         std::copy(r.begin(), r.end(), all.begin() + std::ptrdiff_t(k * stride));
@@ -131,7 +131,7 @@ void Evaluator::sum_counts()
 }
 
 std::vector<double> Evaluator::run(const std::vector<double>& x, const std::filesystem::path& out,
-                                   bool plot, bool counts)
+                                   bool plot, Counts counts)
 {
   const RunOutcome o =
       run_case(_opt.scene_file, sets_at(x),
@@ -142,9 +142,9 @@ std::vector<double> Evaluator::run(const std::vector<double>& x, const std::file
     _signal = o.exit_code - exit_code::signal(0);
   // Once per group: the counts are summed over processes. A run ahead
   // counts once the fit uses it (count()).
-  if (_leader && counts)
+  if (_leader && counts == Counts::now)
     tally(o);
-  else if (_leader && o.exit_code != 0)
+  else if (_leader && counts == Counts::when_used && o.exit_code != 0)
     _pending[x] = o;
   // A run that failed outright (a bad value, an error) counts as
   // failed_residual() everywhere; one that stopped (no convergence, a

@@ -61,12 +61,17 @@ public:
   /// The --set overrides of the scene at scaled values x.
   std::vector<std::string> sets_at(const std::vector<double>& x) const;
 
+  /// Whether a run's failure or refusal counts among the fit's runs.
+  enum class Counts
+  {
+    now,       ///< a run the fit asked for
+    when_used, ///< a run ahead: once count() is called with its point
+    never      ///< the fitted run (best/): its outcome is fit.json's converged
+  };
   /// One run at scaled values x into `out` on this group; its residuals
   /// (leader), the curve held flat after its last row if it stopped short.
-  /// A failure or refusal counts at once if `counts`, else once count() is
-  /// called with x (a run ahead).
   std::vector<double> run(const std::vector<double>& x, const std::filesystem::path& out,
-                          bool plot = false, bool counts = true);
+                          bool plot = false, Counts counts = Counts::now);
 
   int evaluations() const { return _evaluations; }
   /// The groups that share a batch of runs.
@@ -87,10 +92,6 @@ public:
   /// none): the machine's memory, which other work may take during a fit.
   const std::string& last_size_refusal() const { return _last_size_refusal; }
   void release() { _simulation.reset(); }
-  /// The failed and refused runs' totals over the processes, brought up to
-  /// date (residuals() and count() do it; a run of its own needs it).
-  /// Collective on MPI_COMM_WORLD.
-  void sum_counts();
 
 private:
   const FitOptions& _opt;
@@ -112,5 +113,7 @@ private:
 
   /// Counts a run's outcome (leader).
   void tally(const driver::RunOutcome& o);
+  /// The totals over the processes. Collective on MPI_COMM_WORLD.
+  void sum_counts();
 };
 } // namespace pushout::study

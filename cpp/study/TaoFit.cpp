@@ -97,7 +97,11 @@ PetscErrorCode convergence_test(Tao tao, void* ctx)
           const bool stalled = p.resolution.stall_ratio > 0 && offset < 1 &&
                                offset > p.resolution.stall_ratio * p.last_offset;
           p.stalls = stalled ? p.stalls + 1 : 0;
-          p.searches_failed = p.failed_in_search ? p.searches_failed + 1 : 0;
+          // Met refused values and did not halve the offset: creeping
+          // towards a relation, not overshooting it on the way to an
+          // optimum inside (whose Gauss-Newton steps shrink fast).
+          const bool blocked = p.failed_in_search && !(offset < 0.5 * p.last_offset);
+          p.searches_failed = blocked ? p.searches_failed + 1 : 0;
           p.failed_in_search = false;
           p.last_iteration = iteration;
         }
@@ -399,7 +403,7 @@ std::string TaoFit::reason() const
   check(TaoGetConvergedReason(tao, &reason), "TaoGetConvergedReason");
   if (reason == TAO_CONVERGED_USER) // the tests of ours (convergence_test)
     return _problem.at_resolution ? "CONVERGED_MODEL_RESOLUTION" : "CONVERGED_RELATIVE_OFFSET";
-  if (reason == TAO_DIVERGED_USER)
+  if (reason == TAO_DIVERGED_USER && _problem.at_refused_values)
     return "DIVERGED_REFUSED_VALUES";
   return TaoConvergedReasons[reason];
 }

@@ -79,12 +79,13 @@ struct Problem
   /// Whether a point a line search tried since the last iteration failed
   /// outright (a value the scene refuses, or an error).
   bool failed_in_search = false;
-  /// Iterations running whose line search met such a point.
+  /// Iterations running whose line search met such a point and that did
+  /// not halve the offset.
   int searches_failed = 0;
-  /// Stopped where the line search met such points in
-  /// searches_failed_to_stop iterations running: the best fit lies beyond
-  /// a relation between keys (f_fr <= f_t), where Armijo's backtracking
-  /// would creep towards the relation to TAO's iteration limit.
+  /// Stopped where that held in searches_failed_to_stop iterations running:
+  /// the best fit lies beyond a relation between keys (f_fr <= f_t), where
+  /// Armijo's backtracking (which asks for the objective alone at the points
+  /// it tries) would creep towards the relation to TAO's iteration limit.
   bool at_refused_values = false;
   static constexpr int searches_failed_to_stop = 3;
 

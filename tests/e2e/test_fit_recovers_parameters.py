@@ -268,9 +268,9 @@ check(r5b["refused_runs"] >= 1 and r5b["parameters"]["interface.1.f_fr"] <= 3.0
 # anywhere), which finds a decrease towards the relation at every iteration
 # and crept on for 14 iterations and 383 runs before its line search failed:
 # the fit stops once the line search met refused values in three iterations
-# running (DIVERGED_REFUSED_VALUES, exit 3, the relation's hint), on valid
-# values. Iterations: the first step that crosses the relation plus those
-# three, with one to spare.
+# running that did not halve the offset (DIVERGED_REFUSED_VALUES, exit 3,
+# the relation's hint), on valid values. Iterations: the first step (which
+# halves the offset from the start's) plus those three, with one to spare.
 out5c = out_dir("fit_beyond_a_relation_armijo")
 p = fit(out5c, above, free=["interface.1.f_fr"], start={"interface.1.f_fr": 2.0},
         extra=["-tao_ls_type", "armijo"])

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 using namespace pushout::study;
 
@@ -97,7 +98,7 @@ TEST(SweepTables, ThePeakIsOfTheLoadStepsAlone)
 {
   const std::filesystem::path out =
       std::filesystem::temp_directory_path() /
-      ("pushout_sweep_tables_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+      ("pushout_sweep_tables_" + std::to_string(::getpid())); // one per test process
   std::filesystem::remove_all(out);
   auto write = [&](const std::string& name, const std::string& curve, const std::string& summary)
   {
