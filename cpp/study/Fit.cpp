@@ -227,19 +227,21 @@ Resolution resolution_of(const Scene& scene)
 }
 
 /// The fitted run at x (scaled values), with its outputs, in DIR/best
-/// (group 0; rank 0 leads it); its exit code into `exit_code_best`. Then
+/// (group 0; rank 0 leads it); its exit code into `exit_code_best`, and on
+/// rank 0 why it did not converge into `best_failure`. Then
 /// the runs' set-ups and the groups are freed. Returns the signal that
 /// stopped it, or any run, on any process (0: none): a stopped fitted run
 /// leaves no best/ (it would hold a part of the curve), and the fit no
 /// fit.json. Collective.
 int run_fitted(const FitOptions& opt, Evaluator& evaluator, ProcessGroups& groups,
-               const std::vector<double>& x, int& exit_code_best)
+               const std::vector<double>& x, int& exit_code_best, std::string& best_failure)
 {
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   if (groups.index() == 0)
     evaluator.run(x, opt.out / "best", true, Evaluator::Counts::never);
   exit_code_best = evaluator.last_exit_code();
+  best_failure = exit_code_best == exit_code::done ? "" : evaluator.last_message();
   evaluator.release();
   groups.close();
   const int signal = evaluator.signal_anywhere();
@@ -377,7 +379,9 @@ int fit(const FitOptions& opt)
   outcome.statistics = statistics(solver.J, outcome.r, free, x);
 
   int best_exit_code = exit_code::done;
-  if (const int signal = run_fitted(opt, evaluator, groups, x, best_exit_code); signal != 0)
+  if (const int signal =
+          run_fitted(opt, evaluator, groups, x, best_exit_code, outcome.best_failure);
+      signal != 0)
     return exit_code::signal(signal);
   outcome.converged =
       solver.converged() && evaluator.failed() == 0 && best_exit_code == exit_code::done;

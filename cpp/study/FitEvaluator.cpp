@@ -138,6 +138,7 @@ std::vector<double> Evaluator::run(const std::vector<double>& x, const std::file
                {out, _opt.mesh_cache, true, _opt.force, _group, plot, _others_here}, _simulation);
   std::vector<double> r(_data.delta.size(), 0.0);
   _last_exit_code = o.exit_code;
+  _last_message = o.message;
   if (o.exit_code > exit_code::signal(0))
     _signal = o.exit_code - exit_code::signal(0);
   // Once per group: the counts are summed over processes. A run ahead

@@ -67,7 +67,11 @@ std::string not_converged_message(const FitOutcome& fit, const std::filesystem::
   std::string m = "the fit did not converge (" + fit.reason;
   if (fit.failed_runs)
     m += "; " + std::to_string(fit.failed_runs) + " runs did not converge: " + fit.failure;
-  m += "); " + fit_json.string() + " has where it stopped";
+  m += ")";
+  if (!fit.best_failure.empty())
+    m += "; the fitted run in " + (fit_json.parent_path() / "best").string() +
+         " did not converge: " + fit.best_failure;
+  m += "; " + fit_json.string() + " has where it stopped";
   if (fit.refused_runs && fit.refusal_by_size)
     m += "; " + std::to_string(fit.refused_runs) +
          " runs were refused (one of them: " + fit.refusal +

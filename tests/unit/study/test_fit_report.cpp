@@ -58,3 +58,16 @@ TEST(FitReport, FailedRunsAreCountedWithOneReason)
       << m;
   EXPECT_EQ(m.find("refuse"), std::string::npos) << m;
 }
+
+TEST(FitReport, AFittedRunThatDidNotConvergeIsNamed)
+{
+  FitOutcome fit;
+  fit.reason = "CONVERGED_RELATIVE_OFFSET"; // TAO's: the fit itself converged
+  fit.best_failure = "step 12: Newton did not converge after 10 cuts";
+  const std::string m = not_converged_message(fit, "out/fit.json");
+  EXPECT_NE(m.find("the fitted run in out/best did not converge: step 12: Newton did not converge "
+                   "after 10 cuts"),
+            std::string::npos)
+      << m;
+  EXPECT_EQ(m.find("runs did not converge"), std::string::npos) << m;
+}
