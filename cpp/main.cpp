@@ -36,6 +36,16 @@
 
 namespace
 {
+/// The exit code of a command that printed its answer: 1, said, if
+/// standard output did not take it all (a full disk, a closed pipe).
+int printed()
+{
+  if (std::cout.flush())
+    return pushout::exit_code::done;
+  std::cerr << "pushout: error: cannot write to standard output (disk full?)" << std::endl;
+  return pushout::exit_code::failure;
+}
+
 void print_keys()
 {
   using namespace pushout;
@@ -372,12 +382,12 @@ int main(int argc, char* argv[])
   if (cli.app.got_subcommand("keys"))
   {
     print_keys();
-    return pushout::exit_code::done;
+    return printed();
   }
   if (cli.app.got_subcommand("laws"))
   {
     print_laws();
-    return pushout::exit_code::done;
+    return printed();
   }
   std::vector<std::string> petsc_options = cli.petsc_options();
   if (!pushout::driver::start_petsc(argv[0], petsc_options))

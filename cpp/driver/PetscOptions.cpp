@@ -42,8 +42,9 @@ std::vector<std::string> unused_petsc_options(const std::set<std::string>& given
       check(MatDestroy(&F), "MatDestroy");
     }
     check(MatDestroy(&A), "MatDestroy");
-    Tao tao;
+    Tao tao; // as petsc_option_error() checked it
     check(TaoCreate(PETSC_COMM_SELF, &tao), "TaoCreate");
+    check(TaoSetType(tao, TAOBNLS), "TaoSetType");
     check(TaoSetFromOptions(tao), "TaoSetFromOptions");
     check(TaoDestroy(&tao), "TaoDestroy");
     for (const char* own : {"-arc_monitor", "-options_left"}) // read by pushout, or at the end
@@ -146,6 +147,22 @@ std::string petsc_option_error()
     error = e.what();
   }
   check(SNESDestroy(&snes), "SNESDestroy");
+  if (!error.empty())
+    return error;
+  // A fit's solver (study/TaoFit.h); every command reads its options at
+  // the end (unused_options), so a value it cannot take is refused here.
+  Tao tao;
+  check(TaoCreate(PETSC_COMM_SELF, &tao), "TaoCreate");
+  try
+  {
+    check(TaoSetType(tao, TAOBNLS), "TaoSetType");
+    check(TaoSetFromOptions(tao), "TaoSetFromOptions");
+  }
+  catch (const pushout::petsc::Error& e)
+  {
+    error = e.what();
+  }
+  check(TaoDestroy(&tao), "TaoDestroy");
   return error;
 }
 

@@ -20,10 +20,12 @@ std::set<std::string> option_names(const std::vector<std::string>& words);
 bool start_petsc(char* program, std::vector<std::string>& options);
 
 /// The user's PETSc options as the default solver's objects read them (a
-/// SNES, its KSP and PC): PETSc's message where one cannot take its value
-/// (-ksp_type bogus, -snes_max_it abc), else "". Found before the run, it
-/// is a usage error (exit 2), not a run that fails in its first solve. The
-/// same on every process (each reads the same options).
+/// SNES, its KSP and PC; a fit's TAO, of type TAOBNLS): PETSc's message
+/// where one cannot take its value (-ksp_type bogus, -snes_max_it abc,
+/// -tao_ls_type mt), else "". Found before any command runs, it is a usage
+/// error (exit 2), not a run that fails in its first solve, nor a fit
+/// refused after its runs. The same on every process (each reads the same
+/// options).
 std::string petsc_option_error();
 
 /// The user's PETSc options (`given`, from the command line) that nothing

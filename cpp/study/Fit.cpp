@@ -287,8 +287,6 @@ int prepare(const FitOptions& opt, MeasuredCurve& data, std::vector<Free>& free,
                     "pushout fit runs a monotonic push: leave 'loading.push_path' empty");
               free = free_values(scene, opt);
               resolution = resolution_of(scene);
-              if (const std::string bad = TaoFit::option_error(resolution); !bad.empty())
-                throw SceneError("a PETSc option: " + bad);
               if (data.delta.size() <= free.size())
                 throw SceneError("--data '" + opt.data.string() + "' has " +
                                  std::to_string(data.delta.size()) + " rows: more than the " +

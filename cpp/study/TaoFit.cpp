@@ -351,24 +351,6 @@ TaoFit::TaoFit(const std::vector<Free>& free, PetscInt m, Problem& problem) : _p
   set_options(tao, problem.resolution);
 }
 
-std::string TaoFit::option_error(Resolution resolution)
-{
-  Tao tao;
-  check(TaoCreate(PETSC_COMM_SELF, &tao), "TaoCreate");
-  std::string error;
-  try
-  {
-    check(TaoSetType(tao, TAOBNLS), "TaoSetType");
-    set_options(tao, resolution);
-  }
-  catch (const petsc::Error& e)
-  {
-    error = e.what();
-  }
-  check(TaoDestroy(&tao), "TaoDestroy");
-  return error;
-}
-
 TaoFit::~TaoFit()
 {
   petsc::check_nothrow(TaoDestroy(&tao), "TaoDestroy");

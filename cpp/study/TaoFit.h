@@ -126,11 +126,7 @@ struct TaoFit
 
   TaoFit(const std::vector<Free>& free, PetscInt m, Problem& problem);
   ~TaoFit();
-  /// What PETSc says of the -tao_* options given (a type or line search it
-  /// has not, a value it cannot read) on a solver set up as a fit's is;
-  /// "" if nothing. Checked before a fit starts, so that such an option
-  /// refuses it at once (exit 2).
-  static std::string option_error(Resolution resolution);
+
   TaoFit(const TaoFit&) = delete;
   TaoFit& operator=(const TaoFit&) = delete;
 

@@ -238,9 +238,26 @@ refused("fit: a line search TAO has not", fit_tao + ["-tao_ls_type", "mt"],
 refused("fit: a TAO option that is no number", fit_tao + ["-tao_max_it", "many"],
         ["a PETSc option", "many"], seconds=10)
 check(not os.path.exists(tao_out), "a fit refused for its TAO option leaves no folder")
+# With another error of the fit's input, one of the two, exit 2 (it was both
+# lines, then MPI_Abort and exit 1).
+refused("fit: a TAO option beside a free key the scene lacks",
+        fit_tao[:-1] + ["interface.0.muu", "-tao_ls_type", "foo"], ["a PETSc option"], seconds=10)
+# Any command reads the -tao_* options (as a fit's solver would) once it
+# ends: a run with one TAO cannot take is refused before it starts (it ran,
+# then ended in MPI_Abort, exit 1).
+args, out = run_args("tao_option", GOOD_SCENE, extra=["-tao_type", "nonesuch"])
+refused("run: a TAO type PETSc has not", args, ["a PETSc option", "Tao type nonesuch"], seconds=10)
 for cmd in ([], ["run"], ["sweep"]):
     p, _ = pushout(cmd + ["--help"])
     check(p.returncode == 0 and "--out" in p.stdout or not cmd, f"pushout {' '.join(cmd)} --help: exit 0, help")
+# An answer standard output cannot take (a full disk) is an I/O error,
+# exit 1, said on stderr (it was exit 0).
+if os.path.exists("/dev/full"):
+    for cmd in ("keys", "laws"):
+        with open("/dev/full", "w") as full:
+            p = subprocess.run([PUSHOUT, cmd], stdout=full, stderr=subprocess.PIPE, text=True, timeout=60)
+        check(p.returncode == 1 and "cannot write to standard output" in p.stderr,
+              f"pushout {cmd} > /dev/full: exit {p.returncode}, {p.stderr.strip()[:100]!r}")
 p, _ = pushout(["run", "--help"])
 check("--allow-unused-petsc-options" in p.stdout, "run --help documents --allow-unused-petsc-options")
 
