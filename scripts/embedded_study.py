@@ -5,8 +5,10 @@ demo/pushout_corroded.toml with [cracking] model = "embedded" instead of its
 crack plane (f_t 3 MPa, c 30 1/mm as the plane's: G_F 0.1 N/mm; a random
 strength field of cov 0.15 and correlation length 5 mm): the tube centred
 or 15 mm from a face, beta 2 or 3, seeds 1-5, corroded to x = 0, 12.5, 25,
-50 um in steps of 2.5 um, then pushed 0.2 mm, under loading.control =
-"auto" (dissipation control where a crack snaps back). Per run: the pressure and the
+50 um in steps of 2.5 um, then pushed 0.2 mm; the implicit cracks under
+loading.control = "auto" (dissipation control where a crack snaps back),
+IMPL-EX's under displacement control. Run it through scripts/studies.py
+(--only STUDY, STUDIES below), which imports it. Per run: the pressure and the
 widest surface crack after corrosion, the bond's peak and the residual at
 0.2 mm; per group of seeds: their mean and range (the error bars); the
 crack patterns after corrosion to 50 um, one per seed.

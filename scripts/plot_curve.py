@@ -30,10 +30,36 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 
 
+# The columns each kind draws from (a file of another kind lacks them).
+NEEDS = {"pushout": ("delta_mm", "tau_MPa"), "single_joint": ("u_s_mm", "F_s_N"),
+         "corrosion": ("penetration_mm", "p_MPa"), "crack_pattern": ("x_mm", "opening_mm")}
+
+
+class PlotError(Exception):
+    """A file that cannot be drawn as asked, said in one line."""
+
+
 def read(path):
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    return {k: [float(r[k]) for r in rows] for k in (rows[0].keys() if rows else [])}
+    """Each column of the CSV file at `path` (its header's, also where it has
+    no row: a run that failed before its first step)."""
+    try:
+        with open(path, newline="") as f:
+            reader = csv.DictReader(f)
+            rows = list(reader)
+            names = reader.fieldnames or []
+    except OSError as e:
+        raise PlotError(f"cannot read {path}: {e.strerror}") from None
+    return {k: [float(r[k]) for r in rows] for k in names}
+
+
+def read_kind(path, kind):
+    """read(path), which must hold the columns `kind` draws (NEEDS)."""
+    data = read(path)
+    missing = [k for k in NEEDS[kind] if k not in data]
+    if missing:
+        raise PlotError(f"{path} has no column {', '.join(missing)}: not a {kind} file "
+                        f"(--kind {kind} draws {', '.join(NEEDS[kind])})")
+    return data
 
 
 def main():
@@ -72,7 +98,10 @@ def main():
         os._exit(1 if failed else 0)
     if not args.csv or not args.png:
         ap.error("CSV and OUT.png are needed (or --serve)")
-    draw(args.csv, args.png, args.kind, args.title)
+    try:
+        draw(args.csv, args.png, args.kind, args.title)
+    except PlotError as e:
+        sys.exit(f"plot_curve.py: error: {e}")
 
 
 def draw_example():
@@ -92,11 +121,11 @@ def draw(csv_path, png, kind, title):
         # outline), beside its crack_pattern.csv.
         folder = os.path.dirname(os.path.abspath(csv_path))
         planes = os.path.join(folder, "crack_planes.csv")
-        plot_crack_pattern(fig, read(csv_path), title,
+        plot_crack_pattern(fig, read_kind(csv_path, kind), title,
                            read(planes) if os.path.exists(planes) else None,
                            read_scene(os.path.join(folder, "scene.toml")))
     else:
-        plot(fig, read(csv_path), kind, title)
+        plot(fig, read_kind(csv_path, kind), kind, title)
     fig.savefig(png)
 
 
@@ -253,19 +282,20 @@ def plot(fig, data, kind, title):
         ax.plot(x_um, data.get("p_MPa", []), "o-", ms=3, color="C0")
         ax.set_xlabel("corrosion depth $x$ [µm]")
         ax.set_ylabel("interface pressure $p$ [MPa]", color="C0")
+        # The crack planes' mouths, and with cracks anywhere the widest
+        # surface crack as a gauge reads it (of the planes' mouths too).
         widths = sorted(k for k in data if k.startswith("w_crack_"))
-        if widths:
+        concrete = "cracks_at_surface" in data
+        if widths or concrete:
             ax2 = ax.twinx()
             for i, k in enumerate(widths):
                 ax2.plot(x_um, [w * 1e3 for w in data[k]], "s-", ms=2, color=f"C{i + 1}",
-                         label=f"crack {k[len('w_crack_'):-3]}")
-            ax2.set_ylabel("crack-mouth opening [µm]")
-            ax2.legend(loc="upper left", fontsize=8)
-        elif "cracks_at_surface" in data:  # the concrete's cracks, as a gauge reads them
-            ax2 = ax.twinx()
-            ax2.plot(x_um, [w * 1e3 for w in data.get("crack_width_mm", [])], "s-", ms=2,
-                     color="C1", label="widest surface crack")
-            ax2.set_ylabel("surface crack width [µm]")
+                         label=f"crack plane {k[len('w_crack_'):-3]}")
+            if concrete:
+                ax2.plot(x_um, [w * 1e3 for w in data.get("crack_width_mm", [])],
+                         "--" if widths else "s-", ms=2, color="0.2" if widths else "C1",
+                         label="widest surface crack")
+            ax2.set_ylabel("crack-mouth opening [µm]" if not concrete else "surface crack width [µm]")
             ax2.legend(loc="upper left", fontsize=8)
     else:
         ax.plot(data.get("u_s_mm", []), data.get("F_s_N", []), "o-", ms=3)

@@ -39,16 +39,20 @@ random strength field and no crack planes:
    the plane: from the interface (R from the axis, at 270 degrees) to the
    face y = 0, its mouth summary.json's (both printed to 10 digits), and
    crack_pattern.png draws it; without planes (1.) there is no
-   crack_planes.csv."""
+   crack_planes.csv. scripts/plot_curve.py draws its corrosion.csv (the
+   plane's mouth and the widest surface crack), and refuses in one line,
+   exit 1, a file of another kind or none."""
 
 import csv
 import math
 import os
+import subprocess
+import sys
 
 import h5py
 import numpy as np
 
-from common import TIGHT_NEWTON, check, corrosion, cracking_corroded_demo, out_dir, run, summary
+from common import SOURCE, TIGHT_NEWTON, check, corrosion, cracking_corroded_demo, out_dir, run, summary
 
 f_t, cov, E = 3.0, 0.15, 30000.0  # MPa; concrete.E's default
 axis = (50.0, 25.0)  # the tube axis of the demo [mm]
@@ -248,3 +252,24 @@ check(len(planes) == 1 and len(plane) == 1 and planes[0]["angle_deg"] == 270
       and os.path.getsize(os.path.join(both_kinds, "crack_pattern.png")) > 0,
       f"crack_planes.csv: the plane from the tube to the face, its mouth "
       f"{planes[0]['mouth_mm'] * 1e3:.1f} um as summary.json's; the figure drawn")
+
+# scripts/plot_curve.py by hand on that run.
+plot_curve = os.path.join(SOURCE, "scripts", "plot_curve.py")
+
+
+def plot(csv_name, kind):
+    png = os.path.join(both_kinds, f"by_hand_{os.path.splitext(csv_name)[0]}_{kind}.png")
+    p = subprocess.run([sys.executable, plot_curve, os.path.join(both_kinds, csv_name), png, "--kind", kind],
+                       capture_output=True, text=True, timeout=120)
+    return p, png
+
+
+p, png = plot("corrosion.csv", "corrosion")
+check(p.returncode == 0 and os.path.getsize(png) > 0, f"plot_curve.py draws corrosion.csv: exit {p.returncode}")
+for csv_name, kind, words in (("corrosion.csv", "crack_pattern", "not a crack_pattern file"),
+                              ("curve.csv", "corrosion", "no column penetration_mm"),
+                              ("no_such.csv", "pushout", "cannot read")):
+    p, png = plot(csv_name, kind)
+    err = p.stderr.strip()
+    check(p.returncode == 1 and len(err.splitlines()) == 1 and words in err and not os.path.exists(png),
+          f"plot_curve.py {csv_name} --kind {kind}: exit {p.returncode}, one line: {err[:150]!r}")
