@@ -11,6 +11,7 @@
 #include "common/Interrupt.h"
 #include "common/exit_codes.h"
 #include "common/mpi_errors.h"
+#include "common/mpi_gather.h"
 #include "common/petsc_check.h"
 #include "driver/PetscOptions.h"
 #include "driver/Run.h"
@@ -37,7 +38,8 @@
 namespace
 {
 /// The exit code of a command that printed its answer: 1, said, if
-/// standard output did not take it all (a full disk, a closed pipe).
+/// standard output did not take it all (a full disk; a closed pipe ends
+/// the process with SIGPIPE first).
 int printed()
 {
   if (std::cout.flush())
@@ -277,7 +279,10 @@ struct CommandLine
     catch (const CLI::ParseError& e)
     {
       if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) // --help
-        return app.exit(e);
+      {
+        const int code = app.exit(e);
+        return code == pushout::exit_code::done ? printed() : code;
+      }
       if (command.empty() && argc > 1 && argv[1][0] != '-')
         return usage_error(std::string("unknown command '") + argv[1] +
                            "'; commands: run, sweep, fit, keys, laws");
@@ -392,7 +397,11 @@ int main(int argc, char* argv[])
   std::vector<std::string> petsc_options = cli.petsc_options();
   if (!pushout::driver::start_petsc(argv[0], petsc_options))
     return pushout::exit_code::failure;
-  if (const std::string bad = pushout::driver::petsc_option_error(); !bad.empty())
+  // Agreed: an option naming a file (-tao_monitor FILE) may open on some
+  // processes only, and the command either runs on all of them or on none.
+  if (const std::string bad =
+          pushout::mpi::first_message(pushout::driver::petsc_option_error(), MPI_COMM_WORLD);
+      !bad.empty())
   {
     if (first_process())
       std::cerr << "pushout: error: a PETSc option: " << bad << std::endl;

@@ -47,9 +47,11 @@ def read(path):
             reader = csv.DictReader(f)
             rows = list(reader)
             names = reader.fieldnames or []
+        return {k: [float(r[k]) for r in rows] for k in names}
     except OSError as e:
         raise PlotError(f"cannot read {path}: {e.strerror}") from None
-    return {k: [float(r[k]) for r in rows] for k in names}
+    except (ValueError, TypeError, UnicodeDecodeError, csv.Error):
+        raise PlotError(f"{path} is not a CSV table of numbers (a file of pushout's?)") from None
 
 
 def read_kind(path, kind):
@@ -295,7 +297,8 @@ def plot(fig, data, kind, title):
                 ax2.plot(x_um, [w * 1e3 for w in data.get("crack_width_mm", [])],
                          "--" if widths else "s-", ms=2, color="0.2" if widths else "C1",
                          label="widest surface crack")
-            ax2.set_ylabel("crack-mouth opening [µm]" if not concrete else "surface crack width [µm]")
+            ax2.set_ylabel("crack-mouth opening [µm]" if not concrete
+                           else "surface crack width [µm]" if not widths else "crack width [µm]")
             ax2.legend(loc="upper left", fontsize=8)
     else:
         ax.plot(data.get("u_s_mm", []), data.get("F_s_N", []), "o-", ms=3)

@@ -1,9 +1,11 @@
 // Gathering every process's values on the first process, in rank order: the
-// count of each, their offsets, and MPI_Gatherv, written once.
+// count of each, their offsets, and MPI_Gatherv, written once; and the
+// message of the first process that has one, on every process.
 #pragma once
 
 #include <cstddef>
 #include <mpi.h>
+#include <string>
 #include <vector>
 
 namespace pushout::mpi
@@ -30,5 +32,24 @@ std::vector<T> gather_to_first(MPI_Comm comm, const T* mine, int count, MPI_Data
   if (offsets)
     *offsets = std::move(starts);
   return all;
+}
+
+/// The message of the lowest-ranked process of `comm` that has one ("" if
+/// none has). Collective.
+inline std::string first_message(const std::string& mine, MPI_Comm comm)
+{
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  int first = size;
+  const int have = mine.empty() ? size : rank;
+  MPI_Allreduce(&have, &first, 1, MPI_INT, MPI_MIN, comm);
+  if (first == size)
+    return "";
+  long long length = rank == first ? static_cast<long long>(mine.size()) : 0;
+  MPI_Bcast(&length, 1, MPI_LONG_LONG, first, comm);
+  std::string message = rank == first ? mine : std::string(std::size_t(length), ' ');
+  MPI_Bcast(message.data(), int(length), MPI_CHAR, first, comm);
+  return message;
 }
 } // namespace pushout::mpi

@@ -3,6 +3,7 @@
 #include "../common/mpi_start.h"
 #include "../common/petsc_check.h"
 #include "../output/Summary.h"
+#include "../solver/FitTao.h"
 #include <cctype>
 #include <iostream>
 #include <mpi.h>
@@ -42,11 +43,13 @@ std::vector<std::string> unused_petsc_options(const std::set<std::string>& given
       check(MatDestroy(&F), "MatDestroy");
     }
     check(MatDestroy(&A), "MatDestroy");
-    Tao tao; // as petsc_option_error() checked it
-    check(TaoCreate(PETSC_COMM_SELF, &tao), "TaoCreate");
-    check(TaoSetType(tao, TAOBNLS), "TaoSetType");
-    check(TaoSetFromOptions(tao), "TaoSetFromOptions");
-    check(TaoDestroy(&tao), "TaoDestroy");
+    for (TaoLineSearchType line_search : pushout::solver::fit_line_searches)
+    {
+      Tao tao; // as petsc_option_error() checked it
+      check(TaoCreate(PETSC_COMM_SELF, &tao), "TaoCreate");
+      pushout::solver::set_up_fit_tao(tao, line_search);
+      check(TaoDestroy(&tao), "TaoDestroy");
+    }
     for (const char* own : {"-arc_monitor", "-options_left"}) // read by pushout, or at the end
     {
       PetscBool set;
@@ -149,20 +152,25 @@ std::string petsc_option_error()
   check(SNESDestroy(&snes), "SNESDestroy");
   if (!error.empty())
     return error;
-  // A fit's solver (study/TaoFit.h); every command reads its options at
-  // the end (unused_options), so a value it cannot take is refused here.
-  Tao tao;
-  check(TaoCreate(PETSC_COMM_SELF, &tao), "TaoCreate");
-  try
+  // A fit's solver with each line search it may use (its options are read
+  // by type); every command reads them at its end (unused_options), so a
+  // value it cannot take is refused here.
+  for (TaoLineSearchType line_search : pushout::solver::fit_line_searches)
   {
-    check(TaoSetType(tao, TAOBNLS), "TaoSetType");
-    check(TaoSetFromOptions(tao), "TaoSetFromOptions");
+    Tao tao;
+    check(TaoCreate(PETSC_COMM_SELF, &tao), "TaoCreate");
+    try
+    {
+      pushout::solver::set_up_fit_tao(tao, line_search);
+    }
+    catch (const pushout::petsc::Error& e)
+    {
+      error = e.what();
+    }
+    check(TaoDestroy(&tao), "TaoDestroy");
+    if (!error.empty())
+      break;
   }
-  catch (const pushout::petsc::Error& e)
-  {
-    error = e.what();
-  }
-  check(TaoDestroy(&tao), "TaoDestroy");
   return error;
 }
 

@@ -5,6 +5,7 @@
 #include "../common/Interrupt.h"
 #include "../common/exit_codes.h"
 #include "../common/mpi_errors.h"
+#include "../common/mpi_gather.h"
 #include "../driver/exit_on_error.h"
 #include "../laws/LawRegistry.h"
 #include "../output/OutputFiles.h"
@@ -79,25 +80,6 @@ double value_of(const Scene& scene, const std::string& key, Free& f)
     f.lo_exclusive = f.hi_exclusive = def->open;
   }
   return *d;
-}
-
-/// The message of the lowest-ranked process of `comm` that has one ("" if
-/// none has). Collective.
-std::string first_message(const std::string& mine, MPI_Comm comm)
-{
-  int rank = 0, size = 1;
-  MPI_Comm_rank(comm, &rank);
-  MPI_Comm_size(comm, &size);
-  int first = size;
-  const int have = mine.empty() ? size : rank;
-  MPI_Allreduce(&have, &first, 1, MPI_INT, MPI_MIN, comm);
-  if (first == size)
-    return "";
-  long long length = rank == first ? static_cast<long long>(mine.size()) : 0;
-  MPI_Bcast(&length, 1, MPI_LONG_LONG, first, comm);
-  std::string message = rank == first ? mine : std::string(std::size_t(length), ' ');
-  MPI_Bcast(message.data(), int(length), MPI_CHAR, first, comm);
-  return message;
 }
 
 /// A value within `f`'s bounds away from 0 (the middle of finite bounds).
@@ -228,7 +210,8 @@ Resolution resolution_of(const Scene& scene)
 
 /// The fitted run at x (scaled values), with its outputs, in DIR/best
 /// (group 0; rank 0 leads it); its exit code into `exit_code_best`, and on
-/// rank 0 why it did not converge into `best_failure`. Then
+/// rank 0 how it failed into `best_failure` ("did not converge: ...";
+/// "" if it converged). Then
 /// the runs' set-ups and the groups are freed. Returns the signal that
 /// stopped it, or any run, on any process (0: none): a stopped fitted run
 /// leaves no best/ (it would hold a part of the curve), and the fit no
@@ -241,7 +224,13 @@ int run_fitted(const FitOptions& opt, Evaluator& evaluator, ProcessGroups& group
   if (groups.index() == 0)
     evaluator.run(x, opt.out / "best", true, Evaluator::Counts::never);
   exit_code_best = evaluator.last_exit_code();
-  best_failure = exit_code_best == exit_code::done ? "" : evaluator.last_message();
+  // Its refusal by the scene is write_fit's to say (no scene.toml).
+  const std::string& why = evaluator.last_message();
+  best_failure = exit_code_best == exit_code::done            ? ""
+                 : exit_code_best == exit_code::not_converged ? "did not converge: " + why
+                 : exit_code_best == exit_code::failure       ? "ended with an error: " + why
+                 : why.rfind("error in scene: ", 0) == 0      ? ""
+                                                              : "was refused: " + why;
   evaluator.release();
   groups.close();
   const int signal = evaluator.signal_anywhere();
@@ -386,11 +375,11 @@ int fit(const FitOptions& opt)
   outcome.reason = solver.reason();
   // Why a run failed, from any process (the failure may have been another
   // group's).
-  outcome.failure = first_message(evaluator.last_failure(), MPI_COMM_WORLD);
-  outcome.refusal = first_message(evaluator.last_refusal(), MPI_COMM_WORLD);
+  outcome.failure = mpi::first_message(evaluator.last_failure(), MPI_COMM_WORLD);
+  outcome.refusal = mpi::first_message(evaluator.last_refusal(), MPI_COMM_WORLD);
   if (outcome.refusal.empty()) // none by the scene: by the size guard, if any
   {
-    outcome.refusal = first_message(evaluator.last_size_refusal(), MPI_COMM_WORLD);
+    outcome.refusal = mpi::first_message(evaluator.last_size_refusal(), MPI_COMM_WORLD);
     outcome.refusal_by_size = !outcome.refusal.empty();
   }
   outcome.sets = evaluator.sets_at(x);

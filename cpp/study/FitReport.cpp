@@ -69,8 +69,8 @@ std::string not_converged_message(const FitOutcome& fit, const std::filesystem::
     m += "; " + std::to_string(fit.failed_runs) + " runs did not converge: " + fit.failure;
   m += ")";
   if (!fit.best_failure.empty())
-    m += "; the fitted run in " + (fit_json.parent_path() / "best").string() +
-         " did not converge: " + fit.best_failure;
+    m += "; the fitted run in " + (fit_json.parent_path() / "best").string() + " " +
+         fit.best_failure;
   m += "; " + fit_json.string() + " has where it stopped";
   if (fit.refused_runs && fit.refusal_by_size)
     m += "; " + std::to_string(fit.refused_runs) +
@@ -99,7 +99,8 @@ int write_fit(const FitOptions& opt, const MeasuredCurve& data, const std::vecto
   j["evaluations"] = fit.evaluations;
   j["failed_runs"] = fit.failed_runs;
   j["refused_runs"] = fit.refused_runs;
-  j["refusal"] = fit.refusal; // "" where none was refused
+  j["refusal"] = fit.refusal;           // "" where none was refused
+  j["best_failure"] = fit.best_failure; // "" where the fitted run converged
   j["iterations"] = fit.iterations;
   j["relative_offset"] = fit.relative_offset; // null where infinite (an exact fit)
   j["converged"] = fit.converged;

@@ -30,7 +30,7 @@ struct FitOutcome
   std::string reason;            ///< why TAO stopped (PETSc's name)
   std::string failure;           ///< why a run failed ("" if none did)
   std::string refusal;           ///< why the scene refused a run ("" if none)
-  std::string best_failure;      ///< why the fitted run (best/) did not converge ("" if it did)
+  std::string best_failure;      ///< how the fitted run (best/) failed ("" if it converged)
   bool refusal_by_size = false;  ///< `refusal` is the size guard's (the scene refused none)
   double wall_s = 0;             ///< the fit's wall time [s]
 };

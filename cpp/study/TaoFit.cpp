@@ -5,6 +5,7 @@
 #include "TaoFit.h"
 #include "../common/Interrupt.h"
 #include "../common/petsc_check.h"
+#include "../solver/FitTao.h"
 #include "FitStatistics.h"
 #include <algorithm>
 #include <cmath>
@@ -291,29 +292,6 @@ void Problem::fill(Mat J) const
   check(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
 }
 
-namespace
-{
-/// The settings of a fit's solver (of type TAOBNLS), then the user's
-/// -tao_* options.
-void set_options(Tao tao, const Resolution& resolution)
-{
-  // The whole Gauss-Newton step each iteration: BNLS's default Krylov
-  // solver (KSPSTCG) bounds it by a trust radius that a short step cuts to
-  // a quarter of itself, and the next step with it.
-  KSP ksp;
-  check(TaoGetKSP(tao, &ksp), "TaoGetKSP");
-  check(KSPSetType(ksp, KSPCG), "KSPSetType");
-  TaoLineSearch line_search;
-  check(TaoGetLineSearch(tao, &line_search), "TaoGetLineSearch");
-  check(TaoLineSearchSetType(line_search, resolution.line_search), "TaoLineSearchSetType");
-  // Converged when the gradient fell by 1e6 from the start (the
-  // differences' noise floor is near 1e-10 of it) or below 1e-12 [MPa^2].
-  check(TaoSetTolerances(tao, 1e-12, 0.0, 1e-6), "TaoSetTolerances");
-  check(TaoSetMaximumIterations(tao, 50), "TaoSetMaximumIterations");
-  check(TaoSetFromOptions(tao), "TaoSetFromOptions");
-}
-} // namespace
-
 TaoFit::TaoFit(const std::vector<Free>& free, PetscInt m, Problem& problem) : _problem(problem)
 {
   const PetscInt n = PetscInt(free.size());
@@ -348,7 +326,8 @@ TaoFit::TaoFit(const std::vector<Free>& free, PetscInt m, Problem& problem) : _p
         "TaoSetObjectiveAndGradient");
   check(TaoSetHessian(tao, H, H, hessian_callback, &problem), "TaoSetHessian");
   check(TaoSetConvergenceTest(tao, convergence_test, &problem), "TaoSetConvergenceTest");
-  set_options(tao, problem.resolution);
+  // Its type already (a set-up of the same type leaves the callbacks).
+  solver::set_up_fit_tao(tao, problem.resolution.line_search);
 }
 
 TaoFit::~TaoFit()

@@ -237,6 +237,10 @@ refused("fit: a line search TAO has not", fit_tao + ["-tao_ls_type", "mt"],
         ["a PETSc option", "TaoLineSearch type mt"], seconds=10)
 refused("fit: a TAO option that is no number", fit_tao + ["-tao_max_it", "many"],
         ["a PETSc option", "many"], seconds=10)
+# An option of Armijo's line search alone (the one of fits with cracks):
+# checked on the solver as a fit with cracks sets it up.
+refused("fit: an Armijo option that is no number", fit_tao + ["-tao_ls_armijo_beta", "half"],
+        ["a PETSc option", "half"], seconds=10)
 check(not os.path.exists(tao_out), "a fit refused for its TAO option leaves no folder")
 # With another error of the fit's input, one of the two, exit 2 (it was both
 # lines, then MPI_Abort and exit 1).

@@ -63,7 +63,7 @@ TEST(FitReport, AFittedRunThatDidNotConvergeIsNamed)
 {
   FitOutcome fit;
   fit.reason = "CONVERGED_RELATIVE_OFFSET"; // TAO's: the fit itself converged
-  fit.best_failure = "step 12: Newton did not converge after 10 cuts";
+  fit.best_failure = "did not converge: step 12: Newton did not converge after 10 cuts";
   const std::string m = not_converged_message(fit, "out/fit.json");
   EXPECT_NE(m.find("the fitted run in out/best did not converge: step 12: Newton did not converge "
                    "after 10 cuts"),
