@@ -354,13 +354,14 @@ RunOutcome run_case(const std::filesystem::path& scene_file, const std::vector<s
   catch (const SceneError& e)
   {
     r.exit_code = exit_code::bad_input;
-    r.message = std::string("error in scene: ") + e.what();
+    r.message = std::string(RunOutcome::scene_label) + e.what();
+    r.refused = RunOutcome::Refusal::scene;
   }
   catch (const record::TooLarge& e)
   {
     r.exit_code = exit_code::bad_input;
     r.message = e.what();
-    r.too_large = true;
+    r.refused = RunOutcome::Refusal::size;
   }
   catch (const std::exception& e)
   {

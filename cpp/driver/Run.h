@@ -18,6 +18,7 @@
 #include <memory>
 #include <mpi.h>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace pushout::driver
@@ -89,10 +90,24 @@ output::Summary run(const Scene& scene, const RunOptions& options);
 /// error, 128 + signal if a signal stopped it.
 struct RunOutcome
 {
+  /// Who refused a run that exit 2 ended.
+  enum class Refusal
+  {
+    none,  ///< not refused
+    scene, ///< a scene the scene's checks refuse (SceneError)
+    size   ///< the size guard: more than the machine holds (record::TooLarge)
+  };
   int exit_code = 1;
   double wall_s = 0;
-  std::string message;    ///< why it did not converge ("" if it did)
-  bool too_large = false; ///< refused (exit 2) by the size guard, not by the scene
+  std::string message; ///< why it did not converge ("" if it did), as the run says it
+  Refusal refused = Refusal::none;
+  /// The label of a scene's refusal in `message`, as `pushout run` says it.
+  static constexpr std::string_view scene_label = "error in scene: ";
+  /// `message` without scene_label.
+  std::string reason() const
+  {
+    return refused == Refusal::scene ? message.substr(scene_label.size()) : message;
+  }
 };
 
 /// One run of many (pushout sweep, fit): the scene file with `sets`, run

@@ -223,14 +223,15 @@ int run_fitted(const FitOptions& opt, Evaluator& evaluator, ProcessGroups& group
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   if (groups.index() == 0)
     evaluator.run(x, opt.out / "best", true, Evaluator::Counts::never);
-  exit_code_best = evaluator.last_exit_code();
+  const driver::RunOutcome& o = evaluator.last();
+  exit_code_best = o.exit_code;
   // Its refusal by the scene is write_fit's to say (no scene.toml).
-  const std::string& why = evaluator.last_message();
-  best_failure = exit_code_best == exit_code::done            ? ""
-                 : exit_code_best == exit_code::not_converged ? "did not converge: " + why
-                 : exit_code_best == exit_code::failure       ? "ended with an error: " + why
-                 : why.rfind("error in scene: ", 0) == 0      ? ""
-                                                              : "was refused: " + why;
+  using Refusal = driver::RunOutcome::Refusal;
+  best_failure = o.exit_code == exit_code::done            ? ""
+                 : o.exit_code == exit_code::not_converged ? "did not converge: " + o.message
+                 : o.refused == Refusal::size              ? "was refused: " + o.message
+                 : o.refused == Refusal::scene             ? ""
+                                                           : "ended with an error: " + o.message;
   evaluator.release();
   groups.close();
   const int signal = evaluator.signal_anywhere();
@@ -294,20 +295,19 @@ int prepare(const FitOptions& opt, MeasuredCurve& data, std::vector<Free>& free,
         const int others_here = ProcessGroups::others_here(group.comm, int(free.size()) + 1);
         std::vector<std::string> sets = opt.sets;
         sets.push_back("loading.push_displacement=" + number_text(data.delta.back()));
+        const Scene start = mpi::collectively<SceneError>(
+            MPI_COMM_WORLD, [&] { return Scene::load(opt.scene_file, parse_overrides(sets)); });
         mpi::collectively<SceneError, record::TooLarge>(
             MPI_COMM_WORLD,
             [&]
             {
-              driver::check_before_run(Scene::load(opt.scene_file, parse_overrides(sets)),
-                                       driver::RunOptions{opt.out, opt.mesh_cache, opt.quiet,
-                                                          opt.force, group.comm, true,
-                                                          others_here});
+              driver::check_before_run(start, driver::RunOptions{opt.out, opt.mesh_cache, opt.quiet,
+                                                                 opt.force, group.comm, true,
+                                                                 others_here});
             });
         // With cracks anywhere, the crack band against the start's elements
         // (collective on MPI_COMM_WORLD, so once every group passed its guard).
-        mpi::collectively<SceneError>(
-            MPI_COMM_WORLD,
-            [&] { MeshChecks{opt}(Scene::load(opt.scene_file, parse_overrides(sets))); });
+        mpi::collectively<SceneError>(MPI_COMM_WORLD, [&] { MeshChecks{opt}(start); });
         // The folder is this fit's alone, without an earlier run's outputs
         // (output/OutputFiles.h); neither the scene nor the data may be
         // among them.

@@ -94,16 +94,11 @@ void Evaluator::tally(const RunOutcome& o)
 {
   // Values the scene (or the size guard) refuses are the fit's to avoid (a
   // misfit), not a run that failed.
-  if (o.exit_code == exit_code::bad_input && o.too_large)
+  if (o.refused != RunOutcome::Refusal::none)
   {
     ++_refused;
-    _last_size_refusal = o.message;
-  }
-  else if (o.exit_code == exit_code::bad_input)
-  {
-    ++_refused;
-    const std::string said = "error in scene: "; // the run's words, less what the fit says
-    _last_refusal = o.message.rfind(said, 0) == 0 ? o.message.substr(said.size()) : o.message;
+    // The run's words, less what the fit says ("error in scene: ").
+    (o.refused == RunOutcome::Refusal::size ? _last_size_refusal : _last_refusal) = o.reason();
   }
   else if (o.exit_code != 0)
   {
@@ -137,8 +132,7 @@ std::vector<double> Evaluator::run(const std::vector<double>& x, const std::file
       run_case(_opt.scene_file, sets_at(x),
                {out, _opt.mesh_cache, true, _opt.force, _group, plot, _others_here}, _simulation);
   std::vector<double> r(_data.delta.size(), 0.0);
-  _last_exit_code = o.exit_code;
-  _last_message = o.message;
+  _last = o;
   if (o.exit_code > exit_code::signal(0))
     _signal = o.exit_code - exit_code::signal(0);
   // Once per group: the counts are summed over processes. A run ahead

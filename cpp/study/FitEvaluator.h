@@ -76,10 +76,8 @@ public:
   int evaluations() const { return _evaluations; }
   /// The groups that share a batch of runs.
   int groups() const { return _groups; }
-  /// The exit code of this group's last run, and why it did not converge
-  /// ("" if it did).
-  int last_exit_code() const { return _last_exit_code; }
-  const std::string& last_message() const { return _last_message; }
+  /// How this group's last run ended.
+  const driver::RunOutcome& last() const { return _last; }
   /// A signal that stopped a run of any process, or came here (collective
   /// on MPI_COMM_WORLD).
   int signal_anywhere() const;
@@ -106,9 +104,9 @@ private:
   std::unique_ptr<driver::Simulation> _simulation; ///< the group's set-up, reused
   int _evaluations = 0, _failed = 0, _failed_total = 0, _refused = 0, _refused_total = 0;
   int _signal = 0; ///< a run stopped by this signal
-  int _last_exit_code = exit_code::done;
+  driver::RunOutcome _last{exit_code::done, 0, "", driver::RunOutcome::Refusal::none};
   bool _failed_outright = false; ///< this group's last run
-  std::string _last_message, _last_failure, _last_refusal, _last_size_refusal;
+  std::string _last_failure, _last_refusal, _last_size_refusal;
   /// This group's runs ahead that failed or were refused, not yet counted:
   /// their outcomes (leader).
   std::map<std::vector<double>, driver::RunOutcome> _pending;

@@ -113,10 +113,7 @@ PetscErrorCode convergence_test(Tao tao, void* ctx)
           check(TaoSetConvergedReason(tao, TAO_CONVERGED_USER), "TaoSetConvergedReason");
         }
         else if (going && p.searches_failed >= Problem::searches_failed_to_stop)
-        {
-          p.at_refused_values = true;
           check(TaoSetConvergedReason(tao, TAO_DIVERGED_USER), "TaoSetConvergedReason");
-        }
         if (!std::isnan(offset))
           p.last_offset = offset;
       });
@@ -364,7 +361,7 @@ std::string TaoFit::reason() const
   check(TaoGetConvergedReason(tao, &reason), "TaoGetConvergedReason");
   if (reason == TAO_CONVERGED_USER) // the tests of ours (convergence_test)
     return _problem.at_resolution ? "CONVERGED_MODEL_RESOLUTION" : "CONVERGED_RELATIVE_OFFSET";
-  if (reason == TAO_DIVERGED_USER && _problem.at_refused_values)
+  if (reason == TAO_DIVERGED_USER) // our test's only divergence (convergence_test)
     return "DIVERGED_REFUSED_VALUES";
   return TaoConvergedReasons[reason];
 }

@@ -82,11 +82,11 @@ struct Problem
   /// Iterations running whose line search met such a point and that did
   /// not halve the offset.
   int searches_failed = 0;
-  /// Stopped where that held in searches_failed_to_stop iterations running:
-  /// the best fit lies beyond a relation between keys (f_fr <= f_t), where
-  /// Armijo's backtracking (which asks for the objective alone at the points
-  /// it tries) would creep towards the relation to TAO's iteration limit.
-  bool at_refused_values = false;
+  /// Where that held in searches_failed_to_stop iterations running, the
+  /// fit stops (TAO_DIVERGED_USER, DIVERGED_REFUSED_VALUES): the best fit
+  /// lies beyond a relation between keys (f_fr <= f_t), where Armijo's
+  /// backtracking (which asks for the objective alone at the points it
+  /// tries) would creep towards the relation to TAO's iteration limit.
   static constexpr int searches_failed_to_stop = 3;
 
   /// The scaled values in X.
