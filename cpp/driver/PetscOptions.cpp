@@ -22,14 +22,10 @@ std::vector<std::string> unused_petsc_options(const std::set<std::string>& given
   check(PetscOptionsLeftGet(nullptr, &left, nullptr, nullptr), "PetscOptionsLeftGet");
   if (left > 0)
   {
-    // Objects of the default path read their options; none of them solves.
-    SNES snes;
-    check(SNESCreate(PETSC_COMM_SELF, &snes), "SNESCreate");
-    check(SNESSetFromOptions(snes), "SNESSetFromOptions");
-    KSP ksp;
-    check(SNESGetKSP(snes, &ksp), "SNESGetKSP");
-    check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
-    check(SNESDestroy(&snes), "SNESDestroy");
+    // The SNES, its KSP and PC and a fit's TAO read theirs in
+    // petsc_option_error(), which every command passed before it ran; made
+    // again here they would open again, and empty, the files that options
+    // such as -snes_monitor FILE name. MUMPS reads its own at a factor.
     Mat A, F;
     check(MatCreateSeqAIJ(PETSC_COMM_SELF, 1, 1, 1, nullptr, &A), "MatCreateSeqAIJ");
     check(MatSetValue(A, 0, 0, 1.0, INSERT_VALUES), "MatSetValue");
@@ -43,13 +39,6 @@ std::vector<std::string> unused_petsc_options(const std::set<std::string>& given
       check(MatDestroy(&F), "MatDestroy");
     }
     check(MatDestroy(&A), "MatDestroy");
-    for (TaoLineSearchType line_search : pushout::solver::fit_line_searches)
-    {
-      Tao tao; // as petsc_option_error() checked it
-      check(TaoCreate(PETSC_COMM_SELF, &tao), "TaoCreate");
-      pushout::solver::set_up_fit_tao(tao, line_search);
-      check(TaoDestroy(&tao), "TaoDestroy");
-    }
     for (const char* own : {"-arc_monitor", "-options_left"}) // read by pushout, or at the end
     {
       PetscBool set;

@@ -32,7 +32,8 @@ std::string petsc_option_error();
 /// read so far, alike on every process of `comm`: an option read on any of
 /// them counts as read. The default solver path's options (SNES, KSP, PC,
 /// MUMPS, TAO and this program's own) count as read even where no solver
-/// of that kind was made. Defaults the program sets itself
+/// of that kind was made: petsc_option_error() read the first four and
+/// TAO's before the command ran. Defaults the program sets itself
 /// (solver/NewtonSolver.cpp) are not the user's: a run with -pc_type gamg
 /// never reads its -pc_factor_mat_solver_type. Collective on `comm`.
 std::vector<std::string> unused_petsc_options(const std::set<std::string>& given, MPI_Comm comm);

@@ -281,6 +281,18 @@ p, _ = pushout(args)
 check(p.returncode == 0 and "-snes_monitr" in p.stderr, "unused PETSc option allowed: exit 0, a warning")
 check(summary(out).get("unused_petsc_options") == ["-snes_monitr"],
       "summary.json lists an allowed unused option too")
+# The search for unused options at the end opens no file an option names:
+# it made the solvers again, which emptied -snes_monitor's (and a fit's
+# -tao_monitor's) file.
+monitor = os.path.join(out_dir("hostile_monitor_file"), "snes.txt")
+os.makedirs(os.path.dirname(monitor), exist_ok=True)
+args, out = run_args("petsc_monitor_kept", GOOD_SCENE,
+                     extra=QUICK + ["-snes_monitor", "ascii:" + monitor, "-snes_monitr",
+                                    "--allow-unused-petsc-options"])
+p, _ = pushout(args)
+kept = open(monitor).read() if os.path.exists(monitor) else ""
+check(p.returncode == 0 and "SNES Function norm" in kept,
+      f"-snes_monitor's file kept beside an unused option: exit {p.returncode}, {len(kept)} bytes")
 # In a sweep the typo is said after the first case, before the next runs
 # (a long sweep need not run to its end to tell), and fails it at the end.
 p = subprocess.run([PUSHOUT, "sweep", GOOD_SCENE, "--out", out_dir("hostile_sweep_typo"),
