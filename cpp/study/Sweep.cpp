@@ -116,8 +116,25 @@ Variation parse_variation(const std::string& text)
   Variation v{text.substr(0, eq), {}};
   std::string value;
   int depth = 0;
+  char quote = 0; // inside a TOML string: its quote (" or ')
+  bool escaped = false;
   for (char c : text.substr(eq + 1))
   {
+    if (quote != 0)
+    {
+      value += c;
+      if (quote == '"' && c == '\\' && !escaped)
+        escaped = true;
+      else
+      {
+        if (c == quote && !escaped)
+          quote = 0;
+        escaped = false;
+      }
+      continue;
+    }
+    if (c == '"' || c == '\'')
+      quote = c;
     depth += c == '[' ? 1 : c == ']' ? -1 : 0;
     if (c == ',' && depth == 0)
     {
@@ -131,9 +148,9 @@ Variation parse_variation(const std::string& text)
   // One spelling of a value in sweep.csv and its tables (and the repeated
   // values found as numbers).
   std::transform(v.values.begin(), v.values.end(), v.values.begin(), integer_in_decimal);
-  if (depth != 0 ||
+  if (depth != 0 || quote != 0 ||
       std::any_of(v.values.begin(), v.values.end(), [](const std::string& s) { return s.empty(); }))
-    throw SceneError("--vary '" + text + "': an empty value or unbalanced [ ]");
+    throw SceneError("--vary '" + text + "': an empty value, unbalanced [ ] or an unclosed quote");
   return v;
 }
 

@@ -38,8 +38,9 @@ struct SweepOptions : ManyRunsOptions
 };
 
 /// One varied key and its values, from "key=v1,v2,..." (commas inside
-/// [...] belong to an array value; an integer in decimal, such as 16 for
-/// 0x10). Throws SceneError if malformed.
+/// [...] belong to an array value, and inside a TOML string's quotes to
+/// the string; an integer in decimal, such as 16 for 0x10). Throws
+/// SceneError if malformed.
 struct Variation
 {
   std::string key;

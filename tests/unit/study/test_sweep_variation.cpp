@@ -1,5 +1,5 @@
 // A sweep's --vary option (study/Sweep.h): its values split at the commas
-// outside [ ], each integer in one spelling.
+// outside [ ] and quotes, each integer in one spelling.
 #include "scene/SceneError.h"
 #include "study/Sweep.h"
 #include <gtest/gtest.h>
@@ -11,13 +11,21 @@ using pushout::study::Variation;
 
 TEST(SweepVariation, ValuesSplitAtCommasOutsideArrays)
 {
-  const Variation v = parse_variation("crack.0.angles=[0,90],[45, 135],\"a,b\"");
+  const Variation v = parse_variation("crack.0.angles=[0,90],[45, 135]");
   EXPECT_EQ(v.key, "crack.0.angles");
-  // A comma in a quoted string splits it: a --vary value holds no comma
-  // outside [ ].
-  EXPECT_EQ(v.values, (std::vector<std::string>{"[0,90]", "[45, 135]", "\"a", "b\""}));
+  EXPECT_EQ(v.values, (std::vector<std::string>{"[0,90]", "[45, 135]"}));
   EXPECT_EQ(parse_variation("interface.0.mu=0.3,0.45").values,
             (std::vector<std::string>{"0.3", "0.45"}));
+}
+
+TEST(SweepVariation, QuotedStringsKeepTheirCommasAndBrackets)
+{
+  // TOML's strings, basic (with escapes) and literal: a path with a comma
+  // is one value.
+  EXPECT_EQ(parse_variation(R"(mesh.file="a,b.msh",'c,[d.msh',"e\",f",g)").values,
+            (std::vector<std::string>{R"("a,b.msh")", "'c,[d.msh'", R"("e\",f")", "g"}));
+  // A literal string has no escapes: its backslash ends nothing.
+  EXPECT_EQ(parse_variation(R"(k='a\',b)").values, (std::vector<std::string>{R"('a\')", "b"}));
 }
 
 TEST(SweepVariation, IntegersInDecimalFloatsAndWordsAsTyped)
@@ -31,7 +39,7 @@ TEST(SweepVariation, IntegersInDecimalFloatsAndWordsAsTyped)
 
 TEST(SweepVariation, MalformedOptionsAreRefused)
 {
-  for (const char* text : {"mu", "=0.3", "mu=", "mu=0.3,", "mu=,0.3", "k=[1,2"})
+  for (const char* text : {"mu", "=0.3", "mu=", "mu=0.3,", "mu=,0.3", "k=[1,2", "k=\"a,b", "k='a"})
     EXPECT_THROW(parse_variation(text), SceneError) << text;
 }
 
