@@ -151,6 +151,15 @@ std::string petsc_option_error()
     try
     {
       pushout::solver::set_up_fit_tao(tao, line_search);
+      // A fit's stop tests, its refused values' stop and its counts of
+      // runs read BNLS's iterations and line search, as the load steps
+      // read Newton's.
+      TaoType type = nullptr;
+      check(TaoGetType(tao, &type), "TaoGetType");
+      if (type && std::string(type) != TAOBNLS)
+        error = std::string("-tao_type ") + type +
+                ": a fit is Gauss-Newton as TAO's bnls (the default; -tao_ls_type chooses its "
+                "line search)";
     }
     catch (const pushout::petsc::Error& e)
     {

@@ -22,7 +22,8 @@ bool start_petsc(char* program, std::vector<std::string>& options);
 /// The user's PETSc options as the default solver's objects read them (a
 /// SNES, its KSP and PC; a fit's TAO, of type TAOBNLS): PETSc's message
 /// where one cannot take its value (-ksp_type bogus, -snes_max_it abc,
-/// -tao_ls_type mt), else "". Found before any command runs, it is a usage
+/// -tao_ls_type mt), or a solver type other than pushout's (-snes_type
+/// ksponly, -tao_type lmvm), else "". Found before any command runs, it is a usage
 /// error (exit 2), not a run that fails in its first solve, nor a fit
 /// refused after its runs. The same on every process (each reads the same
 /// options).

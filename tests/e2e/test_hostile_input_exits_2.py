@@ -251,6 +251,10 @@ refused("fit: a TAO option beside a free key the scene lacks",
 # then ended in MPI_Abort, exit 1).
 args, out = run_args("tao_option", GOOD_SCENE, extra=["-tao_type", "nonesuch"])
 refused("run: a TAO type PETSc has not", args, ["a PETSc option", "Tao type nonesuch"], seconds=10)
+# A TAO of another type than a fit's (as another -snes_type): its stop
+# tests and counts read BNLS's iterations.
+args, out = run_args("tao_type_other", GOOD_SCENE, extra=["-tao_type", "lmvm"])
+refused("run: a TAO type not a fit's", args, ["a PETSc option", "-tao_type lmvm", "bnls"], seconds=10)
 for cmd in ([], ["run"], ["sweep"]):
     p, _ = pushout(cmd + ["--help"])
     check(p.returncode == 0 and "--out" in p.stdout or not cmd, f"pushout {' '.join(cmd)} --help: exit 0, help")
