@@ -18,7 +18,7 @@ import time
 
 import h5py
 
-from common import SOURCE, check, corrosion, curve, out_dir, summary
+from common import OUT_ROOT, SOURCE, check, corrosion, curve, out_dir, summary
 
 PUSHOUT = sys.argv[1]
 
@@ -37,8 +37,8 @@ def wait_for_rows(csv, rows, seconds, poll):
         time.sleep(poll)
 
 
-os.makedirs(os.environ.get("PUSHOUT_TEST_OUT", "/tmp"), exist_ok=True)
-scene = os.path.join(os.environ.get("PUSHOUT_TEST_OUT", "/tmp"), "interrupt.toml")
+os.makedirs(OUT_ROOT, exist_ok=True)
+scene = os.path.join(OUT_ROOT, "interrupt.toml")
 with open(scene, "w") as f:
     f.write("[mesh]\nelements_per_quarter = 4\nelements_through_thickness = 2\n"
             "[loading]\nsteps = 100000\n")
@@ -101,10 +101,12 @@ def interrupt_after_model_line(name, sets, in_newton=False):
     """Runs `scene` on a mesh large enough that the condensation (set-up)
     and Newton on the whole model (step 0) each take seconds (here 6.8 and
     3.3 s after the line that describes the model, which follows meshing),
-    and sends SIGINT 1 s after that line, or (`in_newton`) as soon as
-    Newton's first residual is printed (-snes_monitor: step 0 has begun,
-    however long the set-up took on a loaded machine). Returns the exit
-    code, stderr and the output folder."""
+    and sends SIGINT as soon as that line is read (it is printed in the
+    set-up, before the condensation: the signal comes in the set-up however
+    fast the machine), or (`in_newton`) as soon as Newton's first residual
+    is printed (-snes_monitor: step 0 has begun, however long the set-up
+    took on a loaded machine). Returns the exit code, stderr and the output
+    folder."""
     out = out_dir(name)
     p = subprocess.Popen([PUSHOUT, "run", scene, "--out", out, "--set", "mesh.elements_per_quarter=40",
                           "--set", "mesh.elements_through_thickness=12", "--set", "loading.steps=3"] +
@@ -115,8 +117,6 @@ def interrupt_after_model_line(name, sets, in_newton=False):
     if in_newton:
         while "SNES Function norm" not in (line := p.stdout.readline()) and line:
             pass
-    else:
-        time.sleep(1.0)
     p.send_signal(signal.SIGINT)
     _, err = p.communicate(timeout=120)
     return p.returncode, err, out

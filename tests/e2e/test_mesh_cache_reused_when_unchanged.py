@@ -4,7 +4,7 @@ import shutil
 import os
 import subprocess
 
-from common import PUSHOUT, check, curve, out_dir, run, summary
+from common import OUT_ROOT, PUSHOUT, check, curve, out_dir, run, summary
 
 scene = """
 [mesh]
@@ -13,7 +13,7 @@ elements_through_thickness = 2
 [loading]
 steps = 2
 """
-cache = os.path.join(os.environ.get("PUSHOUT_TEST_OUT", "/tmp"), "mesh-cache-test")
+cache = os.path.join(OUT_ROOT, "mesh-cache-test")
 shutil.rmtree(cache, ignore_errors=True)
 os.environ["PUSHOUT_CACHE_DIR"] = cache
 a, b, c = out_dir("cache_a"), out_dir("cache_b"), out_dir("cache_c")

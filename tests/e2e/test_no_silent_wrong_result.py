@@ -39,7 +39,7 @@ elements_through_thickness = 2
 [loading]
 steps = 3
 """
-cache = os.path.join(os.environ.get("PUSHOUT_TEST_OUT", "/tmp"), "mesh-checksum-test")
+cache = os.path.join(OUT_ROOT, "mesh-checksum-test")
 shutil.rmtree(cache, ignore_errors=True)
 os.environ["PUSHOUT_CACHE_DIR"] = cache
 strip = lambda rows: [{k: v for k, v in r.items() if k != "wall_s"} for r in rows]  # noqa: E731

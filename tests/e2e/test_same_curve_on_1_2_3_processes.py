@@ -15,7 +15,7 @@ import shutil
 import subprocess
 import sys
 
-from common import (TIGHT_NEWTON, check, corrosion, curve, newton_bound, out_dir, solved_unknowns,
+from common import (OUT_ROOT, TIGHT_NEWTON, check, corrosion, curve, newton_bound, out_dir, solved_unknowns,
                     summary)
 
 PUSHOUT = sys.argv[1]
@@ -95,7 +95,7 @@ for name, (scene, sets) in cases.items():
         tol = newton_bound(len(ref), max(unknowns[1], unknowns[n]))
         check(worst <= tol, f"{name}: {n} vs 1 process, max relative difference {worst:.1e} <= "
                             f"{tol:.1e} over {', '.join(sorted(columns))}")
-out = os.path.join(os.environ.get("PUSHOUT_TEST_OUT", "/tmp"), "mpi_friction_3")
+out = os.path.join(OUT_ROOT, "mpi_friction_3")
 for f in ("fields.xdmf", "interface.xdmf"):
     text = open(os.path.join(out, f)).read()
     check(text.count("<Domain>") == 1 and "Grid" in text, f"{f} from 3 processes is one dataset")
