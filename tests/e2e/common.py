@@ -127,6 +127,17 @@ def solved_unknowns(s):
     return s["condensed_dofs"] or s["dofs"]
 
 
+def mpirun():
+    """mpirun's path. Open MPI comes with libdolfinx-dev, which
+    scripts/setup.sh installs, and the program is made for MPI: a machine
+    without it fails the tests that need it rather than skipping them."""
+    path = shutil.which("mpirun")
+    if not path:
+        raise SystemExit("FAILED: mpirun not found (Open MPI comes with libdolfinx-dev, which "
+                         "scripts/setup.sh installs)")
+    return path
+
+
 def out_dir(name):
     d = os.path.join(OUT_ROOT, name)
     shutil.rmtree(d, ignore_errors=True)

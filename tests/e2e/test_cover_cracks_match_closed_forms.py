@@ -9,8 +9,8 @@ planes add no compliance to the uncracked ring), f_t 3 MPa, c 20 1/mm.
    With one crack and with four, at x giving 0.95 p_cr (by the ring formula)
    no crack point is damaged and the largest opening is within the elastic
    f_t / k; at 1.05 p_cr the root is damaged.
-2. Rigid segments: four cracks, no friction, x = 60 um: the cracks run
-   through, the four mouths open alike, and the mean pressure follows the
+2. Rigid segments: four cracks, no friction, x = 60 um, on a quarter of
+   the slice: the cracks run through, the four mouths open alike, and the mean pressure follows the
    rigid-segment limit p = ((b - R) / R) sigma(w), w the mouth opening,
    within 25 %: the segments translate along their bisectors, so the oxide
    presses harder near the cracks than between them, and the mean pressure
@@ -28,7 +28,7 @@ import math
 import re
 import os
 
-from common import SOURCE, check, corroded_ring, corrosion, out_dir, run, summary
+from common import SOURCE, check, corroded_ring, corrosion, newton_bound, out_dir, run, solved_unknowns, summary
 import analytic
 
 a, R, b = 8.0, 10.0, 50.0
@@ -88,14 +88,20 @@ for column in ("p_MPa", "crack_width_mm", "w_crack_0_mm", "w_crack_3_mm"):
 out = out_dir("cracks_rigid_segments")
 # Once the four cracks soften, the symmetric path (all four open alike) is
 # one branch among others: cracks may localise, one closing while the others
-# open. The whole-model Newton follows the symmetric branch here; the
-# condensed one, cutting its steps elsewhere, leaves it (docs/corrosion.md).
-run(scene(0.06, 30, [0.0, 90.0, 180.0, 270.0], mu=0.0), out, sets=["solver.condensation=off"])
+# open, and which one the whole slice follows is up to round-off (the
+# condensed whole slice leaves it: docs/corrosion.md). On the quarter
+# (model.symmetry "symmetric") each crack's mirror image opens as it does,
+# so the 180 and 270 degree cracks cannot localise against the 0 and 90;
+# those two lie on the cut's two planes, which the quarter's diagonal maps
+# onto each other, and open alike to Newton's bound.
+run(scene(0.06, 30, [0.0, 90.0, 180.0, 270.0], mu=0.0), out,
+    sets=["solver.condensation=off", 'model.symmetry="symmetric"'])
 rows = corrosion(out)
 last = rows[-1]
 widths = [last[f"w_crack_{i}_mm"] for i in range(4)]
 w = sum(widths) / 4
-check(max(widths) - min(widths) < 1e-6 * w, f"the four mouths open alike: {widths}")
+alike = newton_bound(len(rows), solved_unknowns(summary(out)))
+check(max(widths) - min(widths) <= alike * w, f"the four mouths open alike (to {alike:.1e}): {widths}")
 check(abs(last["crack_width_mm"] - max(widths)) < 1e-15, "crack_width_mm is the largest mouth")
 check(w > 10 * f_t / k_crack and all(cr["max_damage"] > 0.99 for cr in summary(out)["cracks"]),
       f"the cracks run through: mouth opening {1e3 * w:.1f} um")

@@ -10,19 +10,15 @@ message too, without PETSc's traceback, on 1 and 2 processes. mpirun adds
 its own notice that a process ended non-zero; only pushout's lines count.
 Exit 77 = no mpirun (skipped)."""
 import os
-import shutil
 import signal
 import subprocess
 import sys
 import time
 
-from common import COARSE_MESH, EXP_SOFT, FRICTION_2, OUT_ROOT, check, curve, out_dir
+from common import COARSE_MESH, EXP_SOFT, FRICTION_2, OUT_ROOT, check, curve, mpirun, out_dir
 
 PUSHOUT = sys.argv[1]
-MPIRUN = shutil.which("mpirun")
-if not MPIRUN:
-    print("SKIPPED: mpirun not found (Open MPI comes with libdolfinx-dev)")
-    sys.exit(77)
+MPIRUN = mpirun()
 scene = os.path.join(OUT_ROOT, "mpi_errors.toml")
 os.makedirs(OUT_ROOT, exist_ok=True)
 with open(scene, "w") as f:

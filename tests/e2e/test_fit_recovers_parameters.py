@@ -33,16 +33,15 @@
 import json
 import os
 import random
-import shutil
 import subprocess
 
-from common import PUSHOUT, SOURCE, check, curve, out_dir, run
+from common import PUSHOUT, SOURCE, check, curve, mpirun, out_dir, run
 
 SCENE = os.path.join(SOURCE, "demo", "pushout_friction_adhesion.toml")
 COARSE = ["mesh.elements_per_quarter=4", "mesh.elements_through_thickness=2", "loading.steps=40"]
 TRUTH = {"interface.1.f_t": 3.0, "interface.1.c": 25.0, "interface.0.mu": 0.4}
 START = {"interface.1.f_t": 3.9, "interface.1.c": 17.5, "interface.0.mu": 0.52}
-MPIRUN = shutil.which("mpirun")
+MPIRUN = mpirun()
 
 
 def inverse(a):
@@ -150,20 +149,16 @@ a, b = curve(rerun), curve(os.path.join(out, "best"))
 check(len(a) == len(b) and max(abs(x["tau_MPa"] - y["tau_MPa"]) for x, y in zip(a, b)) < 1e-9,
       "the fitted scene.toml reruns to the fitted curve")
 
-# 2. MPI.
-if MPIRUN:
-    out2 = out_dir("fit_two_processes")
-    p = fit(out2, data, processes=2)
-    check(p.returncode == 0, f"fit on 2 processes: exit {p.returncode} {p.stderr[-800:]}")
-    with open(os.path.join(out2, "fit.json")) as f:
-        r2 = json.load(f)
-    worst = max(abs(r2["parameters"][k] - result["parameters"][k]) / abs(result["parameters"][k])
-                for k in TRUTH)
-    tol = fit_bound(result)
-    check(worst <= tol, f"2 processes: the same values to the optimizer's tolerance (largest "
-                        f"relative difference {worst:.1e} <= {tol:.1e})")
-else:
-    print("SKIPPED (MPI part): mpirun not found")
+out2 = out_dir("fit_two_processes")
+p = fit(out2, data, processes=2)
+check(p.returncode == 0, f"fit on 2 processes: exit {p.returncode} {p.stderr[-800:]}")
+with open(os.path.join(out2, "fit.json")) as f:
+    r2 = json.load(f)
+worst = max(abs(r2["parameters"][k] - result["parameters"][k]) / abs(result["parameters"][k])
+            for k in TRUTH)
+tol = fit_bound(result)
+check(worst <= tol, f"2 processes: the same values to the optimizer's tolerance (largest "
+                    f"relative difference {worst:.1e} <= {tol:.1e})")
 
 # 3. Bad input.
 bad = out_dir("fit_bad_data")
@@ -322,7 +317,7 @@ for per_quarter, level in ((4, 0.01), (8, 0.001)):
     # The coarse fit also on 2 processes: two groups, the second running the
     # points the line search would try next beside each one it tries alone
     # (runs ahead that it may not use: the bound on runs grows by one a point).
-    for processes in (1, 2) if per_quarter == 4 and MPIRUN else (1,):
+    for processes in (1, 2) if per_quarter == 4 else (1,):
         out6 = out_dir(f"fit_cracking_{per_quarter}_{processes}")
         cmd = [PUSHOUT, "fit", CRACKING, "--data", data6, "--out", out6, "--quiet",
                "--free", "cracking.f_t", "--free", "interface.0.mu"]

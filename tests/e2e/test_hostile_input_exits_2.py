@@ -110,6 +110,19 @@ for option in (["-ksp_type", "bogus"], ["-snes_max_it", "abc"], ["-snes_type", "
 refused("-ksp_pc_side left on the single-precision LU",
         ["run", GOOD_SCENE, "--out", out_dir("hostile_pc_side"), "--quiet", "-ksp_pc_side", "left"],
         ["-ksp_pc_side left", "solver.precision"], seconds=10)
+# The solver's refusals come before the run touches its folder: an earlier
+# run's outputs there stay (they were deleted, the refusal coming from the
+# solver's set-up).
+kept = out_dir("hostile_solver_refusal_keeps")
+p, _ = pushout(["run", GOOD_SCENE, "--out", kept, "--quiet"] + QUICK)
+before = {f: os.path.getmtime(os.path.join(kept, f)) for f in ("curve.csv", "summary.json")}
+for name, extra in (("-ksp_pc_side left", ["-ksp_pc_side", "left"]),
+                    ("condensation on with -pc_type jacobi",
+                     ["--set", "solver.condensation=on", "-pc_type", "jacobi"])):
+    refused(f"{name}: into an earlier run's folder", ["run", GOOD_SCENE, "--out", kept, "--quiet"] + extra,
+            ["-ksp_pc_side left" if "side" in name else "solver.condensation"])
+    check(p.returncode == 0 and all(os.path.getmtime(os.path.join(kept, f)) == t for f, t in before.items()),
+          f"{name}: the earlier run's curve.csv and summary.json stay")
 refused("a negative --max-cases", ["sweep", GOOD_SCENE, "--vary", "interface.0.mu=0.2,0.3",
                                    "--max-cases", "-5", "--out", out_dir("hostile_cases")],
         ["--max-cases", "-5"])

@@ -11,18 +11,14 @@ unloads to zero force and reloads, and a single joint; the interface pressure
 columns (global integrals of the interface traction field) agree too, and
 the XDMF output is written once."""
 import os
-import shutil
 import subprocess
 import sys
 
-from common import (OUT_ROOT, TIGHT_NEWTON, check, corrosion, curve, newton_bound, out_dir, solved_unknowns,
+from common import (OUT_ROOT, TIGHT_NEWTON, check, corrosion, curve, mpirun, newton_bound, out_dir, solved_unknowns,
                     summary)
 
 PUSHOUT = sys.argv[1]
-MPIRUN = shutil.which("mpirun")
-if not MPIRUN:
-    print("SKIPPED: mpirun not found (Open MPI comes with libdolfinx-dev)")
-    sys.exit(77)
+MPIRUN = mpirun()
 SOURCE = os.environ["PUSHOUT_SOURCE_DIR"]
 coarse = ["mesh.elements_per_quarter=4", "mesh.elements_through_thickness=2"]
 cases = {

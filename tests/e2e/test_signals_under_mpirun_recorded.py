@@ -9,18 +9,15 @@ its SIGKILL comes a second after its SIGTERM: summary.json, naming the
 phase, must be written before it."""
 import json
 import os
-import shutil
 import signal
 import subprocess
 import sys
 import time
 
-from common import COARSE_MESH, FRICTION_2, check, out_dir
+from common import COARSE_MESH, FRICTION_2, check, mpirun, out_dir
 
 PUSHOUT = sys.argv[1]
-if not shutil.which("mpirun"):
-    print("SKIPPED: mpirun not found (Open MPI comes with libdolfinx-dev)")
-    sys.exit(77)
+mpirun()
 ROOT = out_dir("mpi_signals")
 os.makedirs(ROOT)
 scene = os.path.join(ROOT, "scene.toml")

@@ -33,22 +33,23 @@
    sweep that does not vary the seed writes no sweep_seeds.csv (1.), and
    one into the same folder removes the earlier one. A case that reused
    another's set-up (another beta, the same seed) equals `pushout run` of
-   its scene.toml, as in 1."""
+   its scene.toml, as in 1.
+7. A scene file edited while the sweep runs (here made no TOML at all):
+   the cases after it run the scene the sweep read and checked at its
+   start (each case read the file again, and failed)."""
 import csv
 import os
-import shutil
 import signal
 import subprocess
 import time
 
-from common import (PUSHOUT, SOURCE, check, corrosion, cracking_corroded_demo, curve, newton_bound,
+from common import (PUSHOUT, SOURCE, check, corrosion, cracking_corroded_demo, curve, mpirun, newton_bound,
                     out_dir, run, solved_unknowns, summary)
 
 SCENE = os.path.join(SOURCE, "demo", "pushout_friction.toml")
 COARSE = ["--set", "mesh.elements_per_quarter=4", "--set", "mesh.elements_through_thickness=2"]
 VARY = ["--vary", "interface.0.mu=0.2,0.4", "--vary", "loading.temperature_change=-5,-25"]
-MPIRUN = shutil.which("mpirun")
-MPI = [MPIRUN, "--allow-run-as-root", "--oversubscribe"] if MPIRUN else None
+MPI = [mpirun(), "--allow-run-as-root", "--oversubscribe"]
 ENV = dict(os.environ, OMPI_MCA_btl_vader_single_copy_mechanism="none")
 
 
@@ -138,32 +139,27 @@ check(not os.path.exists(os.path.join(serial, "sweep_seeds.csv")),
 # `pushout run` on 2 processes, and the condensed serial run. Processes,
 # threads and MUMPS's order of sums differ: each run is exact only to
 # Newton's tolerance, so each comparison is to newton_bound.
-if MPI:
-    two = out_dir("sweep_direct_case_003_2_processes")
-    run(SCENE, two, sets=["mesh.elements_per_quarter=4", "mesh.elements_through_thickness=2",
-                          "interface.0.mu=0.4", "loading.temperature_change=-25"], mpirun=2)
-    for name, extra in (("two_groups", []), ("ranks_per_case_2", ["--ranks-per-case", "2"])):
-        out = out_dir(f"sweep_{name}")
-        p = sweep(out, extra, processes=2)
-        check(p.returncode == 0, f"{name}: exit {p.returncode} {p.stderr[-500:]}")
-        for r in rows:
-            a, b = os.path.join(serial, r["case"]), os.path.join(out, r["case"])
-            d, tol = column_difference(curve(b), curve(a)), bound(a, b)
-            check(d <= tol, f"{name}: {r['case']} equals the serial sweep's to {d:.1e} <= {tol:.1e}")
-        if name == "ranks_per_case_2":
-            b = os.path.join(out, "case_003")
-            d, tol = column_difference(curve(b), curve(two)), bound(two, b)
-            check(d <= tol, f"{name}: case_003 equals pushout run on 2 processes to {d:.1e} <= {tol:.1e}")
-else:
-    print("SKIPPED (MPI part): mpirun not found")
+two = out_dir("sweep_direct_case_003_2_processes")
+run(SCENE, two, sets=["mesh.elements_per_quarter=4", "mesh.elements_through_thickness=2",
+                      "interface.0.mu=0.4", "loading.temperature_change=-25"], mpirun=2)
+for name, extra in (("two_groups", []), ("ranks_per_case_2", ["--ranks-per-case", "2"])):
+    out = out_dir(f"sweep_{name}")
+    p = sweep(out, extra, processes=2)
+    check(p.returncode == 0, f"{name}: exit {p.returncode} {p.stderr[-500:]}")
+    for r in rows:
+        a, b = os.path.join(serial, r["case"]), os.path.join(out, r["case"])
+        d, tol = column_difference(curve(b), curve(a)), bound(a, b)
+        check(d <= tol, f"{name}: {r['case']} equals the serial sweep's to {d:.1e} <= {tol:.1e}")
+    if name == "ranks_per_case_2":
+        b = os.path.join(out, "case_003")
+        d, tol = column_difference(curve(b), curve(two)), bound(two, b)
+        check(d <= tol, f"{name}: case_003 equals pushout run on 2 processes to {d:.1e} <= {tol:.1e}")
 
 # 3. A case refused by the size guard. With two groups on this machine the
 # guard counts the other group's process beside the case's own, and says so.
 for name, processes, beside in (("sweep_refused", None, ""),
-                                ("sweep_refused_two_groups", 2 if MPI else 0,
+                                ("sweep_refused_two_groups", 2,
                                  "2 processes, 1 of them running other cases")):
-    if processes == 0:
-        continue
     out = out_dir(name)
     p = sweep(out, processes=processes, vary=["--vary", "mesh.elements_per_quarter=4,4000"])
     rows = table(out)
@@ -199,9 +195,7 @@ for what, vary, extra, n in (
         ("not a number", ["--vary", "interface.0.mu=0.2,abc"], [], None),
         # the second case's push is more than 10 % of the slice's thickness
         ("values run refuses together", ["--vary", "loading.push_displacement=0.01,5.0"], [], None),
-        ("ranks per case", VARY, ["--ranks-per-case", "2"], 3 if MPI else None)):
-    if what == "ranks per case" and not MPI:
-        continue
+        ("ranks per case", VARY, ["--ranks-per-case", "2"], 3)):
     p = sweep(out_dir("sweep_bad"), extra, processes=n, vary=vary)
     message = [line for line in p.stderr.splitlines() if line.startswith("pushout")]
     check(p.returncode == 2 and len(message) == 1,
@@ -288,3 +282,30 @@ p = subprocess.run([PUSHOUT, "sweep", scene, "--out", out, "--quiet", "--vary", 
                    capture_output=True, text=True, timeout=600)
 check(p.returncode == 0 and not os.path.exists(os.path.join(out, "sweep_seeds.csv")),
       f"a later sweep without the seed leaves no sweep_seeds.csv behind (exit {p.returncode})")
+
+# 7. The scene file edited while the sweep runs. The first case's steps are
+# slowed (a test hook: 0.3 s a step from the third on), and the file is
+# spoilt once its second step is in curve.csv.
+edited = os.path.join(os.path.dirname(out_dir("sweep_scene_edited")), "sweep_scene_edited.toml")
+with open(SCENE) as f:
+    original = f.read()
+with open(edited, "w") as f:
+    f.write(original)
+out = out_dir("sweep_scene_edited")
+p = subprocess.Popen([PUSHOUT, "sweep", edited, "--out", out, "--quiet", "--vary", "loading.steps=6,3"] + COARSE,
+                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                     env=dict(ENV, PUSHOUT_TEST_SLOW_STEP_S="0.3"))
+first = os.path.join(out, "case_000", "curve.csv")
+deadline = time.time() + 300
+while p.poll() is None and time.time() < deadline and (
+        not os.path.exists(first) or len(open(first).readlines()) < 4):
+    time.sleep(0.02)
+# (header, step 0 and 6 steps: 8 lines once the first case is done)
+spoilt_while_running = p.poll() is None and len(open(first).readlines()) < 8
+with open(edited, "w") as f:
+    f.write("this is [ no TOML\n")
+_, err = p.communicate(timeout=300)
+rows = table(out)
+check(spoilt_while_running and p.returncode == 0 and [r["converged"] for r in rows] == ["1", "1"],
+      f"the scene spoilt during the first case: both cases run the scene read at the start "
+      f"(exit {p.returncode}, {err.strip()[-200:]!r})")
