@@ -34,6 +34,18 @@ std::vector<T> gather_to_first(MPI_Comm comm, const T* mine, int count, MPI_Data
   return all;
 }
 
+/// The first process's `text` on every process of `comm`. Collective.
+inline std::string broadcast_from_first(std::string text, MPI_Comm comm)
+{
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  long long length = static_cast<long long>(text.size());
+  MPI_Bcast(&length, 1, MPI_LONG_LONG, 0, comm);
+  text.resize(std::size_t(length));
+  MPI_Bcast(text.data(), int(length), MPI_CHAR, 0, comm);
+  return text;
+}
+
 /// The message of the lowest-ranked process of `comm` that has one ("" if
 /// none has). Collective.
 inline std::string first_message(const std::string& mine, MPI_Comm comm)

@@ -33,9 +33,13 @@ std::vector<std::string> unused_petsc_options(const std::set<std::string>& given
     check(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
     if (MatGetFactor(A, MATSOLVERMUMPS, MAT_FACTOR_LU, &F) == 0)
     {
+      // Only for the options it reads: a value this 1 x 1 probe cannot
+      // take (-mat_mumps_icntl_7 1, an order the run's own LU gives MUMPS)
+      // is no error of the run's, which has ended. Not checked, alike on
+      // every process.
       MatFactorInfo info;
       check(MatFactorInfoInitialize(&info), "MatFactorInfoInitialize");
-      check(MatLUFactorSymbolic(F, A, nullptr, nullptr, &info), "MatLUFactorSymbolic");
+      (void)MatLUFactorSymbolic(F, A, nullptr, nullptr, &info);
       check(MatDestroy(&F), "MatDestroy");
     }
     check(MatDestroy(&A), "MatDestroy");

@@ -271,6 +271,12 @@ template <class F> output::Summary reporting_errors(record::RunReport& report, F
 void check_before_run(const Scene& scene, const RunOptions& opt)
 {
   specimen::check_scene(scene);
+  int processes = 1;
+  MPI_Comm_size(opt.comm, &processes);
+  const CrackingPart& cracking = scene.cracking();
+  solver::LoadStepSolver::check_options(
+      scene.solver(), solver::LoadStepSolver::concrete(cracking.embedded, cracking.implex),
+      processes);
   const mesh::MeshInput shape = mesh::MeshInput::of(scene);
   record::check_fits(record::estimate_resources(shape, scene.solver(), scene.cracking(), opt.comm,
                                                 opt.others_here),
@@ -306,8 +312,9 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
                           });
 }
 
-RunOutcome run_case(const std::filesystem::path& scene_file, const std::vector<std::string>& sets,
-                    const RunOptions& opt, std::unique_ptr<Simulation>& simulation)
+RunOutcome run_case(const std::string& scene_text, const std::filesystem::path& scene_file,
+                    const std::vector<std::string>& sets, const RunOptions& opt,
+                    std::unique_ptr<Simulation>& simulation)
 {
   RunOutcome r;
   const auto t0 = std::chrono::steady_clock::now();
@@ -328,7 +335,7 @@ RunOutcome run_case(const std::filesystem::path& scene_file, const std::vector<s
             for (const char* f : {"curve.csv", "summary.json", "corrosion.csv"})
               std::filesystem::remove(opt.out / f);
           }
-          const Scene scene = Scene::load(scene_file, parse_overrides(sets));
+          const Scene scene = Scene::parse(scene_text, parse_overrides(sets), scene_file.string());
           specimen::check_scene(scene);
           record::RunReport report(scene, opt.out, opt.quiet, opt.comm, opt.plot);
           note_scene(scene, report);

@@ -74,7 +74,8 @@ private:
 
 /// The refusals a run can make before it touches its output folder (so
 /// that a refused run leaves an earlier run's outputs there as they were):
-/// the scene's checks of its model type (SceneError), the size guard
+/// the scene's checks of its model type and the solver's of its [solver]
+/// part and PETSc options (SceneError), the size guard
 /// (record::TooLarge, unless options.force) and a $PUSHOUT_CACHE_MAX_MB
 /// that is no size (std::runtime_error, exit 1). Collective.
 void check_before_run(const Scene& scene, const RunOptions& options);
@@ -110,11 +111,13 @@ struct RunOutcome
   }
 };
 
-/// One run of many (pushout sweep, fit): the scene file with `sets`, run
-/// on options.comm on the set-up `simulation` holds if the scene fits it
+/// One run of many (pushout sweep, fit): the scene `scene_text` (read from
+/// `scene_file`, which names it in messages) with `sets`, run on
+/// options.comm on the set-up `simulation` holds if the scene fits it
 /// (else on a new one, kept for the next run; dropped after an error).
 /// Never throws: an error, agreed on by the run's processes, is the
 /// outcome. Collective on options.comm.
-RunOutcome run_case(const std::filesystem::path& scene_file, const std::vector<std::string>& sets,
-                    const RunOptions& options, std::unique_ptr<Simulation>& simulation);
+RunOutcome run_case(const std::string& scene_text, const std::filesystem::path& scene_file,
+                    const std::vector<std::string>& sets, const RunOptions& options,
+                    std::unique_ptr<Simulation>& simulation);
 } // namespace pushout::driver

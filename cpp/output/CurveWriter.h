@@ -27,7 +27,7 @@ public:
   {
     _fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
     if (_fd < 0)
-      throw std::runtime_error(cannot_write(file));
+      throw std::runtime_error(cannot_write(file, errno));
     std::string header = "step";
     for (const std::string& c : columns)
       header += "," + c;
@@ -77,9 +77,10 @@ private:
         continue;
       if (n <= 0)
       {
+        const int error = n < 0 ? errno : ENOSPC;
         if (::ftruncate(_fd, off_t(_size)) == 0) // the rows before stay whole
           ::lseek(_fd, off_t(_size), SEEK_SET);
-        throw std::runtime_error(cannot_write(_file));
+        throw std::runtime_error(cannot_write(_file, error));
       }
       done += std::size_t(n);
     }

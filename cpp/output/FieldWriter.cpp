@@ -26,7 +26,7 @@ FieldWriter::FieldWriter(const model::Model& model, const std::filesystem::path&
   }
   catch (...)
   {
-    throw std::runtime_error(cannot_write(_fields_file));
+    throw std::runtime_error(cannot_write_xdmf(_fields_file));
   }
   xdmf_checked(_fields, _fields_file,
                [&](dolfinx::io::XDMFFile& f) { f.write_mesh(*model.mesh()); });

@@ -79,7 +79,7 @@ JointWriter::JointWriter(MPI_Comm comm, std::vector<const interface::Interface*>
   }
   catch (...)
   {
-    throw std::runtime_error(cannot_write(file));
+    throw std::runtime_error(cannot_write_xdmf(file));
   }
   xdmf_checked(_file, _path, [&](dolfinx::io::XDMFFile& f) { f.write_mesh(*_mesh); });
 }

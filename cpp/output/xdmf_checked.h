@@ -5,8 +5,10 @@
 // which ends the process).
 #pragma once
 
+#include "../common/mpi_errors.h"
 #include "OutputFiles.h"
 #include <algorithm>
+#include <cerrno>
 #include <dolfinx/io/XDMFFile.h>
 #include <filesystem>
 #include <hdf5.h>
@@ -23,14 +25,27 @@ inline void silence_hdf5()
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
 }
 
+/// cannot_write() of the XDMF file `xdmf` or of its data (the .h5 beside
+/// it), naming the one a folder stands in the way of; else a full disk.
+inline std::string cannot_write_xdmf(const std::filesystem::path& xdmf)
+{
+  for (const std::filesystem::path& f :
+       {xdmf, std::filesystem::path(xdmf).replace_extension(".h5")})
+    if (std::filesystem::is_directory(f))
+      return cannot_write(f, EISDIR);
+  return cannot_write(xdmf);
+}
+
 /// Runs f(*file); if it throws, the file is given up and the error is
-/// cannot_write(`name`). Collective where f is.
+/// cannot_write_xdmf(`name`). Then the XML that the first process wrote
+/// (dolfinx does not check it) must be a file there: the error if not is
+/// agreed on by the file's processes. Collective where f is.
 template <class F>
 void xdmf_checked(std::unique_ptr<dolfinx::io::XDMFFile>& file, const std::filesystem::path& name,
                   F&& f)
 {
   if (!file)
-    throw std::runtime_error(cannot_write(name));
+    throw std::runtime_error(cannot_write_xdmf(name));
   try
   {
     f(*file);
@@ -38,8 +53,13 @@ void xdmf_checked(std::unique_ptr<dolfinx::io::XDMFFile>& file, const std::files
   catch (...)
   {
     (void)file.release(); // its HDF5 handle is broken: never closed again
-    throw std::runtime_error(cannot_write(name));
+    throw std::runtime_error(cannot_write_xdmf(name));
   }
+  const MPI_Comm comm = file->comm();
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  const bool missing = rank == 0 && !std::filesystem::is_regular_file(name);
+  mpi::throw_if_any(comm, missing, missing ? cannot_write_xdmf(name) : "");
 }
 
 /// Flushes the HDF5 files `h5` (an XDMF file's data, by path), so that the

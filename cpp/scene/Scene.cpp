@@ -383,11 +383,14 @@ std::string integer_in_decimal(const std::string& value)
   return value;
 }
 
+std::string Scene::read(const std::filesystem::path& file)
+{
+  return read_input_file(file, "scene file '" + file.string() + "'", max_scene_bytes, "a scene");
+}
+
 Scene Scene::load(const std::filesystem::path& file, const std::vector<Override>& overrides)
 {
-  const std::string text =
-      read_input_file(file, "scene file '" + file.string() + "'", max_scene_bytes, "a scene");
-  return parse(text, overrides, file.string());
+  return parse(read(file), overrides, file.string());
 }
 
 Scene Scene::parse(const std::string& toml_text, const std::vector<Override>& overrides,

@@ -38,6 +38,10 @@ public:
   /// defaults. Throws SceneError naming the key on any problem.
   static Scene load(const std::filesystem::path& file, const std::vector<Override>& overrides = {});
 
+  /// The text of a scene file, as load() reads it (parse() makes it a
+  /// scene, with the file's name as its origin). Throws SceneError.
+  static std::string read(const std::filesystem::path& file);
+
   /// Same, from TOML text (`origin` names it in messages).
   static Scene parse(const std::string& toml_text, const std::vector<Override>& overrides = {},
                      const std::string& origin = "scene");

@@ -155,7 +155,8 @@ std::string ArcLengthSolver::solve(Vec b, Vec y)
     check(VecSet(y, 0.0), "VecSet");
     // A failed factorisation fails the step (cut back), as in NewtonSolver.
     const PetscErrorCode code = KSPSolve(_ksp, b, y);
-    if (zero_pivot_error(code) && !petsc::callback_failed())
+    if (zero_pivot_error(code, PetscObjectComm(reinterpret_cast<PetscObject>(_ksp))) &&
+        !petsc::callback_failed())
       return "DIVERGED_LINEAR_SOLVE (zero pivot)";
     check(code, "KSPSolve");
     KSPConvergedReason reason;

@@ -69,8 +69,10 @@ std::string factorization_failure(KSP ksp)
   return factor_failure_text(PCFailedReason(worst));
 }
 
-bool zero_pivot_error(PetscErrorCode code)
+bool zero_pivot_error(PetscErrorCode code, MPI_Comm comm)
 {
-  return code == PETSC_ERR_MAT_LU_ZRPVT || code == PETSC_ERR_MAT_CH_ZRPVT;
+  int processes = 1;
+  MPI_Comm_size(comm, &processes);
+  return processes == 1 && (code == PETSC_ERR_MAT_LU_ZRPVT || code == PETSC_ERR_MAT_CH_ZRPVT);
 }
 } // namespace pushout::solver

@@ -16,6 +16,9 @@ std::string factorization_failure(KSP ksp);
 
 /// Whether a PETSc error code is a zero pivot of a factorisation that raises
 /// an error instead of recording a failed reason (PETSc's dense LU: the
-/// condensed systems', on one process).
-bool zero_pivot_error(PetscErrorCode code);
+/// condensed systems', on one process), on `comm` of one process: on more,
+/// a process's own factor (a block of -pc_type bjacobi) may raise it while
+/// the others wait in the solve, so it is an error (agreed on, the run
+/// ended), not a step cut on that process alone.
+bool zero_pivot_error(PetscErrorCode code, MPI_Comm comm);
 } // namespace pushout::solver

@@ -2,6 +2,7 @@
 #include "../common/mpi_errors.h"
 #include "../common/petsc_check.h"
 #include "../scene/SceneError.h"
+#include "ShellPreconditioner.h"
 #include "Vector.h"
 #include <cmath>
 #include <iostream>
@@ -48,6 +49,19 @@ bool LoadStepSolver::single_precision_lu(const SolverPart& part, NewtonSolver::C
   return part.mixed_precision &&
          (preconditioner(part, concrete) == NewtonSolver::Preconditioner::lagged ||
           concrete == NewtonSolver::Concrete::cracks);
+}
+
+void LoadStepSolver::check_options(const SolverPart& part, NewtonSolver::Concrete concrete,
+                                   int processes)
+{
+  std::string why;
+  if (part.condensation == SolverPart::Condensation::on &&
+      !Condensation::possible(processes, 1, concrete != NewtonSolver::Concrete::linear, why))
+    throw SceneError("solver.condensation = \"on\" is not possible here: " + why);
+  // GMRES on the single-precision LU is flexible (Equilibrium::configure,
+  // CondensationNewton) unless the user chose the linear solver.
+  if (single_precision_lu(part, concrete) && !NewtonSolver::linear_solver_from_options())
+    refuse_side_flexible_gmres_lacks(nullptr);
 }
 
 std::unique_ptr<LoadStepSolver> LoadStepSolver::make(Equilibrium& eq, const SolverPart& part)

@@ -33,6 +33,13 @@ public:
   /// processes); sets PETSc's default Newton options for the preconditioner
   /// policy. Throws SceneError if solver.condensation = "on" is not possible.
   static std::unique_ptr<LoadStepSolver> make(Equilibrium& eq, const SolverPart& part);
+  /// What make() and the solvers it makes would refuse of `part` and the
+  /// user's PETSc options on `processes` processes for `concrete`, found
+  /// before the model is built (so before a run touches its folder):
+  /// solver.condensation = "on" where it is not possible (but for want of
+  /// an interface), a -ksp_pc_side that the flexible GMRES of the
+  /// single-precision LU has not. Throws SceneError.
+  static void check_options(const SolverPart& part, NewtonSolver::Concrete concrete, int processes);
   /// The concrete's kind as the solvers take it: linear without cracks
   /// ([cracking] absent), else its cracks' integration (cracking.integration
   /// as resolved: `implex`). make() and the size guard both ask this.

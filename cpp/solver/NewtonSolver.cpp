@@ -376,7 +376,8 @@ double NewtonSolver::time_linear_solve(Vec x)
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(x));
   // Owned, so that an error on the way (a failed factorisation, the
   // problem's) frees them, the factors too: a sweep goes on to its next
-  // case.
+  // case. Owned outside the agreement below: destroying a MUMPS factor is
+  // collective, so a process that failed agrees before it lets them go.
   Vec v;
   check(VecDuplicate(x, &v), "VecDuplicate");
   const Vector F(v);
@@ -386,24 +387,36 @@ double NewtonSolver::time_linear_solve(Vec x)
   check(KSPCreate(comm, &k), "KSPCreate");
   const std::unique_ptr<_p_KSP, void (*)(KSP)> ksp(
       k, [](KSP p) { petsc::check_nothrow(KSPDestroy(&p), "KSPDestroy"); });
-  _problem.residual(x, F);
-  check(VecScale(F, -1.0), "VecScale");
-  _problem.jacobian(x, _J);
-  check(KSPSetOperators(k, _J, _J), "KSPSetOperators");
-  check(KSPSetFromOptions(k), "KSPSetFromOptions");
-  _problem.configure(k);
-  MPI_Barrier(comm);
-  const double t0 = MPI_Wtime();
-  check(KSPSetUp(k), "KSPSetUp");
-  if (const std::string why = factorization_failure(k); !why.empty())
-    throw std::runtime_error("solver.time_linear_solve: the factorisation of the first load "
-                             "step's Jacobian failed (" +
-                             why + ")");
-  check(KSPSolve(k, F, dx), "KSPSolve");
-  MPI_Barrier(comm);
-  const double t = MPI_Wtime() - t0;
-  _problem.forget_trial_state();
-  return t;
+  return mpi::collectively(
+      comm,
+      [&]
+      {
+        const auto failed_law = []
+        {
+          return std::runtime_error("solver.time_linear_solve: an interface law failed at the "
+                                    "first load step's start");
+        };
+        if (!_problem.residual(x, F))
+          throw failed_law();
+        check(VecScale(F, -1.0), "VecScale");
+        if (!_problem.jacobian(x, _J))
+          throw failed_law();
+        check(KSPSetOperators(k, _J, _J), "KSPSetOperators");
+        check(KSPSetFromOptions(k), "KSPSetFromOptions");
+        _problem.configure(k);
+        MPI_Barrier(comm);
+        const double t0 = MPI_Wtime();
+        check(KSPSetUp(k), "KSPSetUp");
+        if (const std::string why = factorization_failure(k); !why.empty())
+          throw std::runtime_error("solver.time_linear_solve: the factorisation of the first "
+                                   "load step's Jacobian failed (" +
+                                   why + ")");
+        check(KSPSolve(k, F, dx), "KSPSolve");
+        MPI_Barrier(comm);
+        const double t = MPI_Wtime() - t0;
+        _problem.forget_trial_state();
+        return t;
+      });
 }
 
 SolveReport NewtonSolver::solve(Vec x, double reference)
@@ -495,7 +508,8 @@ SolveReport NewtonSolver::attempt(Vec x)
   // Every Krylov iteration, those of a failed linear solve too.
   check(KSPGetTotalIterations(ksp, &linear_after), "KSPGetTotalIterations");
   _linear_iterations += linear_after - linear_before;
-  if (zero_pivot_error(code) && !petsc::callback_failed())
+  if (zero_pivot_error(code, PetscObjectComm(reinterpret_cast<PetscObject>(_snes))) &&
+      !petsc::callback_failed())
   {
     r.reason = "DIVERGED_LINEAR_SOLVE (zero pivot)";
     _tangent_converged = false;

@@ -1,4 +1,5 @@
 #include "PathFollower.h"
+#include "../common/mpi_errors.h"
 #include "Vector.h"
 #include <cmath>
 #include <stdexcept>
@@ -38,8 +39,16 @@ SolveReport PathFollower::step(Vec x, double& lambda, double d_control,
                                const std::function<void(double)>& set_load, double max_dlambda,
                                bool loose, std::optional<double> control_from)
 {
-  SolveReport report = _arc->step(_solver.to_problem(x), lambda, d_control, set_load, max_dlambda,
-                                  loose, control_from);
+  // Agreed here: the follower (its factors) lives in the step loop, and a
+  // process that failed must not destroy them on its way out while the
+  // others go on (common/mpi_errors.h).
+  SolveReport report =
+      mpi::collectively(PetscObjectComm(reinterpret_cast<PetscObject>(x)),
+                        [&]
+                        {
+                          return _arc->step(_solver.to_problem(x), lambda, d_control, set_load,
+                                            max_dlambda, loose, control_from);
+                        });
   if (report.converged)
   {
     _solver.from_problem(x);

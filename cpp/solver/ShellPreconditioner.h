@@ -81,19 +81,16 @@ template <typename Context> Context* shell_context(PC pc)
 /// what PETSc lets us read of its GMRES options (a user's -ksp_gmres_*):
 /// the restart, the orthogonalisation and its refinement; not
 /// -ksp_gmres_preallocate nor -ksp_gmres_haptol. The tolerances stay.
-inline void make_gmres_flexible(KSP ksp)
+/// Throws SceneError where the user's -ksp_pc_side (with the options'
+/// `prefix`) asks for a side flexible GMRES has not (PETSc would fail in
+/// the first solve, "does not support preconditioner side LEFT"), saying
+/// what does have it (exit 2). PETSc reads the value as it does (any case).
+inline void refuse_side_flexible_gmres_lacks(const char* prefix)
 {
-  using petsc::check;
-  // A side the user asked for that FGMRES has not (PETSc would fail in the
-  // first solve, "does not support preconditioner side LEFT"): refused
-  // before the steps, with what does have it (exit 2). PETSc reads the
-  // value as it does (any case).
-  const char* prefix = nullptr;
-  check(KSPGetOptionsPrefix(ksp, &prefix), "KSPGetOptionsPrefix");
   PetscEnum side = PetscEnum(PC_RIGHT);
   PetscBool given = PETSC_FALSE;
-  check(PetscOptionsGetEnum(nullptr, prefix, "-ksp_pc_side", PCSides, &side, &given),
-        "PetscOptionsGetEnum");
+  petsc::check(PetscOptionsGetEnum(nullptr, prefix, "-ksp_pc_side", PCSides, &side, &given),
+               "PetscOptionsGetEnum");
   if (given && PCSide(side) != PC_RIGHT)
     throw SceneError(std::string("-ksp_pc_side ") +
                      (PCSide(side) == PC_LEFT ? "left" : "symmetric") +
@@ -101,6 +98,14 @@ inline void make_gmres_flexible(KSP ksp)
                      "default) is flexible GMRES, which preconditions on the right only; "
                      "with solver.precision = \"double\" it is GMRES on the LU in double, "
                      "which preconditions on the left too");
+}
+
+inline void make_gmres_flexible(KSP ksp)
+{
+  using petsc::check;
+  const char* prefix = nullptr;
+  check(KSPGetOptionsPrefix(ksp, &prefix), "KSPGetOptionsPrefix");
+  refuse_side_flexible_gmres_lacks(prefix); // before the steps (and in check_options())
   PetscInt restart;
   PetscErrorCode (*orthogonalize)(KSP, PetscInt);
   KSPGMRESCGSRefinementType refinement;

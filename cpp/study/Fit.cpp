@@ -109,7 +109,7 @@ void check_read(const Scene& scene, const std::vector<Free>& free, const FitOpti
   {
     try
     {
-      moved = Scene::load(opt.scene_file, parse_overrides(sets));
+      moved = scene_of(opt, sets);
     }
     catch (const SceneError&)
     {
@@ -254,8 +254,7 @@ int run_fitted(const FitOptions& opt, Evaluator& evaluator, ProcessGroups& group
 /// valid scene with the push to the data's end that fits a group's
 /// processes, and whose mesh suits its cracks anywhere; the folder
 /// claimed. exit_code::done, or the refusal's code (said once).
-int prepare(const FitOptions& opt, MeasuredCurve& data, std::vector<Free>& free,
-            Resolution& resolution)
+int prepare(FitOptions& opt, MeasuredCurve& data, std::vector<Free>& free, Resolution& resolution)
 {
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
@@ -263,13 +262,14 @@ int prepare(const FitOptions& opt, MeasuredCurve& data, std::vector<Free>& free,
       "pushout fit", "error",
       [&]
       {
+        read_scene_text(opt);
         mpi::collectively<SceneError>(
             MPI_COMM_WORLD,
             [&]
             {
               ProcessGroups::check(opt.ranks_per_case);
               data = read_measured(opt.data);
-              const Scene scene = Scene::load(opt.scene_file, parse_overrides(opt.sets));
+              const Scene scene = scene_of(opt, opt.sets);
               if (!scene.model().pushout())
                 throw SceneError("pushout fit fits push-out curves (model.type = \"pushout\")");
               if (!scene.loading().push_path.empty())
@@ -295,8 +295,8 @@ int prepare(const FitOptions& opt, MeasuredCurve& data, std::vector<Free>& free,
         const int others_here = ProcessGroups::others_here(group.comm, int(free.size()) + 1);
         std::vector<std::string> sets = opt.sets;
         sets.push_back("loading.push_displacement=" + number_text(data.delta.back()));
-        const Scene start = mpi::collectively<SceneError>(
-            MPI_COMM_WORLD, [&] { return Scene::load(opt.scene_file, parse_overrides(sets)); });
+        const Scene start =
+            mpi::collectively<SceneError>(MPI_COMM_WORLD, [&] { return scene_of(opt, sets); });
         mpi::collectively<SceneError, record::TooLarge>(
             MPI_COMM_WORLD,
             [&]
@@ -323,8 +323,9 @@ int prepare(const FitOptions& opt, MeasuredCurve& data, std::vector<Free>& free,
 }
 } // namespace
 
-int fit(const FitOptions& opt)
+int fit(const FitOptions& given)
 {
+  FitOptions opt = given; // with its scene's text, read once (prepare)
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   const bool talk = rank == 0 && !opt.quiet;

@@ -129,7 +129,7 @@ std::vector<double> Evaluator::run(const std::vector<double>& x, const std::file
                                    bool plot, Counts counts)
 {
   const RunOutcome o =
-      run_case(_opt.scene_file, sets_at(x),
+      run_case(_opt.scene_text, _opt.scene_file, sets_at(x),
                {out, _opt.mesh_cache, true, _opt.force, _group, plot, _others_here}, _simulation);
   std::vector<double> r(_data.delta.size(), 0.0);
   _last = o;

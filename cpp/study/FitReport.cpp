@@ -113,7 +113,7 @@ int write_fit(const FitOptions& opt, const MeasuredCurve& data, const std::vecto
   std::string scene_text, scene_refused;
   try
   {
-    const Scene fitted = Scene::load(opt.scene_file, parse_overrides(fit.sets));
+    const Scene fitted = scene_of(opt, fit.sets);
     specimen::check_scene(fitted); // the checks that relate keys
     scene_text = fitted.to_toml();
   }

@@ -1,11 +1,31 @@
 #include "ManyRuns.h"
 #include "../common/mpi_errors.h"
+#include "../common/mpi_gather.h"
 #include "../record/ResourceGuard.h"
 #include "../scene/SceneError.h"
 #include <algorithm>
 
 namespace pushout::study
 {
+void read_scene_text(ManyRunsOptions& opt)
+{
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  std::string text;
+  mpi::collectively<SceneError>(MPI_COMM_WORLD,
+                                [&]
+                                {
+                                  if (rank == 0)
+                                    text = Scene::read(opt.scene_file);
+                                });
+  opt.scene_text = mpi::broadcast_from_first(std::move(text), MPI_COMM_WORLD);
+}
+
+Scene scene_of(const ManyRunsOptions& opt, const std::vector<std::string>& sets)
+{
+  return Scene::parse(opt.scene_text, parse_overrides(sets), opt.scene_file.string());
+}
+
 void ProcessGroups::check(int ranks_per_case)
 {
   int size = 1;

@@ -2,6 +2,7 @@
 // options and the process groups that run their cases side by side.
 #pragma once
 
+#include "../scene/Scene.h"
 #include <filesystem>
 #include <mpi.h>
 #include <set>
@@ -14,6 +15,10 @@ namespace pushout::study
 struct ManyRunsOptions
 {
   std::filesystem::path scene_file;
+  /// The scene file's text, read once at the command's start
+  /// (read_scene_text): every run runs the scene its plan checked, however
+  /// the file is edited meanwhile.
+  std::string scene_text;
   std::vector<std::string> sets; ///< --set overrides of every run
   std::filesystem::path out;     ///< the command's folder
   std::filesystem::path mesh_cache;
@@ -23,6 +28,16 @@ struct ManyRunsOptions
   std::set<std::string> petsc_options; ///< the PETSc options given (their names)
   bool allow_unused = false;           ///< --allow-unused-petsc-options
 };
+
+/// Reads opt.scene_file into opt.scene_text, on the first process of
+/// MPI_COMM_WORLD for all of them (one text, even where the file is saved
+/// between their reads). Throws SceneError, agreed. Collective on
+/// MPI_COMM_WORLD.
+void read_scene_text(ManyRunsOptions& opt);
+
+/// The scene of a run of many: opt.scene_text with the overrides `sets`.
+/// Throws SceneError.
+Scene scene_of(const ManyRunsOptions& opt, const std::vector<std::string>& sets);
 
 /// The processes of MPI_COMM_WORLD in groups of ranks_per_case
 /// (MPI_Comm_split), each running its runs on its own communicator, which

@@ -237,7 +237,7 @@ SweepPlan plan_sweep(const SweepOptions& opt)
   plan.cases = cartesian_cases(plan.vary);
   // The model type and the plot of the sweep: the scene's with the
   // --set values (a case may not change them).
-  const Scene base = Scene::load(opt.scene_file, parse_overrides(opt.sets));
+  const Scene base = scene_of(opt, opt.sets);
   plan.model_type = base.model().name();
   plan.plot = base.output().plot;
   std::vector<std::string> set_ups(plan.cases.size());
@@ -254,7 +254,7 @@ SweepPlan plan_sweep(const SweepOptions& opt)
     sets.insert(sets.end(), plan.cases[i].begin(), plan.cases[i].end());
     try
     {
-      const Scene scene = Scene::load(opt.scene_file, parse_overrides(sets));
+      const Scene scene = scene_of(opt, sets);
       if (scene.model().name() != plan.model_type)
         throw SceneError("a sweep runs one model type: vary other keys");
       specimen::check_scene(scene); // the relations between keys, as a run checks them
@@ -372,6 +372,16 @@ CasesRun run_cases(const SweepOptions& opt, const SweepPlan& plan, ProcessGroups
     {
       run.stop_signal = signal;
       interrupt::acknowledge(); // the sweep stops here, on every process
+      // The other groups take no new case (a signal to this group's
+      // processes alone): each stops after the case it runs.
+      if (leader)
+      {
+        const int none = int(cases.size());
+        int taken = 0;
+        MPI_Win_lock(MPI_LOCK_SHARED, 0, 0, window);
+        MPI_Fetch_and_op(&none, &taken, MPI_INT, 0, 0, MPI_REPLACE, window);
+        MPI_Win_unlock(0, window);
+      }
     }
     if (index >= int(cases.size()) || run.stop_signal != 0)
       break;
@@ -381,7 +391,7 @@ CasesRun run_cases(const SweepOptions& opt, const SweepPlan& plan, ProcessGroups
     // Quiet, and no curve.png per case: sweep.png overlays them.
     CaseResult r;
     static_cast<RunOutcome&>(r) =
-        run_case(opt.scene_file, sets,
+        run_case(opt.scene_text, opt.scene_file, sets,
                  {opt.out / case_name(std::size_t(index)), opt.mesh_cache, true, opt.force, group,
                   false, groups.others_here(int(cases.size()))},
                  simulation);
@@ -460,8 +470,9 @@ int write_sweep(const SweepOptions& opt, const SweepPlan& plan,
 }
 } // namespace
 
-int sweep(const SweepOptions& opt)
+int sweep(const SweepOptions& given)
 {
+  SweepOptions opt = given; // with its scene's text, read once below
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   const auto t0 = std::chrono::steady_clock::now();
@@ -470,6 +481,7 @@ int sweep(const SweepOptions& opt)
       "pushout sweep", "error",
       [&]
       {
+        read_scene_text(opt);
         // The same on every process.
         plan = mpi::collectively<SceneError>(MPI_COMM_WORLD, [&] { return plan_sweep(opt); });
         // The folder is this sweep's alone, without an earlier

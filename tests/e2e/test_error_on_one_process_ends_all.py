@@ -82,6 +82,17 @@ check(wall < 30, f"{name}: ended {wall:.1f} s after the start")
 one_message(name, err, ["error:", "cannot write", "scene.toml", "Is a directory"])
 check("did not come to agree" not in err, f"{name}: the processes agreed on it")
 
+# A folder where an output goes: the fields' XML (dolfinx writes it on the
+# first process and does not check it: the run ended with exit 0 and no
+# fields.xdmf) and curve.csv (said to be a full disk) name the cause.
+for name, blocked, extra in (("fields_xdmf_folder", "fields.xdmf", ["--set", "output.xdmf=true"]),
+                             ("curve_csv_folder", "curve.csv", [])):
+    rc, err, wall, _ = run(name, 2, extra=extra,
+                           prepare=lambda out, f=blocked: os.makedirs(os.path.join(out, f, "x")))
+    check(rc == 1, f"{name}: exit {rc} (1)")
+    one_message(name, err, ["error:", "cannot write", blocked, "Is a directory"])
+    check("did not come to agree" not in err, f"{name}: the processes agreed on it")
+
 bad_solver = ["-pc_type", "lu", "-pc_factor_mat_solver_type", "nonexistent"]
 for processes, sets in ((1, ["--set", "solver.condensation=off"]), (2, [])):
     name = f"petsc_error_{processes}"

@@ -97,3 +97,29 @@ s = stop("slow_step", term_mpirun, env=slow)
 check("during load steps" in s["message"], f"slow_step: ended where it was: {s['message']!r}")
 s = stop("slow_step_sigkill_4", term_mpirun, ["--mca", "odls_base_sigkill_timeout", "4"], slow)
 check("during" not in s["message"], f"slow_step_sigkill_4: stopped by itself: {s['message']!r}")
+
+# A sweep of two groups of one process, SIGTERM to one process alone: its
+# group stops, and the other takes no new case after the one it runs (it ran
+# every case left). Eight cases, each 2.1 s at least (a test hook: 0.3 s a
+# step from the third); the signal once both groups run their first.
+out = os.path.join(ROOT, "sweep_one_process")
+p = subprocess.Popen(["mpirun", "--allow-run-as-root", "--oversubscribe", "-n", "2", PUSHOUT, "sweep", scene,
+                      "--out", out, "--quiet", "--set", "loading.steps=8", "--vary",
+                      "interface.0.mu=" + ",".join(str(0.1 * i) for i in range(1, 9))],
+                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
+                     env=dict(os.environ, PUSHOUT_TEST_SLOW_STEP_S="0.3"))
+firsts = [os.path.join(out, f"case_00{i}", "curve.csv") for i in (0, 1)]
+deadline = time.time() + 180
+while time.time() < deadline and not all(os.path.exists(c) and len(open(c).readlines()) >= 3 for c in firsts):
+    time.sleep(0.05)
+pids = ranks(p.pid)
+check(len(pids) == 2 and p.poll() is None, f"sweep: two processes running: {pids}")
+os.kill(pids[1], signal.SIGTERM)
+try:
+    _, err = p.communicate(timeout=120)
+except subprocess.TimeoutExpired:
+    os.killpg(p.pid, signal.SIGKILL)
+    raise SystemExit("FAILED: sweep: still running 120 s after the signal")
+ran = [d for d in os.listdir(out) if d.startswith("case_")]
+check(p.returncode != 0 and len(ran) <= 4,
+      f"sweep: SIGTERM to one process stops both groups (mpirun exit {p.returncode}, cases begun {sorted(ran)})")
