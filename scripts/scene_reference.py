@@ -28,8 +28,9 @@ LAWS = """
 ## Interface laws
 
 One `[[interface]]` table per superposed layer (tractions and tangents add);
-with none, one `friction` layer with the defaults. `law` names the law, the
-other keys are its parameters.
+with none, one `friction` layer with the defaults. `law` names the law (a
+table without it is a `friction` layer), the other keys are its
+parameters.
 
 `[[crack]]` tables (push-out only, zero or more; docs/corrosion.md): each a
 crack plane through the concrete from the interface to the slice's outer

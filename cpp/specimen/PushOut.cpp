@@ -481,10 +481,19 @@ std::vector<std::string> PushOut::scene_notes(const Scene& scene)
       }
     if (!stiffest || !(k * h / E > stiff_joint_ratio))
       return;
+    // A whole number where it says enough (not for an absurd E, 1e-300 MPa).
+    const auto whole = [](double v)
+    {
+      std::ostringstream s;
+      if (std::abs(v) >= 1 && std::abs(v) < 1e15)
+        s << std::llround(v);
+      else
+        s << std::setprecision(3) << v;
+      return s.str();
+    };
     std::ostringstream note;
     note << std::setprecision(3) << prefix << stiffest->name << " = " << k << " N/mm^3 is "
-         << std::llround(k * h / E) << " E / h (E " << std::llround(E) << " MPa the concrete's, h "
-         << h
+         << whole(k * h / E) << " E / h (E " << whole(E) << " MPa the concrete's, h " << h
          << " mm an interface element's size): Newton may cycle between the joints' contact "
             "and sliding states and not converge (seen from about "
          << (nodal ? "3000 E / h"
@@ -498,12 +507,15 @@ std::vector<std::string> PushOut::scene_notes(const Scene& scene)
     check("interface." + std::to_string(i) + ".", scene.layers()[i]);
   for (std::size_t i = 0; i < scene.cracks().size(); ++i)
     check("crack." + std::to_string(i) + ".", scene.cracks()[i].layer);
-  // Cracks anywhere on a model cut by symmetry (asked for: auto keeps the
-  // whole slice): they are held symmetric (docs/cracking.md, "Reading the
-  // cracks").
   std::string why;
-  if (scene.cracking().embedded && scene.model().symmetry == ModelPart::Symmetry::symmetric &&
-      mesh::model_symmetry(mesh::MeshInput::of(scene), why).copies() > 1)
+  const bool symmetric = scene.model().symmetry == ModelPart::Symmetry::symmetric;
+  const int copies = symmetric ? mesh::model_symmetry(mesh::MeshInput::of(scene), why).copies() : 0;
+  // A cut the slice does not allow (the progress line says so too; --quiet hides it).
+  if (copies == 1)
+    notes.push_back("model.symmetry = \"symmetric\" finds no plane to cut at (" + why +
+                    "): the whole slice is solved");
+  // Cracks anywhere on a cut model are held symmetric (docs/cracking.md, "Reading the cracks").
+  if (scene.cracking().embedded && copies > 1)
     notes.push_back("model.symmetry = \"symmetric\" holds the concrete's cracks symmetric: a "
                     "crack on a symmetry plane opens a band on each side of it, where the whole "
                     "slice may open one off the plane; the bond after cracking may differ by "

@@ -40,6 +40,11 @@ TEST(SceneNotes, StiffJointNotedAboveTheRatio)
   ASSERT_EQ(elastic.size(), 2u);
   EXPECT_EQ(elastic[0].rfind("interface.0.k_s = ", 0), 0u) << elastic[0];
   EXPECT_EQ(elastic[1].rfind("crack.0.k = ", 0), 0u) << elastic[1];
+  // An absurd E: the numbers as numbers (the ratio was rounded to an
+  // integer it does not fit, -9223372036854775808, and E to 0).
+  const auto soft = scene_notes(Scene::parse("", {{"concrete.E", "1e-300"}}));
+  ASSERT_EQ(soft.size(), 1u);
+  EXPECT_NE(soft[0].find("is 9.82e+302 E / h (E 1e-300 MPa"), std::string::npos) << soft[0];
 }
 
 TEST(SceneNotes, SingleJointHasNone)
@@ -52,16 +57,26 @@ TEST(SceneNotes, SingleJointHasNone)
 TEST(SceneNotes, CracksOnACutModelHeldSymmetric)
 {
   // Cracks anywhere with a uniform strength: auto keeps the whole slice;
-  // model.symmetry = "symmetric" cuts it and is noted, unless the slice has
-  // no symmetry plane to cut on (the tube off centre both ways).
+  // model.symmetry = "symmetric" cuts it and is noted. Where the slice has
+  // no symmetry plane to cut on (the tube off centre both ways), that is
+  // noted instead, cracks or not.
   const std::string cracks = "[cracking]\nmodel = \"embedded\"\n";
   EXPECT_TRUE(scene_notes(Scene::parse(cracks)).empty());
   const auto cut = scene_notes(Scene::parse(cracks, {{"model.symmetry", "symmetric"}}));
   ASSERT_EQ(cut.size(), 1u);
   EXPECT_EQ(cut[0].rfind("model.symmetry = \"symmetric\" holds the concrete's cracks", 0), 0u)
       << cut[0];
-  EXPECT_TRUE(scene_notes(Scene::parse(cracks, {{"model.symmetry", "symmetric"},
-                                                {"geometry.tube_center", "[45.0, 40.0]"}}))
-                  .empty());
   EXPECT_TRUE(scene_notes(Scene::parse("", {{"model.symmetry", "symmetric"}})).empty());
+  for (const std::string& scene : {cracks, std::string()})
+  {
+    const auto uncut = scene_notes(Scene::parse(
+        scene, {{"model.symmetry", "symmetric"}, {"geometry.tube_center", "[45.0, 40.0]"}}));
+    ASSERT_EQ(uncut.size(), 1u);
+    EXPECT_EQ(uncut[0].rfind("model.symmetry = \"symmetric\" finds no plane to cut at", 0), 0u)
+        << uncut[0];
+  }
+  const auto odd = scene_notes(
+      Scene::parse("", {{"model.symmetry", "symmetric"}, {"mesh.elements_per_quarter", "3"}}));
+  ASSERT_EQ(odd.size(), 1u);
+  EXPECT_NE(odd[0].find("mesh.elements_per_quarter is odd"), std::string::npos) << odd[0];
 }
