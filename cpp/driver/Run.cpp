@@ -268,15 +268,20 @@ template <class F> output::Summary reporting_errors(record::RunReport& report, F
 }
 } // namespace
 
+void check_solver_options(const Scene& scene, int processes)
+{
+  const CrackingPart& cracking = scene.cracking();
+  solver::LoadStepSolver::check_options(
+      scene.solver(), solver::LoadStepSolver::concrete(cracking.embedded, cracking.implex),
+      processes);
+}
+
 void check_before_run(const Scene& scene, const RunOptions& opt)
 {
   specimen::check_scene(scene);
   int processes = 1;
   MPI_Comm_size(opt.comm, &processes);
-  const CrackingPart& cracking = scene.cracking();
-  solver::LoadStepSolver::check_options(
-      scene.solver(), solver::LoadStepSolver::concrete(cracking.embedded, cracking.implex),
-      processes);
+  check_solver_options(scene, processes);
   const mesh::MeshInput shape = mesh::MeshInput::of(scene);
   record::check_fits(record::estimate_resources(shape, scene.solver(), scene.cracking(), opt.comm,
                                                 opt.others_here),

@@ -80,6 +80,11 @@ private:
 /// that is no size (std::runtime_error, exit 1). Collective.
 void check_before_run(const Scene& scene, const RunOptions& options);
 
+/// The solver's refusals of the scene's [solver] part and the user's PETSc
+/// options on `processes` processes (solver::LoadStepSolver::check_options),
+/// before any model is built. Throws SceneError.
+void check_solver_options(const Scene& scene, int processes);
+
 /// Runs the scene, which check_before_run passed; writes curve.csv,
 /// summary.json, scene.toml (and
 /// curve.png, XDMF) into options.out. Returns the summary; a step that

@@ -36,16 +36,19 @@ inline std::string cannot_write_xdmf(const std::filesystem::path& xdmf)
   return cannot_write(xdmf);
 }
 
-/// Runs f(*file); if it throws, the file is given up and the error is
-/// cannot_write_xdmf(`name`). Then the XML that the first process wrote
-/// (dolfinx does not check it) must be a file there: the error if not is
-/// agreed on by the file's processes. Collective where f is.
+/// Runs f(*file) and agrees on its outcome over the file's processes: if it
+/// threw on any, the file is given up there and the error is
+/// cannot_write_xdmf(`name`) on all; so it is if the XML the first process
+/// wrote (dolfinx does not check it) is no file there. Collective where f
+/// is.
 template <class F>
 void xdmf_checked(std::unique_ptr<dolfinx::io::XDMFFile>& file, const std::filesystem::path& name,
                   F&& f)
 {
-  if (!file)
+  if (!file) // given up before, on every process (agreed then)
     throw std::runtime_error(cannot_write_xdmf(name));
+  const MPI_Comm comm = file->comm();
+  bool failed = false;
   try
   {
     f(*file);
@@ -53,13 +56,12 @@ void xdmf_checked(std::unique_ptr<dolfinx::io::XDMFFile>& file, const std::files
   catch (...)
   {
     (void)file.release(); // its HDF5 handle is broken: never closed again
-    throw std::runtime_error(cannot_write_xdmf(name));
+    failed = true;
   }
-  const MPI_Comm comm = file->comm();
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  const bool missing = rank == 0 && !std::filesystem::is_regular_file(name);
-  mpi::throw_if_any(comm, missing, missing ? cannot_write_xdmf(name) : "");
+  failed = failed || (rank == 0 && !std::filesystem::is_regular_file(name));
+  mpi::throw_if_any(comm, failed, failed ? cannot_write_xdmf(name) : "");
 }
 
 /// Flushes the HDF5 files `h5` (an XDMF file's data, by path), so that the

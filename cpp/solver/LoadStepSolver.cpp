@@ -58,9 +58,17 @@ void LoadStepSolver::check_options(const SolverPart& part, NewtonSolver::Concret
   if (part.condensation == SolverPart::Condensation::on &&
       !Condensation::possible(processes, 1, concrete != NewtonSolver::Concrete::linear, why))
     throw SceneError("solver.condensation = \"on\" is not possible here: " + why);
-  // GMRES on the single-precision LU is flexible (Equilibrium::configure,
-  // CondensationNewton) unless the user chose the linear solver.
-  if (single_precision_lu(part, concrete) && !NewtonSolver::linear_solver_from_options())
+  // GMRES on MUMPS's LU in mixed precision is flexible (Equilibrium::
+  // configure, CondensationNewton::configure): the KSP, PC and factor the
+  // user's options choose, else the defaults set_default_options() sets.
+  const auto chosen = [](const char* name, const char* ours)
+  {
+    const std::string given = NewtonSolver::user_option(name);
+    return given.empty() ? std::string(ours) : given;
+  };
+  if (part.mixed_precision &&
+      chosen("-ksp_type", single_precision_lu(part, concrete) ? "gmres" : "preonly") == "gmres" &&
+      chosen("-pc_type", "lu") == "lu" && chosen("-pc_factor_mat_solver_type", "mumps") == "mumps")
     refuse_side_flexible_gmres_lacks(nullptr);
 }
 

@@ -3,6 +3,7 @@
 #include "../common/build_or_release.h"
 #include "../common/mpi_errors.h"
 #include "../common/petsc_check.h"
+#include "../scene/SceneError.h"
 #include "FactorizationFailure.h"
 #include "NewtonHistory.h"
 #include "SinglePrecisionSparse.h"
@@ -152,6 +153,17 @@ bool NewtonSolver::direct_factorization()
   check(PetscOptionsGetString(nullptr, nullptr, "-pc_type", pc_type, sizeof(pc_type), &set),
         "PetscOptionsGetString");
   return !set || std::string(pc_type) == "lu" || std::string(pc_type) == "cholesky";
+}
+
+std::string NewtonSolver::user_option(const char* name)
+{
+  if (ours().contains(name))
+    return "";
+  char value[256] = "";
+  PetscBool set = PETSC_FALSE;
+  check(PetscOptionsGetString(nullptr, nullptr, name, value, sizeof(value), &set),
+        "PetscOptionsGetString");
+  return set ? std::string(value) : "";
 }
 
 bool NewtonSolver::linear_solver_from_options()
@@ -387,20 +399,17 @@ double NewtonSolver::time_linear_solve(Vec x)
   check(KSPCreate(comm, &k), "KSPCreate");
   const std::unique_ptr<_p_KSP, void (*)(KSP)> ksp(
       k, [](KSP p) { petsc::check_nothrow(KSPDestroy(&p), "KSPDestroy"); });
-  return mpi::collectively(
+  // (A PETSc error on one process inside the solve, where the others wait
+  // in its collectives, ends the run after abandon_after_s: mpi_errors.h.)
+  return mpi::collectively<SceneError>(
       comm,
       [&]
       {
-        const auto failed_law = []
-        {
-          return std::runtime_error("solver.time_linear_solve: an interface law failed at the "
-                                    "first load step's start");
-        };
-        if (!_problem.residual(x, F))
-          throw failed_law();
+        const std::string failed_law = "solver.time_linear_solve: an interface law failed at the "
+                                       "first load step's start";
+        mpi::throw_if_any(comm, !_problem.residual(x, F), failed_law);
         check(VecScale(F, -1.0), "VecScale");
-        if (!_problem.jacobian(x, _J))
-          throw failed_law();
+        mpi::throw_if_any(comm, !_problem.jacobian(x, _J), failed_law);
         check(KSPSetOperators(k, _J, _J), "KSPSetOperators");
         check(KSPSetFromOptions(k), "KSPSetFromOptions");
         _problem.configure(k);

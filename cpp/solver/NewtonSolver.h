@@ -200,6 +200,9 @@ public:
   /// (-ksp_type, -pc_type or -pc_factor_mat_solver_type, not ours:
   /// set_default_options), so that the run does not describe its own.
   static bool linear_solver_from_options();
+  /// The value of the PETSc option `name` the user gave, "" if none (or if
+  /// it holds a default of ours: set_default_options).
+  static std::string user_option(const char* name);
 
 private:
   void set_up(NonlinearProblem& problem); ///< the constructor's work

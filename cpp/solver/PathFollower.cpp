@@ -1,5 +1,6 @@
 #include "PathFollower.h"
 #include "../common/mpi_errors.h"
+#include "../scene/SceneError.h"
 #include "Vector.h"
 #include <cmath>
 #include <stdexcept>
@@ -43,12 +44,12 @@ SolveReport PathFollower::step(Vec x, double& lambda, double d_control,
   // process that failed must not destroy them on its way out while the
   // others go on (common/mpi_errors.h).
   SolveReport report =
-      mpi::collectively(PetscObjectComm(reinterpret_cast<PetscObject>(x)),
-                        [&]
-                        {
-                          return _arc->step(_solver.to_problem(x), lambda, d_control, set_load,
-                                            max_dlambda, loose, control_from);
-                        });
+      mpi::collectively<SceneError>(PetscObjectComm(reinterpret_cast<PetscObject>(x)),
+                                    [&]
+                                    {
+                                      return _arc->step(_solver.to_problem(x), lambda, d_control,
+                                                        set_load, max_dlambda, loose, control_from);
+                                    });
   if (report.converged)
   {
     _solver.from_problem(x);

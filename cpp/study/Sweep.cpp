@@ -258,6 +258,7 @@ SweepPlan plan_sweep(const SweepOptions& opt)
       if (scene.model().name() != plan.model_type)
         throw SceneError("a sweep runs one model type: vary other keys");
       specimen::check_scene(scene); // the relations between keys, as a run checks them
+      driver::check_solver_options(scene, opt.ranks_per_case);
       check_mesh(scene);
       for (auto it = unread.begin(); it != unread.end();)
       {
@@ -376,10 +377,12 @@ CasesRun run_cases(const SweepOptions& opt, const SweepPlan& plan, ProcessGroups
       // processes alone): each stops after the case it runs.
       if (leader)
       {
-        const int none = int(cases.size());
+        // (By the same operation as next_case: the window's accumulates
+        // are atomic only among one operation. The counter only grows.)
+        const int past_the_last = int(cases.size());
         int taken = 0;
         MPI_Win_lock(MPI_LOCK_SHARED, 0, 0, window);
-        MPI_Fetch_and_op(&none, &taken, MPI_INT, 0, 0, MPI_REPLACE, window);
+        MPI_Fetch_and_op(&past_the_last, &taken, MPI_INT, 0, 0, MPI_SUM, window);
         MPI_Win_unlock(0, window);
       }
     }

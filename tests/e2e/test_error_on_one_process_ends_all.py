@@ -8,7 +8,8 @@ PUSHOUT_TEST_FAIL_AT: stepping/StepLoop.cpp), during the set-up and during the
 load steps. A PETSc error (a solver type that does not exist) is one clear
 message too, without PETSc's traceback, on 1 and 2 processes. mpirun adds
 its own notice that a process ended non-zero; only pushout's lines count.
-Exit 77 = no mpirun (skipped)."""
+A folder where the fields' XML or curve.csv goes is one agreed error that
+names the cause."""
 import os
 import signal
 import subprocess

@@ -117,12 +117,19 @@ kept = out_dir("hostile_solver_refusal_keeps")
 p, _ = pushout(["run", GOOD_SCENE, "--out", kept, "--quiet"] + QUICK)
 before = {f: os.path.getmtime(os.path.join(kept, f)) for f in ("curve.csv", "summary.json")}
 for name, extra in (("-ksp_pc_side left", ["-ksp_pc_side", "left"]),
+                    ("-ksp_pc_side left with -pc_type lu", ["-pc_type", "lu", "-ksp_pc_side", "left"]),
+                    ("-ksp_pc_side left with -ksp_type gmres", ["-ksp_type", "gmres", "-ksp_pc_side", "left"]),
                     ("condensation on with -pc_type jacobi",
                      ["--set", "solver.condensation=on", "-pc_type", "jacobi"])):
     refused(f"{name}: into an earlier run's folder", ["run", GOOD_SCENE, "--out", kept, "--quiet"] + extra,
             ["-ksp_pc_side left" if "side" in name else "solver.condensation"])
     check(p.returncode == 0 and all(os.path.getmtime(os.path.join(kept, f)) == t for f, t in before.items()),
           f"{name}: the earlier run's curve.csv and summary.json stay")
+# A sweep refuses them before any case, as other values a run refuses
+# (each case failed with exit 2, the sweep exit 3).
+refused("a sweep with -ksp_pc_side left", ["sweep", GOOD_SCENE, "--vary", "interface.0.mu=0.2,0.3", "--out",
+                                           out_dir("hostile_sweep_side"), "-ksp_pc_side", "left"] + QUICK,
+        ["-ksp_pc_side left"])
 refused("a negative --max-cases", ["sweep", GOOD_SCENE, "--vary", "interface.0.mu=0.2,0.3",
                                    "--max-cases", "-5", "--out", out_dir("hostile_cases")],
         ["--max-cases", "-5"])
