@@ -57,6 +57,13 @@ from common import (COARSE_MESH, FRICTION_2, IMPLEX_RTOL, SNAP_BACK_LOADING, SNE
 
 EXP = '[[interface]]\nlaw = "exponential_softening"\nk = 1000.0\nf_t = 3.0\nc = {c}\n'
 
+def bound(*outs):
+    """Newton's bound on the relative difference of runs (their folders),
+    each converged every step to its tolerance: over the most steps."""
+    s = [summary(o) for o in outs]
+    return newton_bound(max(x["steps"] + 1 for x in s), max(solved_unknowns(x) for x in s))
+
+
 # 1. Fig. 10 (c = 25 1/mm): no snap-back; both controls reach delta = 0.05.
 fig10 = COARSE_MESH + FRICTION_2 + EXP.format(c=25.0) + THROUGH_PEAK
 disp, arc = out_dir("arc_fig10_displacement"), out_dir("arc_fig10_arc_length")
@@ -66,6 +73,10 @@ a, d = curve(arc), curve(disp)
 fig10_arc = a  # for 6.
 check(abs(a[-1]["delta_mm"] - 0.05) < 1e-12, f"arc length ends at delta = {a[-1]['delta_mm']} mm")
 rel = abs(a[-1]["P_N"] - d[-1]["P_N"]) / abs(d[-1]["P_N"])
+# Not Newton's bound alone: the two controls take other steps, and the
+# laws' states (the slip, the damage) are integrated over them (2.7e-8
+# measured, against Newton's bound 2.1e-8 on the two runs); the same steps
+# would agree to Newton's bound (3. below).
 check(rel < 1e-6, f"final P: arc {a[-1]['P_N']:.6f} N, displacement {d[-1]['P_N']:.6f} N "
       f"(relative {rel:.1e})")
 peak_a, peak_d = max(r["tau_MPa"] for r in a), max(r["tau_MPa"] for r in d)
@@ -111,8 +122,9 @@ b = curve(lu)
 scale = max(abs(r["P_N"]) for r in a)
 n = min(len(a), len(b))
 diff = max(abs(x["P_N"] - y["P_N"]) for x, y in zip(a[:n], b[:n]))
-check(len(a) == len(b) and diff <= 1e-6 * scale,
-      f"lagged vs plain Newton: {len(a)} and {len(b)} points, max |dP| = {diff:.1e} N")
+check(len(a) == len(b) and diff <= bound(arc, lu) * scale,
+      f"lagged vs plain Newton: {len(a)} and {len(b)} points, max |dP| = {diff:.1e} N "
+      f"(Newton's bound {bound(arc, lu):.1e} x {scale:.4g})")
 os.environ["PUSHOUT_TEST_NO_STEP_PREDICTION"] = "1"
 try:
     unpredicted = out_dir("arc_snap_arc_length_unpredicted")
@@ -217,5 +229,7 @@ check(len(f) == len(a) + 1 and abs(before - a[-2]["delta_mm"]) < 1e-9 and
       f"the failed step of {failed_step * 1e3:.3f} um taken as " +
       " + ".join(f"{t * 1e3:.3f}" for t in taken) + " um")
 rel = abs(f[-1]["P_N"] - a[-1]["P_N"]) / abs(a[-1]["P_N"])
+# (The last step taken in two: the laws integrated over other steps there,
+# as in 1.: 5.3e-9 measured.)
 check(rel < 1e-6, f"final P after the fallback {f[-1]['P_N']:.6f} N, against "
       f"{a[-1]['P_N']:.6f} N (relative {rel:.1e})")

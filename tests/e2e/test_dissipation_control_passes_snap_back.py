@@ -13,8 +13,9 @@
    displacement control converges across the peak (its curve never rises
    above the friction plateau) or stops at it, as the round-off goes;
    dissipation control traces the peak (more than 3x the plateau) and the
-   softening in fewer than 800 Newton iterations (347 with threaded BLAS,
-   589 with one thread; the ordinary Fig. 10 curve takes about 50).
+   softening (its Newton iterations are printed: 347 with threaded BLAS,
+   589 with one thread when this was written; a cost, which bench/ measures,
+   not a correctness test).
 3. Without a softening layer there is nothing to control by: the push runs
    under displacement control.
 4. The corrosion stage (the corroded demo, coarse, with a brittle crack
@@ -28,11 +29,12 @@
    eta falls: p 8.55561, 8.55526, 8.55519, 8.55516 MPa for eta 3e-4 to
    1e-5, dissipation control 8.55532; the damage the snap leaves differs a
    little between the two paths); the whole model on 2 processes reaches
-   the same p at 20 um as the condensed system on one, to 1e-6 relative."""
+   the same p at 20 um as the condensed system on one, to Newton's bound
+   on the two runs (common.newton_bound over both stages' steps)."""
 import os
 
-from common import (COARSE_MESH, FRICTION_2, SNAP_BACK_LOADING, check, corrosion, curve, out_dir,
-                    run, summary)
+from common import (COARSE_MESH, FRICTION_2, SNAP_BACK_LOADING, check, corrosion, curve, newton_bound,
+                    out_dir, run, solved_unknowns, summary)
 
 EXP = '[[interface]]\nlaw = "exponential_softening"\nk = {k}\nf_t = {f_t}\nc = {c}\n'
 
@@ -98,8 +100,7 @@ check(s["converged"] and abs(d[-1]["delta_mm"] - 0.5) < 1e-12,
       f"dissipation control reaches delta = {d[-1]['delta_mm']} mm")
 check(max(r["tau_MPa"] for r in d) > 3 * plateau,
       f"the peak is traced: tau {max(r['tau_MPa'] for r in d):.3f} MPa, plateau {plateau:.3f} MPa")
-check(s["newton_iterations"] < 800,
-      f"{s['newton_iterations']} Newton iterations, {s['steps']} steps "
+print(f"{s['newton_iterations']} Newton iterations, {s['steps']} steps "
       f"({s['dissipation_steps']} by energy), {s['cuts']} cuts")
 
 # 3. Nothing softens.
@@ -114,8 +115,12 @@ run(friction, plain)
 run(friction, diss, sets=["loading.control=dissipation"])
 check(summary(diss)["dissipation_steps"] == 0, "no step controlled by the energy released")
 a, b = curve(plain), curve(diss)
-check(len(a) == len(b) and all(abs(x["P_N"] - y["P_N"]) < 1e-9 for x, y in zip(a, b)),
-      "the same curve as displacement control")
+# Another solver (the path follower's, steps of delta) on the same steps:
+# to Newton's bound on the two runs.
+tol = newton_bound(len(a), max(solved_unknowns(summary(o)) for o in (plain, diss)))
+scale = max(abs(r["P_N"]) for r in a)
+check(len(a) == len(b) and all(abs(x["P_N"] - y["P_N"]) <= tol * scale for x, y in zip(a, b)),
+      f"the same curve as displacement control (to {tol:.1e} x {scale:.4g} N)")
 
 # 4. A brittle crack in the corrosion stage.
 corroded = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "demo",
@@ -147,5 +152,8 @@ run(corroded, whole, sets=CRACK + ["loading.control=dissipation"], mpirun=2)
 w = corrosion(whole)
 check(summary(whole)["condensed_dofs"] == 0 and summary(whole)["processes"] == 2,
       "the whole model on 2 processes")
-check(abs(w[-1]["p_MPa"] - c[-1]["p_MPa"]) < 1e-6 * c[-1]["p_MPa"],
-      f"whole model, 2 processes: p {w[-1]['p_MPa']:.9g} MPa at 20 um, condensed {c[-1]['p_MPa']:.9g}")
+tol = newton_bound(max(summary(o)["steps"] + summary(o)["corrosion_steps"] + 1 for o in (diss, whole)),
+                   max(solved_unknowns(summary(o)) for o in (diss, whole)))
+check(abs(w[-1]["p_MPa"] - c[-1]["p_MPa"]) <= tol * max(abs(r["p_MPa"]) for r in c),
+      f"whole model, 2 processes: p {w[-1]['p_MPa']:.9g} MPa at 20 um, condensed {c[-1]['p_MPa']:.9g} "
+      f"(to {tol:.1e} of the largest p)")

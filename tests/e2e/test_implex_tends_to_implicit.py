@@ -37,11 +37,11 @@ a face), corroded to x = 30 um in 15 steps and pushed 5 um:
    and Newton iterations as with the tangent assembled at every iteration
    and the forces from the crack band's stresses. A kept
    tangent that missed a crack closing would now move the converged p (the
-   residual is made of it), where the bound 1e-6 MPa holds p; a Jacobian
-   that missed it would cost Newton iterations. The sums of additions
-   differ in order (the joints' and the cracks' tangents, the residual's
-   forces), so the counts may differ by round-off, by one (both at
-   SNES_RTOL, as 4). PETSc's log shows the test hook at work: the kept
+   residual is made of it), where Newton's bound (common.p_bound) holds p;
+   a Jacobian that missed it would cost Newton iterations. The sums of
+   additions differ in order (the joints' and the cracks' tangents, the
+   residual's forces), so a step's count may differ by round-off, by one
+   (both at SNES_RTOL, as 4). PETSc's log shows the test hook at work: the kept
    tangent's own assemblies.
 6. IMPL-EX's own Newton tolerance (common.IMPLEX_RTOL, the default) against
    SNES_RTOL: p(x) within the bound of Newton's tolerance on the two runs
@@ -69,7 +69,7 @@ import os
 import re
 
 from common import (IMPLEX_RTOL, TIGHT_NEWTON, check, check_one_and_two_processes, corrosion,
-                    cracking_corroded_demo, newton_bound, out_dir, run, summary)
+                    cracking_corroded_demo, newton_bound, out_dir, p_bound, run, summary)
 
 scene = cracking_corroded_demo(0.03, 15, seed=1)
 implicit, controlled, fixed = out_dir("implex_ref"), out_dir("implex_tol"), out_dir("implex_fixed")
@@ -159,9 +159,17 @@ rf = corrosion(fresh)
 dp = max(abs(a["p_MPa"] - b["p_MPa"]) for a, b in zip(r1, rf))
 its_kept = sum(r["newton_iterations"] for r in r1)
 its_fresh = sum(r["newton_iterations"] for r in rf)
-check(len(r1) == len(rf) and dp < 1e-6 and abs(its_kept - its_fresh) <= 1,
-      f"tangent kept within a step: p within {dp:.1e} MPa of the tangent of every iteration, "
-      f"{its_kept} Newton iterations against {its_fresh}")
+# A step's count may differ by one where its last residual lands within
+# round-off of the tolerance (Newton's next iteration on the right tangent
+# is orders of magnitude below it); a tangent that missed a crack closing
+# costs iterations in every step where one closes, so the totals may differ
+# by a quarter of the steps at most.
+step_its = max(abs(a["newton_iterations"] - b["newton_iterations"]) for a, b in zip(r1, rf))
+bound = p_bound(r1, one)
+check(len(r1) == len(rf) and dp <= bound and step_its <= 1 and abs(its_kept - its_fresh) <= len(r1) / 4,
+      f"tangent kept within a step: p within {dp:.1e} MPa (Newton's bound {bound:.1e}) of the "
+      f"tangent of every iteration, {its_kept} Newton iterations against {its_fresh}, a step's "
+      f"within {step_its}")
 
 # 6. The default Newton tolerance of IMPL-EX against SNES_RTOL.
 default = out_dir("implex_default_rtol")

@@ -34,7 +34,7 @@
 import os
 
 from common import (COARSE_MESH, EXP_SOFT, FRICTION_2, OUT_ROOT, check, cracking_corroded_demo, curve,
-                    out_dir, run, summary)
+                    newton_bound, out_dir, run, solved_unknowns, summary)
 
 THERMAL = "[loading]\ntemperature_change = -25.0\nsteps_per_segment = {n}\npush_path = {path}\n"
 ZERO = 'unload_to = "zero_force"\n'
@@ -79,14 +79,27 @@ for name, sets in (("condensed", []), ("whole", ["solver.condensation=off"])):
         check(len(perm) == 1 and perm[0] > 0 and abs(perm[0] - slip_added) < 0.1 * perm[0],
               f"friction: permanent displacement {perm[0] * 1e3:.3f} um, mean slip added by the push "
               f"{slip_added * 1e3:.3f} um")
+        # The plateau of friction (perfectly plastic) is the same however it
+        # was reached: the two runs' to Newton's bound.
         tau, tau_mono = c[-1]["tau_MPa"], curve(mono)[-1]["tau_MPa"]
-        check(abs(c[-1]["delta_mm"] - 0.02) < 1e-15 and abs(tau - tau_mono) < 1e-6 * tau_mono,
-              f"friction: reloaded to 20 um, tau {tau:.9f} MPa, monotonic {tau_mono:.9f} MPa")
-        perm_condensed = perm[0]
+        tol = newton_bound(s["steps"] + 1, max(solved_unknowns(s), solved_unknowns(summary(mono))))
+        check(abs(c[-1]["delta_mm"] - 0.02) < 1e-15 and abs(tau - tau_mono) <= tol * tau_mono,
+              f"friction: reloaded to 20 um, tau {tau:.9f} MPa, monotonic {tau_mono:.9f} MPa "
+              f"(to {tol:.1e})")
+        perm_condensed, s_condensed = perm[0], s
     else:
-        check(abs(perm[0] - perm_condensed) < 1e-8,
+        # Each run finds the zero to |P| <= 1e-6 of the peak force (the search's
+        # tolerance, DisplacementControl.cpp), on forces that are exact to
+        # Newton's bound: the zeros' positions differ by those forces over the
+        # unloading branch's slope at the zero.
+        i = c.index(zero)
+        slope = abs((c[i - 1]["P_N"] - zero["P_N"]) / (c[i - 1]["delta_mm"] - zero["delta_mm"]))  # [N/mm]
+        P_peak = max(r["P_N"] for r in c)
+        tol = (2 * 1e-6 + newton_bound(s["steps"] + 1, max(solved_unknowns(s), solved_unknowns(s_condensed)))) \
+            * P_peak / slope  # [mm]
+        check(abs(perm[0] - perm_condensed) <= tol,
               f"whole model: permanent displacement {perm[0] * 1e3:.6f} um, "
-              f"condensed {perm_condensed * 1e3:.6f} um")
+              f"condensed {perm_condensed * 1e3:.6f} um (to {tol * 1e3:.1e} um)")
 
 # 3. Friction + adhesion: unload before and after the peak.
 fig10 = COARSE_MESH + FRICTION_2 + EXP_SOFT
