@@ -203,7 +203,8 @@ void check_fits(const ResourceEstimate& e, const mesh::MeshInput& in, bool force
       << e.describe() << ")";
   if (in.pushout)
     m << "; lower mesh.elements_per_quarter (" << in.mesh.elements_per_quarter
-      << ") or mesh.elements_through_thickness (" << in.mesh.elements_through_thickness << ")"
+      << "), mesh.elements_through_thickness (" << in.mesh.elements_through_thickness
+      << ") or mesh.steel_layers (" << in.mesh.steel_layers << ")"
       << (in.mesh.degree == 2 ? ", or use mesh.degree = 1" : std::string());
   if (machine && e.others_here > 0)
     m << "; or run fewer cases at once (a larger --ranks-per-case, or fewer processes)";

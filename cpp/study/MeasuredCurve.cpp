@@ -12,11 +12,16 @@
 
 namespace pushout::study
 {
-MeasuredCurve read_measured(const std::filesystem::path& file)
+std::string read_measured_text(const std::filesystem::path& file)
 {
   // A measured curve is some thousands of rows: 64 MiB is not one.
-  std::istringstream in(read_input_file(file, "--data '" + file.string() + "'",
-                                        std::uintmax_t(64) << 20, "a measured curve"));
+  return read_input_file(file, "--data '" + file.string() + "'", std::uintmax_t(64) << 20,
+                         "a measured curve");
+}
+
+MeasuredCurve parse_measured(const std::string& text, const std::filesystem::path& file)
+{
+  std::istringstream in(text);
   std::string line;
   if (!std::getline(in, line))
     throw SceneError("--data '" + file.string() + "' is empty");

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace pushout::study
@@ -12,9 +13,13 @@ struct MeasuredCurve
 {
   std::vector<double> delta, tau;
 };
-/// Reads `file` (CSV with a header naming delta_mm and tau_MPa; other
-/// columns ignored); throws SceneError saying what is wrong.
-MeasuredCurve read_measured(const std::filesystem::path& file);
+/// The text of the measured curve's `file` (refused if no file of
+/// reasonable size). Throws SceneError.
+std::string read_measured_text(const std::filesystem::path& file);
+/// The curve in `text`, read from `file` (CSV with a header naming
+/// delta_mm and tau_MPa; other columns ignored); throws SceneError saying
+/// what is wrong.
+MeasuredCurve parse_measured(const std::string& text, const std::filesystem::path& file);
 
 /// tau of the curve (delta, tau) at d, linear between its points, its
 /// first/last value outside them.
