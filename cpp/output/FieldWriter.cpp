@@ -17,6 +17,37 @@ FieldWriter::FieldWriter(const model::Model& model, const std::filesystem::path&
                                                         dir / (prefix + "interface.h5")},
       _stress(model)
 {
+  try
+  {
+    open(prefix);
+  }
+  catch (...)
+  {
+    remove_files(prefix);
+    throw;
+  }
+}
+
+void FieldWriter::remove_files(const std::string& prefix) const noexcept
+{
+  int rank = 0;
+  MPI_Comm_rank(_model.comm(), &rank);
+  if (rank != 0)
+    return;
+  for (const char* name : {"fields", "interface", "cracks"})
+    for (const char* ext : {".xdmf", ".h5"})
+    {
+      const std::filesystem::path f = _dir / (prefix + name + ext);
+      std::error_code ec;
+      if (std::filesystem::is_regular_file(f, ec))
+        std::filesystem::remove(f, ec);
+    }
+}
+
+void FieldWriter::open(const std::string& prefix)
+{
+  const model::Model& model = _model;
+  const std::filesystem::path& dir = _dir;
   namespace fem = dolfinx::fem;
   MPI_Comm comm = model.comm();
   silence_hdf5();

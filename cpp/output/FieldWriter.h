@@ -26,7 +26,9 @@ class FieldWriter
 public:
   /// The files dir/PREFIXfields.xdmf, PREFIXinterface.xdmf (and
   /// PREFIXcracks.xdmf with crack planes), with their .h5 (`prefix`:
-  /// "corrosion_" for the corrosion stage's).
+  /// "corrosion_" for the corrosion stage's). If they cannot be opened
+  /// with the mesh in them (a full disk), none is left behind: they would
+  /// hold no step.
   FieldWriter(const model::Model& model, const std::filesystem::path& dir,
               const std::string& prefix = "");
   /// Closes the files if close() was not called (an error there is not
@@ -41,6 +43,10 @@ public:
   void close();
 
 private:
+  /// The constructor's work: the files opened, the mesh written.
+  void open(const std::string& prefix);
+  /// Removes the files open() may have made (rank 0; those that are files).
+  void remove_files(const std::string& prefix) const noexcept;
   /// The bytes of the HDF5 files so far (rank 0).
   std::uintmax_t data_bytes() const;
   /// Throws cannot_write(fields.xdmf) on every process if the next step may

@@ -135,6 +135,19 @@ try:
 finally:
     unmount(d)
 
+# No room for the fields' mesh: exit 1, and none of their files is left
+# (they hold no step; a fields.h5 cut short was left).
+d = mount("128k")
+try:
+    fill(d, base_pages + 4)
+    out = os.path.join(d, "out")
+    p = run(out, ["output.xdmf=true"])
+    check_outcome("no room for the fields' mesh", p, out, "fields.xdmf")
+    left = [f for f in os.listdir(out) if f.split(".")[0] in ("fields", "interface")]
+    check(not left, f"no room for the fields' mesh: none of their files left: {left}")
+finally:
+    unmount(d)
+
 # fields.xdmf fills the disk: one line and exit 1, not HDF5's abort (SIGABRT,
 # an HDF5 error stack, no summary.json; under mpirun exit 134 everywhere).
 for n in (None, 2):
