@@ -1,6 +1,8 @@
 #include "plot.h"
 #include <csignal>
 #include <cstdlib>
+#include <string>
+#include <sys/wait.h>
 #include <utility>
 #include <vector>
 
@@ -37,6 +39,17 @@ std::string quote(const std::string& s)
   return q + "'";
 }
 
+/// How a child ended, from its wait status (std::system, pclose): "exit
+/// 1", "signal 9".
+std::string ended(int status)
+{
+  if (WIFEXITED(status))
+    return "exit " + std::to_string(WEXITSTATUS(status));
+  if (WIFSIGNALED(status))
+    return "signal " + std::to_string(WTERMSIG(status));
+  return "status " + std::to_string(status);
+}
+
 std::string script_path(const char* script)
 {
   return (std::filesystem::path(PUSHOUT_SCRIPTS_DIR) / script).string();
@@ -53,7 +66,8 @@ bool run_script(const std::vector<std::string>& args, std::string& why)
   const int rc = std::system(cmd.c_str());
   if (rc != 0)
   {
-    why = "plot script failed (exit " + std::to_string(rc) + "): " + cmd;
+    why =
+        "plot script failed (" + (rc == -1 ? std::string("not started") : ended(rc)) + "): " + cmd;
     return false;
   }
   return true;
@@ -119,7 +133,7 @@ bool CurvePlotter::finish(std::string& why)
   const int rc = pclose(std::exchange(_pipe, nullptr));
   if (rc != 0 || _failed)
   {
-    why = "plot script failed (exit " + std::to_string(rc) + ")";
+    why = "plot script failed (" + (rc == -1 ? std::string("not waited for") : ended(rc)) + ")";
     return false;
   }
   return true;
