@@ -93,7 +93,8 @@ void lock(const fs::path& dir)
   const fs::path file = dir / ".pushout.lock";
   const int fd = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
   if (fd < 0)
-    throw FolderError("--out '" + dir.string() + "': cannot create or write this folder");
+    throw FolderError("--out '" + dir.string() + "': cannot create or write this folder (" +
+                      file.filename().string() + ": " + std::strerror(errno) + ")");
   if (::flock(fd, LOCK_EX | LOCK_NB) != 0)
   {
     if (errno != EWOULDBLOCK)
@@ -163,6 +164,11 @@ void claim(const fs::path& dir, const std::vector<fs::path>& inputs)
   std::error_code status;
   if (fs::exists(dir, status) && !fs::is_directory(dir, status))
     throw FolderError("--out '" + dir.string() + "' is a file, not a folder: name another");
+  // A symbolic link to nothing: create_directories says the name exists.
+  if (fs::is_symlink(fs::symlink_status(dir, status)) && !fs::exists(dir, status))
+    throw FolderError("--out '" + dir.string() + "' is a symbolic link to nothing (" +
+                      fs::read_symlink(dir, status).string() +
+                      "): name another, or make its target");
   if (ec || !fs::is_directory(dir, status))
     throw FolderError("--out '" + dir.string() + "': cannot create or write this folder (" +
                       (ec ? ec.message() : std::string("not a folder")) + ")");

@@ -120,3 +120,16 @@ p = subprocess.run(cmd + ["--vary", "interface.0.mu=0.3"], capture_output=True, 
                    timeout=300)
 cases = sorted(f for f in os.listdir(out) if f.startswith("case_"))
 check(p.returncode == 0 and cases == ["case_000"], f"then one of 1 case leaves only its own: {cases}")
+
+# Folders that cannot be used, each said with its reason: a symbolic link to
+# nothing (it was "File exists"), a lock that is a folder (no reason given).
+dangling = os.path.join(ROOT, "dangling")
+os.symlink(os.path.join(ROOT, "nowhere", "x"), dangling)
+p = run(dangling)
+check(p.returncode == 2 and "symbolic link to nothing" in p.stderr and not os.path.exists(dangling),
+      f"--out a symbolic link to nothing: exit {p.returncode}, {p.stderr.strip()!r}")
+locked = os.path.join(ROOT, "lock_folder")
+os.makedirs(os.path.join(locked, ".pushout.lock"))
+p = run(locked)
+check(p.returncode == 2 and ".pushout.lock: Is a directory" in p.stderr,
+      f"a lock that is a folder: exit {p.returncode}, {p.stderr.strip()!r}")
