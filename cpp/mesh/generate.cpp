@@ -258,7 +258,8 @@ std::filesystem::path default_cache_dir()
 {
   if (const char* d = std::getenv("PUSHOUT_CACHE_DIR"); d && *d)
     return d;
-  if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d)
+  // A relative XDG_CACHE_HOME is not one (the XDG base directory spec).
+  if (const char* d = std::getenv("XDG_CACHE_HOME"); d && std::filesystem::path(d).is_absolute())
     return std::filesystem::path(d) / "pushout";
   if (const char* d = std::getenv("HOME"); d && *d)
     return std::filesystem::path(d) / ".cache" / "pushout";

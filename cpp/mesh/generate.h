@@ -24,8 +24,8 @@ MeshData generate(const MeshInput& in, const std::filesystem::path& cache_dir, b
 /// then reads it, unless it is found unreadable). On this process alone.
 bool in_cache(const MeshInput& in, const std::filesystem::path& cache_dir);
 
-/// Default cache folder: $PUSHOUT_CACHE_DIR, else $XDG_CACHE_HOME/pushout,
-/// else ~/.cache/pushout.
+/// Default cache folder: $PUSHOUT_CACHE_DIR, else $XDG_CACHE_HOME/pushout
+/// (an absolute path: a relative one is ignored), else ~/.cache/pushout.
 std::filesystem::path default_cache_dir();
 
 /// The extension of the cache's mesh files.
