@@ -52,3 +52,13 @@ def arguments(doc, out_folder, repeat=False):
     if repeat and args.repeat < 1:
         ap.error(f"--repeat must be at least 1, not {args.repeat}")
     return args
+
+
+def check_only(args, known):
+    """Exits 2 if --only names a case not among `known` (a typo ran nothing
+    and wrote an empty table over the committed one)."""
+    unknown = [c for c in (args.only or []) if c not in known]
+    if unknown:
+        print(f"{os.path.basename(sys.argv[0])}: --only {' '.join(unknown)}: no such case "
+              f"(the cases: {', '.join(known)})", file=sys.stderr)
+        raise SystemExit(2)

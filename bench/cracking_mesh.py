@@ -25,7 +25,8 @@ import os
 import sys
 import time
 
-from common import ROOT, arguments, curve, markdown_table, pushout_runs, run, summary, write_csv
+from common import (ROOT, arguments, check_only, curve, markdown_table, pushout_runs, run, summary,
+                    write_csv)
 
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 import embedded_study  # noqa: E402
@@ -84,6 +85,7 @@ def plot(rows, folders):
 
 def main():
     args = arguments(__doc__, "bench_cracking_mesh")
+    check_only(args, [f"{m[0]}x{m[1]}" for m in MESHES])
     scene = embedded_study.write_scene(args.out)
     rows, folders = [], []
     for mesh in MESHES:

@@ -61,7 +61,8 @@ import statistics
 import sys
 import time
 
-from common import ROOT, arguments, curve, markdown_table, pushout_runs, run, summary, write_csv
+from common import (ROOT, arguments, check_only, curve, markdown_table, pushout_runs, run, summary,
+                    write_csv)
 
 RESULTS = os.path.join(ROOT, "bench", "results")
 
@@ -100,6 +101,7 @@ def main():
         "embedded_fine": (embedded, ["cracking.integration=implicit", "corrosion.steps=100",
                                      "loading.steps=160"], 1),
     }
+    check_only(args, list(cases))
     chosen = [name for name in cases if not args.only or name in args.only]
     walls = {name: [] for name in chosen}  # [s] of each round's run
     for round_ in range(args.repeat):

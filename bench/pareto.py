@@ -105,7 +105,7 @@ def pareto(points):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--pushout", default=PUSHOUT)
-    ap.add_argument("--only", nargs="+", default=["fig10", "fig7"])
+    ap.add_argument("--only", nargs="+", default=["fig10", "fig7"], choices=["fig10", "fig7"])
     ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results"))
     ap.add_argument("--work", default=os.path.join(ROOT, "results", "pareto"))
     ap.add_argument("--reuse", action="store_true")

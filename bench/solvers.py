@@ -58,7 +58,7 @@ SCENES = {
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--pushout", default=PUSHOUT)
-    ap.add_argument("--only", nargs="+", default=list(SCENES))
+    ap.add_argument("--only", nargs="+", default=list(SCENES), choices=list(SCENES))
     ap.add_argument("--solvers", nargs="+", default=list(SOLVERS))
     ap.add_argument("--timeout", type=float, default=3600, help="per run [s]")
     ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results"))

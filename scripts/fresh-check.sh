@@ -24,7 +24,8 @@ while (($#)); do
   case "$1" in
     --worktree) worktree=1 ;;
     --keep) keep=1 ;;
-    --root) root="$2"; shift ;;
+    --root) [ $# -ge 2 ] || { echo "fresh-check: --root needs a folder (see --help)" >&2; exit 2; }
+            root="$2"; shift ;;
     -h|--help) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "fresh-check: unknown option $1 (see --help)" >&2; exit 2 ;;
   esac

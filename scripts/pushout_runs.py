@@ -11,6 +11,7 @@ import json
 import os
 import shutil
 import subprocess
+import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PUSHOUT = os.path.join(ROOT, "build", "pushout")
@@ -96,7 +97,10 @@ def converged_before(out):
 
 
 def write_csv(path, rows):
-    """Rows (dicts with the same keys) as a CSV file with a header."""
+    """Rows (dicts with the same keys) as a CSV file with a header. No rows
+    is an error, before the file is touched (an earlier table there stays)."""
+    if not rows:
+        raise SystemExit(f"{os.path.basename(sys.argv[0])}: no rows for {path}: nothing ran")
     os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
     with open(path, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))

@@ -27,12 +27,19 @@ if ((${#missing[@]})); then
   sudo=""
   [ "$(id -u)" -eq 0 ] || sudo="sudo"
   $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
 build_type="${PUSHOUT_BUILD_TYPE:-Release}"
 if [ ! -f build/CMakeCache.txt ]; then
   cmake -S . -B build -DCMAKE_BUILD_TYPE="$build_type" >/dev/null
 fi
-cmake --build build -j"$(nproc)" 2>&1 | grep -vE '^\[ *[0-9]+%\]|^(Consolidate|-- )' || true
-test -x build/pushout || { echo "setup: build failed" >&2; exit 1; }
+# The compiler's words but the progress lines; a failed build fails here
+# (an older build/pushout must not stand in for it).
+status=0
+cmake --build build -j"$(nproc)" >build/build.log 2>&1 || status=$?
+grep -vE '^\[ *[0-9]+%\]|^(Consolidate|-- )' build/build.log >&2 || true
+if [ "$status" -ne 0 ] || [ ! -x build/pushout ]; then
+  echo "setup: build failed (build/build.log)" >&2
+  exit 1
+fi

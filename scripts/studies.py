@@ -92,6 +92,9 @@ ADHESION_LAWS = {
 }
 # delta after the peak where the spread of t_s1 is reported [mm].
 SPREAD_AT_MM = (0.05, 0.2, 1.0)
+# What --only takes (cases() knows each).
+STUDIES = ["fig7", "fig8", "fig10", "retraction", "unload_reload", "laws", "corroded",
+           *embedded_study.STUDIES]
 COLORS = {-5.0: "tab:blue", -10.0: "tab:green", -25.0: "tab:orange", -50.0: "tab:red"}
 
 
@@ -542,7 +545,8 @@ def main():
     ap.add_argument("--quick", action="store_true", help="coarse mesh, few steps")
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
     ap.add_argument("--only", nargs="+",
-                    default=["fig7", "fig8", "fig10", "retraction", "unload_reload", "laws"])
+                    default=["fig7", "fig8", "fig10", "retraction", "unload_reload", "laws"],
+                    choices=STUDIES)
     ap.add_argument("--no-render", action="store_true",
                     help="run the fig8 case but do not render its maps (ParaView)")
     ap.add_argument("--reuse", action="store_true",
@@ -565,7 +569,13 @@ def main():
                    for study, name, scene, sets in todo}
         for f in concurrent.futures.as_completed(futures):
             study, name = futures[f]
-            seconds[f"{study}/{name}"] = f.result()
+            try:
+                seconds[f"{study}/{name}"] = f.result()
+            except (pushout_runs.RunError, OSError) as e:
+                # The set's figures need every run: the others are not waited for.
+                for other in futures:
+                    other.cancel()
+                raise SystemExit(f"studies.py: {study}/{name}: {e}")
             try:
                 runs[(study, name)] = pushout_runs.curve(os.path.join(args.out, study, name))
             except OSError:  # a run that failed before its push (reported with its table)
