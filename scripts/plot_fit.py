@@ -8,6 +8,7 @@ import argparse
 import csv
 import json
 import os
+import sys
 
 import matplotlib
 
@@ -22,6 +23,8 @@ def main():
     args = ap.parse_args()
     with open(os.path.join(args.folder, "fit.csv"), newline="") as f:
         data = list(csv.DictReader(f))
+    if not data:
+        raise ValueError(f"{os.path.join(args.folder, 'fit.csv')} has no rows: not a fit's table")
     fig, ax = plt.subplots(figsize=(7, 4.5), dpi=120)
     ax.plot([float(r["delta_mm"]) * 1e3 for r in data], [float(r["tau_data_MPa"]) for r in data],
             "o", ms=3, color="0.4", label="measured")
@@ -50,4 +53,9 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    # A file that cannot be read or written, or is not the table it should
+    # be: one line, exit 1 (not a traceback).
+    try:
+        main()
+    except (OSError, ValueError, KeyError) as e:
+        sys.exit(f"plot_fit.py: error: {e}")

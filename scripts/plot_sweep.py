@@ -12,6 +12,7 @@ Usage: plot_sweep.py DIR OUT.png
 import argparse
 import csv
 import os
+import sys
 
 import matplotlib
 import numpy as np
@@ -68,6 +69,8 @@ def main():
     with open(os.path.join(args.folder, "sweep.csv"), newline="") as f:
         reader = csv.DictReader(f)
         rows = list(reader)
+        if not reader.fieldnames or not rows:
+            raise ValueError(f"{f.name} has no cases: not a sweep's table")
         keys = []
         for k in reader.fieldnames[1:]:
             if k.startswith(COMPUTED):
@@ -115,4 +118,9 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    # A file that cannot be read or written, or is not the table it should
+    # be: one line, exit 1 (not a traceback).
+    try:
+        main()
+    except (OSError, ValueError, KeyError) as e:
+        sys.exit(f"plot_sweep.py: error: {e}")
