@@ -209,16 +209,29 @@ def four_cracks_scene(out):
 
 
 def run_case(pushout, study, folder, scene, sets, quick, reuse):
-    if reuse and pushout_runs.converged_before(folder):
-        return 0.0
-    t0 = time.time()
     path = os.path.join(DEMO, scene)
     if scene in (FOUR_CRACKS, embedded_study.SCENE) or scene.startswith("laws/"):
         path = os.path.join(os.path.dirname(os.path.dirname(folder)), scene)
+    all_sets = ["output.plot=false"] + sets + mesh_sets(study, quick)
+    # What made the run, beside it: --reuse keeps only a run of the same
+    # scene and values (not a --quick run for a full set).
+    made_by = os.path.join(folder, "studies_run.json")
+    this_run = {"scene": path, "sets": all_sets}
+    if reuse and pushout_runs.converged_before(folder):
+        try:
+            with open(made_by) as f:
+                if json.load(f) == this_run:
+                    return 0.0
+        except (OSError, ValueError):
+            pass
+    t0 = time.time()
     # One core per run: the runs go side by side. A corroded case that does
     # not converge is reported, not fatal.
-    pushout_runs.run(pushout, path, folder, ["output.plot=false"] + sets + mesh_sets(study, quick),
-                     one_thread=True, check=not study.startswith("corroded"))
+    pushout_runs.run(pushout, path, folder, all_sets, one_thread=True,
+                     check=not study.startswith("corroded"))
+    os.makedirs(folder, exist_ok=True)  # (a run refused before its folder)
+    with open(made_by, "w") as f:
+        json.dump(this_run, f)
     return time.time() - t0
 
 
