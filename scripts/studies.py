@@ -563,7 +563,8 @@ def main():
     ap.add_argument("--no-render", action="store_true",
                     help="run the fig8 case but do not render its maps (ParaView)")
     ap.add_argument("--reuse", action="store_true",
-                    help="keep runs that already converged in OUT (after an interrupted set)")
+                    help="keep runs that already converged in OUT from the same scene and values "
+                         "(after an interrupted set)")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     if "corroded" in args.only:
