@@ -19,6 +19,7 @@ interface's where its corners lie on one circle about the axis. Prints
 what it drew: the unrolled extent and the cells kept of interface.xdmf's.
 """
 import argparse
+import sys
 import os
 
 from paraview.simple import (AssignViewToLayout, ColorBy, CreateLayout, CreateRenderView,
@@ -83,13 +84,28 @@ def main():
     ap.add_argument("--time", type=float, default=None)
     ap.add_argument("--title", default="")
     args = ap.parse_args()
+    # What it needs, said in one line (ParaView's own errors name its proxies).
+    xdmf = os.path.join(args.run_dir, "interface.xdmf")
+    try:
+        with open(xdmf) as f:
+            text = f.read()
+    except OSError as e:
+        sys.exit(f"render_interface.py: error: cannot read {xdmf} ({e.strerror}): "
+                 "run the scene with --set output.xdmf=true")
+    missing = [field for field in args.fields if f'Name="{field}"' not in text]
+    if missing:
+        sys.exit(f"render_interface.py: error: {xdmf} has no field {', '.join(missing)}")
     if args.center is None:
         import tomllib  # Python 3.11 (Debian 12's pvbatch); --center needs none
 
-        with open(os.path.join(args.run_dir, "scene.toml"), "rb") as f:
-            args.center = tomllib.load(f)["geometry"]["tube_center"]
+        scene = os.path.join(args.run_dir, "scene.toml")
+        try:
+            with open(scene, "rb") as f:
+                args.center = tomllib.load(f)["geometry"]["tube_center"]
+        except (OSError, ValueError, KeyError) as e:
+            sys.exit(f"render_interface.py: error: no tube axis from {scene} ({e}): give --center X Y")
 
-    reader = XDMFReader(FileNames=[os.path.join(args.run_dir, "interface.xdmf")])
+    reader = XDMFReader(FileNames=[xdmf])
     reader.UpdatePipelineInformation()
     times = list(reader.TimestepValues) or [0.0]
     t = times[-1] if args.time is None else args.time
