@@ -14,6 +14,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import pushout_runs  # noqa: E402  (beside this script)
 
 
 def main():
@@ -39,10 +40,13 @@ def main():
     if os.path.exists(fit_json):
         with open(fit_json) as f:
             fit = json.load(f)
+        short = pushout_runs.short_key_names(list(fit["parameters"]))
         title = ", ".join(
-            f"{k.split('.')[-1]} = {v:.4g}" + (f" ± {fit['standard_errors'][k]:.2g}"
-                                               if fit["standard_errors"].get(k) is not None else "")
-            for k, v in fit["parameters"].items()) + f"  (rms {fit['rms_MPa']:.3g} MPa)"
+            f"{short[k]} = {v:.4g}" + (f" ± {fit['standard_errors'][k]:.2g}"
+                                       if fit["standard_errors"].get(k) is not None else "")
+            for k, v in fit["parameters"].items())
+        if fit.get("rms_MPa") is not None:
+            title += f"  (rms {fit['rms_MPa']:.3g} MPa)"
     ax.axhline(0, color="0.6", lw=0.5)
     ax.set(xlabel="tube displacement $\\delta$ [µm]", ylabel="nominal bond stress $\\tau$ [MPa]")
     ax.set_title(title, fontsize=8)

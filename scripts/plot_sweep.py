@@ -19,6 +19,7 @@ import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import pushout_runs  # noqa: E402  (beside this script)
 
 # The first columns of sweep.csv after `case` are the varied keys, up to the
 # first of the computed ones.
@@ -79,6 +80,7 @@ def main():
     fig, ax = plt.subplots(figsize=(7.5, 4.8), dpi=120)
     seeded = SEED in keys and len({r[SEED] for r in rows}) >= 2
     others = [k for k in keys if k != SEED] if seeded else keys
+    short = pushout_runs.short_key_names(others)
     groups = {}  # the other keys' values -> the group's rows, in order
     for row in rows:
         groups.setdefault(tuple(row[k] for k in others), []).append(row)
@@ -86,7 +88,7 @@ def main():
         # A seed group's band needs a colour that stands out on white.
         color = (plt.cm.tab10(i) if seeded and len(groups) <= 10
                  else plt.cm.viridis(i / max(1, len(groups) - 1)))
-        label = ", ".join(f"{k.split('.')[-1]} {v}" for k, v in zip(others, values))
+        label = ", ".join(f"{short[k]} {v}" for k, v in zip(others, values))
         curves = []
         for row in members:
             read = read_curve(args.folder, row)

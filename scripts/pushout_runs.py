@@ -96,6 +96,19 @@ def converged_before(out):
         return False
 
 
+def short_key_names(keys):
+    """Each scene key by its last parts, as few as tell it from the others
+    (interface.0.k and interface.1.k: "0.k" and "1.k"; mu alone: "mu")."""
+    names = {}
+    for k in keys:
+        parts = k.split(".")
+        n = 1
+        while n < len(parts) and sum(o.split(".")[-n:] == parts[-n:] for o in keys) > 1:
+            n += 1
+        names[k] = ".".join(parts[-n:])
+    return names
+
+
 def write_csv(path, rows):
     """Rows (dicts with the same keys) as a CSV file with a header. No rows
     is an error, before the file is touched (an earlier table there stays)."""
