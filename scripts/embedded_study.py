@@ -16,6 +16,7 @@ crack patterns after corrosion to 50 um, one per seed.
 import csv
 import os
 import statistics
+import sys
 
 import plot_curve
 import pushout_runs
@@ -101,7 +102,11 @@ def run_table(out, runs, study):
     for name in sorted(n for (s_, n) in runs if s_ == study):
         folder = os.path.join(out, study, name)
         rows = runs[(study, name)]
-        s = pushout_runs.summary(folder)
+        try:
+            s = pushout_runs.summary(folder)
+        except (OSError, ValueError):  # refused before it wrote one
+            print(f"{study} {name}: no summary.json (the run's words are its stderr)")
+            continue
         if not s["converged"] or not rows:
             print(f"{study} {name}: did not converge: {s['message']}")
             continue
@@ -229,6 +234,7 @@ def report(plt, out, runs, study="corroded_embedded"):
     seeds) and the two figures; returns the group rows."""
     table = run_table(out, runs, study)
     if not table:
+        print(f"{study}: no run converged: no table, no figure", file=sys.stderr)
         return []
     seeds = sorted({parse(n)[2] for (s_, n) in runs if s_ == study})
     groups = group_table(table, runs, study)

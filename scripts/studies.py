@@ -435,8 +435,13 @@ def plot_corroded(out, runs):
     for name in sorted({n for (study, n) in runs if study == "corroded"}):
         folder = os.path.join(out, "corroded", name)
         rows = runs[("corroded", name)]
-        if not pushout_runs.summary(folder)["converged"]:
-            print(f"corroded {name}: did not converge: {pushout_runs.summary(folder)['message']}")
+        try:
+            s = pushout_runs.summary(folder)
+        except (OSError, ValueError):  # refused before it wrote one
+            print(f"corroded {name}: no summary.json (the run's words are its stderr)")
+            continue
+        if not s["converged"]:
+            print(f"corroded {name}: did not converge: {s['message']}")
             continue
         where, cracks, beta, x = name.split("_")
         corr = pushout_runs.corrosion(folder) if os.path.exists(os.path.join(folder, "corrosion.csv")) else []
@@ -445,10 +450,9 @@ def plot_corroded(out, runs):
                       "crack_width_um": 1e3 * corr[-1]["crack_width_mm"] if corr else 0.0,
                       "tau_peak_MPa": max(r["tau_MPa"] for r in rows),
                       "tau_residual_MPa": rows[-1]["tau_MPa"]})
-    with open(os.path.join(out, "corroded.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(table[0]))
-        w.writeheader()
-        w.writerows(table)
+    if not table:
+        raise SystemExit("studies.py: corroded: no case converged: no table, no figure")
+    pushout_runs.write_csv(os.path.join(out, "corroded.csv"), table)
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.5), dpi=120, sharey=True)
     styles = {("centred", "one"): "o-", ("centred", "four"): "s-", ("cover15", "one"): "o--",
               ("cover15", "four"): "s--"}
