@@ -183,6 +183,9 @@ p.send_signal(signal.SIGTERM)
 _, err = p.communicate(timeout=120)
 waited = time.time() - t0
 check(p.returncode == 143, f"sweep: exit {p.returncode} (143) {err.strip()[-300:]!r}")
+# The program's own bound: a case's phases hold a signal at most
+# stop_grace_s (5 s, common/Interrupt.h) before they are ended, then
+# sweep.csv is written; twice that for a loaded machine.
 check(waited < 10, f"sweep: stopped {waited:.1f} s after SIGTERM")
 check(os.path.exists(os.path.join(out, "sweep.csv")) and not os.path.exists(os.path.join(out, "sweep.png")),
       "sweep: sweep.csv written, no sweep.png")
@@ -248,6 +251,9 @@ for sig in (signal.SIGTERM, signal.SIGINT):
     _, err = p.communicate(timeout=60)
     waited = time.time() - t0
     check(p.returncode == 128 + sig, f"{sig.name} during meshing: exit {p.returncode} = 128 + {int(sig)}")
+    # Meshing's grace is 0 (common/Interrupt.h): the watcher ends it at its
+    # next look, well within stop_grace_s (5 s), the longest any phase may
+    # hold a signal.
     check(waited < 5, f"{sig.name} during meshing: stopped {waited:.2f} s after the signal")
     check("interrupted by " + sig.name + " during meshing" in err, f"{sig.name}: says where: {err.strip()!r}")
     s = summary(out)
