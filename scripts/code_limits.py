@@ -10,6 +10,7 @@
   scripts/code_limits.py [--list N]   (--list N: the N longest functions)
 Exits 1 if a limit is broken, naming the file, line and size.
 """
+import argparse
 import os
 import re
 import sys
@@ -110,6 +111,9 @@ def project_files():
 
 
 def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--list", type=int, default=0, metavar="N", help="also print the N longest functions")
+    count = ap.parse_args().list
     problems = []
     sources = sorted(p for p in (ROOT / "cpp").rglob("*") if p.suffix in (".h", ".cpp"))
     all_functions = []
@@ -137,8 +141,7 @@ def main():
         for k, text_line in enumerate(path.read_text(errors="replace").splitlines(), 1):
             if OUTSIDE_REFERENCE.search(text_line):
                 problems.append(f"{path.relative_to(ROOT)}:{k}: cites a file outside the project")
-    if "--list" in sys.argv:
-        count = int(sys.argv[sys.argv.index("--list") + 1])
+    if count:
         for length, where in sorted(all_functions, reverse=True)[:count]:
             print(f"{length:5d}  {where}")
     for p in problems:

@@ -11,6 +11,7 @@ stepping -> driver -> study. Used by the test include_graph.
   scripts/include_graph.py [--dot]    (--dot: Graphviz text instead)
 """
 import re
+import argparse
 import sys
 from pathlib import Path
 
@@ -65,8 +66,11 @@ def cycles(edges):
 
 
 def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--dot", action="store_true", help="Graphviz text instead")
+    dot = ap.parse_args().dot
     edges = graph()
-    if "--dot" in sys.argv:
+    if dot:
         print("digraph cpp {")
         for a in sorted(edges):
             for b in sorted(edges[a]):
