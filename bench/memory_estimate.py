@@ -11,7 +11,9 @@ bench/results/memory_estimate.csv and .md.
   bench/memory_estimate.py [--pushout build/pushout] [--quick]
 """
 import argparse
+import atexit
 import os
+import shutil
 import tempfile
 import time
 
@@ -44,13 +46,15 @@ QUICK = [c for c in CASES if c[1] * c[2] <= 32 * 8]
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--pushout", default=os.path.join(ROOT, "build", "pushout"))
-    ap.add_argument("--out", default="/tmp/pushout-bench-memory")
+    ap.add_argument("--out", default=os.path.join(tempfile.gettempdir(), "pushout-bench-memory"))
     ap.add_argument("--quick", action="store_true", help="the smaller cases only")
     args = ap.parse_args()
     # Every case meshes, gmsh loaded: the peak of a mesh's first run, which
     # the guard must cover (a run whose mesh is in the cache does not load
     # gmsh, some 40 MB less).
-    os.environ["PUSHOUT_CACHE_DIR"] = tempfile.mkdtemp(prefix="pushout-bench-memory-cache-")
+    cache = tempfile.mkdtemp(prefix="pushout-bench-memory-cache-")
+    atexit.register(shutil.rmtree, cache, ignore_errors=True)
+    os.environ["PUSHOUT_CACHE_DIR"] = cache
     rows = []
     for path, nq, nz, sets, procs, petsc, *scene in (QUICK if args.quick else CASES):
         out = os.path.join(args.out, f"{path.replace(' ', '_')}_{nq}x{nz}")

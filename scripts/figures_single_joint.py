@@ -7,6 +7,8 @@ Usage: scripts/figures_single_joint.py [--pushout build/pushout] [--out docs/fig
 """
 import argparse
 import os
+import shutil
+import sys
 import tempfile
 
 import matplotlib
@@ -34,6 +36,16 @@ def main():
     os.makedirs(args.out, exist_ok=True)
     demo = os.path.join(ROOT, "demo")
     tmp = tempfile.mkdtemp(prefix="pushout-figs-")
+    try:
+        draw(args, demo, tmp)
+    except (OSError, pushout_runs.RunError) as e:
+        sys.exit(f"figures_single_joint.py: error: {e}")
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def draw(args, demo, tmp):
+    """The figures, from runs in `tmp`."""
 
     # Fig. 6: friction 1, -0.1 N per node.
     u, F = run(args.pushout, os.path.join(demo, "single_joint_fig6.toml"), os.path.join(tmp, "fig6"))

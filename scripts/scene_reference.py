@@ -45,8 +45,11 @@ changes a crack's parameter.
 
 
 def generate(pushout):
-    keys = subprocess.run([pushout, "keys"], capture_output=True, text=True, check=True).stdout
-    laws = subprocess.run([pushout, "laws"], capture_output=True, text=True, check=True).stdout
+    try:
+        keys = subprocess.run([pushout, "keys"], capture_output=True, text=True, check=True).stdout
+        laws = subprocess.run([pushout, "laws"], capture_output=True, text=True, check=True).stdout
+    except (OSError, subprocess.CalledProcessError) as e:
+        sys.exit(f"scene_reference.py: error: {pushout} keys/laws: {e}")
     return HEAD + keys.rstrip() + "\n" + LAWS + laws.rstrip() + "\n```\n"
 
 
