@@ -13,6 +13,7 @@ situation that changes how it works:
 It is the default where possible, and solver.condensation = "on" is refused
 with a clear error where it is not."""
 import os
+import re
 
 from common import (COARSE_MESH, EXP_SOFT, FRICTION_2, SOURCE, THROUGH_PEAK, check, curve, newton_bound, out_dir, run,
                     solved_unknowns, summary)
@@ -38,17 +39,20 @@ for name, (scene, sets) in cases.items():
     a, b = curve(condensed), curve(plain)
     check(len(a) == len(b) and sc["converged"], f"{name}: both converged, {len(a)} rows")
     columns = [c for c in b[0] if c not in ("step", "newton_iterations", "cuts", "wall_s")]
-    worst, worst_column = 0.0, ""
+    # Each run converged every step (the corrosion stage's too) to Newton's
+    # tolerance, summing in its own order: that bounds the sums of nodal
+    # forces (P, tau, the mean pressures). Not the displacements, slips,
+    # damage and pointwise tractions: their error is the residual over the
+    # softening joints' tangent, which Newton's test does not bound: 1e-6
+    # there.
+    bound = newton_bound(max(s["steps"] + s.get("corrosion_steps", 0) + 1 for s in (sc, sp)),
+                         max(solved_unknowns(sc), solved_unknowns(sp)))
     for c in columns:
+        summed = c in ("P_N", "tau_MPa", "p_MPa") or re.fullmatch(r"p_\d+_MPa", c)
+        tol = bound if summed else max(bound, 1e-6)
         scale = max(abs(r[c]) for r in b) or 1.0
         diff = max(abs(x[c] - y[c]) for x, y in zip(a, b)) / scale
-        if diff >= worst:
-            worst, worst_column = diff, c
-    # Each run converged every step (the corrosion stage's too) to Newton's
-    # tolerance, summing in its own order.
-    tol = newton_bound(max(s["steps"] + s.get("corrosion_steps", 0) + 1 for s in (sc, sp)),
-                       max(solved_unknowns(sc), solved_unknowns(sp)))
-    check(worst <= tol, f"{name}: largest relative difference {worst:.1e} ({worst_column}) <= {tol:.1e}")
+        check(diff <= tol, f"{name}: {c}: relative difference {diff:.1e} <= {tol:.1e}")
 
 # The whole model's lagged preconditioner is refreshed when the constrained
 # dofs change (tube top free in the thermal step, held in the push): no cut.

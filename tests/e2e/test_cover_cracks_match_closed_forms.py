@@ -80,12 +80,18 @@ run(scene(x, 2, angles), whole, sets=["solver.condensation=off"])
 check(summary(out)["condensed_dofs"] > 0 and summary(whole)["condensed_dofs"] == 0,
       "condensed by default, whole model when asked")
 condensed, whole_model = corrosion(out)[-1], corrosion(whole)[-1]
-# Each run converged every step to Newton's tolerance, summing in its order.
+# Each run converged every step to Newton's tolerance, summing in its order:
+# that bounds the pressure (a force). Not the openings: their error is the
+# residual over the softening cracks' tangent, which Newton's test on the
+# forces does not bound (1.3e-7 on a fresh machine where the pressure's
+# bound was 8.7e-8): 1e-6 of the opening, a thousandth of the micrometre
+# the study reads them to.
 agree = newton_bound(len(corrosion(whole)) + len(curve(whole)),
                      max(solved_unknowns(summary(o)) for o in (out, whole)))
-for column in ("p_MPa", "crack_width_mm", "w_crack_0_mm", "w_crack_3_mm"):
+for column, tol in (("p_MPa", agree), ("crack_width_mm", 1e-6), ("w_crack_0_mm", 1e-6),
+                    ("w_crack_3_mm", 1e-6)):
     diff = abs(condensed[column] - whole_model[column]) / abs(whole_model[column])
-    check(diff <= agree, f"condensed and whole model: {column} agrees to {diff:.1e} (<= {agree:.1e})")
+    check(diff <= tol, f"condensed and whole model: {column} agrees to {diff:.1e} (<= {tol:.1e})")
 
 # 2. Rigid segments.
 out = out_dir("cracks_rigid_segments")
@@ -96,14 +102,16 @@ out = out_dir("cracks_rigid_segments")
 # (model.symmetry "symmetric") each crack's mirror image opens as it does,
 # so the 180 and 270 degree cracks cannot localise against the 0 and 90;
 # those two lie on the cut's two planes, which the quarter's diagonal maps
-# onto each other, and open alike to Newton's bound.
+# onto each other, and open alike: to 1e-6 (openings are displacements, whose
+# error Newton's test on the forces does not bound, as above), or
+# Newton's bound where larger.
 run(scene(0.06, 30, [0.0, 90.0, 180.0, 270.0], mu=0.0), out,
     sets=["solver.condensation=off", 'model.symmetry="symmetric"'])
 rows = corrosion(out)
 last = rows[-1]
 widths = [last[f"w_crack_{i}_mm"] for i in range(4)]
 w = sum(widths) / 4
-alike = newton_bound(len(rows), solved_unknowns(summary(out)))
+alike = max(newton_bound(len(rows), solved_unknowns(summary(out))), 1e-6)
 check(max(widths) - min(widths) <= alike * w, f"the four mouths open alike (to {alike:.1e}): {widths}")
 check(abs(last["crack_width_mm"] - max(widths)) < 1e-15, "crack_width_mm is the largest mouth")
 check(w > 10 * f_t / k_crack and all(cr["max_damage"] > 0.99 for cr in summary(out)["cracks"]),

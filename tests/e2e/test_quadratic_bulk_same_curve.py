@@ -27,8 +27,10 @@ check(sq["symmetry"] == "quarter" and sq["condensed_dofs"] > 0 and sf["symmetry"
       f"P2: quarter model condensed onto {sq['condensed_dofs']} jumps; reference {sf['dofs']} dofs")
 a, b = curve(quarter), curve(full)
 check(len(a) == len(b) == 11, "P2: both converged through 10 steps")
-tol = newton_bound(len(b), max(solved_unknowns(sq), solved_unknowns(sf)))
-for key in ("P_N", "p_MPa", "slip_mm"):
+bound = newton_bound(len(b), max(solved_unknowns(sq), solved_unknowns(sf)))
+# Newton's test bounds the forces; the slip's error is the residual over the
+# softening joints' tangent, which it does not bound: 1e-6 there.
+for key, tol in (("P_N", bound), ("p_MPa", bound), ("slip_mm", max(bound, 1e-6))):
     scale = max(abs(r[key]) for r in b)
     diff = max(abs(x[key] - y[key]) for x, y in zip(a, b))
     check(diff <= tol * scale,

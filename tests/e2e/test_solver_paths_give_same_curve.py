@@ -54,8 +54,10 @@ for name, sets in (("lagged", ["solver.condensation=off"]),
               f"{name}: the whole model's LU {'in single' if single else 'in double'} precision")
     a = curve(out)
     check(len(a) == 11, f"{name}: converged through 10 steps")
-    tol = newton_bound(len(ref), max(solved_unknowns(summary(out)), solved_unknowns(summary(plain))))
-    for key in ("P_N", "p_MPa", "slip_mm"):
+    bound = newton_bound(len(ref), max(solved_unknowns(summary(out)), solved_unknowns(summary(plain))))
+    # Newton's test bounds the forces; the slip's error is the residual over
+    # the softening joints' tangent, which it does not bound: 1e-6 there.
+    for key, tol in (("P_N", bound), ("p_MPa", bound), ("slip_mm", max(bound, 1e-6))):
         s = max(abs(r[key]) for r in ref)
         diff = max(abs(x[key] - y[key]) for x, y in zip(a, ref))
         check(diff <= tol * s, f"{name}: max |{key} - plain| = {diff:.2e} <= {tol:.1e} x {s:.4g}")
