@@ -115,6 +115,15 @@ bool start_petsc(char* program, std::vector<std::string>& options)
   return true;
 }
 
+namespace
+{
+/// "OPTION TYPE: WHY" where a solver's `type` is not pushout's `ours`, else "".
+std::string another_type(const char* option, const char* type, const char* ours, const char* why)
+{
+  return type && std::string(type) != ours ? std::string(option) + " " + type + ": " + why : "";
+}
+} // namespace
+
 std::string petsc_option_error()
 {
   using pushout::petsc::check;
@@ -130,10 +139,9 @@ std::string petsc_option_error()
     // converged; qn failed inside) is no solver of pushout's.
     SNESType type = nullptr;
     check(SNESGetType(snes, &type), "SNESGetType");
-    if (type && std::string(type) != SNESNEWTONLS)
-      error = std::string("-snes_type ") + type +
-              ": pushout's load steps run Newton's method with a line search (newtonls, the "
-              "default; -snes_linesearch_type chooses the line search)";
+    error = another_type("-snes_type", type, SNESNEWTONLS,
+                         "pushout's load steps run Newton's method with a line search "
+                         "(newtonls, the default; -snes_linesearch_type chooses the line search)");
     KSP ksp;
     check(SNESGetKSP(snes, &ksp), "SNESGetKSP");
     check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
@@ -146,8 +154,9 @@ std::string petsc_option_error()
   if (!error.empty())
     return error;
   // A fit's solver with each line search it may use (its options are read
-  // by type); every command reads them at its end (unused_options), so a
-  // value it cannot take is refused here.
+  // by type): a value it cannot take is refused before any command, a
+  // fit's before its runs (and another command's TAO options count as
+  // read, as the default solver path's do: unused_petsc_options).
   for (TaoLineSearchType line_search : pushout::solver::fit_line_searches)
   {
     Tao tao;
@@ -160,10 +169,9 @@ std::string petsc_option_error()
       // read Newton's.
       TaoType type = nullptr;
       check(TaoGetType(tao, &type), "TaoGetType");
-      if (type && std::string(type) != TAOBNLS)
-        error = std::string("-tao_type ") + type +
-                ": a fit is Gauss-Newton as TAO's bnls (the default; -tao_ls_type chooses its "
-                "line search)";
+      error = another_type("-tao_type", type, TAOBNLS,
+                           "a fit is Gauss-Newton as TAO's bnls (the default; -tao_ls_type "
+                           "chooses its line search)");
     }
     catch (const pushout::petsc::Error& e)
     {

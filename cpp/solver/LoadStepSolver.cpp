@@ -67,7 +67,10 @@ void LoadStepSolver::check_options(const SolverPart& part, NewtonSolver::Concret
     return given.empty() ? std::string(ours) : given;
   };
   if (part.mixed_precision &&
-      chosen("-ksp_type", single_precision_lu(part, concrete) ? "gmres" : "preonly") == "gmres" &&
+      chosen("-ksp_type", NewtonSolver::gmres_by_default(preconditioner(part, concrete), concrete,
+                                                         part.mixed_precision)
+                              ? "gmres"
+                              : "preonly") == "gmres" &&
       chosen("-pc_type", "lu") == "lu" && chosen("-pc_factor_mat_solver_type", "mumps") == "mumps")
     refuse_side_flexible_gmres_lacks(nullptr);
 }

@@ -117,7 +117,7 @@ void NewtonSolver::set_default_options(Preconditioner pc, Concrete concrete,
   // on that LU lets it be factored in single precision
   // (Equilibrium::configure); in double the LU is the solver.
   const char* krylov[] = {"-ksp_gmres_restart", "-ksp_rtol", "-ksp_max_it", "-ksp_pc_side"};
-  if (pc == Preconditioner::lagged || (concrete == Concrete::cracks && single_precision_lu))
+  if (gmres_by_default(pc, concrete, single_precision_lu))
   {
     set_default("-ksp_type", "gmres");
     set_default(krylov[0], "200");
@@ -153,6 +153,11 @@ bool NewtonSolver::direct_factorization()
   check(PetscOptionsGetString(nullptr, nullptr, "-pc_type", pc_type, sizeof(pc_type), &set),
         "PetscOptionsGetString");
   return !set || std::string(pc_type) == "lu" || std::string(pc_type) == "cholesky";
+}
+
+bool NewtonSolver::gmres_by_default(Preconditioner pc, Concrete concrete, bool single_precision_lu)
+{
+  return pc == Preconditioner::lagged || (concrete == Concrete::cracks && single_precision_lu);
 }
 
 std::string NewtonSolver::user_option(const char* name)

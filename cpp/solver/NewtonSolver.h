@@ -200,6 +200,9 @@ public:
   /// (-ksp_type, -pc_type or -pc_factor_mat_solver_type, not ours:
   /// set_default_options), so that the run does not describe its own.
   static bool linear_solver_from_options();
+  /// Whether set_default_options() makes the KSP GMRES (on the LU), else
+  /// the LU alone (preonly).
+  static bool gmres_by_default(Preconditioner pc, Concrete concrete, bool single_precision_lu);
   /// The value of the PETSc option `name` the user gave, "" if none (or if
   /// it holds a default of ours: set_default_options).
   static std::string user_option(const char* name);

@@ -263,21 +263,12 @@ int prepare(FitOptions& opt, MeasuredCurve& data, std::vector<Free>& free, Resol
       [&]
       {
         read_scene_text(opt);
-        // The data as the first process reads it, for all (one curve, even
-        // where the file is saved between their reads).
-        std::string data_text;
-        mpi::collectively<SceneError>(MPI_COMM_WORLD,
-                                      [&]
-                                      {
-                                        ProcessGroups::check(opt.ranks_per_case);
-                                        if (rank == 0)
-                                          data_text = read_measured_text(opt.data);
-                                      });
-        data_text = mpi::broadcast_from_first(std::move(data_text), MPI_COMM_WORLD);
+        const std::string data_text = read_on_first([&] { return read_measured_text(opt.data); });
         mpi::collectively<SceneError>(
             MPI_COMM_WORLD,
             [&]
             {
+              ProcessGroups::check(opt.ranks_per_case);
               data = parse_measured(data_text, opt.data);
               const Scene scene = scene_of(opt, opt.sets);
               if (!scene.model().pushout())

@@ -7,7 +7,7 @@
 
 namespace pushout::study
 {
-void read_scene_text(ManyRunsOptions& opt)
+std::string read_on_first(const std::function<std::string()>& read)
 {
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
@@ -16,9 +16,14 @@ void read_scene_text(ManyRunsOptions& opt)
                                 [&]
                                 {
                                   if (rank == 0)
-                                    text = Scene::read(opt.scene_file);
+                                    text = read();
                                 });
-  opt.scene_text = mpi::broadcast_from_first(std::move(text), MPI_COMM_WORLD);
+  return mpi::broadcast_from_first(std::move(text), MPI_COMM_WORLD);
+}
+
+void read_scene_text(ManyRunsOptions& opt)
+{
+  opt.scene_text = read_on_first([&] { return Scene::read(opt.scene_file); });
 }
 
 Scene scene_of(const ManyRunsOptions& opt, const std::vector<std::string>& sets)

@@ -4,6 +4,7 @@
 
 #include "../scene/Scene.h"
 #include <filesystem>
+#include <functional>
 #include <mpi.h>
 #include <set>
 #include <string>
@@ -29,10 +30,12 @@ struct ManyRunsOptions
   bool allow_unused = false;           ///< --allow-unused-petsc-options
 };
 
-/// Reads opt.scene_file into opt.scene_text, on the first process of
-/// MPI_COMM_WORLD for all of them (one text, even where the file is saved
-/// between their reads). Throws SceneError, agreed. Collective on
-/// MPI_COMM_WORLD.
+/// The text `read` returns on the first process of MPI_COMM_WORLD, on all
+/// of them (one text, even where its file is saved between their reads).
+/// Throws SceneError, agreed. Collective on MPI_COMM_WORLD.
+std::string read_on_first(const std::function<std::string()>& read);
+
+/// Reads opt.scene_file into opt.scene_text (read_on_first).
 void read_scene_text(ManyRunsOptions& opt);
 
 /// The scene of a run of many: opt.scene_text with the overrides `sets`.
