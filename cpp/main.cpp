@@ -116,7 +116,7 @@ int run_scene(const std::string& scene_file, const std::string& out,
         const driver::RunOptions options{out, pushout::mesh::default_cache_dir(), quiet, force};
         // What refuses the run before its folder is touched: an earlier
         // run's outputs there stay (a typo in a mesh key deleted them).
-        mpi::collectively<SceneError, record::TooLarge>(
+        mpi::collectively<OptionError, SceneError, record::TooLarge>(
             MPI_COMM_WORLD, [&] { driver::check_before_run(scene, options); });
         // The folder is this run's alone, without an earlier run's outputs
         // (output/OutputFiles.h).
@@ -126,7 +126,7 @@ int run_scene(const std::string& scene_file, const std::string& out,
                                                              if (rank == 0)
                                                                output::claim(out, {scene_file});
                                                            });
-        const output::Summary s = mpi::collectively<SceneError, record::TooLarge>(
+        const output::Summary s = mpi::collectively<OptionError, SceneError, record::TooLarge>(
             MPI_COMM_WORLD, [&] { return driver::run(scene, options); });
         if (s.interrupted)
         {

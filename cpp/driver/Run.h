@@ -75,9 +75,9 @@ private:
 /// The refusals a run can make before it touches its output folder (so
 /// that a refused run leaves an earlier run's outputs there as they were):
 /// the scene's checks of its model type and the solver's of its [solver]
-/// part and PETSc options (SceneError), the size guard
+/// part (SceneError) and PETSc options (OptionError), the size guard
 /// (record::TooLarge, unless options.force) and a $PUSHOUT_CACHE_MAX_MB
-/// that is no size (std::runtime_error, exit 1). Collective.
+/// that is no size (OptionError). Collective.
 void check_before_run(const Scene& scene, const RunOptions& options);
 
 /// The solver's refusals of the scene's [solver] part and the user's PETSc

@@ -19,7 +19,7 @@ namespace pushout::driver
 /// output folder that cannot be used (FolderError), else exit_code::failure.
 /// `scene_label`: how a SceneError is named ("error in scene" where the
 /// scene is the command's only input; "error" where its options throw it
-/// too).
+/// too); an OptionError is an "error" always.
 template <class F> int exit_code_of(const std::string& who, const std::string& scene_label, F&& f)
 {
   int rank = 0;
@@ -33,6 +33,10 @@ template <class F> int exit_code_of(const std::string& who, const std::string& s
   try
   {
     return f();
+  }
+  catch (const OptionError& e) // before SceneError, which it is
+  {
+    return say("error", e.what(), exit_code::bad_input);
   }
   catch (const SceneError& e)
   {

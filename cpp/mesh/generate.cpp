@@ -273,8 +273,8 @@ double cache_limit_mb()
     char* end = nullptr;
     const double mb = std::strtod(v, &end);
     if (end == v || *end != '\0' || !(mb >= 0))
-      throw SceneError(std::string("PUSHOUT_CACHE_MAX_MB = '") + v +
-                       "': a size in MB (>= 0) is needed");
+      throw OptionError(std::string("PUSHOUT_CACHE_MAX_MB = '") + v +
+                        "': a size in MB (>= 0) is needed");
     return mb;
   }
   return default_cache_limit_mb;

@@ -81,7 +81,7 @@ template <typename Context> Context* shell_context(PC pc)
 /// what PETSc lets us read of its GMRES options (a user's -ksp_gmres_*):
 /// the restart, the orthogonalisation and its refinement; not
 /// -ksp_gmres_preallocate nor -ksp_gmres_haptol. The tolerances stay.
-/// Throws SceneError where the user's -ksp_pc_side (with the options'
+/// Throws OptionError where the user's -ksp_pc_side (with the options'
 /// `prefix`) asks for a side flexible GMRES has not (PETSc would fail in
 /// the first solve, "does not support preconditioner side LEFT"), saying
 /// what does have it (exit 2). PETSc reads the value as it does (any case).
@@ -92,12 +92,12 @@ inline void refuse_side_flexible_gmres_lacks(const char* prefix)
   petsc::check(PetscOptionsGetEnum(nullptr, prefix, "-ksp_pc_side", PCSides, &side, &given),
                "PetscOptionsGetEnum");
   if (given && PCSide(side) != PC_RIGHT)
-    throw SceneError(std::string("-ksp_pc_side ") +
-                     (PCSide(side) == PC_LEFT ? "left" : "symmetric") +
-                     ": GMRES on the single-precision LU (solver.precision = \"mixed\", the "
-                     "default) is flexible GMRES, which preconditions on the right only; "
-                     "with solver.precision = \"double\" it is GMRES on the LU in double, "
-                     "which preconditions on the left too");
+    throw OptionError(std::string("-ksp_pc_side ") +
+                      (PCSide(side) == PC_LEFT ? "left" : "symmetric") +
+                      ": GMRES on the single-precision LU (solver.precision = \"mixed\", the "
+                      "default) is flexible GMRES, which preconditions on the right only; "
+                      "with solver.precision = \"double\" it is GMRES on the LU in double, "
+                      "which preconditions on the left too");
 }
 
 inline void make_gmres_flexible(KSP ksp)
