@@ -490,9 +490,8 @@ Vec Model::create_vector() const
   return dolfinx::la::petsc::create_vector(index_map(), block_size());
 }
 
-Vec Model::thermal_load(double dT_value) const
+Vec Model::thermal_load() const
 {
-  _materials.dT->value = {dT_value};
   Vec b = create_vector();
   check(VecSet(b, 0.0), "VecSet");
   dolfinx::fem::petsc::assemble_vector(b, *_L_thermal);

@@ -151,8 +151,13 @@ public:
   Vec mean_jump_functional(Jump jump) const;
   Vec mean_axial_slip_functional() const { return mean_jump_functional(Jump::axial_slip); }
 
-  /// Equivalent nodal forces of the thermal strain for `dT` [N], owned part.
-  Vec thermal_load(double dT_value) const;
+  /// The temperature change of the thermal strain [degC], which the thermal
+  /// load and the stress output read (a model reused for another run keeps
+  /// the last one set: each run sets its own).
+  void set_temperature_change(double dT_value) { _materials.dT->value = {dT_value}; }
+  /// Equivalent nodal forces of the thermal strain for the temperature
+  /// change set [N], owned part.
+  Vec thermal_load() const;
 
 private:
   std::shared_ptr<dolfinx::mesh::Mesh> _mesh;

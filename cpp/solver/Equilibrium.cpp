@@ -52,8 +52,11 @@ Equilibrium::~Equilibrium()
 
 void Equilibrium::set_temperature_change(double dT)
 {
+  // The model's (the stress output reads it) and the crack band's, also
+  // where another Equilibrium on the model (an earlier run's, on a set-up
+  // reused) set them.
+  _model.set_temperature_change(dT);
   model::BulkCracking* cracking = _model.bulk_cracking();
-  // The crack band's, also where another Equilibrium on the model set it.
   if (cracking && cracking->temperature_change() != dT)
     cracking->set_temperature_change(dT, {});
   if (dT == _dT)
@@ -62,7 +65,7 @@ void Equilibrium::set_temperature_change(double dT)
   ++_load_version;
   if (_f_thermal)
     check(VecDestroy(&_f_thermal), "VecDestroy");
-  _f_thermal = dT != 0.0 ? _model.thermal_load(dT) : nullptr;
+  _f_thermal = dT != 0.0 ? _model.thermal_load() : nullptr;
   make_free_expansion();
 }
 

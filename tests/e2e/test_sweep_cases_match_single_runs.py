@@ -43,6 +43,9 @@ import signal
 import subprocess
 import time
 
+import h5py
+import numpy as np
+
 from common import (PUSHOUT, SOURCE, check, corrosion, cracking_corroded_demo, curve, mpirun, newton_bound,
                     out_dir, run, solved_unknowns, summary)
 
@@ -133,6 +136,26 @@ d = same_curves(curve(direct), curve(os.path.join(serial, "case_002")))
 check(d < 1e-10, f"case_002 equals pushout run with its values (largest difference {d:.1e})")
 check(not os.path.exists(os.path.join(serial, "sweep_seeds.csv")),
       "no sweep_seeds.csv where the seed is not varied")
+# A reused set-up's fields: a case without a temperature change after one
+# with it writes the stress of its own (the stress output read the model's
+# last temperature change, set only where one was loaded: 12.5 MPa of
+# thermal stress in a case that has none). As the curves, to 1e-10.
+fields = out_dir("sweep_fields_reused")
+two_steps = ["--set", "loading.steps=2", "--set", "output.xdmf=true"]
+p = sweep(fields, extra=two_steps, vary=["--vary", "loading.temperature_change=-25,0"])
+alone = out_dir("sweep_fields_alone")
+run(SCENE, alone, sets=["mesh.elements_per_quarter=4", "mesh.elements_through_thickness=2",
+                        "loading.steps=2", "output.xdmf=true", "loading.temperature_change=0"])
+with h5py.File(os.path.join(fields, "case_001", "fields.h5"), "r") as a, \
+        h5py.File(os.path.join(alone, "fields.h5"), "r") as b:
+    steps = sorted(b["Function/stress"])
+    worst = max(float(np.abs(a["Function/stress"][t][()] - b["Function/stress"][t][()]).max())
+                for t in steps)
+    scale = max(1.0, max(float(np.abs(b["Function/stress"][t][()]).max()) for t in steps))
+check(p.returncode == 0 and summary(os.path.join(fields, "case_001"))["setup_reused"] and
+      len(steps) == 3 and worst <= 1e-10 * scale,
+      f"a reused set-up's case without temperature change: its stress field within {worst:.1e} MPa "
+      f"of pushout run's ({len(steps)} steps)")
 
 # 2. MPI. Two groups of one process run what the serial sweep runs; a group
 # of two runs the whole model (no condensation on 2 processes), which equals

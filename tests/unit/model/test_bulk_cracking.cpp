@@ -440,7 +440,8 @@ static void assembled_forces(model::Model& m, double dT, Vec x, Vec G)
   m.bulk_cracking()->add_forces(f.mutable_array());
   f.scatter_rev(std::plus<double>());
   MatMult(m.stiffness(), x, G);
-  Vec f_thermal = m.thermal_load(dT);
+  m.set_temperature_change(dT);
+  Vec f_thermal = m.thermal_load();
   VecAXPY(G, -1.0, f_thermal);
   VecDestroy(&f_thermal);
   double* g;
