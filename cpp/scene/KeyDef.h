@@ -28,6 +28,9 @@ struct KeyDef
   bool open = false;                     ///< both bounds exclusive: min < value < max
   std::vector<std::string> choices = {}; ///< allowed strings (empty: any)
   Applies applies = Applies::all;
+  /// Read by the outputs alone (how they read the run), not by the model:
+  /// it changes no curve, so pushout fit refuses to free it.
+  bool outputs_only = false;
 };
 
 /// Every scalar scene key outside [[interface]], declared once

@@ -218,7 +218,8 @@ std::vector<KeyDef> reading_keys()
        inf,
        true,
        {},
-       A::pushout},
+       A::pushout,
+       true},
   };
 }
 

@@ -75,6 +75,10 @@ double value_of(const Scene& scene, const std::string& key, Free& f)
     throw SceneError("--free '" + key + "': not a number key (" + to_toml(*v) + ")");
   if (const KeyDef* def = find_key(key))
   {
+    if (def->outputs_only)
+      throw SceneError("--free '" + key +
+                       "': it changes how the outputs read the run, not the curve: the fit "
+                       "could not move it");
     f.lo = def->min;
     f.hi = def->max;
     f.lo_exclusive = f.hi_exclusive = def->open;
@@ -365,7 +369,7 @@ int fit(const FitOptions& given)
   }
   const std::vector<double>& x = outcome.x;
   outcome.r = problem.r_last;
-  outcome.statistics = statistics(solver.J, outcome.r, free, x);
+  outcome.statistics = statistics(solver.J, outcome.r, free, x, problem.difference_failed);
 
   int best_exit_code = exit_code::done;
   if (const int signal =

@@ -90,17 +90,27 @@ std::vector<double> transpose_times(const std::vector<double>& jacobian,
 }
 
 FitStatistics statistics(Mat J, const std::vector<double>& r, const std::vector<Free>& free,
-                         const std::vector<double>& x)
+                         const std::vector<double>& x, std::vector<bool> no_derivative)
 {
   const std::size_t n = free.size(), m = r.size();
+  no_derivative.resize(n, false); // none known: every column a derivative
   FitStatistics st;
   std::vector<double> scale(n);
   for (std::size_t j = 0; j < n; ++j)
     scale[j] = free[j].scale; // J is of the scaled values: J^T J in the keys' units
   const PetscScalar* a;
   check(MatDenseGetArrayRead(J, &a), "MatDenseGetArrayRead");
-  const std::vector<std::vector<double>> JtJ = normal_matrix(a, m, n, scale);
+  const std::vector<std::vector<double>> all = normal_matrix(a, m, n, scale);
   check(MatDenseRestoreArrayRead(J, &a), "MatDenseRestoreArrayRead");
+  // The values whose columns are derivatives; J^T J of those.
+  std::vector<std::size_t> d;
+  for (std::size_t j = 0; j < n; ++j)
+    if (!no_derivative[j])
+      d.push_back(j);
+  std::vector<std::vector<double>> JtJ(d.size(), std::vector<double>(d.size()));
+  for (std::size_t j = 0; j < d.size(); ++j)
+    for (std::size_t k = 0; k < d.size(); ++k)
+      JtJ[j][k] = all[d[j]][d[k]];
   for (double v : r)
     st.rss += v * v;
   const double s2 = st.rss / double(m > n ? m - n : 1);
@@ -109,11 +119,11 @@ FitStatistics statistics(Mat J, const std::vector<double>& r, const std::vector<
   st.corr.assign(n, std::vector<double>(n, NAN));
   if (invert(JtJ, cov))
   {
-    for (std::size_t j = 0; j < n; ++j)
-      st.se[j] = std::sqrt(std::max(s2 * cov[j][j], 0.0));
-    for (std::size_t j = 0; j < n; ++j)
-      for (std::size_t k = 0; k < n; ++k)
-        st.corr[j][k] = s2 * cov[j][k] / (st.se[j] * st.se[k]);
+    for (std::size_t j = 0; j < d.size(); ++j)
+      st.se[d[j]] = std::sqrt(std::max(s2 * cov[j][j], 0.0));
+    for (std::size_t j = 0; j < d.size(); ++j)
+      for (std::size_t k = 0; k < d.size(); ++k)
+        st.corr[d[j]][d[k]] = s2 * cov[j][k] / (st.se[d[j]] * st.se[d[k]]);
     for (std::size_t j = 0; j < n; ++j)
       for (std::size_t k = j + 1; k < n; ++k)
         if (std::abs(st.corr[j][k]) > identifiable_correlation)
@@ -123,10 +133,17 @@ FitStatistics statistics(Mat J, const std::vector<double>& r, const std::vector<
   }
   else
     st.warnings.push_back("J^T J is singular at the optimum: some values do not change the curve");
+  for (std::size_t k = 0; k < n; ++k)
+    if (no_derivative[k])
+      st.warnings.push_back(free[k].key + " = " + number_text(x[k] * free[k].scale) +
+                            " has no standard error: the run beside it that its derivative "
+                            "needs failed or was refused (fit.json refusal or failure), and "
+                            "the other way failed too or lies beyond its bound, so the fit "
+                            "cannot tell how the curve changes with it there");
   // A value the optimum pushes onto a bound is not a fit of it: the data
   // want it beyond (a different model, or data the model cannot make).
   for (std::size_t k = 0; k < n; ++k)
-    if (free[k].on_lo(x[k]) || free[k].on_hi(x[k]))
+    if (!no_derivative[k] && (free[k].on_lo(x[k]) || free[k].on_hi(x[k])))
       st.warnings.push_back(free[k].key + " = " + number_text(x[k] * free[k].scale) +
                             " sits on its bound: the best fit would take it beyond, so the "
                             "model does not describe these data well there");

@@ -25,8 +25,12 @@ struct FitStatistics
 /// The statistics at the optimum x (scaled values) from the Jacobian J (m x
 /// n, dense, of the scaled values) and the residuals r [MPa]: s^2 = |r|^2 /
 /// (m - n), cov = s^2 (J^T J)^-1 in the keys' units (docs/fitting.md).
+/// A value whose column of J is no derivative (`no_derivative`: its
+/// difference's runs failed, Problem::difference_failed) has no standard
+/// error (infinite) and no correlations, and a warning says why; the
+/// others' are those with it held where it is.
 FitStatistics statistics(Mat J, const std::vector<double>& r, const std::vector<Free>& free,
-                         const std::vector<double>& x);
+                         const std::vector<double>& x, std::vector<bool> no_derivative);
 
 /// J^T J of the column-major m x n `jacobian`, each column j divided by
 /// scale[j] (none: 1).

@@ -270,6 +270,12 @@ void Problem::evaluate(const std::vector<double>& x, bool with_jacobian)
       else
         r[first + again[k]] = back[k];
   }
+  difference_failed.assign(x.size(), false);
+  for (std::size_t j = 0; j < x.size(); ++j)
+  {
+    const bool taken_back = std::find(again.begin(), again.end(), j) != again.end() && h[j] < 0;
+    difference_failed[j] = failed[first + j] && !taken_back;
+  }
   x_jacobian = x;
   known_points = {{x, r_last, last_failed}};
   jacobian.assign(m * x.size(), 0.0);

@@ -68,6 +68,10 @@ struct Problem
   std::vector<double> x_jacobian;     ///< where the last Jacobian was formed
   std::vector<double> jacobian;       ///< its entries, column-major (m x n)
   bool last_failed = false;           ///< whether x_last's run failed outright
+  /// Per value: whether its column of the last Jacobian holds a failure
+  /// (its difference's run failed, and the other way failed too or lay
+  /// beyond its bound), so that the column is no derivative.
+  std::vector<bool> difference_failed;
   /// x_jacobian's run (where a line search that finds no step goes back
   /// to), and the points of its line search that other groups ran ahead.
   std::vector<KnownPoint> known_points;

@@ -29,7 +29,10 @@
    steps, the fit converges on the relative offset, or where it settles at
    the model's resolution (with a warning), in a few iterations, each value
    within 2 standard errors of the truth: with 1 % noise, and with 0.1 %
-   on a finer mesh, where the former line search thrashed."""
+   on a finer mesh, where the former line search thrashed.
+7. A free key that only the outputs read (cracking.visible_width) is
+   refused; one whose difference cannot be run either way
+   (cracking.radius from 0) has no standard error, and a warning."""
 import json
 import os
 import random
@@ -314,6 +317,31 @@ for per_quarter, level in ((4, 0.01), (8, 0.001)):
     truth6 = out_dir(f"fit_cracking_truth_{per_quarter}")
     run(CRACKING, truth6, sets=coarse)
     data6, _ = measured(truth6, f"fit_cracking_data_{per_quarter}", level)
+    if per_quarter == 4:
+        # 7. A key only the outputs read is refused (it changes no curve);
+        # cracking.radius from 0 cannot be differentiated (just above 0 it
+        # lies within the tube, below is its bound): no standard error,
+        # and a warning says why (it was 1e-11 mm, from the refused run's
+        # misfit taken as a derivative).
+        base = [PUSHOUT, "fit", CRACKING, "--data", data6, "--quiet"]
+        for s in coarse:
+            base += ["--set", s]
+        p = subprocess.run(base + ["--out", out_dir("fit_visible_width"), "--free",
+                                   "cracking.visible_width"], capture_output=True, text=True,
+                           timeout=300)
+        check(p.returncode == 2 and "changes how the outputs read the run" in p.stderr,
+              f"--free cracking.visible_width: exit {p.returncode}, {p.stderr.strip()[-200:]!r}")
+        radius = out_dir("fit_radius_from_0")
+        p = subprocess.run(base + ["--out", radius, "--free", "cracking.radius"],
+                           capture_output=True, text=True, timeout=300)
+        with open(os.path.join(radius, "fit.json")) as f:
+            rr = json.load(f)
+        check(p.returncode == 0 and rr["standard_errors"]["cracking.radius"] is None
+              and rr["refused_runs"] >= 1 and "within the tube" in rr["refusal"]
+              and any(w.startswith("cracking.radius = 0 has no standard error")
+                      for w in rr["warnings"]),
+              f"--free cracking.radius from 0: exit {p.returncode}, standard error "
+              f"{rr['standard_errors']['cracking.radius']}, warnings {rr['warnings']}")
     # The coarse fit also on 2 processes: two groups, the second running the
     # points the line search would try next beside each one it tries alone
     # (runs ahead that it may not use: the bound on runs grows by one a point).

@@ -48,3 +48,32 @@ TEST(FitStatistics, GradientAndGaussNewtonHessian)
   const auto H = pushout::study::normal_matrix(J.data(), 4, 2);
   EXPECT_EQ(H, (std::vector<std::vector<double>>{{4, 6}, {6, 14}}));
 }
+
+TEST(FitStatistics, AValueWithoutDerivativeHasNoStandardError)
+{
+  // Column 0 fits a constant (r of RelativeOffsetOfOneValue); column 1 holds
+  // a refused run's misfit (1000 at two points) instead of a derivative.
+  // Taken as a derivative it would give value b a standard error 1000 times
+  // too small to mean anything; marked, b has none and a has its own with b
+  // held: s^2 = |r|^2 / (m - n) = 6 / 2, se_a = sqrt(s^2 / 4).
+  Mat J;
+  ASSERT_EQ(MatCreateSeqDense(PETSC_COMM_SELF, 4, 2, nullptr, &J), 0);
+  for (PetscInt i = 0; i < 4; ++i)
+  {
+    MatSetValue(J, i, 0, 1.0, INSERT_VALUES);
+    MatSetValue(J, i, 1, i == 0 || i == 3 ? 1000.0 : 0.0, INSERT_VALUES);
+  }
+  MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY);
+  MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY);
+  const std::vector<double> r{1, -1, 2, 0}, x{0.5, 0.5};
+  const std::vector<pushout::study::Free> free{{"a"}, {"b"}};
+  const auto taken = pushout::study::statistics(J, r, free, x, {false, false});
+  EXPECT_LT(taken.se[1], 1e-2); // the defect: a standard error from a misfit
+  const auto st = pushout::study::statistics(J, r, free, x, {false, true});
+  EXPECT_NEAR(st.se[0], std::sqrt(3.0 / 4.0), 1e-14);
+  EXPECT_TRUE(std::isinf(st.se[1]));
+  EXPECT_TRUE(std::isnan(st.corr[0][1]) && std::isnan(st.corr[1][1]));
+  ASSERT_EQ(st.warnings.size(), 1u);
+  EXPECT_EQ(st.warnings[0].rfind("b = 0.5 has no standard error", 0), 0u) << st.warnings[0];
+  MatDestroy(&J);
+}
