@@ -38,8 +38,9 @@ struct Summary
   /// With cracking.radius > 0: the cracks at the edge of the cracking
   /// region at the end of the run (model::EdgeCracks, the specimen's
   /// points as the other counts), and the corrosion step they first
-  /// reached it in ("": no corrosion step found them; without a corrosion
-  /// stage, always). Null otherwise.
+  /// reached it in ("the push" where no corrosion step found them; "step 0
+  /// or the push (no corrosion stage)" without one; "": none reached it).
+  /// Null otherwise.
   struct CrackingEdge
   {
     double radius_mm = 0;

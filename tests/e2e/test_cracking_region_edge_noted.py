@@ -18,7 +18,10 @@ cover 15 mm, 8 elements per quarter) corroded to x = 16 um:
    common.check_one_and_two_processes compares them).
 2. radius 0 (all the concrete): no edge, cracking_edge null, no note.
 3. radius 70 mm and x = 2 um: the edge (round the far corners) exists
-   and nothing cracks there: cracking_edge with no cracked point, no note."""
+   and nothing cracks there: cracking_edge with no cracked point, no note.
+4. No corrosion stage, the concrete cracked by a cooling of 300 degC
+   (radius 11 mm, the tube's 10 mm and one ring of elements): reached, noted,
+   and reached_in says so (it was "", as for none)."""
 
 import re
 
@@ -72,3 +75,10 @@ p70, e70, noted70, _ = edge_run("edge_r70", ["cracking.radius=70", "corrosion.pe
 check(e70 is not None and e70["points"] > 0 and e70["cracked_points"] == 0
       and e70["reached_in"] == "" and not noted70,
       f"radius 70 mm at x = 2 um: cracking_edge {e70}, notes {noted70}")
+
+# 4. Reached without a corrosion stage.
+p4, e4, noted4, _ = edge_run("edge_no_corrosion", ["cracking.radius=11", "corrosion.penetration=0",
+                                                   "loading.temperature_change=-300"])
+check(e4 is not None and e4["cracked_points"] > 0 and len(noted4) == 1
+      and e4["reached_in"] == "step 0 or the push (no corrosion stage)",
+      f"no corrosion stage: cracking_edge {e4}, notes {noted4}")
