@@ -87,7 +87,7 @@ void BandSizeCheck::add(double diagonal, std::array<double, 2> centre, double st
   if (diagonal / width > _worst)
   {
     _worst = diagonal / width;
-    _where = {diagonal, width, centre[0], centre[1]};
+    _where = {diagonal, width, centre[0], centre[1], strength};
   }
   _worst_mean = std::max(_worst_mean, diagonal / _mean_band);
 }
@@ -102,7 +102,7 @@ void BandSizeCheck::agree(MPI_Comm comm)
   MPI_Comm_rank(comm, &worst.rank);
   MPI_Allreduce(MPI_IN_PLACE, &worst, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm);
   MPI_Allreduce(MPI_IN_PLACE, &_worst_mean, 1, MPI_DOUBLE, MPI_MAX, comm);
-  MPI_Bcast(_where.data(), 4, MPI_DOUBLE, worst.rank, comm);
+  MPI_Bcast(_where.data(), int(_where.size()), MPI_DOUBLE, worst.rank, comm);
   _worst = worst.ratio;
 }
 
@@ -118,7 +118,8 @@ void BandSizeCheck::refuse_if_too_wide() const
       << " mm: mu / |d sigma / d w|, docs/cracking.md)";
   if (_worst_mean < 1) // only where the field raises f_t
     why << ", at a point where the strength field (cracking.strength_cov = " << _part.strength_cov
-        << ") raises f_t (at the mean f_t " << _worst_mean << " times)";
+        << ") raises f_t to " << _where[4] << " times its mean (at the mean f_t the largest "
+        << "element is " << _worst_mean << " times the band)";
   why << ". A softening less steep widens the band: "
       << (_part.linear_softening ? "raise cracking.w_c2" : "lower cracking.c")
       << " (a larger G_F) or lower cracking.f_t"

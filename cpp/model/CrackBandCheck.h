@@ -36,10 +36,12 @@ public:
 private:
   const bulk::CrackBand& _band;
   const CrackingPart& _part;
-  double _mean_band;              ///< the widest band at the mean strength [mm]
-  double _worst = 0;              ///< the largest diagonal / band of a point
-  double _worst_mean = 0;         ///< the largest diagonal / band at the mean strength
-  std::array<double, 4> _where{}; ///< the worst element's diagonal, band [mm], centre x, y [mm]
+  double _mean_band;      ///< the widest band at the mean strength [mm]
+  double _worst = 0;      ///< the largest diagonal / band of a point
+  double _worst_mean = 0; ///< the largest diagonal / band at the mean strength
+  /// The worst element's diagonal, band [mm], centre x, y [mm], and the
+  /// strength field's factor on f_t at its point.
+  std::array<double, 5> _where{};
 };
 
 /// The checks of [cracking] that need the mesh, on the whole mesh `data`

@@ -57,7 +57,7 @@ cases = [
     ("crack band too wide where the field raises f_t",
      GOOD.replace("elements_per_quarter = 4", "elements_per_quarter = 8") +
      '\n[cracking]\nmodel = "embedded"\nstrength_cov = 0.8\n', [],
-     ["cracking.strength_cov", "mean f_t"]),
+     ["cracking.strength_cov", "raises f_t to", "times its mean", "mean f_t"]),
     # A softening so steep that the largest elements (the square's corners)
     # would snap back: where the element is and how large, and what helps.
     ("crack band too wide at the mean f_t",
