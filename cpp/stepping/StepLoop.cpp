@@ -64,7 +64,14 @@ bool StepLoop::run(Control control)
     enter("corrosion steps");
     if (_corrosion.active() &&
         !(control == Control::dissipation ? corrode_by_dissipation() : corrode()))
+    {
+      // Stopped in the stage (a signal, a step that did not converge): the
+      // cracks of its last committed step, as the push's start would have
+      // had them (summary.json cracks, crack_pattern.csv).
+      revert();
+      _corrosion.describe_cracks(_equilibrium, _x, _summary);
       return false;
+    }
     enter("load steps");
     switch (control)
     {

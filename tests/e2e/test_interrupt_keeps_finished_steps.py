@@ -2,7 +2,8 @@
 signal, keeps a valid curve.csv with every finished step, and its
 summary.json says it was interrupted (and not converged). Stopped in the
 corrosion stage, it says so (stopped_in "corrosion steps", the corrosion
-steps it finished, corrosion.csv keeping them); in step 0, the set-up or
+steps it finished, corrosion.csv keeping them, and summary.json's cracks
+and crack_pattern.csv those of the last finished one); in step 0, the set-up or
 meshing, it names that alone. A closed pipe
 (`pushout run ... | head -3`) does not stop it, nor does a signal once the
 last step is done (the outputs are written, exit 0). A sweep stops within a few
@@ -18,7 +19,7 @@ import time
 
 import h5py
 
-from common import OUT_ROOT, SOURCE, check, corrosion, curve, out_dir, summary
+from common import OUT_ROOT, SOURCE, check, corrosion, cracking_corroded_demo, curve, out_dir, summary
 
 PUSHOUT = sys.argv[1]
 
@@ -75,6 +76,28 @@ check(p.returncode == 130 and s["interrupted"] and s["stopped_in"] == "corrosion
       said in err and "corrosion.csv keeps them" in err,
       f"SIGINT in the corrosion stage: exit {p.returncode}, stopped_in {s['stopped_in']!r}, "
       f"{s['message']!r}, corrosion.csv {len(rows)} rows; {err.strip()!r}")
+# The cracks of its last finished step (summary.json cracks): the plane's
+# mouth as corrosion.csv's last row has it (12 digits printed there).
+w, w_row = (s["cracks"][0]["width_mm"] if s["cracks"] else None), rows[-1]["crack_width_mm"]
+check(len(s["cracks"]) == 1 and abs(w - w_row) <= 1e-11 * max(abs(w_row), 1e-6),
+      f"SIGINT in the corrosion stage: summary.json cracks at the last finished step, the "
+      f"plane's mouth {w} mm against corrosion.csv's {w_row} mm")
+# With cracks anywhere, crack_pattern.csv too (it was written at the push's
+# start only, so a corrosion stage stopped left none).
+out = out_dir("interrupt_corrosion_cracking")
+cracking_scene = out + ".toml"
+with open(cracking_scene, "w") as f:
+    f.write(cracking_corroded_demo(0.05, 100000))
+p = subprocess.Popen([PUSHOUT, "run", cracking_scene, "--out", out, "--quiet"], stdout=subprocess.PIPE,
+                     stderr=subprocess.PIPE, text=True)
+wait_for_rows(os.path.join(out, "corrosion.csv"), 5, 120, 0.1)
+p.send_signal(signal.SIGINT)
+p.communicate(timeout=120)
+pattern = os.path.join(out, "crack_pattern.csv")
+columns = sum(1 for _ in open(pattern)) - 1 if os.path.exists(pattern) else 0
+check(p.returncode == 130 and summary(out)["stopped_in"] == "corrosion steps" and columns > 0,
+      f"SIGINT in the corrosion stage with cracks anywhere: exit {p.returncode}, crack_pattern.csv "
+      f"with {columns} columns")
 
 
 # A signal once the last step is done stops nothing: the outputs are
