@@ -325,7 +325,7 @@ RunOutcome run_case(const std::string& scene_text, const std::filesystem::path& 
   const auto t0 = std::chrono::steady_clock::now();
   try
   {
-    const output::Summary s = mpi::collectively<SceneError, record::TooLarge>(
+    const output::Summary s = mpi::collectively<OptionError, SceneError, record::TooLarge>(
         opt.comm,
         [&]
         {

@@ -90,7 +90,8 @@ struct Summary
   /// and the whole model ran instead.
   double condensation_asymmetry = 0;
   /// A crack at the start of the push (after the thermal step and the
-  /// corrosion stage): a crack plane ([[crack]]), or a crack of the concrete
+  /// corrosion stage; where the corrosion stage stopped, at its last
+  /// finished step): a crack plane ([[crack]]), or a crack of the concrete
   /// ([cracking]) that reaches an outer face as wide as
   /// cracking.visible_width (model/SurfaceCracks.h).
   struct Crack
@@ -109,7 +110,8 @@ struct Summary
   /// The widest crack at the slice's outer faces at the start of the push
   /// [mm], as corrosion.csv's crack_width_mm reads it (a plane's mouth
   /// opening, or the concrete's gauge reading from its resolution up); 0: none;
-  /// NaN (null) where the run stopped before the push.
+  /// where the corrosion stage stopped, at its last finished step; NaN
+  /// (null) where the run stopped in step 0 or the set-up.
   double surface_crack_width_mm = std::numeric_limits<double>::quiet_NaN();
   /// The damage of a damage layer of the interface at the start of the push
   /// (what the thermal step and the corrosion stage left).

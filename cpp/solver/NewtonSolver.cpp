@@ -406,7 +406,7 @@ double NewtonSolver::time_linear_solve(Vec x)
       k, [](KSP p) { petsc::check_nothrow(KSPDestroy(&p), "KSPDestroy"); });
   // (A PETSc error on one process inside the solve, where the others wait
   // in its collectives, ends the run after abandon_after_s: mpi_errors.h.)
-  return mpi::collectively<SceneError>(
+  return mpi::collectively<OptionError, SceneError>(
       comm,
       [&]
       {

@@ -43,13 +43,13 @@ SolveReport PathFollower::step(Vec x, double& lambda, double d_control,
   // Agreed here: the follower (its factors) lives in the step loop, and a
   // process that failed must not destroy them on its way out while the
   // others go on (common/mpi_errors.h).
-  SolveReport report =
-      mpi::collectively<SceneError>(PetscObjectComm(reinterpret_cast<PetscObject>(x)),
-                                    [&]
-                                    {
-                                      return _arc->step(_solver.to_problem(x), lambda, d_control,
-                                                        set_load, max_dlambda, loose, control_from);
-                                    });
+  SolveReport report = mpi::collectively<OptionError, SceneError>(
+      PetscObjectComm(reinterpret_cast<PetscObject>(x)),
+      [&]
+      {
+        return _arc->step(_solver.to_problem(x), lambda, d_control, set_load, max_dlambda, loose,
+                          control_from);
+      });
   if (report.converged)
   {
     _solver.from_problem(x);

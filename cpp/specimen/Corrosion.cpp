@@ -199,7 +199,7 @@ void Corrosion::note_edge_cracks(model::EdgeCracks edge)
     return; // all the concrete may crack: no edge
   const int copies = _symmetry.copies();
   if (_edge_reached.empty() && edge.cracked_points > 0) // no corrosion step saw them
-    _edge_reached = _row > 0 ? "the push" : "step 0 or the push (no corrosion stage)";
+    _edge_reached = active() ? "the push" : "step 0 or the push (no corrosion stage)";
   _report.summary().cracking_edge =
       output::Summary::CrackingEdge{edge.radius, edge.points * copies, edge.cracked_points * copies,
                                     edge.max_opening, _edge_reached};

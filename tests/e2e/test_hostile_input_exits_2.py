@@ -110,7 +110,8 @@ for option in (["-ksp_type", "bogus"], ["-snes_max_it", "abc"], ["-snes_type", "
 err = refused("-ksp_pc_side left on the single-precision LU",
               ["run", GOOD_SCENE, "--out", out_dir("hostile_pc_side"), "--quiet", "-ksp_pc_side", "left"],
               ["-ksp_pc_side left", "solver.precision"], seconds=10)
-check(err.startswith("pushout: error: -ksp_pc_side"), f"-ksp_pc_side left: not called the scene's error: {err[:80]!r}")
+check(err.startswith("pushout: error: -ksp_pc_side"),
+      f"-ksp_pc_side left: not called the scene's error: {err[:80]!r}")
 # The solver's refusals come before the run touches its folder: an earlier
 # run's outputs there stay (they were deleted, the refusal coming from the
 # solver's set-up).
