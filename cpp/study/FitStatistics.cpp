@@ -113,7 +113,7 @@ FitStatistics statistics(Mat J, const std::vector<double>& r, const std::vector<
       JtJ[j][k] = all[d[j]][d[k]];
   for (double v : r)
     st.rss += v * v;
-  const double s2 = st.rss / double(m > n ? m - n : 1);
+  const double s2 = st.rss / double(m > d.size() ? m - d.size() : 1); // the others held
   std::vector<std::vector<double>> cov;
   st.se.assign(n, INFINITY);
   st.corr.assign(n, std::vector<double>(n, NAN));

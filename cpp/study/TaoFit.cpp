@@ -106,7 +106,9 @@ PetscErrorCode convergence_test(Tao tao, void* ctx)
           p.failed_in_search = false;
           p.last_iteration = iteration;
         }
-        const bool settled = p.stalls >= 2;
+        // Or its line search met the model's resolution: what is left of
+        // the step is below the curve's jumps (Problem::search_at_resolution).
+        const bool settled = p.stalls >= 2 || p.search_at_resolution;
         if (going && (offset < p.resolution.offset_tolerance || settled))
         {
           p.at_resolution = offset >= p.resolution.offset_tolerance;
@@ -155,6 +157,8 @@ double Problem::offset_at(const std::vector<double>& x) const
   {
     if ((free[j].on_lo(x[j]) && g[j] > 0) || (free[j].on_hi(x[j]) && g[j] < 0))
       continue;
+    if (j < difference_failed.size() && difference_failed[j])
+      continue; // no derivative: the step cannot be told along it
     columns.insert(columns.end(), jacobian.begin() + std::ptrdiff_t(j * m),
                    jacobian.begin() + std::ptrdiff_t((j + 1) * m));
   }
@@ -194,6 +198,13 @@ bool same_point(const std::vector<double>& a, const std::vector<double>& b)
 
 void Problem::evaluate(const std::vector<double>& x, bool with_jacobian)
 {
+  if (search_at_resolution && !with_jacobian && x != x_jacobian)
+  {
+    x_last = x; // not run: x_jacobian's misfit (search_at_resolution)
+    r_last = r_jacobian;
+    last_failed = false;
+    return;
+  }
   if (x != x_last)
     for (const KnownPoint& k : known_points)
       if (same_point(k.x, x))
@@ -240,6 +251,17 @@ void Problem::evaluate(const std::vector<double>& x, bool with_jacobian)
     r_last = r[0];
     last_failed = failed[0];
     failed_in_search = failed_in_search || (last_failed && !with_jacobian);
+    // The line search's whole step (its first point) raised the misfit at
+    // the model's resolution: no point after it is run.
+    if (!with_jacobian && ++search_points == 1 && resolution.stall_ratio > 0 &&
+        !x_jacobian.empty() && last_offset < search_resolution_offset() && !last_failed)
+    {
+      double at_jacobian = 0;
+      for (double v : r_jacobian)
+        at_jacobian += v * v;
+      search_at_resolution = 2 * objective() > at_jacobian;
+      at_resolution = at_resolution || search_at_resolution; // the warning says so
+    }
   }
   for (std::size_t k = 1; k <= ahead; ++k)
     known_points.push_back({points[k], r[k], failed[k]});
@@ -277,6 +299,8 @@ void Problem::evaluate(const std::vector<double>& x, bool with_jacobian)
     difference_failed[j] = failed[first + j] && !taken_back;
   }
   x_jacobian = x;
+  r_jacobian = r_last;
+  search_points = 0;
   known_points = {{x, r_last, last_failed}};
   jacobian.assign(m * x.size(), 0.0);
   for (std::size_t j = 0; j < x.size(); ++j)
@@ -358,7 +382,14 @@ bool TaoFit::converged() const
 {
   TaoConvergedReason reason;
   check(TaoGetConvergedReason(tao, &reason), "TaoGetConvergedReason");
-  return reason > 0;
+  return reason > 0 || at_resolution_by_search(reason);
+}
+
+bool TaoFit::at_resolution_by_search(TaoConvergedReason reason) const
+{
+  // The line search given x_jacobian's misfit at every point it tried
+  // found none better (Problem::search_at_resolution): TAO ends so.
+  return reason == TAO_DIVERGED_LS_FAILURE && _problem.search_at_resolution;
 }
 
 std::string TaoFit::reason() const
@@ -367,6 +398,8 @@ std::string TaoFit::reason() const
   check(TaoGetConvergedReason(tao, &reason), "TaoGetConvergedReason");
   if (reason == TAO_CONVERGED_USER) // the tests of ours (convergence_test)
     return _problem.at_resolution ? "CONVERGED_MODEL_RESOLUTION" : "CONVERGED_RELATIVE_OFFSET";
+  if (at_resolution_by_search(reason))
+    return "CONVERGED_MODEL_RESOLUTION";
   if (reason == TAO_DIVERGED_USER) // our test's only divergence (convergence_test)
     return "DIVERGED_REFUSED_VALUES";
   return TaoConvergedReasons[reason];

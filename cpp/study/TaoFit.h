@@ -79,13 +79,30 @@ struct Problem
   PetscInt last_iteration = -1; ///< the iteration last tested
   double last_offset = NAN;     ///< the offset at that iteration
   int stalls = 0;               ///< iterations running that it stalled
-  bool at_resolution = false;   ///< stopped by Resolution::stall_ratio
+  bool at_resolution = false;   ///< stopped by Resolution::stall_ratio or search_at_resolution
   /// Whether a point a line search tried since the last iteration failed
   /// outright (a value the scene refuses, or an error).
   bool failed_in_search = false;
   /// Iterations running whose line search met such a point and that did
   /// not halve the offset.
   int searches_failed = 0;
+  /// With a curve that jumps (Resolution::stall_ratio > 0): the line search
+  /// of this iteration met the model's resolution. Its whole step, from an
+  /// iterate whose offset is below search_resolution_offset (the step well
+  /// inside the confidence region), raised the misfit: what is left of the
+  /// step is below the curve's jumps, and backtracking would only sample
+  /// them (15 to 25 runs an iteration, measured). The points it tries after
+  /// are not run: each is given x_jacobian's misfit, which no line search
+  /// accepts, and the fit ends at x_jacobian (TaoFit::reason:
+  /// CONVERGED_MODEL_RESOLUTION).
+  bool search_at_resolution = false;
+  /// The offset below which a line search's rise in the misfit means the
+  /// model's resolution: four times Resolution::offset_tolerance.
+  double search_resolution_offset() const { return 4 * resolution.offset_tolerance; }
+  /// Line-search points run since the last Jacobian, and x_jacobian's
+  /// residuals [MPa].
+  int search_points = 0;
+  std::vector<double> r_jacobian;
   /// Where that held in searches_failed_to_stop iterations running, the
   /// fit stops (TAO_DIVERGED_USER, DIVERGED_REFUSED_VALUES): the best fit
   /// lies beyond a relation between keys (f_fr <= f_t), where Armijo's
@@ -100,8 +117,9 @@ struct Problem
   /// The objective |r|^2 / 2 at the last base point [MPa^2].
   double objective() const;
   /// The relative offset (FitStatistics.h) at x, from its residuals and
-  /// Jacobian, over the values not held on a bound (0 if none is free);
-  /// NaN if the last Jacobian was formed elsewhere.
+  /// Jacobian, over the values not held on a bound and with a derivative
+  /// (difference_failed; 0 if none is left); NaN if the last Jacobian was
+  /// formed elsewhere.
   double offset_at(const std::vector<double>& x) const;
   /// The progress line of TAO's iteration `iteration` at x.
   void report(int iteration, const std::vector<double>& x, double offset) const;
@@ -140,7 +158,8 @@ struct TaoFit
   std::vector<double> solve();
   /// Whether the fit converged: TAO's gradient test, or the relative offset
   /// below the problem's offset_tolerance (at the iteration limit too), or
-  /// settled below 1 at the model's resolution (Resolution::stall_ratio).
+  /// settled below 1 at the model's resolution (Resolution::stall_ratio),
+  /// or a line search that met it (Problem::search_at_resolution).
   bool converged() const;
   /// Why TAO stopped, by PETSc's name (CONVERGED_RELATIVE_OFFSET for the
   /// offset's test, CONVERGED_MODEL_RESOLUTION for its floor).
@@ -151,6 +170,9 @@ struct TaoFit
   double offset() const { return final_offset; }
 
 private:
+  /// TAO's `reason` is the end of a line search that met the model's
+  /// resolution (Problem::search_at_resolution).
+  bool at_resolution_by_search(TaoConvergedReason reason) const;
   Problem& _problem;
   double final_offset = INFINITY;
 };

@@ -32,10 +32,14 @@
    on a finer mesh, where the former line search thrashed.
 7. A free key that only the outputs read (cracking.visible_width) is
    refused; one whose difference cannot be run either way
-   (cracking.radius from 0) has no standard error, and a warning."""
+   (cracking.radius from 0) has no standard error, and a warning.
+8. With cracks anywhere, a line search whose whole step raises the misfit
+   from an iterate well inside the confidence region (offset below 0.2)
+   ends the fit at the model's resolution, with no backtracking runs."""
 import json
 import os
 import random
+import re
 import subprocess
 
 from common import PUSHOUT, SOURCE, check, curve, mpirun, out_dir, run
@@ -317,6 +321,32 @@ for per_quarter, level in ((4, 0.01), (8, 0.001)):
     truth6 = out_dir(f"fit_cracking_truth_{per_quarter}")
     run(CRACKING, truth6, sets=coarse)
     data6, _ = measured(truth6, f"fit_cracking_data_{per_quarter}", level)
+    if per_quarter == 8:
+        # 8. A line search at the model's resolution: f_t alone from 3.3
+        # with 0.3 % noise reaches an offset below 0.2 (0.124, measured),
+        # where the whole Gauss-Newton step raises the misfit; the points
+        # the line search would try after it are not run, and the fit ends
+        # there (CONVERGED_MODEL_RESOLUTION). After the first iteration below
+        # 0.2 at most that step's run and one Jacobian's (n + 1 = 2 runs) are
+        # made (1, measured; the backtracking had taken up to 25 a line search).
+        data8, _ = measured(truth6, "fit_cracking_data_8_search", 0.003)
+        search = out_dir("fit_cracking_search_at_resolution")
+        cmd = [PUSHOUT, "fit", CRACKING, "--data", data8, "--out", search, "--free", "cracking.f_t",
+               "--set", "cracking.f_t=3.3"]
+        for s in coarse:
+            cmd += ["--set", s]
+        p = subprocess.run(cmd, capture_output=True, text=True, timeout=900)
+        with open(os.path.join(search, "fit.json")) as f:
+            r8 = json.load(f)
+        progress = [(float(m[1]), int(m[2])) for m in
+                    re.finditer(r"offset ([0-9.e+-]+) at .*?\((\d+) runs", p.stdout)]
+        below = [runs for offset, runs in progress if offset < 0.2]
+        got, se = r8["parameters"]["cracking.f_t"], r8["standard_errors"]["cracking.f_t"]
+        check(p.returncode == 0 and r8["reason"] == "CONVERGED_MODEL_RESOLUTION" and below
+              and r8["evaluations"] - below[0] <= 3 and abs(got - 3.0) < 2 * se,
+              f"a line search at the model's resolution: {r8['reason']}, {r8['evaluations']} runs, "
+              f"{r8['evaluations'] - below[0] if below else None} after the first iterate below "
+              f"0.2 ({progress}); f_t = {got:.5g} +- {se:.2g} (truth 3.0)")
     if per_quarter == 4:
         # 7. A key only the outputs read is refused (it changes no curve);
         # cracking.radius from 0 cannot be differentiated (just above 0 it
