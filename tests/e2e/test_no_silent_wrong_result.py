@@ -21,8 +21,10 @@
    back (no smaller try whose error did not fall), stops the run (exit 3)
    and the message names max_cuts; it used to be taken as a "jump" (the
    coarse corroded cracking demo with max_cuts = 0: p after corrosion 12 %
-   off, exit 0). With the default max_cuts the same scene runs through
-   with no jump."""
+   off, exit 0). Stopped so in the corrosion stage, the run leaves the
+   cracks of its last finished step (crack_pattern.csv, summary.json's
+   widest surface crack). With the default max_cuts the same scene runs
+   through with no jump."""
 import glob
 import math
 import os
@@ -121,6 +123,14 @@ lines = [line for line in p.stderr.splitlines() if line.startswith("pushout")]
 check(p.returncode == 3 and lines and "IMPL-EX error" in lines[-1] and "max_cuts" in lines[-1]
       and summary(uncut)["implex_jumps"] == 0,
       f"IMPL-EX at max_cuts = 0: exit {p.returncode}, {lines[-1] if lines else p.stderr[-300:]}")
+# Stopped in the corrosion stage, it describes the cracks of its last
+# finished step: crack_pattern.csv, and summary.json's widest surface crack
+# as corrosion.csv's last row reads it (12 digits printed there).
+w, w_row = summary(uncut)["surface_crack_width_mm"], corrosion(uncut)[-1]["crack_width_mm"]
+check(os.path.exists(os.path.join(uncut, "crack_pattern.csv")) and w is not None
+      and abs(w - w_row) <= 1e-11 * max(abs(w_row), 1e-6),
+      f"IMPL-EX at max_cuts = 0: crack_pattern.csv written, the widest surface crack {w} mm "
+      f"against corrosion.csv's last row {w_row} mm")
 cut = out_dir("implex_cut")
 p = run(demo, cut, check=False, sets=implex)
 check(p.returncode == 0 and summary(cut)["implex_jumps"] == 0,
