@@ -131,11 +131,11 @@ std::vector<double> Problem::values(Vec X) const
   return x;
 }
 
-double Problem::objective() const
+double Problem::half_square(const std::vector<double>& r)
 {
   double s = 0;
-  for (double r : r_last)
-    s += r * r;
+  for (double v : r)
+    s += v * v;
   return s / 2;
 }
 
@@ -201,7 +201,7 @@ void Problem::evaluate(const std::vector<double>& x, bool with_jacobian)
   if (search_at_resolution && !with_jacobian && x != x_jacobian)
   {
     x_last = x; // not run: x_jacobian's misfit (search_at_resolution)
-    r_last = r_jacobian;
+    r_last = known_points.front().r;
     last_failed = false;
     return;
   }
@@ -256,10 +256,7 @@ void Problem::evaluate(const std::vector<double>& x, bool with_jacobian)
     if (!with_jacobian && ++search_points == 1 && resolution.stall_ratio > 0 &&
         !x_jacobian.empty() && last_offset < search_resolution_offset() && !last_failed)
     {
-      double at_jacobian = 0;
-      for (double v : r_jacobian)
-        at_jacobian += v * v;
-      search_at_resolution = 2 * objective() > at_jacobian;
+      search_at_resolution = objective() > half_square(known_points.front().r);
       at_resolution = at_resolution || search_at_resolution; // the warning says so
     }
   }
@@ -299,7 +296,6 @@ void Problem::evaluate(const std::vector<double>& x, bool with_jacobian)
     difference_failed[j] = failed[first + j] && !taken_back;
   }
   x_jacobian = x;
-  r_jacobian = r_last;
   search_points = 0;
   known_points = {{x, r_last, last_failed}};
   jacobian.assign(m * x.size(), 0.0);

@@ -72,7 +72,7 @@ struct Problem
   /// (its difference's run failed, and the other way failed too or lay
   /// beyond its bound), so that the column is no derivative.
   std::vector<bool> difference_failed;
-  /// x_jacobian's run (where a line search that finds no step goes back
+  /// x_jacobian's run first (where a line search that finds no step goes back
   /// to), and the points of its line search that other groups ran ahead.
   std::vector<KnownPoint> known_points;
   Tao tao = nullptr;            ///< the solver whose iterations these are
@@ -99,10 +99,8 @@ struct Problem
   /// The offset below which a line search's rise in the misfit means the
   /// model's resolution: four times Resolution::offset_tolerance.
   double search_resolution_offset() const { return 4 * resolution.offset_tolerance; }
-  /// Line-search points run since the last Jacobian, and x_jacobian's
-  /// residuals [MPa].
+  /// Line-search points run since the last Jacobian.
   int search_points = 0;
-  std::vector<double> r_jacobian;
   /// Where that held in searches_failed_to_stop iterations running, the
   /// fit stops (TAO_DIVERGED_USER, DIVERGED_REFUSED_VALUES): the best fit
   /// lies beyond a relation between keys (f_fr <= f_t), where Armijo's
@@ -115,7 +113,9 @@ struct Problem
   /// The root mean square of the last residuals [MPa].
   double rms() const;
   /// The objective |r|^2 / 2 at the last base point [MPa^2].
-  double objective() const;
+  double objective() const { return half_square(r_last); }
+  /// |r|^2 / 2 of residuals r [MPa^2].
+  static double half_square(const std::vector<double>& r);
   /// The relative offset (FitStatistics.h) at x, from its residuals and
   /// Jacobian, over the values not held on a bound and with a derivative
   /// (difference_failed; 0 if none is left); NaN if the last Jacobian was
