@@ -53,14 +53,13 @@ void FieldWriter::open(const std::string& prefix)
   silence_hdf5();
   try
   {
-    _fields = std::make_unique<dolfinx::io::XDMFFile>(comm, _fields_file.string(), "w");
+    _fields = std::make_unique<XdmfSeries>(comm, _fields_file);
   }
   catch (...)
   {
     throw std::runtime_error(cannot_write_xdmf(_fields_file));
   }
-  xdmf_checked(_fields, _fields_file,
-               [&](dolfinx::io::XDMFFile& f) { f.write_mesh(*model.mesh()); });
+  xdmf_checked(_fields, _fields_file, [&](XdmfSeries& f) { f.write_mesh(*model.mesh()); });
   if (model.degree() == 2)
   {
     _u1 = std::make_shared<fem::Function<double>>(std::make_shared<fem::FunctionSpace>(
@@ -229,13 +228,14 @@ void FieldWriter::write(double t)
           {
             xdmf_checked(
                 _fields, _fields_file,
-                [&](dolfinx::io::XDMFFile& f)
+                [&](XdmfSeries& f)
                 {
-                  f.write_function(_u1 ? *_u1 : _model.displacement(), t);
-                  f.write_function(stress, t);
+                  f.write(_u1 ? *_u1 : _model.displacement(), t);
+                  f.write(stress, t);
                   if (_crack_opening)
                     for (const auto& field : {_crack_opening, _crack_normal, _crack_damage})
-                      f.write_function(*field, t);
+                      f.write(*field, t);
+                  f.save();
                 });
           },
           [&] { _interface->write(u, t); },

@@ -14,7 +14,7 @@
 #include "../model/Model.h"
 #include "JointWriter.h"
 #include "StressProjection.h"
-#include <dolfinx/io/XDMFFile.h>
+#include "XdmfSeries.h"
 #include <filesystem>
 #include <memory>
 #include <vector>
@@ -58,7 +58,7 @@ private:
   std::filesystem::path _fields_file;
   std::vector<std::filesystem::path> _h5; ///< the HDF5 files of the XDMF files
   std::uintmax_t _bytes_before = 0;       ///< data_bytes() before the last step [B]
-  std::unique_ptr<dolfinx::io::XDMFFile> _fields;
+  std::unique_ptr<XdmfSeries> _fields;
   bool _open = true;
   std::unique_ptr<JointWriter> _interface, _cracks;
   StressProjection _stress;

@@ -75,13 +75,13 @@ JointWriter::JointWriter(MPI_Comm comm, std::vector<const interface::Interface*>
   _path = file;
   try
   {
-    _file = std::make_unique<dolfinx::io::XDMFFile>(comm, file.string(), "w");
+    _file = std::make_unique<XdmfSeries>(comm, file);
   }
   catch (...)
   {
     throw std::runtime_error(cannot_write_xdmf(file));
   }
-  xdmf_checked(_file, _path, [&](dolfinx::io::XDMFFile& f) { f.write_mesh(*_mesh); });
+  xdmf_checked(_file, _path, [&](XdmfSeries& f) { f.write_mesh(*_mesh); });
 }
 
 JointWriter::~JointWriter()
@@ -121,10 +121,11 @@ void JointWriter::write(std::span<const double> u, double t)
       _fields[i]->x()->mutable_array()[dof] = sum[i];
   }
   xdmf_checked(_file, _path,
-               [&](dolfinx::io::XDMFFile& file)
+               [&](XdmfSeries& file)
                {
                  for (const auto& f : _fields)
-                   file.write_function(*f, t);
+                   file.write(*f, t);
+                 file.save();
                });
 }
 } // namespace pushout::output

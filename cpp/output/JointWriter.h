@@ -5,8 +5,8 @@
 #pragma once
 
 #include "../interface/Interface.h"
+#include "XdmfSeries.h"
 #include <dolfinx/fem/Function.h>
-#include <dolfinx/io/XDMFFile.h>
 #include <dolfinx/mesh/Mesh.h>
 #include <filesystem>
 #include <functional>
@@ -48,7 +48,7 @@ private:
   /// DG0 dof -> (set, pair)
   std::vector<std::pair<std::size_t, std::size_t>> _pair_of_dof;
   std::filesystem::path _path;
-  std::unique_ptr<dolfinx::io::XDMFFile> _file;
+  std::unique_ptr<XdmfSeries> _file;
   bool _open = true;
 };
 } // namespace pushout::output

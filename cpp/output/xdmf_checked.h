@@ -1,15 +1,14 @@
-// Writing XDMF files (dolfinx::io::XDMFFile, HDF5) with a failure, such as a
-// full disk, as one clear error ("cannot write DIR/fields.xdmf (disk
-// full?)"): HDF5 prints no error stack, and a file that failed is given up
-// (never closed again: XDMFFile's destructor would throw from its close,
-// which ends the process).
+// Writing XDMF files (XdmfSeries, HDF5) with a failure, such as a full disk,
+// as one clear error ("cannot write DIR/fields.xdmf (disk full?)"): HDF5
+// prints no error stack, and a file that failed is given up (never closed
+// again: its HDF5 handle is broken).
 #pragma once
 
 #include "../common/mpi_errors.h"
 #include "OutputFiles.h"
+#include "XdmfSeries.h"
 #include <algorithm>
 #include <cerrno>
-#include <dolfinx/io/XDMFFile.h>
 #include <filesystem>
 #include <hdf5.h>
 #include <memory>
@@ -39,11 +38,10 @@ inline std::string cannot_write_xdmf(const std::filesystem::path& xdmf)
 /// Runs f(*file) and agrees on its outcome over the file's processes: if it
 /// threw on any, the file is given up there and the error is
 /// cannot_write_xdmf(`name`) on all; so it is if the XML the first process
-/// wrote (dolfinx does not check it) is no file there. Collective where f
+/// wrote is no file there. Collective where f
 /// is.
 template <class F>
-void xdmf_checked(std::unique_ptr<dolfinx::io::XDMFFile>& file, const std::filesystem::path& name,
-                  F&& f)
+void xdmf_checked(std::unique_ptr<XdmfSeries>& file, const std::filesystem::path& name, F&& f)
 {
   if (!file) // given up before, on every process (agreed then)
     throw std::runtime_error(cannot_write_xdmf(name));
@@ -100,10 +98,9 @@ inline bool flush_hdf5_files(const std::vector<std::filesystem::path>& h5)
 
 /// Closes the file (collective); an error as xdmf_checked. A file given up
 /// before is an error too.
-inline void xdmf_close(std::unique_ptr<dolfinx::io::XDMFFile>& file,
-                       const std::filesystem::path& name)
+inline void xdmf_close(std::unique_ptr<XdmfSeries>& file, const std::filesystem::path& name)
 {
-  xdmf_checked(file, name, [](dolfinx::io::XDMFFile& f) { f.close(); });
+  xdmf_checked(file, name, [](XdmfSeries& f) { f.close(); });
   file.reset();
 }
 } // namespace pushout::output
