@@ -25,10 +25,10 @@
 #
 # Units: mm, N, MPa. Compiled by FFCx at build time (see CMakeLists.txt).
 import basix
-from ufl import (Coefficient, Constant, FiniteElement, FunctionSpace, Mesh,
+from ufl import (Coefficient, Constant, FiniteElement, FunctionSpace, Identity, Mesh,
                  SpatialCoordinate, TensorElement, TestFunction, TrialFunction,
                  VectorElement, as_matrix, as_vector, dot, dx, grad, hexahedron, inner,
-                 sym)
+                 sym, tr)
 
 DEGREE = 2  # of the quadrature rule
 coordinate_element = VectorElement("Lagrange", hexahedron, 1)
@@ -72,6 +72,32 @@ a_crack = inner(dot(d_C_matrix, voigt_strain(u)), voigt_strain(v)) * at_points
 # dissipated or release [N mm].
 M_points = point_value * at_points
 
+# The stiffness of the cracking cells at these points. forms/elasticity.py
+# integrates K with FFCx's own rule (3 x 3 x 3 points), a_crack takes C
+# away at the 2 x 2 x 2 points: on a hexahedron that is not a
+# parallelepiped the two rules differ (by some 1e-4 of a cell's stiffness),
+# so a crack whose band lost its stiffness would keep that much of C.
+# K + a_rule integrates the cracking cells at the points where the crack
+# band answers (cpp/model/BulkCracking.h, add_elastic_rule). in_K has no
+# metadata and the integrand of elasticity.py's a, so FFCx picks it a's
+# rule. The thermal load needs no such change: its integrand, a constant
+# stress against eps(v) times the Jacobian's determinant, is a polynomial
+# that both rules integrate exactly.
+E_c = Constant(mesh)   # the concrete's Young's modulus [MPa]
+nu_c = Constant(mesh)  # the concrete's Poisson's ratio [-]
+
+
+def hooke(eps):
+    """The concrete's C : eps [MPa] (as forms/elasticity.py's sigma)."""
+    lmbda = E_c * nu_c / ((1 + nu_c) * (1 - 2 * nu_c))
+    mu = E_c / (2 * (1 + nu_c))
+    return lmbda * tr(eps) * Identity(3) + 2 * mu * eps
+
+
+in_K = dx(REGION)
+a_rule = (inner(hooke(sym(grad(u))), sym(grad(v))) * at_points
+          - inner(hooke(sym(grad(u))), sym(grad(v))) * in_K)
+
 points, _ = basix.make_quadrature(basix.CellType.hexahedron, DEGREE)
 strain = voigt_strain(u_h) - alpha * dT * as_vector([1.0, 1.0, 1.0, 0.0, 0.0, 0.0])
 position = SpatialCoordinate(mesh)
@@ -87,5 +113,5 @@ d_sigma_tensor = as_matrix([[d_sigma[0], d_sigma[5], d_sigma[4]],
                             [d_sigma[4], d_sigma[3], d_sigma[2]]])
 L_stress_crack = inner(d_sigma_tensor, tau) * at_points
 
-forms = [L_crack, a_crack, M_points, L_stress_crack]
+forms = [L_crack, a_crack, M_points, L_stress_crack, a_rule]
 expressions = [(strain, points), (position, points)]

@@ -190,6 +190,11 @@ public:
   /// evaluate_tangent()) to A (before its final
   /// assembly) [N/mm].
   void add_tangent(Mat A) const;
+  /// Adds to the stiffness K (assembled; the caller assembles it again)
+  /// what moves its integral over the cracking cells to the crack band's
+  /// points (forms/cracking.py, a_rule), where the cracks take C away: a
+  /// crack that lost its stiffness keeps none of K. Once, on the model's K.
+  void add_elastic_rule(Mat K) const;
   /// Adds to A what the tangent of the last evaluation adds beyond
   /// `assembled`, the tangent's point values last added to A (empty: none,
   /// the whole tangent), integrated over the cells where it changed only;
@@ -461,6 +466,8 @@ private:
   std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>> _region;
   /// _L_release: L_crack on _release_gradient; _M: the integral of _point_value
   std::shared_ptr<dolfinx::fem::Form<double>> _L, _a, _M, _L_release;
+  /// a_rule: K at the points on the cracking cells
+  std::shared_ptr<dolfinx::fem::Form<double>> _a_rule;
   std::vector<double> _strain_values; ///< [cell][point][6], of the last evaluate()
 };
 } // namespace pushout::model

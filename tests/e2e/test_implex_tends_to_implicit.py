@@ -291,7 +291,8 @@ for name, out in (("1 process", traced), ("2 processes", traced_2)):
 #    step's constraint is then linear in the displacement too, and the
 #    prediction is scaled by the ratio of the energy increments). Started at
 #    the last equilibrium instead (the test hook) the same steps give the
-#    same p(x) to the bound of Newton's tolerance on both runs, in more
+#    same p(x) to the bound of Newton's tolerance on both runs until a step
+#    is cut in one of them only, and the same p at the end, in more
 #    Newton iterations (measured on the series' centred case, beta 2, seed
 #    1, 25 um: 289 against 386).
 os.environ["PUSHOUT_TEST_NO_STEP_PREDICTION"] = "1"
@@ -304,13 +305,24 @@ a, b = corrosion(traced), corrosion(unpredicted)
 s_traced = summary(traced)
 tol = newton_bound(len(a), s_traced["dofs"], IMPLEX_RTOL)
 scale = max(r["p_MPa"] for r in a)
-dp = max(abs(x["p_MPa"] - y["p_MPa"]) for x, y in zip(a, b)) / scale
+# The two take the same steps while their states agree to Newton's
+# tolerance, until a step's IMPL-EX error lands on one side of its
+# tolerance in one run and on the other in the other (as the 1- and
+# 2-process runs above): a step cut in one only, after which their steps
+# part. Compared: the rows before they part (a step of x is set exactly, an
+# energy step's x solved to Newton's tolerance, far below 1e-3 of a nominal
+# step), and the end, x = 25 um.
+step = 0.025 / 10  # a nominal corrosion step [mm]
+part = next((i for i, (x, y) in enumerate(zip(a, b))
+             if x["cuts"] != y["cuts"] or abs(x["penetration_mm"] - y["penetration_mm"]) > 1e-3 * step),
+            min(len(a), len(b)))
+dp = max(abs(x["p_MPa"] - y["p_MPa"]) for x, y in zip(a[:part], b[:part])) / scale
+dp_end = abs(a[-1]["p_MPa"] - b[-1]["p_MPa"]) / scale
 its = s_traced["newton_iterations"], summary(unpredicted)["newton_iterations"]
-check(len(a) == len(b) and dp <= tol and
-      s_traced["dissipation_steps"] == summary(unpredicted)["dissipation_steps"] and
-      its[0] < its[1],
-      f"through the snap-back from the prediction: {len(a)} and {len(b)} rows, "
-      f"{s_traced['dissipation_steps']} energy steps each, p within {dp:.1e} of its scale (bound "
+check(part > 0 and dp <= tol and dp_end <= tol and its[0] < its[1],
+      f"through the snap-back from the prediction: the same {part} rows of {len(a)} and {len(b)} "
+      f"({s_traced['dissipation_steps']} and {summary(unpredicted)['dissipation_steps']} energy "
+      f"steps), p within {dp:.1e} of its scale there and {dp_end:.1e} at 25 um (bound "
       f"{tol:.1e}); {its[0]} Newton iterations against {its[1]} from the last equilibrium")
 
 # 8. The history predictor against the strain predictor (the default, 1 and

@@ -6,7 +6,8 @@ planes: the ring of the closed forms (scripts/analytic.py).
 
 1. Uncracked concrete costs nothing: with a strength no stress reaches, the
    corrosion curve is the linear concrete's (no [cracking]) to Newton's
-   tolerance.
+   tolerance and the integration rule of the cracking cells' stiffness
+   (1e-4 of p).
 2. Onset: the first quadrature point cracks when the interface pressure p
    reaches p_cr = f_t (b^2 - R^2) / (b^2 + R^2) (Lame, the hoop stress at
    the tube) within 3 %: bracketed by two corrosion steps 2 % of p_cr apart.
@@ -53,15 +54,21 @@ p_cr = analytic.cracking_onset_pressure(f_t, R, b)
 def ring(x, steps, cracking=CRACKING):
     return corroded_ring(MESH, x, steps, push=0.001, push_steps=1) + cracking
 
-# 1. Uncracked concrete costs nothing.
+# 1. Uncracked concrete costs nothing (but for K's rule on its cells).
 linear, strong = out_dir("ring_linear"), out_dir("ring_strong")
 run(ring(0.004, 4, ""), linear)
 run(ring(0.004, 4, CRACKING.replace(f"f_t = {f_t}\nc = {c}", "f_t = 100.0\nc = 0.01")), strong)
 dp = max(abs(a["p_MPa"] - b_["p_MPa"]) for a, b_ in zip(corrosion(linear), corrosion(strong)))
 bound = max(p_bound(corrosion(o), o) for o in (linear, strong))  # each to Newton's tolerance
-check(dp <= bound and all(r["cracked_points"] == 0 for r in corrosion(strong)),
+# The cracking cells' K is integrated at the crack band's 2 x 2 x 2 points
+# (forms/cracking.py, a_rule), the linear ring's at FFCx's 3 x 3 x 3: on
+# cells that are not parallelepipeds the two differ by a small part of a
+# cell's stiffness (1e-4 on test CrackingRule's distorted box), which bounds
+# p's relative change (measured 1.3e-6 here); a crack moves p by per cents.
+rule = 1e-4 * max(r["p_MPa"] for r in corrosion(linear))
+check(dp <= bound + rule and all(r["cracked_points"] == 0 for r in corrosion(strong)),
       f"a strength no stress reaches: the linear ring's curve (|dp| {dp:.1e} MPa, Newton's "
-      f"bound {bound:.1e})")
+      f"bound {bound:.1e} and the rules' {rule:.1e})")
 
 # 2. Onset, in steps of x of 2 % of p_cr (p grows linearly with x before it).
 x_cr = 0.004 * p_cr / corrosion(linear)[-1]["p_MPa"]
