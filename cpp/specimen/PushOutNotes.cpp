@@ -1,0 +1,83 @@
+// The push-out's notes on a scene before it runs (PushOut::scene_notes):
+// what the scene asks for that the run will do otherwise, or that may not
+// converge.
+#include "../laws/LawRegistry.h"
+#include "../mesh/size.h"
+#include "../mesh/symmetry.h"
+#include "PushOut.h"
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace pushout::specimen
+{
+std::vector<std::string> PushOut::scene_notes(const Scene& scene)
+{
+  const Geometry& g = scene.geometry();
+  const double h =
+      mesh::interface_element_size(g.tube_radius(), scene.mesh().elements_per_quarter); // [mm]
+  const double E = scene.concrete().E;                                                  // [MPa]
+  const bool nodal = scene.mesh().nodal_quadrature;
+  std::vector<std::string> notes;
+  // One note per layer, on its stiffest parameter (elastic's k_n and k_s
+  // default to its k: the first of equals).
+  auto check = [&](const std::string& prefix, const LayerSpec& layer)
+  {
+    const laws::LawInfo* law = laws::find_law(layer.law);
+    if (!law)
+      return;
+    const laws::ParamDef* stiffest = nullptr;
+    double k = 0; // [N/mm^3]
+    for (const laws::ParamDef& def : law->params)
+      if (const auto it = layer.params.find(def.name);
+          def.unit == "N/mm^3" && it != layer.params.end() && it->second > k)
+      {
+        stiffest = &def;
+        k = it->second;
+      }
+    if (!stiffest || !(k * h / E > stiff_joint_ratio))
+      return;
+    // A whole number where it says enough (not for an absurd E, 1e-300 MPa).
+    const auto whole = [](double v)
+    {
+      std::ostringstream s;
+      if (std::abs(v) >= 1 && std::abs(v) < 1e15)
+        s << std::llround(v);
+      else
+        s << std::setprecision(3) << v;
+      return s.str();
+    };
+    std::ostringstream note;
+    note << std::setprecision(3) << prefix << stiffest->name << " = " << k << " N/mm^3 is "
+         << whole(k * h / E) << " E / h (E " << whole(E) << " MPa the concrete's, h " << h
+         << " mm an interface element's size): Newton may cycle between the joints' contact "
+            "and sliding states and not converge (seen from about "
+         << (nodal ? "3000 E / h"
+                   : "130 E / h with 2x2 Gauss points, 3000 with "
+                     "mesh.interface_quadrature = \"nodal\"")
+         << "); stiffer than " << stiff_joint_ratio << " E / h (" << stiff_joint_ratio * E / h
+         << " N/mm^3 here), a joint moves the curve by 0.1 % or less";
+    notes.push_back(note.str());
+  };
+  for (std::size_t i = 0; i < scene.layers().size(); ++i)
+    check("interface." + std::to_string(i) + ".", scene.layers()[i]);
+  for (std::size_t i = 0; i < scene.cracks().size(); ++i)
+    check("crack." + std::to_string(i) + ".", scene.cracks()[i].layer);
+  std::string why;
+  const bool symmetric = scene.model().symmetry == ModelPart::Symmetry::symmetric;
+  const int copies = symmetric ? mesh::model_symmetry(mesh::MeshInput::of(scene), why).copies() : 0;
+  // A cut the slice does not allow (the progress line says so too; --quiet hides it).
+  if (copies == 1)
+    notes.push_back("model.symmetry = \"symmetric\" finds no plane to cut at (" + why +
+                    "): the whole slice is solved");
+  // Cracks anywhere on a cut model are held symmetric (docs/cracking.md, "Reading the cracks").
+  if (scene.cracking().embedded && copies > 1)
+    notes.push_back("model.symmetry = \"symmetric\" holds the concrete's cracks symmetric: a "
+                    "crack on a symmetry plane opens a band on each side of it, and its mirror "
+                    "image opens too, where the whole slice may open one crack off the plane; "
+                    "the bond after cracking differed by 15 % (tube off centre) and by 2.1 "
+                    "times (tube centred: two cover cracks against one) on the coarse corroded "
+                    "demo (docs/cracking.md; model.symmetry = \"auto\" keeps the whole slice)");
+  return notes;
+}
+} // namespace pushout::specimen
