@@ -3,8 +3,9 @@
 # the quadrature points of the concrete that may crack, as coefficients of a
 # Quadrature element (point values, no interpolation).
 #
-# The linear bulk K of forms/elasticity.py stays assembled once; these forms
-# add what cracking changes, where it changes it:
+# The linear bulk K of forms/elasticity.py stays assembled once (its
+# cracking cells at these forms' points: a_rule below); these forms add
+# what cracking changes, where it changes it:
 #
 #   f_crack(v) = int (sigma - C : eps_e) : eps(v) dx
 #   a_crack(u, v) = int eps(u) : (C_t - C) : eps(v) dx
@@ -75,7 +76,7 @@ M_points = point_value * at_points
 # The stiffness of the cracking cells at these points. forms/elasticity.py
 # integrates K with FFCx's own rule (3 x 3 x 3 points), a_crack takes C
 # away at the 2 x 2 x 2 points: on a hexahedron that is not a
-# parallelepiped the two rules differ (by some 1e-4 of a cell's stiffness),
+# parallelepiped the two rules differ (by some 2e-4 of a cell's stiffness),
 # so a crack whose band lost its stiffness would keep that much of C.
 # K + a_rule integrates the cracking cells at the points where the crack
 # band answers (cpp/model/BulkCracking.h, add_elastic_rule). in_K has no

@@ -3,9 +3,10 @@
 // (the cells within cracking.radius of the tube axis), each point with its
 // own tensile strength from the random field of bulk/StrengthField.h.
 //
-// The linear stiffness K (forms/elasticity.py) stays as assembled; what
-// cracking changes enters through forms/cracking.py on the cracking cells
-// only: the forces of sigma - C : eps_e and the tangent C_t - C, both zero
+// The linear stiffness K (forms/elasticity.py) stays as assembled, its
+// cracking cells integrated at the crack band's points (add_elastic_rule);
+// what cracking changes enters through forms/cracking.py on the cracking
+// cells only: the forces of sigma - C : eps_e and the tangent C_t - C, both zero
 // at a point that has not cracked. Per evaluation: the strain at the points
 // (an FFCx expression of the displacement), the crack band's update from
 // the committed state (one 3 x 3 equilibrium per cracked point), then the

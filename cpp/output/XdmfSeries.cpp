@@ -125,7 +125,11 @@ void XdmfSeries::write(const dolfinx::fem::Function<double>& u, double t)
 
 void XdmfSeries::save()
 {
-  if (_rank == 0 && !_doc->save_file(_file.c_str(), "  "))
+  // The first process writes the file; every process learns whether it
+  // could (a failure is then given up on all: xdmf_checked.h).
+  int saved = _rank == 0 ? int(_doc->save_file(_file.c_str(), "  ")) : 1;
+  MPI_Bcast(&saved, 1, MPI_INT, 0, _comm);
+  if (!saved)
     throw std::runtime_error("cannot save " + _file.string());
 }
 
@@ -172,8 +176,9 @@ const std::vector<std::int32_t>& XdmfSeries::node_dofs(const dolfinx::fem::Funct
   const std::int32_t n_cells = cell_map->size_local() + cell_map->num_ghosts();
   const std::size_t n_nodes = std::size_t(geometry.index_map()->size_local());
   const int bs = V.dofmap()->bs();
+  // (A 2D tensor would need XDMFFile's padding of its components.)
   if (cell_centred(V) || V.dofmap()->element_dof_layout().num_dofs() != geometry.cmap().dim() ||
-      bs != V.element()->value_size())
+      bs != V.element()->value_size() || V.element()->value_shape().size() > 1)
     return dofs;
   std::vector<std::int32_t> found(n_nodes, -1);
   for (std::int32_t c = 0; c < n_cells; ++c)

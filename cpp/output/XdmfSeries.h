@@ -3,8 +3,9 @@
 // under /Mesh, each function's steps under /Function/NAME/T, a temporal
 // collection of grids per function), written for a run of many steps:
 // - the XML is saved once per step (save()), where XDMFFile saves the whole,
-//   growing document after each function, which makes a run's output cost
-//   grow with the square of its steps;
+//   growing document after each function (5 to 11 a step here): the cost
+//   of its saves still grows with the square of the steps (some 5 kB of XML
+//   a step), at a fifth to a tenth of XDMFFile's;
 // - a P1 function on the mesh's own nodes is written from its dofs, where
 //   XDMFFile evaluates it at every node (a pull-back into a cell each: most
 //   of the fields' output time on the paper's mesh).
@@ -44,8 +45,8 @@ public:
   /// each node of the mesh, cell data for a DG0 one. The XML is not saved
   /// (save()). Collective.
   void write(const dolfinx::fem::Function<double>& u, double t);
-  /// Saves the XML (on the first process) with every step written so far.
-  /// Collective.
+  /// Saves the XML (the first process writes it) with every step written
+  /// so far; throws on every process if it could not. Collective.
   void save();
   /// Closes the HDF5 file. Collective.
   void close();
@@ -66,6 +67,7 @@ private:
   std::unique_ptr<pugi::xml_document> _doc;
   std::string _mesh_reference;                   ///< the xi:include xpointer of the mesh's grid
   std::map<std::string, pugi::xml_node> _series; ///< a function's temporal collection
+  /// node_dofs() per space (the writer's callers keep their spaces alive)
   std::map<const dolfinx::fem::FunctionSpace*, std::vector<std::int32_t>> _node_dofs;
 };
 } // namespace pushout::output

@@ -7,7 +7,6 @@
 #include "../solver/Vector.h"
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
 #include <limits>
 #include <mpi.h>
 #include <numbers>
