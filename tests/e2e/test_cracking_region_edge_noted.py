@@ -16,7 +16,8 @@ cover 15 mm, 8 elements per quarter) corroded to x = 16 um:
    the same counts on 2 processes (the edge is the mesh's: its points
    exactly; the cracked points at Newton's tolerance, TIGHT_NEWTON, as
    common.check_one_and_two_processes compares them).
-2. radius 0 (all the concrete): no edge, cracking_edge null, no note.
+2. radius 0 (all the concrete): no edge, cracking_edge null, no note; the
+   same with a radius beyond the slice's corners.
 3. radius 70 mm and x = 2 um: the edge (round the far corners) exists
    and nothing cracks there: cracking_edge with no cracked point, no note.
 4. No corrosion stage, the concrete cracked by a cooling of 300 degC
@@ -68,6 +69,11 @@ check(e2["points"] == e1["points"] and e2["cracked_points"] == e1["cracked_point
 p0, e0, noted0, _ = edge_run("edge_r0", ["corrosion.penetration=0.004", "corrosion.steps=2"])
 check(e0 is None and not noted0 and "edge of the cracking region" not in p0.stdout,
       f"radius 0: cracking_edge {e0}, notes {noted0}")
+# A radius beyond the slice's farthest corner (90 mm from the axis) takes in
+# all the concrete: no edge either (it was a cracking_edge of zeros).
+_, e200, noted200, _ = edge_run("edge_r200", ["cracking.radius=200", "corrosion.penetration=0.002",
+                                            "corrosion.steps=1"])
+check(e200 is None and not noted200, f"radius 200 mm: cracking_edge {e200}, notes {noted200}")
 
 # 3. An edge that no crack reaches.
 p70, e70, noted70, _ = edge_run("edge_r70", ["cracking.radius=70", "corrosion.penetration=0.002",
