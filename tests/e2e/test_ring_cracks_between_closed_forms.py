@@ -7,7 +7,7 @@ planes: the ring of the closed forms (scripts/analytic.py).
 1. Uncracked concrete costs nothing: with a strength no stress reaches, the
    corrosion curve is the linear concrete's (no [cracking]) to Newton's
    tolerance and the integration rule of the cracking cells' stiffness
-   (1e-4 of p).
+   (1e-5 of p).
 2. Onset: the first quadrature point cracks when the interface pressure p
    reaches p_cr = f_t (b^2 - R^2) / (b^2 + R^2) (Lame, the hoop stress at
    the tube) within 3 %: bracketed by two corrosion steps 2 % of p_cr apart.
@@ -63,9 +63,9 @@ bound = max(p_bound(corrosion(o), o) for o in (linear, strong))  # each to Newto
 # The cracking cells' K is integrated at the crack band's 2 x 2 x 2 points
 # (forms/cracking.py, a_rule), the linear ring's at FFCx's 3 x 3 x 3: on
 # cells that are not parallelepipeds the two differ by a small part of a
-# cell's stiffness (1e-4 on test CrackingRule's distorted box), which bounds
-# p's relative change (measured 1.3e-6 here); a crack moves p by per cents.
-rule = 1e-4 * max(r["p_MPa"] for r in corrosion(linear))
+# cell's stiffness (some 1e-4 on the corroded demo's graded cells), and p by
+# less on this ring's (measured 7.8e-7 of it); a crack moves p by per cents.
+rule = 1e-5 * max(r["p_MPa"] for r in corrosion(linear))
 check(dp <= bound + rule and all(r["cracked_points"] == 0 for r in corrosion(strong)),
       f"a strength no stress reaches: the linear ring's curve (|dp| {dp:.1e} MPa, Newton's "
       f"bound {bound:.1e} and the rules' {rule:.1e})")
