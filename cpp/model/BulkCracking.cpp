@@ -95,11 +95,6 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
       *form_cracking_L_crack, {V}, {{"d_sigma", _release_gradient}}, {}, subdomains));
   _M = std::make_shared<fem::Form<double>>(fem::create_form<double>(
       *form_cracking_M_points, {}, {{"point_value", _point_value}}, {}, subdomains, mesh));
-  const std::map<std::string, std::shared_ptr<const fem::Constant<double>>> elastic = {
-      {"E_c", std::make_shared<fem::Constant<double>>(concrete.E)},
-      {"nu_c", std::make_shared<fem::Constant<double>>(concrete.nu)}};
-  _a_rule = std::make_shared<fem::Form<double>>(
-      fem::create_form<double>(*form_cracking_a_rule, {V, V}, {}, elastic, subdomains));
   _strain = std::make_unique<fem::Expression<double>>(fem::create_expression<double>(
       *expression_cracking_strain, {{"u_h", u}, {"alpha", alpha}}, {{"dT", _dT}}, mesh));
 
@@ -405,8 +400,17 @@ void BulkCracking::add_tangent(Mat A) const
 
 void BulkCracking::add_elastic_rule(Mat K) const
 {
+  // Once per model: the form made here, on a_crack's spaces and cells.
+  const std::map<fem::IntegralType, const dolfinx::mesh::MeshTags<int>*> subdomains = {
+      {fem::IntegralType::cell, _region.get()}};
+  const fem::Form<double> a_rule = fem::create_form<double>(
+      *form_cracking_a_rule, _a->function_spaces(),
+      std::map<std::string, std::shared_ptr<const fem::Function<double>>>{},
+      {{"E_c", std::make_shared<fem::Constant<double>>(_E)},
+       {"nu_c", std::make_shared<fem::Constant<double>>(_nu)}},
+      subdomains);
   petsc::BlockAdd add(K);
-  fem::assemble_matrix(std::ref(add), *_a_rule, {});
+  fem::assemble_matrix(std::ref(add), a_rule, {});
 }
 
 void BulkCracking::add_tangent_change(Mat A, std::vector<double>& assembled)

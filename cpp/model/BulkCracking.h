@@ -467,8 +467,6 @@ private:
   std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>> _region;
   /// _L_release: L_crack on _release_gradient; _M: the integral of _point_value
   std::shared_ptr<dolfinx::fem::Form<double>> _L, _a, _M, _L_release;
-  /// a_rule: K at the points on the cracking cells
-  std::shared_ptr<dolfinx::fem::Form<double>> _a_rule;
   std::vector<double> _strain_values; ///< [cell][point][6], of the last evaluate()
 };
 } // namespace pushout::model

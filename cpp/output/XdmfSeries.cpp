@@ -45,8 +45,9 @@ XdmfSeries::XdmfSeries(MPI_Comm comm, const std::filesystem::path& file)
   MPI_Comm_rank(comm, &_rank);
   int size = 1;
   MPI_Comm_size(comm, &size);
+  _mpi_io = size > 1;
   _h5 = dolfinx::io::HDF5Interface::open_file(
-      comm, dolfinx::io::xdmf_utils::get_hdf5_filename(file), "w", size > 1);
+      comm, dolfinx::io::xdmf_utils::get_hdf5_filename(file), "w", _mpi_io);
   _doc->append_child(pugi::node_doctype).set_value("Xdmf SYSTEM \"Xdmf.dtd\" []");
   pugi::xml_node xdmf = _doc->append_child("Xdmf");
   xdmf.append_attribute("Version") = "3.0";
@@ -117,10 +118,8 @@ void XdmfSeries::write(const dolfinx::fem::Function<double>& u, double t)
   MPI_Exscan(&local, &offset, 1, MPI_INT64_T, MPI_SUM, _comm);
   if (_rank == 0) // MPI_Exscan leaves the first process's undefined
     offset = 0;
-  int size = 1;
-  MPI_Comm_size(_comm, &size);
   dolfinx::io::xdmf_utils::add_data_item(attribute, _h5, "/Function/" + u.name + "/" + dataset_time,
-                                         values, offset, {global, width}, "", size > 1);
+                                         values, offset, {global, width}, "", _mpi_io);
 }
 
 void XdmfSeries::save()

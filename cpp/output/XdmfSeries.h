@@ -62,6 +62,7 @@ private:
 
   MPI_Comm _comm;
   int _rank = 0;
+  bool _mpi_io = false; ///< HDF5 through MPI-IO (several processes)
   std::filesystem::path _file;
   hid_t _h5 = -1;
   std::unique_ptr<pugi::xml_document> _doc;
