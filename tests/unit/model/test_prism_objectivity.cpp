@@ -1,0 +1,398 @@
+// Mesh objectivity of the concrete's cracks (model/BulkCracking.h) over the
+// whole softening branch: a concrete prism 100 x 10 x 10 mm pulled apart
+// along its axis, with a shallow waist at its middle (its side 2 % less
+// there, over some 15 mm: the same on every mesh), on three meshes refined
+// in every direction (5 x 1 x 1, 11 x 2 x 2 and 21 x 4 x 4 cells: 20, 9.1
+// and 4.8 mm along the prism). One crack opens through the middle row of
+// cells (odd n: a row at the waist), the rest of the prism unloads, and
+//
+// - the energy the cracks dissipate is G_F per unit of crack area, G_F
+//   times the middle row's section A_n, within 1 % (the law's own bound in
+//   the check at one point; measured -0.16, -0.24 and -0.21 %: the
+//   prism is pulled to an opening where exp(-c w) is 1e-4);
+// - the force-elongation curve past the peak, F(delta), agrees with the
+//   finest mesh's within 5 % (measured 1.6 %, as A_n differs by 1.4 % from
+//   mesh to mesh) and with the bar's closed form delta = F C + w(F / A_n)
+//   within 3 % (measured 0.7 %), C the prism's elastic compliance by the
+//   bar's one-dimensional formula (which leaves out the 3D stress of the
+//   waist: the reason for 3 %) and w the crack's opening at the stress
+//   f_t exp(-c w) of the law.
+//
+// With a crack band 10 mm wide on every mesh instead of the element's
+// projected size the coarsest mesh dissipates 18.94 N mm against G_F A_n =
+// 9.75 and the curves part by far more than 5 % (checked): the band's
+// regularisation is what holds them. The uniform ring and cover of the
+// push-out bifurcate past their peak (docs/cracking.md, "Still to come");
+// the prism's waist leaves it one crack to open, so this checks the
+// regularisation alone. Newton on the implicit cracks with their consistent
+// tangent, one process, a direct solve, to 1e-9 of the peak force: far
+// below the bounds above.
+#include "common/petsc_check.h"
+#include "elasticity.h"
+#include "mesh/MeshData.h"
+#include "model/BulkCracking.h"
+#include <algorithm>
+#include <cmath>
+#include <dolfinx/fem/assembler.h>
+#include <dolfinx/fem/petsc.h>
+#include <dolfinx/fem/utils.h>
+#include <dolfinx/la/petsc.h>
+#include <dolfinx/mesh/generation.h>
+#include <gtest/gtest.h>
+#include <petscksp.h>
+#include <vector>
+
+using namespace pushout;
+namespace fem = dolfinx::fem;
+using petsc::check;
+
+namespace
+{
+constexpr double E = 30000.0, nu = 0.2;                   // MPa, -
+constexpr double f_t = 3.0, c = 30.0;                     // MPa, 1/mm: G_F = f_t / c = 0.1 N/mm
+constexpr double L = 100.0, side = 10.0;                  // prism length and square side [mm]
+constexpr double waist_depth = 0.02, waist_length = 15.0; // -, mm: see waist()
+constexpr double G_F = f_t / c;                           // N/mm
+constexpr double A = side * side;                         // mm^2
+
+/// One prism's run: its elongation [mm] and force [N] at each converged
+/// step, the energy its cracks dissipated [N mm], the middle cell's length
+/// [mm] and how many points cracked.
+struct Pull
+{
+  std::vector<double> delta, force;
+  double dissipated = 0;
+  double h = 0;
+  std::int64_t cracked = 0; ///< points cracked at the end
+};
+
+/// The prism's side at x over `side` [-]: a shallow waist at the middle,
+/// so that the crack opens there, the same on every mesh (a notch of one
+/// cell would steepen with the mesh and tilt the stress).
+double waist(double x)
+{
+  const double s = (x - L / 2) / waist_length;
+  return 1 - waist_depth * std::exp(-s * s);
+}
+
+/// The prism [0, L] x [0, side]^2 on n cells along x (n odd: a cell at the
+/// middle) and m across, each node plane scaled to waist(x) about the edge
+/// y = z = 0.
+std::shared_ptr<dolfinx::mesh::Mesh> waisted_prism(int n, int m)
+{
+  auto mesh = std::make_shared<dolfinx::mesh::Mesh>(dolfinx::mesh::create_box(
+      MPI_COMM_SELF, {{{0, 0, 0}, {L, side, side}}},
+      {std::size_t(n), std::size_t(m), std::size_t(m)}, dolfinx::mesh::CellType::hexahedron,
+      dolfinx::mesh::GhostMode::none));
+  std::span<double> x = mesh->geometry().x();
+  for (std::size_t i = 0; i < x.size() / 3; ++i)
+  {
+    x[3 * i + 1] *= waist(x[3 * i]);
+    x[3 * i + 2] *= waist(x[3 * i]);
+  }
+  return mesh;
+}
+
+/// The middle cell's section on n cells along x [mm^2]: where the crack
+/// opens.
+double middle_section(int n)
+{
+  const double s = waist(L / 2 + L / (2 * n));
+  return s * s * A;
+}
+
+/// The prism's elastic compliance on n cells by the bar's formula, the sum
+/// over its cells of int dx / (E A(x)), the side linear in x within a cell
+/// from s0 to s1 (so the integral h / (E A s0 s1)) [mm/N].
+double compliance(int n)
+{
+  const double h = L / n;
+  double C = 0;
+  for (int i = 0; i < n; ++i)
+    C += h / (E * A * waist(i * h) * waist((i + 1) * h));
+  return C;
+}
+
+/// The closed form's force at elongation `delta` past the peak [N]: the
+/// root of delta = F C + w(F / A_n), w(sigma) = ln(f_t / sigma) / c.
+double closed_form_force(double delta, double C, double A_n)
+{
+  double lo = 1e-12, hi = f_t * A_n; // delta(F) falls with F past the peak
+  for (int k = 0; k < 200; ++k)
+  {
+    const double F = 0.5 * (lo + hi);
+    (F * C + std::log(f_t * A_n / F) / c > delta ? lo : hi) = F;
+  }
+  return 0.5 * (lo + hi);
+}
+
+/// The prism on n x m x m cells with its concrete's cracks, its stiffness
+/// K (the cracking cells at the crack band's points, as Model makes it) and
+/// its supports: u_x = 0 at x = 0 and the elongation at x = L, u_y = 0 on
+/// y = 0, u_z = 0 on z = 0 (rollers: the section contracts freely).
+class PulledPrism
+{
+public:
+  PulledPrism(int n, int m) : _mesh(waisted_prism(n, m))
+  {
+    _V = std::make_shared<fem::FunctionSpace>(
+        fem::create_functionspace(functionspace_form_elasticity_a, "u", _mesh));
+    auto Q = std::make_shared<fem::FunctionSpace>(
+        fem::create_functionspace(functionspace_form_elasticity_a, "E", _mesh));
+    auto cellwise = [&](double v)
+    {
+      auto f = std::make_shared<fem::Function<double>>(Q);
+      std::fill(f->x()->mutable_array().begin(), f->x()->mutable_array().end(), v);
+      return f;
+    };
+    auto alpha = cellwise(1e-5); // 1/degC; no temperature change here
+    const fem::Form<double> a = fem::create_form<double>(
+        *form_elasticity_a, {_V, _V}, {{"E", cellwise(E)}, {"nu", cellwise(nu)}, {"alpha", alpha}},
+        {}, {});
+    _u = std::make_shared<fem::Function<double>>(_V);
+
+    const std::int32_t n_cells = _mesh->topology().index_map(3)->size_local();
+    const std::vector<std::int32_t> material(std::size_t(n_cells), pushout::mesh::concrete);
+    CrackingPart part; // implicit cracks, uniform strength, all the concrete
+    part.embedded = true;
+    part.f_t = f_t;
+    part.c = c;
+    part.correlation_length = 5.0;
+    part.seed = 1;
+    part.visible_width = 0.05;
+    Geometry slice; // only the cracking region's centre and the faces' reading use it
+    slice.width = L;
+    slice.thickness = side;
+    slice.tube_center = {L / 2, L / 2};
+    _cracking = std::make_unique<model::BulkCracking>(_mesh, _V, _u, alpha, material,
+                                                      Material{E, nu, 1e-5}, part, slice);
+
+    _K = fem::petsc::create_matrix(a);
+    check(MatZeroEntries(_K), "MatZeroEntries");
+    fem::assemble_matrix(dolfinx::la::petsc::Matrix::set_block_fn(_K, ADD_VALUES), a, {});
+    check(MatAssemblyBegin(_K, MAT_FLUSH_ASSEMBLY), "MatAssemblyBegin");
+    check(MatAssemblyEnd(_K, MAT_FLUSH_ASSEMBLY), "MatAssemblyEnd");
+    _cracking->add_elastic_rule(_K);
+    check(MatAssemblyBegin(_K, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+    check(MatAssemblyEnd(_K, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+    check(MatDuplicate(_K, MAT_COPY_VALUES, &_J), "MatDuplicate");
+    check(MatCreateVecs(_K, &_du, &_r), "MatCreateVecs");
+    check(KSPCreate(PETSC_COMM_SELF, &_ksp), "KSPCreate");
+    check(KSPSetType(_ksp, KSPPREONLY), "KSPSetType");
+    PC pc;
+    check(KSPGetPC(_ksp, &pc), "KSPGetPC");
+    check(PCSetType(pc, PCLU), "PCSetType");
+
+    _X = _V->tabulate_dof_coordinates(false);
+    for (std::size_t node = 0; node < _X.size() / 3; ++node)
+    {
+      const double* p = _X.data() + 3 * node;
+      const PetscInt d = PetscInt(3 * node);
+      if (p[0] < 1e-9 * L)
+        _held.push_back(d);
+      if (p[0] > L * (1 - 1e-9))
+        _pulled.push_back(d);
+      if (std::abs(p[1]) < 1e-9 * L)
+        _held.push_back(d + 1);
+      if (std::abs(p[2]) < 1e-9 * L)
+        _held.push_back(d + 2);
+    }
+    _held.insert(_held.end(), _pulled.begin(), _pulled.end());
+    _f.resize(_X.size());
+  }
+
+  ~PulledPrism()
+  {
+    KSPDestroy(&_ksp);
+    VecDestroy(&_r);
+    VecDestroy(&_du);
+    MatDestroy(&_J);
+    MatDestroy(&_K);
+  }
+  PulledPrism(const PulledPrism&) = delete;
+  PulledPrism& operator=(const PulledPrism&) = delete;
+
+  /// The dofs' coordinates, node by node [mm].
+  const std::vector<double>& coordinates() const { return _X; }
+  /// The displacement [mm].
+  std::span<double> displacement() { return _u->x()->mutable_array(); }
+  model::BulkCracking& cracking() { return *_cracking; }
+
+  /// Newton from the displacement as it is, the pulled face at `delta`
+  /// [mm], to |f| below `tolerance` [N] on the free dofs, with the cracks'
+  /// consistent tangent; false if it does not get there in 50 iterations.
+  bool solve(double delta, double tolerance)
+  {
+    std::span<double> U = displacement();
+    for (PetscInt d : _pulled)
+      U[std::size_t(d)] = delta;
+    for (int it = 0; it < 50; ++it)
+    {
+      if (!forces())
+        return false;
+      std::vector<double> free_f = _f;
+      for (PetscInt d : _held)
+        free_f[std::size_t(d)] = 0;
+      double norm = 0;
+      for (double v : free_f)
+        norm += v * v;
+      if (std::sqrt(norm) < tolerance)
+        return true;
+      check(MatCopy(_K, _J, SAME_NONZERO_PATTERN), "MatCopy");
+      _cracking->add_tangent(_J);
+      check(MatAssemblyBegin(_J, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+      check(MatAssemblyEnd(_J, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+      check(MatZeroRowsColumns(_J, PetscInt(_held.size()), _held.data(), 1.0, nullptr, nullptr),
+            "MatZeroRowsColumns");
+      double* r;
+      check(VecGetArray(_r, &r), "VecGetArray");
+      for (std::size_t i = 0; i < free_f.size(); ++i)
+        r[i] = -free_f[i];
+      check(VecRestoreArray(_r, &r), "VecRestoreArray");
+      check(KSPSetOperators(_ksp, _J, _J), "KSPSetOperators");
+      check(KSPSolve(_ksp, _r, _du), "KSPSolve");
+      const double* du;
+      check(VecGetArrayRead(_du, &du), "VecGetArrayRead");
+      for (std::size_t i = 0; i < U.size(); ++i)
+        U[i] += du[i];
+      check(VecRestoreArrayRead(_du, &du), "VecRestoreArrayRead");
+    }
+    return false;
+  }
+
+  /// The force on the pulled face at the last solve [N].
+  double force() const
+  {
+    double F = 0;
+    for (PetscInt d : _pulled)
+      F += _f[std::size_t(d)];
+    return F;
+  }
+
+private:
+  /// _f = K u + the cracks' forces [N]; false if a crack failed.
+  bool forces()
+  {
+    if (!_cracking->evaluate())
+      return false;
+    std::span<double> U = displacement();
+    Vec u;
+    check(VecCreateSeqWithArray(PETSC_COMM_SELF, 3, PetscInt(U.size()), U.data(), &u),
+          "VecCreateSeqWithArray");
+    check(MatMult(_K, u, _r), "MatMult");
+    check(VecDestroy(&u), "VecDestroy");
+    const double* r;
+    check(VecGetArrayRead(_r, &r), "VecGetArrayRead");
+    std::copy(r, r + U.size(), _f.begin());
+    check(VecRestoreArrayRead(_r, &r), "VecRestoreArrayRead");
+    _cracking->add_forces(_f);
+    return true;
+  }
+
+  std::shared_ptr<dolfinx::mesh::Mesh> _mesh;
+  std::shared_ptr<fem::FunctionSpace> _V;
+  std::shared_ptr<fem::Function<double>> _u;
+  std::unique_ptr<model::BulkCracking> _cracking;
+  Mat _K = nullptr, _J = nullptr;
+  Vec _r = nullptr, _du = nullptr;
+  KSP _ksp = nullptr;
+  std::vector<double> _X, _f;
+  std::vector<PetscInt> _held, _pulled; // _held includes _pulled
+};
+
+/// Pulls the prism on n x m x m cells to `delta_end` [mm] (see Pull).
+Pull pull(int n, int m, double delta_end)
+{
+  PulledPrism prism(n, m);
+  const std::vector<double>& X = prism.coordinates();
+  std::span<double> U = prism.displacement();
+  Pull run;
+  run.h = L / n;
+  // Elastic to 0.9 of the peak's elongation in 3 steps, through the peak in
+  // steps of 1/500 of it (0.2 % of f_t: the waist's middle cell is 0.7 %
+  // weaker than its neighbours on the finest mesh), then 2 um steps. Each
+  // step starts from the last converged one plus its increment scaled to
+  // the step's (the first from a uniform stretch): from the pulled face
+  // alone moved the cells beside it cracked, and Newton on the cracks'
+  // kinks wandered.
+  const double peak = f_t * L / E; // about the elongation at the peak [mm]
+  std::vector<double> last(U.size(), 0.0), increment(U.size(), 0.0);
+  for (std::size_t node = 0; node < X.size() / 3; ++node)
+    increment[3 * node] = X[3 * node] / L;
+  double delta = 0, last_step = 1;
+  while (delta < delta_end)
+  {
+    const double step = delta < 0.85 * peak  ? 0.3 * peak
+                        : delta < 1.2 * peak ? 2e-3 * peak
+                                             : 2e-3; // mm
+    delta += step;
+    for (std::size_t i = 0; i < U.size(); ++i)
+      U[i] = last[i] + increment[i] * step / last_step;
+    if (!prism.solve(delta, 1e-9 * f_t * A))
+    {
+      ADD_FAILURE() << "Newton did not converge at delta = " << delta << " mm on " << n << " cells";
+      break;
+    }
+    for (std::size_t i = 0; i < U.size(); ++i)
+    {
+      increment[i] = U[i] - last[i];
+      last[i] = U[i];
+    }
+    last_step = step;
+    run.delta.push_back(delta);
+    run.force.push_back(prism.force());
+    run.dissipated += prism.cracking().dissipation();
+    prism.cracking().commit();
+  }
+  run.cracked = prism.cracking().totals().cracked_points;
+  return run;
+}
+
+/// F at elongation `delta` by linear interpolation of the run's curve [N].
+double force_at(const Pull& run, double delta)
+{
+  auto it = std::lower_bound(run.delta.begin(), run.delta.end(), delta);
+  const std::size_t i = std::size_t(std::max<std::ptrdiff_t>(1, it - run.delta.begin()));
+  const double t = (delta - run.delta[i - 1]) / (run.delta[i] - run.delta[i - 1]);
+  return run.force[i - 1] + t * (run.force[i] - run.force[i - 1]);
+}
+} // namespace
+
+TEST(PrismObjectivity, OneCrackDissipatesGfAndThePostPeakCurveIsTheMeshes)
+{
+  const double delta_end = 0.32; // mm: the crack's exp(-c w) about 1e-4 at the end
+  // n cells along the prism, m across: 20, 9.1 and 4.8 mm along it.
+  const std::vector<std::array<int, 2>> meshes = {{5, 1}, {11, 2}, {21, 4}};
+  const std::vector<double> post_peak = {0.015, 0.02, 0.03, 0.05, 0.08, 0.12}; // mm
+  std::vector<Pull> runs;
+  for (const auto& [n, m] : meshes)
+    runs.push_back(pull(n, m, delta_end));
+  const Pull& finest = runs.back();
+  for (std::size_t k = 0; k < runs.size(); ++k)
+  {
+    const Pull& run = runs[k];
+    ASSERT_GT(run.delta.size(), 1u);
+    ASSERT_GE(run.delta.back(), post_peak.back());
+    const int n = meshes[k][0];
+    const double A_n = middle_section(n); // mm^2
+    std::printf("%d x %d x %d cells: peak %.2f N (f_t A_n %.2f), dissipated %.4f N mm "
+                "(G_F A_n %.4f), %ld points cracked\n",
+                n, meshes[k][1], meshes[k][1],
+                *std::max_element(run.force.begin(), run.force.end()), f_t * A_n, run.dissipated,
+                G_F * A_n, long(run.cracked));
+    // The crack dissipates G_F per unit of its area (measured -0.16, -0.24
+    // and -0.21 %).
+    EXPECT_NEAR(run.dissipated, G_F * A_n, 0.01 * G_F * A_n) << n << " cells";
+    for (double d : post_peak)
+    {
+      const double F = force_at(run, d), F_fine = force_at(finest, d);
+      const double F_closed = closed_form_force(d, compliance(n), A_n);
+      std::printf("  delta %.3f mm: F %.3f N, closed form %.3f N\n", d, F, F_closed);
+      // Measured within 1.6 % of the finest mesh's (the middle cell's
+      // section differs by 1.4 % from mesh to mesh) and 0.7 % of the
+      // closed form.
+      EXPECT_NEAR(F, F_fine, 0.05 * F_fine) << n << " cells, delta " << d << " mm";
+      EXPECT_NEAR(F, F_closed, 0.03 * F_closed) << n << " cells, delta " << d << " mm";
+    }
+  }
+}
