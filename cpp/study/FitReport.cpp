@@ -68,6 +68,10 @@ std::string not_converged_message(const FitOutcome& fit, const std::filesystem::
   if (fit.failed_runs)
     m += "; " + std::to_string(fit.failed_runs) + " runs did not converge: " + fit.failure;
   m += ")";
+  if (fit.reason == "DIVERGED_NO_DERIVATIVE")
+    m += ": no free value has a derivative where it stopped (the runs beside it were refused "
+         "or failed; the warnings name them), so nothing tells which way its optimum lies; "
+         "start it elsewhere or hold that value";
   if (!fit.best_failure.empty())
     m += "; the fitted run in " + (fit_json.parent_path() / "best").string() + " " +
          fit.best_failure;
@@ -102,7 +106,8 @@ int write_fit(const FitOptions& opt, const MeasuredCurve& data, const std::vecto
   j["refusal"] = fit.refusal;           // "" where none was refused
   j["best_failure"] = fit.best_failure; // "" where the fitted run converged
   j["iterations"] = fit.iterations;
-  j["relative_offset"] = fit.relative_offset; // null where infinite (an exact fit)
+  j["relative_offset"] = fit.relative_offset; // null where infinite (an exact fit) or none
+                                              // (DIVERGED_NO_DERIVATIVE)
   j["converged"] = fit.converged;
   j["reason"] = fit.reason;
   j["warnings"] = stats.warnings;

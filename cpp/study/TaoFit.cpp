@@ -144,25 +144,49 @@ double Problem::rms() const
   return std::sqrt(2 * objective() / double(r_last.size()));
 }
 
+std::vector<std::size_t> Problem::judged_values(const std::vector<double>& x,
+                                                bool& without_derivative) const
+{
+  // The step still to go is along the values free to move: one on a bound
+  // that the gradient pushes beyond it stays there (TAO's bounded step).
+  const std::vector<double> g = transpose_times(jacobian, r_last); // d(|r|^2 / 2) / dx
+  std::vector<std::size_t> judged;
+  without_derivative = false;
+  for (std::size_t j = 0; j < free.size(); ++j)
+  {
+    // Without a derivative neither the step along it nor whether its
+    // bound holds it (its gradient) can be told.
+    if (j < difference_failed.size() && difference_failed[j])
+    {
+      without_derivative = true;
+      continue;
+    }
+    if ((free[j].on_lo(x[j]) && g[j] > 0) || (free[j].on_hi(x[j]) && g[j] < 0))
+      continue;
+    judged.push_back(j);
+  }
+  return judged;
+}
+
 double Problem::offset_at(const std::vector<double>& x) const
 {
   if (x != x_jacobian || x != x_last)
     return NAN;
-  // The step still to go is along the values free to move: one on a bound
-  // that the gradient pushes beyond it stays there (TAO's bounded step).
   const std::size_t m = r_last.size();
-  const std::vector<double> g = transpose_times(jacobian, r_last); // d(|r|^2 / 2) / dx
+  bool without_derivative = false;
   std::vector<double> columns;
-  for (std::size_t j = 0; j < free.size(); ++j)
-  {
-    if ((free[j].on_lo(x[j]) && g[j] > 0) || (free[j].on_hi(x[j]) && g[j] < 0))
-      continue;
-    if (j < difference_failed.size() && difference_failed[j])
-      continue; // no derivative: the step cannot be told along it
+  for (std::size_t j : judged_values(x, without_derivative))
     columns.insert(columns.end(), jacobian.begin() + std::ptrdiff_t(j * m),
                    jacobian.begin() + std::ptrdiff_t((j + 1) * m));
-  }
   return columns.empty() ? 0.0 : relative_offset(columns, r_last);
+}
+
+bool Problem::nothing_to_judge(const std::vector<double>& x) const
+{
+  if (x != x_jacobian)
+    return false;
+  bool without_derivative = false;
+  return judged_values(x, without_derivative).empty() && without_derivative;
 }
 
 void Problem::report(int iteration, const std::vector<double>& x, double offset) const
@@ -370,7 +394,8 @@ std::vector<double> TaoFit::solve()
   std::vector<double> x = _problem.values(X);
   _problem.evaluate(x, true);
   _problem.fill(J);
-  final_offset = _problem.offset_at(x);
+  no_derivative = _problem.nothing_to_judge(x);
+  final_offset = no_derivative ? NAN : _problem.offset_at(x); // NaN: none to take
   return x;
 }
 
@@ -378,7 +403,7 @@ bool TaoFit::converged() const
 {
   TaoConvergedReason reason;
   check(TaoGetConvergedReason(tao, &reason), "TaoGetConvergedReason");
-  return reason > 0 || at_resolution_by_search(reason);
+  return !no_derivative && (reason > 0 || at_resolution_by_search(reason));
 }
 
 bool TaoFit::at_resolution_by_search(TaoConvergedReason reason) const
@@ -392,6 +417,8 @@ std::string TaoFit::reason() const
 {
   TaoConvergedReason reason;
   check(TaoGetConvergedReason(tao, &reason), "TaoGetConvergedReason");
+  if (no_derivative)
+    return "DIVERGED_NO_DERIVATIVE";
   if (reason == TAO_CONVERGED_USER) // the tests of ours (convergence_test)
     return _problem.at_resolution ? "CONVERGED_MODEL_RESOLUTION" : "CONVERGED_RELATIVE_OFFSET";
   if (at_resolution_by_search(reason))

@@ -121,6 +121,16 @@ struct Problem
   /// (difference_failed; 0 if none is left); NaN if the last Jacobian was
   /// formed elsewhere.
   double offset_at(const std::vector<double>& x) const;
+  /// Whether at x, the last Jacobian's, no value is left to judge the fit
+  /// by and one was left out for want of a derivative (difference_failed):
+  /// where the fit stands says nothing of where the optimum lies (its
+  /// offset 0 and its gradient nought there are no test).
+  bool nothing_to_judge(const std::vector<double>& x) const;
+  /// The values that the offset at x is taken over: those not held on a
+  /// bound that the gradient pushes beyond and with a derivative;
+  /// `without_derivative` whether one was left out for want of one.
+  std::vector<std::size_t> judged_values(const std::vector<double>& x,
+                                         bool& without_derivative) const;
   /// The progress line of TAO's iteration `iteration` at x.
   void report(int iteration, const std::vector<double>& x, double offset) const;
 
@@ -156,13 +166,16 @@ struct TaoFit
   /// values) with the problem's residuals and the Jacobian J evaluated there.
   /// Throws Interrupted when a signal stopped the runs.
   std::vector<double> solve();
-  /// Whether the fit converged: TAO's gradient test, or the relative offset
+  /// Whether the fit converged: never where nothing is left to judge it by
+  /// (Problem::nothing_to_judge: reason DIVERGED_NO_DERIVATIVE); else
+  /// TAO's gradient test, or the relative offset
   /// below the problem's offset_tolerance (at the iteration limit too), or
   /// settled below 1 at the model's resolution (Resolution::stall_ratio),
   /// or a line search that met it (Problem::search_at_resolution).
   bool converged() const;
   /// Why TAO stopped, by PETSc's name (CONVERGED_RELATIVE_OFFSET for the
-  /// offset's test, CONVERGED_MODEL_RESOLUTION for its floor).
+  /// offset's test, CONVERGED_MODEL_RESOLUTION for its floor,
+  /// DIVERGED_NO_DERIVATIVE where nothing is left to judge the fit by).
   std::string reason() const;
   /// TAO's iterations.
   int iterations() const;
@@ -175,5 +188,6 @@ private:
   bool at_resolution_by_search(TaoConvergedReason reason) const;
   Problem& _problem;
   double final_offset = INFINITY;
+  bool no_derivative = false; ///< Problem::nothing_to_judge at the optimum
 };
 } // namespace pushout::study
