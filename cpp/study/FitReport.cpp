@@ -68,7 +68,8 @@ std::string not_converged_message(const FitOutcome& fit, const std::filesystem::
   if (fit.failed_runs)
     m += "; " + std::to_string(fit.failed_runs) + " runs did not converge: " + fit.failure;
   m += ")";
-  if (fit.reason == "DIVERGED_NO_DERIVATIVE")
+  const bool no_derivative = fit.reason == "DIVERGED_NO_DERIVATIVE";
+  if (no_derivative)
     m += ": no free value has a derivative where it stopped (the runs beside it were refused "
          "or failed; the warnings name them), so nothing tells which way its optimum lies; "
          "start it elsewhere or hold that value";
@@ -83,9 +84,10 @@ std::string not_converged_message(const FitOutcome& fit, const std::filesystem::
          "values that enlarge them keeps the fit off";
   else if (fit.refused_runs)
     m += "; " + std::to_string(fit.refused_runs) +
-         " runs were at values the scene refuses (one of them: " + fit.refusal +
-         "): the best fit may lie beyond a relation between keys (such as f_fr <= f_t), which a "
-         "--bounds at the relation lets the fit end on";
+         " runs were at values the scene refuses (one of them: " + fit.refusal + ")" +
+         (no_derivative ? "" // it did not move: no relation was met on the way
+                        : ": the best fit may lie beyond a relation between keys (such as f_fr "
+                          "<= f_t), which a --bounds at the relation lets the fit end on");
   return m;
 }
 

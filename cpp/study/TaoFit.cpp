@@ -144,49 +144,33 @@ double Problem::rms() const
   return std::sqrt(2 * objective() / double(r_last.size()));
 }
 
-std::vector<std::size_t> Problem::judged_values(const std::vector<double>& x,
-                                                bool& without_derivative) const
-{
-  // The step still to go is along the values free to move: one on a bound
-  // that the gradient pushes beyond it stays there (TAO's bounded step).
-  const std::vector<double> g = transpose_times(jacobian, r_last); // d(|r|^2 / 2) / dx
-  std::vector<std::size_t> judged;
-  without_derivative = false;
-  for (std::size_t j = 0; j < free.size(); ++j)
-  {
-    // Without a derivative neither the step along it nor whether its
-    // bound holds it (its gradient) can be told.
-    if (j < difference_failed.size() && difference_failed[j])
-    {
-      without_derivative = true;
-      continue;
-    }
-    if ((free[j].on_lo(x[j]) && g[j] > 0) || (free[j].on_hi(x[j]) && g[j] < 0))
-      continue;
-    judged.push_back(j);
-  }
-  return judged;
-}
-
 double Problem::offset_at(const std::vector<double>& x) const
 {
   if (x != x_jacobian || x != x_last)
     return NAN;
+  // The step still to go is along the values free to move: one on a bound
+  // that the gradient pushes beyond it stays there (TAO's bounded step).
   const std::size_t m = r_last.size();
-  bool without_derivative = false;
+  const std::vector<double> g = transpose_times(jacobian, r_last); // d(|r|^2 / 2) / dx
   std::vector<double> columns;
-  for (std::size_t j : judged_values(x, without_derivative))
+  for (std::size_t j = 0; j < free.size(); ++j)
+  {
+    if ((free[j].on_lo(x[j]) && g[j] > 0) || (free[j].on_hi(x[j]) && g[j] < 0))
+      continue;
+    if (j < difference_failed.size() && difference_failed[j])
+      continue; // no derivative: the step cannot be told along it
     columns.insert(columns.end(), jacobian.begin() + std::ptrdiff_t(j * m),
                    jacobian.begin() + std::ptrdiff_t((j + 1) * m));
+  }
   return columns.empty() ? 0.0 : relative_offset(columns, r_last);
 }
 
 bool Problem::nothing_to_judge(const std::vector<double>& x) const
 {
-  if (x != x_jacobian)
+  if (x != x_jacobian || difference_failed.size() < free.size())
     return false;
-  bool without_derivative = false;
-  return judged_values(x, without_derivative).empty() && without_derivative;
+  return std::all_of(difference_failed.begin(), difference_failed.end(),
+                     [](bool failed) { return failed; });
 }
 
 void Problem::report(int iteration, const std::vector<double>& x, double offset) const

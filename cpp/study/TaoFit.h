@@ -121,16 +121,12 @@ struct Problem
   /// (difference_failed; 0 if none is left); NaN if the last Jacobian was
   /// formed elsewhere.
   double offset_at(const std::vector<double>& x) const;
-  /// Whether at x, the last Jacobian's, no value is left to judge the fit
-  /// by and one was left out for want of a derivative (difference_failed):
-  /// where the fit stands says nothing of where the optimum lies (its
-  /// offset 0 and its gradient nought there are no test).
+  /// Whether at x, the last Jacobian's, no free value has a derivative
+  /// (difference_failed): where the fit stands then says nothing of where
+  /// its optimum lies (an offset over no values, a gradient of none, are
+  /// no test). With some derivative left the fit is judged by those values,
+  /// the others held where they are (their standard errors null).
   bool nothing_to_judge(const std::vector<double>& x) const;
-  /// The values that the offset at x is taken over: those not held on a
-  /// bound that the gradient pushes beyond and with a derivative;
-  /// `without_derivative` whether one was left out for want of one.
-  std::vector<std::size_t> judged_values(const std::vector<double>& x,
-                                         bool& without_derivative) const;
   /// The progress line of TAO's iteration `iteration` at x.
   void report(int iteration, const std::vector<double>& x, double offset) const;
 

@@ -33,7 +33,8 @@
 7. A free key that only the outputs read (cracking.visible_width) is
    refused; one whose difference cannot be run either way
    (cracking.radius from 0) has no standard error, and a warning; alone,
-   the fit ends DIVERGED_NO_DERIVATIVE (exit 3).
+   the fit ends DIVERGED_NO_DERIVATIVE (exit 3), beside mu it is held where
+   it is and the fit converges on mu.
 8. With cracks anywhere, a line search whose whole step raises the misfit
    from an iterate well inside the confidence region (offset below 0.2)
    ends the fit at the model's resolution, with no backtracking runs."""
@@ -381,6 +382,19 @@ for per_quarter, level in ((4, 0.01), (8, 0.001)):
               f"{rr['standard_errors']['cracking.radius']}, warnings {rr['warnings']}, "
               f"converged {rr['converged']} ({rr['reason']}, offset {rr['relative_offset']}), "
               f"{p.stderr.strip()[-300:]!r}")
+        # Beside a value with a derivative (mu), the fit is judged by that
+        # one, the radius held where it is: it converges.
+        both = out_dir("fit_radius_from_0_and_mu")
+        p = subprocess.run(base + ["--out", both, "--free", "cracking.radius", "--free",
+                                   "interface.0.mu"], capture_output=True, text=True, timeout=300)
+        with open(os.path.join(both, "fit.json")) as f:
+            rb = json.load(f)
+        check(p.returncode == 0 and rb["converged"] and rb["parameters"]["cracking.radius"] == 0
+              and rb["standard_errors"]["cracking.radius"] is None
+              and rb["standard_errors"]["interface.0.mu"] is not None,
+              f"--free cracking.radius from 0 with interface.0.mu: exit {p.returncode}, "
+              f"{rb['reason']}, radius {rb['parameters']['cracking.radius']}, standard errors "
+              f"{rb['standard_errors']}")
     # The coarse fit also on 2 processes: two groups, the second running the
     # points the line search would try next beside each one it tries alone
     # (runs ahead that it may not use: the bound on runs grows by one a point).
