@@ -73,9 +73,13 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
     MPI_Allreduce(MPI_IN_PLACE, &nearest, 1, MPI_DOUBLE, MPI_MIN, mesh->comm());
     throw SceneError(takes_no_concrete(part.radius, nearest));
   }
-  _radius = part.radius;
+  // A radius that takes in all the concrete leaves no edge: as radius 0
+  // (the count agreed, so every process says the same).
   if (part.radius > 0)
     _edge = region_edge(*mesh, material, _cells);
+  std::int64_t n_edge = std::int64_t(_edge.size());
+  MPI_Allreduce(MPI_IN_PLACE, &n_edge, 1, MPI_INT64_T, MPI_SUM, mesh->comm());
+  _radius = n_edge > 0 ? part.radius : 0.0;
   _d_sigma = quadrature_function(functionspace_form_cracking_L_crack, "d_sigma", mesh);
   _d_C = quadrature_function(functionspace_form_cracking_a_crack, "d_C", mesh);
   _d_C_change = quadrature_function(functionspace_form_cracking_a_crack, "d_C", mesh);

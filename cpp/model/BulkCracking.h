@@ -47,7 +47,9 @@ namespace pushout::model
 /// that reaches them cannot run on. Over all processes.
 struct EdgeCracks
 {
-  double radius = 0;               ///< cracking.radius [mm] (0: all the concrete, no edge)
+  /// cracking.radius [mm]; 0: no edge (radius 0, or one that takes in all
+  /// the concrete)
+  double radius = 0;
   std::int64_t points = 0;         ///< quadrature points of the cells at the edge
   std::int64_t cracked_points = 0; ///< of those, cracked
   double max_opening = 0;          ///< the widest normal opening w . n there [mm]
@@ -387,9 +389,9 @@ private:
   std::shared_ptr<dolfinx::mesh::Mesh> _mesh;
   std::shared_ptr<const dolfinx::fem::Function<double>> _u; ///< the model's displacement [mm]
   bulk::CrackBand _band;
-  std::vector<std::int32_t> _cells;       ///< cracking cells (local, owned), sorted
-  std::vector<std::size_t> _edge;         ///< of _cells, those at the region's edge (region_edge)
-  double _radius = 0;                     ///< cracking.radius [mm]
+  std::vector<std::int32_t> _cells; ///< cracking cells (local, owned), sorted
+  std::vector<std::size_t> _edge;   ///< of _cells, those at the region's edge (region_edge)
+  double _radius = 0; ///< cracking.radius [mm]; 0 where it leaves no edge (all the concrete)
   std::vector<double> _strength;          ///< [cell][point] f_t factor of the field
   std::vector<double> _committed, _trial; ///< [cell][point][CrackBand::state_size]
   std::vector<double> _dissipated;        ///< [cell][point] committed energy density [N mm/mm^3]

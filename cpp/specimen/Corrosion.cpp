@@ -195,8 +195,8 @@ void Corrosion::watch_edge(const model::EdgeCracks& edge, int step, double x)
 
 void Corrosion::note_edge_cracks(model::EdgeCracks edge)
 {
-  if (edge.radius <= 0 || edge.points == 0)
-    return; // all the concrete may crack (radius 0, or one that takes in all of it): no edge
+  if (edge.radius <= 0)
+    return; // all the concrete may crack: no edge (EdgeCracks::radius)
   const int copies = _symmetry.copies();
   if (_edge_reached.empty() && edge.cracked_points > 0) // no corrosion step saw them
     _edge_reached = active() ? "the push" : "step 0 or the push (no corrosion stage)";

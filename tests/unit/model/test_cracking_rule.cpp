@@ -14,6 +14,7 @@
 #include "mesh/generate.h"
 #include "model/Model.h"
 #include "scene/Scene.h"
+#include "uniform_materials.h"
 #include <cmath>
 #include <dolfinx/fem/assembler.h>
 #include <dolfinx/fem/petsc.h>
@@ -51,13 +52,6 @@ std::shared_ptr<dolfinx::mesh::Mesh> distorted_box()
   return mesh;
 }
 
-std::shared_ptr<fem::Function<double>> cellwise(std::shared_ptr<fem::FunctionSpace> Q, double v)
-{
-  auto f = std::make_shared<fem::Function<double>>(Q);
-  std::fill(f->x()->mutable_array().begin(), f->x()->mutable_array().end(), v);
-  return f;
-}
-
 struct Forms
 {
   std::shared_ptr<fem::FunctionSpace> V;
@@ -72,10 +66,7 @@ Forms forms(std::shared_ptr<dolfinx::mesh::Mesh> mesh)
   Forms f;
   f.V = std::make_shared<fem::FunctionSpace>(
       fem::create_functionspace(functionspace_form_elasticity_a, "u", mesh));
-  auto Q = std::make_shared<fem::FunctionSpace>(
-      fem::create_functionspace(functionspace_form_elasticity_a, "E", mesh));
-  const std::map<std::string, std::shared_ptr<const fem::Function<double>>> materials = {
-      {"E", cellwise(Q, E)}, {"nu", cellwise(Q, nu)}, {"alpha", cellwise(Q, alpha)}};
+  const auto materials = unit::uniform_materials(mesh, E, nu, alpha);
   auto temperature = std::make_shared<fem::Constant<double>>(dT);
   const std::map<std::string, std::shared_ptr<const fem::Constant<double>>> none;
   f.K = std::make_shared<fem::Form<double>>(

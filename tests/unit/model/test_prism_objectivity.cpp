@@ -50,6 +50,7 @@
 #include "elasticity.h"
 #include "mesh/MeshData.h"
 #include "model/BulkCracking.h"
+#include "uniform_materials.h"
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -72,7 +73,7 @@ using petsc::check;
 
 namespace
 {
-constexpr double E = 30000.0, nu = 0.2;                   // MPa, -
+constexpr double E = 30000.0, nu = 0.2, alpha = 1e-5;     // MPa, -, 1/degC
 constexpr double f_t = 3.0, c = 30.0;                     // MPa, 1/mm: G_F = f_t / c = 0.1 N/mm
 constexpr double L = 100.0, side = 10.0;                  // prism length and square side [mm]
 constexpr double waist_depth = 0.02, waist_length = 15.0; // -, mm: see waist()
@@ -161,18 +162,9 @@ public:
   {
     _V = std::make_shared<fem::FunctionSpace>(
         fem::create_functionspace(functionspace_form_elasticity_a, "u", _mesh));
-    auto Q = std::make_shared<fem::FunctionSpace>(
-        fem::create_functionspace(functionspace_form_elasticity_a, "E", _mesh));
-    auto cellwise = [&](double v)
-    {
-      auto f = std::make_shared<fem::Function<double>>(Q);
-      std::fill(f->x()->mutable_array().begin(), f->x()->mutable_array().end(), v);
-      return f;
-    };
-    auto alpha = cellwise(1e-5); // 1/degC; no temperature change here
-    const fem::Form<double> a = fem::create_form<double>(
-        *form_elasticity_a, {_V, _V}, {{"E", cellwise(E)}, {"nu", cellwise(nu)}, {"alpha", alpha}},
-        {}, {});
+    const auto materials = unit::uniform_materials(_mesh, E, nu, alpha); // no dT here
+    const fem::Form<double> a =
+        fem::create_form<double>(*form_elasticity_a, {_V, _V}, materials, {}, {});
     _u = std::make_shared<fem::Function<double>>(_V);
 
     const std::int32_t n_cells = _mesh->topology().index_map(3)->size_local();
@@ -193,8 +185,8 @@ public:
     slice.width = L;
     slice.thickness = side;
     slice.tube_center = {L / 2, L / 2};
-    _cracking = std::make_unique<model::BulkCracking>(_mesh, _V, _u, alpha, material,
-                                                      Material{E, nu, 1e-5}, part, slice);
+    _cracking = std::make_unique<model::BulkCracking>(
+        _mesh, _V, _u, materials.at("alpha"), material, Material{E, nu, alpha}, part, slice);
 
     _K = fem::petsc::create_matrix(a);
     check(MatZeroEntries(_K), "MatZeroEntries");
