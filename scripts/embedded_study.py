@@ -36,12 +36,14 @@ SCENE = "pushout_corroded_embedded.toml"
 # before it became the default name "history", so that they rerun with the
 # predictor they ran with, though not bit for bit: step 0 extrapolates its
 # parts since de9cf8a; the paper's-mesh series ran with "history" until its
-# rerun after a2cc244; docs/corrosion.md).
+# rerun after a2cc244; docs/corrosion.md), and its cracking.band_width (None:
+# the default, "projected"; docs/cracking.md, "The band's width").
 STUDIES = {
-    "corroded_embedded": ("implicit", False, None, None),
-    "corroded_embedded_implex": ("implex", False, None, "history"),
-    "corroded_embedded_paper_mesh": ("implex", True, None, "strain"),
-    "corroded_embedded_implex_strain": ("implex", False, None, "strain"),
+    "corroded_embedded": ("implicit", False, None, None, None),
+    "corroded_embedded_implex": ("implex", False, None, "history", None),
+    "corroded_embedded_paper_mesh": ("implex", True, None, "strain", None),
+    "corroded_embedded_implex_strain": ("implex", False, None, "strain", None),
+    "corroded_embedded_row_band": ("implex", False, None, "strain", "row"),
 }
 VISIBLE_UM = 50.0  # the [cracking] visible_width default: a surface crack counts from here
 
@@ -78,6 +80,8 @@ def cases(quick, study="corroded_embedded"):
                         # The centred tube's cover snaps back past the peak
                         # pressure, which control of x alone cannot pass.
                         sets += ["loading.control=auto", "cracking.integration=implicit"]
+                    if STUDIES[study][4] is not None:
+                        sets.append(f"cracking.band_width={STUDIES[study][4]}")
                     out.append((f"{where}_beta{beta:g}_seed{seed}_x{x_um:g}", SCENE, sets))
     return out
 
@@ -194,6 +198,7 @@ def plot_bond(plt, out, groups, table, study):
                  (" (IMPL-EX)" if STUDIES[study][0] == "implex" else "") +
                  (", the strain predictor" if STUDIES[study][3] == "strain" else "") +
                  (", the paper's mesh" if on_paper_mesh(study) else "") +
+                 (f", the {STUDIES[study][4]} band" if STUDIES[study][4] else "") +
                  f" ({seed_count(groups)} of a cov 0.15 strength field: mean and range)")
     fig.tight_layout()
     fig.savefig(os.path.join(out, f"{study}_residual_bond.png"))

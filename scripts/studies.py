@@ -52,6 +52,10 @@ Studies (each run keeps its resolved scene.toml next to its curve.csv):
   corroded_embedded_implex_strain  corroded_embedded_implex with the strain
               predictor (cracking.implex_predictor = "strain", the default;
               not in the studies run by default).
+  corroded_embedded_row_band  corroded_embedded_implex_strain with the
+              cracks' band the width of the thinnest row of cells
+              (cracking.band_width = "row"; not in the studies run by
+              default).
 --quick runs the same studies on a coarse mesh with few steps (the test
 suite uses it). Writes OUT/<study>/<case>/ run folders, OUT/*.png figures,
 OUT/plateaus.csv (friction plateau vs mu p) and OUT/timing.json.

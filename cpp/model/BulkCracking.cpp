@@ -57,10 +57,10 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
     : _mesh(mesh), _u(u), _band(concrete.E, concrete.nu, envelope_of(part), part.viscosity),
       _cells(cracking_cells(*mesh, material, part.radius, slice.tube_center)),
       _axis(slice.tube_center), _tube_radius(slice.tube_radius()),
-      _visible_width(part.visible_width), _cut(cut_by_symmetry), _implex(part.implex),
-      _implex_tolerance(part.implex_tolerance), _predict_strain(part.predict_strain),
-      _E(concrete.E), _nu(concrete.nu), _alpha(concrete.alpha),
-      _dT(std::make_shared<fem::Constant<double>>(0.0))
+      _visible_width(part.visible_width), _cut(cut_by_symmetry), _row_band(part.row_band),
+      _implex(part.implex), _implex_tolerance(part.implex_tolerance),
+      _predict_strain(part.predict_strain), _E(concrete.E), _nu(concrete.nu),
+      _alpha(concrete.alpha), _dT(std::make_shared<fem::Constant<double>>(0.0))
 {
   // A radius that takes in no concrete would leave it linear without a
   // word: refused, the same on every process (the count is summed, the
@@ -154,18 +154,25 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
   check.refuse_if_too_wide();
 }
 
-double BulkCracking::band_width(std::size_t cell, const bulk::Vec3& n) const
+CellVertices BulkCracking::vertices(std::size_t cell) const
 {
   const auto nodes = _mesh->geometry().dofmap().links(_cells[cell]);
   const std::span<const double> x = _mesh->geometry().x();
-  double lo = INFINITY, hi = -INFINITY;
-  for (std::int32_t node : nodes)
-  {
-    const double s = x[3 * node] * n[0] + x[3 * node + 1] * n[1] + x[3 * node + 2] * n[2];
-    lo = std::min(lo, s);
-    hi = std::max(hi, s);
-  }
-  return hi - lo;
+  CellVertices vertices;
+  for (std::size_t v = 0; v < vertices.size(); ++v)
+    for (std::size_t a = 0; a < 3; ++a)
+      vertices[v][a] = x[3 * std::size_t(nodes[v]) + a];
+  return vertices;
+}
+
+double BulkCracking::band_width(std::size_t cell, const bulk::Vec3& n) const
+{
+  return projected_width(vertices(cell), n);
+}
+
+double BulkCracking::crack_band_width(std::size_t cell, const bulk::Vec3& n) const
+{
+  return _row_band ? row_width(vertices(cell), n) : band_width(cell, n);
 }
 
 bulk::CrackBandResult BulkCracking::update_point(std::size_t c, std::size_t i,
@@ -174,7 +181,7 @@ bulk::CrackBandResult BulkCracking::update_point(std::size_t c, std::size_t i,
 {
   return _band.update(
       std::span<const double>(_committed.data() + state * i, state), strain, now,
-      [&](const bulk::Vec3& n) { return band_width(c, n); }, _strength[i], _dt, tangent);
+      [&](const bulk::Vec3& n) { return crack_band_width(c, n); }, _strength[i], _dt, tangent);
 }
 
 void BulkCracking::commit()

@@ -19,6 +19,7 @@
 
 #include "../bulk/CrackBand.h"
 #include "../scene/SceneParts.h"
+#include "CellWidth.h"
 #include "SurfaceCracks.h"
 #include <array>
 #include <cstdint>
@@ -376,9 +377,13 @@ private:
   /// [value's unit times mm^3].
   double integrate(const std::function<double(std::size_t)>& value_at_point);
 
-  /// Band width of a cracking cell along a unit normal n: the extent of its
-  /// vertices along n [mm] (bulk/CrackBand.h).
+  /// A cracking cell's vertices [mm] (model/CellWidth.h's order).
+  CellVertices vertices(std::size_t cell) const;
+  /// The extent of a cracking cell's vertices along a unit normal n [mm].
   double band_width(std::size_t cell, const bulk::Vec3& n) const;
+  /// The crack band's width of a cracking cell along a crack's unit normal n
+  /// [mm]: cracking.band_width's rule (model/CellWidth.h, bulk/CrackBand.h).
+  double crack_band_width(std::size_t cell, const bulk::Vec3& n) const;
   /// The crack band's own update of point i (of cracking cell c) from its
   /// committed state to `strain`, the new state into `now`; its tangent only
   /// with bulk::Tangent::compute.
@@ -412,6 +417,7 @@ private:
   double _nominal_fracture_energy = 0; ///< [N mm]
   bool _new_cracks = true;             ///< allow_new_cracks
   double _dt = 0;                      ///< set_time_increment [mm of push]
+  bool _row_band = false;              ///< cracking.band_width = "row"
   bool _implex = false;                ///< cracking.integration = "implex"
   double _implex_tolerance = 0;        ///< cracking.implex_tolerance
   bool _predict_strain = false;        ///< cracking.implex_predictor = "strain"

@@ -89,6 +89,7 @@ void Scene::fill_parts()
   _cracking.f_t = number("cracking.f_t");
   _cracking.c = number("cracking.c");
   _cracking.w_c2 = number("cracking.w_c2");
+  _cracking.row_band = string("cracking.band_width") == "row";
   _cracking.radius = number("cracking.radius");
   _cracking.strength_cov = number("cracking.strength_cov");
   _cracking.correlation_length = number("cracking.correlation_length");

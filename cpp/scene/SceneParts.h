@@ -126,6 +126,7 @@ struct CrackingPart
   double f_t{};                ///< tensile strength [MPa]
   double c{};                  ///< exponential decay [1/mm]
   double w_c2{};               ///< linear softening: the opening at zero traction [mm]
+  bool row_band{};             ///< band_width: row (else projected; model/CellWidth.h)
   double radius{};             ///< cracking region around the tube axis [mm]; 0: all concrete
   double strength_cov{};       ///< coefficient of variation of f_t [-]
   double correlation_length{}; ///< of the strength field [mm]

@@ -32,8 +32,9 @@
 // extent (which would halve the energy there): its energy within 1 %
 // (measured -0.7 %) and its curve within 3 % of the closed form (measured
 // 2.2 %: the tilt above, across cells twice as wide). A band by the
-// cells' length along x would pass too: a crack oblique to the cells is
-// not checked here.
+// cells' length along x would pass these too: the last two tests shear the
+// cells, so that the crack crosses their faces obliquely, where the
+// projected extent is too wide and cracking.band_width = "row" holds.
 // The uniform ring and cover of the push-out bifurcate past their peak
 // (docs/cracking.md, "Still to come"); the prism's waist leaves it one
 // crack to open, so this checks the regularisation alone. Newton on the
@@ -50,6 +51,7 @@
 #include "elasticity.h"
 #include "mesh/MeshData.h"
 #include "model/BulkCracking.h"
+#include "model/CellWidth.h"
 #include "uniform_materials.h"
 #include <algorithm>
 #include <array>
@@ -80,6 +82,14 @@ constexpr double waist_depth = 0.02, waist_length = 15.0; // -, mm: see waist()
 constexpr double G_F = f_t / c;                           // N/mm
 constexpr double A = side * side;                         // mm^2
 
+/// How a prism is meshed and its cracks integrated.
+struct Setup
+{
+  bool implex = false;   ///< IMPL-EX cracks (else implicit)
+  double shear = 0;      ///< the inner node planes' shear, x moved by shear (y - side / 2) [-]
+  bool row_band = false; ///< cracking.band_width = "row" (else projected)
+};
+
 /// One prism's run: its elongation [mm] and force [N] at each converged
 /// step, the energy its cracks dissipated [N mm], the middle cell's length
 /// [mm] and how many points cracked.
@@ -102,8 +112,10 @@ double waist(double x)
 
 /// The prism [0, L] x [0, side]^2 on n cells along x (n odd: a cell at the
 /// middle) and m across, each node plane scaled to waist(x) about the edge
-/// y = z = 0.
-std::shared_ptr<dolfinx::mesh::Mesh> waisted_prism(int n, int m)
+/// y = z = 0, then sheared in x by `shear` (y - side / 2) sin(pi x / L):
+/// the same prism (its ends and sides stay), its cells round the middle
+/// parallelepipeds whose x faces lean by atan(shear).
+std::shared_ptr<dolfinx::mesh::Mesh> waisted_prism(int n, int m, double shear)
 {
   auto mesh = std::make_shared<dolfinx::mesh::Mesh>(dolfinx::mesh::create_box(
       MPI_COMM_SELF, {{{0, 0, 0}, {L, side, side}}},
@@ -114,6 +126,7 @@ std::shared_ptr<dolfinx::mesh::Mesh> waisted_prism(int n, int m)
   {
     x[3 * i + 1] *= waist(x[3 * i]);
     x[3 * i + 2] *= waist(x[3 * i]);
+    x[3 * i] += shear * (x[3 * i + 1] - side / 2) * std::sin(M_PI * x[3 * i] / L);
   }
   return mesh;
 }
@@ -158,7 +171,7 @@ double closed_form_force(double delta, double C, double A_n)
 class PulledPrism
 {
 public:
-  PulledPrism(int n, int m, bool implex) : _mesh(waisted_prism(n, m))
+  PulledPrism(int n, int m, const Setup& setup) : _mesh(waisted_prism(n, m, setup.shear))
   {
     _V = std::make_shared<fem::FunctionSpace>(
         fem::create_functionspace(functionspace_form_elasticity_a, "u", _mesh));
@@ -176,7 +189,8 @@ public:
     part.correlation_length = 5.0;
     part.seed = 1;
     part.visible_width = 0.05;
-    part.implex = implex;
+    part.implex = setup.implex;
+    part.row_band = setup.row_band;
     part.predict_strain = true; // IMPL-EX's default predictor
     part.implex_tolerance = 1;  // unused: the test does not check the steps' error
     // The cracking region's centre, the surface readings' faces and the
@@ -322,9 +336,10 @@ private:
 };
 
 /// Pulls the prism on n x m x m cells to `delta_end` [mm] (see Pull).
-Pull pull(int n, int m, double delta_end, bool implex)
+Pull pull(int n, int m, double delta_end, const Setup& setup)
 {
-  PulledPrism prism(n, m, implex);
+  const bool implex = setup.implex;
+  PulledPrism prism(n, m, setup);
   const std::vector<double>& X = prism.coordinates();
   std::span<double> U = prism.displacement();
   Pull run;
@@ -396,8 +411,17 @@ double force_at(const Pull& run, double delta)
 }
 } // namespace
 
-/// The checks of the file's head, with the cracks implicit or IMPL-EX.
-static void check_objectivity(bool implex)
+/// How far each mesh's force may lie from its closed form [-], and its
+/// ratio to the closed form from the finest mesh's [-].
+struct Bounds
+{
+  double closed_form = 0.03;
+  double closed_form_vs_finest = 0.01;
+};
+
+/// The checks of the file's head, on the meshes and with the cracks of
+/// `setup`.
+static void check_objectivity(const Setup& setup, const Bounds& bounds = {})
 {
   const double delta_end = 0.32; // mm: the crack's exp(-c w) about 1e-4 at the end
   // n cells along the prism, m across: 20, 9.1 and 4.8 mm along it.
@@ -406,13 +430,13 @@ static void check_objectivity(bool implex)
   std::vector<Pull> runs;
   for (const auto& [n, m] : meshes)
   {
-    runs.push_back(pull(n, m, delta_end, implex));
+    runs.push_back(pull(n, m, delta_end, setup));
     ASSERT_GE(runs.back().delta.size(), 2u) << n << " cells";
     ASSERT_GE(runs.back().delta.back(), post_peak.back()) << n << " cells";
   }
   // Cells wider than long: the band is not the cell's largest extent.
   {
-    const Pull wide = pull(21, 1, delta_end, implex);
+    const Pull wide = pull(21, 1, delta_end, setup);
     ASSERT_GE(wide.delta.size(), 2u);
     ASSERT_GE(wide.delta.back(), post_peak.back());
     const double A_n = middle_section(21); // mm^2
@@ -423,7 +447,7 @@ static void check_objectivity(bool implex)
     {
       const double ratio = force_at(wide, d) / closed_form_force(d, compliance(21), A_n);
       std::printf("  delta %.3f mm: / closed form %.4f\n", d, ratio);
-      EXPECT_NEAR(ratio, 1.0, 0.03) << "21 x 1 x 1 cells, delta " << d << " mm";
+      EXPECT_NEAR(ratio, 1.0, bounds.closed_form) << "21 x 1 x 1 cells, delta " << d << " mm";
     }
   }
   // Each mesh's force over its own closed form at each post_peak point.
@@ -449,8 +473,10 @@ static void check_objectivity(bool implex)
       std::printf("  delta %.3f mm: F %.3f N, / closed form %.4f, / finest %.4f\n", d, F,
                   to_closed_form(k, d), F / F_fine);
       EXPECT_NEAR(F, F_fine, 0.05 * F_fine) << n << " cells, delta " << d << " mm";
-      EXPECT_NEAR(to_closed_form(k, d), 1.0, 0.03) << n << " cells, delta " << d << " mm";
-      EXPECT_NEAR(to_closed_form(k, d), to_closed_form(runs.size() - 1, d), 0.01)
+      EXPECT_NEAR(to_closed_form(k, d), 1.0, bounds.closed_form)
+          << n << " cells, delta " << d << " mm";
+      EXPECT_NEAR(to_closed_form(k, d), to_closed_form(runs.size() - 1, d),
+                  bounds.closed_form_vs_finest)
           << n << " cells, delta " << d << " mm";
     }
   }
@@ -458,10 +484,65 @@ static void check_objectivity(bool implex)
 
 TEST(PrismObjectivity, OneCrackDissipatesGfAndThePostPeakCurveIsTheMeshes)
 {
-  check_objectivity(false);
+  check_objectivity({.implex = false});
 }
 
 TEST(PrismObjectivity, TheSameWithImplexCracks)
 {
-  check_objectivity(true);
+  check_objectivity({.implex = true});
+}
+
+// Cells that the crack crosses obliquely: the meshes sheared by 0.3 (their
+// x faces lean by 16.7 deg round the middle), the crack's normal still along
+// the prism. It runs along the middle row of cells, whose width along x is
+// the cells' spacing L / n, while the cells' extent along x is L / n +
+// 0.3 side / m. With the row band (cracking.band_width = "row") the cracks
+// dissipate G_F A_n within 1 % (measured -0.01, +0.07, +0.24 and +0.31 %
+// on 5 x 1 x 1, 11 x 2 x 2, 21 x 4 x 4 and 21 x 1 x 1 cells) and the
+// curves agree within 2.1 % of the finest mesh's (asserted 5 %). The
+// curve's shape is not mode I's: the row, leaning, opens by a jump along
+// the prism that the crack's frame sees partly as sliding, and the
+// crack's law (a central force) softens on the sliding too, so F lies
+// above the closed form by up to 5.5 % just past the peak and below it by
+// up to 10.5 % at delta = 0.12 mm, the same on every mesh (the shear is);
+// asserted 12 %, and each mesh's ratio to the closed form within 3 % of
+// the finest mesh's (measured 2.0 %). With the projected band on the same
+// cells the force falls to 0.50 of the closed form at 0.12 mm (0.09 on
+// 21 x 1 x 1) and the energy is 12 to 38 % short (the next test).
+TEST(PrismObjectivity, OnShearedCellsTheRowBandHolds)
+{
+  check_objectivity({.implex = false, .shear = 0.3, .row_band = true},
+                    {.closed_form = 0.12, .closed_form_vs_finest = 0.03});
+}
+
+// The projected band on the same sheared cells dissipates G_F A_n times
+// the row's width over the extent (measured: 0.876, 0.861, 0.866 and 0.618
+// of G_F A_n on 5 x 1 x 1, 11 x 2 x 2, 21 x 4 x 4 and 21 x 1 x 1 cells):
+// a bias that does not fall with the cells' size, which the row band
+// removes (docs/cracking.md, "The band's width").
+TEST(PrismObjectivity, OnShearedCellsTheProjectedBandIsTooWide)
+{
+  const double shear = 0.3;
+  for (const auto& [n, m] : std::vector<std::array<int, 2>>{{5, 1}, {11, 2}, {21, 4}, {21, 1}})
+  {
+    const Pull run = pull(n, m, 0.32, {.implex = false, .shear = shear});
+    ASSERT_GE(run.delta.size(), 2u) << n << " cells";
+    // The middle cell at y, z in [0, side / m]: its vertices as
+    // waisted_prism places them.
+    model::CellVertices x;
+    const double dx = L / n, dy = side / m;
+    for (int v = 0; v < 8; ++v)
+    {
+      const double x0 = (n / 2 + (v & 1)) * dx;
+      const double y = ((v >> 1) & 1) * dy * waist(x0), z = ((v >> 2) & 1) * dy * waist(x0);
+      x[std::size_t(v)] = {x0 + shear * (y - side / 2) * std::sin(M_PI * x0 / L), y, z};
+    }
+    const double ratio = model::row_width(x, {1, 0, 0}) / model::projected_width(x, {1, 0, 0}); // -
+    const double A_n = middle_section(n); // mm^2
+    std::printf("%d x %d x %d cells sheared by %.1f, projected band: dissipated %.4f N mm, "
+                "G_F A_n %.4f, times the row's width over the extent %.4f\n",
+                n, m, m, shear, run.dissipated, G_F * A_n, G_F * A_n * ratio);
+    EXPECT_LT(ratio, 0.9) << n << " cells"; // the cells are sheared
+    EXPECT_NEAR(run.dissipated, G_F * A_n * ratio, 0.01 * G_F * A_n) << n << " cells";
+  }
 }
