@@ -36,11 +36,12 @@ def markdown_table(header, rows):
     return "\n".join(lines) + "\n"
 
 
-def arguments(doc, out_folder, repeat=False):
+def arguments(doc, out_folder, repeat=False, studies=None):
     """The options of a bench that runs cases into results/OUT_FOLDER:
     --pushout, --out, --reuse (keep runs that have a summary) and --only
-    (the cases to run), and with `repeat` --repeat N (rounds of the timed
-    cases); `doc` is the script's docstring (its --help)."""
+    (the cases to run), with `repeat` --repeat N (rounds of the timed
+    cases), and with `studies` --study (one of them, the first by default);
+    `doc` is the script's docstring (its --help)."""
     ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--pushout", default=PUSHOUT)
     ap.add_argument("--out", default=os.path.join(ROOT, "results", out_folder))
@@ -48,6 +49,8 @@ def arguments(doc, out_folder, repeat=False):
     ap.add_argument("--only", nargs="*", default=None)
     if repeat:
         ap.add_argument("--repeat", type=int, default=1, metavar="N")
+    if studies:
+        ap.add_argument("--study", choices=studies, default=studies[0])
     args = ap.parse_args()
     if repeat and args.repeat < 1:
         ap.error(f"--repeat must be at least 1, not {args.repeat}")

@@ -17,9 +17,11 @@ its angle, the energy the concrete's cracks dissipated, the bond's peak and
 its residual at 0.2 mm, and each one's difference from the finest mesh;
 Newton iterations and wall time (one thread each, one after the other).
 Writes bench/results/cracking_mesh.csv, .md and .png (the corrosion and
-push curves of every mesh).
+push curves of every mesh); with --study corroded_embedded_row_band, the
+case with that study's keys (the crack band the width of the thinnest row
+of cells, cracking.band_width = "row"), into cracking_mesh_row_band.*.
 
-  bench/cracking_mesh.py [--reuse] [--only MESH ...]     (MESH as 16x8)
+  bench/cracking_mesh.py [--reuse] [--only MESH ...] [--study STUDY]     (MESH as 16x8)
 """
 import os
 import sys
@@ -38,13 +40,22 @@ CASE = "cover15_beta2_seed1_x50"
 # study "corroded_embedded") on the mesh before dc44ed8 is kept as
 # bench/results/cracking_mesh_1dcec97.md.
 STUDY = "corroded_embedded_implex_strain"
+# --study: the same case with another study's keys; its table is
+# bench/results/cracking_mesh_<study less "corroded_embedded_">.md.
+OTHER_STUDIES = ("corroded_embedded_row_band",)
 MESHES = ((12, 4), (12, 8), (16, 8), (24, 8), (32, 8))
 
 
-def study_sets():
-    """The study's --set list of CASE."""
-    return next(sets for (name, _, sets) in embedded_study.cases(quick=False, study=STUDY)
+def study_sets(study):
+    """The --set list of CASE in `study`."""
+    return next(sets for (name, _, sets) in embedded_study.cases(quick=False, study=study)
                 if name == CASE)
+
+
+def results_name(study):
+    """The base name of the bench's table and figure for `study`."""
+    return "cracking_mesh" if study == STUDY else "cracking_mesh_" + study.replace(
+        "corroded_embedded_", "")
 
 
 def row(out, mesh, wall_s):
@@ -63,7 +74,7 @@ def row(out, mesh, wall_s):
             "newton_iterations": s["newton_iterations"], "wall_s": round(wall_s, 1)}
 
 
-def plot(rows, folders):
+def plot(rows, folders, name):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -80,19 +91,22 @@ def plot(rows, folders):
         ax.grid(alpha=0.3)
         ax.legend(title="per quarter / thickness")
     fig.tight_layout()
-    fig.savefig(os.path.join(RESULTS, "cracking_mesh.png"))
+    fig.savefig(os.path.join(RESULTS, name + ".png"))
 
 
 def main():
-    args = arguments(__doc__, "bench_cracking_mesh")
+    args = arguments(__doc__, "bench_cracking_mesh", studies=(STUDY, *OTHER_STUDIES))
     check_only(args, [f"{m[0]}x{m[1]}" for m in MESHES])
+    name = results_name(args.study)
     scene = embedded_study.write_scene(args.out)
     rows, folders = [], []
     for mesh in MESHES:
         if args.only and f"{mesh[0]}x{mesh[1]}" not in args.only:
             continue
-        out = os.path.join(args.out, f"{mesh[0]}x{mesh[1]}")
-        sets = study_sets() + [f"mesh.elements_per_quarter={mesh[0]}",
+        # The default study's runs where they always were (--reuse).
+        out = os.path.join(args.out, *([] if args.study == STUDY else [args.study]),
+                           f"{mesh[0]}x{mesh[1]}")
+        sets = study_sets(args.study) + [f"mesh.elements_per_quarter={mesh[0]}",
                                f"mesh.elements_through_thickness={mesh[1]}"]
         start = time.time()
         code = run(args.pushout, scene, out, sets, reuse=args.reuse, check=False)
@@ -104,16 +118,18 @@ def main():
         for key in ("p_after_corrosion_MPa", "concrete_dissipation_Nmm", "tau_residual_MPa"):
             r[key.rsplit("_", 1)[0] + "_vs_finest"] = f"{r[key] / finest[key] - 1:+.1%}"
     os.makedirs(RESULTS, exist_ok=True)
-    write_csv(os.path.join(RESULTS, "cracking_mesh.csv"), rows)
-    plot(rows, folders)
-    with open(os.path.join(RESULTS, "cracking_mesh.md"), "w") as f:
+    write_csv(os.path.join(RESULTS, name + ".csv"), rows)
+    plot(rows, folders, name)
+    with open(os.path.join(RESULTS, name + ".md"), "w") as f:
         f.write("# Cracks anywhere: one case of the corroded study on five meshes\n\n"
-                "Made by `bench/cracking_mesh.py` (one thread per run, this machine, one run "
-                f"each): {CASE} with the scene and keys of the study {STUDY}; the mesh is "
+                "Made by `bench/cracking_mesh.py"
+                + ("" if args.study == STUDY else f" --study {args.study}") +
+                "` (one thread per run, this machine, one run "
+                f"each): {CASE} with the scene and keys of the study {args.study}; the mesh is "
                 "elements per quarter / through the thickness, the differences are from the "
                 "finest.\n\n")
         f.write(markdown_table(list(rows[0].keys()), rows))
-        f.write("\n![curves](cracking_mesh.png)\n")
+        f.write(f"\n![curves]({name}.png)\n")
 
 
 if __name__ == "__main__":

@@ -44,6 +44,7 @@ STUDIES = {
     "corroded_embedded_paper_mesh": ("implex", True, None, "strain", None),
     "corroded_embedded_implex_strain": ("implex", False, None, "strain", None),
     "corroded_embedded_row_band": ("implex", False, None, "strain", "row"),
+    "corroded_embedded_row_band_paper_mesh": ("implex", True, None, "strain", "row"),
 }
 VISIBLE_UM = 50.0  # the [cracking] visible_width default: a surface crack counts from here
 
@@ -194,12 +195,14 @@ def plot_bond(plt, out, groups, table, study):
     for ax in axes:
         ax.grid(alpha=0.3)
     axes[0].legend(fontsize=8)
-    fig.suptitle("Corroded push-out, cracks anywhere" +
-                 (" (IMPL-EX)" if STUDIES[study][0] == "implex" else "") +
-                 (", the strain predictor" if STUDIES[study][3] == "strain" else "") +
-                 (", the paper's mesh" if on_paper_mesh(study) else "") +
-                 (f", the {STUDIES[study][4]} band" if STUDIES[study][4] else "") +
-                 f" ({seed_count(groups)} of a cov 0.15 strength field: mean and range)")
+    title = ("Corroded push-out, cracks anywhere" +
+             (" (IMPL-EX)" if STUDIES[study][0] == "implex" else "") +
+             (", the strain predictor" if STUDIES[study][3] == "strain" else "") +
+             (", the paper's mesh" if on_paper_mesh(study) else "") +
+             (f", the {STUDIES[study][4]} band" if STUDIES[study][4] else ""))
+    seeds = f"({seed_count(groups)} of a cov 0.15 strength field: mean and range)"
+    # One line while it fits the figure's width.
+    fig.suptitle(title + ("\n" if len(title) + len(seeds) > 110 else " ") + seeds)
     fig.tight_layout()
     fig.savefig(os.path.join(out, f"{study}_residual_bond.png"))
     plt.close(fig)

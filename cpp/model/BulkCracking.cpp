@@ -146,7 +146,7 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
   for (std::size_t c = 0; c < _cells.size(); ++c)
   {
     const double diagonal =
-        std::hypot(band_width(c, {1, 0, 0}), band_width(c, {0, 1, 0}), band_width(c, {0, 0, 1}));
+        std::hypot(extent(c, {1, 0, 0}), extent(c, {0, 1, 0}), extent(c, {0, 0, 1}));
     for (int q = 0; q < n_points; ++q)
       check.add(diagonal, {_places[c].x, _places[c].y}, _strength[c * n_points + q]);
   }
@@ -165,14 +165,14 @@ CellVertices BulkCracking::vertices(std::size_t cell) const
   return vertices;
 }
 
-double BulkCracking::band_width(std::size_t cell, const bulk::Vec3& n) const
+double BulkCracking::extent(std::size_t cell, const bulk::Vec3& n) const
 {
   return projected_width(vertices(cell), n);
 }
 
 double BulkCracking::crack_band_width(std::size_t cell, const bulk::Vec3& n) const
 {
-  return _row_band ? row_width(vertices(cell), n) : band_width(cell, n);
+  return _row_band ? row_width(vertices(cell), n) : extent(cell, n);
 }
 
 bulk::CrackBandResult BulkCracking::update_point(std::size_t c, std::size_t i,

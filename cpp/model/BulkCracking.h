@@ -380,7 +380,7 @@ private:
   /// A cracking cell's vertices [mm] (model/CellWidth.h's order).
   CellVertices vertices(std::size_t cell) const;
   /// The extent of a cracking cell's vertices along a unit normal n [mm].
-  double band_width(std::size_t cell, const bulk::Vec3& n) const;
+  double extent(std::size_t cell, const bulk::Vec3& n) const;
   /// The crack band's width of a cracking cell along a crack's unit normal n
   /// [mm]: cracking.band_width's rule (model/CellWidth.h, bulk/CrackBand.h).
   double crack_band_width(std::size_t cell, const bulk::Vec3& n) const;

@@ -95,8 +95,8 @@ void BulkCracking::place_cells(const Geometry& slice, const std::vector<double>&
       p.x += x[3 * node] / double(nodes.size());
       p.y += x[3 * node + 1] / double(nodes.size());
     }
-    p.weight = band_width(c, {0, 0, 1}) / slice.thickness;
-    p.size = std::max(band_width(c, {1, 0, 0}), band_width(c, {0, 1, 0}));
+    p.weight = extent(c, {0, 0, 1}) / slice.thickness;
+    p.size = std::max(extent(c, {1, 0, 0}), extent(c, {0, 1, 0}));
     p.outline = outline_of(nodes, x, p.x, p.y, p.size, tol);
     // A face of the hexahedron (4 of its nodes) on the outer boundary.
     auto on_face = [&](auto distance)

@@ -20,9 +20,10 @@
 //   the sheared cell above (20 mm), equal to the projected extent where n
 //   runs along an edge or a diagonal of a box cell, and h / cos(theta)
 //   (against the projected h cos(theta) + b sin(theta)) for a normal at
-//   theta from an edge of length h in a box cell h x b. Unlike Oliver's
-//   width through the centre's plane, it is continuous in n and positive
-//   on any cell that is not inverted.
+//   theta from an edge of length h in a box cell h x b, while tan(theta) <=
+//   b / h (past it the other row's b / sin(theta)). Unlike Oliver's width
+//   through the centre's plane, it is continuous in n and positive on any
+//   cell with a volume.
 //
 // Vertices in DOLFINx's (basix's) order for a hexahedron: vertex v at the
 // reference point (v & 1, (v >> 1) & 1, (v >> 2) & 1). Lengths in mm.
@@ -76,6 +77,13 @@ inline double row_width(const CellVertices& x, const bulk::Vec3& n)
     }
   const double det = J[0][0] * cof[0][0] + J[0][1] * cof[0][1] + J[0][2] * cof[0][2];
   double width = projected_width(x, n);
+  // A flat cell (its volume below round-off of its edges' product) has no
+  // rows: its extent.
+  double edges = 1;
+  for (int i = 0; i < 3; ++i)
+    edges *= std::sqrt(J[0][i] * J[0][i] + J[1][i] * J[1][i] + J[2][i] * J[2][i]);
+  if (!(std::abs(det) > 1e-12 * edges))
+    return width;
   for (int i = 0; i < 3; ++i)
   {
     // grad xi_i = row i of J^-1 = (cof[0][i], cof[1][i], cof[2][i]) / det

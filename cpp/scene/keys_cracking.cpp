@@ -72,9 +72,10 @@ std::vector<KeyDef> law_keys()
        "",
        "the width h of the band a crack's opening is smeared over (G_F / h per unit volume): "
        "projected: the cell's extent along the crack's normal; row: the width of the "
-       "thinnest row of cells the crack can run along (at most the extent), exact where the "
-       "crack crosses a row's faces obliquely, as in sheared cells, where the extent is too "
-       "wide and the crack dissipates too little (docs/cracking.md, \"The band's width\")",
+       "thinnest row of cells the crack can run along (at most the extent), exact for a crack "
+       "running along one row of parallelepiped cells whose faces it crosses obliquely (sheared "
+       "cells), where the extent is too wide and the crack dissipates too little "
+       "(docs/cracking.md, \"The band's width\")",
        -inf,
        inf,
        false,

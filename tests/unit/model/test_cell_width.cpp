@@ -95,11 +95,40 @@ TEST(CellWidth, TheRowTurnsWithTheCell)
 
 TEST(CellWidth, ATrapezoidalCellTakesItsCentresRow)
 {
-  // A cell whose x faces lean towards each other (a taper, as the push-out's
-  // cells round the tube): its centre's row along x is the mean spacing.
+  // A cell whose far x face leans (a taper, as the push-out's cells round
+  // the tube): its centre's row along x is the mean spacing.
   CellVertices x = parallelepiped({0, 0, 0}, {6, 0, 0}, {0, 4, 0}, {0, 0, 2});
   for (int v : {3, 7}) // the vertices at x = 6, y = 4: the face leans in
     x[std::size_t(v)][0] = 4;
   EXPECT_NEAR(model::row_width(x, {1, 0, 0}), 5.0, 1e-12);
   EXPECT_NEAR(model::projected_width(x, {1, 0, 0}), 6.0, 1e-12);
+}
+
+TEST(CellWidth, AFlatCellTakesItsExtent)
+{
+  // No volume, so no rows: the extent, not a width of zero; also where
+  // round-off leaves it a volume (its third edge in the plane of the
+  // others, the plane turned about an oblique axis).
+  auto turn = [](const bulk::Vec3& v)
+  {
+    const bulk::Vec3 a = unit(1, 2, 3); // Rodrigues' rotation by 1 rad about a
+    const double c = std::cos(1.0), s = std::sin(1.0);
+    const double d = a[0] * v[0] + a[1] * v[1] + a[2] * v[2];
+    const bulk::Vec3 axv = {a[1] * v[2] - a[2] * v[1], a[2] * v[0] - a[0] * v[2],
+                            a[0] * v[1] - a[1] * v[0]};
+    bulk::Vec3 r;
+    for (std::size_t k = 0; k < 3; ++k)
+      r[k] = v[k] * c + axv[k] * s + a[k] * d * (1 - c);
+    return r;
+  };
+  const bulk::Vec3 e0 = turn({4, 0, 0}), e1 = turn({0, 10, 0});
+  const bulk::Vec3 e2 = {0.3 * e0[0] + 0.1 * e1[0], 0.3 * e0[1] + 0.1 * e1[1],
+                         0.3 * e0[2] + 0.1 * e1[2]};
+  for (const CellVertices& flat : {parallelepiped({0, 0, 0}, {4, 0, 0}, {0, 10, 0}, {0, 0, 0}),
+                                   parallelepiped({1, 2, 3}, e0, e1, e2)})
+  {
+    const bulk::Vec3 n = unit(1, 0.3, 1);
+    EXPECT_NEAR(model::row_width(flat, n), model::projected_width(flat, n), 1e-12);
+    EXPECT_GT(model::row_width(flat, n), 1.0);
+  }
 }
