@@ -33,6 +33,7 @@ TEST(Scene, DefaultsFillEveryKey)
   ASSERT_EQ(s.layers().size(), 1u);
   EXPECT_EQ(s.layers()[0].law, "friction");
   EXPECT_DOUBLE_EQ(s.layers()[0].params.at("k"), 1000.0);
+  EXPECT_FALSE(s.cracking().row_band); // the projected band (docs/cracking.md)
 }
 
 // Every key reaches its typed part (SceneParts.h): a scene with no key at
@@ -88,6 +89,7 @@ law = "linear_softening"
 f_t = 2.5
 c = 20.0
 w_c2 = 0.12
+band_width = "row"
 radius = 40.0
 strength_cov = 0.15
 correlation_length = 4.0
@@ -154,6 +156,7 @@ plot = false
   EXPECT_EQ(k.f_t, 2.5);
   EXPECT_EQ(k.c, 20.0);
   EXPECT_EQ(k.w_c2, 0.12);
+  EXPECT_TRUE(k.row_band);
   EXPECT_EQ(k.radius, 40.0);
   EXPECT_EQ(k.strength_cov, 0.15);
   EXPECT_EQ(k.correlation_length, 4.0);
