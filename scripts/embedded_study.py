@@ -13,6 +13,7 @@ widest surface crack after corrosion, the bond's peak and the residual at
 0.2 mm; per group of seeds: their mean and range (the error bars); the
 crack patterns after corrosion to 50 um, one per seed.
 """
+import collections
 import csv
 import os
 import statistics
@@ -38,20 +39,21 @@ SCENE = "pushout_corroded_embedded.toml"
 # parts since de9cf8a; the paper's-mesh series ran with "history" until its
 # rerun after a2cc244; docs/corrosion.md), and its cracking.band_width (None:
 # the default, "projected"; docs/cracking.md, "The band's width").
+Study = collections.namedtuple("Study", "integration paper_mesh tolerance predictor band")
 STUDIES = {
-    "corroded_embedded": ("implicit", False, None, None, None),
-    "corroded_embedded_implex": ("implex", False, None, "history", None),
-    "corroded_embedded_paper_mesh": ("implex", True, None, "strain", None),
-    "corroded_embedded_implex_strain": ("implex", False, None, "strain", None),
-    "corroded_embedded_row_band": ("implex", False, None, "strain", "row"),
-    "corroded_embedded_row_band_paper_mesh": ("implex", True, None, "strain", "row"),
+    "corroded_embedded": Study("implicit", False, None, None, None),
+    "corroded_embedded_implex": Study("implex", False, None, "history", None),
+    "corroded_embedded_paper_mesh": Study("implex", True, None, "strain", None),
+    "corroded_embedded_implex_strain": Study("implex", False, None, "strain", None),
+    "corroded_embedded_row_band": Study("implex", False, None, "strain", "row"),
+    "corroded_embedded_row_band_paper_mesh": Study("implex", True, None, "strain", "row"),
 }
 VISIBLE_UM = 50.0  # the [cracking] visible_width default: a surface crack counts from here
 
 
 def on_paper_mesh(study):
     """Whether `study` (STUDIES) runs on the paper's mesh."""
-    return STUDIES[study][1]
+    return STUDIES[study].paper_mesh
 
 
 def write_scene(out):
@@ -71,18 +73,18 @@ def cases(quick, study="corroded_embedded"):
                             f"corrosion.penetration={x_um / 1e3}",
                             f"corrosion.steps={max(1, round(x_um / 2.5))}",
                             f"loading.steps={10 if quick else 20}", f"cracking.seed={seed}"]
-                    if STUDIES[study][0] == "implex":  # its steps jump where the cover snaps back
+                    if STUDIES[study].integration == "implex":  # its steps jump where the cover snaps back
                         sets.append("cracking.integration=implex")
-                        if STUDIES[study][2] is not None:
-                            sets.append(f"cracking.implex_tolerance={STUDIES[study][2]}")
-                        if STUDIES[study][3] is not None:
-                            sets.append(f"cracking.implex_predictor={STUDIES[study][3]}")
+                        if STUDIES[study].tolerance is not None:
+                            sets.append(f"cracking.implex_tolerance={STUDIES[study].tolerance}")
+                        if STUDIES[study].predictor is not None:
+                            sets.append(f"cracking.implex_predictor={STUDIES[study].predictor}")
                     else:
                         # The centred tube's cover snaps back past the peak
                         # pressure, which control of x alone cannot pass.
                         sets += ["loading.control=auto", "cracking.integration=implicit"]
-                    if STUDIES[study][4] is not None:
-                        sets.append(f"cracking.band_width={STUDIES[study][4]}")
+                    if STUDIES[study].band is not None:
+                        sets.append(f"cracking.band_width={STUDIES[study].band}")
                     out.append((f"{where}_beta{beta:g}_seed{seed}_x{x_um:g}", SCENE, sets))
     return out
 
@@ -196,10 +198,10 @@ def plot_bond(plt, out, groups, table, study):
         ax.grid(alpha=0.3)
     axes[0].legend(fontsize=8)
     title = ("Corroded push-out, cracks anywhere" +
-             (" (IMPL-EX)" if STUDIES[study][0] == "implex" else "") +
-             (", the strain predictor" if STUDIES[study][3] == "strain" else "") +
+             (" (IMPL-EX)" if STUDIES[study].integration == "implex" else "") +
+             (", the strain predictor" if STUDIES[study].predictor == "strain" else "") +
              (", the paper's mesh" if on_paper_mesh(study) else "") +
-             (f", the {STUDIES[study][4]} band" if STUDIES[study][4] else ""))
+             (f", the {STUDIES[study].band} band" if STUDIES[study].band else ""))
     seeds = f"({seed_count(groups)} of a cov 0.15 strength field: mean and range)"
     # One line while it fits the figure's width.
     fig.suptitle(title + ("\n" if len(title) + len(seeds) > 110 else " ") + seeds)

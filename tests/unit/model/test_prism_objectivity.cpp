@@ -110,11 +110,19 @@ double waist(double x)
   return 1 - waist_depth * std::exp(-s * s);
 }
 
-/// The prism [0, L] x [0, side]^2 on n cells along x (n odd: a cell at the
-/// middle) and m across, each node plane scaled to waist(x) about the edge
-/// y = z = 0, then sheared in x by `shear` (y - side / 2) sin(pi x / L):
-/// the same prism (its ends and sides stay), its cells round the middle
-/// parallelepipeds whose x faces lean by atan(shear).
+/// Where a node of the box [0, L] x [0, side]^2 goes [mm]: its node plane
+/// scaled to waist(x) about the edge y = z = 0, then sheared in x by
+/// `shear` (y - side / 2) sin(pi x / L): the same prism (its ends and sides
+/// stay), its cells round the middle parallelepipeds whose x faces lean by
+/// atan(shear).
+bulk::Vec3 prism_node(const bulk::Vec3& box, double shear)
+{
+  const double y = box[1] * waist(box[0]), z = box[2] * waist(box[0]);
+  return {box[0] + shear * (y - side / 2) * std::sin(M_PI * box[0] / L), y, z};
+}
+
+/// The prism on n cells along x (n odd: a cell at the middle) and m across
+/// (prism_node).
 std::shared_ptr<dolfinx::mesh::Mesh> waisted_prism(int n, int m, double shear)
 {
   auto mesh = std::make_shared<dolfinx::mesh::Mesh>(dolfinx::mesh::create_box(
@@ -124,9 +132,8 @@ std::shared_ptr<dolfinx::mesh::Mesh> waisted_prism(int n, int m, double shear)
   std::span<double> x = mesh->geometry().x();
   for (std::size_t i = 0; i < x.size() / 3; ++i)
   {
-    x[3 * i + 1] *= waist(x[3 * i]);
-    x[3 * i + 2] *= waist(x[3 * i]);
-    x[3 * i] += shear * (x[3 * i + 1] - side / 2) * std::sin(M_PI * x[3 * i] / L);
+    const bulk::Vec3 p = prism_node({x[3 * i], x[3 * i + 1], x[3 * i + 2]}, shear);
+    std::copy(p.begin(), p.end(), x.begin() + std::ptrdiff_t(3 * i));
   }
   return mesh;
 }
@@ -528,16 +535,13 @@ TEST(PrismObjectivity, OnShearedCellsTheProjectedBandIsTooWide)
   {
     const Pull run = pull(n, m, 0.32, {.implex = false, .shear = shear});
     ASSERT_GE(run.delta.size(), 2u) << n << " cells";
-    // The middle cell at y, z in [0, side / m]: its vertices as
-    // waisted_prism places them.
+    // The middle cell at y, z in [0, side / m], placed as waisted_prism
+    // places it.
     model::CellVertices x;
     const double dx = L / n, dy = side / m;
     for (int v = 0; v < 8; ++v)
-    {
-      const double x0 = (n / 2 + (v & 1)) * dx;
-      const double y = ((v >> 1) & 1) * dy * waist(x0), z = ((v >> 2) & 1) * dy * waist(x0);
-      x[std::size_t(v)] = {x0 + shear * (y - side / 2) * std::sin(M_PI * x0 / L), y, z};
-    }
+      x[std::size_t(v)] =
+          prism_node({(n / 2 + (v & 1)) * dx, ((v >> 1) & 1) * dy, ((v >> 2) & 1) * dy}, shear);
     const double ratio = model::row_width(x, {1, 0, 0}) / model::projected_width(x, {1, 0, 0}); // -
     const double A_n = middle_section(n); // mm^2
     std::printf("%d x %d x %d cells sheared by %.1f, projected band: dissipated %.4f N mm, "
