@@ -36,12 +36,13 @@ def markdown_table(header, rows):
     return "\n".join(lines) + "\n"
 
 
-def arguments(doc, out_folder, repeat=False, studies=None):
+def arguments(doc, out_folder, repeat=False, studies=None, options=()):
     """The options of a bench that runs cases into results/OUT_FOLDER:
     --pushout, --out, --reuse (keep runs that have a summary) and --only
     (the cases to run), with `repeat` --repeat N (rounds of the timed
-    cases), and with `studies` --study (one of them, the first by default);
-    `doc` is the script's docstring (its --help)."""
+    cases), with `studies` --study (one of them, the first by default), and
+    the bench's own `options` ((flag, argparse keywords) pairs); `doc` is the
+    script's docstring (its --help)."""
     ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--pushout", default=PUSHOUT)
     ap.add_argument("--out", default=os.path.join(ROOT, "results", out_folder))
@@ -51,6 +52,8 @@ def arguments(doc, out_folder, repeat=False, studies=None):
         ap.add_argument("--repeat", type=int, default=1, metavar="N")
     if studies:
         ap.add_argument("--study", choices=studies, default=studies[0])
+    for flag, keywords in options:
+        ap.add_argument(flag, **keywords)
     args = ap.parse_args()
     if repeat and args.repeat < 1:
         ap.error(f"--repeat must be at least 1, not {args.repeat}")

@@ -8,9 +8,9 @@ The case: the tube 15 mm from a face, beta 2, strength field seed 1,
 corroded to x = 50 um in 20 steps, pushed 0.2 mm in 20 steps, with the scene
 and keys of the study that docs/corrosion.md leads with (STUDY: today's
 default integration, IMPL-EX with the strain predictor); meshes (elements per quarter /
-through the thickness) 12/4 (the study's), 12/8, 16/8 (the paper's), 24/8
-and 32/8. The random strength field is a function of position, the same on
-every mesh.
+through the thickness) 12/4 (the study's), 12/8, 16/8 (the paper's), 24/8,
+32/8, 40/8 and 48/8 (the last two some 15 min each). The random strength
+field is a function of position, the same on every mesh.
 
 For each: the oxide's pressure after corrosion, the widest surface crack and
 its angle, the energy the concrete's cracks dissipated, the bond's peak and
@@ -19,9 +19,12 @@ Newton iterations and wall time (one thread each, one after the other).
 Writes bench/results/cracking_mesh.csv, .md and .png (the corrosion and
 push curves of every mesh); with --study corroded_embedded_row_band, the
 case with that study's keys (the crack band the width of the thinnest row
-of cells, cracking.band_width = "row"), into cracking_mesh_row_band.*.
+of cells, cracking.band_width = "row"), into cracking_mesh_row_band.*. With
+--lines radial, the graded concrete's lines along rays from the tube axis
+(mesh.graded_lines = "radial"), into cracking_mesh[_row_band]_radial.*.
 
-  bench/cracking_mesh.py [--reuse] [--only MESH ...] [--study STUDY]     (MESH as 16x8)
+  bench/cracking_mesh.py [--reuse] [--only MESH ...] [--study STUDY] [--lines radial]
+                                                                      (MESH as 16x8)
 """
 import os
 import sys
@@ -43,7 +46,7 @@ STUDY = "corroded_embedded_implex_strain"
 # --study: the same case with another study's keys; its table is
 # bench/results/cracking_mesh_<study less "corroded_embedded_">.md.
 OTHER_STUDIES = ("corroded_embedded_row_band",)
-MESHES = ((12, 4), (12, 8), (16, 8), (24, 8), (32, 8))
+MESHES = ((12, 4), (12, 8), (16, 8), (24, 8), (32, 8), (40, 8), (48, 8))
 
 
 def study_sets(study):
@@ -52,10 +55,12 @@ def study_sets(study):
                 if name == CASE)
 
 
-def results_name(study):
-    """The base name of the bench's table and figure for `study`."""
-    return "cracking_mesh" if study == STUDY else "cracking_mesh_" + study.replace(
+def results_name(study, lines):
+    """The base name of the bench's table and figure for `study` with the
+    graded lines `lines`."""
+    name = "cracking_mesh" if study == STUDY else "cracking_mesh_" + study.replace(
         "corroded_embedded_", "")
+    return name + ("" if lines == "blocks" else "_" + lines)
 
 
 def row(out, mesh, wall_s):
@@ -95,19 +100,23 @@ def plot(rows, folders, name):
 
 
 def main():
-    args = arguments(__doc__, "bench_cracking_mesh", studies=(STUDY, *OTHER_STUDIES))
+    args = arguments(__doc__, "bench_cracking_mesh", studies=(STUDY, *OTHER_STUDIES),
+                     options=[("--lines", {"choices": ("blocks", "radial"), "default": "blocks",
+                                           "help": "mesh.graded_lines"})])
     check_only(args, [f"{m[0]}x{m[1]}" for m in MESHES])
-    name = results_name(args.study)
+    name = results_name(args.study, args.lines)
     scene = embedded_study.write_scene(args.out)
     rows, folders = [], []
     for mesh in MESHES:
         if args.only and f"{mesh[0]}x{mesh[1]}" not in args.only:
             continue
         # The default study's runs where they always were (--reuse).
-        out = os.path.join(args.out, *([] if args.study == STUDY else [args.study]),
-                           f"{mesh[0]}x{mesh[1]}")
+        out = os.path.join(args.out, *([] if args.lines == "blocks" else [args.lines]),
+                           *([] if args.study == STUDY else [args.study]), f"{mesh[0]}x{mesh[1]}")
         sets = study_sets(args.study) + [f"mesh.elements_per_quarter={mesh[0]}",
-                               f"mesh.elements_through_thickness={mesh[1]}"]
+                                         f"mesh.elements_through_thickness={mesh[1]}"]
+        if args.lines != "blocks":
+            sets.append(f"mesh.graded_lines={args.lines}")
         start = time.time()
         code = run(args.pushout, scene, out, sets, reuse=args.reuse, check=False)
         print(f"{mesh}: exit {code}, {time.time() - start:.1f} s", flush=True)
@@ -123,11 +132,14 @@ def main():
     with open(os.path.join(RESULTS, name + ".md"), "w") as f:
         f.write("# Cracks anywhere: one case of the corroded study on five meshes\n\n"
                 "Made by `bench/cracking_mesh.py"
-                + ("" if args.study == STUDY else f" --study {args.study}") +
+                + ("" if args.study == STUDY else f" --study {args.study}")
+                + ("" if args.lines == "blocks" else f" --lines {args.lines}") +
                 "` (one thread per run, this machine, one run "
-                f"each): {CASE} with the scene and keys of the study {args.study}; the mesh is "
+                f"each): {CASE} with the scene and keys of the study {args.study}, "
+                f"mesh.graded_lines = \"{args.lines}\"; the mesh is "
                 "elements per quarter / through the thickness, the differences are from the "
-                "finest.\n\n")
+                "finest. wall_s is each run's own, and runs may have shared the machine "
+                "(timings: bench/cracking_speed.py).\n\n")
         f.write(markdown_table(list(rows[0].keys()), rows))
         f.write(f"\n![curves]({name}.png)\n")
 

@@ -73,6 +73,17 @@ geo_for(const MeshInput& in)
     for (std::size_t k = 0; k < corners.size(); ++k)
       constants.insert(constants.end(), {{"ox_" + std::to_string(k), corners[k][0]},
                                          {"oy_" + std::to_string(k), corners[k][1]}});
+    // Always given: gmsh keeps a constant that an earlier mesh of the same
+    // process set and this one leaves out.
+    const bool radial = in.mesh.radial_lines && !g.circle; // (a circle's are radial already)
+    constants.push_back({"radial", radial ? 1.0 : 0.0});
+    if (radial)
+    {
+      const auto ends = radial_line_ends(g, in.mesh.elements_per_quarter);
+      for (std::size_t j = 0; j < ends.size(); ++j)
+        constants.insert(constants.end(), {{"bx_" + std::to_string(j), ends[j][0]},
+                                           {"by_" + std::to_string(j), ends[j][1]}});
+    }
     return {dir / "slice.geo", constants};
   }
   constants.insert(constants.end(), sectors.begin(), sectors.end());

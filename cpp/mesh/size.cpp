@@ -42,8 +42,8 @@ double first_element(double L, std::int64_t n, double q)
 
 /// The lengths of the graded block's lines, support circle to boundary [mm],
 /// in the .geo's order: slice.geo's from the support circle at 45 + 90 k
-/// degrees to block corner k, slice_cracked.geo's along each sector
-/// boundary (mesh/cracks.h).
+/// degrees to block corner k (with radial lines, every line), slice_cracked.geo's
+/// along each sector boundary (mesh/cracks.h).
 std::vector<double> graded_lines(const MeshInput& in, double Rs)
 {
   const Geometry& g = in.geometry;
@@ -55,6 +55,16 @@ std::vector<double> graded_lines(const MeshInput& in, double Rs)
     const SliceSectors sec = slice_sectors(in);
     angles = sec.angles;
     outer = sec.outer;
+  }
+  else if (in.mesh.radial_lines && !g.circle)
+  {
+    // Every line of the graded block is one of its own (the longest ends at
+    // a square corner), not the blocks' interpolation between their corner
+    // lines.
+    outer = radial_line_ends(g, in.mesh.elements_per_quarter);
+    for (std::size_t j = 0; j < outer.size(); ++j)
+      angles.push_back(std::numbers::pi / 4 +
+                       double(j) * std::numbers::pi / 2 / double(in.mesh.elements_per_quarter));
   }
   else
     for (int k = 0; k < 4; ++k)

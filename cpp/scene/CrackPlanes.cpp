@@ -49,6 +49,32 @@ std::array<std::array<double, 2>, 4> block_corners(const Geometry& g)
   return corners;
 }
 
+std::vector<std::array<double, 2>> radial_line_ends(const Geometry& g, std::int64_t nq)
+{
+  const std::size_t n = 4 * std::size_t(nq);
+  const auto ray = [&](std::size_t j) { return pi / 4 + double(j) * pi / 2 / double(nq); };
+  std::vector<std::array<double, 2>> ends(n);
+  for (std::size_t j = 0; j < n; ++j)
+    ends[j] = boundary_point(g, ray(j));
+  if (g.circle)
+    return ends;
+  const std::array<double, 4> corner = corner_angles(g);
+  const auto corners = block_corners(g);
+  // Each corner lies in its own quadrant of directions from the tube axis
+  // (the +x+y corner between 0 and 90 degrees, ...), and two corners could
+  // share a nearest ray only near the quadrants' common boundary, which
+  // would put the tube beyond the slice: so no line ends at two corners.
+  for (std::size_t k = 0; k < 4; ++k)
+  {
+    std::size_t nearest = 0;
+    for (std::size_t j = 1; j < n; ++j)
+      if (angle_between(ray(j), corner[k]) < angle_between(ray(nearest), corner[k]))
+        nearest = j;
+    ends[nearest] = corners[k];
+  }
+  return ends;
+}
+
 /// Where the ray from the tube centre at angle a meets the slice boundary.
 std::array<double, 2> boundary_point(const Geometry& g, double a)
 {

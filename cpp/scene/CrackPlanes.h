@@ -29,6 +29,14 @@ std::array<std::array<double, 2>, 4> block_corners(const Geometry& g);
 /// outer boundary [mm].
 std::array<double, 2> boundary_point(const Geometry& g, double a);
 
+/// The outer ends of the graded block's lines when they are radial
+/// (mesh.graded_lines = "radial") [mm], 4 nq of them: line j from
+/// meshes/slice.geo's node on the support circle at 45 + 90 j / nq degrees
+/// along its ray from the tube axis to the boundary, but each of a square's
+/// corners at the end of the line whose ray is nearest to it, so that the
+/// boundary keeps its corners.
+std::vector<std::array<double, 2>> radial_line_ends(const Geometry& g, std::int64_t nq);
+
 /// The directions of `cracks` [rad, in [0, 2 pi)], in their order.
 /// "nearest_face" is the direction of the square's side nearest the tube
 /// axis (ties: -y, +x, +y, -x). A crack within half an interface element

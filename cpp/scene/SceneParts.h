@@ -69,8 +69,9 @@ struct MeshPart
   std::int64_t elements_through_thickness{}; ///< layers through L
   std::int64_t steel_layers{};               ///< layers across the tube wall
   double outer_size_ratio{};                 ///< outer / interface element size
-  int degree{};                              ///< bulk displacement: 1 or 2
-  bool nodal_quadrature{};                   ///< interface_quadrature: nodal (else 2x2 Gauss)
+  bool radial_lines{};     ///< graded_lines: radial (else blocks; meshes/slice.geo)
+  int degree{};            ///< bulk displacement: 1 or 2
+  bool nodal_quadrature{}; ///< interface_quadrature: nodal (else 2x2 Gauss)
   bool operator==(const MeshPart&) const = default;
 };
 

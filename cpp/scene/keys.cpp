@@ -176,6 +176,22 @@ std::vector<KeyDef> make_keys()
        false,
        {},
        A::pushout},
+      {"mesh.graded_lines",
+       K::string,
+       std::string("blocks"),
+       "",
+       "the lines of the graded concrete from the support circle out to a square slice's "
+       "boundary: blocks: from equal angles on the circle to equal steps along each quarter's "
+       "side, ending at the square's corners (sheared where the tube is off-centre); radial: "
+       "along rays from the tube axis at those angles (each corner on its nearest ray), so "
+       "that a radial crack runs along a row of cells whose faces it is parallel to "
+       "(docs/cracking.md, \"The band's width\"). A circle slice's lines are radial either way; "
+       "not with [[crack]] planes, whose sectors are meshed along their own rays",
+       -inf,
+       inf,
+       false,
+       {"blocks", "radial"},
+       A::pushout},
       {"mesh.degree", K::integer, std::int64_t(1), "",
        "polynomial degree of the bulk displacement on the trilinear hexahedra: 1 (trilinear, "
        "8 nodes) or 2 (triquadratic, 27 nodes; push-out only), a check of the trilinear "

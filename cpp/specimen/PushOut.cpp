@@ -487,6 +487,9 @@ void PushOut::check_scene(const Scene& scene)
                               : "'geometry.support_inner_diameter' (or 'geometry.tube_center') "
                                 "leaves no support outside the hole: the hole must fit inside "
                                 "the slice");
+  if (scene.mesh().radial_lines && !scene.crack_directions().angles.empty())
+    throw SceneError("'mesh.graded_lines' = \"radial\" does not apply with [[crack]] planes: "
+                     "their sectors are meshed along their own rays; leave it out");
   check_loading(scene);
   // The oxide presses on the concrete only through a law that models it.
   const auto& layers = scene.layers();

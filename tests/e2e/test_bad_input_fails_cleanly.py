@@ -46,6 +46,8 @@ cases = [
     ("crack law parameter", GOOD + "\n[[crack]]\nangle = 90.0\nmu = 0.3\n", [], ["crack.0.mu"]),
     ("crack in a single joint", '[model]\ntype = "single_joint"\n[[crack]]\nangle = 0.0\n', [],
      ["crack", "single_joint"]),
+    ("radial lines with crack planes", GOOD + "\n[[crack]]\nangle = 90.0\n", ["mesh.graded_lines=radial"],
+     ["mesh.graded_lines", "[[crack]]"]),
     ("cracking radius in the tube", GOOD + '\n[cracking]\nmodel = "embedded"\nradius = 5.0\n', [],
      ["cracking.radius", "no concrete"]),
     ("cracking radius short of the concrete",
