@@ -26,6 +26,7 @@ of cells, cracking.band_width = "row"), into cracking_mesh_row_band.*. With
   bench/cracking_mesh.py [--reuse] [--only MESH ...] [--study STUDY] [--lines radial]
                                                                       (MESH as 16x8)
 """
+import json
 import os
 import sys
 import time
@@ -99,6 +100,48 @@ def plot(rows, folders, name):
     fig.savefig(os.path.join(RESULTS, name + ".png"))
 
 
+def hoop_band_ratio(corners, axis):
+    """A quadrilateral's row width over its extent along the hoop direction
+    at its centre (the two bands of model/CellWidth.h for a radial crack, in
+    the slice's plane); corners in order round it [mm]."""
+    import numpy as np
+    P = np.array(corners)
+    t = P.mean(axis=0) - axis
+    n = np.array([-t[1], t[0]]) / np.linalg.norm(t)
+    extent = np.ptp(P @ n)
+    e1 = (P[1] - P[0] + P[2] - P[3]) / 2
+    e2 = (P[3] - P[0] + P[2] - P[1]) / 2
+    grad = np.linalg.inv(np.column_stack([e1, e2]))  # rows: grad xi_i at the centre
+    return min([extent] + [1 / abs(g @ n) for g in grad if abs(g @ n) > 0]) / extent
+
+
+def plot_layouts(folders):
+    """The slice's cells of two meshes side by side (`folders`: layout ->
+    a run's folder), coloured by hoop_band_ratio: where the projected band is
+    wider than the row of a radial crack."""
+    import csv
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.collections import PolyCollection
+    axis = json.loads(next(s.split("=", 1)[1] for s in study_sets(STUDY)
+                           if s.startswith("geometry.tube_center=")))
+    fig, axes = plt.subplots(1, len(folders), figsize=(5.2 * len(folders), 4.6), dpi=110)
+    for ax, (layout, out) in zip(axes, folders.items()):
+        with open(os.path.join(out, "crack_pattern.csv")) as f:
+            cells = [[(float(r[f"corner_{k}_x_mm"]), float(r[f"corner_{k}_y_mm"])) for k in range(4)]
+                     for r in csv.DictReader(f)]
+        shapes = PolyCollection(cells, array=[hoop_band_ratio(c, axis) for c in cells],
+                                cmap="viridis", edgecolors="k", linewidths=0.2)
+        shapes.set_clim(0.4, 1)
+        ax.add_collection(shapes)
+        ax.set(xlim=(0, 100), ylim=(0, 100), aspect="equal", xlabel="x [mm]", ylabel="y [mm]",
+               title=f"mesh.graded_lines = \"{layout}\" ({os.path.basename(out)})")
+        fig.colorbar(shapes, ax=ax, label="row width / extent along the hoop direction")
+    fig.tight_layout()
+    fig.savefig(os.path.join(RESULTS, "cracking_mesh_layouts.png"))
+
+
 def main():
     args = arguments(__doc__, "bench_cracking_mesh", studies=(STUDY, *OTHER_STUDIES),
                      options=[("--lines", {"choices": ("blocks", "radial"), "default": "blocks",
@@ -130,10 +173,11 @@ def main():
     write_csv(os.path.join(RESULTS, name + ".csv"), rows)
     plot(rows, folders, name)
     with open(os.path.join(RESULTS, name + ".md"), "w") as f:
-        f.write("# Cracks anywhere: one case of the corroded study on five meshes\n\n"
+        f.write(f"# Cracks anywhere: one case of the corroded study on {len(rows)} meshes\n\n"
                 "Made by `bench/cracking_mesh.py"
                 + ("" if args.study == STUDY else f" --study {args.study}")
-                + ("" if args.lines == "blocks" else f" --lines {args.lines}") +
+                + ("" if args.lines == "blocks" else f" --lines {args.lines}")
+                + ("" if not args.only else " --only " + " ".join(args.only)) +
                 "` (one thread per run, this machine, one run "
                 f"each): {CASE} with the scene and keys of the study {args.study}, "
                 f"mesh.graded_lines = \"{args.lines}\"; the mesh is "
@@ -142,6 +186,11 @@ def main():
                 "(timings: bench/cracking_speed.py).\n\n")
         f.write(markdown_table(list(rows[0].keys()), rows))
         f.write(f"\n![curves]({name}.png)\n")
+    # Both layouts' paper's meshes, once both have run.
+    paper = {lines: os.path.join(args.out, *([] if lines == "blocks" else [lines]), "16x8")
+             for lines in ("blocks", "radial")}
+    if all(os.path.exists(os.path.join(out, "crack_pattern.csv")) for out in paper.values()):
+        plot_layouts(paper)
 
 
 if __name__ == "__main__":
