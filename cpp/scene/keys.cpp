@@ -185,8 +185,8 @@ std::vector<KeyDef> make_keys()
        "side, ending at the square's corners (sheared where the tube is off-centre); radial: "
        "along rays from the tube axis at those angles (each corner on its nearest ray), so "
        "that a radial crack runs along a row of cells whose faces it is parallel to "
-       "(docs/cracking.md, \"The band's width\"). A circle slice's lines are radial either way; "
-       "not with [[crack]] planes, whose sectors are meshed along their own rays",
+       "(docs/cracking.md, \"Radial graded lines\"). A circle slice's lines are radial either "
+       "way; not with [[crack]] planes, whose sectors are meshed along their own rays",
        -inf,
        inf,
        false,
