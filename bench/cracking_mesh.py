@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Cracks anywhere in the concrete on finer and finer meshes: one case of the
-corroded study (docs/corrosion.md, scripts/embedded_study.py) on five
+corroded study (docs/corrosion.md, scripts/embedded_study.py) on up to seven
 meshes, to see whether its answer converges (docs/cracking.md, "Mesh
 objectivity").
 
@@ -21,10 +21,13 @@ push curves of every mesh); with --study corroded_embedded_row_band, the
 case with that study's keys (the crack band the width of the thinnest row
 of cells, cracking.band_width = "row"), into cracking_mesh_row_band.*. With
 --lines radial, the graded concrete's lines along rays from the tube axis
-(mesh.graded_lines = "radial"), into cracking_mesh[_row_band]_radial.*.
+(mesh.graded_lines = "radial"), into cracking_mesh[_row_band]_radial.*; with
+--outer-size-ratio R, mesh.outer_size_ratio = R (1: graded cells no larger
+than the interface's, so that they do not grow more elongated as the mesh is
+refined round the tube), into ..._ratioR.*.
 
   bench/cracking_mesh.py [--reuse] [--only MESH ...] [--study STUDY] [--lines radial]
-                                                                      (MESH as 16x8)
+                         [--outer-size-ratio R]                      (MESH as 16x8)
 """
 import json
 import os
@@ -56,12 +59,25 @@ def study_sets(study):
                 if name == CASE)
 
 
-def results_name(study, lines):
+def variant(args):
+    """The mesh keys beyond the meshes' counts that the options set, and the
+    folder and file name suffix they give ("" for none)."""
+    sets, suffix = [], ""
+    if args.lines != "blocks":
+        sets.append(f"mesh.graded_lines={args.lines}")
+        suffix += "_" + args.lines
+    if args.outer_size_ratio is not None:
+        sets.append(f"mesh.outer_size_ratio={args.outer_size_ratio:g}")
+        suffix += f"_ratio{args.outer_size_ratio:g}"
+    return sets, suffix
+
+
+def results_name(study, suffix):
     """The base name of the bench's table and figure for `study` with the
-    graded lines `lines`."""
+    mesh variant's `suffix`."""
     name = "cracking_mesh" if study == STUDY else "cracking_mesh_" + study.replace(
         "corroded_embedded_", "")
-    return name + ("" if lines == "blocks" else "_" + lines)
+    return name + suffix
 
 
 def row(out, mesh, wall_s):
@@ -145,21 +161,22 @@ def plot_layouts(folders):
 def main():
     args = arguments(__doc__, "bench_cracking_mesh", studies=(STUDY, *OTHER_STUDIES),
                      options=[("--lines", {"choices": ("blocks", "radial"), "default": "blocks",
-                                           "help": "mesh.graded_lines"})])
+                                           "help": "mesh.graded_lines"}),
+                              ("--outer-size-ratio", {"type": float, "default": None,
+                                                      "help": "mesh.outer_size_ratio"})])
     check_only(args, [f"{m[0]}x{m[1]}" for m in MESHES])
-    name = results_name(args.study, args.lines)
+    mesh_sets, suffix = variant(args)
+    name = results_name(args.study, suffix)
     scene = embedded_study.write_scene(args.out)
     rows, folders = [], []
     for mesh in MESHES:
         if args.only and f"{mesh[0]}x{mesh[1]}" not in args.only:
             continue
         # The default study's runs where they always were (--reuse).
-        out = os.path.join(args.out, *([] if args.lines == "blocks" else [args.lines]),
+        out = os.path.join(args.out, *([suffix[1:]] if suffix else []),
                            *([] if args.study == STUDY else [args.study]), f"{mesh[0]}x{mesh[1]}")
         sets = study_sets(args.study) + [f"mesh.elements_per_quarter={mesh[0]}",
-                                         f"mesh.elements_through_thickness={mesh[1]}"]
-        if args.lines != "blocks":
-            sets.append(f"mesh.graded_lines={args.lines}")
+                                         f"mesh.elements_through_thickness={mesh[1]}"] + mesh_sets
         start = time.time()
         code = run(args.pushout, scene, out, sets, reuse=args.reuse, check=False)
         print(f"{mesh}: exit {code}, {time.time() - start:.1f} s", flush=True)
@@ -177,19 +194,23 @@ def main():
                 "Made by `bench/cracking_mesh.py"
                 + ("" if args.study == STUDY else f" --study {args.study}")
                 + ("" if args.lines == "blocks" else f" --lines {args.lines}")
+                + ("" if args.outer_size_ratio is None
+                   else f" --outer-size-ratio {args.outer_size_ratio:g}")
                 + ("" if not args.only else " --only " + " ".join(args.only)) +
                 "` (one thread per run, this machine, one run "
-                f"each): {CASE} with the scene and keys of the study {args.study}, "
-                f"mesh.graded_lines = \"{args.lines}\"; the mesh is "
+                f"each): {CASE} with the scene and keys of the study {args.study}"
+                + "".join(", " + s.replace("=", " = ") for s in mesh_sets) + "; the mesh is "
                 "elements per quarter / through the thickness, the differences are from the "
                 "finest. wall_s is each run's own, and runs may have shared the machine "
                 "(timings: bench/cracking_speed.py).\n\n")
         f.write(markdown_table(list(rows[0].keys()), rows))
         f.write(f"\n![curves]({name}.png)\n")
-    # Both layouts' paper's meshes, once both have run.
+    # Both layouts' paper's meshes (the default study's runs), once both
+    # have run.
     paper = {lines: os.path.join(args.out, *([] if lines == "blocks" else [lines]), "16x8")
              for lines in ("blocks", "radial")}
-    if all(os.path.exists(os.path.join(out, "crack_pattern.csv")) for out in paper.values()):
+    if args.study == STUDY and all(os.path.exists(os.path.join(out, "crack_pattern.csv"))
+                                   for out in paper.values()):
         plot_layouts(paper)
 
 

@@ -73,8 +73,8 @@ geo_for(const MeshInput& in)
     for (std::size_t k = 0; k < corners.size(); ++k)
       constants.insert(constants.end(), {{"ox_" + std::to_string(k), corners[k][0]},
                                          {"oy_" + std::to_string(k), corners[k][1]}});
-    // Always given: gmsh keeps a constant that an earlier mesh of the same
-    // process set and this one leaves out.
+    // Always given: gmsh keeps a constant that an earlier mesh of this
+    // process set when this one does not set it.
     const bool radial = in.mesh.radial_lines && !g.circle; // (a circle's are radial already)
     constants.push_back({"radial", radial ? 1.0 : 0.0});
     if (radial)

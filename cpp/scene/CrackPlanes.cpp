@@ -61,15 +61,26 @@ std::vector<std::array<double, 2>> radial_line_ends(const Geometry& g, std::int6
   const std::array<double, 4> corner = corner_angles(g);
   const auto corners = block_corners(g);
   // Each corner lies in its own quadrant of directions from the tube axis
-  // (the +x+y corner between 0 and 90 degrees, ...), and two corners could
-  // share a nearest ray only near the quadrants' common boundary, which
-  // would put the tube beyond the slice: so no line ends at two corners.
+  // (the +x+y corner between 0 and 90 degrees, ...), and its nearest ray
+  // lies in that quadrant or on its edge, so two corners could share only a
+  // ray on their quadrants' common edge (nq even): both within 45 / nq
+  // degrees of it would put the tube farther from a side than the square
+  // is wide (for the +y side: W - y >= cot(45 / nq degrees) max(x, W - x)
+  // >= 1.2 W). So no line ends at two corners. A corner
+  // midway between two rays goes to the one nearer its quadrant's middle,
+  // so that a slice symmetric about the tube's axis keeps a symmetric mesh.
   for (std::size_t k = 0; k < 4; ++k)
   {
+    const double middle = pi / 4 + double(k) * pi / 2;
     std::size_t nearest = 0;
     for (std::size_t j = 1; j < n; ++j)
-      if (angle_between(ray(j), corner[k]) < angle_between(ray(nearest), corner[k]))
+    {
+      const double d = angle_between(ray(j), corner[k]),
+                   best = angle_between(ray(nearest), corner[k]);
+      if (d < best - 1e-12 ||
+          (d < best + 1e-12 && angle_between(ray(j), middle) < angle_between(ray(nearest), middle)))
         nearest = j;
+    }
     ends[nearest] = corners[k];
   }
   return ends;

@@ -1,8 +1,8 @@
 // mesh.graded_lines = "radial" (meshes/slice.geo, scene/CrackPlanes.h
 // radial_line_ends): the graded concrete's lines run along rays from the
 // tube axis, the square's corners kept, so that a radial crack runs along a
-// row of cells whose faces it is parallel to (docs/cracking.md, "The band's
-// width"). Checked on the lines' ends and on gmsh's mesh itself.
+// row of cells whose faces it is parallel to (docs/cracking.md, "Radial
+// graded lines"). Checked on the lines' ends and on gmsh's mesh itself.
 #include "mesh/generate.h"
 #include "scene/CrackPlanes.h"
 #include <algorithm>
@@ -131,6 +131,26 @@ TEST(RadialLines, EndOnTheirRaysButTheCornersAreKept)
     EXPECT_EQ(centred_ends[8 * k], corners[k]);
 }
 
+TEST(RadialLines, ASymmetricSliceHasSymmetricEnds)
+{
+  // The tube on x = 50 mm, its +y corners midway between two rays (56.25
+  // and 123.75 degrees, 4 per quarter): line j's mirror image in x = 50 is
+  // line 4 - j (mod 16), the corners' lines too.
+  const double y = W - 50 * std::tan(56.25 * pi / 180);
+  const Geometry g =
+      Scene::parse("[geometry]\ntube_center = [50.0, " + std::to_string(y) + "]\n", {}).geometry();
+  const auto ends = pushout::radial_line_ends(g, 4);
+  for (std::size_t j = 0; j < 16; ++j)
+  {
+    SCOPED_TRACE("line " + std::to_string(j));
+    const auto& image = ends[(20 - j) % 16];
+    EXPECT_NEAR(ends[j][0], W - image[0], 1e-9);
+    EXPECT_NEAR(ends[j][1], image[1], 1e-9);
+  }
+  EXPECT_EQ(std::count(ends.begin(), ends.end(), std::array<double, 2>{W, W}), 1);
+  EXPECT_EQ(std::count(ends.begin(), ends.end(), std::array<double, 2>{0, W}), 1);
+}
+
 TEST(RadialLines, TheMeshFillsTheSliceAlongTheRays)
 {
   for (const std::string lines : {"radial", "blocks"})
@@ -155,6 +175,17 @@ TEST(RadialLines, TheMeshFillsTheSliceAlongTheRays)
     else
       EXPECT_GT(off, 1.0); // (the check can fail: the blocks' lines are not rays)
   }
+  // A centred tube: cut to a quarter model (mesh/symmetry.h), which needs
+  // the mesh's mirror images, and still the whole slice four times.
+  bool reused = false;
+  const MeshData quarter = pushout::mesh::generate(
+      MeshInput::of(
+          Scene::parse("[mesh]\nelements_per_quarter = 8\nelements_through_thickness = 1\n"
+                       "graded_lines = \"radial\"\n",
+                       {})),
+      pushout::mesh::default_cache_dir(), reused);
+  EXPECT_EQ(quarter.copies, 4);
+  EXPECT_NEAR(4 * concrete_area(quarter), W * W - 16 * 100.0 * std::sin(2 * pi / 32), 1e-9 * W * W);
 }
 
 TEST(RadialLines, AKeyOfTheScene)
