@@ -29,7 +29,6 @@ refined round the tube), into ..._ratioR.*.
   bench/cracking_mesh.py [--reuse] [--only MESH ...] [--study STUDY] [--lines radial]
                          [--outer-size-ratio R]                      (MESH as 16x8)
 """
-import json
 import os
 import sys
 import time
@@ -135,23 +134,21 @@ def plot_layouts(folders):
     """The slice's cells of two meshes side by side (`folders`: layout ->
     a run's folder), coloured by hoop_band_ratio: where the projected band is
     wider than the row of a radial crack."""
-    import csv
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib.collections import PolyCollection
-    axis = json.loads(next(s.split("=", 1)[1] for s in study_sets(STUDY)
-                           if s.startswith("geometry.tube_center=")))
+    import plot_curve
     fig, axes = plt.subplots(1, len(folders), figsize=(5.2 * len(folders), 4.6), dpi=110)
     for ax, (layout, out) in zip(axes, folders.items()):
-        with open(os.path.join(out, "crack_pattern.csv")) as f:
-            cells = [[(float(r[f"corner_{k}_x_mm"]), float(r[f"corner_{k}_y_mm"])) for k in range(4)]
-                     for r in csv.DictReader(f)]
-        shapes = PolyCollection(cells, array=[hoop_band_ratio(c, axis) for c in cells],
+        cells = plot_curve.cell_outlines(plot_curve.read(os.path.join(out, "crack_pattern.csv")))
+        slice_ = plot_curve.read_scene(os.path.join(out, "scene.toml"))
+        shapes = PolyCollection(cells, array=[hoop_band_ratio(c, slice_["center"]) for c in cells],
                                 cmap="viridis", edgecolors="k", linewidths=0.2)
         shapes.set_clim(0.4, 1)
         ax.add_collection(shapes)
-        ax.set(xlim=(0, 100), ylim=(0, 100), aspect="equal", xlabel="x [mm]", ylabel="y [mm]",
+        ax.set(xlim=(0, slice_["width"]), ylim=(0, slice_["width"]), aspect="equal",
+               xlabel="x [mm]", ylabel="y [mm]",
                title=f"mesh.graded_lines = \"{layout}\" ({os.path.basename(out)})")
         fig.colorbar(shapes, ax=ax, label="row width / extent along the hoop direction")
     fig.tight_layout()

@@ -63,8 +63,7 @@ std::vector<double> graded_lines(const MeshInput& in, double Rs)
     // lines.
     outer = radial_line_ends(g, in.mesh.elements_per_quarter);
     for (std::size_t j = 0; j < outer.size(); ++j)
-      angles.push_back(std::numbers::pi / 4 +
-                       double(j) * std::numbers::pi / 2 / double(in.mesh.elements_per_quarter));
+      angles.push_back(graded_line_angle(in.mesh.elements_per_quarter, j));
   }
   else
     for (int k = 0; k < 4; ++k)

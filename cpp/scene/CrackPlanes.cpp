@@ -49,10 +49,15 @@ std::array<std::array<double, 2>, 4> block_corners(const Geometry& g)
   return corners;
 }
 
+double graded_line_angle(std::int64_t nq, std::size_t j)
+{
+  return pi / 4 + double(j) * pi / 2 / double(nq);
+}
+
 std::vector<std::array<double, 2>> radial_line_ends(const Geometry& g, std::int64_t nq)
 {
   const std::size_t n = 4 * std::size_t(nq);
-  const auto ray = [&](std::size_t j) { return pi / 4 + double(j) * pi / 2 / double(nq); };
+  const auto ray = [&](std::size_t j) { return graded_line_angle(nq, j); };
   std::vector<std::array<double, 2>> ends(n);
   for (std::size_t j = 0; j < n; ++j)
     ends[j] = boundary_point(g, ray(j));

@@ -29,6 +29,10 @@ std::array<std::array<double, 2>, 4> block_corners(const Geometry& g);
 /// outer boundary [mm].
 std::array<double, 2> boundary_point(const Geometry& g, double a);
 
+/// The direction of meshes/slice.geo's graded line j of 4 nq from the tube
+/// axis [rad]: its node on the support circle, at 45 + 90 j / nq degrees.
+double graded_line_angle(std::int64_t nq, std::size_t j);
+
 /// The outer ends of the graded block's lines when they are radial
 /// (mesh.graded_lines = "radial") [mm], 4 nq of them: line j from
 /// meshes/slice.geo's node on the support circle at 45 + 90 j / nq degrees
