@@ -14,8 +14,10 @@ field is a function of position, the same on every mesh.
 
 For each: the oxide's pressure after corrosion, the widest surface crack and
 its angle, the energy the concrete's cracks dissipated, the bond's peak and
-its residual at 0.2 mm, and each one's difference from the finest mesh;
-Newton iterations and wall time (one thread each, one after the other).
+its residual at 0.2 mm, and each one's difference from the finest mesh; the
+graded cells' shape (radial_over_hoop: the median cell's extent along the
+radius over that along the hoop, 15 to 40 mm from the tube axis); Newton
+iterations and wall time (one thread each, one after the other).
 Writes bench/results/cracking_mesh.csv, .md and .png (the corrosion and
 push curves of every mesh); with --study corroded_embedded_row_band, the
 case with that study's keys (the crack band the width of the thinnest row
@@ -24,10 +26,12 @@ of cells, cracking.band_width = "row"), into cracking_mesh_row_band.*. With
 (mesh.graded_lines = "radial"), into cracking_mesh[_row_band]_radial.*; with
 --outer-size-ratio R, mesh.outer_size_ratio = R (1: graded cells no larger
 than the interface's, so that they do not grow more elongated as the mesh is
-refined round the tube), into ..._ratioR.*.
+refined round the tube), into ..._ratioR.*. With --tube centred, the same
+case with the tube in the slice's middle (the study's other place), into
+cracking_mesh[_row_band]_centred[...].*.
 
   bench/cracking_mesh.py [--reuse] [--only MESH ...] [--study STUDY] [--lines radial]
-                         [--outer-size-ratio R]                      (MESH as 16x8)
+                         [--outer-size-ratio R] [--tube centred]     (MESH as 16x8)
 """
 import os
 import sys
@@ -38,9 +42,14 @@ from common import (ROOT, arguments, check_only, curve, markdown_table, pushout_
 
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 import embedded_study  # noqa: E402
+import plot_curve  # noqa: E402
 
 RESULTS = os.path.join(ROOT, "bench", "results")
-CASE = "cover15_beta2_seed1_x50"
+# The case: where the tube is (--tube, a WHERE of scripts/embedded_study.py),
+# then beta 2, seed 1, x = 50 um.
+CASE = "{tube}_beta2_seed1_x50"
+TUBES = tuple(where for (where, _) in embedded_study.WHERE)
+DEFAULT_TUBE = "cover15"
 # The study whose keys the case takes (scripts/embedded_study.py STUDIES). The
 # table made with the implicit cracks under loading.control = "auto" (the
 # study "corroded_embedded") on the mesh before dc44ed8 is kept as
@@ -52,16 +61,19 @@ OTHER_STUDIES = ("corroded_embedded_row_band",)
 MESHES = ((12, 4), (12, 8), (16, 8), (24, 8), (32, 8), (40, 8), (48, 8))
 
 
-def study_sets(study):
-    """The --set list of CASE in `study`."""
+def study_sets(study, tube):
+    """The --set list of CASE with the tube at `tube` in `study`."""
     return next(sets for (name, _, sets) in embedded_study.cases(quick=False, study=study)
-                if name == CASE)
+                if name == CASE.format(tube=tube))
 
 
 def variant(args):
     """The mesh keys beyond the meshes' counts that the options set, and the
-    folder and file name suffix they give ("" for none)."""
+    folder and file name suffix they give ("" for none; the tube's place,
+    when it is not the default, is in the suffix too)."""
     sets, suffix = [], ""
+    if args.tube != DEFAULT_TUBE:
+        suffix += "_" + args.tube
     if args.lines != "blocks":
         sets.append(f"mesh.graded_lines={args.lines}")
         suffix += "_" + args.lines
@@ -79,6 +91,25 @@ def results_name(study, suffix):
     return name + suffix
 
 
+def cell_shape(out):
+    """The median over the concrete cells 15 to 40 mm from the tube axis (the
+    graded cells the corrosion cracks) of a cell's extent along the radius
+    over its extent along the hoop, in the slice's plane (crack_pattern.csv's
+    outlines): 1 for square cells, the same on every mesh of a family refined
+    alike in every direction."""
+    import numpy as np
+    axis = np.array(plot_curve.read_scene(os.path.join(out, "scene.toml"))["center"])
+    shapes = []
+    for corners in plot_curve.cell_outlines(plot_curve.read(os.path.join(out, "crack_pattern.csv"))):
+        P = np.array(corners)
+        t = P.mean(axis=0) - axis
+        r = np.linalg.norm(t)
+        if 15 < r < 40:
+            n = np.array([-t[1], t[0]]) / r
+            shapes.append(np.ptp(P @ (t / r)) / np.ptp(P @ n))
+    return float(np.median(shapes))
+
+
 def row(out, mesh, wall_s):
     s = summary(out)
     corr = pushout_runs.corrosion(out)
@@ -92,10 +123,11 @@ def row(out, mesh, wall_s):
             "concrete_dissipation_Nmm": round(corr[-1]["concrete_dissipation_Nmm"], 1),
             "tau_peak_MPa": round(max(r["tau_MPa"] for r in push), 3),
             "tau_residual_MPa": round(push[-1]["tau_MPa"], 3),
+            "radial_over_hoop": round(cell_shape(out), 2),
             "newton_iterations": s["newton_iterations"], "wall_s": round(wall_s, 1)}
 
 
-def plot(rows, folders, name):
+def plot(rows, folders, name, tube):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -106,7 +138,7 @@ def plot(rows, folders, name):
         a.plot([1e3 * c["penetration_mm"] for c in corr], [c["p_MPa"] for c in corr], label=r["mesh"])
         b.plot([1e3 * p["delta_mm"] for p in push], [p["tau_MPa"] for p in push], label=r["mesh"])
     a.set(xlabel="corrosion depth x [um]", ylabel="oxide pressure p [MPa]",
-          title="corrosion (cover 15 mm, beta 2, seed 1)")
+          title=f"corrosion ({'cover 15 mm' if tube == 'cover15' else tube}, beta 2, seed 1)")
     b.set(xlabel="slip delta [um]", ylabel="bond stress tau [MPa]", title="push after x = 50 um")
     for ax in (a, b):
         ax.grid(alpha=0.3)
@@ -138,7 +170,6 @@ def plot_layouts(folders):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib.collections import PolyCollection
-    import plot_curve
     fig, axes = plt.subplots(1, len(folders), figsize=(5.2 * len(folders), 4.6), dpi=110)
     for ax, (layout, out) in zip(axes, folders.items()):
         cells = plot_curve.cell_outlines(plot_curve.read(os.path.join(out, "crack_pattern.csv")))
@@ -160,7 +191,9 @@ def main():
                      options=[("--lines", {"choices": ("blocks", "radial"), "default": "blocks",
                                            "help": "mesh.graded_lines"}),
                               ("--outer-size-ratio", {"type": float, "default": None,
-                                                      "help": "mesh.outer_size_ratio"})])
+                                                      "help": "mesh.outer_size_ratio"}),
+                              ("--tube", {"choices": TUBES, "default": DEFAULT_TUBE,
+                                          "help": "where the tube is (the study's places)"})])
     check_only(args, [f"{m[0]}x{m[1]}" for m in MESHES])
     mesh_sets, suffix = variant(args)
     name = results_name(args.study, suffix)
@@ -172,7 +205,7 @@ def main():
         # The default study's runs where they always were (--reuse).
         out = os.path.join(args.out, *([suffix[1:]] if suffix else []),
                            *([] if args.study == STUDY else [args.study]), f"{mesh[0]}x{mesh[1]}")
-        sets = study_sets(args.study) + [f"mesh.elements_per_quarter={mesh[0]}",
+        sets = study_sets(args.study, args.tube) + [f"mesh.elements_per_quarter={mesh[0]}",
                                          f"mesh.elements_through_thickness={mesh[1]}"] + mesh_sets
         start = time.time()
         code = run(args.pushout, scene, out, sets, reuse=args.reuse, check=False)
@@ -185,7 +218,7 @@ def main():
             r[key.rsplit("_", 1)[0] + "_vs_finest"] = f"{r[key] / finest[key] - 1:+.1%}"
     os.makedirs(RESULTS, exist_ok=True)
     write_csv(os.path.join(RESULTS, name + ".csv"), rows)
-    plot(rows, folders, name)
+    plot(rows, folders, name, args.tube)
     with open(os.path.join(RESULTS, name + ".md"), "w") as f:
         f.write(f"# Cracks anywhere: one case of the corroded study on {len(rows)} meshes\n\n"
                 "Made by `bench/cracking_mesh.py"
@@ -193,9 +226,10 @@ def main():
                 + ("" if args.lines == "blocks" else f" --lines {args.lines}")
                 + ("" if args.outer_size_ratio is None
                    else f" --outer-size-ratio {args.outer_size_ratio:g}")
+                + ("" if args.tube == DEFAULT_TUBE else f" --tube {args.tube}")
                 + ("" if not args.only else " --only " + " ".join(args.only)) +
                 "` (one thread per run, this machine, one run "
-                f"each): {CASE} with the scene and keys of the study {args.study}"
+                f"each): {CASE.format(tube=args.tube)} with the scene and keys of the study {args.study}"
                 + "".join(", " + s.replace("=", " = ") for s in mesh_sets) + "; the mesh is "
                 "elements per quarter / through the thickness, the differences are from the "
                 "finest. wall_s is each run's own, and runs may have shared the machine "
@@ -206,7 +240,7 @@ def main():
     # have run.
     paper = {lines: os.path.join(args.out, *([] if lines == "blocks" else [lines]), "16x8")
              for lines in ("blocks", "radial")}
-    if args.study == STUDY and all(os.path.exists(os.path.join(out, "crack_pattern.csv"))
+    if args.study == STUDY and args.tube == DEFAULT_TUBE and all(os.path.exists(os.path.join(out, "crack_pattern.csv"))
                                    for out in paper.values()):
         plot_layouts(paper)
 
