@@ -38,8 +38,11 @@ SCENE = "pushout_corroded_embedded.toml"
 # predictor they ran with, though not bit for bit: step 0 extrapolates its
 # parts since de9cf8a; the paper's-mesh series ran with "history" until its
 # rerun after a2cc244; docs/corrosion.md), and its cracking.band_width (None:
-# the default, "projected"; docs/cracking.md, "The band's width").
-Study = collections.namedtuple("Study", "integration paper_mesh tolerance predictor band")
+# the default, "projected"; docs/cracking.md, "The band's width"), and its
+# mesh.graded_lines (None: the default, "blocks"; docs/cracking.md, "Radial
+# graded lines").
+Study = collections.namedtuple("Study", "integration paper_mesh tolerance predictor band lines",
+                               defaults=(None,))
 STUDIES = {
     "corroded_embedded": Study("implicit", False, None, None, None),
     "corroded_embedded_implex": Study("implex", False, None, "history", None),
@@ -47,6 +50,8 @@ STUDIES = {
     "corroded_embedded_implex_strain": Study("implex", False, None, "strain", None),
     "corroded_embedded_row_band": Study("implex", False, None, "strain", "row"),
     "corroded_embedded_row_band_paper_mesh": Study("implex", True, None, "strain", "row"),
+    "corroded_embedded_radial": Study("implex", False, None, "strain", None, "radial"),
+    "corroded_embedded_radial_paper_mesh": Study("implex", True, None, "strain", None, "radial"),
 }
 VISIBLE_UM = 50.0  # the [cracking] visible_width default: a surface crack counts from here
 
@@ -85,6 +90,8 @@ def cases(quick, study="corroded_embedded"):
                         sets += ["loading.control=auto", "cracking.integration=implicit"]
                     if STUDIES[study].band is not None:
                         sets.append(f"cracking.band_width={STUDIES[study].band}")
+                    if STUDIES[study].lines is not None:
+                        sets.append(f"mesh.graded_lines={STUDIES[study].lines}")
                     out.append((f"{where}_beta{beta:g}_seed{seed}_x{x_um:g}", SCENE, sets))
     return out
 
@@ -201,7 +208,8 @@ def plot_bond(plt, out, groups, table, study):
              (" (IMPL-EX)" if STUDIES[study].integration == "implex" else "") +
              (", the strain predictor" if STUDIES[study].predictor == "strain" else "") +
              (", the paper's mesh" if on_paper_mesh(study) else "") +
-             (f", the {STUDIES[study].band} band" if STUDIES[study].band else ""))
+             (f", the {STUDIES[study].band} band" if STUDIES[study].band else "") +
+             (f", {STUDIES[study].lines} graded lines" if STUDIES[study].lines else ""))
     seeds = f"({seed_count(groups)} of a cov 0.15 strength field: mean and range)"
     # One line while it fits the figure's width.
     fig.suptitle(title + ("\n" if len(title) + len(seeds) > 110 else " ") + seeds)

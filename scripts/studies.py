@@ -58,6 +58,12 @@ Studies (each run keeps its resolved scene.toml next to its curve.csv):
               default).
   corroded_embedded_row_band_paper_mesh  corroded_embedded_row_band on the
               paper's mesh (not in the studies run by default).
+  corroded_embedded_radial  corroded_embedded_implex_strain with the graded
+              concrete's lines along rays from the tube axis
+              (mesh.graded_lines = "radial"; not in the studies run by
+              default).
+  corroded_embedded_radial_paper_mesh  corroded_embedded_radial on the
+              paper's mesh (not in the studies run by default).
 --quick runs the same studies on a coarse mesh with few steps (the test
 suite uses it). Writes OUT/<study>/<case>/ run folders, OUT/*.png figures,
 OUT/plateaus.csv (friction plateau vs mu p) and OUT/timing.json.
