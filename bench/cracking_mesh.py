@@ -46,8 +46,8 @@ import plot_curve  # noqa: E402
 
 RESULTS = os.path.join(ROOT, "bench", "results")
 # The case: where the tube is (--tube, a WHERE of scripts/embedded_study.py),
-# then beta 2, seed 1, x = 50 um.
-CASE = "{tube}_beta2_seed1_x50"
+# then beta 2, seed 1, x = 50 um (bench/cracking_layouts.py: other seeds).
+CASE = "{tube}_beta{beta:g}_seed{seed}_x50"
 TUBES = tuple(where for (where, _) in embedded_study.WHERE)
 DEFAULT_TUBE = "cover15"
 # The study whose keys the case takes (scripts/embedded_study.py STUDIES). The
@@ -61,10 +61,15 @@ OTHER_STUDIES = ("corroded_embedded_row_band",)
 MESHES = ((12, 4), (12, 8), (16, 8), (24, 8), (32, 8), (40, 8), (48, 8))
 
 
-def study_sets(study, tube):
-    """The --set list of CASE with the tube at `tube` in `study`."""
+def case_name(tube, beta=2.0, seed=1):
+    """CASE with the tube at `tube`, `beta` and the strength field's `seed`."""
+    return CASE.format(tube=tube, beta=beta, seed=seed)
+
+
+def study_sets(study, tube, beta=2.0, seed=1):
+    """The --set list of case_name(tube, beta, seed) in `study`."""
     return next(sets for (name, _, sets) in embedded_study.cases(quick=False, study=study)
-                if name == CASE.format(tube=tube))
+                if name == case_name(tube, beta, seed))
 
 
 def variant(args):
@@ -229,7 +234,7 @@ def main():
                 + ("" if args.tube == DEFAULT_TUBE else f" --tube {args.tube}")
                 + ("" if not args.only else " --only " + " ".join(args.only)) +
                 "` (one thread per run, this machine, one run "
-                f"each): {CASE.format(tube=args.tube)} with the scene and keys of the study {args.study}"
+                f"each): {case_name(args.tube)} with the scene and keys of the study {args.study}"
                 + "".join(", " + s.replace("=", " = ") for s in mesh_sets) + "; the mesh is "
                 "elements per quarter / through the thickness, the differences are from the "
                 "finest. wall_s is each run's own, and runs may have shared the machine "

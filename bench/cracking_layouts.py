@@ -1,0 +1,121 @@
+#!/usr/bin/python3
+"""Cracks anywhere in the concrete on three mesh layouts, over the strength
+field's seeds: what the mesh's layout does to the corroded study's answer
+beside the seeds' spread (docs/cracking.md, "Radial graded lines").
+
+The case of bench/cracking_mesh.py (the tube 15 mm from a face, or centred
+with --tube centred; beta 2 or --beta B; corroded to x = 50 um in 20 steps,
+pushed 0.2 mm in 20 steps, the keys of the study docs/corrosion.md leads
+with) for the strength field's seeds 1-5, on one mesh count (--mesh, 16x8
+by default: the paper's) with three layouts of the graded concrete:
+
+  blocks         the default (mesh.graded_lines = "blocks")
+  radial         its lines along rays from the tube axis (mesh.graded_lines
+                 = "radial"), the same cell counts
+  radial_ratio1  radial lines and mesh.outer_size_ratio = 1: graded cells no
+                 larger than the interface's, of the same shape on every
+                 mesh (bench/cracking_mesh.py's radial_over_hoop), some 3
+                 times the dofs
+
+For each run the oxide's pressure after corrosion, the widest surface crack,
+the concrete's dissipation and the residual bond at 0.2 mm; per layout the
+seeds' mean, min and max, and each seed's difference from radial_ratio1's
+run of the same seed. Runs --jobs at a time (2 by default), one thread each.
+Writes bench/results/cracking_layouts[_centred][_betaB][_MESH].csv and .md
+(MESH when not 16x8).
+
+  bench/cracking_layouts.py [--reuse] [--only LAYOUT ...] [--tube centred] [--beta 3]
+                            [--mesh 12x4] [--jobs N]
+"""
+import concurrent.futures
+import os
+import statistics
+import time
+
+from common import arguments, check_only, markdown_table, run, summary, write_csv
+import cracking_mesh
+
+LAYOUTS = {"blocks": [], "radial": ["mesh.graded_lines=radial"],
+           "radial_ratio1": ["mesh.graded_lines=radial", "mesh.outer_size_ratio=1"]}
+REFERENCE = "radial_ratio1"
+SEEDS = (1, 2, 3, 4, 5)
+QUANTITIES = ("p_after_corrosion_MPa", "surface_crack_um", "concrete_dissipation_Nmm",
+              "tau_residual_MPa")
+
+
+def main():
+    args = arguments(__doc__, "bench_cracking_layouts", studies=(cracking_mesh.STUDY,),
+                     options=[("--tube", {"choices": cracking_mesh.TUBES,
+                                          "default": cracking_mesh.DEFAULT_TUBE}),
+                              ("--beta", {"type": float, "default": 2.0}),
+                              ("--mesh", {"default": "16x8", "help": "per quarter x through"}),
+                              ("--jobs", {"type": int, "default": 2})])
+    check_only(args, list(LAYOUTS))
+    mesh = tuple(int(n) for n in args.mesh.split("x"))
+    suffix = ("" if args.tube == cracking_mesh.DEFAULT_TUBE else "_" + args.tube) + \
+        ("" if args.beta == 2 else f"_beta{args.beta:g}") + \
+        ("" if args.mesh == "16x8" else "_" + args.mesh)
+    scene = cracking_mesh.embedded_study.write_scene(args.out)
+    layouts = [name for name in LAYOUTS if not args.only or name in args.only]
+    runs = {}  # (layout, seed) -> its folder
+    for layout in layouts:
+        for seed in SEEDS:
+            runs[layout, seed] = os.path.join(args.out, suffix[1:] or "default", layout,
+                                              f"seed{seed}")
+
+    def one(key):
+        layout, seed = key
+        sets = cracking_mesh.study_sets(args.study, args.tube, args.beta, seed) + \
+            [f"mesh.elements_per_quarter={mesh[0]}", f"mesh.elements_through_thickness={mesh[1]}"] + \
+            LAYOUTS[layout]
+        start = time.time()
+        code = run(args.pushout, scene, runs[key], sets, reuse=args.reuse, check=False)
+        print(f"{layout} seed {seed}: exit {code}, {time.time() - start:.1f} s", flush=True)
+
+    with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
+        list(pool.map(one, runs))
+
+    rows = []
+    for (layout, seed), out in runs.items():
+        r = cracking_mesh.row(out, mesh, summary(out)["wall_s"])
+        rows.append({"layout": layout, "seed": seed, "converged": r["converged"], "dofs": r["dofs"],
+                     **{q: r[q] for q in QUANTITIES}, "radial_over_hoop": r["radial_over_hoop"],
+                     "wall_s": r["wall_s"]})
+    by = {(r["layout"], r["seed"]): r for r in rows}
+    for r in rows:
+        ref = by.get((REFERENCE, r["seed"]))
+        r["tau_residual_vs_" + REFERENCE] = (
+            f"{r['tau_residual_MPa'] / ref['tau_residual_MPa'] - 1:+.1%}" if ref else "")
+    groups = []
+    for layout in layouts:
+        mine = [r for r in rows if r["layout"] == layout]
+        g = {"layout": layout, "seeds": len(mine)}
+        for q in QUANTITIES:
+            values = [r[q] for r in mine]
+            g[q] = f"{statistics.mean(values):.3f} [{min(values):.3f}, {max(values):.3f}]"
+        groups.append(g)
+
+    results = os.path.join(cracking_mesh.RESULTS, "cracking_layouts" + suffix)
+    os.makedirs(cracking_mesh.RESULTS, exist_ok=True)
+    write_csv(results + ".csv", rows)
+    with open(results + ".md", "w") as f:
+        f.write("# Cracks anywhere: three mesh layouts over the strength field's seeds\n\n"
+                "Made by `bench/cracking_layouts.py"
+                + ("" if args.tube == cracking_mesh.DEFAULT_TUBE else f" --tube {args.tube}")
+                + ("" if args.beta == 2 else f" --beta {args.beta:g}")
+                + ("" if args.mesh == "16x8" else f" --mesh {args.mesh}")
+                + ("" if not args.only else " --only " + " ".join(args.only))
+                + f"` (one thread per run, {args.jobs} at a time, this machine): "
+                f"{cracking_mesh.case_name(args.tube, args.beta, 'N')} for seeds "
+                f"{', '.join(map(str, SEEDS))} with the keys of the study {args.study}, "
+                f"{mesh[0]} elements per quarter, {mesh[1]} through the thickness; "
+                "the layouts as in the script's help. Per layout, the seeds' mean "
+                "[min, max]:\n\n")
+        f.write(markdown_table(list(groups[0].keys()), groups))
+        f.write("\nEach run (tau_residual_vs_radial_ratio1: against that layout's run of "
+                "the same seed; wall_s may have shared the machine):\n\n")
+        f.write(markdown_table(list(rows[0].keys()), rows))
+
+
+if __name__ == "__main__":
+    main()
