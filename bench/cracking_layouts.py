@@ -4,7 +4,7 @@ field's seeds: what the mesh's layout does to the corroded study's answer
 beside the seeds' spread (docs/cracking.md, "Radial graded lines").
 
 The case of bench/cracking_mesh.py (the tube 15 mm from a face, or centred
-with --tube centred; beta 2 or --beta B; corroded to x = 50 um in 20 steps,
+with --tube centred; beta 2, or 3 with --beta 3; corroded to x = 50 um in 20 steps,
 pushed 0.2 mm in 20 steps, the keys of the study docs/corrosion.md leads
 with) for the strength field's seeds 1-5, on one mesh count (--mesh, 16x8
 by default: the paper's) with three layouts of the graded concrete:
@@ -19,8 +19,9 @@ by default: the paper's) with three layouts of the graded concrete:
 
 For each run the oxide's pressure after corrosion, the widest surface crack,
 the concrete's dissipation and the residual bond at 0.2 mm; per layout the
-seeds' mean, min and max, and each seed's difference from radial_ratio1's
-run of the same seed. Runs --jobs at a time (2 by default), one thread each.
+converged seeds' mean, min and max, and each seed's difference from
+radial_ratio1's run of the same seed. Runs --jobs at a time (2 by default),
+one thread each; a run that ends without a summary stops the bench.
 Writes bench/results/cracking_layouts[_centred][_betaB][_MESH].csv and .md
 (MESH when not 16x8).
 
@@ -30,6 +31,7 @@ Writes bench/results/cracking_layouts[_centred][_betaB][_MESH].csv and .md
 import concurrent.futures
 import os
 import statistics
+import sys
 import time
 
 from common import arguments, check_only, markdown_table, run, summary, write_csv
@@ -47,7 +49,8 @@ def main():
     args = arguments(__doc__, "bench_cracking_layouts", studies=(cracking_mesh.STUDY,),
                      options=[("--tube", {"choices": cracking_mesh.TUBES,
                                           "default": cracking_mesh.DEFAULT_TUBE}),
-                              ("--beta", {"type": float, "default": 2.0}),
+                              ("--beta", {"type": float, "default": 2.0,
+                                          "choices": cracking_mesh.embedded_study.BETAS}),
                               ("--mesh", {"default": "16x8", "help": "per quarter x through"}),
                               ("--jobs", {"type": int, "default": 2})])
     check_only(args, list(LAYOUTS))
@@ -74,6 +77,10 @@ def main():
 
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
         list(pool.map(one, runs))
+    missing = [out for out in runs.values() if not os.path.exists(os.path.join(out, "summary.json"))]
+    if missing:
+        sys.exit("cracking_layouts.py: no summary.json (the run failed to start or was "
+                 "killed): " + ", ".join(missing))
 
     rows = []
     for (layout, seed), out in runs.items():
@@ -88,11 +95,13 @@ def main():
             f"{r['tau_residual_MPa'] / ref['tau_residual_MPa'] - 1:+.1%}" if ref else "")
     groups = []
     for layout in layouts:
-        mine = [r for r in rows if r["layout"] == layout]
-        g = {"layout": layout, "seeds": len(mine)}
+        mine = [r for r in rows if r["layout"] == layout and r["converged"]]
+        g = {"layout": layout, "seeds": len(mine),
+             "not_converged": sum(1 for r in rows if r["layout"] == layout and not r["converged"])}
         for q in QUANTITIES:
             values = [r[q] for r in mine]
-            g[q] = f"{statistics.mean(values):.3f} [{min(values):.3f}, {max(values):.3f}]"
+            g[q] = f"{statistics.mean(values):.3f} [{min(values):.3f}, {max(values):.3f}]" \
+                if values else ""
         groups.append(g)
 
     results = os.path.join(cracking_mesh.RESULTS, "cracking_layouts" + suffix)
@@ -105,15 +114,15 @@ def main():
                 + ("" if args.beta == 2 else f" --beta {args.beta:g}")
                 + ("" if args.mesh == "16x8" else f" --mesh {args.mesh}")
                 + ("" if not args.only else " --only " + " ".join(args.only))
-                + f"` (one thread per run, {args.jobs} at a time, this machine): "
+                + "` (one thread per run, this machine; wall_s may have shared it): "
                 f"{cracking_mesh.case_name(args.tube, args.beta, 'N')} for seeds "
                 f"{', '.join(map(str, SEEDS))} with the keys of the study {args.study}, "
                 f"{mesh[0]} elements per quarter, {mesh[1]} through the thickness; "
-                "the layouts as in the script's help. Per layout, the seeds' mean "
-                "[min, max]:\n\n")
+                "the layouts as in the script's help. Per layout, the converged seeds' "
+                "mean [min, max]:\n\n")
         f.write(markdown_table(list(groups[0].keys()), groups))
         f.write("\nEach run (tau_residual_vs_radial_ratio1: against that layout's run of "
-                "the same seed; wall_s may have shared the machine):\n\n")
+                "the same seed):\n\n")
         f.write(markdown_table(list(rows[0].keys()), rows))
 
 
