@@ -13,6 +13,28 @@ namespace pushout::output
 {
 namespace
 {
+/// Holds the file's metadata in HDF5's cache until it is flushed (no
+/// evictions, so no cache resizing either): between two flushes
+/// (flush_hdf5_files, after each step) nothing but new raw data reaches the
+/// disk, so a run killed while it writes a step leaves the file as the last
+/// flush left it. With evictions on, the cache may write a group's object
+/// header that points beyond the end of the file that the last flush
+/// recorded, and the whole file then cannot be read ("addr overflow"). On
+/// one process only: parallel HDF5 coordinates the processes' metadata
+/// writes itself. False if HDF5 refused.
+bool keep_metadata_until_flushed(hid_t h5)
+{
+  H5AC_cache_config_t config;
+  config.version = H5AC__CURR_CACHE_CONFIG_VERSION;
+  if (H5Fget_mdc_config(h5, &config) < 0)
+    return false;
+  config.evictions_enabled = false;
+  config.incr_mode = H5C_incr__off;
+  config.flash_incr_mode = H5C_flash_incr__off;
+  config.decr_mode = H5C_decr__off;
+  return H5Fset_mdc_config(h5, &config) >= 0;
+}
+
 /// The grid of the mesh, as XDMFFile::write_function finds it.
 constexpr const char* mesh_xpath = "/Xdmf/Domain/Grid[@GridType='Uniform'][1]";
 
@@ -48,6 +70,11 @@ XdmfSeries::XdmfSeries(MPI_Comm comm, const std::filesystem::path& file)
   _mpi_io = size > 1;
   _h5 = dolfinx::io::HDF5Interface::open_file(
       comm, dolfinx::io::xdmf_utils::get_hdf5_filename(file), "w", _mpi_io);
+  if (!_mpi_io && !keep_metadata_until_flushed(_h5))
+  {
+    close();
+    throw std::runtime_error("cannot set HDF5's metadata cache for " + file.string());
+  }
   _doc->append_child(pugi::node_doctype).set_value("Xdmf SYSTEM \"Xdmf.dtd\" []");
   pugi::xml_node xdmf = _doc->append_child("Xdmf");
   xdmf.append_attribute("Version") = "3.0";
