@@ -96,22 +96,30 @@ def results_name(study, suffix):
     return name + suffix
 
 
+def radial_frame(corners, axis):
+    """A quadrilateral's corners as an array, its centre's distance r from
+    the tube axis [mm], and the unit vectors along the radius and the hoop
+    there, in the slice's plane."""
+    import numpy as np
+    P = np.array(corners)
+    t = P.mean(axis=0) - np.asarray(axis)
+    r = np.linalg.norm(t)
+    return P, r, t / r, np.array([-t[1], t[0]]) / r
+
+
 def cell_shape(out):
     """The median over the concrete cells 15 to 40 mm from the tube axis (the
     graded cells the corrosion cracks) of a cell's extent along the radius
     over its extent along the hoop, in the slice's plane (crack_pattern.csv's
     outlines): 1 for square cells, the same on every mesh of a family refined
-    alike in every direction."""
+    alike in the slice's plane."""
     import numpy as np
-    axis = np.array(plot_curve.read_scene(os.path.join(out, "scene.toml"))["center"])
+    axis = plot_curve.read_scene(os.path.join(out, "scene.toml"))["center"]
     shapes = []
     for corners in plot_curve.cell_outlines(plot_curve.read(os.path.join(out, "crack_pattern.csv"))):
-        P = np.array(corners)
-        t = P.mean(axis=0) - axis
-        r = np.linalg.norm(t)
+        P, r, radial, hoop = radial_frame(corners, axis)
         if 15 < r < 40:
-            n = np.array([-t[1], t[0]]) / r
-            shapes.append(np.ptp(P @ (t / r)) / np.ptp(P @ n))
+            shapes.append(np.ptp(P @ radial) / np.ptp(P @ hoop))
     return float(np.median(shapes))
 
 
@@ -157,9 +165,7 @@ def hoop_band_ratio(corners, axis):
     at its centre (the two bands of model/CellWidth.h for a radial crack, in
     the slice's plane); corners in order round it [mm]."""
     import numpy as np
-    P = np.array(corners)
-    t = P.mean(axis=0) - axis
-    n = np.array([-t[1], t[0]]) / np.linalg.norm(t)
+    P, _, _, n = radial_frame(corners, axis)
     extent = np.ptp(P @ n)
     e1 = (P[1] - P[0] + P[2] - P[3]) / 2
     e2 = (P[3] - P[0] + P[2] - P[1]) / 2
@@ -245,8 +251,8 @@ def main():
     # have run.
     paper = {lines: os.path.join(args.out, *([] if lines == "blocks" else [lines]), "16x8")
              for lines in ("blocks", "radial")}
-    if args.study == STUDY and args.tube == DEFAULT_TUBE and all(os.path.exists(os.path.join(out, "crack_pattern.csv"))
-                                   for out in paper.values()):
+    if args.study == STUDY and args.tube == DEFAULT_TUBE and all(
+            os.path.exists(os.path.join(out, "crack_pattern.csv")) for out in paper.values()):
         plot_layouts(paper)
 
 
