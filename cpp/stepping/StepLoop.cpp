@@ -213,17 +213,12 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
   {
     _summary.message = what + " did not converge with " + std::to_string(cuts) + " cuts, down to " +
                        size(stepper.increment()) + " (" + reason + "); stopped";
-    // A snap-back hint for a Newton failure; an IMPL-EX miss's reason says
-    // what to change itself (check_implex).
-    const bool newton_failed = reason.rfind("IMPL-EX", 0) != 0;
-    if (newton_failed && _may_snap_back && _scenario.monotonic())
-      _summary.message += " (where the structure snaps back, loading.control = \"auto\" follows "
-                          "it: docs/numerics.md, \"Dissipation control\")";
-    else if (newton_failed && _may_snap_back) // a push_path: only displacement control runs it
-      _summary.message += " (where the structure snaps back on a push path, a damage viscosity "
-                          "lets displacement control pass it: a softening layer's eta, or "
-                          "cracking.viscosity with implicit cracks; docs/numerics.md, "
-                          "\"Viscous regularisation\")";
+    if (reason.rfind("IMPL-EX", 0) != 0) // Newton failed
+    {
+      const model::BulkCracking* cracking = _equilibrium.model().bulk_cracking();
+      _summary.message +=
+          failure_hint(cracking && !cracking->implex(), _may_snap_back, _scenario.monotonic());
+    }
     return false;
   }
   ++cuts;

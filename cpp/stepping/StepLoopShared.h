@@ -94,6 +94,30 @@ inline std::function<std::string(double)> sized(std::string what, double scale, 
   };
 }
 
+/// What cut_back adds to the message of a step that no cut passed where
+/// Newton failed (an IMPL-EX miss says what to change itself, check_implex):
+/// with implicit cracks in the concrete, IMPL-EX, which passes the steps
+/// where their Newton cycles (docs/cracking.md, "Still to come" 3: cracks on
+/// the kink between loading and unloading; IMPL-EX has no kink in a step);
+/// else, where the structure may snap back under displacement control
+/// (`may_snap_back`), the control that follows it: dissipation control on a
+/// monotonic push, a damage viscosity on a push path. "" if none applies.
+inline std::string failure_hint(bool implicit_cracks, bool may_snap_back, bool monotonic)
+{
+  if (implicit_cracks)
+    return " (the implicit cracks' Newton can cycle where cracks turn between loading and "
+           "unloading; IMPL-EX cracks pass such steps: cracking.integration = \"implex\", which "
+           "the default \"auto\" takes without a viscosity; docs/cracking.md, \"IMPL-EX\")";
+  if (may_snap_back && monotonic)
+    return " (where the structure snaps back, loading.control = \"auto\" follows it: "
+           "docs/numerics.md, \"Dissipation control\")";
+  if (may_snap_back) // a push_path: only displacement control runs it
+    return " (where the structure snaps back on a push path, a damage viscosity lets "
+           "displacement control pass it: a softening layer's eta, or cracking.viscosity with "
+           "implicit cracks; docs/numerics.md, \"Viscous regularisation\")";
+  return "";
+}
+
 /// Adds a path follower's factorisations and linear iterations to the
 /// summary on every way out of a loop that uses it.
 struct SolverCounts

@@ -25,6 +25,7 @@ a face), corroded to x = 30 um in 15 steps and pushed 5 um:
    (which delays the damage IMPL-EX extrapolates). The default,
    integration = "auto", takes IMPL-EX under every control and the
    implicit cracks with a viscosity (summary.json cracking_integration).
+   A step the implicit cracks' Newton does not pass says to take IMPL-EX.
 4. The same steps, cracked points and p(x) on 1 and 2 processes, to
    Newton's tolerance (a step's error is a sum over the processes' points:
    its cut or not differs only if it lands within round-off of the
@@ -128,6 +129,16 @@ for sets, integration in (([], "implex"), (["loading.control=auto"], "implex"),
     check(chosen == integration and measured == [integration == "implex"] * 2,
           f"integration auto with {sets or 'the defaults'}: {chosen} (implex_error_max "
           f"{s['implex_error_max']}, implex_jumps {s['implex_jumps']})")
+
+# ... and a step that the implicit cracks' Newton does not pass (x = 30 um in
+# one step, one cut allowed) says to take IMPL-EX, not loading.control =
+# "auto", which stalls on the same cracks (StepLoopShared.h failure_hint).
+p = run(scene, out_dir("implicit_stuck"), check=False,
+        sets=["cracking.integration=implicit", "corrosion.steps=1", "loading.max_cuts=1"])
+check(p.returncode == 3 and "did not converge" in p.stderr
+      and 'cracking.integration = "implex"' in p.stderr and "loading.control" not in p.stderr,
+      f"implicit cracks stuck say to take IMPL-EX: exit {p.returncode} "
+      f"({p.stderr.strip()[-240:]!r})")
 
 # 4. One and two processes.
 sets = ["cracking.integration=implex", "corrosion.penetration=0.016", "corrosion.steps=8"]
