@@ -26,12 +26,17 @@ of cells, cracking.band_width = "row"), into cracking_mesh_row_band.*. With
 (mesh.graded_lines = "radial"), into cracking_mesh[_row_band]_radial.*; with
 --outer-size-ratio R, mesh.outer_size_ratio = R (1: graded cells no larger
 than the interface's, so that they do not grow more elongated as the mesh is
-refined round the tube), into ..._ratioR.*. With --tube centred, the same
+refined round the tube), into ..._ratioR.*; with --graded-refinement whole,
+mesh.graded_refinement = "whole" (every graded cell shrinks with the
+interface's, as with ratio 1 but growing to outer_size_ratio: fewer
+elements), into ..._whole.*. With --tube centred, the same
 case with the tube in the slice's middle (the study's other place), into
-cracking_mesh[_row_band]_centred[...].*.
+cracking_mesh[_row_band]_centred[...].*. With --seed N, the strength field's
+seed N instead of 1 (the study's other seeds), into ..._seedN.*.
 
   bench/cracking_mesh.py [--reuse] [--only MESH ...] [--study STUDY] [--lines radial]
-                         [--outer-size-ratio R] [--tube centred]     (MESH as 16x8)
+                         [--outer-size-ratio R] [--graded-refinement whole] [--tube centred]
+                         [--seed N]   (MESH as 16x8)
 """
 import os
 import sys
@@ -46,7 +51,7 @@ import plot_curve  # noqa: E402
 
 RESULTS = os.path.join(ROOT, "bench", "results")
 # The case: where the tube is (--tube, a WHERE of scripts/embedded_study.py),
-# then beta 2, seed 1, x = 50 um (bench/cracking_layouts.py: other seeds).
+# then beta 2, the strength field's seed (--seed, 1 by default), x = 50 um.
 CASE = "{tube}_beta{beta:g}_seed{seed}_x50"
 TUBES = tuple(where for (where, _) in embedded_study.WHERE)
 DEFAULT_TUBE = "cover15"
@@ -85,6 +90,11 @@ def variant(args):
     if args.outer_size_ratio is not None:
         sets.append(f"mesh.outer_size_ratio={args.outer_size_ratio:g}")
         suffix += f"_ratio{args.outer_size_ratio:g}"
+    if args.graded_refinement != "near_tube":
+        sets.append(f"mesh.graded_refinement={args.graded_refinement}")
+        suffix += "_" + args.graded_refinement
+    if args.seed != 1:
+        suffix += f"_seed{args.seed}"
     return sets, suffix
 
 
@@ -140,7 +150,7 @@ def row(out, mesh, wall_s):
             "newton_iterations": s["newton_iterations"], "wall_s": round(wall_s, 1)}
 
 
-def plot(rows, folders, name, tube):
+def plot(rows, folders, name, tube, seed):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -151,7 +161,7 @@ def plot(rows, folders, name, tube):
         a.plot([1e3 * c["penetration_mm"] for c in corr], [c["p_MPa"] for c in corr], label=r["mesh"])
         b.plot([1e3 * p["delta_mm"] for p in push], [p["tau_MPa"] for p in push], label=r["mesh"])
     a.set(xlabel="corrosion depth x [um]", ylabel="oxide pressure p [MPa]",
-          title=f"corrosion ({'cover 15 mm' if tube == 'cover15' else tube}, beta 2, seed 1)")
+          title=f"corrosion ({'cover 15 mm' if tube == 'cover15' else tube}, beta 2, seed {seed})")
     b.set(xlabel="slip delta [um]", ylabel="bond stress tau [MPa]", title="push after x = 50 um")
     for ax in (a, b):
         ax.grid(alpha=0.3)
@@ -204,7 +214,13 @@ def main():
                               ("--outer-size-ratio", {"type": float, "default": None,
                                                       "help": "mesh.outer_size_ratio"}),
                               ("--tube", {"choices": TUBES, "default": DEFAULT_TUBE,
-                                          "help": "where the tube is (the study's places)"})])
+                                          "help": "where the tube is (the study's places)"}),
+                              ("--graded-refinement", {"choices": ("near_tube", "whole"),
+                                                       "default": "near_tube",
+                                                       "help": "mesh.graded_refinement"}),
+                              ("--seed", {"type": int, "default": 1,
+                                          "choices": embedded_study.SEEDS,
+                                          "help": "the strength field's seed"})])
     check_only(args, [f"{m[0]}x{m[1]}" for m in MESHES])
     mesh_sets, suffix = variant(args)
     name = results_name(args.study, suffix)
@@ -216,7 +232,7 @@ def main():
         # The default study's runs where they always were (--reuse).
         out = os.path.join(args.out, *([suffix[1:]] if suffix else []),
                            *([] if args.study == STUDY else [args.study]), f"{mesh[0]}x{mesh[1]}")
-        sets = study_sets(args.study, args.tube) + [f"mesh.elements_per_quarter={mesh[0]}",
+        sets = study_sets(args.study, args.tube, seed=args.seed) + [f"mesh.elements_per_quarter={mesh[0]}",
                                          f"mesh.elements_through_thickness={mesh[1]}"] + mesh_sets
         start = time.time()
         code = run(args.pushout, scene, out, sets, reuse=args.reuse, check=False)
@@ -229,7 +245,7 @@ def main():
             r[key.rsplit("_", 1)[0] + "_vs_finest"] = f"{r[key] / finest[key] - 1:+.1%}"
     os.makedirs(RESULTS, exist_ok=True)
     write_csv(os.path.join(RESULTS, name + ".csv"), rows)
-    plot(rows, folders, name, args.tube)
+    plot(rows, folders, name, args.tube, args.seed)
     with open(os.path.join(RESULTS, name + ".md"), "w") as f:
         f.write(f"# Cracks anywhere: one case of the corroded study on {len(rows)} meshes\n\n"
                 "Made by `bench/cracking_mesh.py"
@@ -237,10 +253,13 @@ def main():
                 + ("" if args.lines == "blocks" else f" --lines {args.lines}")
                 + ("" if args.outer_size_ratio is None
                    else f" --outer-size-ratio {args.outer_size_ratio:g}")
+                + ("" if args.graded_refinement == "near_tube"
+                   else f" --graded-refinement {args.graded_refinement}")
                 + ("" if args.tube == DEFAULT_TUBE else f" --tube {args.tube}")
+                + ("" if args.seed == 1 else f" --seed {args.seed}")
                 + ("" if not args.only else " --only " + " ".join(args.only)) +
                 "` (one thread per run, this machine, one run "
-                f"each): {case_name(args.tube)} with the scene and keys of the study {args.study}"
+                f"each): {case_name(args.tube, seed=args.seed)} with the scene and keys of the study {args.study}"
                 + "".join(", " + s.replace("=", " = ") for s in mesh_sets) + "; the mesh is "
                 "elements per quarter / through the thickness, the differences are from the "
                 "finest. wall_s is each run's own, and runs may have shared the machine "
@@ -251,7 +270,7 @@ def main():
     # have run.
     paper = {lines: os.path.join(args.out, *([] if lines == "blocks" else [lines]), "16x8")
              for lines in ("blocks", "radial")}
-    if args.study == STUDY and args.tube == DEFAULT_TUBE and all(
+    if args.study == STUDY and args.tube == DEFAULT_TUBE and args.seed == 1 and all(
             os.path.exists(os.path.join(out, "crack_pattern.csv")) for out in paper.values()):
         plot_layouts(paper)
 

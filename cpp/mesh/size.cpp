@@ -120,17 +120,34 @@ SliceDivisions slice_divisions(const MeshInput& in)
 
   // The longest line (to a far corner) has the same number of elements,
   // stretched: where its first one would jump from the ring's (more than
-  // q_max h), enough elements to start it at q_max h while they grow by
-  // q_max at most, with the growth that fills it so (the shorter lines
-  // start smaller). One growth for all lines: gmsh's transfinite blocks are
-  // mirror images only between lines of the same growth, and a half or
-  // quarter model is cut from the whole mesh (mesh/symmetry.h).
+  // q_max h), enough elements to start it at q_max h (the shorter lines
+  // start smaller). near_tube: growing by q_max at most, with the growth
+  // that fills it so; their number then grows only with log(1 / h), so the
+  // outer elements keep their size as the mesh is refined and the graded
+  // cells grow longer along the way out. whole: growing to `ratio` times
+  // the first, as the shortest way would; their number grows as 1 / h, and
+  // every element shrinks with h (ratio 1: uniform, either way). One growth
+  // for all lines: gmsh's transfinite blocks are mirror images only between
+  // lines of the same growth, and a half or quarter model is cut from the
+  // whole mesh (mesh/symmetry.h).
   const std::vector<double> lines = graded_lines(in, Rs);
   const double longest = *std::max_element(lines.begin(), lines.end());
   if (first_element(longest, d.graded, q) > q_max * h * (1 + 1e-9))
   {
     if (ratio == 1) // uniform, as asked
       d.graded = std::int64_t(std::ceil(longest / (q_max * h)));
+    else if (in.mesh.refine_whole)
+    {
+      // From near_tube's count (the fewest that start it so), as many more
+      // as reach `ratio` across n elements (by q_max at most, as the
+      // shortest way: a larger ratio never gives more elements).
+      d.graded = std::max(d.graded, elements_to_fill(q_max * h, longest));
+      const auto growth = [&](std::int64_t n)
+      { return std::min(std::pow(ratio, 1.0 / double(n - 1)), q_max); };
+      while (first_element(longest, d.graded, growth(d.graded)) > q_max * h * (1 + 1e-9))
+        ++d.graded;
+      d.growth = growth(d.graded);
+    }
     else
     {
       d.graded = std::max(d.graded, elements_to_fill(q_max * h, longest));

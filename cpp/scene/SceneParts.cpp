@@ -54,6 +54,7 @@ void Scene::fill_parts()
   _mesh.steel_layers = integer("mesh.steel_layers");
   _mesh.outer_size_ratio = number("mesh.outer_size_ratio");
   _mesh.radial_lines = string("mesh.graded_lines") == "radial";
+  _mesh.refine_whole = string("mesh.graded_refinement") == "whole";
   _mesh.degree = int(integer("mesh.degree"));
   _mesh.nodal_quadrature = string("mesh.interface_quadrature") == "nodal";
 

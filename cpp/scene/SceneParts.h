@@ -70,6 +70,7 @@ struct MeshPart
   std::int64_t steel_layers{};               ///< layers across the tube wall
   double outer_size_ratio{};                 ///< outer / interface element size
   bool radial_lines{};     ///< graded_lines: radial (else blocks; meshes/slice.geo)
+  bool refine_whole{};     ///< graded_refinement: whole (else near_tube; mesh/size.h)
   int degree{};            ///< bulk displacement: 1 or 2
   bool nodal_quadrature{}; ///< interface_quadrature: nodal (else 2x2 Gauss)
   bool operator==(const MeshPart&) const = default;

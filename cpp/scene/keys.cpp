@@ -170,7 +170,7 @@ std::vector<KeyDef> make_keys()
        "the next, so a short way, e.g. a thin cover, keeps smaller ones). The longer ways out, "
        "to the corners or across an off-centre tube, have as many elements; where their first "
        "would exceed 1.6 times the interface size, all ways get enough elements to start the "
-       "longest there, growing by 1.6 at most, and this ratio no longer applies",
+       "longest there (mesh.graded_refinement says how they grow then)",
        1,
        inf,
        false,
@@ -191,6 +191,22 @@ std::vector<KeyDef> make_keys()
        inf,
        false,
        {"blocks", "radial"},
+       A::pushout},
+      {"mesh.graded_refinement",
+       K::string,
+       std::string("near_tube"),
+       "",
+       "how the graded concrete's elements grow where the longest way out (to a far corner, or "
+       "across an off-centre tube) needs more of them than its shortest way: near_tube: from "
+       "1.6 times the interface size, growing by 1.6 at most, so the outer elements keep "
+       "their size as elements_per_quarter refines the mesh round the tube; whole: from there "
+       "to outer_size_ratio times it along every way, so every graded element shrinks with "
+       "the interface's and keeps its shape (more elements; docs/cracking.md, \"Radial graded "
+       "lines\")",
+       -inf,
+       inf,
+       false,
+       {"near_tube", "whole"},
        A::pushout},
       {"mesh.degree", K::integer, std::int64_t(1), "",
        "polynomial degree of the bulk displacement on the trilinear hexahedra: 1 (trilinear, "

@@ -6,6 +6,7 @@
 // (no meshing; the e2e test test_resource_estimate_within_factor_2 compares
 // the counts with gmsh's meshes).
 #include "mesh/size.h"
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <gtest/gtest.h>
@@ -114,20 +115,69 @@ TEST(SliceDivisions, CoarserAskedCoarserGiven)
   // finest: 384 cells at 18 against 192 at 17, 8 per quarter).
   for (const char* centre : {"[50.0, 50.0]", "[50.0, 25.0]", "[16.0, 50.0]"})
     for (int nq : {8, 16})
-    {
-      std::int64_t last = -1;
-      for (double ratio : {1.0, 1.5, 2.0, 5.0, 10.0, 17.0, 18.0, 20.0, 50.0, 1000.0})
+      for (const char* refinement : {"near_tube", "whole"})
       {
-        const std::int64_t n =
-            slice_divisions(scene(centre, nq, "outer_size_ratio = " + std::to_string(ratio) + "\n"))
-                .graded;
-        if (last >= 0)
+        std::int64_t last = -1;
+        for (double ratio : {1.0, 1.5, 2.0, 5.0, 10.0, 17.0, 18.0, 20.0, 50.0, 1000.0})
         {
-          EXPECT_LE(n, last) << centre << ", " << nq << " per quarter, ratio " << ratio;
+          const std::int64_t n =
+              slice_divisions(scene(centre, nq,
+                                    "outer_size_ratio = " + std::to_string(ratio) +
+                                        "\ngraded_refinement = \"" + refinement + "\"\n"))
+                  .graded;
+          if (last >= 0)
+          {
+            EXPECT_LE(n, last) << centre << ", " << nq << " per quarter, ratio " << ratio << ", "
+                               << refinement;
+          }
+          last = n;
         }
-        last = n;
       }
+}
+
+TEST(SliceDivisions, WholeRefinementKeepsTheGradedCellsShape)
+{
+  // The corroded demo's 15 mm cover, whose far corners' lines take the
+  // stretched count on every mesh. near_tube: 7 to 10 graded elements from
+  // 12 to 48 per quarter, so the far lines' last element stays some 26 mm
+  // long; whole: every line's last element outer_size_ratio (10) times its
+  // first, which starts the longest line at 1.6 h or just below, so that
+  // both halve with h.
+  const std::array<double, 4> lines = corner_lines(50, 25);
+  const double longest = *std::max_element(lines.begin(), lines.end());
+  const auto divisions = [](int nq, const char* refinement)
+  {
+    return slice_divisions(
+        scene("[50.0, 25.0]", nq, std::string("graded_refinement = \"") + refinement + "\"\n"));
+  };
+  const auto last_element = [&](const SliceDivisions& d)
+  { return first_element(longest, d.graded, d.growth) * std::pow(d.growth, double(d.graded - 1)); };
+  for (int nq : {12, 16, 24})
+  {
+    SCOPED_TRACE(std::to_string(nq) + " per quarter");
+    const double h = pi / 2 * 10.0 / nq; // interface element [mm]
+    const SliceDivisions coarse = divisions(nq, "whole"), fine = divisions(2 * nq, "whole");
+    for (const SliceDivisions& d : {coarse, fine})
+    {
+      EXPECT_LE(d.growth, graded_growth_max);
+      EXPECT_NEAR(std::pow(d.growth, double(d.graded - 1)), 10.0, 1e-9); // last / first
     }
+    // The fewest elements that start the longest line at 1.6 h at most: so
+    // it starts between 1.6 h / q and 1.6 h.
+    const double start = first_element(longest, coarse.graded, coarse.growth);
+    EXPECT_LE(start, graded_growth_max * h * (1 + 1e-9));
+    EXPECT_GT(start, graded_growth_max * h / coarse.growth);
+    // So the last element on twice the count per quarter is half the
+    // coarse one's, within those bounds on both meshes' starts.
+    const double halved = last_element(fine) / last_element(coarse);
+    EXPECT_GE(halved, 0.5 / fine.growth);
+    EXPECT_LE(halved, 0.5 * coarse.growth);
+    // near_tube keeps it (within 20 %), with fewer elements.
+    const SliceDivisions near_coarse = divisions(nq, "near_tube");
+    const SliceDivisions near_fine = divisions(2 * nq, "near_tube");
+    EXPECT_GT(last_element(near_fine) / last_element(near_coarse), 0.8);
+    EXPECT_GE(coarse.graded, near_coarse.graded);
+  }
 }
 
 TEST(SliceDivisions, CrackPlanesSectorLinesStartGently)
