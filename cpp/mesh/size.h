@@ -38,10 +38,13 @@ struct MeshSize
 /// tube), and the same divisions stretch their elements by their length
 /// over Lr. Where that makes the longest line's first element more than
 /// graded_growth_max h (a jump from the ring's elements of h), the lines get
-/// enough elements to start it at graded_growth_max h while they grow by
-/// graded_growth_max at most, and the growth that fills it so;
-/// outer_size_ratio then no longer applies, and the shorter ways start with
-/// smaller elements (the corroded demo's 10 mm cover at 0.21 h). A tube 6 mm
+/// enough elements to start it at graded_growth_max h (the shorter ways
+/// then start with smaller elements: the corroded demo's 10 mm cover at
+/// 0.21 h), and either (mesh.graded_refinement = "near_tube") grow by
+/// graded_growth_max at most, with the growth that fills it so, where
+/// outer_size_ratio no longer applies and the outer elements keep their
+/// size as h falls, or ("whole") grow to outer_size_ratio times the first,
+/// as many more as that takes, so that every graded element shrinks with h. A tube 6 mm
 /// from a side had one element across the other 70 mm of concrete before,
 /// and its curve moved by 1.7 % from 24 to 32 elements per quarter
 /// (docs/corrosion.md, "The mesh").
