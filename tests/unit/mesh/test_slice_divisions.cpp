@@ -2,7 +2,8 @@
 // slice_divisions): along every line from the support circle to the
 // boundary the elements start at most graded_growth_max times the interface
 // size h (a gentle step from the ring's elements) and grow by
-// graded_growth_max at most, whatever the tube's place, from scenes alone
+// graded_growth_max at most, whatever the tube's place and
+// mesh.graded_refinement, from scenes alone
 // (no meshing; the e2e test test_resource_estimate_within_factor_2 compares
 // the counts with gmsh's meshes).
 #include "mesh/size.h"
@@ -62,20 +63,23 @@ TEST(SliceDivisions, GradedElementsStartAndGrowGently)
   for (const auto& [cx, cy] :
        std::array<std::array<double, 2>, 5>{{{50, 50}, {50, 25}, {50, 21}, {16, 50}, {20, 22}}})
     for (int nq : {4, 5, 6, 8, 12, 16, 24, 32})
-    {
-      std::ostringstream centre;
-      centre << "[" << cx << ", " << cy << "]";
-      const SliceDivisions d = slice_divisions(scene(centre.str(), nq));
-      const double h = pi / 2 * 10.0 / nq; // interface element [mm]
-      std::ostringstream where;
-      where << "centre " << centre.str() << ", " << nq << " per quarter: " << d.graded << " graded";
-      SCOPED_TRACE(where.str());
-      ASSERT_GE(d.graded, 1);
-      EXPECT_GE(d.growth, 1.0);
-      EXPECT_LE(d.growth, graded_growth_max + 1e-9); // 1e-9: the bisection
-      for (double L : corner_lines(cx, cy))
-        EXPECT_LE(first_element(L, d.graded, d.growth), graded_growth_max * h * (1 + 1e-6));
-    }
+      for (const std::string refinement : {"near_tube", "whole"})
+      {
+        std::ostringstream centre;
+        centre << "[" << cx << ", " << cy << "]";
+        const SliceDivisions d = slice_divisions(
+            scene(centre.str(), nq, "graded_refinement = \"" + refinement + "\"\n"));
+        const double h = pi / 2 * 10.0 / nq; // interface element [mm]
+        std::ostringstream where;
+        where << "centre " << centre.str() << ", " << nq << " per quarter, " << refinement << ": "
+              << d.graded << " graded";
+        SCOPED_TRACE(where.str());
+        ASSERT_GE(d.graded, 1);
+        EXPECT_GE(d.growth, 1.0);
+        EXPECT_LE(d.growth, graded_growth_max + 1e-9); // 1e-9: the bisection
+        for (double L : corner_lines(cx, cy))
+          EXPECT_LE(first_element(L, d.graded, d.growth), graded_growth_max * h * (1 + 1e-6));
+      }
 }
 
 TEST(SliceDivisions, VerifiedMeshesKeepTheirGrading)
