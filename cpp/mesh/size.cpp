@@ -135,13 +135,16 @@ SliceDivisions slice_divisions(const MeshInput& in)
   if (first_element(longest, d.graded, q) > q_max * h * (1 + 1e-9))
   {
     if (ratio == 1) // uniform, as asked
-      d.graded = std::int64_t(std::ceil(longest / (q_max * h)));
-    else if (in.mesh.refine_whole)
     {
-      // From near_tube's count (the fewest that start it so), as many more
-      // as reach `ratio` across n elements (by q_max at most, as the
-      // shortest way: a larger ratio never gives more elements).
-      d.graded = std::max(d.graded, elements_to_fill(q_max * h, longest));
+      d.graded = std::int64_t(std::ceil(longest / (q_max * h)));
+      return d;
+    }
+    // near_tube's count: the fewest that start it so.
+    d.graded = std::max(d.graded, elements_to_fill(q_max * h, longest));
+    if (in.mesh.refine_whole)
+    {
+      // As many more as reach `ratio` across n elements (by q_max at most,
+      // as the shortest way: a larger ratio never gives more elements).
       const auto growth = [&](std::int64_t n)
       { return std::min(std::pow(ratio, 1.0 / double(n - 1)), q_max); };
       while (first_element(longest, d.graded, growth(d.graded)) > q_max * h * (1 + 1e-9))
@@ -149,10 +152,7 @@ SliceDivisions slice_divisions(const MeshInput& in)
       d.growth = growth(d.graded);
     }
     else
-    {
-      d.graded = std::max(d.graded, elements_to_fill(q_max * h, longest));
       d.growth = growth_to_fill(q_max * h, d.graded, longest);
-    }
   }
   return d;
 }
