@@ -39,10 +39,12 @@ SCENE = "pushout_corroded_embedded.toml"
 # parts since de9cf8a; the paper's-mesh series ran with "history" until its
 # rerun after a2cc244; docs/corrosion.md), and its cracking.band_width (None:
 # the default, "projected"; docs/cracking.md, "The band's width"), and its
-# mesh.graded_lines (None: the default, "blocks"; docs/cracking.md, "Radial
-# graded lines").
-Study = collections.namedtuple("Study", "integration paper_mesh tolerance predictor band lines",
-                               defaults=(None,))
+# mesh.graded_lines and mesh.graded_refinement (docs/cracking.md, "Radial
+# graded lines"), both always set, so that a study reruns on the mesh it ran
+# on whatever the demo's [mesh] says.
+Study = collections.namedtuple("Study",
+                               "integration paper_mesh tolerance predictor band lines refinement",
+                               defaults=("blocks", "near_tube"))
 STUDIES = {
     "corroded_embedded": Study("implicit", False, None, None, None),
     "corroded_embedded_implex": Study("implex", False, None, "history", None),
@@ -52,6 +54,8 @@ STUDIES = {
     "corroded_embedded_row_band_paper_mesh": Study("implex", True, None, "strain", "row"),
     "corroded_embedded_radial": Study("implex", False, None, "strain", None, "radial"),
     "corroded_embedded_radial_paper_mesh": Study("implex", True, None, "strain", None, "radial"),
+    "corroded_embedded_radial_whole_paper_mesh": Study("implex", True, None, "strain", None,
+                                                       "radial", "whole"),
 }
 VISIBLE_UM = 50.0  # the [cracking] visible_width default: a surface crack counts from here
 
@@ -90,8 +94,8 @@ def cases(quick, study="corroded_embedded"):
                         sets += ["loading.control=auto", "cracking.integration=implicit"]
                     if STUDIES[study].band is not None:
                         sets.append(f"cracking.band_width={STUDIES[study].band}")
-                    if STUDIES[study].lines is not None:
-                        sets.append(f"mesh.graded_lines={STUDIES[study].lines}")
+                    sets += [f"mesh.graded_lines={STUDIES[study].lines}",
+                             f"mesh.graded_refinement={STUDIES[study].refinement}"]
                     out.append((f"{where}_beta{beta:g}_seed{seed}_x{x_um:g}", SCENE, sets))
     return out
 
@@ -209,7 +213,9 @@ def plot_bond(plt, out, groups, table, study):
              (", the strain predictor" if STUDIES[study].predictor == "strain" else "") +
              (", the paper's mesh" if on_paper_mesh(study) else "") +
              (f", the {STUDIES[study].band} band" if STUDIES[study].band else "") +
-             (f", {STUDIES[study].lines} graded lines" if STUDIES[study].lines else ""))
+             (f", {STUDIES[study].lines} graded lines" if STUDIES[study].lines != "blocks" else "") +
+             (f", {STUDIES[study].refinement} refinement"
+              if STUDIES[study].refinement != "near_tube" else ""))
     seeds = f"({seed_count(groups)} of a cov 0.15 strength field: mean and range)"
     # One line while it fits the figure's width.
     fig.suptitle(title + ("\n" if len(title) + len(seeds) > 110 else " ") + seeds)

@@ -64,6 +64,11 @@ Studies (each run keeps its resolved scene.toml next to its curve.csv):
               default).
   corroded_embedded_radial_paper_mesh  corroded_embedded_radial on the
               paper's mesh (not in the studies run by default).
+  corroded_embedded_radial_whole_paper_mesh  corroded_embedded_radial_paper_mesh
+              with every graded cell refined alike
+              (mesh.graded_refinement = "whole", so that the cells keep
+              their shape as the mesh is refined; not in the studies run
+              by default).
 --quick runs the same studies on a coarse mesh with few steps (the test
 suite uses it). Writes OUT/<study>/<case>/ run folders, OUT/*.png figures,
 OUT/plateaus.csv (friction plateau vs mu p) and OUT/timing.json.
