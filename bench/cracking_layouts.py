@@ -60,8 +60,7 @@ def main():
                               ("--jobs", {"type": int, "default": 2})])
     check_only(args, list(LAYOUTS))
     mesh = tuple(int(n) for n in args.mesh.split("x"))
-    suffix = ("" if args.tube == cracking_mesh.DEFAULT_TUBE else "_" + args.tube) + \
-        ("" if args.beta == 2 else f"_beta{args.beta:g}") + \
+    suffix = cracking_mesh.case_suffix(args.tube, args.beta) + \
         ("" if args.mesh == "16x8" else "_" + args.mesh)
     scene = cracking_mesh.embedded_study.write_scene(args.out)
     layouts = [name for name in LAYOUTS if not args.only or name in args.only]

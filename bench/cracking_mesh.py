@@ -4,7 +4,7 @@ corroded study (docs/corrosion.md, scripts/embedded_study.py) on up to seven
 meshes, to see whether its answer converges (docs/cracking.md, "Mesh
 objectivity").
 
-The case: the tube 15 mm from a face, beta 2, strength field seed 1,
+The case: the tube 15 mm from a face, beta 2 (--beta), strength field seed 1,
 corroded to x = 50 um in 20 steps, pushed 0.2 mm in 20 steps, with the scene
 and keys of the study that docs/corrosion.md leads with (STUDY: today's
 default integration, IMPL-EX with the strain predictor); meshes (elements per quarter /
@@ -32,11 +32,14 @@ interface's, as with ratio 1 but growing to outer_size_ratio: fewer
 elements), into ..._whole.*. With --tube centred, the same
 case with the tube in the slice's middle (the study's other place), into
 cracking_mesh[_row_band]_centred[...].*. With --seed N, the strength field's
-seed N instead of 1 (the study's other seeds), into ..._seedN.*.
+seed N instead of 1 (the study's other seeds), into ..._seedN.*; with
+--beta 3, the oxide's expansion beta 3 instead of 2 (the study's other
+rust: the cover's crack some twice as wide at x = 50 um), into
+cracking_mesh[...][_centred]_beta3[...].*.
 
   bench/cracking_mesh.py [--reuse] [--only MESH ...] [--study STUDY] [--lines radial]
                          [--outer-size-ratio R] [--graded-refinement whole] [--tube centred]
-                         [--seed N]   (MESH as 16x8)
+                         [--seed N] [--beta 3]   (MESH as 16x8)
 """
 import os
 import sys
@@ -51,7 +54,8 @@ import plot_curve  # noqa: E402
 
 RESULTS = os.path.join(ROOT, "bench", "results")
 # The case: where the tube is (--tube, a WHERE of scripts/embedded_study.py),
-# then beta 2, the strength field's seed (--seed, 1 by default), x = 50 um.
+# then beta (--beta, 2 by default), the strength field's seed (--seed, 1 by
+# default), x = 50 um.
 CASE = "{tube}_beta{beta:g}_seed{seed}_x50"
 TUBES = tuple(where for (where, _) in embedded_study.WHERE)
 DEFAULT_TUBE = "cover15"
@@ -77,13 +81,17 @@ def study_sets(study, tube, beta=2.0, seed=1):
                 if name == case_name(tube, beta, seed))
 
 
+def case_suffix(tube, beta):
+    """The folder and file name suffix of the case's place and beta where they
+    are not the default's ("" for neither)."""
+    return ("" if tube == DEFAULT_TUBE else "_" + tube) + ("" if beta == 2 else f"_beta{beta:g}")
+
+
 def variant(args):
     """The mesh keys beyond the meshes' counts that the options set, and the
-    folder and file name suffix they give ("" for none; the tube's place,
-    when it is not the default, is in the suffix too)."""
-    sets, suffix = [], ""
-    if args.tube != DEFAULT_TUBE:
-        suffix += "_" + args.tube
+    folder and file name suffix they give ("" for none; the tube's place and
+    beta, when they are not the default's, are in the suffix too)."""
+    sets, suffix = [], case_suffix(args.tube, args.beta)
     if args.lines != "blocks":
         sets.append(f"mesh.graded_lines={args.lines}")
         suffix += "_" + args.lines
@@ -150,7 +158,7 @@ def row(out, mesh, wall_s):
             "newton_iterations": s["newton_iterations"], "wall_s": round(wall_s, 1)}
 
 
-def plot(rows, folders, name, tube, seed):
+def plot(rows, folders, name, tube, beta, seed):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -161,7 +169,8 @@ def plot(rows, folders, name, tube, seed):
         a.plot([1e3 * c["penetration_mm"] for c in corr], [c["p_MPa"] for c in corr], label=r["mesh"])
         b.plot([1e3 * p["delta_mm"] for p in push], [p["tau_MPa"] for p in push], label=r["mesh"])
     a.set(xlabel="corrosion depth x [um]", ylabel="oxide pressure p [MPa]",
-          title=f"corrosion ({'cover 15 mm' if tube == 'cover15' else tube}, beta 2, seed {seed})")
+          title=f"corrosion ({'cover 15 mm' if tube == 'cover15' else tube}, beta {beta:g}, "
+                f"seed {seed})")
     b.set(xlabel="slip delta [um]", ylabel="bond stress tau [MPa]", title="push after x = 50 um")
     for ax in (a, b):
         ax.grid(alpha=0.3)
@@ -220,7 +229,10 @@ def main():
                                                        "help": "mesh.graded_refinement"}),
                               ("--seed", {"type": int, "default": 1,
                                           "choices": embedded_study.SEEDS,
-                                          "help": "the strength field's seed"})])
+                                          "help": "the strength field's seed"}),
+                              ("--beta", {"type": float, "default": 2.0,
+                                          "choices": embedded_study.BETAS,
+                                          "help": "corrosion.beta"})])
     check_only(args, [f"{m[0]}x{m[1]}" for m in MESHES])
     mesh_sets, suffix = variant(args)
     name = results_name(args.study, suffix)
@@ -232,8 +244,9 @@ def main():
         # The default study's runs where they always were (--reuse).
         out = os.path.join(args.out, *([suffix[1:]] if suffix else []),
                            *([] if args.study == STUDY else [args.study]), f"{mesh[0]}x{mesh[1]}")
-        sets = study_sets(args.study, args.tube, seed=args.seed) + [f"mesh.elements_per_quarter={mesh[0]}",
-                                         f"mesh.elements_through_thickness={mesh[1]}"] + mesh_sets
+        sets = study_sets(args.study, args.tube, beta=args.beta, seed=args.seed) + [
+            f"mesh.elements_per_quarter={mesh[0]}",
+            f"mesh.elements_through_thickness={mesh[1]}"] + mesh_sets
         start = time.time()
         code = run(args.pushout, scene, out, sets, reuse=args.reuse, check=False)
         print(f"{mesh}: exit {code}, {time.time() - start:.1f} s", flush=True)
@@ -245,7 +258,7 @@ def main():
             r[key.rsplit("_", 1)[0] + "_vs_finest"] = f"{r[key] / finest[key] - 1:+.1%}"
     os.makedirs(RESULTS, exist_ok=True)
     write_csv(os.path.join(RESULTS, name + ".csv"), rows)
-    plot(rows, folders, name, args.tube, args.seed)
+    plot(rows, folders, name, args.tube, args.beta, args.seed)
     with open(os.path.join(RESULTS, name + ".md"), "w") as f:
         f.write(f"# Cracks anywhere: one case of the corroded study on {len(rows)} meshes\n\n"
                 "Made by `bench/cracking_mesh.py"
@@ -257,9 +270,10 @@ def main():
                    else f" --graded-refinement {args.graded_refinement}")
                 + ("" if args.tube == DEFAULT_TUBE else f" --tube {args.tube}")
                 + ("" if args.seed == 1 else f" --seed {args.seed}")
+                + ("" if args.beta == 2 else f" --beta {args.beta:g}")
                 + ("" if not args.only else " --only " + " ".join(args.only)) +
                 "` (one thread per run, this machine, one run "
-                f"each): {case_name(args.tube, seed=args.seed)} with the scene and keys of the study {args.study}"
+                f"each): {case_name(args.tube, args.beta, args.seed)} with the scene and keys of the study {args.study}"
                 + "".join(", " + s.replace("=", " = ") for s in mesh_sets) + "; the mesh is "
                 "elements per quarter / through the thickness, the differences are from the "
                 "finest. wall_s is each run's own, and runs may have shared the machine "
