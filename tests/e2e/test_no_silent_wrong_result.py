@@ -113,9 +113,9 @@ check(p.returncode in (0, 3) and rows and min(r["delta_mm"] for r in rows) >= 0,
       f"{min(r['delta_mm'] for r in rows) * 1e3:.2f} um (never behind the start)")
 
 # 4. An IMPL-EX miss that only max_cuts stops from being cut is no jump.
-# On the mesh where this case misses in the corrosion stage (blocks: on the
-# demo's radial lines refined whole, 8 / 2 misses in step 0 already, with no
-# corrosion row to check below).
+# On the mesh where this case misses in the corrosion stage (blocks: with
+# radial lines refined whole, 8 / 2 misses in step 0 already, with no
+# corrosion row to check below), whatever the demo's [mesh] says.
 implex = ["mesh.elements_per_quarter=8", "mesh.elements_through_thickness=2",
           "mesh.graded_lines=blocks", "mesh.graded_refinement=near_tube",
           "corrosion.penetration=0.006", "corrosion.steps=2", "loading.push_displacement=0.01",
