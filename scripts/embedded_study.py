@@ -213,9 +213,10 @@ def plot_bond(plt, out, groups, table, study):
              (", the strain predictor" if STUDIES[study].predictor == "strain" else "") +
              (", the paper's mesh" if on_paper_mesh(study) else "") +
              (f", the {STUDIES[study].band} band" if STUDIES[study].band else "") +
-             (f", {STUDIES[study].lines} graded lines" if STUDIES[study].lines != "blocks" else "") +
+             (f", {STUDIES[study].lines} graded lines"
+              if STUDIES[study].lines != Study._field_defaults["lines"] else "") +
              (f", {STUDIES[study].refinement} refinement"
-              if STUDIES[study].refinement != "near_tube" else ""))
+              if STUDIES[study].refinement != Study._field_defaults["refinement"] else ""))
     seeds = f"({seed_count(groups)} of a cov 0.15 strength field: mean and range)"
     # One line while it fits the figure's width.
     fig.suptitle(title + ("\n" if len(title) + len(seeds) > 110 else " ") + seeds)

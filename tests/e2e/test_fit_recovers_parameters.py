@@ -44,7 +44,7 @@ import random
 import re
 import subprocess
 
-from common import PUSHOUT, SOURCE, check, curve, mpirun, out_dir, run
+from common import BLOCKS_MESH, PUSHOUT, SOURCE, check, curve, mpirun, out_dir, run
 
 SCENE = os.path.join(SOURCE, "demo", "pushout_friction_adhesion.toml")
 COARSE = ["mesh.elements_per_quarter=4", "mesh.elements_through_thickness=2", "loading.steps=40"]
@@ -320,8 +320,7 @@ for per_quarter, level in ((4, 0.01), (8, 0.001)):
     # demo's [mesh] says (with radial lines refined whole, (a)'s fit ran
     # past the 900 s bound).
     coarse = [f"mesh.elements_per_quarter={per_quarter}", "mesh.elements_through_thickness=2",
-              "mesh.graded_lines=blocks", "mesh.graded_refinement=near_tube",
-              "corrosion.steps=4", "corrosion.penetration=0.02", "loading.steps=10",
+              *BLOCKS_MESH, "corrosion.steps=4", "corrosion.penetration=0.02", "loading.steps=10",
               "loading.push_displacement=0.05"]
     name = f"{per_quarter} per quarter, {100 * level:g} % noise"
     truth6 = out_dir(f"fit_cracking_truth_{per_quarter}")
