@@ -24,13 +24,16 @@ by default: the paper's) with four layouts of the graded concrete:
 For each run the oxide's pressure after corrosion, the widest surface crack,
 the concrete's dissipation and the residual bond at 0.2 mm; per layout the
 converged seeds' mean, min and max, and each seed's difference from
-radial_ratio1's run of the same seed. Runs --jobs at a time (2 by default),
+radial_ratio1's run of the same seed (radial_whole's where --only leaves
+radial_ratio1 out). With --tolerance T,
+cracking.implex_tolerance = T on every run (the study's IMPL-EX steps held
+tighter or looser than its default; into ..._tolT). Runs --jobs at a time (2 by default),
 one thread each; a run that ends without a summary stops the bench.
-Writes bench/results/cracking_layouts[_centred][_betaB][_MESH].csv and .md
-(MESH when not 16x8).
+Writes bench/results/cracking_layouts[_centred][_betaB][_MESH][_tolT].csv and
+.md (MESH when not 16x8).
 
   bench/cracking_layouts.py [--reuse] [--only LAYOUT ...] [--tube centred] [--beta 3]
-                            [--mesh 12x4] [--jobs N]
+                            [--mesh 12x4] [--tolerance T] [--jobs N]
 """
 import concurrent.futures
 import os
@@ -44,7 +47,10 @@ import cracking_mesh
 LAYOUTS = {"blocks": [], "radial": ["mesh.graded_lines=radial"],
            "radial_ratio1": ["mesh.graded_lines=radial", "mesh.outer_size_ratio=1"],
            "radial_whole": ["mesh.graded_lines=radial", "mesh.graded_refinement=whole"]}
-REFERENCE = "radial_ratio1"
+# Each run is compared with the run of the same seed on the first of these
+# layouts that the bench ran (radial_ratio1's cells keep their shape on every
+# mesh; radial_whole's too, at fewer dofs).
+REFERENCES = ("radial_ratio1", "radial_whole")
 SEEDS = (1, 2, 3, 4, 5)
 QUANTITIES = ("p_after_corrosion_MPa", "surface_crack_um", "concrete_dissipation_Nmm",
               "tau_residual_MPa")
@@ -57,11 +63,15 @@ def main():
                               ("--beta", {"type": float, "default": 2.0,
                                           "choices": cracking_mesh.embedded_study.BETAS}),
                               ("--mesh", {"default": "16x8", "help": "per quarter x through"}),
+                              ("--tolerance", {"type": float, "default": None,
+                                               "help": "cracking.implex_tolerance"}),
                               ("--jobs", {"type": int, "default": 2})])
     check_only(args, list(LAYOUTS))
     mesh = tuple(int(n) for n in args.mesh.split("x"))
     suffix = cracking_mesh.case_suffix(args.tube, args.beta) + \
-        ("" if args.mesh == "16x8" else "_" + args.mesh)
+        ("" if args.mesh == "16x8" else "_" + args.mesh) + \
+        ("" if args.tolerance is None else f"_tol{args.tolerance:g}")
+    tolerance = [] if args.tolerance is None else [f"cracking.implex_tolerance={args.tolerance:g}"]
     scene = cracking_mesh.embedded_study.write_scene(args.out)
     layouts = [name for name in LAYOUTS if not args.only or name in args.only]
     runs = {}  # (layout, seed) -> its folder
@@ -74,7 +84,7 @@ def main():
         layout, seed = key
         sets = cracking_mesh.study_sets(args.study, args.tube, args.beta, seed) + \
             [f"mesh.elements_per_quarter={mesh[0]}", f"mesh.elements_through_thickness={mesh[1]}"] + \
-            LAYOUTS[layout]
+            LAYOUTS[layout] + tolerance
         start = time.time()
         code = run(args.pushout, scene, runs[key], sets, reuse=args.reuse, check=False)
         print(f"{layout} seed {seed}: exit {code}, {time.time() - start:.1f} s", flush=True)
@@ -93,9 +103,10 @@ def main():
                      **{q: r[q] for q in QUANTITIES}, "radial_over_hoop": r["radial_over_hoop"],
                      "wall_s": r["wall_s"]})
     by = {(r["layout"], r["seed"]): r for r in rows}
-    for r in rows:
-        ref = by.get((REFERENCE, r["seed"]))
-        r["tau_residual_vs_" + REFERENCE] = (
+    reference = next((name for name in REFERENCES if name in layouts), None)
+    for r in rows if reference else []:
+        ref = by.get((reference, r["seed"]))
+        r["tau_residual_vs_" + reference] = (
             f"{r['tau_residual_MPa'] / ref['tau_residual_MPa'] - 1:+.1%}" if ref else "")
     groups = []
     for layout in layouts:
@@ -117,16 +128,20 @@ def main():
                 + ("" if args.tube == cracking_mesh.DEFAULT_TUBE else f" --tube {args.tube}")
                 + ("" if args.beta == 2 else f" --beta {args.beta:g}")
                 + ("" if args.mesh == "16x8" else f" --mesh {args.mesh}")
+                + ("" if args.tolerance is None else f" --tolerance {args.tolerance:g}")
                 + ("" if not args.only else " --only " + " ".join(args.only))
+                + f" --jobs {args.jobs}"
                 + "` (one thread per run, this machine; wall_s may have shared it): "
                 f"{cracking_mesh.case_name(args.tube, args.beta, 'N')} for seeds "
                 f"{', '.join(map(str, SEEDS))} with the keys of the study {args.study}, "
-                f"{mesh[0]} elements per quarter, {mesh[1]} through the thickness; "
+                f"{mesh[0]} elements per quarter, {mesh[1]} through the thickness"
+                + ("" if args.tolerance is None
+                   else f", cracking.implex_tolerance = {args.tolerance:g}") + "; "
                 "the layouts as in the script's help. Per layout, the converged seeds' "
                 "mean [min, max]:\n\n")
         f.write(markdown_table(list(groups[0].keys()), groups))
-        f.write("\nEach run (tau_residual_vs_radial_ratio1: against that layout's run of "
-                "the same seed):\n\n")
+        f.write("\nEach run" + (f" (tau_residual_vs_{reference}: against that layout's run "
+                                 "of the same seed)" if reference else "") + ":\n\n")
         f.write(markdown_table(list(rows[0].keys()), rows))
 
 
