@@ -544,8 +544,10 @@ private:
     /// cohesive law is only piecewise smooth: loading, unloading, closure),
     /// from the secant of the committed damage (exact if the crack unloads
     /// or stays closed). Converged when the traction balance holds to
-    /// `tol` [MPa]; the law's trial history is then w's.
-    bool solve(Vec3& w, double tol)
+    /// `tol` [MPa], or when no step along Newton's direction lowers it any
+    /// more and it holds to `floor` [MPa] (its round-off); the law's trial
+    /// history is then w's.
+    bool solve(Vec3& w, double tol, double floor)
     {
       const double g = (1 - laws::DamageHistory<const double>(law_old).damage()) * law.k();
       Mat3 K0 = A_h;
@@ -555,7 +557,8 @@ private:
         return false;
       Vec3 res;
       double norm = residual(w, res);
-      bool at_w = true; // the last residual() was w's (the law's trial state)
+      bool at_w = true;     // the last residual() was w's (the law's trial state)
+      bool stalled = false; // no step along Newton's direction lowered the residual
       for (int it = 0; it < 60 && norm > tol; ++it)
       {
         Vec3 dw;
@@ -572,6 +575,7 @@ private:
         if (!(trial_norm < norm))
         {
           at_w = false;
+          stalled = true;
           break;
         }
         w = trial;
@@ -580,7 +584,7 @@ private:
       }
       if (!at_w)
         norm = residual(w, res); // the state and tangent of the final w
-      return norm <= tol && cohesive.status == laws::LawStatus::ok;
+      return (norm <= tol || (stalled && norm <= floor)) && cohesive.status == laws::LawStatus::ok;
     }
 
     laws::CamanhoDavila law;
@@ -667,13 +671,20 @@ private:
     CrackEquilibrium eq(*this, law_old, state, sigma0, strength, dt);
     // Converged when the traction balance holds to 1e-10 f_t, or to the
     // round-off of the trial traction s0 (which grows with the opening).
-    const double tol =
-        std::max(1e-10 * strength * _env.f_t,
-                 1e-14 * (std::abs(eq.s0[0]) + std::abs(eq.s0[1]) + std::abs(eq.s0[2])));
+    // Where s0 is large that round-off is not always reached: a fully
+    // damaged crack dragged along by the push (shear strains of 0.2, |s0|
+    // some 3e4 MPa) balances to 1.03e-14 |s0| and no closer, just above
+    // 1e-14 |s0| (tests/unit/bulk/test_crack_band.cpp,
+    // CrackBand.BalancesAtItsRoundOffWhereTheTrialTractionIsLarge). Where
+    // Newton can lower it no more, 1e-12 |s0| is accepted: still far below
+    // anything the structure's Newton (1e-6 of the reactions) can see.
+    const double s0_size = std::abs(eq.s0[0]) + std::abs(eq.s0[1]) + std::abs(eq.s0[2]);
+    const double tol = std::max(1e-10 * strength * _env.f_t, 1e-14 * s0_size);
+    const double floor = std::max(tol, 1e-12 * s0_size);
     Vec3 w{};
     std::array<Vec3, 3> Jinv; // columns of J^-1 at w
     // A singular J at w fails the update with or without the tangent.
-    const bool ok = eq.solve(w, tol) &&
+    const bool ok = eq.solve(w, tol, floor) &&
                     (with_tangent ? inverse_columns(eq.jacobian(), Jinv) : regular3(eq.jacobian()));
     if (!ok)
     {
