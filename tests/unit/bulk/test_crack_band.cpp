@@ -747,7 +747,7 @@ TEST(CrackBand, AnUpdateWithoutTheTangentIsTheUpdateWithIt)
 // Points that stopped a run of the corroded study's case (bench/cracking_mesh.py
 // --lines radial --graded-refinement whole --beta 3 --seed 4, 24 / 8, push
 // step 5; states and strains printed to the last bit): fully damaged cracks
-// (D = 1 - 1e-9, kappa 0.19 mm) dragged along by the push, their strains
+// (their damage 1 to six digits) dragged along by the push, their strains
 // shears of about 0.2, so that the trial traction s0 on the crack is some
 // 3e4 MPa. Newton on the crack's balance converges there to 1.03e-14 |s0|
 // and no closer: just above its tolerance of 1e-14 |s0|, so every cut of
