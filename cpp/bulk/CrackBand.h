@@ -557,8 +557,9 @@ private:
         return false;
       Vec3 res;
       double norm = residual(w, res);
-      bool at_w = true;     // the last residual() was w's (the law's trial state)
-      bool stalled = false; // no step along Newton's direction lowered the residual
+      // The last residual() was w's (the law's trial state); false where no
+      // step along Newton's direction lowered the residual (it stalled).
+      bool at_w = true;
       for (int it = 0; it < 60 && norm > tol; ++it)
       {
         Vec3 dw;
@@ -575,7 +576,6 @@ private:
         if (!(trial_norm < norm))
         {
           at_w = false;
-          stalled = true;
           break;
         }
         w = trial;
@@ -584,7 +584,7 @@ private:
       }
       if (!at_w)
         norm = residual(w, res); // the state and tangent of the final w
-      return (norm <= tol || (stalled && norm <= floor)) && cohesive.status == laws::LawStatus::ok;
+      return (norm <= tol || (!at_w && norm <= floor)) && cohesive.status == laws::LawStatus::ok;
     }
 
     laws::CamanhoDavila law;
