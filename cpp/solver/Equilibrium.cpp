@@ -424,8 +424,9 @@ void Equilibrium::configure(KSP ksp) const
   // On several processes, the numbering MUMPS's ordering is made in.
   int processes = 1;
   MPI_Comm_size(_model.comm(), &processes);
-  use_single_precision_sparse_lu(pc, processes > 1 ? _model.input_numbering()
-                                                   : std::vector<std::int64_t>{});
+  use_single_precision_sparse_lu(
+      pc, processes > 1 ? _model.input_numbering() : std::vector<std::int64_t>{},
+      _model.block_size());
   make_gmres_flexible(ksp);
 }
 } // namespace pushout::solver

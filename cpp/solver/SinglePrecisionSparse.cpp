@@ -1,6 +1,7 @@
 #include "SinglePrecisionSparse.h"
 #include "../common/mpi_gather.h"
 #include "../common/petsc_check.h"
+#include "NestedDissection.h"
 #include "ShellPreconditioner.h"
 #include "SingleColumnBlas.h"
 #include <cmath>
@@ -56,7 +57,12 @@ struct Factors
   /// no partition changes (use_single_precision_sparse_lu), or empty; and
   /// the host's order of the rows made in it for MUMPS (PERM_IN, 1-based).
   std::vector<std::int64_t> numbering;
+  int block_size = 1; ///< consecutive places of `numbering` that are one node's
   std::vector<MUMPS_INT> order;
+  /// The host's estimates of the factorisation's flops in MUMPS's own order
+  /// (PORD) and in SCOTCH's, and whether `order` is SCOTCH's
+  double own_flops = 0, scotch_flops = 0;
+  bool scotch = false;
   /// More than one process: the right-hand side gathered on the first
   /// (MUMPS's host), where MUMPS takes it and leaves the solution.
   VecScatter to_host = nullptr;
@@ -177,23 +183,42 @@ void read_rows(Factors& f, Mat P, bool new_pattern)
   }
 }
 
-/// The order of the rows (PERM_IN, 1-based) that MUMPS picks alone on this
-/// process for the pattern `rows`, `cols` (1-based, n rows) renumbered by
-/// `position` (each row's place, 0-based): in that numbering, as one
-/// process would order it (its automatic choice; no column permutation, as
-/// the values are not given). Empty if `position` is not a permutation of
-/// the rows, or if MUMPS fails.
-std::vector<MUMPS_INT> order_in_numbering(PetscInt n, const std::vector<std::int64_t>& position,
-                                          std::vector<MUMPS_INT> rows, std::vector<MUMPS_INT> cols)
+/// The order of the rows (PERM_IN, 1-based) made on the host, and the
+/// flops MUMPS's analysis estimates for the factorisation in each order
+/// tried (RINFOG(1); 0: not made).
+struct HostOrder
+{
+  std::vector<MUMPS_INT> order;
+  double own_flops = 0;    ///< MUMPS's own ordering (PORD) in the numbering
+  double scotch_flops = 0; ///< SCOTCH's nested dissection (NestedDissection.h)
+  bool scotch = false;     ///< the order is SCOTCH's
+};
+
+/// The cheaper of two orders of the rows (PERM_IN, 1-based) for the
+/// pattern `rows`, `cols` (1-based, n rows) renumbered by `position` (each
+/// row's place, 0-based; `block_size` consecutive places one node's):
+/// MUMPS's own on this process alone in that numbering, as one process
+/// would order it (its automatic choice, PORD; no column permutation, as
+/// the values are not given), and SCOTCH's nested dissection of the
+/// pattern's node graph, by MUMPS's estimate of the factorisation's flops
+/// at each analysis. PORD's order depends on the numbering; on radial lines
+/// refined whole (mesh.graded_refinement) in the mesh's input numbering it
+/// made 6.23e10 flops where one process makes 3.90e10 and SCOTCH's 4.0e10;
+/// on the blocks PORD's 2.31e10 beats SCOTCH's 2.8e10 (docs/cracking-speed.md,
+/// "Two processes"). An empty order if `position` is not a permutation of
+/// the rows, or if MUMPS fails; MUMPS's own where SCOTCH fails.
+HostOrder order_in_numbering(PetscInt n, const std::vector<std::int64_t>& position, int block_size,
+                             std::vector<MUMPS_INT> rows, std::vector<MUMPS_INT> cols)
 {
   std::vector<MUMPS_INT> row_at(std::size_t(n), 0); // 1-based row at each position
+  HostOrder host;
   if (position.size() != std::size_t(n))
-    return {};
+    return host;
   for (std::size_t r = 0; r < position.size(); ++r)
   {
     const std::int64_t p = position[r];
     if (p < 0 || p >= n || row_at[std::size_t(p)] != 0)
-      return {};
+      return host;
     row_at[std::size_t(p)] = MUMPS_INT(r + 1);
   }
   for (std::size_t k = 0; k < rows.size(); ++k)
@@ -208,12 +233,11 @@ std::vector<MUMPS_INT> order_in_numbering(PetscInt n, const std::vector<std::int
   alone.sym = 0;
   alone.job = job_init;
   smumps_c(&alone);
-  std::vector<MUMPS_INT> order;
   if (alone.infog[0] < 0)
   {
     alone.job = job_end; // as ~Factors does after a failed start
     smumps_c(&alone);
-    return order;
+    return host;
   }
   quiet(alone);
   alone.icntl[icntl_column_permutation] = 0;
@@ -222,29 +246,53 @@ std::vector<MUMPS_INT> order_in_numbering(PetscInt n, const std::vector<std::int
   alone.irn = rows.data();
   alone.jcn = cols.data();
   alone.a = ones.data();
+  // SYM_PERM(p): the step at which the variable in position p is
+  // eliminated; PERM_IN(row) likewise, for the row in that position.
+  const auto order_of_rows = [&]
+  {
+    std::vector<MUMPS_INT> order(static_cast<std::size_t>(n));
+    for (std::size_t p = 0; p < std::size_t(n); ++p)
+      order[std::size_t(row_at[p] - 1)] = alone.sym_perm[p];
+    return order;
+  };
   alone.job = job_analyse;
   smumps_c(&alone);
   if (alone.infog[0] >= 0)
   {
-    // SYM_PERM(p): the step at which the variable in position p is
-    // eliminated; PERM_IN(row) likewise, for the row in that position.
-    order.resize(std::size_t(n));
-    for (std::size_t p = 0; p < std::size_t(n); ++p)
-      order[std::size_t(row_at[p] - 1)] = alone.sym_perm[p];
+    host.order = order_of_rows();
+    host.own_flops = double(alone.rinfog[0]);
+    const std::vector<std::int64_t> step = nested_dissection(n, block_size, rows, cols);
+    std::vector<MUMPS_INT> scotch(step.size());
+    for (std::size_t p = 0; p < step.size(); ++p)
+      scotch[p] = MUMPS_INT(step[p] + 1);
+    if (!scotch.empty())
+    {
+      alone.icntl[icntl_ordering] = ordering_given;
+      alone.perm_in = scotch.data();
+      smumps_c(&alone);
+      if (alone.infog[0] >= 0)
+      {
+        host.scotch_flops = double(alone.rinfog[0]);
+        if (host.scotch_flops < host.own_flops)
+        {
+          host.order = order_of_rows();
+          host.scotch = true;
+        }
+      }
+    }
   }
   alone.job = job_end;
   smumps_c(&alone);
-  return order;
+  return host;
 }
 
 /// Several processes: the order of the rows (PERM_IN) that the host makes
 /// in f.numbering (order_in_numbering) from every process's pattern
-/// (collective; the host's answer, the others' empty). Empty, so that
-/// MUMPS orders the rows itself, where a process has no numbering of its
-/// `local_rows` rows (P2, or another layout), where the pattern is too
+/// (collective; the host's answer, the others' empty). Its order empty, so
+/// that MUMPS orders the rows itself, where a process has no numbering of
+/// its `local_rows` rows (P2, or another layout), where the pattern is too
 /// large to gather in MPI's int counts, or where the host cannot make it.
-std::vector<MUMPS_INT> partition_free_order(Factors& f, MPI_Comm comm, PetscInt n,
-                                            PetscInt local_rows)
+HostOrder partition_free_order(Factors& f, MPI_Comm comm, PetscInt n, PetscInt local_rows)
 {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
@@ -273,21 +321,28 @@ std::vector<MUMPS_INT> partition_free_order(Factors& f, MPI_Comm comm, PetscInt 
       mpi::gather_to_first(comm, f.cols.data(), int(f.cols.size()), MPI_INT);
   if (rank != 0)
     return {};
-  std::vector<MUMPS_INT> order;
+  HostOrder host;
   try // nothing thrown past here: the others wait for the host's answer
   {
-    order = order_in_numbering(n, position, std::move(rows), std::move(cols));
+    host = order_in_numbering(n, position, f.block_size, std::move(rows), std::move(cols));
   }
   catch (const std::exception&)
   {
-    order.clear();
+    host = {};
   }
-  if (order.empty())
+  if (host.order.empty())
     petsc::check_nothrow(PetscInfo(nullptr, "single-precision LU: MUMPS orders the rows itself "
                                             "(the numbering is no permutation of the rows, or its "
                                             "analysis failed)\n"),
                          "PetscInfo");
-  return order;
+  else
+    petsc::check_nothrow(PetscInfo(nullptr,
+                                   "single-precision LU: the rows in %s's order (estimated "
+                                   "flops: PORD %g, SCOTCH %g; 0: not made)\n",
+                                   host.scotch ? "SCOTCH" : "PORD", host.own_flops,
+                                   host.scotch_flops),
+                         "PetscInfo");
+  return host;
 }
 
 /// P's values, and the analysis of its pattern (ordering, symbolic
@@ -335,9 +390,16 @@ bool load(Factors& f, Mat P)
       const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(P));
       PetscInt local_rows;
       check(MatGetLocalSize(P, &local_rows, nullptr), "MatGetLocalSize");
-      f.order = partition_free_order(f, comm, rows, local_rows);
-      int given = f.order.empty() ? 0 : 1;
-      MPI_Bcast(&given, 1, MPI_INT, 0, comm);
+      HostOrder host = partition_free_order(f, comm, rows, local_rows);
+      f.order = std::move(host.order);
+      // Agreed by all: whether the order is given, and the host's estimates.
+      double agreed[4] = {f.order.empty() ? 0.0 : 1.0, host.scotch ? 1.0 : 0.0, host.own_flops,
+                          host.scotch_flops};
+      MPI_Bcast(agreed, 4, MPI_DOUBLE, 0, comm);
+      const bool given = agreed[0] > 0;
+      f.scotch = agreed[1] > 0;
+      f.own_flops = agreed[2];
+      f.scotch_flops = agreed[3];
       f.id.icntl[icntl_ordering] = given ? ordering_given : ordering_automatic;
       f.id.icntl[icntl_analysis] = given ? analysis_sequential : analysis_automatic;
       f.id.perm_in = f.order.empty() ? nullptr : f.order.data();
@@ -488,7 +550,7 @@ PetscErrorCode apply(PC pc, Vec x, Vec y)
 /// The start of the preconditioner's name (-ksp_view).
 constexpr const char* lu_name = "sparse LU in single precision";
 
-void use_single_precision_sparse_lu(PC pc, std::vector<std::int64_t> numbering)
+void use_single_precision_sparse_lu(PC pc, std::vector<std::int64_t> numbering, int block_size)
 {
   const std::string name =
       lu_name + std::string(single_column_blas_bound()
@@ -498,6 +560,7 @@ void use_single_precision_sparse_lu(PC pc, std::vector<std::int64_t> numbering)
   Factors* f;
   check(PCShellGetContext(pc, &f), "PCShellGetContext");
   f->numbering = std::move(numbering);
+  f->block_size = block_size;
 }
 
 SparseFactors single_precision_lu_factors(PC pc)
@@ -508,6 +571,6 @@ SparseFactors single_precision_lu_factors(PC pc)
   // INFOG(29); negative: in millions (MUMPS 5 users' guide).
   const MUMPS_INT entries = f->id.infog[28];
   return {entries >= 0 ? std::int64_t(entries) : -std::int64_t(entries) * 1000000,
-          int(f->id.infog[6])};
+          int(f->id.infog[6]), f->own_flops, f->scotch_flops, f->scotch};
 }
 } // namespace pushout::solver

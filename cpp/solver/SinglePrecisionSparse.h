@@ -40,19 +40,25 @@ namespace pushout::solver
 ///
 /// `numbering`: this process's rows' positions in a numbering of the
 /// matrix's rows that no partition changes (Model::input_numbering), or
-/// empty. On several processes MUMPS's own ordering (PORD: Debian's MUMPS
-/// has neither METIS nor SCOTCH) depends on the numbering of the rows it is
-/// given, which is the partition's: on the paper's mesh with cracking
-/// concrete, 37.2 million entries in the factors and 4.15e10 flops on two
-/// processes against 29.9 million and 2.30e10 on one (in dolfinx's
-/// numbering). With a numbering, the first process orders the whole
-/// pattern in it, as one process would order it in that numbering (an
-/// analysis of its own, once per pattern), and MUMPS takes that order
-/// (ICNTL(7) = 1): 30.3 million entries and 2.31e10 flops on two processes.
-/// One process, no numbering on some process, or one that is not a
-/// permutation of the rows: MUMPS orders the rows as given (PetscInfo says
-/// so on several processes).
-void use_single_precision_sparse_lu(PC pc, std::vector<std::int64_t> numbering = {});
+/// empty; `block_size` consecutive positions are one node's. On several
+/// processes MUMPS's own ordering (PORD: Debian's MUMPS has neither METIS
+/// nor SCOTCH) depends on the numbering of the rows it is given, which is
+/// the partition's: on the paper's mesh with cracking concrete, 37.2
+/// million entries in the factors and 4.15e10 flops on two processes
+/// against 29.9 million and 2.30e10 on one (in dolfinx's numbering). With a
+/// numbering, the first process orders the whole pattern in it twice, as
+/// one process would order it in that numbering and by SCOTCH's nested
+/// dissection of its nodes (NestedDissection.h), an analysis of its own
+/// for each, once per pattern, and MUMPS takes the order whose
+/// factorisation MUMPS estimates the cheaper (ICNTL(7) = 1): on the blocks
+/// PORD's, 30.3 million entries and 2.31e10 flops on two processes; on
+/// radial lines refined whole SCOTCH's (PORD in that numbering 6.23e10,
+/// one process 3.90e10). One process, no numbering on some process, or
+/// one that is not a permutation of the rows: MUMPS orders the rows as
+/// given (PetscInfo says so on several processes). One process keeps
+/// MUMPS's own order: SCOTCH's was not cheaper there on either layout.
+void use_single_precision_sparse_lu(PC pc, std::vector<std::int64_t> numbering = {},
+                                    int block_size = 1);
 
 /// What MUMPS says of the factors of a `pc` made by
 /// use_single_precision_sparse_lu, after its last factorisation.
@@ -60,6 +66,12 @@ struct SparseFactors
 {
   std::int64_t entries = -1; ///< in the factors, on all processes (INFOG(29)); -1: none
   int ordering = 0;          ///< INFOG(7): 1 the order given, 2 AMF, 4 PORD, ...; 0: none
+  /// Several processes with a numbering: the first process's estimates of
+  /// the factorisation's flops (MUMPS's RINFOG(1)) in MUMPS's own order
+  /// (PORD) and in SCOTCH's (0: not made), and whether the order given is
+  /// SCOTCH's
+  double own_flops = 0, scotch_flops = 0;
+  bool scotch = false;
 };
 /// None before a factorisation, or for another preconditioner.
 SparseFactors single_precision_lu_factors(PC pc);

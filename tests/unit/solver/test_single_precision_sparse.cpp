@@ -320,6 +320,16 @@ TEST(SinglePrecisionSparse, OrderedInTheNumberingGivenOnSeveralProcesses)
   if (processes > 1)
   {
     EXPECT_LT(double(given.entries), 1.2 * double(own.entries));
+    // The host tried both orders, and MUMPS took the one it estimated
+    // cheaper (SCOTCH's only where strictly so).
+    EXPECT_GT(given.own_flops, 0.0);
+    EXPECT_GT(given.scotch_flops, 0.0);
+    EXPECT_EQ(given.scotch, given.scotch_flops < given.own_flops);
+  }
+  else
+  {
+    EXPECT_EQ(given.own_flops, 0.0); // one process: MUMPS's own order only
+    EXPECT_EQ(given.scotch_flops, 0.0);
   }
   check(MatDestroy(&A_natural), "MatDestroy");
   check(MatDestroy(&A_scattered), "MatDestroy");
