@@ -43,6 +43,10 @@ other):
                   residual bond does not drift with the mesh
                   (docs/cracking.md, "Radial graded lines"; no error
                   columns: another mesh than embedded_fine's);
+  embedded_implex_radial_whole_2proc
+                  embedded_implex_radial_whole on two processes (where
+                  the LU takes SCOTCH's order: docs/performance.md, "The
+                  cheaper of PORD's order and SCOTCH's");
   embedded_fine   the implicit cracks at four times the steps (100 corrosion,
                   160 push): the reference of the error columns.
 
@@ -87,7 +91,7 @@ def phases(out):
 # the fine reference takes minutes; neither time is the target's.
 ONCE = ("embedded", "embedded_fine")
 # Cases on another mesh than embedded_fine's: no error columns.
-OTHER_MESH = ("embedded_implex_radial_whole",)
+OTHER_MESH = ("embedded_implex_radial_whole", "embedded_implex_radial_whole_2proc")
 
 
 def main():
@@ -110,6 +114,9 @@ def main():
         "embedded_implex_radial_whole": (embedded, ["cracking.integration=implex",
                                                     "mesh.graded_lines=radial",
                                                     "mesh.graded_refinement=whole"], 1),
+        "embedded_implex_radial_whole_2proc": (embedded, ["cracking.integration=implex",
+                                                          "mesh.graded_lines=radial",
+                                                          "mesh.graded_refinement=whole"], 2),
         "embedded_fine": (embedded, ["cracking.integration=implicit", "corrosion.steps=100",
                                      "loading.steps=160"], 1),
     }
