@@ -201,12 +201,10 @@ struct HostOrder
 /// would order it (its automatic choice, PORD; no column permutation, as
 /// the values are not given), and SCOTCH's nested dissection of the
 /// pattern's node graph, by MUMPS's estimate of the factorisation's flops
-/// at each analysis. PORD's order depends on the numbering; on radial lines
-/// refined whole (mesh.graded_refinement) in the mesh's input numbering it
-/// made 6.23e10 flops where one process makes 3.90e10 and SCOTCH's 4.0e10;
-/// on the blocks PORD's 2.31e10 beats SCOTCH's 2.8e10 (docs/cracking-speed.md,
-/// "Two processes"). An empty order if `position` is not a permutation of
-/// the rows, or if MUMPS fails; MUMPS's own where SCOTCH fails.
+/// at each analysis (which is the cheaper depends on the mesh:
+/// use_single_precision_sparse_lu). An empty order if `position` is not a
+/// permutation of the rows, or if MUMPS fails; MUMPS's own where SCOTCH
+/// fails.
 HostOrder order_in_numbering(PetscInt n, const std::vector<std::int64_t>& position, int block_size,
                              std::vector<MUMPS_INT> rows, std::vector<MUMPS_INT> cols)
 {
