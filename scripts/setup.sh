@@ -8,8 +8,8 @@ cd "$(dirname "$0")/.."
 packages=(
   cmake g++ make pkg-config
   libdolfinx-dev python3-ffcx           # DOLFINx 0.5.2, FFCx (forms at build time)
-  libscotch-dev                         # nested dissection for the LU on several processes
-                                        # (libdolfinx-dev brings it too)
+  libptscotch-dev                       # nested dissection for the LU on several processes
+                                        # (PETSc's development package brings it too)
   libopenblas0-pthread                  # fast BLAS for MUMPS (8-15x over reference)
   libgmsh-dev                           # mesh generation (C++ API)
   libtomlplusplus-dev libcli11-dev nlohmann-json3-dev

@@ -2,7 +2,6 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <cstdio> // scotch.h needs FILE and the fixed-width integers first
 #include <limits>
 #include <scotch.h>
 

@@ -189,17 +189,40 @@ void read_rows(Factors& f, Mat P, bool new_pattern)
 struct HostOrder
 {
   std::vector<MUMPS_INT> order;
-  double own_flops = 0;    ///< MUMPS's own ordering (PORD) in the numbering
+  double own_flops = 0;    ///< MUMPS's own choice of order in the numbering
+  int own_ordering = 0;    ///< which it chose (INFOG(7): 4 PORD, 2 AMF, 6 QAMD, ...)
   double scotch_flops = 0; ///< SCOTCH's nested dissection (NestedDissection.h)
   bool scotch = false;     ///< the order is SCOTCH's
 };
+
+/// The name of an ordering by MUMPS's code (INFOG(7)).
+const char* ordering_name(int code)
+{
+  switch (code)
+  {
+  case 0:
+    return "AMD";
+  case 2:
+    return "AMF";
+  case 3:
+    return "SCOTCH";
+  case 4:
+    return "PORD";
+  case 5:
+    return "METIS";
+  case 6:
+    return "QAMD";
+  default:
+    return "another";
+  }
+}
 
 /// The cheaper of two orders of the rows (PERM_IN, 1-based) for the
 /// pattern `rows`, `cols` (1-based, n rows) renumbered by `position` (each
 /// row's place, 0-based; `block_size` consecutive places one node's):
 /// MUMPS's own on this process alone in that numbering, as one process
-/// would order it (its automatic choice, PORD; no column permutation, as
-/// the values are not given), and SCOTCH's nested dissection of the
+/// would order it (its automatic choice: PORD on the slices' meshes; no
+/// column permutation, as the values are not given), and SCOTCH's nested dissection of the
 /// pattern's node graph, by MUMPS's estimate of the factorisation's flops
 /// at each analysis (which is the cheaper depends on the mesh:
 /// use_single_precision_sparse_lu). An empty order if `position` is not a
@@ -237,6 +260,18 @@ HostOrder order_in_numbering(PetscInt n, const std::vector<std::int64_t>& positi
     smumps_c(&alone);
     return host;
   }
+  // Ended on every way out, an exception's included; PERM_IN may point
+  // into a vector gone by then.
+  struct Ending
+  {
+    SMUMPS_STRUC_C& id;
+    ~Ending()
+    {
+      id.perm_in = nullptr;
+      id.job = job_end;
+      smumps_c(&id);
+    }
+  } ending{alone};
   quiet(alone);
   alone.icntl[icntl_column_permutation] = 0;
   alone.n = MUMPS_INT(n);
@@ -259,6 +294,7 @@ HostOrder order_in_numbering(PetscInt n, const std::vector<std::int64_t>& positi
   {
     host.order = order_of_rows();
     host.own_flops = double(alone.rinfog[0]);
+    host.own_ordering = int(alone.infog[6]);
     const std::vector<std::int64_t> step = nested_dissection(n, block_size, rows, cols);
     std::vector<MUMPS_INT> scotch(step.size());
     for (std::size_t p = 0; p < step.size(); ++p)
@@ -279,8 +315,6 @@ HostOrder order_in_numbering(PetscInt n, const std::vector<std::int64_t>& positi
       }
     }
   }
-  alone.job = job_end;
-  smumps_c(&alone);
   return host;
 }
 
@@ -335,9 +369,11 @@ HostOrder partition_free_order(Factors& f, MPI_Comm comm, PetscInt n, PetscInt l
                          "PetscInfo");
   else
     petsc::check_nothrow(PetscInfo(nullptr,
-                                   "single-precision LU: the rows in %s's order (estimated "
-                                   "flops: PORD %g, SCOTCH %g; 0: not made)\n",
-                                   host.scotch ? "SCOTCH" : "PORD", host.own_flops,
+                                   "single-precision LU: the rows in %s's order (the "
+                                   "factorisation's flops estimated: MUMPS's own choice, %s, "
+                                   "%g; SCOTCH's %g, 0: not made)\n",
+                                   host.scotch ? "SCOTCH" : ordering_name(host.own_ordering),
+                                   ordering_name(host.own_ordering), host.own_flops,
                                    host.scotch_flops),
                          "PetscInfo");
   return host;

@@ -67,9 +67,9 @@ struct SparseFactors
   std::int64_t entries = -1; ///< in the factors, on all processes (INFOG(29)); -1: none
   int ordering = 0;          ///< INFOG(7): 1 the order given, 2 AMF, 4 PORD, ...; 0: none
   /// Several processes with a numbering: the first process's estimates of
-  /// the factorisation's flops (MUMPS's RINFOG(1)) in MUMPS's own order
-  /// (PORD) and in SCOTCH's (0: not made), and whether the order given is
-  /// SCOTCH's
+  /// the factorisation's flops (MUMPS's RINFOG(1)) in MUMPS's own choice of
+  /// order (PORD on the slices' meshes) and in SCOTCH's (0: not made), and
+  /// whether the order given is SCOTCH's
   double own_flops = 0, scotch_flops = 0;
   bool scotch = false;
 };

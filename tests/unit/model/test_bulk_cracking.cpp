@@ -594,6 +594,13 @@ TEST_F(ImplexCrackedSlice, LuOrderedInTheInputNumbering)
   // (the model's numbering has its block size, 3), and took the cheaper.
   EXPECT_EQ(factors.scotch_flops > 0, processes > 1);
   EXPECT_EQ(factors.scotch, factors.scotch_flops > 0 && factors.scotch_flops < factors.own_flops);
+  // SCOTCH's order of the nodes mapped to their three rows each: on this
+  // small slice 1.75 times the flops of MUMPS's own choice (measured; on
+  // the slices' paper's mesh 0.64 to 1.22 times).
+  if (processes > 1)
+  {
+    EXPECT_LT(factors.scotch_flops, 3 * factors.own_flops);
+  }
   VecDestroy(&b);
   VecDestroy(&y);
   KSPDestroy(&ksp);
