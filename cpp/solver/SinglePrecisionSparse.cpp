@@ -5,6 +5,7 @@
 #include "ShellPreconditioner.h"
 #include "SingleColumnBlas.h"
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <petscmat.h>
 #include <smumps_c.h>
@@ -198,23 +199,8 @@ struct HostOrder
 /// The name of an ordering by MUMPS's code (INFOG(7)).
 const char* ordering_name(int code)
 {
-  switch (code)
-  {
-  case 0:
-    return "AMD";
-  case 2:
-    return "AMF";
-  case 3:
-    return "SCOTCH";
-  case 4:
-    return "PORD";
-  case 5:
-    return "METIS";
-  case 6:
-    return "QAMD";
-  default:
-    return "another";
-  }
+  constexpr const char* names[] = {"AMD", "the given", "AMF", "SCOTCH", "PORD", "METIS", "QAMD"};
+  return code >= 0 && code < int(std::size(names)) ? names[code] : "another";
 }
 
 /// The cheaper of two orders of the rows (PERM_IN, 1-based) for the
