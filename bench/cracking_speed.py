@@ -8,6 +8,8 @@ other):
   plane           demo/pushout_corroded.toml as it is: one crack plane to the
                   nearest face, 25 corrosion steps to x = 50 um, a 40-step
                   push (half model, bulk condensed: the defaults);
+  plane_2proc     plane on two processes (mpirun -n 2, one thread each):
+                  the like-for-like cost of the two-process rows;
   plane_full      the same on the whole slice (model.symmetry = "full"):
                   the model the cracks need, as a random field is not
                   symmetric (the like-for-like cost; ratio_to_plane_full);
@@ -59,7 +61,8 @@ target's, run once), dofs, Newton iterations, factorizations, GMRES iterations
 was counted), cuts, and the
 seconds of each phase (step 0 with the retraction, the corrosion stage, the
 push) from the wall_s columns of corrosion.csv and curve.csv; the ratio of
-wall times to the plane's (and to plane_full's); the peak pressure and the pressure after the
+wall times to the plane's (and to plane_full's, and to the plane's on as
+many processes as the row: plane or plane_2proc); the peak pressure and the pressure after the
 corrosion stage, the residual bond stress at 0.2 mm, and, where
 embedded_fine ran, the relative error of those three against it; and when
 each run was made (--reuse keeps the runs already in the folder). Writes
@@ -101,6 +104,7 @@ def main():
     # name: (scene, --set values, processes)
     cases = {
         "plane": (os.path.join(ROOT, "demo", "pushout_corroded.toml"), [], 1),
+        "plane_2proc": (os.path.join(ROOT, "demo", "pushout_corroded.toml"), [], 2),
         "plane_full": (os.path.join(ROOT, "demo", "pushout_corroded.toml"),
                        ["model.symmetry=full"], 1),
         "embedded": (embedded, ["cracking.integration=implicit"], 1),
@@ -164,8 +168,12 @@ def main():
     plane = next((r["wall_s"] for r in rows if r["case"] == "plane"), None)
     plane_full = next((r["wall_s"] for r in rows if r["case"] == "plane_full"), None)
     fine = next((r for r in rows if r["case"] == "embedded_fine" and r["converged"]), None)
+    # The plane on as many processes as the row: plane or plane_2proc.
+    plane_on = {r["processes"]: r["wall_s"] for r in rows if r["case"] in ("plane", "plane_2proc")}
     for r in rows:
         r["ratio_to_plane"] = round(r["wall_s"] / plane, 1) if plane else ""
+        same = plane_on.get(r["processes"])
+        r["ratio_to_plane_same_processes"] = round(r["wall_s"] / same, 1) if same else ""
         r["ratio_to_plane_full"] = round(r["wall_s"] / plane_full, 1) if plane_full else ""
         # Errors of the runs that finished, against the fine reference.
         for key in ("p_peak_MPa", "p_corroded_MPa", "tau_last_MPa"):
