@@ -98,7 +98,10 @@ inline std::function<std::string(double)> sized(std::string what, double scale, 
 /// Newton failed (an IMPL-EX miss says what to change itself, check_implex):
 /// with implicit cracks in the concrete, IMPL-EX, which passes the steps
 /// where their Newton cycles (docs/cracking.md, "Still to come" 3: cracks on
-/// the kink between loading and unloading; IMPL-EX has no kink in a step);
+/// the kink between loading and unloading; IMPL-EX has no kink in a step),
+/// or the run again with smaller steps from its start (coarse steps can
+/// reach a state where several cracks compete and no cut passes; on the
+/// corroded study's stopped runs four times the corrosion steps passed);
 /// else, where the structure may snap back under displacement control
 /// (`may_snap_back`), the control that follows it: dissipation control on a
 /// monotonic push, a damage viscosity on a push path. "" if none applies.
@@ -107,7 +110,9 @@ inline std::string failure_hint(bool implicit_cracks, bool may_snap_back, bool m
   if (implicit_cracks)
     return " (the implicit cracks' Newton can cycle where cracks turn between loading and "
            "unloading; IMPL-EX cracks pass such steps: cracking.integration = \"implex\", which "
-           "the default \"auto\" takes without a viscosity; docs/cracking.md, \"IMPL-EX\")";
+           "the default \"auto\" takes without a viscosity; or run again with four times the "
+           "steps, corrosion.steps and loading.steps; docs/cracking.md, \"IMPL-EX\" and "
+           "\"Still to come\" 3)";
   if (may_snap_back && monotonic)
     return " (where the structure snaps back, loading.control = \"auto\" follows it: "
            "docs/numerics.md, \"Dissipation control\")";
