@@ -3,10 +3,10 @@
 // before anything else, since dissipation control, the snap-back's hint,
 // stalls on the same cracks (docs/cracking.md, "Still to come" 3); a
 // snap-back under displacement control to the control that follows it.
-// Implicit cracks are also told to run again with smaller steps: a stopped
-// run of the corroded study passed with four times its corrosion steps
-// (docs/cracking.md, "Still to come" 3), where no cut of the stopped step
-// did.
+// Implicit cracks are also told to run again with smaller steps: the
+// corroded study's three stopped runs passed with four times their
+// corrosion steps (docs/cracking.md, "Still to come" 3), where no cut of
+// the stopped step did.
 #include "stepping/StepLoopShared.h"
 #include <gtest/gtest.h>
 
