@@ -268,7 +268,9 @@ check(len(rows) == len(other) and dp <= tol and its[0] < its[1],
 #    5 % of its peak (measured 1.2 % below it, the branch's own fall before
 #    it turns back; when the steps of x jumped on until one dissipated more
 #    than its work, as before 2026-12-06, 15 % below it, most of the snap
-#    jumped, not traced). After the snap the state
+#    jumped, not traced), and hand back to steps of x once x is back past
+#    where they began (the progress output says so; before, they went on to
+#    the stage's end where the cracks kept softening). After the snap the state
 #    is displacement control's, which jumps through it (implex_jumps): one
 #    surface crack, as wide within 2 % (the width is the oxide's expansion
 #    taken up by one crack, whatever the path) and p within 5 % (the
@@ -281,11 +283,12 @@ centred = ["geometry.tube_center=[50.0, 50.0]", "corrosion.beta=2.0",
            "cracking.integration=implex"]
 snap = cracking_corroded_demo(0.025, 10, seed=4)
 traced, jumped = out_dir("implex_dissipation_snap"), out_dir("implex_displacement_snap")
-run(snap, traced, sets=centred + ["loading.control=dissipation"])
+said = {traced: run(snap, traced, sets=centred + ["loading.control=dissipation"], quiet=False)}
 run(snap, jumped, sets=centred)
 jumps = corrosion(jumped)
 traced_2 = out_dir("implex_dissipation_snap_2")
-run(snap, traced_2, sets=centred + ["loading.control=dissipation"], mpirun=2)
+said[traced_2] = run(snap, traced_2, sets=centred + ["loading.control=dissipation"], mpirun=2,
+                     quiet=False)
 for name, out in (("1 process", traced), ("2 processes", traced_2)):
     rows = corrosion(out)
     peak = max(range(len(rows)), key=lambda i: rows[i]["p_MPa"])
@@ -298,13 +301,16 @@ for name, out in (("1 process", traced), ("2 processes", traced_2)):
              for a, b in zip(rows[peak:], rows[peak + 1:]) if b["penetration_mm"] < a["penetration_mm"]]
     w, w_j = rows[-1]["crack_width_mm"], jumps[-1]["crack_width_mm"]
     p, p_j = rows[-1]["p_MPa"], jumps[-1]["p_MPa"]
+    back = re.search(r"x is back past ([0-9.e+-]+) um, where the snap-back began", said[out].stdout)
     check(summary(out)["dissipation_steps"] > 0 and x_peak - x_back > 1e-3 and falls and
-          all(falls) and p_turn > 0.95 and summary(jumped)["implex_jumps"] > 0 and
+          all(falls) and p_turn > 0.95 and back is not None and
+          summary(jumped)["implex_jumps"] > 0 and
           rows[-1]["cracks_at_surface"] == jumps[-1]["cracks_at_surface"] == 1 and
           abs(w - w_j) < 0.02 * w_j and abs(p - p_j) < 0.05 * p_j,
           f"implex under dissipation control through the snap-back, {name}: x back from "
           f"{1e3 * x_peak:.2f} to {1e3 * x_back:.2f} um in {summary(out)['dissipation_steps']} "
-          f"energy steps, starting at {100 * p_turn:.1f} % of the peak pressure, "
+          f"energy steps, starting at {100 * p_turn:.1f} % of the peak pressure, steps of x "
+          f"again once x is back past {back.group(1) if back else '(not said)'} um, "
           f"dissipating in all {len(falls)} rows where x falls; at 25 um one surface "
           f"crack {1e3 * w:.1f} um and p {p:.3f} MPa against displacement control's "
           f"{1e3 * w_j:.1f} um and {p_j:.3f} MPa ({summary(jumped)['implex_jumps']} jumps)")
