@@ -495,9 +495,9 @@ void StepLoop::DissipationSteps::accept(int k, const std::string& name, const Tr
     // that softens all the way on (the centred tube after its cover crack)
     // stayed in energy steps to its end: with IMPL-EX cracks, whose energy
     // steps sit at the floor of their error, 768 of them, 118 s and the
-    // residual bond 0.399 MPa (beta 3, seed 1), against 335, 55 s and
-    // 0.457 MPa (the implicit cracks 0.518; both 0.523 and 0.524 at
-    // implex_tolerance 0.0004, in 167 and 428 s).
+    // residual bond 0.399 MPa (beta 3, seed 1, 50 um), against 249, 64 s
+    // and 0.457 MPa (the implicit cracks 0.518; 0.524 without the rule and
+    // 0.523 with it at implex_tolerance 0.0004, in 428 and 179 s).
     const bool traced = _lambda_fell && t.lambda_new > _lambda_event;
     if (traced || (_released_in_event > _dG_nominal && released < released_to_return * t.dG_step))
     {
