@@ -59,8 +59,9 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
       _axis(slice.tube_center), _tube_radius(slice.tube_radius()),
       _visible_width(part.visible_width), _cut(cut_by_symmetry), _row_band(part.row_band),
       _implex(part.implex), _implex_tolerance(part.implex_tolerance),
-      _predict_strain(part.predict_strain), _E(concrete.E), _nu(concrete.nu),
-      _alpha(concrete.alpha), _dT(std::make_shared<fem::Constant<double>>(0.0))
+      _implicit_tolerance(part.implicit_tolerance), _predict_strain(part.predict_strain),
+      _E(concrete.E), _nu(concrete.nu), _alpha(concrete.alpha),
+      _dT(std::make_shared<fem::Constant<double>>(0.0))
 {
   // A radius that takes in no concrete would leave it linear without a
   // word: refused, the same on every process (the count is summed, the
@@ -187,12 +188,14 @@ bulk::CrackBandResult BulkCracking::update_point(std::size_t c, std::size_t i,
 void BulkCracking::commit()
 {
   history_changed();
-  if (_implex)
+  if (_implex || _implicit_tolerance > 0)
   {
     // What the step's cracks did at its converged strain: the crack band's
     // own update (onset, the history), and the growth of the history that
-    // the next step extrapolates.
-    implicit_update();
+    // the next step extrapolates (IMPL-EX's, and the implicit cracks'
+    // predictor for their step's error).
+    if (_implex)
+      implicit_update();
     for (std::size_t i = 0; i < _kappa_step.size(); ++i)
       _kappa_step[i] = kappa_of(_trial, i) - kappa_of(_committed, i);
     if (_predict_strain)

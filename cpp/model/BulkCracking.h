@@ -158,6 +158,34 @@ public:
   /// cracking.implex_tolerance: a step whose implex_error() exceeds it is
   /// cut [-].
   double implex_tolerance() const { return _implex_tolerance; }
+  /// The implicit cracks: how far the converged step's stress (the crack
+  /// band's own at its strain) is from what IMPL-EX's prediction from the
+  /// last steps (cracking.implex_predictor) answers at the same strain, in
+  /// implex_error()'s norm [-]. The predictor-corrector difference of a
+  /// first-order integration, so an estimate of the step's own error: the
+  /// cracks are path dependent, and a step through which the growth of
+  /// the cracks turns (a crack that localises, points that stop loading)
+  /// ends elsewhere than smaller steps would. Call right after the step's
+  /// solve. Collective.
+  double implicit_error();
+  /// The step's error that step_tolerance() holds: implex_error() with
+  /// IMPL-EX, implicit_error() otherwise. Collective.
+  double step_error(std::int64_t& failed_points)
+  {
+    if (_implex)
+      return implex_error(failed_points);
+    failed_points = 0;
+    return implicit_error();
+  }
+  /// The largest step_error() of a step before it is cut [-]: with IMPL-EX
+  /// cracking.implex_tolerance, else cracking.implicit_tolerance; 0: the
+  /// steps are not held to an error.
+  double step_tolerance() const { return _implex ? _implex_tolerance : _implicit_tolerance; }
+  /// The scene key that sets step_tolerance().
+  const char* step_tolerance_key() const
+  {
+    return _implex ? "cracking.implex_tolerance" : "cracking.implicit_tolerance";
+  }
 
   /// Whether a point uncracked in the committed state may crack (true; false:
   /// it answers elastically, whatever its stress: the predictor of a step,
@@ -343,6 +371,10 @@ private:
   /// set_extrapolation()'s ratio: of the history, or of the strain
   /// (cracking.implex_predictor).
   void make_secants();
+  /// Point i's (of cracking cell c) secant maps as make_secants() makes
+  /// them, into `op`; `scratch` holds a crack state (state_size values).
+  void predict_secant(std::size_t c, std::size_t i, std::vector<double>& scratch,
+                      bulk::SecantOperator& op) const;
   /// Calls at(cell, point, strain, d_sigma, d_C) at every point, in the
   /// order of the points' arrays ([cell][point]): the strain is
   /// _strain_values', d_sigma the stress coefficient's values there, d_C()
@@ -420,6 +452,7 @@ private:
   bool _row_band = false;              ///< cracking.band_width = "row"
   bool _implex = false;                ///< cracking.integration = "implex"
   double _implex_tolerance = 0;        ///< cracking.implex_tolerance
+  double _implicit_tolerance = 0;      ///< cracking.implicit_tolerance
   bool _predict_strain = false;        ///< cracking.implex_predictor = "strain"
   double _E = 0, _nu = 0;              ///< the concrete's [MPa], [-]
   double _alpha = 0;                   ///< the concrete's thermal expansion [1/degC]
@@ -429,9 +462,10 @@ private:
   bool _trial_implicit = false;
   /// IMPL-EX: points whose update failed in the last implicit_update()
   std::int64_t _implicit_failures = 0;
-  /// [point] IMPL-EX: the growth of kappa in the last committed step [mm]
+  /// [point] IMPL-EX (and the implicit cracks' step error): the growth of
+  /// kappa in the last committed step [mm]
   std::vector<double> _kappa_step;
-  /// IMPL-EX, implex_predictor = "strain": [point][6] the growth of the
+  /// The same, implex_predictor = "strain": [point][6] the growth of the
   /// strain in the last committed step (empty before the first)
   std::vector<double> _strain_step;
   /// [point] IMPL-EX: the side of closure of the last evaluate(): 0 open,

@@ -12,34 +12,36 @@ using namespace points;
 
 void BulkCracking::make_secants()
 {
-  // The strain predictor: each point's state is the crack band's own
-  // update from the committed state to the strain extrapolated from the
-  // last step, as the history predictor extrapolates the history: a point
-  // may crack there, and a crack that stops growing holds its history.
-  const bool by_strain = _predict_strain && _extrapolation > 0 && !_strain_step.empty();
-  const int n_points = expression_cracking_strain->num_points;
-  std::vector<double> predicted(state);
+  std::vector<double> scratch(state);
+  const std::size_t n_points = std::size_t(expression_cracking_strain->num_points);
   for (std::size_t i = 0; i < _secant.size(); ++i)
-  {
-    const std::span<const double> old(_committed.data() + state * i, state);
-    if (by_strain)
-    {
-      bulk::Voigt strain;
-      for (int k = 0; k < voigt; ++k)
-        strain[k] = _strain_committed[voigt * i + k] + _extrapolation * _strain_step[voigt * i + k];
-      const bulk::CrackBandResult r =
-          update_point(i / std::size_t(n_points), i, strain, predicted, bulk::Tangent::skip);
-      // Uncracked there, or its update failed: the history predictor's map.
-      if (r.status == bulk::CrackBandResult::Status::ok && crack_of(predicted, 0).cracked())
-      {
-        _band.secant_operator(predicted, kappa_of(predicted, 0), _strength[i], _secant[i]);
-        continue;
-      }
-    }
-    _band.secant_operator(old, kappa_of(_committed, i) + _extrapolation * _kappa_step[i],
-                          _strength[i], _secant[i]);
-  }
+    predict_secant(i / n_points, i, scratch, _secant[i]);
   _secant_current = true;
+}
+
+void BulkCracking::predict_secant(std::size_t c, std::size_t i, std::vector<double>& scratch,
+                                  bulk::SecantOperator& op) const
+{
+  // The strain predictor: the point's state is the crack band's own update
+  // from the committed state to the strain extrapolated from the last
+  // step, as the history predictor extrapolates the history: a point may
+  // crack there, and a crack that stops growing holds its history.
+  const std::span<const double> old(_committed.data() + state * i, state);
+  if (_predict_strain && _extrapolation > 0 && !_strain_step.empty())
+  {
+    bulk::Voigt strain;
+    for (int k = 0; k < voigt; ++k)
+      strain[k] = _strain_committed[voigt * i + k] + _extrapolation * _strain_step[voigt * i + k];
+    const bulk::CrackBandResult r = update_point(c, i, strain, scratch, bulk::Tangent::skip);
+    // Uncracked there, or its update failed: the history predictor's map.
+    if (r.status == bulk::CrackBandResult::Status::ok && crack_of(scratch, 0).cracked())
+    {
+      _band.secant_operator(scratch, kappa_of(scratch, 0), _strength[i], op);
+      return;
+    }
+  }
+  _band.secant_operator(old, kappa_of(_committed, i) + _extrapolation * _kappa_step[i],
+                        _strength[i], op);
 }
 
 namespace
@@ -169,6 +171,34 @@ void BulkCracking::implicit_update()
       std::copy(r.stress.begin(), r.stress.end(), _stress_trial.begin() + voigt * i);
       std::copy(r.opening.begin(), r.opening.end(), _opening_trial.begin() + 3 * i);
     }
+}
+
+double BulkCracking::implicit_error()
+{
+  // The step's own stress (the crack band's update at the converged strain)
+  // against what the step's IMPL-EX maps would answer there.
+  evaluate();
+  const bulk::Voigt66& C = _band.stiffness();
+  std::vector<double> scratch(state);
+  bulk::SecantOperator op;
+  const std::size_t n_points = std::size_t(expression_cracking_strain->num_points);
+  double sums[2] = {
+      integrate(
+          [&](std::size_t i)
+          {
+            predict_secant(i / n_points, i, scratch, op);
+            const bulk::Voigt strain = voigt_at(_strain_values, i);
+            const bulk::Voigt66* T = secant_map(op, bulk::CrackBand::secant_side(op, strain));
+            const bulk::Voigt predicted = bulk::multiply(T ? *T : C, strain);
+            bulk::Voigt d = voigt_at(_stress_trial, i);
+            for (int k = 0; k < voigt; ++k)
+              d[k] -= predicted[k];
+            return bulk::complementary_energy(d, _E, _nu);
+          }),
+      integrate([&](std::size_t i)
+                { return bulk::complementary_energy(voigt_at(_stress_trial, i), _E, _nu); })};
+  MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, _mesh->comm());
+  return sums[1] > 0 ? std::sqrt(sums[0] / sums[1]) : 0.0;
 }
 
 double BulkCracking::implex_error(std::int64_t& failed_points)

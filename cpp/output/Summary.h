@@ -35,6 +35,10 @@ struct Summary
   /// Of its steps, those taken above the tolerance: the cracks snapped back
   /// under the load's control, and no smaller step met it.
   int implex_jumps = 0;
+  /// The implicit cracks with cracking.implicit_tolerance > 0: the two
+  /// above are their step error's (BulkCracking::implicit_error), written
+  /// as implicit_error_max and implicit_jumps.
+  bool implicit_step_error = false;
   /// With cracking.radius > 0: the cracks at the edge of the cracking
   /// region at the end of the run (model::EdgeCracks, the specimen's
   /// points as the other counts), and the corrosion step they first

@@ -78,7 +78,11 @@ RunReport::RunReport(const Scene& scene, const std::filesystem::path& out, bool 
   MPI_Comm_size(comm, &size);
   _summary.model_type = scene.model().name();
   if (scene.cracking().embedded)
+  {
     _summary.cracking_integration = scene.cracking().implex ? "implex" : "implicit";
+    _summary.implicit_step_error =
+        !scene.cracking().implex && scene.cracking().implicit_tolerance > 0;
+  }
   _summary.processes = size;
   _summary.run_id = output::run_id();
   // Agreed here: a failure on the first process alone would leave the

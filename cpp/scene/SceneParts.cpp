@@ -105,6 +105,7 @@ void Scene::fill_parts()
   const std::string integration = string("cracking.integration");
   _cracking.implex = integration == "implex" || (integration == "auto" && _cracking.viscosity == 0);
   _cracking.implex_tolerance = number("cracking.implex_tolerance");
+  _cracking.implicit_tolerance = number("cracking.implicit_tolerance");
   _cracking.predict_strain = string("cracking.implex_predictor") == "strain";
 
   _solver.lagged_preconditioner = string("solver.preconditioner") == "lagged";
@@ -173,6 +174,10 @@ std::vector<Scene::Unread> Scene::unread(const std::string& set) const
                  "cracks implicitly (IMPL-EX takes no viscosity)"
                : "cracking.integration = \"implicit\" solves each step's cracks; they are "
                  "IMPL-EX's");
+    else
+      note(changed({"cracking.implicit_tolerance"}),
+           "the cracks are integrated by IMPL-EX, whose steps cracking.implex_tolerance holds; "
+           "cracking.implicit_tolerance is the implicit cracks'");
   }
   // The push: a path, or a monotonic push to push_displacement.
   if (!_loading.push_path.empty())

@@ -137,6 +137,9 @@ struct CrackingPart
   double viscosity{};        ///< damage viscosity eta [mm of push]; 0: none
   bool implex{};             ///< integration: implex, or auto that chose it (else implicit)
   double implex_tolerance{}; ///< IMPL-EX: the largest error of a step [-]
+  /// The implicit cracks: the largest error of a step [-]; 0: the scene's
+  /// steps, cut only where Newton fails
+  double implicit_tolerance{};
   /// IMPL-EX: a step's cracks from the strain extrapolated from the last
   /// step (implex_predictor = "strain"), else their history extrapolated
   bool predict_strain{};

@@ -122,6 +122,20 @@ std::vector<KeyDef> integration_keys()
        true,
        {},
        A::pushout},
+      {"cracking.implicit_tolerance",
+       K::number,
+       0.0,
+       "-",
+       "implicit: a step is cut (and retried in halves) when its stress differs from what "
+       "IMPL-EX's prediction from the last steps (implex_predictor) answers at its strain by "
+       "more than this, in implex_tolerance's norm: an estimate of the step's own error, as "
+       "the cracks are path dependent; 0: the scene's steps, cut only where Newton fails "
+       "(docs/cracking.md, \"The implicit cracks' step error\")",
+       0,
+       inf,
+       false,
+       {},
+       A::pushout},
       {"cracking.implex_predictor",
        K::string,
        std::string("strain"),

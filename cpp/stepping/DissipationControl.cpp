@@ -426,7 +426,8 @@ bool StepLoop::DissipationSteps::snaps(const std::string& name, const Try& t)
   _snap_handed_over = true;
   _by_energy = true;
   std::ostringstream s;
-  s << name << ": IMPL-EX error " << t.implex.error
+  const bool implex = _loop._equilibrium.model().bulk_cracking()->implex();
+  s << name << ": " << (implex ? "IMPL-EX error " : "the cracks' step error ") << t.implex.error
     << " does not fall with the step (the cracks snap back); dissipation control";
   say(s.str());
   return true;

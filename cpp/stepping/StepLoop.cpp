@@ -275,8 +275,7 @@ bool StepLoop::begin_load_factor_path(const std::string& control, LoadFactorPath
 int StepLoop::stage_step_limit(int nominal_steps) const
 {
   const model::BulkCracking* bulk = _equilibrium.model().bulk_cracking();
-  return detail::path_step_limit(nominal_steps,
-                                 bulk && bulk->implex() ? bulk->implex_tolerance() : 0.0);
+  return detail::path_step_limit(nominal_steps, bulk ? bulk->step_tolerance() : 0.0);
 }
 
 bool StepLoop::within_step_limit(const LoadFactorPath& p, int k, double lambda,

@@ -151,9 +151,11 @@ private:
   /// What check_implex found.
   struct ImplexCheck
   {
-    double ratio = 0;  ///< the step's error over cracking.implex_tolerance (0: no IMPL-EX)
+    /// the step's error over its tolerance (BulkCracking::step_tolerance; 0:
+    /// not checked)
+    double ratio = 0;
     bool jump = false; ///< taken above the tolerance: no smaller step meets it
-    double error = 0;  ///< the step's error (BulkCracking::implex_error)
+    double error = 0;  ///< the step's error (BulkCracking::step_error)
     std::string said;  ///< a jump's progress line, said when it is committed
     /// Whether the next step may grow: IMPL-EX's error is first order in
     /// the step, so one above half the tolerance would miss it at twice the
@@ -163,8 +165,10 @@ private:
     /// meet the tolerance (0.8 of it), in halves at least.
     double cut_factor() const { return ratio > 1 ? std::min(0.5, 0.8 / ratio) : 0.5; }
   };
-  /// IMPL-EX cracks: the error of a converged step of `increment` (of the
-  /// stage's parameter) against its tolerance; a step that misses it fails
+  /// IMPL-EX cracks, or the implicit cracks with cracking.implicit_tolerance
+  /// (BulkCracking::step_tolerance): the error of a converged step of
+  /// `increment` (of the stage's parameter) against its tolerance; a step
+  /// that misses it fails
   /// (`rep`, its reason), to be cut, unless it is a jump: a smaller try
   /// than the last that missed did not cut the error, or `stepper` cannot
   /// cut it (right after a jump, or where its smallest step is 2^-10 of a

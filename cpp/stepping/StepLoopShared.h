@@ -70,14 +70,15 @@ constexpr double path_steps_implex_tolerance = 0.01;
 /// `nominal_steps` may take before it gives up. IMPL-EX's error is first
 /// order in the step, so a tolerance k times below
 /// path_steps_implex_tolerance asks for k times the steps where the
-/// cracks grow: the limit grows by k (`implex_tolerance` 0: no IMPL-EX
-/// cracks). Under dissipation control the centred tube's corrosion stage
+/// cracks grow: the limit grows by k (`step_tolerance`, the cracks'
+/// model::BulkCracking::step_tolerance: IMPL-EX's or the implicit cracks';
+/// 0: none). Under dissipation control the centred tube's corrosion stage
 /// (12 / 4, beta 3, seed 1, x to 50 um in 20 steps) took 243 steps at
 /// 0.01 and ran into the limit of 500 at 0.0025.
-inline int path_step_limit(int nominal_steps, double implex_tolerance)
+inline int path_step_limit(int nominal_steps, double step_tolerance)
 {
-  const double k = implex_tolerance > 0 && implex_tolerance < path_steps_implex_tolerance
-                       ? std::ceil(path_steps_implex_tolerance / implex_tolerance)
+  const double k = step_tolerance > 0 && step_tolerance < path_steps_implex_tolerance
+                       ? std::ceil(path_steps_implex_tolerance / step_tolerance)
                        : 1.0;
   return int(k * (path_steps_per_step * nominal_steps + path_steps_extra));
 }
@@ -110,9 +111,10 @@ inline std::string failure_hint(bool implicit_cracks, bool may_snap_back, bool m
   if (implicit_cracks)
     return " (the implicit cracks' Newton can cycle where cracks turn between loading and "
            "unloading; IMPL-EX cracks pass such steps: cracking.integration = \"implex\", which "
-           "the default \"auto\" takes without a viscosity; or run again with four times the "
-           "steps, corrosion.steps and loading.steps; docs/cracking.md, \"IMPL-EX\" and "
-           "\"Still to come\" 3)";
+           "the default \"auto\" takes without a viscosity; or hold the implicit cracks' "
+           "steps to their error, cracking.implicit_tolerance = 0.0025, or run again with four "
+           "times the steps, corrosion.steps and loading.steps; docs/cracking.md, \"IMPL-EX\" "
+           "and \"The implicit cracks' step error\")";
   if (may_snap_back && monotonic)
     return " (where the structure snaps back, loading.control = \"auto\" follows it: "
            "docs/numerics.md, \"Dissipation control\")";

@@ -134,11 +134,13 @@ for sets, integration in (([], "implex"), (["loading.control=auto"], "implex"),
 
 # ... and a step that the implicit cracks' Newton does not pass (x = 30 um in
 # one step, one cut allowed) says to take IMPL-EX, not loading.control =
-# "auto", which stalls on the same cracks (StepLoopShared.h failure_hint).
+# "auto", which stalls on the same cracks, or to hold the implicit cracks'
+# steps to their error (StepLoopShared.h failure_hint).
 p = run(scene, out_dir("implicit_stuck"), check=False,
         sets=["cracking.integration=implicit", "corrosion.steps=1", "loading.max_cuts=1"])
 check(p.returncode == 3 and "did not converge" in p.stderr
-      and 'cracking.integration = "implex"' in p.stderr and "loading.control" not in p.stderr,
+      and 'cracking.integration = "implex"' in p.stderr and "loading.control" not in p.stderr
+      and "cracking.implicit_tolerance" in p.stderr,
       f"implicit cracks stuck say to take IMPL-EX: exit {p.returncode} "
       f"({p.stderr.strip()[-240:]!r})")
 
