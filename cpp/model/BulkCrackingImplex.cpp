@@ -1,7 +1,9 @@
 // IMPL-EX cracks (BulkCracking.h, docs/cracking.md "IMPL-EX"): a step's
 // secant maps from the committed state and the last step's growth, the
 // step's evaluations by them, and after the step the crack band's own
-// update and the step's error against it.
+// update and the step's error against it; and the implicit cracks' step
+// error, against the same prediction (docs/cracking.md, "The implicit
+// cracks' step error").
 #include "BulkCrackingPoints.h"
 #include <cmath>
 #include <mpi.h>

@@ -167,8 +167,12 @@ std::vector<Scene::Unread> Scene::unread(const std::string& set) const
     if (_cracking.strength_cov == 0)
       note(changed({"cracking.seed", "cracking.correlation_length"}),
            "cracking.strength_cov = 0 makes the tensile strength uniform (no random field)");
+    // The implicit cracks read the predictor for their step error only.
     if (!_cracking.implex)
-      note(changed({"cracking.implex_tolerance", "cracking.implex_predictor"}),
+      note(changed(_cracking.implicit_tolerance > 0
+                       ? std::vector<std::string>{"cracking.implex_tolerance"}
+                       : std::vector<std::string>{"cracking.implex_tolerance",
+                                                  "cracking.implex_predictor"}),
            _cracking.viscosity > 0 && string("cracking.integration") == "auto"
                ? "cracking.integration = \"auto\" with a cracking.viscosity integrates the "
                  "cracks implicitly (IMPL-EX takes no viscosity)"

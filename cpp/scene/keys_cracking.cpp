@@ -145,7 +145,8 @@ std::vector<KeyDef> integration_keys()
        "history: each crack's damage extrapolated from the last steps (Oliver, Huespe & Cante "
        "2008), no point cracks in the step; both explicit. strain has about half the error "
        "at the same steps: a quarter fewer steps and time on the cracking demo, as close to "
-       "the implicit cracks (docs/cracking.md, \"The strain predictor\")",
+       "the implicit cracks (docs/cracking.md, \"The strain predictor\"); also the prediction "
+       "the implicit cracks' step error compares with (implicit_tolerance)",
        -inf,
        inf,
        false,

@@ -35,12 +35,14 @@ constexpr double jump_error_fall = 0.75;
 /// (max_cuts < 10) may miss only because it is large.
 constexpr double jump_smallest_step = 1.0 / 1024;
 /// The implicit cracks' step error (cracking.implicit_tolerance) cuts a
-/// step down to this fraction of a nominal one, and takes it there: its
+/// step down to this fraction of a nominal one [nominal steps] (or to the
+/// smallest loading.max_cuts allows, if larger), and takes it there: its
 /// predictor misses where thousands of cracks turn between loading and
 /// unloading whatever the step (as IMPL-EX's error has a floor there), and
 /// steps held at the smallest size leave Newton no cut when it cycles on a
 /// kink (the centred tube, beta 3, seed 5, at 0.0025: down to 2^-10 of a
-/// step by x = 9 um, then stopped there).
+/// step by x = 9 um, then stopped there). A smaller try that did not cut
+/// the error by a quarter is taken too, as IMPL-EX's jump is.
 constexpr double implicit_error_smallest_step = 1.0 / 64;
 } // namespace
 
@@ -278,10 +280,13 @@ StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, double in
     const bool smallest = stepper.smallest() && (stepper.increment() <= jump_smallest_step ||
                                                  (_implex_jumped && !falling));
     const bool implicit_floor =
-        !bulk->implex() && stepper.increment() <= implicit_error_smallest_step;
+        !bulk->implex() &&
+        (stepper.increment() <= implicit_error_smallest_step || stepper.smallest());
     c.jump = c.ratio > 1 && (snaps || smallest || implicit_floor);
-    if (c.jump && implicit_floor && !snaps && !smallest)
-      why_taken = "the implicit cracks' steps are cut for their error down to 2^-6 of a step";
+    if (c.jump && !bulk->implex())
+      why_taken = snaps ? "a smaller step does not lower it"
+                        : "the implicit cracks' steps are cut for their error down to 2^-6 of "
+                          "a step";
     if (c.ratio <= 1 || c.jump)
     {
       if (c.jump) // said when the step is committed (count_implex)

@@ -426,9 +426,12 @@ bool StepLoop::DissipationSteps::snaps(const std::string& name, const Try& t)
   _snap_handed_over = true;
   _by_energy = true;
   std::ostringstream s;
-  const bool implex = _loop._equilibrium.model().bulk_cracking()->implex();
-  s << name << ": " << (implex ? "IMPL-EX error " : "the cracks' step error ") << t.implex.error
-    << " does not fall with the step (the cracks snap back); dissipation control";
+  if (_loop._equilibrium.model().bulk_cracking()->implex())
+    s << name << ": IMPL-EX error " << t.implex.error
+      << " does not fall with the step (the cracks snap back); dissipation control";
+  else // taken where its prediction misses (StepLoop::check_implex)
+    s << name << ": the cracks' step error " << t.implex.error
+      << " is not met by a smaller step; dissipation control";
   say(s.str());
   return true;
 }

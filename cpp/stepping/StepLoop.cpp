@@ -216,8 +216,9 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
     if (reason.rfind("IMPL-EX", 0) != 0) // Newton failed
     {
       const model::BulkCracking* cracking = _equilibrium.model().bulk_cracking();
-      _summary.message +=
-          failure_hint(cracking && !cracking->implex(), _may_snap_back, _scenario.monotonic());
+      const bool implicit = cracking && !cracking->implex();
+      _summary.message += failure_hint(implicit, implicit && cracking->step_tolerance() > 0,
+                                       _may_snap_back, _scenario.monotonic());
     }
     return false;
   }

@@ -100,21 +100,27 @@ inline std::function<std::string(double)> sized(std::string what, double scale, 
 /// with implicit cracks in the concrete, IMPL-EX, which passes the steps
 /// where their Newton cycles (docs/cracking.md, "Still to come" 3: cracks on
 /// the kink between loading and unloading; IMPL-EX has no kink in a step),
-/// or the run again with smaller steps from its start (coarse steps can
-/// reach a state where several cracks compete and no cut passes; on the
-/// corroded study's stopped runs four times the corrosion steps passed);
-/// else, where the structure may snap back under displacement control
-/// (`may_snap_back`), the control that follows it: dissipation control on a
-/// monotonic push, a damage viscosity on a push path. "" if none applies.
-inline std::string failure_hint(bool implicit_cracks, bool may_snap_back, bool monotonic)
+/// or smaller steps where the cracks need them: their steps held to their
+/// error (cracking.implicit_tolerance, unless `implicit_steps_held`
+/// already), or the run again with four times the steps (coarse steps can
+/// reach a state where several cracks compete and no cut passes; the
+/// corroded study's stopped runs passed both ways); else, where the
+/// structure may snap back under displacement control (`may_snap_back`),
+/// the control that follows it: dissipation control on a monotonic push, a
+/// damage viscosity on a push path. "" if none applies.
+inline std::string failure_hint(bool implicit_cracks, bool implicit_steps_held, bool may_snap_back,
+                                bool monotonic)
 {
   if (implicit_cracks)
-    return " (the implicit cracks' Newton can cycle where cracks turn between loading and "
-           "unloading; IMPL-EX cracks pass such steps: cracking.integration = \"implex\", which "
-           "the default \"auto\" takes without a viscosity; or hold the implicit cracks' "
-           "steps to their error, cracking.implicit_tolerance = 0.0025, or run again with four "
-           "times the steps, corrosion.steps and loading.steps; docs/cracking.md, \"IMPL-EX\" "
-           "and \"The implicit cracks' step error\")";
+    return std::string(" (the implicit cracks' Newton can cycle where cracks turn between "
+                       "loading and unloading; IMPL-EX cracks pass such steps: "
+                       "cracking.integration = \"implex\", which the default \"auto\" takes "
+                       "without a viscosity; or ") +
+           (implicit_steps_held ? ""
+                                : "hold the implicit cracks' steps to their error, "
+                                  "cracking.implicit_tolerance = 0.0025, or ") +
+           "run again with four times the steps, corrosion.steps and loading.steps; "
+           "docs/cracking.md, \"IMPL-EX\" and \"The implicit cracks' step error\")";
   if (may_snap_back && monotonic)
     return " (where the structure snaps back, loading.control = \"auto\" follows it: "
            "docs/numerics.md, \"Dissipation control\")";

@@ -23,9 +23,14 @@ in 15 steps and pushed 5 um:
    implicit_jumps set, implex_error_max and implex_jumps null; without the
    tolerance all four are null.
 3. With IMPL-EX cracks the key is not read, and the run says so (a note, in
-   summary.json too)."""
+   summary.json too).
+4. The same steps, cracked points and p(x) on 1 and 2 processes, to
+   Newton's tolerance (both at SNES_RTOL, common.TIGHT_NEWTON): a step's
+   error is a sum over the processes' points, so its cut or not could
+   differ only if it landed within round-off of the tolerance."""
 
-from common import check, corrosion, cracking_corroded_demo, out_dir, run, summary
+from common import (check, check_one_and_two_processes, corrosion, cracking_corroded_demo, out_dir,
+                    run, summary)
 
 scene = cracking_corroded_demo(0.03, 15, seed=1)
 reference, plain, controlled = out_dir("implicit_ref"), out_dir("implicit_plain"), \
@@ -80,3 +85,9 @@ run(scene, unread, sets=["corrosion.penetration=0.002", "corrosion.steps=1",
 notes = summary(unread)["notes"]
 check(any("cracking.implicit_tolerance" in note for note in notes),
       f"cracking.implicit_tolerance with IMPL-EX cracks noted: {notes}")
+
+# 4. One and two processes, with steps cut for their error.
+sets = ["cracking.integration=implicit", "cracking.implicit_tolerance=0.005",
+        "corrosion.penetration=0.016", "corrosion.steps=8"]
+_, one = check_one_and_two_processes(scene, "implicit_step_error", sets)
+check(len(corrosion(one)) > 9, f"steps cut there: {len(corrosion(one))} corrosion rows for 8 steps")
