@@ -280,7 +280,8 @@ check(len(rows) == len(other) and dp <= tol and its[0] < its[1],
 #    1.1 % on 1 and 2 processes). The
 #    same on 2 processes (its energy steps' collective decisions), to the
 #    same bounds: the two partitions' round-off may cut a step in one and
-#    not the other along the snap-back.
+#    not the other along the snap-back, and hand back by the other rule
+#    (an energy step that released little) before x is back.
 centred = ["geometry.tube_center=[50.0, 50.0]", "corrosion.beta=2.0",
            "cracking.integration=implex"]
 snap = cracking_corroded_demo(0.025, 10, seed=4)
@@ -303,7 +304,26 @@ for name, out in (("1 process", traced), ("2 processes", traced_2)):
              for a, b in zip(rows[peak:], rows[peak + 1:]) if b["penetration_mm"] < a["penetration_mm"]]
     w, w_j = rows[-1]["crack_width_mm"], jumps[-1]["crack_width_mm"]
     p, p_j = rows[-1]["p_MPa"], jumps[-1]["p_MPa"]
+    # On 2 processes the partition's round-off moves the energy steps (MUMPS
+    # distributed is not bit-reproducible: 131 to 220 of them measured), and
+    # one of the other ways back may come first where the snap-back ends:
+    # an energy step that released little, or one that would move x by
+    # more than a step of x. Any hands back before the stage's end.
     back = re.search(r"x is back past ([0-9.e+-]+) um, where the snap-back began", said[out].stdout)
+    how = f"once x is back past {back.group(1)} um" if back else "(not said)"
+    if back is None and out == traced_2:
+        back = re.search(r"(the softening layers released little in the step|a step of energy "
+                         r"would move x by more than a step of x); displacement control",
+                         said[out].stdout)
+        how = f"once {back.group(1)}" if back else how
+        # Whatever said so: the rows before the last (clipped to 25 um) are
+        # steps of x again, each a nominal step (2.5 um) over a power of
+        # two, where an energy step's x is wherever its energy put it.
+        h = 0.0025
+        steps = [b["penetration_mm"] - a["penetration_mm"] for a, b in zip(rows[-5:-2], rows[-4:-1])]
+        if back is None and all(any(abs(d - h / 2**k) < 1e-6 * h for k in range(11))
+                                for d in steps):
+            back, how = True, "at the end (the last steps are steps of x)"
     check(summary(out)["dissipation_steps"] > 0 and x_peak - x_back > 1e-3 and falls and
           all(falls) and p_turn > 0.95 and back is not None and
           summary(jumped)["implex_jumps"] > 0 and
@@ -312,7 +332,7 @@ for name, out in (("1 process", traced), ("2 processes", traced_2)):
           f"implex under dissipation control through the snap-back, {name}: x back from "
           f"{1e3 * x_peak:.2f} to {1e3 * x_back:.2f} um in {summary(out)['dissipation_steps']} "
           f"energy steps, starting at {100 * p_turn:.1f} % of the peak pressure, steps of x "
-          f"again once x is back past {back.group(1) if back else '(not said)'} um, "
+          f"again {how}, "
           f"dissipating in all {len(falls)} rows where x falls; at 25 um one surface "
           f"crack {1e3 * w:.1f} um and p {p:.3f} MPa against displacement control's "
           f"{1e3 * w_j:.1f} um and {p_j:.3f} MPa ({summary(jumped)['implex_jumps']} jumps)")
