@@ -371,6 +371,10 @@ private:
   /// set_extrapolation()'s ratio: of the history, or of the strain
   /// (cracking.implex_predictor).
   void make_secants();
+  /// sqrt(int ds : C^-1 : ds / int s : C^-1 : s) over the cracking
+  /// concrete, s the trial stress and ds = s - other(point) [-]: the steps'
+  /// errors' norm (implex_error, implicit_error). Collective.
+  double error_against_trial(const std::function<bulk::Voigt(std::size_t)>& other);
   /// Point i's (of cracking cell c) secant maps as make_secants() makes
   /// them, into `op`; `scratch` holds a crack state (state_size values).
   void predict_secant(std::size_t c, std::size_t i, std::vector<double>& scratch,

@@ -175,6 +175,24 @@ void BulkCracking::implicit_update()
     }
 }
 
+double BulkCracking::error_against_trial(const std::function<bulk::Voigt(std::size_t)>& other)
+{
+  double sums[2] = {
+      integrate(
+          [&](std::size_t i)
+          {
+            bulk::Voigt d = voigt_at(_stress_trial, i);
+            const bulk::Voigt e = other(i);
+            for (int k = 0; k < voigt; ++k)
+              d[k] -= e[k];
+            return bulk::complementary_energy(d, _E, _nu);
+          }),
+      integrate([&](std::size_t i)
+                { return bulk::complementary_energy(voigt_at(_stress_trial, i), _E, _nu); })};
+  MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, _mesh->comm());
+  return sums[1] > 0 ? std::sqrt(sums[0] / sums[1]) : 0.0;
+}
+
 double BulkCracking::implicit_error()
 {
   // The step's own stress (the crack band's update at the converged strain)
@@ -184,23 +202,14 @@ double BulkCracking::implicit_error()
   std::vector<double> scratch(state);
   bulk::SecantOperator op;
   const std::size_t n_points = std::size_t(expression_cracking_strain->num_points);
-  double sums[2] = {
-      integrate(
-          [&](std::size_t i)
-          {
-            predict_secant(i / n_points, i, scratch, op);
-            const bulk::Voigt strain = voigt_at(_strain_values, i);
-            const bulk::Voigt66* T = secant_map(op, bulk::CrackBand::secant_side(op, strain));
-            const bulk::Voigt predicted = bulk::multiply(T ? *T : C, strain);
-            bulk::Voigt d = voigt_at(_stress_trial, i);
-            for (int k = 0; k < voigt; ++k)
-              d[k] -= predicted[k];
-            return bulk::complementary_energy(d, _E, _nu);
-          }),
-      integrate([&](std::size_t i)
-                { return bulk::complementary_energy(voigt_at(_stress_trial, i), _E, _nu); })};
-  MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, _mesh->comm());
-  return sums[1] > 0 ? std::sqrt(sums[0] / sums[1]) : 0.0;
+  return error_against_trial(
+      [&](std::size_t i)
+      {
+        predict_secant(i / n_points, i, scratch, op);
+        const bulk::Voigt strain = voigt_at(_strain_values, i);
+        const bulk::Voigt66* T = secant_map(op, bulk::CrackBand::secant_side(op, strain));
+        return bulk::multiply(T ? *T : C, strain);
+      });
 }
 
 double BulkCracking::implex_error(std::int64_t& failed_points)
@@ -210,20 +219,8 @@ double BulkCracking::implex_error(std::int64_t& failed_points)
   evaluate();
   const std::vector<double> stepped = _stress_trial;
   implicit_update();
-  double sums[2] = {
-      integrate(
-          [&](std::size_t i)
-          {
-            bulk::Voigt d = voigt_at(_stress_trial, i);
-            const bulk::Voigt e = voigt_at(stepped, i);
-            for (int k = 0; k < voigt; ++k)
-              d[k] -= e[k];
-            return bulk::complementary_energy(d, _E, _nu);
-          }),
-      integrate([&](std::size_t i)
-                { return bulk::complementary_energy(voigt_at(_stress_trial, i), _E, _nu); })};
-  MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, _mesh->comm());
+  const double error = error_against_trial([&](std::size_t i) { return voigt_at(stepped, i); });
   MPI_Allreduce(&_implicit_failures, &failed_points, 1, MPI_INT64_T, MPI_SUM, _mesh->comm());
-  return sums[1] > 0 ? std::sqrt(sums[0] / sums[1]) : 0.0;
+  return error;
 }
 } // namespace pushout::model
