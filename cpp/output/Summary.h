@@ -29,15 +29,17 @@ struct Summary
   /// How the concrete's cracks were integrated: "implex" or "implicit"
   /// (cracking.integration, "auto" resolved), "none" without [cracking].
   std::string cracking_integration = "none";
-  /// IMPL-EX cracks (cracking.integration = "implex"): the largest error of
-  /// a committed step (model::BulkCracking::implex_error) [-].
-  double implex_error_max = 0;
-  /// Of its steps, those taken above the tolerance: the cracks snapped back
-  /// under the load's control, and no smaller step met it.
-  int implex_jumps = 0;
+  /// The concrete's cracks' step error where it is checked
+  /// (model::BulkCracking::step_error: IMPL-EX cracks, or the implicit
+  /// cracks with cracking.implicit_tolerance > 0): the largest of a
+  /// committed step [-], written as implex_error_max or implicit_error_max.
+  double step_error_max = 0;
+  /// Of its steps, those taken above the tolerance (no smaller step met
+  /// it: the cracks snapped back under the load's control, or the implicit
+  /// cracks' floor), written as implex_jumps or implicit_jumps.
+  int step_error_jumps = 0;
   /// The implicit cracks with cracking.implicit_tolerance > 0: the two
-  /// above are their step error's (BulkCracking::implicit_error), written
-  /// as implicit_error_max and implicit_jumps.
+  /// above are written under the implicit_ keys.
   bool implicit_step_error = false;
   /// With cracking.radius > 0: the cracks at the edge of the cracking
   /// region at the end of the run (model::EdgeCracks, the specimen's

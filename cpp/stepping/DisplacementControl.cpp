@@ -27,7 +27,7 @@ namespace
 constexpr double zero_force_tolerance = 1e-6;
 /// IMPL-EX: a cut whose error stays above this fraction of the error before
 /// it (a first-order error halves) finds a jump of the state
-/// (StepLoop::check_implex).
+/// (StepLoop::check_step_error).
 constexpr double jump_error_fall = 0.75;
 /// The largest step (of a nominal one) that, being the smallest
 /// loading.max_cuts allows, IMPL-EX takes as a jump without a smaller try
@@ -68,7 +68,7 @@ bool StepLoop::nominal_steps(const Stage& stage)
 {
   const int steps = stage.steps;
   Stepper stepper(_max_cuts, easy_tries(_equilibrium.model()));
-  forget_implex_misses(); // another stage, another parameter
+  forget_step_error_misses(); // another stage, another parameter
   const auto step_name = [&](int k)
   { return steps == 1 ? stage.step_name : stage.step_name + " " + std::to_string(k); };
   const Words fraction = [](double increment)
@@ -106,8 +106,8 @@ bool StepLoop::nominal_steps(const Stage& stage)
       // ratio), and one whose error would not stay under it at twice the
       // increment does not grow, unless it jumped (smaller steps do not
       // help there).
-      const ImplexCheck implex =
-          rep.converged ? check_implex(rep, s_try - s, stepper) : ImplexCheck{};
+      const StepErrorCheck checked =
+          rep.converged ? check_step_error(rep, s_try - s, stepper) : StepErrorCheck{};
       if (rep.converged && stage.zero_force_ends)
       {
         const double P_try = _scenario.load_force(model);
@@ -140,15 +140,15 @@ bool StepLoop::nominal_steps(const Stage& stage)
         // After a jump the last increment predicts nothing (its cracks'
         // growth is the snap's).
         if (stage.extrapolate_by)
-          d_load_last = implex.jump ? 0.0 : stage.extrapolate_by(s_try) - stage.extrapolate_by(s);
-        count_implex(implex, step_name(k));
+          d_load_last = checked.jump ? 0.0 : stage.extrapolate_by(s_try) - stage.extrapolate_by(s);
+        count_step_error(checked, step_name(k));
         commit();
         s = s_try;
-        stepper.converged(rep.iterations, implex.may_grow());
+        stepper.converged(rep.iterations, checked.may_grow());
         continue;
       }
       revert();
-      if (!cut_back(stepper, cuts, step_name(k), rep.reason, fraction, implex.cut_factor(),
+      if (!cut_back(stepper, cuts, step_name(k), rep.reason, fraction, checked.cut_factor(),
                     s_try - s))
         return false;
     }
@@ -197,7 +197,7 @@ bool StepLoop::zero_force_step(const Stage& stage, int k, int cuts, double s0, d
   case ZeroForceResult::Outcome::found:
     stage.record(rep.iterations, cuts, k, s); // before the commit: StepRecorder.h
     commit();
-    forget_implex_misses(); // a step found by its force, not by its error
+    forget_step_error_misses(); // a step found by its force, not by its error
     return true;
   case ZeroForceResult::Outcome::try_failed:
     if (!stopped) // else the summary says so
@@ -246,8 +246,8 @@ bool StepLoop::crack_band_updated(solver::SolveReport& rep)
   return false;
 }
 
-StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, double increment,
-                                             const Stepper& stepper, const char* why_taken)
+StepLoop::StepErrorCheck StepLoop::check_step_error(solver::SolveReport& rep, double increment,
+                                                    const Stepper& stepper, const char* why_taken)
 {
   model::BulkCracking* bulk = _equilibrium.model().bulk_cracking();
   if (!bulk || !(bulk->step_tolerance() > 0))
@@ -255,7 +255,7 @@ StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, double in
   std::int64_t failed_points = 0;
   const double error = bulk->step_error(failed_points);
   const std::string error_name = bulk->implex() ? "IMPL-EX error" : "the cracks' step error";
-  ImplexCheck c{error / bulk->step_tolerance(), false, error, {}};
+  StepErrorCheck c{error / bulk->step_tolerance(), false, error, {}};
   std::ostringstream why;
   if (failed_points > 0)
   {
@@ -268,17 +268,17 @@ StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, double in
   {
     // The error is first order in the step, but where the cracks snap back
     // under this control no step is small enough: the state jumps, and
-    // IMPL-EX takes the jump (summary.json implex_jumps) once a smaller
+    // IMPL-EX takes the jump (summary.json implex_jumps or implicit_jumps) once a smaller
     // try than the last that missed did not cut the error by a quarter, or
     // at the smallest step loading.max_cuts allows where that is small
     // (jump_smallest_step) or right after a jump (the snap goes on). A
     // larger smallest step that misses fails, as a Newton solve would: only
     // max_cuts stopped its cuts (taken, max_cuts = 0 put p 12 % off).
-    const bool smaller = _implex_missed > 0 && increment < 0.99 * _implex_missed_increment;
-    const bool snaps = smaller && error > jump_error_fall * _implex_missed;
+    const bool smaller = _error_missed > 0 && increment < 0.99 * _error_missed_increment;
+    const bool snaps = smaller && error > jump_error_fall * _error_missed;
     const bool falling = smaller && !snaps; // a smaller try lowered the error
     const bool smallest = stepper.smallest() && (stepper.increment() <= jump_smallest_step ||
-                                                 (_implex_jumped && !falling));
+                                                 (_error_jumped && !falling));
     const bool implicit_floor =
         !bulk->implex() &&
         (stepper.increment() <= implicit_error_smallest_step || stepper.smallest());
@@ -289,21 +289,21 @@ StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, double in
                           "a step";
     if (c.ratio <= 1 || c.jump)
     {
-      if (c.jump) // said when the step is committed (count_implex)
+      if (c.jump) // said when the step is committed (count_step_error)
       {
         std::ostringstream said;
         said << error_name << " " << error;
         if (smaller)
-          said << " (" << _implex_missed << " before the last cut)";
+          said << " (" << _error_missed << " before the last cut)";
         said << ": " << (why_taken ? why_taken : "the cracks snap back under this control")
              << "; the step is taken";
         c.said = said.str();
       }
-      _implex_missed = 0;
+      _error_missed = 0;
       return c;
     }
-    _implex_missed = error;
-    _implex_missed_increment = increment;
+    _error_missed = error;
+    _error_missed_increment = increment;
     why << error_name << " " << error << " > " << bulk->step_tolerance_key() << " "
         << bulk->step_tolerance();
     if (stepper.smallest()) // no smaller step to try: the run stops on this
@@ -317,21 +317,21 @@ StepLoop::ImplexCheck StepLoop::check_implex(solver::SolveReport& rep, double in
   return c;
 }
 
-void StepLoop::count_implex(const ImplexCheck& c, const std::string& step)
+void StepLoop::count_step_error(const StepErrorCheck& c, const std::string& step)
 {
-  _implex_jumped = c.jump; // a committed step's: jumped or not
+  _error_jumped = c.jump; // a committed step's: jumped or not
   if (!(c.ratio > 0))
     return;
-  _summary.implex_jumps += c.jump ? 1 : 0;
-  _summary.implex_error_max = std::max(_summary.implex_error_max, c.error);
+  _summary.step_error_jumps += c.jump ? 1 : 0;
+  _summary.step_error_max = std::max(_summary.step_error_max, c.error);
   if (!c.said.empty() && _report.talk())
     std::cout << step << ": " << c.said << std::endl;
 }
 
-void StepLoop::forget_implex_misses()
+void StepLoop::forget_step_error_misses()
 {
-  _implex_missed = 0;
-  _implex_jumped = false;
+  _error_missed = 0;
+  _error_jumped = false;
 }
 
 void StepLoop::set_crack_extrapolation(double ratio)

@@ -112,7 +112,7 @@ private:
     double dG_step;               ///< the increment of an energy step [N mm]
     bool too_dissipative = false; ///< a converged step of lambda reverted: it dissipated too much
     bool snaps = false;           ///< a converged step of lambda reverted: IMPL-EX jumped in it
-    StepLoop::ImplexCheck implex; ///< IMPL-EX cracks: the converged try's error
+    StepLoop::StepErrorCheck checked; ///< the converged try's crack step error (check_step_error)
   };
   /// An energy step if the last steps chose one (a step of lambda instead
   /// if it would move lambda too far), else a step of lambda.
@@ -141,10 +141,11 @@ private:
   void accept(int k, const std::string& name, const Try& t);
   /// The stage's mean jump at the state in _x [mm].
   double mean_jump();
-  /// IMPL-EX cracks: the converged try `t`'s error against the tolerance
-  /// (StepLoop::check_implex; a try that misses it fails, to be cut); the
+  /// IMPL-EX cracks, or the implicit cracks held to their error: the
+  /// converged try `t`'s step error against the tolerance
+  /// (StepLoop::check_step_error; a try that misses it fails, to be cut); the
   /// error of a step of one kind is not compared with the other's.
-  void check_implex(Try& t);
+  void check_step_error(Try& t);
   void say(const std::string& what);
 
   StepLoop& _loop;
@@ -176,7 +177,7 @@ private:
   /// lambda scaled by the ratio of the energy increments asked for: that
   /// step's increment [N mm] (0: none to predict from) and of lambda [mm].
   double _dG_last = 0, _d_lambda_energy_last = 0;
-  bool _implex_energy = false; ///< the kind of the last try StepLoop::check_implex saw
+  bool _checked_energy_step = false; ///< the kind of the last try StepLoop::check_step_error saw
   /// A step of lambda that IMPL-EX would have taken as a jump was handed to
   /// energy steps, and no energy step has been committed since (snaps()).
   bool _snap_handed_over = false;
@@ -266,7 +267,7 @@ StepLoop::DissipationSteps::DissipationSteps(StepLoop& loop, const DissipationSt
       _energy(loop._max_cuts, easy_tries(loop._equilibrium.model(), true))
 {
   _path.set_load_difference(stage.load_difference);
-  _loop.forget_implex_misses(); // another stage, another parameter
+  _loop.forget_step_error_misses(); // another stage, another parameter
   _jump = mean_jump();
   _P = stage.force();
 }
@@ -305,7 +306,7 @@ StepLoop::DissipationSteps::Try StepLoop::DissipationSteps::try_step(const std::
     // release too little moves lambda far and misses the tolerance, and is
     // cut (a smaller release); replaced by a step of lambda it would be
     // jumped, found too dissipative and tried by energy again, for ever.
-    check_implex(t);
+    check_step_error(t);
     if (t.rep.converged && t.lambda_new < 0)
     {
       // Behind the stage's start (a push turned into a pull of the tube, a
@@ -324,7 +325,7 @@ StepLoop::DissipationSteps::Try StepLoop::DissipationSteps::try_step(const std::
       // whatever it dissipates, and steps of lambda again.
       _loop.revert();
       t.energy_step = _by_energy = false;
-      t.implex = {}; // the energy try's, reverted
+      t.checked = {}; // the energy try's, reverted
       overshot = true;
       _by_lambda = Stepper(_loop._max_cuts, easy_tries(_loop._equilibrium.model())); // a whole step
       const std::string& lambda = _stage.path.symbol;
@@ -339,7 +340,7 @@ StepLoop::DissipationSteps::Try StepLoop::DissipationSteps::try_step(const std::
       t.lambda_new = _lambda_final;
     t.rep = lambda_step(_lambda, t.lambda_new);
     _loop._summary.newton_iterations += t.rep.iterations;
-    check_implex(t); // before too_dissipative: IMPL-EX's cracks dissipate in its update
+    check_step_error(t); // before too_dissipative: IMPL-EX's cracks dissipate in its update
     t.snaps = t.rep.converged && !overshot && snaps(name, t);
     t.too_dissipative =
         t.rep.converged && !overshot && !t.snaps && too_dissipative(name, t.lambda_new);
@@ -420,17 +421,17 @@ bool StepLoop::DissipationSteps::snaps(const std::string& name, const Try& t)
   // first jump, the energy steps trace it as they do the implicit cracks'
   // (150 N mm, the residual bond 0.865 MPa as theirs at 320 corrosion
   // steps; docs/cracking.md, "Under dissipation control").
-  if (!t.implex.jump || _snap_handed_over)
+  if (!t.checked.jump || _snap_handed_over)
     return false;
   _loop.revert();
   _snap_handed_over = true;
   _by_energy = true;
   std::ostringstream s;
   if (_loop._equilibrium.model().bulk_cracking()->implex())
-    s << name << ": IMPL-EX error " << t.implex.error
+    s << name << ": IMPL-EX error " << t.checked.error
       << " does not fall with the step (the cracks snap back); dissipation control";
-  else // taken where its prediction misses (StepLoop::check_implex)
-    s << name << ": the cracks' step error " << t.implex.error
+  else // taken where its prediction misses (StepLoop::check_step_error)
+    s << name << ": the cracks' step error " << t.checked.error
       << " is not met by a smaller step; dissipation control";
   say(s.str());
   return true;
@@ -444,14 +445,14 @@ bool StepLoop::DissipationSteps::failed(const std::string& name, const Try& t)
   const double tried = t.energy_step ? stepper.increment() : (t.lambda_new - _lambda) / _h_nominal;
   if (!_loop.cut_back(stepper, _cuts, (t.energy_step ? "dissipation-controlled " : "") + name,
                       t.rep.reason, t.energy_step ? _energy_words : _step_words,
-                      t.implex.cut_factor(), tried))
+                      t.checked.cut_factor(), tried))
     return false;
   // A step of lambda that failed short (below min_probe_increment) is
   // retried under dissipation control; a step of energy that nothing along
   // the path dissipates (singular control) under displacement control.
   if (t.energy_step)
     _by_energy = t.rep.reason.find("singular") == std::string::npos;
-  else if (_by_lambda.increment() < min_probe_increment && !(t.implex.ratio > 1))
+  else if (_by_lambda.increment() < min_probe_increment && !(t.checked.ratio > 1))
   {
     // (An IMPL-EX error is no sign of an event: its step is cut as under
     // displacement control, down to where it would jump, which snaps()
@@ -475,17 +476,17 @@ void StepLoop::DissipationSteps::accept(int k, const std::string& name, const Tr
     ++_loop._summary.loose_steps;
     say(name + ": " + t.rep.reason);
   }
-  _loop.count_implex(t.implex, name);
+  _loop.count_step_error(t.checked, name);
   _loop.commit();
-  (t.energy_step ? _energy : _by_lambda).converged(t.rep.iterations, t.implex.may_grow());
+  (t.energy_step ? _energy : _by_lambda).converged(t.rep.iterations, t.checked.may_grow());
   // After a jump of the load the last step's growth predicts nothing; an
   // energy step taken at the floor of IMPL-EX's error released what it was
   // asked for, and its growth is extrapolated as any other's (on the coarse
   // centred case as many jumps as when it was not, p within 2 %).
   const double released = dissipation(_loop._equilibrium.model())[1];
-  _released_last = t.implex.jump && !t.energy_step ? 0.0 : released;
-  _d_lambda_last = t.energy_step || t.implex.jump ? 0.0 : t.lambda_new - _lambda;
-  _dG_last = t.energy_step && !t.implex.jump ? t.dG_step : 0.0;
+  _released_last = t.checked.jump && !t.energy_step ? 0.0 : released;
+  _d_lambda_last = t.energy_step || t.checked.jump ? 0.0 : t.lambda_new - _lambda;
+  _dG_last = t.energy_step && !t.checked.jump ? t.dG_step : 0.0;
   _d_lambda_energy_last = t.lambda_new - _lambda;
   if (t.energy_step)
   {
@@ -538,19 +539,20 @@ void StepLoop::DissipationSteps::accept(int k, const std::string& name, const Tr
   _cuts = 0;
 }
 
-void StepLoop::DissipationSteps::check_implex(Try& t)
+void StepLoop::DissipationSteps::check_step_error(Try& t)
 {
   if (!t.rep.converged)
     return;
-  if (t.energy_step != _implex_energy)
-    _loop.forget_implex_misses(); // steps of energy and of the load: other parameters
-  _implex_energy = t.energy_step;
+  if (t.energy_step != _checked_energy_step)
+    _loop.forget_step_error_misses(); // steps of energy and of the load: other parameters
+  _checked_energy_step = t.energy_step;
   Stepper& stepper = t.energy_step ? _energy : _by_lambda;
   // An energy step's error that a smaller release does not lower is the
   // floor of IMPL-EX's error where thousands of cracks switch between
   // loading and unloading (docs/cracking-speed.md), not a snap.
-  t.implex = _loop.check_implex(t.rep, t.energy_step ? t.dG_step : t.lambda_new - _lambda, stepper,
-                                t.energy_step ? "a smaller release does not lower it" : nullptr);
+  t.checked =
+      _loop.check_step_error(t.rep, t.energy_step ? t.dG_step : t.lambda_new - _lambda, stepper,
+                             t.energy_step ? "a smaller release does not lower it" : nullptr);
 }
 
 double StepLoop::DissipationSteps::mean_jump()

@@ -50,7 +50,7 @@ private:
   {
     solver::SolveReport rep;
     double lambda_new;     ///< the push it reached [mm]
-    double increment;      ///< of the try's control (check_implex) [mm]
+    double increment;      ///< of the try's control (check_step_error) [mm]
     bool replaced = false; ///< a converged step past lambda_final replaced by a step to it
   };
   /// Step k: a step of delta (the first, or steps of delta to
@@ -59,10 +59,10 @@ private:
   Try try_step(int k);
   /// Records and commits converged step k; false (reverted, with the
   /// summary's message) if the mean slip did not grow.
-  bool accept(int k, const Try& t, const ImplexCheck& implex);
+  bool accept(int k, const Try& t, const StepErrorCheck& checked);
   /// After a failed try of step k: reverted and cut; false if it cannot be
   /// cut again.
-  bool failed(int k, const Try& t, const ImplexCheck& implex);
+  bool failed(int k, const Try& t, const StepErrorCheck& checked);
   /// A step of delta for the stepper's increment `increment` (the first
   /// step, or steps of delta to lambda_final) [mm].
   double next_delta_step(double increment) const
@@ -106,16 +106,16 @@ bool StepLoop::PathSteps::run()
       t.rep.reason = "failed by a test hook (PUSHOUT_TEST_FAIL_TO_FINAL)";
     }
     _loop._summary.newton_iterations += t.rep.iterations;
-    const ImplexCheck implex =
-        t.rep.converged ? _loop.check_implex(t.rep, t.increment, _stepper) : ImplexCheck{};
+    const StepErrorCheck checked =
+        t.rep.converged ? _loop.check_step_error(t.rep, t.increment, _stepper) : StepErrorCheck{};
     if (t.rep.converged)
     {
-      if (!accept(k, t, implex))
+      if (!accept(k, t, checked))
         return false;
       ++k;
       continue;
     }
-    if (!failed(k, t, implex))
+    if (!failed(k, t, checked))
       return false;
   }
   return true;
@@ -161,7 +161,7 @@ StepLoop::PathSteps::Try StepLoop::PathSteps::try_step(int k)
   return t;
 }
 
-bool StepLoop::PathSteps::accept(int k, const Try& t, const ImplexCheck& implex)
+bool StepLoop::PathSteps::accept(int k, const Try& t, const StepErrorCheck& checked)
 {
   const double slip_new = _path.control(_loop._x);
   if (!(slip_new > _slip))
@@ -174,20 +174,20 @@ bool StepLoop::PathSteps::accept(int k, const Try& t, const ImplexCheck& implex)
   _loop._recorder.record(_loop._x, t.rep.iterations, _cuts, k,
                          0); // before the commit: StepRecorder.h
   ++_loop._summary.steps;
-  _loop.count_implex(implex, "path-following step " + std::to_string(k));
+  _loop.count_step_error(checked, "path-following step " + std::to_string(k));
   _loop.commit();
   _d_lambda_prev = t.lambda_new - _lambda;
   _d_slip_prev = slip_new - _slip;
   _lambda = t.lambda_new;
   _slip = slip_new;
-  _last_predicts = !implex.jump;
+  _last_predicts = !checked.jump;
   _delta_cap = std::numeric_limits<double>::infinity();
-  _stepper.converged(t.rep.iterations, implex.may_grow());
+  _stepper.converged(t.rep.iterations, checked.may_grow());
   _cuts = 0;
   return true;
 }
 
-bool StepLoop::PathSteps::failed(int k, const Try& t, const ImplexCheck& implex)
+bool StepLoop::PathSteps::failed(int k, const Try& t, const StepErrorCheck& checked)
 {
   _loop.revert();
   if (t.replaced || _by_delta)
@@ -198,7 +198,7 @@ bool StepLoop::PathSteps::failed(int k, const Try& t, const ImplexCheck& implex)
       std::cout << "path-following step " << k << ": the step to delta = " << _lambda_final * 1e3
                 << " um failed; steps of delta to it" << std::endl;
     _by_delta = true;
-    _delta_cap = implex.cut_factor() * t.increment;
+    _delta_cap = checked.cut_factor() * t.increment;
   }
   // The size cut_back names: a length, or a step of delta (the next try's
   // after a cut; the failed try's where the stepper cannot cut further
@@ -208,7 +208,7 @@ bool StepLoop::PathSteps::failed(int k, const Try& t, const ImplexCheck& implex)
   const Words step_of_delta = [&](double s)
   { return sized("a step of delta of", 1.0, "mm")(s < tried ? next_delta_step(s) : t.increment); };
   return _loop.cut_back(_stepper, _cuts, "path-following step " + std::to_string(k), t.rep.reason,
-                        _by_delta ? step_of_delta : length, implex.cut_factor());
+                        _by_delta ? step_of_delta : length, checked.cut_factor());
 }
 
 /// Path following (solver/PathFollower.h) in steps of length
@@ -227,7 +227,7 @@ bool StepLoop::PathSteps::failed(int k, const Try& t, const ImplexCheck& implex)
 /// lambda_final. IMPL-EX cracks (docs/cracking.md) extrapolate the last
 /// committed step's growth by the ratio of the step's slip increment to
 /// that step's (of delta for a step of delta), at most max_extrapolation,
-/// and are checked and cut as under displacement control (check_implex).
+/// and are checked and cut as under displacement control (check_step_error).
 /// Nothing is predicted into the first step (the corrosion stage's growth
 /// is not the push's) nor after a jump (its increment is the snap's).
 bool StepLoop::path_following()
@@ -235,7 +235,7 @@ bool StepLoop::path_following()
   LoadFactorPath p;
   if (!begin_load_factor_path("path following", p))
     return false;
-  forget_implex_misses();
+  forget_step_error_misses();
   const solver::Vector slip(_equilibrium.model().mean_axial_slip_functional());
   return PathSteps(*this, p, slip).run();
 }

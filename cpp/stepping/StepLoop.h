@@ -148,8 +148,8 @@ private:
   /// IMPL-EX cracks (model::BulkCracking::set_extrapolation) extrapolate
   /// their history by `ratio` in the next try (0: none).
   void set_crack_extrapolation(double ratio);
-  /// What check_implex found.
-  struct ImplexCheck
+  /// What check_step_error found.
+  struct StepErrorCheck
   {
     /// the step's error over its tolerance (BulkCracking::step_tolerance; 0:
     /// not checked)
@@ -157,7 +157,7 @@ private:
     bool jump = false; ///< taken above the tolerance: no smaller step meets it
     double error = 0;  ///< the step's error (BulkCracking::step_error)
     std::string said;  ///< a jump's progress line, said when it is committed
-    /// Whether the next step may grow: IMPL-EX's error is first order in
+    /// Whether the next step may grow: the step error is first order in
     /// the step, so one above half the tolerance would miss it at twice the
     /// increment (a jump: smaller steps did not help there).
     bool may_grow() const { return ratio <= 0.5 || jump; }
@@ -175,20 +175,19 @@ private:
   /// nominal one or less). A step whose crack band update failed at a point
   /// fails. `why_taken`: what the progress line says of a jump (null: the
   /// cracks snap back under the load's control).
-  ImplexCheck check_implex(solver::SolveReport& rep, double increment, const Stepper& stepper,
-                           const char* why_taken = nullptr);
+  StepErrorCheck check_step_error(solver::SolveReport& rep, double increment,
+                                  const Stepper& stepper, const char* why_taken = nullptr);
   /// IMPL-EX cracks: whether the crack band's own update at a converged
   /// step's strain worked at every point (what commit() keeps; else `rep`
-  /// fails, its reason said), for a step taken without check_implex (one
+  /// fails, its reason said), for a step taken without check_step_error (one
   /// found by its force, zero_force_step). True without IMPL-EX cracks.
   bool crack_band_updated(solver::SolveReport& rep);
-  /// summary.json's implex_error_max and implex_jumps, and a jump's progress
-  /// line: a checked step that is committed (a try may still be reverted
-  /// after its check).
-  void count_implex(const ImplexCheck& c, const std::string& step);
+  /// summary.json's step error readings (implex_ or implicit_error_max and _jumps), and a jump's
+  /// progress line: a checked step that is committed (a try may still be reverted after its check).
+  void count_step_error(const StepErrorCheck& c, const std::string& step);
   /// A new stage (or a change between steps of energy and of the load):
   /// the last missed error and jump are another parameter's.
-  void forget_implex_misses();
+  void forget_step_error_misses();
   /// Nominal steps, each tried whole and cut in halves when Newton fails.
   bool nominal_steps(const Stage& stage);
   /// After a converged try of step k from the committed state at s0 (force
@@ -261,11 +260,11 @@ private:
   solver::Vector _x, _x_committed; ///< whole-model displacement [mm]: trial and committed
   solver::Vector _x_before;        ///< the committed one before the last commit [mm]
   solver::Vector _x_unpredicted;   ///< solve_predicted's start without the prediction [mm]
-  /// IMPL-EX: the error of the last try that missed its tolerance (0 after
-  /// a step taken; check_implex)
-  double _implex_missed = 0;
-  double _implex_missed_increment = 0; ///< that try's increment of its stage's parameter
-  bool _implex_jumped = false;         ///< the last committed step was an IMPL-EX jump
+  /// The cracks' step error of the last try that missed its tolerance (0
+  /// after a step taken; check_step_error)
+  double _error_missed = 0;
+  double _error_missed_increment = 0; ///< that try's increment of its stage's parameter
+  bool _error_jumped = false;         ///< the last committed step was taken above the tolerance
   /// The stage the loop is in, as summary.json's stopped_in says it when a
   /// signal stops the run: "step 0", "corrosion steps" or "load steps".
   const char* _stage = "step 0";

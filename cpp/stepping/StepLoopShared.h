@@ -96,7 +96,7 @@ inline std::function<std::string(double)> sized(std::string what, double scale, 
 }
 
 /// What cut_back adds to the message of a step that no cut passed where
-/// Newton failed (an IMPL-EX miss says what to change itself, check_implex):
+/// Newton failed (an IMPL-EX miss says what to change itself, check_step_error):
 /// with implicit cracks in the concrete, IMPL-EX, which passes the steps
 /// where their Newton cycles (docs/cracking.md, "Still to come" 3: cracks on
 /// the kink between loading and unloading; IMPL-EX has no kink in a step),
