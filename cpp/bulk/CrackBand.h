@@ -184,6 +184,9 @@ public:
     return e;
   }
 
+  /// The damage viscosity of the cracks' cohesive law [mm of push]; 0: none.
+  double viscosity() const { return _eta; }
+
   /// The cohesive law of a crack whose band is h wide [mm].
   laws::CamanhoDavila cohesive_law(double h, double strength = 1) const
   {

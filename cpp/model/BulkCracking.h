@@ -122,6 +122,8 @@ public:
   /// damage extrapolated from the last committed step
   /// (CrackBand::secant_response), and no point cracks in the step.
   bool implex() const { return _implex; }
+  /// Whether the cracks' damage is viscous (cracking.viscosity > 0).
+  bool viscous() const { return _band.viscosity() > 0; }
   /// IMPL-EX: the extrapolation of this try, the ratio of its load
   /// increment to the last committed step's (0: none, the committed
   /// history: a stage's first step, a load that turns back). The history

@@ -217,8 +217,12 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
     {
       const model::BulkCracking* cracking = _equilibrium.model().bulk_cracking();
       const bool implicit = cracking && !cracking->implex();
-      _summary.message += failure_hint(implicit, implicit && cracking->step_tolerance() > 0,
-                                       _may_snap_back, _scenario.monotonic());
+      _summary.message +=
+          failure_hint({.implicit_cracks = implicit,
+                        .implicit_steps_held = implicit && cracking->step_tolerance() > 0,
+                        .viscous = implicit && cracking->viscous(),
+                        .may_snap_back = _may_snap_back,
+                        .monotonic = _scenario.monotonic()});
     }
     return false;
   }

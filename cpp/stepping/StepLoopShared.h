@@ -95,36 +95,51 @@ inline std::function<std::string(double)> sized(std::string what, double scale, 
   };
 }
 
+/// Where a step that no cut passed stopped (failure_hint).
+struct FailureCase
+{
+  bool implicit_cracks = false;     ///< the concrete's cracks integrated implicitly
+  bool implicit_steps_held = false; ///< ... with cracking.implicit_tolerance > 0
+  bool viscous = false;             ///< ... with cracking.viscosity > 0
+  bool may_snap_back = false;       ///< the structure may snap back under displacement control
+  bool monotonic = true;            ///< a monotonic push (no loading.push_path)
+};
+
 /// What cut_back adds to the message of a step that no cut passed where
-/// Newton failed (an IMPL-EX miss says what to change itself, check_step_error):
-/// with implicit cracks in the concrete, IMPL-EX, which passes the steps
-/// where their Newton cycles (docs/cracking.md, "Still to come" 3: cracks on
-/// the kink between loading and unloading; IMPL-EX has no kink in a step),
-/// or smaller steps where the cracks need them: their steps held to their
-/// error (cracking.implicit_tolerance, unless `implicit_steps_held`
+/// Newton failed (an IMPL-EX miss says what to change itself,
+/// check_step_error): with implicit cracks in the concrete, IMPL-EX, which
+/// passes the steps where their Newton cycles (docs/cracking.md, "Still to
+/// come" 3: cracks on the kink between loading and unloading; IMPL-EX has
+/// no kink in a step), or smaller steps where the cracks need them: their
+/// steps held to their error (cracking.implicit_tolerance, unless held
 /// already), or the run again with four times the steps (coarse steps can
 /// reach a state where several cracks compete and no cut passes; the
-/// corroded study's stopped runs passed both ways); else, where the
-/// structure may snap back under displacement control (`may_snap_back`),
-/// the control that follows it: dissipation control on a monotonic push, a
-/// damage viscosity on a push path. "" if none applies.
-inline std::string failure_hint(bool implicit_cracks, bool implicit_steps_held, bool may_snap_back,
-                                bool monotonic)
+/// corroded study's stopped runs passed both ways); with a viscosity, which
+/// neither IMPL-EX nor the step error takes, the steps alone. Else, where
+/// the structure may snap back under displacement control, the control
+/// that follows it: dissipation control on a monotonic push, a damage
+/// viscosity on a push path. "" if none applies.
+inline std::string failure_hint(const FailureCase& c)
 {
-  if (implicit_cracks)
+  const std::string more_steps = "run again with four times the steps, corrosion.steps and "
+                                 "loading.steps";
+  if (c.implicit_cracks && c.viscous)
+    return " (the implicit cracks' Newton can cycle where cracks turn between loading and "
+           "unloading: " +
+           more_steps + " together; docs/cracking.md, \"Newton\", on a damage viscosity)";
+  if (c.implicit_cracks)
     return std::string(" (the implicit cracks' Newton can cycle where cracks turn between "
                        "loading and unloading; IMPL-EX cracks pass such steps: "
                        "cracking.integration = \"implex\", which the default \"auto\" takes "
                        "without a viscosity; or ") +
-           (implicit_steps_held ? ""
-                                : "hold the implicit cracks' steps to their error, "
-                                  "cracking.implicit_tolerance = 0.0025, or ") +
-           "run again with four times the steps, corrosion.steps and loading.steps; "
-           "docs/cracking.md, \"IMPL-EX\" and \"The implicit cracks' step error\")";
-  if (may_snap_back && monotonic)
+           (c.implicit_steps_held ? ""
+                                  : "hold the implicit cracks' steps to their error, "
+                                    "cracking.implicit_tolerance = 0.0025, or ") +
+           more_steps + "; docs/cracking.md, \"IMPL-EX\" and \"The implicit cracks' step error\")";
+  if (c.may_snap_back && c.monotonic)
     return " (where the structure snaps back, loading.control = \"auto\" follows it: "
            "docs/numerics.md, \"Dissipation control\")";
-  if (may_snap_back) // a push_path: only displacement control runs it
+  if (c.may_snap_back) // a push_path: only displacement control runs it
     return " (where the structure snaps back on a push path, a damage viscosity lets "
            "displacement control pass it: a softening layer's eta, or cracking.viscosity with "
            "implicit cracks; docs/numerics.md, \"Viscous regularisation\")";

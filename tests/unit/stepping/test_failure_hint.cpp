@@ -7,6 +7,7 @@
 // (unless they are) or to run again with smaller steps: the corroded
 // study's three stopped runs passed both ways (docs/cracking.md, "The
 // implicit cracks' step error"), where no cut of the stopped step did.
+// With a damage viscosity only the steps apply.
 #include "stepping/StepLoopShared.h"
 #include <gtest/gtest.h>
 
@@ -27,7 +28,10 @@ TEST(FailureHint, ImplicitCracksArePointedToImplexFirst)
     {
       for (const bool held : {false, true})
       {
-        const std::string hint = failure_hint(true, held, snap_back, monotonic);
+        const std::string hint = failure_hint({.implicit_cracks = true,
+                                               .implicit_steps_held = held,
+                                               .may_snap_back = snap_back,
+                                               .monotonic = monotonic});
         EXPECT_TRUE(says(hint, "cracking.integration = \"implex\"")) << hint;
         EXPECT_TRUE(says(hint, "four times the steps, corrosion.steps and loading.steps")) << hint;
         EXPECT_EQ(says(hint, "cracking.implicit_tolerance = 0.0025"), !held) << hint;
@@ -37,15 +41,28 @@ TEST(FailureHint, ImplicitCracksArePointedToImplexFirst)
     }
 }
 
+// With a damage viscosity neither IMPL-EX nor the step error may be set
+// (the scene is refused): the hint names the steps alone.
+TEST(FailureHint, ViscousImplicitCracksAreToldOfTheStepsAlone)
+{
+  const std::string hint =
+      failure_hint({.implicit_cracks = true, .viscous = true, .may_snap_back = true});
+  EXPECT_TRUE(says(hint, "four times the steps, corrosion.steps and loading.steps together"))
+      << hint;
+  EXPECT_FALSE(says(hint, "implex")) << hint;
+  EXPECT_FALSE(says(hint, "implicit_tolerance")) << hint;
+  EXPECT_FALSE(says(hint, "loading.control")) << hint;
+}
+
 TEST(FailureHint, SnapBackUnderDisplacementControlGetsItsControl)
 {
-  EXPECT_TRUE(says(failure_hint(false, false, true, true), "loading.control = \"auto\""));
-  EXPECT_TRUE(says(failure_hint(false, false, true, false), "damage viscosity"));
-  EXPECT_FALSE(says(failure_hint(false, false, true, false), "loading.control"));
+  EXPECT_TRUE(says(failure_hint({.may_snap_back = true}), "loading.control = \"auto\""));
+  EXPECT_TRUE(says(failure_hint({.may_snap_back = true, .monotonic = false}), "damage viscosity"));
+  EXPECT_FALSE(says(failure_hint({.may_snap_back = true, .monotonic = false}), "loading.control"));
 }
 
 TEST(FailureHint, NoneWhereNeitherApplies)
 {
-  EXPECT_EQ(failure_hint(false, false, false, true), "");
-  EXPECT_EQ(failure_hint(false, false, false, false), "");
+  EXPECT_EQ(failure_hint({}), "");
+  EXPECT_EQ(failure_hint({.monotonic = false}), "");
 }
