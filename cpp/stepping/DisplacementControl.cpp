@@ -25,7 +25,8 @@ namespace
 /// Unloading at zero force (loading.unload_to): the force's zero is found
 /// to this fraction of the largest push force so far (ZeroForceSearch.h).
 constexpr double zero_force_tolerance = 1e-6;
-/// IMPL-EX: a cut whose error stays above this fraction of the error before
+/// The cracks' step error (IMPL-EX's, or the implicit cracks' held to
+/// theirs): a cut whose error stays above this fraction of the error before
 /// it (a first-order error halves) finds a jump of the state
 /// (StepLoop::check_step_error).
 constexpr double jump_error_fall = 0.75;
@@ -101,7 +102,7 @@ bool StepLoop::nominal_steps(const Stage& stage)
       set_crack_extrapolation(ratio);
       solver::SolveReport rep = solve_predicted(ratio);
       _summary.newton_iterations += rep.iterations;
-      // IMPL-EX's error is first order in the step: a step that missed its
+      // The cracks' step error is first order in the step: a step that missed its
       // tolerance is cut at once to one that should meet it (0.8 of the
       // ratio), and one whose error would not stay under it at twice the
       // increment does not grow, unless it jumped (smaller steps do not
@@ -267,11 +268,12 @@ StepLoop::StepErrorCheck StepLoop::check_step_error(solver::SolveReport& rep, do
   else
   {
     // The error is first order in the step, but where the cracks snap back
-    // under this control no step is small enough: the state jumps, and
-    // IMPL-EX takes the jump (summary.json implex_jumps or implicit_jumps) once a smaller
-    // try than the last that missed did not cut the error by a quarter, or
-    // at the smallest step loading.max_cuts allows where that is small
-    // (jump_smallest_step) or right after a jump (the snap goes on). A
+    // under this control no step is small enough: the state jumps, and the
+    // step is taken as a jump (summary.json implex_jumps or implicit_jumps)
+    // once a smaller try than the last that missed did not cut the error by
+    // a quarter, or at the smallest step loading.max_cuts allows where that
+    // is small (jump_smallest_step) or right after a jump (the snap goes
+    // on). A
     // larger smallest step that misses fails, as a Newton solve would: only
     // max_cuts stopped its cuts (taken, max_cuts = 0 put p 12 % off).
     const bool smaller = _error_missed > 0 && increment < 0.99 * _error_missed_increment;

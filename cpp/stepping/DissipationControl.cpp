@@ -107,7 +107,8 @@ private:
     bool energy_step;             ///< a step of energy (else of lambda)
     double dG_step;               ///< the increment of an energy step [N mm]
     bool too_dissipative = false; ///< a converged step of lambda reverted: it dissipated too much
-    bool snaps = false;           ///< a converged step of lambda reverted: IMPL-EX jumped in it
+    /// a converged step of lambda reverted: the cracks' step error took it as a jump
+    bool snaps = false;
     StepLoop::StepErrorCheck checked; ///< the converged try's crack step error (check_step_error)
   };
   /// An energy step if the last steps chose one (a step of lambda instead
@@ -122,9 +123,10 @@ private:
   /// more than dG_nominal beyond its work (then reverted, and the next try
   /// a shorter step of lambda or an energy step).
   bool too_dissipative(const std::string& name, double lambda_new);
-  /// After a converged step of lambda that IMPL-EX would take as a jump
-  /// (its error does not fall with the step: the cracks snap back): whether
-  /// it is reverted and handed to energy steps, which trace the snap-back.
+  /// After a converged step of lambda that the cracks' step error would
+  /// take as a jump (its error does not fall with the step: the cracks snap
+  /// back): whether it is reverted and handed to energy steps, which trace
+  /// the snap-back.
   /// Not when the last hand-over has no energy step since (one that cannot
   /// step, as where nothing softens along the path, hands back: the jump is
   /// then taken, and the stage goes on).
@@ -173,8 +175,9 @@ private:
   /// step's increment [N mm] (0: none to predict from) and of lambda [mm].
   double _dG_last = 0, _d_lambda_energy_last = 0;
   bool _checked_energy_step = false; ///< the kind of the last try StepLoop::check_step_error saw
-  /// A step of lambda that IMPL-EX would have taken as a jump was handed to
-  /// energy steps, and no energy step has been committed since (snaps()).
+  /// A step of lambda that the step error would have taken as a jump was
+  /// handed to energy steps, and no energy step has been committed since
+  /// (snaps()).
   bool _snap_handed_over = false;
   /// The energy steps since the last hand-over to them.
   EnergyEvent _event;
@@ -222,8 +225,9 @@ bool StepLoop::softens()
 /// event that fed on the elastic energy stored, where displacement control
 /// jumps (snap-through) or stalls. Such a step is first halved, down to
 /// min_probe_increment: before a peak a shorter step dissipates less,
-/// through a snap-back it does not. With IMPL-EX cracks a step of lambda
-/// also hands over where IMPL-EX would take it as a jump (snaps()).
+/// through a snap-back it does not. With IMPL-EX cracks (or the implicit
+/// cracks held to their step error) a step of lambda also hands over where
+/// the step error would take it as a jump (snaps()).
 /// Energy steps hand back to steps of lambda once the event is over
 /// (EnergyEvent::End: it released little, lambda is back past where the
 /// snap-back began, or a step past a failure it took over from), or when
@@ -484,8 +488,6 @@ void StepLoop::DissipationSteps::accept(int k, const std::string& name, const Tr
   _d_lambda_last = t.energy_step || t.checked.jump ? 0.0 : t.lambda_new - _lambda;
   _dG_last = t.energy_step && !t.checked.jump ? t.dG_step : 0.0;
   _d_lambda_energy_last = t.lambda_new - _lambda;
-  if (!t.energy_step)
-    _event.load_step();
   // The event is over once its softening layers release little, or once
   // lambda, having fallen, is back past where the event began: the
   // snap-back is traced, and the branch rises with lambda again (an event
@@ -501,9 +503,11 @@ void StepLoop::DissipationSteps::accept(int k, const std::string& name, const Tr
   // falling: they trace a branch that rises with lambda, and what failed is
   // passed. Without that, the implicit cracks held to their step error (the
   // corroded study's centred tube, beta 3, seed 2, 12 / 4) stayed in
-  // energy steps from x = 12.6 to 47.9 um, 260 of them with x rising all
+  // energy steps from x = 12.6 to 47.9 um, 266 of them with x rising all
   // the way and each release large, until Newton cycled at the smallest
   // release and the run stopped.
+  if (!t.energy_step)
+    _event.load_step();
   else if (const EnergyEvent::End end = _event.energy_step(_lambda, t.lambda_new, released,
                                                            t.dG_step, _dG_nominal, _h_nominal);
            end != EnergyEvent::End::none)

@@ -23,15 +23,20 @@ public:
   /// Energy steps take over because a short step of the load failed (not
   /// for a dissipation or a snap): once they have carried lambda a nominal
   /// step past it without it falling, what failed is passed (End::passed).
-  /// Within an event, a failed step of the load (after one that overshot)
-  /// does not change its cause.
+  /// An event's cause is its first hand-over's: within an event (a step of
+  /// the load after an energy step that overshot, handed over again) a
+  /// later one does not change it.
   void handed_over_by_failure()
   {
     if (!_on)
       _by_failure = true;
   }
   /// Energy steps take over for a dissipation or a snap.
-  void handed_over_by_event() { _by_failure = false; }
+  void handed_over_by_event()
+  {
+    if (!_on)
+      _by_failure = false;
+  }
 
   /// A committed energy step from `lambda` to `lambda_new` [mm] in which the
   /// softening layers released `released` of its increment `dG_step`

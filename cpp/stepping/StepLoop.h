@@ -172,7 +172,8 @@ private:
   /// (`rep`, its reason), to be cut, unless it is a jump: a smaller try
   /// than the last that missed did not cut the error, or `stepper` cannot
   /// cut it (right after a jump, or where its smallest step is 2^-10 of a
-  /// nominal one or less). A step whose crack band update failed at a point
+  /// nominal one or less; the implicit cracks' from 2^-6 of one on). A step
+  /// whose crack band update failed at a point
   /// fails. `why_taken`: what the progress line says of a jump (null: the
   /// cracks snap back under the load's control).
   StepErrorCheck check_step_error(solver::SolveReport& rep, double increment,
@@ -182,8 +183,9 @@ private:
   /// fails, its reason said), for a step taken without check_step_error (one
   /// found by its force, zero_force_step). True without IMPL-EX cracks.
   bool crack_band_updated(solver::SolveReport& rep);
-  /// summary.json's step error readings (implex_ or implicit_error_max and _jumps), and a jump's
-  /// progress line: a checked step that is committed (a try may still be reverted after its check).
+  /// summary.json's step error readings (implex_error_max and implex_jumps,
+  /// or the implicit_ ones), and a jump's progress line: a checked step
+  /// that is committed (a try may still be reverted after its check).
   void count_step_error(const StepErrorCheck& c, const std::string& step);
   /// A new stage (or a change between steps of energy and of the load):
   /// the last missed error and jump are another parameter's.

@@ -92,12 +92,14 @@ check(any("cracking.implicit_tolerance" in note for note in notes),
 # 4. Refused with a damage viscosity, which IMPL-EX's prediction does not
 #    take (measured: the error stayed near 0.2 at every step size, so every
 #    step was cut to 2^-6 of a nominal one).
-p = run(scene, out_dir("implicit_tolerance_viscosity"),
-        sets=["cracking.integration=implicit", "cracking.implicit_tolerance=0.005",
-              "cracking.viscosity=0.001"], check=False)
-check(p.returncode == 2 and "cracking.implicit_tolerance" in p.stderr and "viscosity" in p.stderr,
-      f"implicit_tolerance with a damage viscosity: exit {p.returncode} "
-      f"({p.stderr.strip()[:120]})")
+#    Explicitly implicit, and "auto", which a viscosity makes implicit.
+for integration in ("implicit", "auto"):
+    p = run(scene, out_dir("implicit_tolerance_viscosity"),
+            sets=[f"cracking.integration={integration}", "cracking.implicit_tolerance=0.005",
+                  "cracking.viscosity=0.001"], check=False)
+    check(p.returncode == 2 and "measures a step against IMPL-EX's prediction" in p.stderr,
+          f"implicit_tolerance with a damage viscosity, integration {integration}: exit "
+          f"{p.returncode} ({p.stderr.strip()[:120]})")
 
 # 5. One and two processes, with steps cut for their error.
 sets = ["cracking.integration=implicit", "cracking.implicit_tolerance=0.005",

@@ -50,6 +50,7 @@ TEST(FailureHint, ViscousImplicitCracksAreToldOfTheStepsAlone)
   EXPECT_TRUE(says(hint, "four times the steps, corrosion.steps and loading.steps together"))
       << hint;
   EXPECT_FALSE(says(hint, "implex")) << hint;
+  EXPECT_FALSE(says(hint, "IMPL-EX")) << hint;
   EXPECT_FALSE(says(hint, "implicit_tolerance")) << hint;
   EXPECT_FALSE(says(hint, "loading.control")) << hint;
 }
