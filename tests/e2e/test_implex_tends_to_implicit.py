@@ -307,13 +307,15 @@ for name, out in (("1 process", traced), ("2 processes", traced_2)):
     # On 2 processes the partition's round-off moves the energy steps (MUMPS
     # distributed is not bit-reproducible: 131 to 220 of them measured), and
     # one of the other ways back may come first where the snap-back ends:
-    # an energy step that released little, or one that would move x by
-    # more than a step of x. Any hands back before the stage's end.
+    # an energy step that released little, one that would move x by more
+    # than a step of x, or x a step past a failed step of x (EnergyEvent.h).
+    # Any hands back before the stage's end.
     back = re.search(r"x is back past ([0-9.e+-]+) um, where the snap-back began", said[out].stdout)
     how = f"once x is back past {back.group(1)} um" if back else "(not said)"
     if back is None and out == traced_2:
         back = re.search(r"(the softening layers released little in the step|a step of energy "
-                         r"would move x by more than a step of x); displacement control",
+                         r"would move x by more than a step of x|x is a step past [0-9.e+-]+ um, "
+                         r"where a step of x failed, and has not fallen); displacement control",
                          said[out].stdout)
         how = f"once {back.group(1)}" if back else how
         # Whatever said so: the rows before the last (clipped to 25 um) are
