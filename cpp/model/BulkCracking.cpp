@@ -60,7 +60,7 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
       _visible_width(part.visible_width), _cut(cut_by_symmetry), _row_band(part.row_band),
       _implex(part.implex), _implex_tolerance(part.implex_tolerance),
       _implicit_tolerance(part.implicit_tolerance), _predict_strain(part.predict_strain),
-      _E(concrete.E), _nu(concrete.nu), _alpha(concrete.alpha),
+      _rescue_allowed(part.implex_rescue), _E(concrete.E), _nu(concrete.nu), _alpha(concrete.alpha),
       _dT(std::make_shared<fem::Constant<double>>(0.0))
 {
   // A radius that takes in no concrete would leave it linear without a
@@ -185,25 +185,39 @@ bulk::CrackBandResult BulkCracking::update_point(std::size_t c, std::size_t i,
       [&](const bulk::Vec3& n) { return crack_band_width(c, n); }, _strength[i], _dt, tangent);
 }
 
+void BulkCracking::set_implex_rescue(bool on)
+{
+  if (on == _rescue)
+    return;
+  if (on && !may_rescue())
+    throw std::logic_error("BulkCracking::set_implex_rescue: only the implicit cracks without a "
+                           "viscosity are rescued by an IMPL-EX step, with "
+                           "cracking.implex_rescue");
+  _rescue = _implex = on;
+  if (on && _secant.empty())
+    _secant.resize(_strength.size());
+  history_changed();
+  ++_tangent_version; // the tangent's kind changes
+  _trial_implicit = false;
+}
+
 void BulkCracking::commit()
 {
   history_changed();
-  if (_implex || _implicit_tolerance > 0)
+  // What the step's cracks did at its converged strain: IMPL-EX's crack
+  // band's own update (onset, the history), and the growth of the history
+  // that the next step extrapolates (IMPL-EX's, the implicit cracks'
+  // predictor for their step's error, and an IMPL-EX step that stands in
+  // for one of theirs: set_implex_rescue).
+  if (_implex)
+    implicit_update();
+  for (std::size_t i = 0; i < _kappa_step.size(); ++i)
+    _kappa_step[i] = kappa_of(_trial, i) - kappa_of(_committed, i);
+  if (_predict_strain)
   {
-    // What the step's cracks did at its converged strain: the crack band's
-    // own update (onset, the history), and the growth of the history that
-    // the next step extrapolates (IMPL-EX's, and the implicit cracks'
-    // predictor for their step's error).
-    if (_implex)
-      implicit_update();
-    for (std::size_t i = 0; i < _kappa_step.size(); ++i)
-      _kappa_step[i] = kappa_of(_trial, i) - kappa_of(_committed, i);
-    if (_predict_strain)
-    {
-      _strain_step.resize(_strain_values.size());
-      for (std::size_t j = 0; j < _strain_values.size(); ++j)
-        _strain_step[j] = _strain_values[j] - _strain_committed[j];
-    }
+    _strain_step.resize(_strain_values.size());
+    for (std::size_t j = 0; j < _strain_values.size(); ++j)
+      _strain_step[j] = _strain_values[j] - _strain_committed[j];
   }
   for (std::size_t i = 0; i < _loading.size(); ++i)
     _loading[i] = kappa_of(_trial, i) > kappa_of(_committed, i);
@@ -227,6 +241,7 @@ void BulkCracking::revert()
 
 void BulkCracking::reset()
 {
+  set_implex_rescue(false); // one a stopped run left on
   std::fill(_committed.begin(), _committed.end(), 0.0);
   std::fill(_dissipated.begin(), _dissipated.end(), 0.0);
   std::fill(_opening.begin(), _opening.end(), 0.0);

@@ -122,6 +122,23 @@ public:
   /// damage extrapolated from the last committed step
   /// (CrackBand::secant_response), and no point cracks in the step.
   bool implex() const { return _implex; }
+  /// The implicit cracks (cracking.integration resolved to "implicit"), so
+  /// that a step of IMPL-EX may stand in for one (implex_rescue) [-].
+  bool implicit_run() const { return !_implex || _rescue; }
+  /// The implicit cracks without a viscosity: the steps from the next try
+  /// on are integrated by IMPL-EX (`on`), or implicitly again. A step that
+  /// no cut lets the implicit cracks' Newton pass is tried once more as an
+  /// IMPL-EX step (cracking.implex_rescue; StepLoop::cut_back), which is
+  /// linear but for closure; its cracks' own update at its strain is what
+  /// is committed, as IMPL-EX's is, and the implicit steps go on from it.
+  /// A logic error with IMPL-EX cracks or a viscosity.
+  void set_implex_rescue(bool on);
+  /// Whether the steps are an implicit run's IMPL-EX rescue
+  /// (set_implex_rescue).
+  bool implex_rescue() const { return _rescue; }
+  /// Whether set_implex_rescue(true) may be called: the implicit cracks,
+  /// no viscosity, cracking.implex_rescue, and no rescue on already.
+  bool may_rescue() const { return _rescue_allowed && !_implex && !viscous(); }
   /// Whether the cracks' damage is viscous (cracking.viscosity > 0).
   bool viscous() const { return _band.viscosity() > 0; }
   /// IMPL-EX: the extrapolation of this try, the ratio of its load
@@ -269,7 +286,8 @@ public:
   void commit();
   /// The trial state back to the committed one (a step to retry).
   void revert();
-  /// Every point back to uncracked (a model reused for another scene).
+  /// Every point back to uncracked, and no IMPL-EX rescue on (a model
+  /// reused for another scene).
   void reset();
 
   /// The trial state as a converged step commits it, at the model's
@@ -456,20 +474,24 @@ private:
   bool _new_cracks = true;             ///< allow_new_cracks
   double _dt = 0;                      ///< set_time_increment [mm of push]
   bool _row_band = false;              ///< cracking.band_width = "row"
-  bool _implex = false;                ///< cracking.integration = "implex"
-  double _implex_tolerance = 0;        ///< cracking.implex_tolerance
-  double _implicit_tolerance = 0;      ///< cracking.implicit_tolerance
-  bool _predict_strain = false;        ///< cracking.implex_predictor = "strain"
-  double _E = 0, _nu = 0;              ///< the concrete's [MPa], [-]
-  double _alpha = 0;                   ///< the concrete's thermal expansion [1/degC]
-  double _extrapolation = 0;           ///< set_extrapolation
+  /// cracking.integration = "implex", or an implicit run's rescue
+  /// (set_implex_rescue)
+  bool _implex = false;
+  double _implex_tolerance = 0;   ///< cracking.implex_tolerance
+  double _implicit_tolerance = 0; ///< cracking.implicit_tolerance
+  bool _predict_strain = false;   ///< cracking.implex_predictor = "strain"
+  bool _rescue = false;           ///< set_implex_rescue
+  bool _rescue_allowed = false;   ///< cracking.implex_rescue
+  double _E = 0, _nu = 0;         ///< the concrete's [MPa], [-]
+  double _alpha = 0;              ///< the concrete's thermal expansion [1/degC]
+  double _extrapolation = 0;      ///< set_extrapolation
   /// IMPL-EX: the trial state is implicit_update()'s, and no evaluate()
   /// came after it
   bool _trial_implicit = false;
   /// IMPL-EX: points whose update failed in the last implicit_update()
   std::int64_t _implicit_failures = 0;
-  /// [point] IMPL-EX (and the implicit cracks' step error): the growth of
-  /// kappa in the last committed step [mm]
+  /// [point] IMPL-EX (and the implicit cracks' step error and rescue): the
+  /// growth of kappa in the last committed step [mm]
   std::vector<double> _kappa_step;
   /// The same, implex_predictor = "strain": [point][6] the growth of the
   /// strain in the last committed step (empty before the first)

@@ -25,6 +25,7 @@ void Summary::write(const std::filesystem::path& file) const
                             {"length_mm", c.length_mm}});
   // IMPL-EX's readings only where its cracks ran (null elsewhere: no step measured).
   const bool implex = cracking_integration == "implex";
+  const bool implicit = cracking_integration == "implicit"; // its rescues, the same way
   nlohmann::json damage_list = nlohmann::json::array();
   for (const LayerDamage& d : initial_damage)
     damage_list.push_back({{"layer", d.layer}, {"mean", d.mean}, {"max", d.max}});
@@ -56,6 +57,9 @@ void Summary::write(const std::filesystem::path& file) const
       {"implicit_error_max",
        implicit_step_error ? nlohmann::json(step_error_max) : nlohmann::json()},
       {"implicit_jumps", implicit_step_error ? nlohmann::json(step_error_jumps) : nlohmann::json()},
+      {"implex_rescues", implicit ? nlohmann::json(implex_rescues) : nlohmann::json()},
+      {"implex_rescue_error_max",
+       implicit ? nlohmann::json(implex_rescue_error_max) : nlohmann::json()},
       {"cracking_edge", edge},
       {"penetration_mm", penetration_mm},
       {"permanent_displacements_mm", permanent_displacements_mm},

@@ -41,6 +41,12 @@ struct Summary
   /// The implicit cracks with cracking.implicit_tolerance > 0: the two
   /// above are written under the implicit_ keys.
   bool implicit_step_error = false;
+  /// The implicit cracks: the steps that Newton failed at every cut and
+  /// that one IMPL-EX step took instead (cracking.implex_rescue), and the
+  /// largest IMPL-EX error of those [-] (model::BulkCracking::implex_error);
+  /// null in summary.json without the implicit cracks.
+  int implex_rescues = 0;
+  double implex_rescue_error_max = 0;
   /// With cracking.radius > 0: the cracks at the edge of the cracking
   /// region at the end of the run (model::EdgeCracks, the specimen's
   /// points as the other counts), and the corrosion step they first

@@ -107,6 +107,7 @@ void Scene::fill_parts()
   _cracking.implex_tolerance = number("cracking.implex_tolerance");
   _cracking.implicit_tolerance = number("cracking.implicit_tolerance");
   _cracking.predict_strain = string("cracking.implex_predictor") == "strain";
+  _cracking.implex_rescue = boolean("cracking.implex_rescue");
 
   _solver.lagged_preconditioner = string("solver.preconditioner") == "lagged";
   using Condensation = SolverPart::Condensation;
@@ -168,6 +169,14 @@ std::vector<Scene::Unread> Scene::unread(const std::string& set) const
       note(changed({"cracking.seed", "cracking.correlation_length"}),
            "cracking.strength_cov = 0 makes the tensile strength uniform (no random field)");
     // The implicit cracks read the predictor for their step error only.
+    if (_cracking.implex)
+      note(changed({"cracking.implex_rescue"}),
+           "the cracks are integrated by IMPL-EX; cracking.implex_rescue is the implicit "
+           "cracks'");
+    else if (_cracking.viscosity > 0)
+      note(changed({"cracking.implex_rescue"}),
+           "a cracking.viscosity is integrated implicitly to the end: IMPL-EX takes no "
+           "viscosity, so no IMPL-EX step rescues the implicit cracks");
     if (!_cracking.implex)
       note(changed(_cracking.implicit_tolerance > 0
                        ? std::vector<std::string>{"cracking.implex_tolerance"}

@@ -143,6 +143,9 @@ struct CrackingPart
   /// IMPL-EX: a step's cracks from the strain extrapolated from the last
   /// step (implex_predictor = "strain"), else their history extrapolated
   bool predict_strain{};
+  /// The implicit cracks: a step that Newton fails at the smallest cut is
+  /// taken as one IMPL-EX step (implex_rescue)
+  bool implex_rescue{};
 };
 
 /// [solver].

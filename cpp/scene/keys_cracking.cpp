@@ -137,6 +137,20 @@ std::vector<KeyDef> integration_keys()
        false,
        {},
        A::pushout},
+      {"cracking.implex_rescue",
+       K::boolean,
+       true,
+       "",
+       "implicit: a step that Newton fails at every cut, down to the smallest (2^-10 of a step "
+       "or less: loading.max_cuts >= 10), is taken as one IMPL-EX step, whose bulk is linear "
+       "but for closure, and the implicit steps go on from it (summary.json implex_rescues); "
+       "false: the run stops there. Not with a viscosity "
+       "(docs/cracking.md, \"The IMPL-EX rescue\")",
+       -inf,
+       inf,
+       false,
+       {},
+       A::pushout},
       {"cracking.implex_predictor",
        K::string,
        std::string("strain"),

@@ -169,6 +169,7 @@ void Equilibrium::restart()
     check(MatDestroy(&_bulk_tangent), "MatDestroy");
   _bulk_assembled.clear();
   _bulk_tangent_version = 0;
+  make_free_expansion(); // the cracks' integration may have changed (an IMPL-EX rescue)
 }
 
 Mat Equilibrium::bulk_tangent()

@@ -30,11 +30,6 @@ constexpr double zero_force_tolerance = 1e-6;
 /// it (a first-order error halves) finds a jump of the state
 /// (StepLoop::check_step_error).
 constexpr double jump_error_fall = 0.75;
-/// The largest step (of a nominal one) that, being the smallest
-/// loading.max_cuts allows, IMPL-EX takes as a jump without a smaller try
-/// to compare with: the default max_cuts's 2^-10. A larger smallest step
-/// (max_cuts < 10) may miss only because it is large.
-constexpr double jump_smallest_step = 1.0 / 1024;
 /// The implicit cracks' step error (cracking.implicit_tolerance) cuts a
 /// step down to this fraction of a nominal one [nominal steps] (or to the
 /// smallest loading.max_cuts allows, if larger), and takes it there: its
@@ -251,6 +246,22 @@ StepLoop::StepErrorCheck StepLoop::check_step_error(solver::SolveReport& rep, do
                                                     const Stepper& stepper, const char* why_taken)
 {
   model::BulkCracking* bulk = _equilibrium.model().bulk_cracking();
+  if (bulk && bulk->implex_rescue())
+  {
+    // An IMPL-EX step in place of one that no cut passed, at the smallest
+    // step (cut_back): its error is measured and reported, not held; the
+    // crack band's own update at its strain must hold at every point.
+    std::int64_t failed_points = 0;
+    _rescue_error = bulk->implex_error(failed_points); // the update commit() then keeps
+    if (test_fail_crack_band_update())
+      ++failed_points;
+    if (failed_points > 0)
+    {
+      rep.converged = false;
+      rep.reason = "IMPL-EX: " + update_failed_at(failed_points);
+    }
+    return {};
+  }
   if (!bulk || !(bulk->step_tolerance() > 0))
     return {};
   std::int64_t failed_points = 0;
@@ -365,6 +376,19 @@ solver::SolveReport StepLoop::solve_predicted(double ratio)
     _x_unpredicted.copy_from(_x_committed);
     _equilibrium.apply_constraints(_x_unpredicted);
   }
-  return _solver.solve(_x, predicted ? Vec(_x_unpredicted) : nullptr);
+  solver::SolveReport rep = _solver.solve(_x, predicted ? Vec(_x_unpredicted) : nullptr);
+  test_fail_implicit_try(rep);
+  return rep;
+}
+
+void StepLoop::test_fail_implicit_try(solver::SolveReport& rep) const
+{
+  const model::BulkCracking* bulk = _equilibrium.model().bulk_cracking();
+  if (rep.converged && bulk && !bulk->implex() &&
+      test_fail_implicit_row(_summary.corrosion_steps + _summary.steps))
+  {
+    rep.converged = false;
+    rep.reason = "DIVERGED (PUSHOUT_TEST_FAIL_IMPLICIT_ROW)";
+  }
 }
 } // namespace pushout::stepping

@@ -372,9 +372,10 @@ solver::SolveReport StepLoop::DissipationSteps::energy_step(double& lambda_new, 
       lambda_new = _lambda + r * _d_lambda_energy_last;
     }
   }
-  const solver::SolveReport rep = _path.step(_loop._x, lambda_new, dG_step, _stage.set_load,
-                                             min_probe_increment * _h_nominal, true, control_from);
+  solver::SolveReport rep = _path.step(_loop._x, lambda_new, dG_step, _stage.set_load,
+                                       min_probe_increment * _h_nominal, true, control_from);
   _loop._summary.newton_iterations += rep.iterations;
+  _loop.test_fail_implicit_try(rep);
   return rep;
 }
 

@@ -188,7 +188,18 @@ void StepLoop::commit()
   for (interface::Interface* joints : _equilibrium.model().joints())
     joints->commit();
   if (model::BulkCracking* cracking = _equilibrium.model().bulk_cracking())
+  {
     cracking->commit();
+    if (cracking->implex_rescue()) // one IMPL-EX step stood in (cut_back)
+    {
+      ++_summary.implex_rescues;
+      _summary.implex_rescue_error_max = std::max(_summary.implex_rescue_error_max, _rescue_error);
+      set_implex_rescue(false);
+      if (_report.talk())
+        std::cout << "the IMPL-EX step's error " << _rescue_error
+                  << " (cracking.implex_rescue); implicit cracks again" << std::endl;
+    }
+  }
   _x_before.copy_from(_x_committed);
   _x_committed.copy_from(_x);
   _report.publish();
@@ -209,37 +220,65 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
 {
   if (stop_requested())
     return false;
-  if (!stepper.failed(factor, tried))
+  model::BulkCracking* cracking = _equilibrium.model().bulk_cracking();
+  const bool newton_failed = reason.rfind("IMPL-EX", 0) != 0;
+  // The IMPL-EX step that stood in for one that no cut passed failed too.
+  const bool rescue_failed = cracking && cracking->implex_rescue();
+  if (rescue_failed)
+    set_implex_rescue(false);
+  else if (stepper.failed(factor, tried))
   {
-    _summary.message = what + " did not converge with " + std::to_string(cuts) + " cuts, down to " +
-                       size(stepper.increment()) + " (" + reason + "); stopped";
-    if (reason.rfind("IMPL-EX", 0) != 0) // Newton failed
+    ++cuts;
+    ++_summary.cuts;
+    if (_report.talk())
     {
-      const model::BulkCracking* cracking = _equilibrium.model().bulk_cracking();
-      const bool implicit = cracking && !cracking->implex();
-      _summary.message +=
-          failure_hint({.implicit_cracks = implicit,
-                        .implicit_steps_held = implicit && cracking->step_tolerance() > 0,
-                        .viscous = implicit && cracking->viscous(),
-                        .may_snap_back = _may_snap_back,
-                        .monotonic = _scenario.monotonic()});
+      // A push step ("load step 3") is said "step 3", as its progress line; a
+      // stage of one step by its name ("load step", "corrosion step"), and
+      // so is a corrosion step ("corrosion step 3": its progress line says
+      // "corrosion 3/25").
+      const std::size_t at =
+          what.rfind("corrosion ", 0) == 0 ? std::string::npos : what.rfind("step ");
+      std::cout << (at == std::string::npos ? what : what.substr(at)) << ": " << reason
+                << "; retrying with " << size(stepper.increment()) << std::endl;
     }
-    return false;
+    return true;
   }
-  ++cuts;
-  ++_summary.cuts;
-  if (_report.talk())
+  else if (newton_failed && cracking && cracking->may_rescue() &&
+           stepper.increment() <= jump_smallest_step)
   {
-    // A push step ("load step 3") is said "step 3", as its progress line; a
-    // stage of one step by its name ("load step", "corrosion step"), and
-    // so is a corrosion step ("corrosion step 3": its progress line says
-    // "corrosion 3/25").
-    const std::size_t at =
-        what.rfind("corrosion ", 0) == 0 ? std::string::npos : what.rfind("step ");
-    std::cout << (at == std::string::npos ? what : what.substr(at)) << ": " << reason
-              << "; retrying with " << size(stepper.increment()) << std::endl;
+    // The implicit cracks' Newton cycles on a kink that no cut passes
+    // (cracks that turn between loading and unloading): the smallest step
+    // once more as an IMPL-EX step, linear but for closure, and implicit
+    // steps again after it (commit()). docs/cracking.md, "The IMPL-EX
+    // rescue".
+    set_implex_rescue(true);
+    if (_report.talk())
+      std::cout << what << ": " << reason << "; the step of " << size(stepper.increment())
+                << " as one IMPL-EX step (cracking.implex_rescue)" << std::endl;
+    return true;
   }
-  return true;
+  _summary.message = what + " did not converge with " + std::to_string(cuts) + " cuts, down to " +
+                     size(stepper.increment()) +
+                     (rescue_failed ? ", nor as one IMPL-EX step" : "") + " (" + reason +
+                     "); stopped";
+  if (newton_failed || rescue_failed)
+  {
+    const bool implicit = cracking && cracking->implicit_run();
+    _summary.message +=
+        failure_hint({.implicit_cracks = implicit,
+                      .implicit_steps_held = implicit && cracking->step_tolerance() > 0,
+                      .viscous = implicit && cracking->viscous(),
+                      .may_snap_back = _may_snap_back,
+                      .monotonic = _scenario.monotonic(),
+                      .rescue_failed = rescue_failed});
+  }
+  return false;
+}
+
+void StepLoop::set_implex_rescue(bool on)
+{
+  _equilibrium.model().bulk_cracking()->set_implex_rescue(on);
+  _equilibrium.cracks_integration_changed();
 }
 
 bool StepLoop::stop_requested()

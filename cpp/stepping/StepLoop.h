@@ -70,7 +70,9 @@ private:
 
   /// The pseudo-time increment of the step, for every set of joints.
   void set_time_increment(double dt);
-  /// Commits the converged state of a step (recorded before).
+  /// Commits the converged state of a step (recorded before); after an
+  /// IMPL-EX step in place of an implicit one (cut_back), the implicit
+  /// cracks again.
   void commit();
   /// Back to the committed state.
   void revert();
@@ -81,13 +83,20 @@ private:
   /// halves the increment (until it is at most `factor` times what it
   /// was, or than `tried`, the failed try's increment where it was clipped
   /// short: Stepper::failed), counts the cut and says so. `what` names the
-  /// step, `size(increment)` words its size.
+  /// step, `size(increment)` words its size. The implicit cracks
+  /// (cracking.implex_rescue): where Newton failed at the smallest step, of
+  /// 2^-10 of a step or less, the same step once more as one IMPL-EX step
+  /// (set_implex_rescue), which commit() ends; if that fails too, false.
   bool cut_back(Stepper& stepper, int& cuts, const std::string& what, const std::string& reason,
                 const Words& size, double factor = 0.5,
                 double tried = std::numeric_limits<double>::infinity());
   /// Whether a signal asked to stop (agreed on by all processes); first an
   /// error of any process since the last agreement is thrown on all.
   bool stop_requested();
+  /// The implicit cracks' steps by IMPL-EX from the next try on (`on`), or
+  /// implicit again (model::BulkCracking::set_implex_rescue), the
+  /// equilibrium told.
+  void set_implex_rescue(bool on);
 
   /// What path following and dissipation control share: the push by its
   /// load factor lambda = delta [mm].
@@ -145,6 +154,9 @@ private:
   /// Newton's relative test of the start without the prediction
   /// (LoadStepSolver::solve), or from the committed state if ratio <= 0.
   solver::SolveReport solve_predicted(double ratio);
+  /// A converged try of the implicit cracks made to fail, where the test
+  /// hook PUSHOUT_TEST_FAIL_IMPLICIT_ROW asks it (TestHooks.h).
+  void test_fail_implicit_try(solver::SolveReport& rep) const;
   /// IMPL-EX cracks (model::BulkCracking::set_extrapolation) extrapolate
   /// their history by `ratio` in the next try (0: none).
   void set_crack_extrapolation(double ratio);
@@ -267,6 +279,9 @@ private:
   double _error_missed = 0;
   double _error_missed_increment = 0; ///< that try's increment of its stage's parameter
   bool _error_jumped = false;         ///< the last committed step was taken above the tolerance
+  /// The IMPL-EX error of the last try that stood in for an implicit
+  /// cracks' step (check_step_error; cracking.implex_rescue) [-]
+  double _rescue_error = 0;
   /// The stage the loop is in, as summary.json's stopped_in says it when a
   /// signal stops the run: "step 0", "corrosion steps" or "load steps".
   const char* _stage = "step 0";

@@ -55,6 +55,13 @@ inline double extrapolation_ratio(double increment, double last)
 {
   return last > 0 ? std::min(increment / last, max_extrapolation) : 0.0;
 }
+/// The largest step (of a nominal one) that, being the smallest
+/// loading.max_cuts allows, IMPL-EX takes as a jump without a smaller try
+/// to compare with: the default max_cuts's 2^-10. A larger smallest step
+/// (max_cuts < 10) may miss only because it is large. Also the largest
+/// that an IMPL-EX step takes in place of an implicit cracks' step that
+/// Newton did not pass (StepLoop::cut_back, cracking.implex_rescue).
+constexpr double jump_smallest_step = 1.0 / 1024;
 /// The load parameter reaches a nominal step within this tolerance.
 constexpr double step_tolerance = 1e-12;
 /// Path following: snap-back makes the path longer than the final push, so
@@ -103,6 +110,8 @@ struct FailureCase
   bool viscous = false;             ///< ... with cracking.viscosity > 0
   bool may_snap_back = false;       ///< the structure may snap back under displacement control
   bool monotonic = true;            ///< a monotonic push (no loading.push_path)
+  /// ... and one IMPL-EX step in its place failed too (cracking.implex_rescue)
+  bool rescue_failed = false;
 };
 
 /// What cut_back adds to the message of a step that no cut passed where
@@ -127,6 +136,10 @@ inline std::string failure_hint(const FailureCase& c)
     return " (the implicit cracks' Newton can cycle where cracks turn between loading and "
            "unloading: " +
            more_steps + " together; docs/cracking.md, \"Newton\", on a damage viscosity)";
+  if (c.implicit_cracks && c.rescue_failed)
+    return " (the implicit cracks' Newton can cycle where cracks turn between loading and "
+           "unloading, and the smallest step failed as one IMPL-EX step too: " +
+           more_steps + "; docs/cracking.md, \"The IMPL-EX rescue\")";
   if (c.implicit_cracks)
     return std::string(" (the implicit cracks' Newton can cycle where cracks turn between "
                        "loading and unloading; IMPL-EX cracks pass such steps: "

@@ -80,4 +80,10 @@ bool test_fail_crack_band_update()
   static const bool set = std::getenv("PUSHOUT_TEST_FAIL_CRACK_BAND_UPDATE") != nullptr;
   return set;
 }
+
+bool test_fail_implicit_row(int rows)
+{
+  static const char* n = std::getenv("PUSHOUT_TEST_FAIL_IMPLICIT_ROW");
+  return n && std::atoi(n) == rows;
+}
 } // namespace pushout::stepping

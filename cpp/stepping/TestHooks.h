@@ -59,7 +59,16 @@ bool test_no_step_prediction();
 bool test_fail_step_to_final();
 
 /// PUSHOUT_TEST_FAIL_CRACK_BAND_UPDATE: the IMPL-EX crack band's update at
-/// a zero-force try's strain fails at one point more than it did
-/// (StepLoop::crack_band_updated; the same on every process).
+/// a zero-force try's strain, or at an IMPL-EX step's in place of an
+/// implicit one (cracking.implex_rescue), fails at one point more than it
+/// did (StepLoop::crack_band_updated, StepLoop::check_step_error; the same
+/// on every process).
 bool test_fail_crack_band_update();
+
+/// PUSHOUT_TEST_FAIL_IMPLICIT_ROW=n: every try of the implicit cracks (not
+/// an IMPL-EX rescue) after n committed steps (corrosion.csv and curve.csv
+/// rows after step 0, `rows`) fails as if Newton had, so that no cut passes
+/// it (StepLoop::test_fail_implicit_try, after a step of the load or of
+/// energy; the same on every process).
+bool test_fail_implicit_row(int rows);
 } // namespace pushout::stepping

@@ -606,3 +606,62 @@ TEST_F(ImplexCrackedSlice, LuOrderedInTheInputNumbering)
   KSPDestroy(&ksp);
   MatDestroy(&J);
 }
+
+TEST_F(CrackedSlice, ImplexRescueStepIsImplexsAndCommitsTheBandsOwnUpdate)
+{
+  // An implicit run's step that no cut passed, taken as one IMPL-EX step
+  // (BulkCracking::set_implex_rescue, StepLoop::cut_back): in it the cracks
+  // hold their predicted state, so the residual is linear but for closure
+  // and the kept tangent is its derivative; what it commits is the crack
+  // band's own update at its strain, so the implicit cracks go on from the
+  // state their own step to that strain would have left.
+  Vec x1, x2, F_implicit;
+  for (Vec* w : {&x1, &x2, &F_implicit})
+    VecDuplicate(x, w);
+  stretch(x1, 2.2e-4, 1e-5, 11);
+  ASSERT_TRUE(eq->internal_forces(x1, F));
+  cracking().commit();
+  stretch(x2, 2.3e-4, 1e-5, 11);
+  // The implicit cracks' own residual at x2 from that state.
+  ASSERT_TRUE(eq->internal_forces(x2, F_implicit));
+  cracking().revert();
+
+  ASSERT_TRUE(cracking().may_rescue());
+  cracking().set_extrapolation(1.0);
+  cracking().set_implex_rescue(true);
+  eq->cracks_integration_changed();
+  EXPECT_TRUE(cracking().implex() && cracking().implex_rescue() && cracking().implicit_run());
+  Mat J;
+  MatDuplicate(model->stiffness(), MAT_COPY_VALUES, &J);
+  ASSERT_TRUE(eq->internal_forces(x2, F));
+  ASSERT_TRUE(eq->jacobian(x2, J));
+  EXPECT_LT(unit::tangent_error(*eq, J, x2, std::mt19937(5), direction_mm, steps_mm), 1e-6);
+  ASSERT_TRUE(eq->internal_forces(x2, F)); // the step converged at x2
+  std::int64_t failed = 0;
+  EXPECT_GT(cracking().implex_error(failed), 0.0) << "the prediction is the band's own";
+  EXPECT_EQ(failed, 0);
+  cracking().commit();
+  cracking().set_implex_rescue(false);
+  eq->cracks_integration_changed();
+  EXPECT_FALSE(cracking().implex() || cracking().implex_rescue());
+
+  // Implicit again, at the strain the rescue committed: the same residual
+  // as the implicit cracks' own step to it, to the local equilibrium's
+  // tolerance (each point's crack balanced to 1e-10 f_t, CrackBand.h, here
+  // from another start).
+  ASSERT_TRUE(eq->internal_forces(x2, F));
+  double size = 0, difference = 0;
+  VecNorm(F_implicit, NORM_INFINITY, &size);
+  VecAXPY(F, -1.0, F_implicit);
+  VecNorm(F, NORM_INFINITY, &difference);
+  EXPECT_LT(difference, 1e-8 * size) << difference << " of " << size;
+  for (Vec* w : {&x1, &x2, &F_implicit})
+    VecDestroy(w);
+  MatDestroy(&J);
+}
+
+TEST_F(ImplexCrackedSlice, ImplexCracksAreNotRescued)
+{
+  EXPECT_FALSE(cracking().may_rescue());
+  EXPECT_THROW(cracking().set_implex_rescue(true), std::logic_error);
+}

@@ -67,3 +67,17 @@ TEST(FailureHint, NoneWhereNeitherApplies)
   EXPECT_EQ(failure_hint({}), "");
   EXPECT_EQ(failure_hint({.monotonic = false}), "");
 }
+
+// An implicit cracks' step that failed as one IMPL-EX step too
+// (cracking.implex_rescue) is not pointed to IMPL-EX again, nor to the
+// step error: smaller steps are what is left.
+TEST(FailureHint, AFailedRescueIsToldOfTheSteps)
+{
+  const std::string hint =
+      failure_hint({.implicit_cracks = true, .may_snap_back = true, .rescue_failed = true});
+  EXPECT_TRUE(says(hint, "failed as one IMPL-EX step too")) << hint;
+  EXPECT_TRUE(says(hint, "four times the steps, corrosion.steps and loading.steps")) << hint;
+  EXPECT_FALSE(says(hint, "cracking.integration")) << hint;
+  EXPECT_FALSE(says(hint, "implicit_tolerance")) << hint;
+  EXPECT_FALSE(says(hint, "loading.control")) << hint;
+}
