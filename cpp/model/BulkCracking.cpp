@@ -194,8 +194,10 @@ void BulkCracking::set_implex_rescue(bool on)
                            "viscosity are rescued by an IMPL-EX step, with "
                            "cracking.implex_rescue");
   _rescue = _implex = on;
-  if (on && _secant.empty())
+  if (on)
     _secant.resize(_strength.size());
+  else // for the rescue's steps only
+    std::vector<bulk::SecantOperator>().swap(_secant);
   history_changed();
   ++_tangent_version; // the tangent's kind changes
   _trial_implicit = false;

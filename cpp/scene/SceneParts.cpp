@@ -168,7 +168,9 @@ std::vector<Scene::Unread> Scene::unread(const std::string& set) const
     if (_cracking.strength_cov == 0)
       note(changed({"cracking.seed", "cracking.correlation_length"}),
            "cracking.strength_cov = 0 makes the tensile strength uniform (no random field)");
-    // The implicit cracks read the predictor for their step error only.
+    // The implicit cracks read IMPL-EX's keys for their IMPL-EX rescue (the
+    // tolerance where its step is not the smallest) and the predictor for
+    // their step error too.
     if (_cracking.implex)
       note(changed({"cracking.implex_rescue"}),
            "the cracks are integrated by IMPL-EX; cracking.implex_rescue is the implicit "
@@ -177,7 +179,8 @@ std::vector<Scene::Unread> Scene::unread(const std::string& set) const
       note(changed({"cracking.implex_rescue"}),
            "a cracking.viscosity is integrated implicitly to the end: IMPL-EX takes no "
            "viscosity, so no IMPL-EX step rescues the implicit cracks");
-    if (!_cracking.implex)
+    const bool rescued = _cracking.implex_rescue && _cracking.viscosity == 0;
+    if (!_cracking.implex && !rescued)
       note(changed(_cracking.implicit_tolerance > 0
                        ? std::vector<std::string>{"cracking.implex_tolerance"}
                        : std::vector<std::string>{"cracking.implex_tolerance",
@@ -185,9 +188,10 @@ std::vector<Scene::Unread> Scene::unread(const std::string& set) const
            _cracking.viscosity > 0 && string("cracking.integration") == "auto"
                ? "cracking.integration = \"auto\" with a cracking.viscosity integrates the "
                  "cracks implicitly (IMPL-EX takes no viscosity)"
-               : "cracking.integration = \"implicit\" solves each step's cracks; they are "
+               : "cracking.integration = \"implicit\" solves each step's cracks, without "
+                 "IMPL-EX rescues (cracking.implex_rescue, or a viscosity); they are "
                  "IMPL-EX's");
-    else
+    else if (_cracking.implex)
       note(changed({"cracking.implicit_tolerance"}),
            "the cracks are integrated by IMPL-EX, whose steps cracking.implex_tolerance holds; "
            "cracking.implicit_tolerance is the implicit cracks'");

@@ -116,7 +116,8 @@ std::vector<KeyDef> integration_keys()
        "band's own at its strain by more than this, in the energy norm over the cracking "
        "concrete; at 0.0025 the main crack and the peaks are a converged integration's, 0.01 "
        "takes half the time but may pick another crack where the concrete localises or miss "
-       "a crack's snap (docs/cracking.md, \"IMPL-EX\", \"Accuracy and the tolerance\")",
+       "a crack's snap (docs/cracking.md, \"IMPL-EX\", \"Accuracy and the tolerance\"); "
+       "also the implicit cracks' IMPL-EX rescue's where its step is not the smallest",
        0,
        inf,
        true,
@@ -161,7 +162,8 @@ std::vector<KeyDef> integration_keys()
        "2008), no point cracks in the step; both explicit. strain has about half the error "
        "at the same steps: a quarter fewer steps and time on the cracking demo, as close to "
        "the implicit cracks (docs/cracking.md, \"The strain predictor\"); also the prediction "
-       "the implicit cracks' step error compares with (implicit_tolerance)",
+       "the implicit cracks' step error compares with (implicit_tolerance), and their "
+       "IMPL-EX rescue's (implex_rescue)",
        -inf,
        inf,
        false,

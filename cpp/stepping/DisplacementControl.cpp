@@ -232,7 +232,9 @@ bool StepLoop::crack_band_updated(solver::SolveReport& rep)
   if (!bulk || !bulk->implex())
     return true;
   std::int64_t failed_points = 0;
-  bulk->implex_error(failed_points); // the update commit() then keeps
+  const double error = bulk->implex_error(failed_points); // the update commit() then keeps
+  if (bulk->implex_rescue())
+    _rescue_error = error;
   if (test_fail_crack_band_update())
     ++failed_points;
   if (failed_points == 0)
@@ -246,26 +248,26 @@ StepLoop::StepErrorCheck StepLoop::check_step_error(solver::SolveReport& rep, do
                                                     const Stepper& stepper, const char* why_taken)
 {
   model::BulkCracking* bulk = _equilibrium.model().bulk_cracking();
-  if (bulk && bulk->implex_rescue())
-  {
-    // An IMPL-EX step in place of one that no cut passed, at the smallest
-    // step (cut_back): its error is measured and reported, not held; the
-    // crack band's own update at its strain must hold at every point.
-    std::int64_t failed_points = 0;
-    _rescue_error = bulk->implex_error(failed_points); // the update commit() then keeps
-    if (test_fail_crack_band_update())
-      ++failed_points;
-    if (failed_points > 0)
-    {
-      rep.converged = false;
-      rep.reason = "IMPL-EX: " + update_failed_at(failed_points);
-    }
-    return {};
-  }
-  if (!bulk || !(bulk->step_tolerance() > 0))
+  const bool rescue = bulk && bulk->implex_rescue();
+  if (!bulk || !(rescue || bulk->step_tolerance() > 0))
     return {};
   std::int64_t failed_points = 0;
   const double error = bulk->step_error(failed_points);
+  if (rescue)
+  {
+    // An IMPL-EX step in place of one that no cut passed (cut_back): at the
+    // smallest step its error is measured and reported, not held (as
+    // IMPL-EX's is taken there); a larger one (a try of another kind, a
+    // step of lambda after an energy step that overshot) is held as
+    // IMPL-EX's. The crack band's own update at its strain must hold at
+    // every point.
+    _rescue_error = error;
+    if (test_fail_crack_band_update())
+      ++failed_points;
+    if (failed_points == 0 &&
+        (stepper.increment() <= jump_smallest_step || !(bulk->step_tolerance() > 0)))
+      return {};
+  }
   const std::string error_name = bulk->implex() ? "IMPL-EX error" : "the cracks' step error";
   StepErrorCheck c{error / bulk->step_tolerance(), false, error, {}};
   std::ostringstream why;
@@ -335,8 +337,14 @@ void StepLoop::count_step_error(const StepErrorCheck& c, const std::string& step
   _error_jumped = c.jump; // a committed step's: jumped or not
   if (!(c.ratio > 0))
     return;
-  _summary.step_error_jumps += c.jump ? 1 : 0;
-  _summary.step_error_max = std::max(_summary.step_error_max, c.error);
+  // A rescue's IMPL-EX error is its own reading (commit()), not the
+  // implicit cracks' step error.
+  const model::BulkCracking* bulk = _equilibrium.model().bulk_cracking();
+  if (!bulk->implex_rescue())
+  {
+    _summary.step_error_jumps += c.jump ? 1 : 0;
+    _summary.step_error_max = std::max(_summary.step_error_max, c.error);
+  }
   if (!c.said.empty() && _report.talk())
     std::cout << step << ": " << c.said << std::endl;
 }

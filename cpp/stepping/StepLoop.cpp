@@ -46,6 +46,13 @@ void StepLoop::time_linear_solve()
 
 bool StepLoop::run(Control control)
 {
+  const bool done = run_stages(control);
+  end_implex_rescue(); // one a stop left on (a signal, a stage that stopped)
+  return done;
+}
+
+bool StepLoop::run_stages(Control control)
+{
   try
   {
     // Step 0 and the corrosion stage end with the push's start recorded
@@ -68,6 +75,7 @@ bool StepLoop::run(Control control)
       // Stopped in the stage (a signal, a step that did not converge): the
       // cracks of its last committed step, as the push's start would have
       // had them (summary.json cracks, crack_pattern.csv).
+      end_implex_rescue();
       revert();
       _corrosion.describe_cracks(_equilibrium, _x, _summary);
       return false;
@@ -195,6 +203,7 @@ void StepLoop::commit()
       ++_summary.implex_rescues;
       _summary.implex_rescue_error_max = std::max(_summary.implex_rescue_error_max, _rescue_error);
       set_implex_rescue(false);
+      _solver.forget_tangent(); // the next implicit step starts from its own
       if (_report.talk())
         std::cout << "the IMPL-EX step's error " << _rescue_error
                   << " (cracking.implex_rescue); implicit cracks again" << std::endl;
@@ -221,12 +230,8 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
   if (stop_requested())
     return false;
   model::BulkCracking* cracking = _equilibrium.model().bulk_cracking();
-  const bool newton_failed = reason.rfind("IMPL-EX", 0) != 0;
-  // The IMPL-EX step that stood in for one that no cut passed failed too.
-  const bool rescue_failed = cracking && cracking->implex_rescue();
-  if (rescue_failed)
-    set_implex_rescue(false);
-  else if (stepper.failed(factor, tried))
+  const bool rescuing = cracking && cracking->implex_rescue();
+  if (stepper.failed(factor, tried)) // a rescue's try too, cut as IMPL-EX's
   {
     ++cuts;
     ++_summary.cuts;
@@ -243,8 +248,11 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
     }
     return true;
   }
-  else if (newton_failed && cracking && cracking->may_rescue() &&
-           stepper.increment() <= jump_smallest_step)
+  // Newton diverged (SNES's DIVERGED_ reasons; not a step error, a law that
+  // failed or a control that could not step).
+  const bool diverged = reason.rfind("DIVERGED", 0) == 0;
+  if (!rescuing && diverged && cracking && cracking->may_rescue() &&
+      stepper.increment() <= jump_smallest_step)
   {
     // The implicit cracks' Newton cycles on a kink that no cut passes
     // (cracks that turn between loading and unloading): the smallest step
@@ -252,16 +260,17 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
     // steps again after it (commit()). docs/cracking.md, "The IMPL-EX
     // rescue".
     set_implex_rescue(true);
+    forget_step_error_misses(); // the implicit cracks' misses, not IMPL-EX's
     if (_report.talk())
       std::cout << what << ": " << reason << "; the step of " << size(stepper.increment())
                 << " as one IMPL-EX step (cracking.implex_rescue)" << std::endl;
     return true;
   }
+  end_implex_rescue();
   _summary.message = what + " did not converge with " + std::to_string(cuts) + " cuts, down to " +
-                     size(stepper.increment()) +
-                     (rescue_failed ? ", nor as one IMPL-EX step" : "") + " (" + reason +
-                     "); stopped";
-  if (newton_failed || rescue_failed)
+                     size(stepper.increment()) + (rescuing ? ", nor as one IMPL-EX step" : "") +
+                     " (" + reason + "); stopped";
+  if (reason.rfind("IMPL-EX", 0) != 0 || rescuing) // Newton failed, or the rescue
   {
     const bool implicit = cracking && cracking->implicit_run();
     _summary.message +=
@@ -270,7 +279,10 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
                       .viscous = implicit && cracking->viscous(),
                       .may_snap_back = _may_snap_back,
                       .monotonic = _scenario.monotonic(),
-                      .rescue_failed = rescue_failed});
+                      .rescue_failed = rescuing,
+                      .rescue_not_tried =
+                          implicit && !rescuing && diverged && !cracking->viscous() &&
+                          !(cracking->may_rescue() && stepper.increment() <= jump_smallest_step)});
   }
   return false;
 }
@@ -279,6 +291,13 @@ void StepLoop::set_implex_rescue(bool on)
 {
   _equilibrium.model().bulk_cracking()->set_implex_rescue(on);
   _equilibrium.cracks_integration_changed();
+}
+
+void StepLoop::end_implex_rescue()
+{
+  const model::BulkCracking* cracking = _equilibrium.model().bulk_cracking();
+  if (cracking && cracking->implex_rescue())
+    set_implex_rescue(false);
 }
 
 bool StepLoop::stop_requested()

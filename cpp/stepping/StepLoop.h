@@ -84,9 +84,10 @@ private:
   /// was, or than `tried`, the failed try's increment where it was clipped
   /// short: Stepper::failed), counts the cut and says so. `what` names the
   /// step, `size(increment)` words its size. The implicit cracks
-  /// (cracking.implex_rescue): where Newton failed at the smallest step, of
-  /// 2^-10 of a step or less, the same step once more as one IMPL-EX step
-  /// (set_implex_rescue), which commit() ends; if that fails too, false.
+  /// (cracking.implex_rescue): where Newton diverged at the smallest step,
+  /// of 2^-10 of a step or less, the same step once more as one IMPL-EX
+  /// step (set_implex_rescue), which commit() ends; a rescue's try that
+  /// fails is cut as any other, and false at the smallest step.
   bool cut_back(Stepper& stepper, int& cuts, const std::string& what, const std::string& reason,
                 const Words& size, double factor = 0.5,
                 double tried = std::numeric_limits<double>::infinity());
@@ -97,6 +98,10 @@ private:
   /// implicit again (model::BulkCracking::set_implex_rescue), the
   /// equilibrium told.
   void set_implex_rescue(bool on);
+  /// set_implex_rescue(false) if a rescue is on (a stop, the run's end).
+  void end_implex_rescue();
+  /// run()'s stages.
+  bool run_stages(Control control);
 
   /// What path following and dissipation control share: the push by its
   /// load factor lambda = delta [mm].

@@ -112,6 +112,10 @@ struct FailureCase
   bool monotonic = true;            ///< a monotonic push (no loading.push_path)
   /// ... and one IMPL-EX step in its place failed too (cracking.implex_rescue)
   bool rescue_failed = false;
+  /// ... where Newton diverged and no IMPL-EX step was tried in its place:
+  /// cracking.implex_rescue = false, or a smallest step above 2^-10 of one
+  /// (loading.max_cuts < 10)
+  bool rescue_not_tried = false;
 };
 
 /// What cut_back adds to the message of a step that no cut passed where
@@ -127,7 +131,9 @@ struct FailureCase
 /// neither IMPL-EX nor the step error takes, the steps alone. Else, where
 /// the structure may snap back under displacement control, the control
 /// that follows it: dissipation control on a monotonic push, a damage
-/// viscosity on a push path. "" if none applies.
+/// viscosity on a push path. Where one IMPL-EX step in the smallest step's
+/// place failed too (cracking.implex_rescue), the steps alone; where none
+/// was tried, also the rescue. "" if none applies.
 inline std::string failure_hint(const FailureCase& c)
 {
   const std::string more_steps = "run again with four times the steps, corrosion.steps and "
@@ -148,6 +154,10 @@ inline std::string failure_hint(const FailureCase& c)
            (c.implicit_steps_held ? ""
                                   : "hold the implicit cracks' steps to their error, "
                                     "cracking.implicit_tolerance = 0.0025, or ") +
+           (c.rescue_not_tried ? "let one IMPL-EX step take a step that no cut passes, "
+                                 "cracking.implex_rescue = true with loading.max_cuts >= 10, "
+                                 "or "
+                               : "") +
            more_steps + "; docs/cracking.md, \"IMPL-EX\" and \"The implicit cracks' step error\")";
   if (c.may_snap_back && c.monotonic)
     return " (where the structure snaps back, loading.control = \"auto\" follows it: "

@@ -236,16 +236,23 @@ TEST(Scene, UnreadCrackingKeysAreNamed)
   EXPECT_TRUE(Scene::parse("", {{"corrosion.beta", "3"}, {"corrosion.penetration", "0.01"}})
                   .unread_keys()
                   .empty());
-  // IMPL-EX's keys where the cracks are integrated implicitly: asked for,
-  // or chosen by auto for a viscosity.
+  // IMPL-EX's keys where the cracks are integrated implicitly without an
+  // IMPL-EX rescue: asked for with the rescue off, or chosen by auto for a
+  // viscosity (which IMPL-EX does not take). With the rescue, its steps
+  // read them.
   const std::vector<Override> implex_keys = {{"cracking.implex_tolerance", "0.01"},
                                              {"cracking.implex_predictor", "history"}};
   EXPECT_TRUE(Scene::parse(cracks, implex_keys).unread_keys().empty());
+  std::vector<Override> rescued = implex_keys;
+  rescued.push_back({"cracking.integration", "implicit"});
+  EXPECT_TRUE(Scene::parse(cracks, rescued).unread_keys().empty());
   for (const Override& implicit_by :
        std::vector<Override>{{"cracking.integration", "implicit"}, {"cracking.viscosity", "0.001"}})
   {
     std::vector<Override> set = implex_keys;
     set.push_back(implicit_by);
+    if (implicit_by.path == "cracking.integration")
+      set.push_back({"cracking.implex_rescue", "false"});
     const std::vector<std::string> implicit = Scene::parse(cracks, set).unread_keys();
     ASSERT_EQ(implicit.size(), 1u) << implicit_by.path;
     EXPECT_EQ(implicit[0].rfind("cracking.implex_tolerance, cracking.implex_predictor not read", 0),
@@ -276,7 +283,10 @@ TEST(Scene, UnreadNoteWhateverTheValue)
   EXPECT_EQ(field.unread_note("cracking.implex_tolerance"), "");
   const Scene implicit =
       Scene::parse("[cracking]\nmodel = \"embedded\"\nintegration = \"implicit\"\n");
-  EXPECT_EQ(implicit.unread_note("cracking.implex_tolerance")
+  EXPECT_EQ(implicit.unread_note("cracking.implex_tolerance"), ""); // its IMPL-EX rescue's
+  const Scene unrescued = Scene::parse("[cracking]\nmodel = \"embedded\"\nintegration = "
+                                       "\"implicit\"\nimplex_rescue = false\n");
+  EXPECT_EQ(unrescued.unread_note("cracking.implex_tolerance")
                 .rfind("cracking.implex_tolerance not read", 0),
             0u);
 }
