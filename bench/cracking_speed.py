@@ -19,7 +19,7 @@ other):
                   0.15, seed 1: the whole slice),
                   displacement control (the default), the implicit cracks
                   (cracking.integration = "implicit"; since the IMPL-EX
-                  rescue, cracking.implex_rescue, it completes, with three
+                  rescue, cracking.implex_rescue, it completes, with two
                   of its steps taken as IMPL-EX steps: 2026-12-06);
   embedded_auto   the same specimen at the scene's integration ("auto":
                   IMPL-EX under every control) under loading.control =

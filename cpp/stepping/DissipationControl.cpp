@@ -449,13 +449,18 @@ bool StepLoop::DissipationSteps::failed(const std::string& name, const Try& t)
                       t.rep.reason, t.energy_step ? _energy_words : _step_words,
                       t.checked.cut_factor(), tried))
     return false;
-  if (!rescuing && cracking && cracking->implex_rescue())
-    return true; // the same step as one IMPL-EX step (StepLoop::cut_back): the same kind
+  // The same step as one IMPL-EX step (StepLoop::cut_back): of the same
+  // kind, unless nothing along the path dissipated (a singular control:
+  // then a step of lambda, as below, held to IMPL-EX's tolerance where it is
+  // not the smallest, StepLoop::check_step_error).
+  const bool singular = t.rep.reason.find("singular") != std::string::npos;
+  if (!rescuing && cracking && cracking->implex_rescue() && !singular)
+    return true;
   // A step of lambda that failed short (below min_probe_increment) is
   // retried under dissipation control; a step of energy that nothing along
   // the path dissipates (singular control) under displacement control.
   if (t.energy_step)
-    _by_energy = t.rep.reason.find("singular") == std::string::npos;
+    _by_energy = !singular;
   else if (_by_lambda.increment() < min_probe_increment && !(t.checked.ratio > 1))
   {
     // (An IMPL-EX error is no sign of an event: its step is cut as under

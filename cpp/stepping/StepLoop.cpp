@@ -248,10 +248,11 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
     }
     return true;
   }
-  // Newton diverged (SNES's DIVERGED_ reasons; not a step error, a law that
-  // failed or a control that could not step).
-  const bool diverged = reason.rfind("DIVERGED", 0) == 0;
-  if (!rescuing && diverged && cracking && cracking->may_rescue() &&
+  // Newton failed (diverged, a singular bordered system, a law that failed
+  // at an iterate), not IMPL-EX's own check: the last resort before a stop
+  // is worth one step (a rescue that fails stops the run all the same).
+  const bool newton_failed = reason.rfind("IMPL-EX", 0) != 0;
+  if (!rescuing && newton_failed && cracking && cracking->may_rescue() &&
       stepper.increment() <= jump_smallest_step)
   {
     // The implicit cracks' Newton cycles on a kink that no cut passes
@@ -270,7 +271,7 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
   _summary.message = what + " did not converge with " + std::to_string(cuts) + " cuts, down to " +
                      size(stepper.increment()) + (rescuing ? ", nor as one IMPL-EX step" : "") +
                      " (" + reason + "); stopped";
-  if (reason.rfind("IMPL-EX", 0) != 0 || rescuing) // Newton failed, or the rescue
+  if (newton_failed || rescuing)
   {
     const bool implicit = cracking && cracking->implicit_run();
     _summary.message +=
@@ -281,7 +282,7 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
                       .monotonic = _scenario.monotonic(),
                       .rescue_failed = rescuing,
                       .rescue_not_tried =
-                          implicit && !rescuing && diverged && !cracking->viscous() &&
+                          implicit && !rescuing && newton_failed && !cracking->viscous() &&
                           !(cracking->may_rescue() && stepper.increment() <= jump_smallest_step)});
   }
   return false;

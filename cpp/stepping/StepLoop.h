@@ -84,7 +84,7 @@ private:
   /// was, or than `tried`, the failed try's increment where it was clipped
   /// short: Stepper::failed), counts the cut and says so. `what` names the
   /// step, `size(increment)` words its size. The implicit cracks
-  /// (cracking.implex_rescue): where Newton diverged at the smallest step,
+  /// (cracking.implex_rescue): where Newton failed at the smallest step,
   /// of 2^-10 of a step or less, the same step once more as one IMPL-EX
   /// step (set_implex_rescue), which commit() ends; a rescue's try that
   /// fails is cut as any other, and false at the smallest step.
