@@ -100,6 +100,7 @@ bool StepLoop::PathSteps::run()
     if (_loop.stop_requested() || !_loop.within_step_limit(_p, k, _lambda, "path following"))
       return false;
     Try t = try_step(k);
+    _loop.test_fail_implicit_try(t.rep);
     if (t.rep.converged && t.lambda_new == _lambda_final && test_fail_step_to_final())
     {
       t.rep.converged = false;

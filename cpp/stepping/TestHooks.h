@@ -68,7 +68,7 @@ bool test_fail_crack_band_update();
 /// PUSHOUT_TEST_FAIL_IMPLICIT_ROW=n: every try of the implicit cracks (not
 /// an IMPL-EX rescue) after n committed steps (corrosion.csv and curve.csv
 /// rows after step 0, `rows`) fails as if Newton had, so that no cut passes
-/// it (StepLoop::test_fail_implicit_try, after a step of the load or of
-/// energy; the same on every process).
+/// it (StepLoop::test_fail_implicit_try, after a step of the load, of
+/// energy or of path following; the same on every process).
 bool test_fail_implicit_row(int rows);
 } // namespace pushout::stepping

@@ -23,7 +23,9 @@ the implicit cracks' every try of the sixth corrosion step is made to fail
 2. The same under loading.control = "auto", where the failure hands the
    step to energy steps and the rescue is one IMPL-EX energy step of the
    smallest release, 2^-10 of the energy steps' nominal one (the first
-   cut's release is half of that).
+   cut's release is half of that). And in the push under arc length
+   (loading.control = "arc_length"; every implicit try of the first push
+   step failing): one rescue, a path-following step.
 3. With cracking.implex_rescue = false the run stops there, as before,
    and says to take IMPL-EX or to let the rescue take the step.
 4. A rescue that fails too (test hook PUSHOUT_TEST_FAIL_CRACK_BAND_UPDATE:
@@ -51,9 +53,10 @@ ROW = "5"  # corrosion rows after step 0 before the step whose tries fail
 RESCUE_LINE = "as one IMPL-EX step (cracking.implex_rescue)"
 
 
-def hooked(name, sets, check_exit=True, fail_update=False):
-    """The scene with every implicit try of corrosion step 6 failing."""
-    os.environ["PUSHOUT_TEST_FAIL_IMPLICIT_ROW"] = ROW
+def hooked(name, sets, check_exit=True, fail_update=False, row=ROW):
+    """The scene with every implicit try after `row` committed rows (corrosion
+    step 6 by default) failing."""
+    os.environ["PUSHOUT_TEST_FAIL_IMPLICIT_ROW"] = row
     if fail_update:
         os.environ["PUSHOUT_TEST_FAIL_CRACK_BAND_UPDATE"] = "1"
     try:
@@ -106,6 +109,14 @@ check(s["converged"] and s["implex_rescues"] == 1 and
       f"under loading.control = \"auto\": {s['implex_rescues']} rescue, an energy step of "
       f"{rescue_release.group(1) if rescue_release else '?'} N mm (nominal "
       f"{2 * releases[0] if releases else '?'} N mm)")
+
+# ... and in the push under arc length: after the 15 corrosion rows.
+out, p = hooked("rescue_arc_length", IMPLICIT + ["loading.control=arc_length"], row="15")
+s = summary(out)
+check(s["converged"] and s["implex_rescues"] == 1 and
+      re.search(r"path-following step 1: .*" + re.escape(RESCUE_LINE), p.stdout) is not None,
+      f"under loading.control = \"arc_length\", in the push: {s['implex_rescues']} rescue, a "
+      "path-following step")
 
 # 3. Off.
 out, p = hooked("rescue_off", DISPLACEMENT + ["cracking.implex_rescue=false"], check_exit=False)
