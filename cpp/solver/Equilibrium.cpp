@@ -169,7 +169,6 @@ void Equilibrium::restart()
     check(MatDestroy(&_bulk_tangent), "MatDestroy");
   _bulk_assembled.clear();
   _bulk_tangent_version = 0;
-  make_free_expansion(); // the cracks' integration may have changed (an IMPL-EX rescue)
 }
 
 Mat Equilibrium::bulk_tangent()
@@ -195,6 +194,11 @@ Mat Equilibrium::bulk_tangent()
 void Equilibrium::kept_tangent_forces(Vec x, Vec F)
 {
   const Mat M = bulk_tangent();
+  // Made where first needed at this dT: the cracks' integration may have
+  // turned to IMPL-EX since dT was set (an implicit run's IMPL-EX rescue,
+  // BulkCracking::set_implex_rescue).
+  if (_dT != 0.0 && !_free_expansion)
+    make_free_expansion();
   if (!_free_expansion) // dT = 0: no free strain
   {
     check(MatMult(M, x, F), "MatMult");

@@ -88,10 +88,6 @@ public:
   /// makes bit for bit (the kept one carries the round-off of the changes
   /// the last run added to it).
   void restart();
-  /// After the cracks' integration changed between steps (an implicit
-  /// run's IMPL-EX rescue, BulkCracking::set_implex_rescue): the kept
-  /// tangent's residual takes, or drops, its free expansion.
-  void cracks_integration_changed() { make_free_expansion(); }
 
   /// Copies x into the model's displacement (ghosts updated).
   void update_displacement(Vec x);

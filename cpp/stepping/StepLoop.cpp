@@ -202,7 +202,7 @@ void StepLoop::commit()
     {
       ++_summary.implex_rescues;
       _summary.implex_rescue_error_max = std::max(_summary.implex_rescue_error_max, _rescue_error);
-      set_implex_rescue(false);
+      cracking->set_implex_rescue(false);
       _solver.forget_tangent(); // the next implicit step starts from its own
       if (_report.talk())
         std::cout << "the IMPL-EX step's error " << _rescue_error
@@ -260,7 +260,7 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
     // once more as an IMPL-EX step, linear but for closure, and implicit
     // steps again after it (commit()). docs/cracking.md, "The IMPL-EX
     // rescue".
-    set_implex_rescue(true);
+    cracking->set_implex_rescue(true);
     forget_step_error_misses(); // the implicit cracks' misses, not IMPL-EX's
     if (_report.talk())
       std::cout << what << ": " << reason << "; the step of " << size(stepper.increment())
@@ -274,31 +274,24 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
   if (newton_failed || rescuing)
   {
     const bool implicit = cracking && cracking->implicit_run();
-    _summary.message +=
-        failure_hint({.implicit_cracks = implicit,
-                      .implicit_steps_held = implicit && cracking->step_tolerance() > 0,
-                      .viscous = implicit && cracking->viscous(),
-                      .may_snap_back = _may_snap_back,
-                      .monotonic = _scenario.monotonic(),
-                      .rescue_failed = rescuing,
-                      .rescue_not_tried =
-                          implicit && !rescuing && newton_failed && !cracking->viscous() &&
-                          !(cracking->may_rescue() && stepper.increment() <= jump_smallest_step)});
+    _summary.message += failure_hint(
+        {.implicit_cracks = implicit,
+         .implicit_steps_held = implicit && cracking->step_tolerance() > 0,
+         .viscous = implicit && cracking->viscous(),
+         .may_snap_back = _may_snap_back,
+         .monotonic = _scenario.monotonic(),
+         .rescue_failed = rescuing,
+         // (the rescue was off, or the smallest step too large)
+         .rescue_not_tried = implicit && !rescuing && newton_failed && !cracking->viscous()});
   }
   return false;
 }
 
-void StepLoop::set_implex_rescue(bool on)
-{
-  _equilibrium.model().bulk_cracking()->set_implex_rescue(on);
-  _equilibrium.cracks_integration_changed();
-}
-
 void StepLoop::end_implex_rescue()
 {
-  const model::BulkCracking* cracking = _equilibrium.model().bulk_cracking();
+  model::BulkCracking* cracking = _equilibrium.model().bulk_cracking();
   if (cracking && cracking->implex_rescue())
-    set_implex_rescue(false);
+    cracking->set_implex_rescue(false);
 }
 
 bool StepLoop::stop_requested()

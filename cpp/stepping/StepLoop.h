@@ -94,11 +94,8 @@ private:
   /// Whether a signal asked to stop (agreed on by all processes); first an
   /// error of any process since the last agreement is thrown on all.
   bool stop_requested();
-  /// The implicit cracks' steps by IMPL-EX from the next try on (`on`), or
-  /// implicit again (model::BulkCracking::set_implex_rescue), the
-  /// equilibrium told.
-  void set_implex_rescue(bool on);
-  /// set_implex_rescue(false) if a rescue is on (a stop, the run's end).
+  /// The implicit cracks again if an IMPL-EX rescue is on
+  /// (model::BulkCracking::set_implex_rescue; a stop, the run's end).
   void end_implex_rescue();
   /// run()'s stages.
   bool run_stages(Control control);

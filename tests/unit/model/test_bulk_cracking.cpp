@@ -616,7 +616,7 @@ TEST_F(CrackedSlice, ImplexRescueStepIsImplexsAndCommitsTheBandsOwnUpdate)
   // band's own update at its strain, so the implicit cracks go on from the
   // state their own step to that strain would have left.
   // Under a temperature change, so that the kept tangent's residual needs
-  // the free expansion that the switch makes (cracks_integration_changed):
+  // the free expansion, made where first needed after the switch:
   // without it that residual is off by O(1), which `mismatch` sees (its
   // tolerance: ResidualByTheKeptTangentIsTheAssembledForces).
   Vec x1, x2, F_implicit, G, Ky;
@@ -635,7 +635,6 @@ TEST_F(CrackedSlice, ImplexRescueStepIsImplexsAndCommitsTheBandsOwnUpdate)
   ASSERT_TRUE(cracking().may_rescue());
   cracking().set_extrapolation(1.0);
   cracking().set_implex_rescue(true);
-  eq->cracks_integration_changed();
   EXPECT_TRUE(cracking().implex() && cracking().implex_rescue() && cracking().implicit_run());
   Mat J;
   MatDuplicate(model->stiffness(), MAT_COPY_VALUES, &J);
@@ -652,7 +651,6 @@ TEST_F(CrackedSlice, ImplexRescueStepIsImplexsAndCommitsTheBandsOwnUpdate)
   EXPECT_EQ(failed, 0);
   cracking().commit();
   cracking().set_implex_rescue(false);
-  eq->cracks_integration_changed();
   EXPECT_FALSE(cracking().implex() || cracking().implex_rescue());
 
   // Implicit again, at the strain the rescue committed: the same residual
@@ -671,7 +669,6 @@ TEST_F(CrackedSlice, ImplexRescueStepIsImplexsAndCommitsTheBandsOwnUpdate)
   cracking().commit();
   stretch(x1, 2.4e-4, 1e-5, 11);
   cracking().set_implex_rescue(true);
-  eq->cracks_integration_changed();
   ASSERT_TRUE(eq->internal_forces(x1, F));
   ASSERT_NO_FATAL_FAILURE(off = mismatch(*model, dT, x1, F, G, Ky));
   EXPECT_LT(off, 1e-11) << "a second rescue's residual by the kept tangent";
