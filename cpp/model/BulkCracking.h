@@ -200,6 +200,15 @@ public:
   /// cracking.implex_tolerance, else cracking.implicit_tolerance; 0: the
   /// steps are not held to an error.
   double step_tolerance() const { return _implex ? _implex_tolerance : _implicit_tolerance; }
+  /// The implicit cracks without a viscosity whose steps are not held to
+  /// their error (cracking.implicit_tolerance = 0): step_error() is read all
+  /// the same, for summary.json's implicit_error_max (a pass over the points
+  /// a step; with a viscosity it would measure the damage's lag, not the
+  /// step).
+  bool step_error_measured_only() const
+  {
+    return !_implex && !viscous() && !(_implicit_tolerance > 0);
+  }
   /// The scene key that sets step_tolerance().
   const char* step_tolerance_key() const
   {

@@ -56,7 +56,7 @@ void Summary::write(const std::filesystem::path& file) const
       {"implex_jumps", implex ? nlohmann::json(step_error_jumps) : nlohmann::json()},
       {"implicit_error_max",
        implicit_step_error ? nlohmann::json(step_error_max) : nlohmann::json()},
-      {"implicit_jumps", implicit_step_error ? nlohmann::json(step_error_jumps) : nlohmann::json()},
+      {"implicit_jumps", implicit_steps_held ? nlohmann::json(step_error_jumps) : nlohmann::json()},
       {"implex_rescues", implicit ? nlohmann::json(implex_rescues) : nlohmann::json()},
       {"implex_rescue_error_max",
        implicit ? nlohmann::json(implex_rescue_error_max) : nlohmann::json()},

@@ -31,16 +31,21 @@ struct Summary
   std::string cracking_integration = "none";
   /// The concrete's cracks' step error where it is checked
   /// (model::BulkCracking::step_error: IMPL-EX cracks, or the implicit
-  /// cracks with cracking.implicit_tolerance > 0): the largest of a
-  /// committed step [-], written as implex_error_max or implicit_error_max.
+  /// cracks without a viscosity, held to cracking.implicit_tolerance or
+  /// only read): the largest of a committed step [-], written as
+  /// implex_error_max or implicit_error_max.
   double step_error_max = 0;
   /// Of its steps, those taken above the tolerance (no smaller step met
   /// it: the cracks snapped back under the load's control, or the implicit
   /// cracks' floor), written as implex_jumps or implicit_jumps.
   int step_error_jumps = 0;
-  /// The implicit cracks with cracking.implicit_tolerance > 0: the two
-  /// above are written under the implicit_ keys.
+  /// The implicit cracks without a viscosity: step_error_max is written
+  /// as implicit_error_max, whether the steps were held to it or not
+  /// (model::BulkCracking::step_error_measured_only).
   bool implicit_step_error = false;
+  /// ... with cracking.implicit_tolerance > 0: step_error_jumps too, as
+  /// implicit_jumps.
+  bool implicit_steps_held = false;
   /// The implicit cracks: the steps that Newton failed at every cut and
   /// that one IMPL-EX step took instead (cracking.implex_rescue), and the
   /// largest IMPL-EX error of those [-] (model::BulkCracking::implex_error);

@@ -80,7 +80,8 @@ RunReport::RunReport(const Scene& scene, const std::filesystem::path& out, bool 
   if (scene.cracking().embedded)
   {
     _summary.cracking_integration = scene.cracking().implex ? "implex" : "implicit";
-    _summary.implicit_step_error =
+    _summary.implicit_step_error = !scene.cracking().implex && !(scene.cracking().viscosity > 0);
+    _summary.implicit_steps_held =
         !scene.cracking().implex && scene.cracking().implicit_tolerance > 0;
   }
   _summary.processes = size;

@@ -130,8 +130,9 @@ std::vector<KeyDef> integration_keys()
        "implicit: a step is cut (and retried in halves) when its stress differs from what "
        "IMPL-EX's prediction from the last steps (implex_predictor) answers at its strain by "
        "more than this, in implex_tolerance's norm: an estimate of the step's own error, as "
-       "the cracks are path dependent; 0: the scene's steps, cut only where Newton fails; "
-       "not with a viscosity, which the prediction does not take "
+       "the cracks are path dependent; 0: the scene's steps, cut only where Newton fails, "
+       "their error read all the same (summary.json implicit_error_max; a note where it "
+       "exceeds implex_tolerance); not with a viscosity, which the prediction does not take "
        "(docs/cracking.md, \"The implicit cracks' step error\")",
        0,
        inf,

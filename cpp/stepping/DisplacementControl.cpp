@@ -144,8 +144,8 @@ bool StepLoop::nominal_steps(const Stage& stage)
         continue;
       }
       revert();
-      if (!cut_back(stepper, cuts, step_name(k), rep.reason, fraction, checked.cut_factor(),
-                    s_try - s))
+      if (cut_back(stepper, cuts, step_name(k), rep.reason, fraction, checked.cut_factor(),
+                   s_try - s) == Retry::stop)
         return false;
     }
   }
@@ -226,6 +226,13 @@ std::string update_failed_at(std::int64_t points)
 }
 } // namespace
 
+std::int64_t StepLoop::band_update_failures(double error, std::int64_t failed_points)
+{
+  if (_equilibrium.model().bulk_cracking()->implex_rescue())
+    _rescue_error = error; // its reading, counted when it is committed (commit())
+  return failed_points + (test_fail_crack_band_update() ? 1 : 0);
+}
+
 bool StepLoop::crack_band_updated(solver::SolveReport& rep)
 {
   model::BulkCracking* bulk = _equilibrium.model().bulk_cracking();
@@ -233,10 +240,7 @@ bool StepLoop::crack_band_updated(solver::SolveReport& rep)
     return true;
   std::int64_t failed_points = 0;
   const double error = bulk->implex_error(failed_points); // the update commit() then keeps
-  if (bulk->implex_rescue())
-    _rescue_error = error;
-  if (test_fail_crack_band_update())
-    ++failed_points;
+  failed_points = band_update_failures(error, failed_points);
   if (failed_points == 0)
     return true;
   rep.converged = false;
@@ -248,11 +252,16 @@ StepLoop::StepErrorCheck StepLoop::check_step_error(solver::SolveReport& rep, do
                                                     const Stepper& stepper, const char* why_taken)
 {
   model::BulkCracking* bulk = _equilibrium.model().bulk_cracking();
-  const bool rescue = bulk && bulk->implex_rescue();
-  if (!bulk || !(rescue || bulk->step_tolerance() > 0))
+  if (!bulk)
+    return {};
+  const bool rescue = bulk->implex_rescue();
+  const bool measured_only = !rescue && bulk->step_error_measured_only();
+  if (!(rescue || measured_only || bulk->step_tolerance() > 0))
     return {};
   std::int64_t failed_points = 0;
   const double error = bulk->step_error(failed_points);
+  if (measured_only) // read, never cut for (count_step_error keeps the largest)
+    return {.ratio = 0, .jump = false, .error = error, .said = {}, .measured_only = true};
   if (rescue)
   {
     // An IMPL-EX step in place of one that no cut passed (cut_back): at the
@@ -261,9 +270,7 @@ StepLoop::StepErrorCheck StepLoop::check_step_error(solver::SolveReport& rep, do
     // step of lambda after an energy step that overshot) is held as
     // IMPL-EX's. The crack band's own update at its strain must hold at
     // every point.
-    _rescue_error = error;
-    if (test_fail_crack_band_update())
-      ++failed_points;
+    failed_points = band_update_failures(error, failed_points);
     if (failed_points == 0 &&
         (stepper.increment() <= jump_smallest_step || !(bulk->step_tolerance() > 0)))
       return {};
@@ -335,7 +342,7 @@ StepLoop::StepErrorCheck StepLoop::check_step_error(solver::SolveReport& rep, do
 void StepLoop::count_step_error(const StepErrorCheck& c, const std::string& step)
 {
   _error_jumped = c.jump; // a committed step's: jumped or not
-  if (!(c.ratio > 0))
+  if (!(c.ratio > 0) && !c.measured_only)
     return;
   // A rescue's IMPL-EX error is its own reading (commit()), not the
   // implicit cracks' step error.
@@ -345,8 +352,32 @@ void StepLoop::count_step_error(const StepErrorCheck& c, const std::string& step
     _summary.step_error_jumps += c.jump ? 1 : 0;
     _summary.step_error_max = std::max(_summary.step_error_max, c.error);
   }
+  if (c.measured_only)
+  {
+    ++_unheld_steps;
+    _unheld_steps_above += c.error > bulk->implex_tolerance() ? 1 : 0;
+  }
   if (!c.said.empty() && _report.talk())
     std::cout << step << ": " << c.said << std::endl;
+}
+
+void StepLoop::note_unheld_step_error()
+{
+  const model::BulkCracking* bulk = _equilibrium.model().bulk_cracking();
+  if (!bulk || !bulk->step_error_measured_only() || _unheld_steps_above == 0)
+    return;
+  std::ostringstream note;
+  note << "the implicit cracks' steps were not held to their error (cracking.implicit_tolerance "
+          "= 0): its estimate reached "
+       << _summary.step_error_max << " (summary.json implicit_error_max), above IMPL-EX's "
+       << "cracking.implex_tolerance = " << bulk->implex_tolerance() << " on "
+       << _unheld_steps_above << " of " << _unheld_steps
+       << " steps; cracking.implicit_tolerance = " << bulk->implex_tolerance()
+       << " holds them to it, as IMPL-EX's are (docs/cracking.md, \"The implicit cracks' step "
+          "error\")";
+  _summary.notes.push_back(note.str());
+  if (_report.talk())
+    std::cout << "pushout: note: " << note.str() << std::endl;
 }
 
 void StepLoop::forget_step_error_misses()

@@ -443,18 +443,17 @@ bool StepLoop::DissipationSteps::failed(const std::string& name, const Try& t)
   Stepper& stepper = t.energy_step ? _energy : _by_lambda;
   // The last step of lambda, clipped to lambda_final, is cut from its own size.
   const double tried = t.energy_step ? stepper.increment() : (t.lambda_new - _lambda) / _h_nominal;
-  const model::BulkCracking* cracking = _loop._equilibrium.model().bulk_cracking();
-  const bool rescuing = cracking && cracking->implex_rescue();
-  if (!_loop.cut_back(stepper, _cuts, (t.energy_step ? "dissipation-controlled " : "") + name,
-                      t.rep.reason, t.energy_step ? _energy_words : _step_words,
-                      t.checked.cut_factor(), tried))
+  const Retry retry = _loop.cut_back(
+      stepper, _cuts, (t.energy_step ? "dissipation-controlled " : "") + name, t.rep.reason,
+      t.energy_step ? _energy_words : _step_words, t.checked.cut_factor(), tried);
+  if (retry == Retry::stop)
     return false;
   // The same step as one IMPL-EX step (StepLoop::cut_back): of the same
   // kind, unless nothing along the path dissipated (a singular control:
   // then a step of lambda, as below, held to IMPL-EX's tolerance where it is
   // not the smallest, StepLoop::check_step_error).
   const bool singular = t.rep.reason.find("singular") != std::string::npos;
-  if (!rescuing && cracking && cracking->implex_rescue() && !singular)
+  if (retry == Retry::implex_rescue && !singular)
     return true;
   // A step of lambda that failed short (below min_probe_increment) is
   // retried under dissipation control; a step of energy that nothing along

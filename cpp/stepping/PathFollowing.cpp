@@ -209,7 +209,7 @@ bool StepLoop::PathSteps::failed(int k, const Try& t, const StepErrorCheck& chec
   const Words step_of_delta = [&](double s)
   { return sized("a step of delta of", 1.0, "mm")(s < tried ? next_delta_step(s) : t.increment); };
   return _loop.cut_back(_stepper, _cuts, "path-following step " + std::to_string(k), t.rep.reason,
-                        _by_delta ? step_of_delta : length, checked.cut_factor());
+                        _by_delta ? step_of_delta : length, checked.cut_factor()) != Retry::stop;
 }
 
 /// Path following (solver/PathFollower.h) in steps of length

@@ -48,6 +48,8 @@ bool StepLoop::run(Control control)
 {
   const bool done = run_stages(control);
   end_implex_rescue(); // one a stop left on (a signal, a stage that stopped)
+  if (done)
+    note_unheld_step_error();
   return done;
 }
 
@@ -224,11 +226,12 @@ void StepLoop::revert()
   _solver.forget_tangent(); // it was the reverted state's
 }
 
-bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
-                        const std::string& reason, const Words& size, double factor, double tried)
+StepLoop::Retry StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
+                                   const std::string& reason, const Words& size, double factor,
+                                   double tried)
 {
   if (stop_requested())
-    return false;
+    return Retry::stop;
   model::BulkCracking* cracking = _equilibrium.model().bulk_cracking();
   const bool rescuing = cracking && cracking->implex_rescue();
   if (stepper.failed(factor, tried)) // a rescue's try too, cut as IMPL-EX's
@@ -246,7 +249,7 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
       std::cout << (at == std::string::npos ? what : what.substr(at)) << ": " << reason
                 << "; retrying with " << size(stepper.increment()) << std::endl;
     }
-    return true;
+    return Retry::cut;
   }
   // Newton failed (diverged, a singular bordered system, a law that failed
   // at an iterate), not IMPL-EX's own check: the last resort before a stop
@@ -265,7 +268,7 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
     if (_report.talk())
       std::cout << what << ": " << reason << "; the step of " << size(stepper.increment())
                 << " as one IMPL-EX step (cracking.implex_rescue)" << std::endl;
-    return true;
+    return Retry::implex_rescue;
   }
   end_implex_rescue();
   _summary.message = what + " did not converge with " + std::to_string(cuts) + " cuts, down to " +
@@ -284,7 +287,7 @@ bool StepLoop::cut_back(Stepper& stepper, int& cuts, const std::string& what,
          // (the rescue was off, or the smallest step too large)
          .rescue_not_tried = implicit && !rescuing && newton_failed && !cracking->viscous()});
   }
-  return false;
+  return Retry::stop;
 }
 
 void StepLoop::end_implex_rescue()

@@ -78,19 +78,27 @@ private:
   void revert();
   /// Words for an increment of a step, in a cut_back message.
   using Words = std::function<std::string(double increment)>;
-  /// After a failed try (reverted): false (with the summary's message) if
-  /// the step cannot be cut again or a signal stops the run; otherwise
-  /// halves the increment (until it is at most `factor` times what it
-  /// was, or than `tried`, the failed try's increment where it was clipped
-  /// short: Stepper::failed), counts the cut and says so. `what` names the
-  /// step, `size(increment)` words its size. The implicit cracks
-  /// (cracking.implex_rescue): where Newton failed at the smallest step,
-  /// of 2^-10 of a step or less, the same step once more as one IMPL-EX
-  /// step (set_implex_rescue), which commit() ends; a rescue's try that
-  /// fails is cut as any other, and false at the smallest step.
-  bool cut_back(Stepper& stepper, int& cuts, const std::string& what, const std::string& reason,
-                const Words& size, double factor = 0.5,
-                double tried = std::numeric_limits<double>::infinity());
+  /// What cut_back did after a failed try.
+  enum class Retry
+  {
+    cut,           ///< the increment cut: try the step again, smaller
+    implex_rescue, ///< the same step once more, as one IMPL-EX step
+    stop           ///< the run stops (the summary's message says why)
+  };
+  /// After a failed try (reverted): Retry::stop (with the summary's
+  /// message) if the step cannot be cut again or a signal stops the run;
+  /// otherwise halves the increment (until it is at most `factor` times
+  /// what it was, or than `tried`, the failed try's increment where it was
+  /// clipped short: Stepper::failed), counts the cut and says so
+  /// (Retry::cut). `what` names the step, `size(increment)` words its size.
+  /// The implicit cracks (cracking.implex_rescue): where Newton failed at
+  /// the smallest step, of 2^-10 of a step or less, the same step once more
+  /// as one IMPL-EX step (set_implex_rescue, Retry::implex_rescue), which
+  /// commit() ends; a rescue's try that fails is cut as any other, and
+  /// stops the run at the smallest step.
+  Retry cut_back(Stepper& stepper, int& cuts, const std::string& what, const std::string& reason,
+                 const Words& size, double factor = 0.5,
+                 double tried = std::numeric_limits<double>::infinity());
   /// Whether a signal asked to stop (agreed on by all processes); first an
   /// error of any process since the last agreement is thrown on all.
   bool stop_requested();
@@ -171,6 +179,9 @@ private:
     bool jump = false; ///< taken above the tolerance: no smaller step meets it
     double error = 0;  ///< the step's error (BulkCracking::step_error)
     std::string said;  ///< a jump's progress line, said when it is committed
+    /// the implicit cracks' error read at the scene's steps, not held
+    /// (BulkCracking::step_error_measured_only): never a cut
+    bool measured_only = false;
     /// Whether the next step may grow: the step error is first order in
     /// the step, so one above half the tolerance would miss it at twice the
     /// increment (a jump: smaller steps did not help there).
@@ -180,7 +191,9 @@ private:
     double cut_factor() const { return ratio > 1 ? std::min(0.5, 0.8 / ratio) : 0.5; }
   };
   /// IMPL-EX cracks, or the implicit cracks with cracking.implicit_tolerance
-  /// (BulkCracking::step_tolerance): the error of a converged step of
+  /// (BulkCracking::step_tolerance; without one, and without a viscosity,
+  /// the error is read, never held: StepErrorCheck::measured_only, for
+  /// summary.json and note_unheld_step_error): the error of a converged step of
   /// `increment` (of the stage's parameter) against its tolerance; a step
   /// that misses it fails
   /// (`rep`, its reason), to be cut, unless it is a jump: a smaller try
@@ -197,10 +210,20 @@ private:
   /// fails, its reason said), for a step taken without check_step_error (one
   /// found by its force, zero_force_step). True without IMPL-EX cracks.
   bool crack_band_updated(solver::SolveReport& rep);
+  /// The crack band's own update at a converged step's strain (IMPL-EX's,
+  /// or an IMPL-EX rescue's) with its error and the points where it failed:
+  /// those points, one more if a test hook asks (TestHooks.h); a rescue's
+  /// error kept for commit() to count.
+  std::int64_t band_update_failures(double error, std::int64_t failed_points);
   /// summary.json's step error readings (implex_error_max and implex_jumps,
   /// or the implicit_ ones), and a jump's progress line: a checked step
   /// that is committed (a try may still be reverted after its check).
   void count_step_error(const StepErrorCheck& c, const std::string& step);
+  /// The implicit cracks whose steps were not held to their error: a note
+  /// (summary.json notes, and said) where it went above IMPL-EX's
+  /// tolerance, with the key that holds it. At the end of a run that
+  /// completed.
+  void note_unheld_step_error();
   /// A new stage (or a change between steps of energy and of the load):
   /// the last missed error and jump are another parameter's.
   void forget_step_error_misses();
@@ -284,6 +307,10 @@ private:
   /// The IMPL-EX error of the last try that stood in for an implicit
   /// cracks' step (check_step_error; cracking.implex_rescue) [-]
   double _rescue_error = 0;
+  /// The implicit cracks' steps whose error was read and not held
+  /// (StepErrorCheck::measured_only), and those of them above
+  /// cracking.implex_tolerance (note_unheld_step_error).
+  int _unheld_steps = 0, _unheld_steps_above = 0;
   /// The stage the loop is in, as summary.json's stopped_in says it when a
   /// signal stops the run: "step 0", "corrosion steps" or "load steps".
   const char* _stage = "step 0";

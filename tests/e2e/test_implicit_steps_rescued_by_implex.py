@@ -23,9 +23,11 @@ the implicit cracks' every try of the sixth corrosion step is made to fail
 2. The same under loading.control = "auto", where the failure hands the
    step to energy steps and the rescue is one IMPL-EX energy step of the
    smallest release, 2^-10 of the energy steps' nominal one (the first
-   cut's release is half of that). And in the push under arc length
-   (loading.control = "arc_length"; every implicit try of the first push
-   step failing): one rescue, a path-following step.
+   cut's release is half of that). And in the push (every implicit try of
+   the first push step failing): under displacement control one rescue, a
+   load step of 2^-10 of the push's first step, and the push goes on to
+   its end; under arc length (loading.control = "arc_length") one rescue,
+   a path-following step.
 3. With cracking.implex_rescue = false the run stops there, as before,
    and says to take IMPL-EX or to let the rescue take the step.
 4. A rescue that fails too (test hook PUSHOUT_TEST_FAIL_CRACK_BAND_UPDATE:
@@ -35,7 +37,9 @@ the implicit cracks' every try of the sixth corrosion step is made to fail
    damage viscosity (which IMPL-EX does not take).
 6. With a viscosity, or with IMPL-EX cracks, the key is not read, and a run
    that sets it says so (a note); with IMPL-EX cracks summary.json's
-   implex_rescues is null.
+   implex_rescues is null; with a viscosity the implicit cracks' step
+   error is not read either (implicit_error_max null: the prediction takes
+   no viscosity).
 7. The rescued run on 1 and 2 processes: the same rows, cracked points and
    p(x) to Newton's bound (the rescue is agreed: Newton's outcome is the
    same on every process)."""
@@ -43,8 +47,8 @@ the implicit cracks' every try of the sixth corrosion step is made to fail
 import os
 import re
 
-from common import (check, check_one_and_two_processes, corrosion, cracking_corroded_demo, out_dir,
-                    run, summary)
+from common import (check, check_one_and_two_processes, corrosion, cracking_corroded_demo, curve,
+                    out_dir, run, summary)
 
 scene = cracking_corroded_demo(0.03, 15, seed=1)
 IMPLICIT = ["cracking.integration=implicit"]
@@ -110,6 +114,18 @@ check(s["converged"] and s["implex_rescues"] == 1 and
       f"{rescue_release.group(1) if rescue_release else '?'} N mm (nominal "
       f"{2 * releases[0] if releases else '?'} N mm)")
 
+# ... and in the push, under displacement control: after the 15 corrosion
+# rows, the first load step's tries fail.
+out, p = hooked("rescue_push_displacement", DISPLACEMENT, row="15")
+s = summary(out)
+push = curve(out)
+check(s["converged"] and s["implex_rescues"] == 1 and s["cuts"] == 10 and
+      # (the push of one step is "load step", as a stage of one step)
+      re.search(r"load step: .*" + re.escape(RESCUE_LINE), p.stdout) is not None and
+      push[-1]["delta_mm"] == curve(plain)[-1]["delta_mm"],
+      f"in the push under displacement control: {s['implex_rescues']} rescue after {s['cuts']} "
+      f"cuts, the push to delta = {push[-1]['delta_mm']} mm")
+
 # ... and in the push under arc length: after the 15 corrosion rows.
 out, p = hooked("rescue_arc_length", IMPLICIT + ["loading.control=arc_length"], row="15")
 s = summary(out)
@@ -151,7 +167,7 @@ for name, sets in (("rescue_note_viscous", IMPLICIT + ["cracking.viscosity=0.001
     s = summary(out)
     nulls = s["implex_rescues"] is None and s["implex_rescue_error_max"] is None
     check(any("cracking.implex_rescue" in n for n in s["notes"]) and
-          nulls == (s["cracking_integration"] == "implex"),
+          nulls == (s["cracking_integration"] == "implex") and s["implicit_error_max"] is None,
           f"{' '.join(sets)}: a note on cracking.implex_rescue (implex_rescues "
           f"{s['implex_rescues']})")
 

@@ -679,6 +679,39 @@ TEST_F(CrackedSlice, ImplexRescueStepIsImplexsAndCommitsTheBandsOwnUpdate)
   MatDestroy(&J);
 }
 
+TEST_F(CrackedSlice, ReadingTheImplicitErrorLeavesTheStepAsItWas)
+{
+  // The implicit cracks whose steps are not held to their error
+  // (cracking.implicit_tolerance = 0) read it all the same after every
+  // converged step (StepLoop::check_step_error, summary.json
+  // implicit_error_max): the read must change nothing of the step, so that
+  // such a run's curve is the one it was before the read. It evaluates
+  // nothing anew (the step's last evaluation at its displacement stands:
+  // trial_version) and gives the same residual, bit for bit.
+  ASSERT_TRUE(cracking().step_error_measured_only());
+  Vec x1, F_read;
+  VecDuplicate(x, &x1);
+  VecDuplicate(x, &F_read);
+  stretch(x1, 2.2e-4, 1e-5, 11);
+  ASSERT_TRUE(eq->internal_forces(x1, F));
+  cracking().commit();
+  stretch(x1, 2.3e-4, 1e-5, 11);
+  cracking().set_extrapolation(1.0);
+  ASSERT_TRUE(eq->internal_forces(x1, F)); // the step converged at x1
+  const std::uint64_t version = cracking().trial_version();
+  std::int64_t failed = -1;
+  const double error = cracking().step_error(failed);
+  EXPECT_TRUE(std::isfinite(error) && error > 0) << error;
+  EXPECT_EQ(failed, 0);
+  EXPECT_EQ(cracking().trial_version(), version) << "the read evaluated anew";
+  ASSERT_TRUE(eq->internal_forces(x1, F_read));
+  PetscBool same = PETSC_FALSE;
+  VecEqual(F, F_read, &same);
+  EXPECT_TRUE(same) << "the residual after the read";
+  VecDestroy(&x1);
+  VecDestroy(&F_read);
+}
+
 TEST_F(ImplexCrackedSlice, ImplexCracksAreNotRescued)
 {
   EXPECT_FALSE(cracking().may_rescue());
