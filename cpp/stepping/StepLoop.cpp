@@ -276,16 +276,19 @@ StepLoop::Retry StepLoop::cut_back(Stepper& stepper, int& cuts, const std::strin
                      " (" + reason + "); stopped";
   if (newton_failed || rescuing)
   {
-    const bool implicit = cracking && cracking->implicit_run();
-    _summary.message += failure_hint(
-        {.implicit_cracks = implicit,
-         .implicit_steps_held = implicit && cracking->step_tolerance() > 0,
-         .viscous = implicit && cracking->viscous(),
-         .may_snap_back = _may_snap_back,
-         .monotonic = _scenario.monotonic(),
-         .rescue_failed = rescuing,
-         // (the rescue was off, or the smallest step too large)
-         .rescue_not_tried = implicit && !rescuing && newton_failed && !cracking->viscous()});
+    using Cracks = FailureCase::Cracks;
+    using Rescue = FailureCase::Rescue;
+    FailureCase failure{.may_snap_back = _may_snap_back, .monotonic = _scenario.monotonic()};
+    if (cracking && cracking->implicit_run())
+    {
+      failure.cracks = cracking->viscous()              ? Cracks::implicit_viscous
+                       : cracking->step_tolerance() > 0 ? Cracks::implicit_held
+                                                        : Cracks::implicit;
+      // (the rescue was off, or the smallest step too large)
+      if (!cracking->viscous())
+        failure.rescue = rescuing ? Rescue::failed : Rescue::not_tried;
+    }
+    _summary.message += failure_hint(failure);
   }
   return Retry::stop;
 }

@@ -105,17 +105,26 @@ inline std::function<std::string(double)> sized(std::string what, double scale, 
 /// Where a step that no cut passed stopped (failure_hint).
 struct FailureCase
 {
-  bool implicit_cracks = false;     ///< the concrete's cracks integrated implicitly
-  bool implicit_steps_held = false; ///< ... with cracking.implicit_tolerance > 0
-  bool viscous = false;             ///< ... with cracking.viscosity > 0
-  bool may_snap_back = false;       ///< the structure may snap back under displacement control
-  bool monotonic = true;            ///< a monotonic push (no loading.push_path)
-  /// ... and one IMPL-EX step in its place failed too (cracking.implex_rescue)
-  bool rescue_failed = false;
-  /// ... where Newton diverged and no IMPL-EX step was tried in its place:
-  /// cracking.implex_rescue = false, or a smallest step above 2^-10 of one
-  /// (loading.max_cuts < 10)
-  bool rescue_not_tried = false;
+  /// How the concrete's cracks were integrated, as far as the hint goes.
+  enum class Cracks
+  {
+    other,            ///< none, or IMPL-EX's
+    implicit,         ///< implicit, at the scene's steps (cracking.implicit_tolerance = 0)
+    implicit_held,    ///< implicit, held to cracking.implicit_tolerance > 0
+    implicit_viscous, ///< implicit with cracking.viscosity > 0
+  };
+  /// The implicit cracks without a viscosity: the IMPL-EX step that may
+  /// stand in for one that no cut passed (cracking.implex_rescue).
+  enum class Rescue
+  {
+    none,     ///< not the implicit cracks' case
+    failed,   ///< tried in the failed step's place, and failed too
+    not_tried ///< none tried: cracking.implex_rescue = false, or loading.max_cuts < 10
+  };
+  Cracks cracks = Cracks::other;
+  Rescue rescue = Rescue::none;
+  bool may_snap_back = false; ///< the structure may snap back under displacement control
+  bool monotonic = true;      ///< a monotonic push (no loading.push_path)
 };
 
 /// What cut_back adds to the message of a step that no cut passed where
@@ -138,26 +147,29 @@ inline std::string failure_hint(const FailureCase& c)
 {
   const std::string more_steps = "run again with four times the steps, corrosion.steps and "
                                  "loading.steps";
-  if (c.implicit_cracks && c.viscous)
+  using Cracks = FailureCase::Cracks;
+  using Rescue = FailureCase::Rescue;
+  if (c.cracks == Cracks::implicit_viscous)
     return " (the implicit cracks' Newton can cycle where cracks turn between loading and "
            "unloading: " +
            more_steps + " together; docs/cracking.md, \"Newton\", on a damage viscosity)";
-  if (c.implicit_cracks && c.rescue_failed)
+  if (c.cracks != Cracks::other && c.rescue == Rescue::failed)
     return " (the implicit cracks' Newton can cycle where cracks turn between loading and "
            "unloading, and the smallest step failed as one IMPL-EX step too: " +
            more_steps + "; docs/cracking.md, \"The IMPL-EX rescue\")";
-  if (c.implicit_cracks)
+  if (c.cracks != Cracks::other)
     return std::string(" (the implicit cracks' Newton can cycle where cracks turn between "
                        "loading and unloading; IMPL-EX cracks pass such steps: "
                        "cracking.integration = \"implex\", which the default \"auto\" takes "
                        "without a viscosity; or ") +
-           (c.implicit_steps_held ? ""
-                                  : "hold the implicit cracks' steps to their error, "
-                                    "cracking.implicit_tolerance = 0.0025, or ") +
-           (c.rescue_not_tried ? "let one IMPL-EX step take a step that no cut passes, "
-                                 "cracking.implex_rescue = true with loading.max_cuts >= 10, "
-                                 "or "
-                               : "") +
+           (c.cracks == Cracks::implicit_held ? ""
+                                              : "hold the implicit cracks' steps to their error, "
+                                                "cracking.implicit_tolerance = 0.0025, or ") +
+           (c.rescue == Rescue::not_tried
+                ? "let one IMPL-EX step take a step that no cut passes, "
+                  "cracking.implex_rescue = true with loading.max_cuts >= 10, "
+                  "or "
+                : "") +
            more_steps + "; docs/cracking.md, \"IMPL-EX\" and \"The implicit cracks' step error\")";
   if (c.may_snap_back && c.monotonic)
     return " (where the structure snaps back, loading.control = \"auto\" follows it: "

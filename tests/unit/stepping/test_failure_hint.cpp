@@ -12,6 +12,8 @@
 #include <gtest/gtest.h>
 
 using pushout::stepping::detail::failure_hint;
+using Cracks = pushout::stepping::detail::FailureCase::Cracks;
+using Rescue = pushout::stepping::detail::FailureCase::Rescue;
 
 namespace
 {
@@ -27,17 +29,22 @@ TEST(FailureHint, ImplicitCracksArePointedToImplexFirst)
     for (const bool monotonic : {false, true})
     {
       for (const bool held : {false, true})
-      {
-        const std::string hint = failure_hint({.implicit_cracks = true,
-                                               .implicit_steps_held = held,
-                                               .may_snap_back = snap_back,
-                                               .monotonic = monotonic});
-        EXPECT_TRUE(says(hint, "cracking.integration = \"implex\"")) << hint;
-        EXPECT_TRUE(says(hint, "four times the steps, corrosion.steps and loading.steps")) << hint;
-        EXPECT_EQ(says(hint, "cracking.implicit_tolerance = 0.0025"), !held) << hint;
-        EXPECT_FALSE(says(hint, "loading.control")) << hint;
-        EXPECT_FALSE(says(hint, "viscosity lets")) << hint;
-      }
+        for (const Rescue rescue : {Rescue::none, Rescue::not_tried})
+        {
+          const std::string hint =
+              failure_hint({.cracks = held ? Cracks::implicit_held : Cracks::implicit,
+                            .rescue = rescue,
+                            .may_snap_back = snap_back,
+                            .monotonic = monotonic});
+          EXPECT_TRUE(says(hint, "cracking.integration = \"implex\"")) << hint;
+          EXPECT_EQ(says(hint, "cracking.implex_rescue = true"), rescue == Rescue::not_tried)
+              << hint;
+          EXPECT_TRUE(says(hint, "four times the steps, corrosion.steps and loading.steps"))
+              << hint;
+          EXPECT_EQ(says(hint, "cracking.implicit_tolerance = 0.0025"), !held) << hint;
+          EXPECT_FALSE(says(hint, "loading.control")) << hint;
+          EXPECT_FALSE(says(hint, "viscosity lets")) << hint;
+        }
     }
 }
 
@@ -46,7 +53,7 @@ TEST(FailureHint, ImplicitCracksArePointedToImplexFirst)
 TEST(FailureHint, ViscousImplicitCracksAreToldOfTheStepsAlone)
 {
   const std::string hint =
-      failure_hint({.implicit_cracks = true, .viscous = true, .may_snap_back = true});
+      failure_hint({.cracks = Cracks::implicit_viscous, .may_snap_back = true});
   EXPECT_TRUE(says(hint, "four times the steps, corrosion.steps and loading.steps together"))
       << hint;
   EXPECT_FALSE(says(hint, "implex")) << hint;
@@ -74,7 +81,7 @@ TEST(FailureHint, NoneWhereNeitherApplies)
 TEST(FailureHint, AFailedRescueIsToldOfTheSteps)
 {
   const std::string hint =
-      failure_hint({.implicit_cracks = true, .may_snap_back = true, .rescue_failed = true});
+      failure_hint({.cracks = Cracks::implicit, .rescue = Rescue::failed, .may_snap_back = true});
   EXPECT_TRUE(says(hint, "failed as one IMPL-EX step too")) << hint;
   EXPECT_TRUE(says(hint, "four times the steps, corrosion.steps and loading.steps")) << hint;
   EXPECT_FALSE(says(hint, "cracking.integration")) << hint;
