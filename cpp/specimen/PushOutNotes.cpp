@@ -78,6 +78,19 @@ std::vector<std::string> PushOut::scene_notes(const Scene& scene)
                     "the bond after cracking differed by 15 % (tube off centre) and by 2.1 "
                     "times (tube centred: two cover cracks against one) on the coarse corroded "
                     "demo (docs/cracking.md; model.symmetry = \"auto\" keeps the whole slice)");
+  // A viscous crack's damage relaxes over pseudo-time, and an energy step
+  // takes a whole nominal step's however little the load moves (not
+  // settled: docs/cracking.md, "Newton", on a damage viscosity).
+  const Loading::Control control = scene.loading().control;
+  if (scene.cracking().embedded && scene.cracking().viscosity > 0 &&
+      (control == Loading::Control::dissipation || control == Loading::Control::automatic))
+    notes.push_back(std::string("cracking.viscosity under loading.control = \"") +
+                    (control == Loading::Control::automatic ? "auto" : "dissipation") +
+                    "\": an energy step takes a whole nominal step's pseudo-time however little "
+                    "the load moves, so the viscous damage relaxes over time the load did not "
+                    "take, and the concrete dissipates more than under displacement control at "
+                    "fine steps; with a viscosity, loading.control = \"displacement\" with "
+                    "enough steps (docs/cracking.md, \"Newton\", on a damage viscosity)");
   return notes;
 }
 } // namespace pushout::specimen

@@ -80,3 +80,23 @@ TEST(SceneNotes, CracksOnACutModelHeldSymmetric)
   ASSERT_EQ(odd.size(), 1u);
   EXPECT_NE(odd[0].find("mesh.elements_per_quarter is odd"), std::string::npos) << odd[0];
 }
+
+TEST(SceneNotes, ViscousCracksUnderDissipationControl)
+{
+  // Energy steps take a nominal step's pseudo-time (docs/cracking.md,
+  // "Newton", on a damage viscosity): noted under dissipation control and
+  // "auto", not under displacement control or without a viscosity.
+  const std::string viscous = "[cracking]\nmodel = \"embedded\"\nviscosity = 0.001\n";
+  for (const std::string control : {"dissipation", "auto"})
+  {
+    const auto notes = scene_notes(Scene::parse(viscous, {{"loading.control", control}}));
+    ASSERT_EQ(notes.size(), 1u) << control;
+    EXPECT_EQ(notes[0].rfind("cracking.viscosity under loading.control = \"" + control + "\"", 0),
+              0u)
+        << notes[0];
+  }
+  EXPECT_TRUE(scene_notes(Scene::parse(viscous, {{"loading.control", "displacement"}})).empty());
+  EXPECT_TRUE(
+      scene_notes(Scene::parse("[cracking]\nmodel = \"embedded\"\n", {{"loading.control", "auto"}}))
+          .empty());
+}
