@@ -363,9 +363,9 @@ void StepLoop::count_step_error(const StepErrorCheck& c, const std::string& step
 
 void StepLoop::note_unheld_step_error()
 {
-  const model::BulkCracking* bulk = _equilibrium.model().bulk_cracking();
-  if (!bulk || !bulk->step_error_measured_only() || _unheld_steps_above == 0)
+  if (_unheld_steps_above == 0) // (none without the implicit cracks read so)
     return;
+  const model::BulkCracking* bulk = _equilibrium.model().bulk_cracking();
   std::ostringstream note;
   note << "the implicit cracks' steps were not held to their error (cracking.implicit_tolerance "
           "= 0): its estimate reached "

@@ -93,7 +93,8 @@ private:
   /// (Retry::cut). `what` names the step, `size(increment)` words its size.
   /// The implicit cracks (cracking.implex_rescue): where Newton failed at
   /// the smallest step, of 2^-10 of a step or less, the same step once more
-  /// as one IMPL-EX step (set_implex_rescue, Retry::implex_rescue), which
+  /// as one IMPL-EX step (BulkCracking::set_implex_rescue,
+  /// Retry::implex_rescue), which
   /// commit() ends; a rescue's try that fails is cut as any other, and
   /// stops the run at the smallest step.
   Retry cut_back(Stepper& stepper, int& cuts, const std::string& what, const std::string& reason,
