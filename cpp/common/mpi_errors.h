@@ -20,17 +20,17 @@
 //
 // A process that failed while the others wait in some other collective
 // (one it skipped) would wait forever: it waits at most abandon_after_s
-// for them, then prints its message itself and ends the run with
-// MPI_Abort. A failed process must reach its agreement before it destroys
-// an object whose destruction is collective (a MUMPS factor: MUMPS ends
-// with a broadcast), or it waits there instead: a phase that owns such
-// objects agrees inside (driver/Run.cpp: the load steps; the SNES
-// callbacks).
+// for them, then reports its error (abandon_report: summary.json), prints
+// it itself and ends the run with MPI_Abort. A failed process must reach its agreement before it
+// destroys an object whose destruction is collective (a MUMPS factor: MUMPS ends with a broadcast),
+// or it waits there instead: a phase that owns such objects agrees inside (driver/Run.cpp: the load
+// steps; the SNES callbacks).
 #pragma once
 
 #include <chrono>
 #include <cstdlib>
 #include <exception>
+#include <functional>
 #include <iostream>
 #include <mpi.h>
 #include <optional>
@@ -77,6 +77,27 @@ public:
 /// skipped) [s].
 constexpr double abandon_after_s = 10;
 
+/// What abandon() calls on the failing process before it ends the run,
+/// with the error as it prints it (without "pushout: error: "); none if
+/// empty. record::RunReport sets it, so that summary.json says the error
+/// and not the SIGTERM that mpirun then sends the others.
+using AbandonReport = std::function<void(const std::string& message)>;
+inline AbandonReport& abandon_report()
+{
+  static AbandonReport report;
+  return report;
+}
+
+/// Sets the abandon report until destroyed (then none).
+class ReportOnAbandon
+{
+public:
+  explicit ReportOnAbandon(AbandonReport report) { abandon_report() = std::move(report); }
+  ~ReportOnAbandon() { abandon_report() = nullptr; }
+  ReportOnAbandon(const ReportOnAbandon&) = delete;
+  ReportOnAbandon& operator=(const ReportOnAbandon&) = delete;
+};
+
 namespace detail
 {
 /// The run's processes and the agreement channel, a duplicate of them
@@ -111,13 +132,21 @@ inline bool alone(MPI_Comm comm)
 /// to agree on.
 [[noreturn]] inline void abandon(const std::string& message, int rank)
 {
+  std::ostringstream said;
+  said << message << " (process " << rank
+       << "; the other processes did not come to agree on it within " << abandon_after_s
+       << " s, so the run is ended)";
+  if (const AbandonReport& report = abandon_report())
+    try
+    {
+      report(said.str());
+    }
+    catch (...) // the line on stderr is what the user gets
+    {
+    }
   // One write: mpirun prints its abort banner on the same stderr, and a
   // line written in pieces (std::cerr is unbuffered) was cut by it.
-  std::ostringstream line;
-  line << "pushout: error: " << message << " (process " << rank
-       << "; the other processes did not come to agree on it within " << abandon_after_s
-       << " s, so the run is ended)\n";
-  std::cerr << line.str() << std::flush;
+  std::cerr << "pushout: error: " + said.str() + "\n" << std::flush;
   MPI_Abort(MPI_COMM_WORLD, 1);
   std::abort();
 }

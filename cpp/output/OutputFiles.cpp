@@ -19,6 +19,8 @@ namespace fs = std::filesystem;
 
 /// The files pushout writes in an output folder (and in the folders below
 /// it that it makes: a sweep's cases, a fit's runs).
+/// (.process-error: record/RunReport.cpp's hand-over of an error between
+/// processes.)
 bool is_output_file(const std::string& name)
 {
   static const char* const names[] = {
@@ -27,7 +29,7 @@ bool is_output_file(const std::string& name)
       "interface.xdmf",    "interface.h5",      "cracks.xdmf",         "cracks.h5",
       "sweep.csv",         "sweep.png",         "sweep_seeds.csv",     "fit.json",
       "fit.csv",           "fit.png",           ".pushout-write-test", "summary.json.tmp",
-      "crack_pattern.csv", "crack_pattern.png", "crack_planes.csv"};
+      "crack_pattern.csv", "crack_pattern.png", "crack_planes.csv",    ".process-error"};
   for (const char* n : names)
     if (name == n)
       return true;

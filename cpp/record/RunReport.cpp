@@ -2,7 +2,9 @@
 #include "../common/mpi_errors.h"
 #include "../output/OutputFiles.h"
 #include "../output/plot.h"
+#include <fstream>
 #include <iostream>
+#include <iterator>
 #include <mpi.h>
 #include <sys/resource.h>
 #include <thread>
@@ -29,6 +31,11 @@ double peak_memory_here_mb()
 
 namespace
 {
+/// Where a process other than rank 0 leaves the error it ends the run with
+/// (RunReport::abandoned) for rank 0's stop report, which removes it; an
+/// output of the folder (output::remove_outputs).
+constexpr const char* process_error_file = ".process-error";
+
 int rank_in(MPI_Comm comm)
 {
   int rank = 0;
@@ -55,6 +62,18 @@ RunReport::RunReport(const Scene& scene, const std::filesystem::path& out, bool 
               where += ' ' + progress;
             s.message = "interrupted by " + interrupt::signal_name(sig) + where;
             stamp(s);
+            if (_rank == 0 && take_process_error(s))
+            {
+              // (the failing process printed it: one message on stderr)
+              try
+              {
+                s.write(_out / "summary.json");
+              }
+              catch (...)
+              {
+              }
+              return;
+            }
             if (_rank != 0)
             {
               // mpirun ends every process as soon as one has ended with an
@@ -72,7 +91,8 @@ RunReport::RunReport(const Scene& scene, const std::filesystem::path& out, bool 
             {
               std::cerr << "pushout: " << s.message << "; error: " << e.what() << std::endl;
             }
-          })
+          }),
+      _on_abandon([this](const std::string& message) { abandoned(message); })
 {
   int size = 1;
   MPI_Comm_size(comm, &size);
@@ -183,5 +203,40 @@ void RunReport::fail(const std::string& message) noexcept
   catch (...) // no room for it either: the error line is what the user gets
   {
   }
+}
+void RunReport::abandoned(const std::string& message) noexcept
+{
+  try
+  {
+    if (_rank != 0)
+    {
+      output::write_file(_out / process_error_file, message);
+      return;
+    }
+    std::lock_guard lock(_published_mutex);
+    output::Summary s = _published;
+    s.converged = false;
+    s.message = message;
+    stamp(s);
+    s.write(_out / "summary.json");
+  }
+  catch (...) // the error line on stderr is what the user gets
+  {
+  }
+}
+
+bool RunReport::take_process_error(output::Summary& s) const
+{
+  const std::filesystem::path file = _out / process_error_file;
+  std::ifstream in(file);
+  if (!in)
+    return false;
+  s.message.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  s.interrupted = false;
+  s.signal = 0;
+  s.stopped_in.clear();
+  std::error_code ignored;
+  std::filesystem::remove(file, ignored);
+  return true;
 }
 } // namespace pushout::record

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "../common/Interrupt.h"
+#include "../common/mpi_errors.h"
 #include "../output/Summary.h"
 #include "../output/plot.h"
 #include "../scene/Scene.h"
@@ -68,6 +69,15 @@ public:
   void fail(const std::string& message) noexcept;
 
 private:
+  /// On the process that ends the run with an error the others did not
+  /// come to agree on (mpi::abandon), before it does: summary.json says
+  /// the error (rank 0), or (another process) the error is left in the
+  /// output folder for rank 0's stop report, as mpirun's SIGTERM to it
+  /// follows.
+  void abandoned(const std::string& message) noexcept;
+  /// Rank 0's stop report: `s` is the error another process left
+  /// (abandoned) if it did, not the signal that followed it.
+  bool take_process_error(output::Summary& s) const;
   /// The run's wall time and this process's peak memory so far into `s`
   /// (a summary written before finish()).
   void stamp(output::Summary& s) const;
@@ -81,6 +91,7 @@ private:
   std::mutex _published_mutex;
   output::Summary _published; ///< guarded by _published_mutex
   interrupt::ReportOnStop _on_stop;
+  mpi::ReportOnAbandon _on_abandon;
   std::optional<output::CurvePlotter> _plotter;        ///< rank 0, if the run draws its curve
   std::vector<std::array<std::string, 2>> _more_plots; ///< plot_also's [stem, kind]
 };

@@ -6,10 +6,13 @@ process come from a run folder whose scene.toml cannot be written (the
 first process writes it) and from a test hook of the step loop (PUSHOUT_TEST_FAIL_RANK,
 PUSHOUT_TEST_FAIL_AT: stepping/StepLoop.cpp), during the set-up and during the
 load steps. A PETSc error (a solver type that does not exist) is one clear
-message too, without PETSc's traceback, on 1 and 2 processes. mpirun adds
+message too, without PETSc's traceback, on 1 and 2 processes. A process that waited in a
+collective is ended by mpirun's SIGTERM, but summary.json says the error,
+whichever process failed. mpirun adds
 its own notice that a process ended non-zero; only pushout's lines count.
 A folder where the fields' XML or curve.csv goes is one agreed error that
 names the cause."""
+import json
 import os
 import signal
 import subprocess
@@ -59,26 +62,43 @@ def run(name, processes, extra=(), env=None, prepare=None):
 
 def one_message(name, err, words):
     # (a process that waited in a collective is ended by mpirun's SIGTERM
-    # after the failing one's MPI_Abort; it says so in its summary.json and
-    # on a line of its own, which is not an error of its own)
-    ours = [line for line in err.splitlines() if line.startswith("pushout:")
-            and not line.startswith("pushout: interrupted by SIGTERM during")]
+    # after the failing one's MPI_Abort, and says nothing of it: the error
+    # is the failing one's line)
+    ours = [line for line in err.splitlines() if line.startswith("pushout:")]
     check(len(ours) == 1, f"{name}: one message from pushout: {ours}")
     check(all(w in ours[0] for w in words), f"{name}: it says {words}: {ours[0]!r}")
     check("PETSC ERROR" not in err, f"{name}: no PETSc traceback")
 
 
-for at, words in (("setup", ["error:", "test failure on process 1 at setup"]),
-                  ("step", ["error:", "test failure on process 1 at step"]),
-                  ("collective", ["error:", "test failure on process 1 at collective",
-                                  "did not come to agree"])):
-    name = "fail_" + at
-    rc, err, wall, out = run(name, 2, env={"PUSHOUT_TEST_FAIL_RANK": "1", "PUSHOUT_TEST_FAIL_AT": at})
+for rank, at, words in ((1, "setup", ["error:", "test failure on process 1 at setup"]),
+                        (1, "step", ["error:", "test failure on process 1 at step"]),
+                        (1, "collective", ["error:", "test failure on process 1 at collective",
+                                           "did not come to agree"]),
+                        (0, "collective", ["error:", "test failure on process 0 at collective",
+                                           "did not come to agree"])):
+    name = f"fail_{at}_{rank}"
+    rc, err, wall, out = run(name, 2, env={"PUSHOUT_TEST_FAIL_RANK": str(rank),
+                                           "PUSHOUT_TEST_FAIL_AT": at})
     check(rc != 0, f"{name}: exit {rc} (non-zero)")
     check(wall < ENDS_WITHIN_S, f"{name}: ended {wall:.1f} s after the start")
     one_message(name, err, words)
     if at == "step":  # the load steps before the failure stay in curve.csv
         check(len(curve(out)) == 3, f"{name}: curve.csv keeps step 0 and the 2 load steps")
+    if at == "collective":
+        # summary.json says the error, not the SIGTERM that mpirun sends the
+        # waiting process once the failing one ends the run: written by the
+        # failing process itself (rank 0) or by rank 0 from what the failing
+        # one left it (rank 1; RunReport::abandoned), which is then gone.
+        with open(os.path.join(out, "summary.json")) as f:
+            summary = json.load(f)
+        said = summary.get("message", "")
+        check(all(w in said for w in words[1:]), f"{name}: summary.json says the error: {said!r}")
+        check(summary.get("interrupted") is False and summary.get("converged") is False,
+              f"{name}: summary.json: not interrupted, not converged: {summary.get('interrupted')}, "
+              f"{summary.get('converged')}")
+        check(summary.get("steps") == 2, f"{name}: summary.json keeps the 2 load steps")
+        check(not os.path.exists(os.path.join(out, ".process-error")),
+              f"{name}: the hand-over of the error is removed")
 
 # A file that only the first process writes, and cannot (scene.toml is a
 # folder there): the others must not go on into the run's collectives.
