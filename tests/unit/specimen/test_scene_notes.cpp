@@ -100,3 +100,32 @@ TEST(SceneNotes, ViscousCracksUnderDissipationControl)
       scene_notes(Scene::parse("[cracking]\nmodel = \"embedded\"\n", {{"loading.control", "auto"}}))
           .empty());
 }
+
+TEST(SceneNotes, CorrodedCracksOnALayoutThatMovesTheResidualBond)
+{
+  // The residual bond of a cracked cover moves with the cells' shape
+  // (docs/cracking.md, "How far to trust a corroded run"): a corroded
+  // square slice with cracks in the concrete is told the layout that keeps
+  // it, unless it is on that layout; not without corrosion, on a circle,
+  // or with crack planes (where radial lines are refused).
+  const std::string cracks = "[cracking]\nmodel = \"embedded\"\n[corrosion]\npenetration = 0.05\n";
+  const std::string prefix = "cracks in the concrete on ";
+  const auto blocks = scene_notes(Scene::parse(cracks));
+  ASSERT_EQ(blocks.size(), 1u);
+  EXPECT_EQ(blocks[0].rfind(prefix + "the blocks", 0), 0u) << blocks[0];
+  EXPECT_NE(blocks[0].find("mesh.graded_refinement = \"whole\""), std::string::npos);
+  const auto near_tube = scene_notes(Scene::parse(cracks, {{"mesh.graded_lines", "radial"}}));
+  ASSERT_EQ(near_tube.size(), 1u);
+  EXPECT_EQ(near_tube[0].rfind(prefix + "radial lines refined near the tube", 0), 0u)
+      << near_tube[0];
+  EXPECT_TRUE(scene_notes(Scene::parse(cracks, {{"mesh.graded_lines", "radial"},
+                                                {"mesh.graded_refinement", "whole"}}))
+                  .empty());
+  EXPECT_TRUE(scene_notes(Scene::parse("[cracking]\nmodel = \"embedded\"\n")).empty());
+  EXPECT_TRUE(scene_notes(Scene::parse(cracks, {{"geometry.outer_shape", "circle"}})).empty());
+  for (const std::string& note : scene_notes(Scene::parse(
+           cracks + "[[crack]]\nangle = \"nearest_face\"\nlaw = \"exponential_softening\"\n"
+                    "k = 1000.0\nf_t = 3.0\nc = 30.0\n")))
+    EXPECT_NE(note.rfind(prefix, 0), 0u) << note;
+  EXPECT_TRUE(scene_notes(Scene::parse("[corrosion]\npenetration = 0.05\n")).empty());
+}
