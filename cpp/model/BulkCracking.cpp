@@ -59,9 +59,10 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
       _axis(slice.tube_center), _tube_radius(slice.tube_radius()),
       _visible_width(part.visible_width), _cut(cut_by_symmetry), _row_band(part.row_band),
       _implex(part.implex), _implex_tolerance(part.implex_tolerance),
-      _implicit_tolerance(part.implicit_tolerance), _predict_strain(part.predict_strain),
-      _rescue_allowed(part.implex_rescue), _E(concrete.E), _nu(concrete.nu), _alpha(concrete.alpha),
-      _dT(std::make_shared<fem::Constant<double>>(0.0))
+      _implicit_tolerance(part.implicit_tolerance),
+      _step_error_unheld(part.implicit_step_error_read() && !part.implicit_steps_held()),
+      _predict_strain(part.predict_strain), _rescue_allowed(part.implex_rescue), _E(concrete.E),
+      _nu(concrete.nu), _alpha(concrete.alpha), _dT(std::make_shared<fem::Constant<double>>(0.0))
 {
   // A radius that takes in no concrete would leave it linear without a
   // word: refused, the same on every process (the count is summed, the

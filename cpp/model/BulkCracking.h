@@ -200,15 +200,12 @@ public:
   /// cracking.implex_tolerance, else cracking.implicit_tolerance; 0: the
   /// steps are not held to an error.
   double step_tolerance() const { return _implex ? _implex_tolerance : _implicit_tolerance; }
-  /// The implicit cracks without a viscosity whose steps are not held to
-  /// their error (cracking.implicit_tolerance = 0): step_error() is read all
-  /// the same, for summary.json's implicit_error_max (a pass over the points
-  /// a step; with a viscosity it would measure the damage's lag, not the
-  /// step).
-  bool step_error_measured_only() const
-  {
-    return !_implex && !viscous() && !(_implicit_tolerance > 0);
-  }
+  /// The implicit cracks whose step error is read but whose steps are not
+  /// held to it (CrackingPart::implicit_step_error_read, not
+  /// implicit_steps_held; not in a rescue's step): step_error() is read
+  /// all the same, for summary.json's implicit_error_max (a pass over the
+  /// points a step).
+  bool step_error_measured_only() const { return !_implex && _step_error_unheld; }
   /// The scene key that sets step_tolerance().
   const char* step_tolerance_key() const
   {
@@ -488,12 +485,14 @@ private:
   bool _implex = false;
   double _implex_tolerance = 0;   ///< cracking.implex_tolerance
   double _implicit_tolerance = 0; ///< cracking.implicit_tolerance
-  bool _predict_strain = false;   ///< cracking.implex_predictor = "strain"
-  bool _rescue = false;           ///< set_implex_rescue
-  bool _rescue_allowed = false;   ///< cracking.implex_rescue
-  double _E = 0, _nu = 0;         ///< the concrete's [MPa], [-]
-  double _alpha = 0;              ///< the concrete's thermal expansion [1/degC]
-  double _extrapolation = 0;      ///< set_extrapolation
+  /// CrackingPart::implicit_step_error_read and not implicit_steps_held
+  bool _step_error_unheld = false;
+  bool _predict_strain = false; ///< cracking.implex_predictor = "strain"
+  bool _rescue = false;         ///< set_implex_rescue
+  bool _rescue_allowed = false; ///< cracking.implex_rescue
+  double _E = 0, _nu = 0;       ///< the concrete's [MPa], [-]
+  double _alpha = 0;            ///< the concrete's thermal expansion [1/degC]
+  double _extrapolation = 0;    ///< set_extrapolation
   /// IMPL-EX: the trial state is implicit_update()'s, and no evaluate()
   /// came after it
   bool _trial_implicit = false;

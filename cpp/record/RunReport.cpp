@@ -100,9 +100,8 @@ RunReport::RunReport(const Scene& scene, const std::filesystem::path& out, bool 
   if (scene.cracking().embedded)
   {
     _summary.cracking_integration = scene.cracking().implex ? "implex" : "implicit";
-    _summary.implicit_step_error = !scene.cracking().implex && !(scene.cracking().viscosity > 0);
-    _summary.implicit_steps_held =
-        !scene.cracking().implex && scene.cracking().implicit_tolerance > 0;
+    _summary.implicit_step_error = scene.cracking().implicit_step_error_read();
+    _summary.implicit_steps_held = scene.cracking().implicit_steps_held();
   }
   _summary.processes = size;
   _summary.run_id = output::run_id();
@@ -204,6 +203,7 @@ void RunReport::fail(const std::string& message) noexcept
   {
   }
 }
+
 void RunReport::abandoned(const std::string& message) noexcept
 {
   try
@@ -225,18 +225,25 @@ void RunReport::abandoned(const std::string& message) noexcept
   }
 }
 
-bool RunReport::take_process_error(output::Summary& s) const
+bool RunReport::take_process_error(output::Summary& s) const noexcept
 {
-  const std::filesystem::path file = _out / process_error_file;
-  std::ifstream in(file);
-  if (!in)
+  try
+  {
+    const std::filesystem::path file = _out / process_error_file;
+    std::ifstream in(file);
+    if (!in)
+      return false;
+    s.message.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    s.interrupted = false;
+    s.signal = 0;
+    s.stopped_in.clear();
+    std::error_code ignored;
+    std::filesystem::remove(file, ignored);
+    return true;
+  }
+  catch (...) // (on the watcher's thread: the signal is reported instead)
+  {
     return false;
-  s.message.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  s.interrupted = false;
-  s.signal = 0;
-  s.stopped_in.clear();
-  std::error_code ignored;
-  std::filesystem::remove(file, ignored);
-  return true;
+  }
 }
 } // namespace pushout::record

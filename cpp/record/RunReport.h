@@ -77,7 +77,7 @@ private:
   void abandoned(const std::string& message) noexcept;
   /// Rank 0's stop report: `s` is the error another process left
   /// (abandoned) if it did, not the signal that followed it.
-  bool take_process_error(output::Summary& s) const;
+  bool take_process_error(output::Summary& s) const noexcept;
   /// The run's wall time and this process's peak memory so far into `s`
   /// (a summary written before finish()).
   void stamp(output::Summary& s) const;

@@ -146,6 +146,13 @@ struct CrackingPart
   /// The implicit cracks: a step that Newton fails at the smallest cut is
   /// taken as one IMPL-EX step (implex_rescue)
   bool implex_rescue{};
+
+  /// The implicit cracks' steps are held to their error (implicit_tolerance).
+  bool implicit_steps_held() const { return embedded && !implex && implicit_tolerance > 0; }
+  /// The implicit cracks' step error is read at every committed step, held
+  /// to implicit_tolerance or not (summary.json implicit_error_max): all but
+  /// viscous cracks', where it would measure the damage's lag, not the step.
+  bool implicit_step_error_read() const { return embedded && !implex && !(viscosity > 0); }
 };
 
 /// [solver].

@@ -144,5 +144,8 @@ check(p.returncode == 0 and summary(cut)["implex_jumps"] == 0,
 rows = corrosion(cut)
 check(summary(cut)["cuts"] > 0 and [r["step"] for r in rows] == list(range(len(rows))),
       f"{summary(cut)['cuts']} cuts: corrosion.csv's step is the row's number ({len(rows)} rows)")
-check(summary(cut)["linear_solve_s"] is None and summary(cut)["notes"] == [],
-      "summary.json: linear_solve_s null (not timed), no notes")
+# (the one note is the blocks' layout's:
+# SceneNotes.CorrodedCracksOnALayoutThatMovesTheResidualBond)
+notes = [n for n in summary(cut)["notes"] if not n.startswith("cracks in the concrete on the blocks")]
+check(summary(cut)["linear_solve_s"] is None and notes == [],
+      f"summary.json: linear_solve_s null (not timed), no notes but the layout's: {notes}")
