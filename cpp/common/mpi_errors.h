@@ -21,10 +21,13 @@
 // A process that failed while the others wait in some other collective
 // (one it skipped) would wait forever: it waits at most abandon_after_s
 // for them, then reports its error (abandon_report: summary.json), prints
-// it itself and ends the run with MPI_Abort. A failed process must reach its agreement before it
-// destroys an object whose destruction is collective (a MUMPS factor: MUMPS ends with a broadcast),
-// or it waits there instead: a phase that owns such objects agrees inside (driver/Run.cpp: the load
-// steps; the SNES callbacks).
+// it itself and ends the run with MPI_Abort. A failed process must reach
+// its agreement before it destroys an object whose destruction is
+// collective (a MUMPS factor: MUMPS ends with a broadcast), or it waits
+// there instead: a phase that owns such objects agrees inside
+// (driver/Run.cpp: the load steps; the SNES callbacks), and the run's
+// errors are agreed on while its report lives (driver/Run.cpp,
+// reporting_errors).
 #pragma once
 
 #include <chrono>

@@ -134,6 +134,7 @@ Simulation::Simulation(const Scene& scene, const RunOptions& opt, record::RunRep
   phase.emplace("set-up", 0);
   t0 = report.seconds();
   _model = std::make_unique<model::Model>(opt.comm, _data, model::ModelInput::of(scene));
+  stepping::test_failure_in_setup(opt.comm);
   _equilibrium = std::make_unique<solver::Equilibrium>(*_model);
   _solver = solver::LoadStepSolver::make(*_equilibrium, scene.solver());
   _solver->set_talk(report.talk());
@@ -239,13 +240,17 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, record::R
 
 namespace
 {
-/// Runs `f` (the run's steps and its end); an error other than a bad scene
-/// or size (which write nothing) is in summary.json too, where it fits.
-template <class F> output::Summary reporting_errors(record::RunReport& report, F&& f)
+/// Runs `f` (the run's steps and its end) on the run's processes `comm`;
+/// an error other than a bad scene or size (which write nothing) is in
+/// summary.json too, where it fits. Agreed on here, while the report lives:
+/// a process whose error the others do not come to agree on (they wait in
+/// a collective it skipped) then ends the run with its abandon report
+/// (RunReport::abandoned), so that summary.json says that error.
+template <class F> output::Summary reporting_errors(record::RunReport& report, MPI_Comm comm, F&& f)
 {
   try
   {
-    return f();
+    return mpi::collectively<OptionError, SceneError, record::TooLarge>(comm, f);
   }
   catch (const SceneError&)
   {
@@ -293,7 +298,7 @@ output::Summary run(const Scene& scene, const RunOptions& opt)
 {
   record::RunReport report(scene, opt.out, opt.quiet, opt.comm, opt.plot);
   note_scene(scene, report);
-  return reporting_errors(report,
+  return reporting_errors(report, opt.comm,
                           [&]
                           {
                             auto simulation = std::make_unique<Simulation>(scene, opt, report);
@@ -344,7 +349,7 @@ RunOutcome run_case(const std::string& scene_text, const std::filesystem::path& 
           specimen::check_scene(scene);
           record::RunReport report(scene, opt.out, opt.quiet, opt.comm, opt.plot);
           note_scene(scene, report);
-          return reporting_errors(report,
+          return reporting_errors(report, opt.comm,
                                   [&]
                                   {
                                     if (!simulation || !simulation->fits(scene))

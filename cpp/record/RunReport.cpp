@@ -206,6 +206,9 @@ void RunReport::fail(const std::string& message) noexcept
 
 void RunReport::abandoned(const std::string& message) noexcept
 {
+  // The run ends next (MPI_Abort): a SIGTERM from mpirun meanwhile must not
+  // have the watcher write the signal over the error.
+  interrupt::acknowledge();
   try
   {
     if (_rank != 0)

@@ -40,6 +40,11 @@ void test_failure_at_setup(MPI_Comm comm)
   test_failure("setup", comm);
 }
 
+void test_failure_in_setup(MPI_Comm comm)
+{
+  test_failure("setup_collective", comm);
+}
+
 void test_hooks_before_agreement(int steps, MPI_Comm comm)
 {
   test_slow_step(steps);

@@ -5,7 +5,8 @@
 //
 // With PUSHOUT_TEST_FAIL_RANK=r and PUSHOUT_TEST_FAIL_AT=`at`, process r
 // alone throws, as an error found on one process only would: "setup" at
-// the end of the set-up (driver/Run.cpp), "step" after two load steps,
+// the end of the set-up (driver/Run.cpp), "setup_collective" in it where
+// the others next wait in a collective, "step" after two load steps,
 // "collective" there too but where the others next wait in a collective
 // that is no agreement (common/mpi_errors.h: the run ends with MPI_Abort
 // after abandon_after_s). With PUSHOUT_TEST_SLOW_STEP_S=t, from the third
@@ -33,6 +34,11 @@ namespace pushout::stepping
 /// PUSHOUT_TEST_FAIL_AT=setup: process PUSHOUT_TEST_FAIL_RANK alone throws
 /// at the end of the set-up.
 void test_failure_at_setup(MPI_Comm comm);
+
+/// PUSHOUT_TEST_FAIL_AT=setup_collective: process PUSHOUT_TEST_FAIL_RANK
+/// alone throws in the set-up, before the collectives of the model's
+/// matrices (solver::Equilibrium), which the others go on into.
+void test_failure_in_setup(MPI_Comm comm);
 
 /// Before the agreement between tries (StepLoop::stop_requested), after
 /// `steps` load steps: the slow step (PUSHOUT_TEST_SLOW_STEP_S), and

@@ -3,8 +3,8 @@ an `mpirun -n 2` run ends the whole run within seconds, non-zero, with one
 message on stderr (rank 0's, or the failing process's own when the other
 waits in a collective it skipped), never a hang. The failures on one
 process come from a run folder whose scene.toml cannot be written (the
-first process writes it) and from a test hook of the step loop (PUSHOUT_TEST_FAIL_RANK,
-PUSHOUT_TEST_FAIL_AT: stepping/StepLoop.cpp), during the set-up and during the
+first process writes it) and from test hooks (PUSHOUT_TEST_FAIL_RANK,
+PUSHOUT_TEST_FAIL_AT: stepping/TestHooks.h), during the set-up and during the
 load steps. A PETSc error (a solver type that does not exist) is one clear
 message too, without PETSc's traceback, on 1 and 2 processes. A process that waited in a
 collective is ended by mpirun's SIGTERM, but summary.json says the error,
@@ -75,7 +75,10 @@ for rank, at, words in ((1, "setup", ["error:", "test failure on process 1 at se
                         (1, "collective", ["error:", "test failure on process 1 at collective",
                                            "did not come to agree"]),
                         (0, "collective", ["error:", "test failure on process 0 at collective",
-                                           "did not come to agree"])):
+                                           "did not come to agree"]),
+                        (1, "setup_collective", ["error:",
+                                                 "test failure on process 1 at setup_collective",
+                                                 "did not come to agree"])):
     name = f"fail_{at}_{rank}"
     rc, err, wall, out = run(name, 2, env={"PUSHOUT_TEST_FAIL_RANK": str(rank),
                                            "PUSHOUT_TEST_FAIL_AT": at})
@@ -84,7 +87,7 @@ for rank, at, words in ((1, "setup", ["error:", "test failure on process 1 at se
     one_message(name, err, words)
     if at == "step":  # the load steps before the failure stay in curve.csv
         check(len(curve(out)) == 3, f"{name}: curve.csv keeps step 0 and the 2 load steps")
-    if at == "collective":
+    if at.endswith("collective"):
         # summary.json says the error, not the SIGTERM that mpirun sends the
         # waiting process once the failing one ends the run: written by the
         # failing process itself (rank 0) or by rank 0 from what the failing
@@ -96,7 +99,8 @@ for rank, at, words in ((1, "setup", ["error:", "test failure on process 1 at se
         check(summary.get("interrupted") is False and summary.get("converged") is False,
               f"{name}: summary.json: not interrupted, not converged: {summary.get('interrupted')}, "
               f"{summary.get('converged')}")
-        check(summary.get("steps") == 2, f"{name}: summary.json keeps the 2 load steps")
+        steps = 0 if at.startswith("setup") else 2
+        check(summary.get("steps") == steps, f"{name}: summary.json keeps the {steps} load steps")
         check(not os.path.exists(os.path.join(out, ".process-error")),
               f"{name}: the hand-over of the error is removed")
 

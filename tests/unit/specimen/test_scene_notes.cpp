@@ -106,8 +106,9 @@ TEST(SceneNotes, CorrodedCracksOnALayoutThatMovesTheResidualBond)
   // The residual bond of a cracked cover moves with the cells' shape
   // (docs/cracking.md, "How far to trust a corroded run"): a corroded
   // square slice with cracks in the concrete is told the layout that keeps
-  // it, unless it is on that layout; not without corrosion, on a circle,
-  // or with crack planes (where radial lines are refused).
+  // it, unless it is on that layout or the reference; not without
+  // corrosion, on a circle, or with crack planes (where radial lines are
+  // refused).
   const std::string cracks = "[cracking]\nmodel = \"embedded\"\n[corrosion]\npenetration = 0.05\n";
   const std::string prefix = "cracks in the concrete on ";
   const auto blocks = scene_notes(Scene::parse(cracks));
@@ -121,6 +122,12 @@ TEST(SceneNotes, CorrodedCracksOnALayoutThatMovesTheResidualBond)
   EXPECT_TRUE(scene_notes(Scene::parse(cracks, {{"mesh.graded_lines", "radial"},
                                                 {"mesh.graded_refinement", "whole"}}))
                   .empty());
+  // The reference layout (radial lines at outer_size_ratio 1), and the
+  // row band, whose layouts the numbers are not of.
+  EXPECT_TRUE(scene_notes(Scene::parse(cracks, {{"mesh.graded_lines", "radial"},
+                                                {"mesh.outer_size_ratio", "1"}}))
+                  .empty());
+  EXPECT_TRUE(scene_notes(Scene::parse(cracks, {{"cracking.band_width", "row"}})).empty());
   EXPECT_TRUE(scene_notes(Scene::parse("[cracking]\nmodel = \"embedded\"\n")).empty());
   EXPECT_TRUE(scene_notes(Scene::parse(cracks, {{"geometry.outer_shape", "circle"}})).empty());
   for (const std::string& note : scene_notes(Scene::parse(
