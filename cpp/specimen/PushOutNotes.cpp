@@ -80,12 +80,12 @@ std::vector<std::string> PushOut::scene_notes(const Scene& scene)
                     "demo (docs/cracking.md; model.symmetry = \"auto\" keeps the whole slice)");
   // The residual bond of a cracked cover moves with the cells' shape
   // (docs/cracking.md, "How far to trust a corroded run";
-  // bench/results/cracking_layouts.md): the corroded square slice on the
-  // layouts measured there that do not keep it (refined near the tube:
-  // at outer_size_ratio 1 the refinements mesh alike, and radial lines so
-  // are the reference) is told which does, with the projected band the
-  // numbers are of (radial lines are refused with crack planes,
-  // PushOut::check_scene).
+  // bench/results/cracking_layouts.md): a corroded square slice on a
+  // layout measured there that does not keep it is told which does. Those
+  // layouts are refined near the tube at an outer_size_ratio above 1 (at
+  // ratio 1 the two refinements mesh alike, and radial lines there are the
+  // reference itself), with the projected band the numbers are of; radial
+  // lines are refused with crack planes (PushOut::check_scene).
   const MeshPart& mesh = scene.mesh();
   if (scene.cracking().embedded && !scene.cracking().row_band && !g.circle &&
       scene.corrosion().penetration > 0 && scene.cracks().empty() && !mesh.refine_whole &&
@@ -97,8 +97,7 @@ std::vector<std::string> PushOut::scene_notes(const Scene& scene)
                            : "the blocks (mesh.graded_lines = \"blocks\")") +
         ": the residual bond after the cover cracks moves with the cells' shape. On the "
         "corroded cover case (cover 15 mm, beta 2, x = 50 um, 16 / 8 elements, IMPL-EX, "
-        "five seeds) it "
-        "came " +
+        "five seeds) it came " +
         (mesh.radial_lines ? "4.5 to 13.3 % below"
                            : "3.7 % below to 17.2 % above (7 % above on the seeds' mean)") +
         " a reference layout of 3.2 times the dofs, and within 1.7 % of it on radial lines "
