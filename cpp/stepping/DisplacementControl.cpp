@@ -255,7 +255,8 @@ StepLoop::StepErrorCheck StepLoop::check_step_error(solver::SolveReport& rep, do
   if (!bulk)
     return {};
   const bool rescue = bulk->implex_rescue();
-  const bool measured_only = !rescue && bulk->step_error_measured_only();
+  // (never in a rescue's step: BulkCracking::step_error_measured_only)
+  const bool measured_only = bulk->step_error_measured_only();
   if (!(rescue || measured_only || bulk->step_tolerance() > 0))
     return {};
   std::int64_t failed_points = 0;
