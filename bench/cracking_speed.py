@@ -59,7 +59,8 @@ other):
   embedded_held   the same steps, each held to its step error
                   (cracking.implicit_tolerance = 0.0025, IMPL-EX's
                   tolerance: a step above it is cut): the reference of the
-                  error columns.
+                  error columns, converged in its steps (held to 0.001 it
+                  moves by 0.04 %: bench/cracking_reference.py).
 
 For each: wall time (with --repeat N, the median of N runs made in
 interleaved rounds, every timed case once a round, so that each case's
