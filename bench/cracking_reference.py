@@ -32,12 +32,13 @@ and after the corrosion stage, the residual bond stress at 0.2 mm, by how
 much the push lowers the pressure on the tube (push_p_drop: p after the
 corrosion stage less p at the push's end), the cracked points and the
 concrete's dissipation after the corrosion stage, the widest surface
-crack, and the relative error of the pressures, the bond and the drop
-against held_0.001. About two hours on one core (held_0.001 alone
-25 min); --reuse keeps the runs already in the folder. Writes
-bench/results/cracking_reference.csv and .md.
+crack, and the relative error of p at 30 um, p after the corrosion
+stage, the bond and the drop against held_0.001 (of the unrounded
+values). About two hours on one core (held_0.001 alone 25 min); --reuse
+keeps the converged runs already in the folder (a run that stopped is
+made again). Writes bench/results/cracking_reference.csv and .md.
 
-  bench/cracking_reference.py [--reuse] [--only CASE ...]
+  bench/cracking_reference.py [--pushout PATH] [--out DIR] [--reuse] [--only CASE ...]
 """
 import os
 import sys
@@ -45,6 +46,9 @@ import time
 
 from common import ROOT, arguments, check_only, curve, markdown_table, pushout_runs, run, summary
 from common import write_csv
+
+# The columns that get an error against the reference.
+COMPARED = ("p_30um_MPa", "p_corroded_MPa", "tau_last_MPa", "push_p_drop_MPa")
 
 RESULTS = os.path.join(ROOT, "bench", "results")
 REFERENCE = "held_0.001"
@@ -74,9 +78,20 @@ def p_at(corrosion, x_mm):
     """The pressure on the tube at penetration x_mm, linear between rows [MPa]."""
     for a, b in zip(corrosion, corrosion[1:]):
         if a["penetration_mm"] <= x_mm <= b["penetration_mm"]:
-            t = (x_mm - a["penetration_mm"]) / (b["penetration_mm"] - a["penetration_mm"])
+            dx = b["penetration_mm"] - a["penetration_mm"]
+            t = (x_mm - a["penetration_mm"]) / dx if dx > 0 else 0.0
             return a["p_MPa"] + t * (b["p_MPa"] - a["p_MPa"])
     return float("nan")
+
+
+def compared(out):
+    """The COMPARED values of a run, unrounded (None where it has no push)."""
+    corrosion = pushout_runs.corrosion(out)
+    push = curve(out)
+    last = corrosion[-1]
+    return {"p_30um_MPa": p_at(corrosion, 0.030), "p_corroded_MPa": last["p_MPa"],
+            "tau_last_MPa": push[-1]["tau_MPa"] if push else None,
+            "push_p_drop_MPa": last["p_MPa"] - push[-1]["p_MPa"] if push else None}
 
 
 def row(name, out):
@@ -84,14 +99,12 @@ def row(name, out):
     corrosion = pushout_runs.corrosion(out)
     push = curve(out)
     last = corrosion[-1]
+    values = compared(out)
     return {"case": name, "converged": s["converged"], "corrosion_rows": len(corrosion),
             "push_rows": len(push), "newton_iterations": s["newton_iterations"],
             "factorizations": s["factorizations"], "wall_s": round(s["wall_s"], 1),
             "p_peak_MPa": round(max(r["p_MPa"] for r in corrosion), 4),
-            "p_30um_MPa": round(p_at(corrosion, 0.030), 4),
-            "p_corroded_MPa": round(last["p_MPa"], 4),
-            "tau_last_MPa": round(push[-1]["tau_MPa"], 4) if push else "",
-            "push_p_drop_MPa": round(last["p_MPa"] - push[-1]["p_MPa"], 4) if push else "",
+            **{key: "" if v is None else round(v, 4) for key, v in values.items()},
             "cracked_points": int(last["cracked_points"]),
             "dissipation_Nmm": round(last["concrete_dissipation_Nmm"], 3),
             "crack_width_um": round(1e3 * last["crack_width_mm"], 2),
@@ -109,16 +122,21 @@ def main():
         out = os.path.join(args.out, name)
         if not args.only or name in args.only:
             start = time.time()
-            code = run(args.pushout, scene, out, sets, reuse=args.reuse, check=False)
+            reuse = args.reuse and pushout_runs.converged_before(out)
+            code = run(args.pushout, scene, out, sets, reuse=reuse, check=False)
             print(f"{name}: exit {code}, {time.time() - start:.1f} s", flush=True)
         if os.path.exists(os.path.join(out, "summary.json")):
             rows.append(row(name, out))
+    if not rows:
+        raise SystemExit("cracking_reference.py: no run to tabulate in " + args.out)
     reference = next((r for r in rows if r["case"] == REFERENCE and r["converged"]), None)
+    ref_values = compared(os.path.join(args.out, REFERENCE)) if reference else None
     for r in rows:
-        for key in ("p_30um_MPa", "p_corroded_MPa", "tau_last_MPa", "push_p_drop_MPa"):
+        values = compared(os.path.join(args.out, r["case"]))
+        for key in COMPARED:
             r[key.replace("_MPa", "_error_pct")] = (
-                round(100 * (r[key] / reference[key] - 1), 2)
-                if reference and r["converged"] and r[key] != "" else "")
+                round(100 * (values[key] / ref_values[key] - 1), 2)
+                if ref_values and r["converged"] and values[key] is not None else "")
     os.makedirs(RESULTS, exist_ok=True)
     write_csv(os.path.join(RESULTS, "cracking_reference.csv"), rows)
     with open(os.path.join(RESULTS, "cracking_reference.md"), "w") as f:
