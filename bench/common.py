@@ -3,6 +3,7 @@ its outputs (scripts/pushout_runs.py), writing result tables."""
 import argparse
 import os
 import sys
+import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scripts"))
 import pushout_runs  # noqa: E402
@@ -30,6 +31,13 @@ def save_figure_and_table(fig, out_dir, name, rows):
     os.makedirs(out_dir, exist_ok=True)
     fig.savefig(os.path.join(out_dir, name + ".png"))
     write_csv(os.path.join(out_dir, name + ".csv"), rows)
+
+
+def ran_utc(out):
+    """When the run in out/ was made (its summary.json's time, UTC): with
+    --reuse an earlier run, of an earlier build, may stand beside today's."""
+    return time.strftime("%Y-%m-%d %H:%M",
+                         time.gmtime(os.path.getmtime(os.path.join(out, "summary.json"))))
 
 
 def markdown_table(header, rows):

@@ -44,11 +44,8 @@ import os
 import sys
 import time
 
-from common import ROOT, arguments, check_only, curve, markdown_table, pushout_runs, run, summary
-from common import write_csv
-
-# The columns that get an error against the reference.
-COMPARED = ("p_30um_MPa", "p_corroded_MPa", "tau_last_MPa", "push_p_drop_MPa")
+from common import (ROOT, arguments, check_only, curve, markdown_table, pushout_runs, ran_utc, run,
+                    summary, write_csv)
 
 RESULTS = os.path.join(ROOT, "bench", "results")
 REFERENCE = "held_0.001"
@@ -84,32 +81,25 @@ def p_at(corrosion, x_mm):
     return float("nan")
 
 
-def compared(out):
-    """The COMPARED values of a run, unrounded (None where it has no push)."""
-    corrosion = pushout_runs.corrosion(out)
-    push = curve(out)
-    last = corrosion[-1]
-    return {"p_30um_MPa": p_at(corrosion, 0.030), "p_corroded_MPa": last["p_MPa"],
-            "tau_last_MPa": push[-1]["tau_MPa"] if push else None,
-            "push_p_drop_MPa": last["p_MPa"] - push[-1]["p_MPa"] if push else None}
-
-
 def row(name, out):
+    """The case's row of the table, and the values compared with the
+    reference's, unrounded (None where the run has no push)."""
     s = summary(out)
     corrosion = pushout_runs.corrosion(out)
     push = curve(out)
     last = corrosion[-1]
-    values = compared(out)
+    compared = {"p_30um_MPa": p_at(corrosion, 0.030), "p_corroded_MPa": last["p_MPa"],
+                "tau_last_MPa": push[-1]["tau_MPa"] if push else None,
+                "push_p_drop_MPa": last["p_MPa"] - push[-1]["p_MPa"] if push else None}
     return {"case": name, "converged": s["converged"], "corrosion_rows": len(corrosion),
             "push_rows": len(push), "newton_iterations": s["newton_iterations"],
             "factorizations": s["factorizations"], "wall_s": round(s["wall_s"], 1),
             "p_peak_MPa": round(max(r["p_MPa"] for r in corrosion), 4),
-            **{key: "" if v is None else round(v, 4) for key, v in values.items()},
+            **{key: "" if v is None else round(v, 4) for key, v in compared.items()},
             "cracked_points": int(last["cracked_points"]),
             "dissipation_Nmm": round(last["concrete_dissipation_Nmm"], 3),
             "crack_width_um": round(1e3 * last["crack_width_mm"], 2),
-            "ran_utc": time.strftime("%Y-%m-%d %H:%M", time.gmtime(
-                os.path.getmtime(os.path.join(out, "summary.json"))))}
+            "ran_utc": ran_utc(out)}, compared
 
 
 def main():
@@ -117,7 +107,7 @@ def main():
     check_only(args, list(CASES))
     scene = pushout_runs.embedded_corroded_demo(
         os.path.join(args.out, "pushout_corroded_embedded.toml"))
-    rows = []
+    rows, compared = [], {}  # compared: the case's unrounded values (row())
     for name, sets in CASES.items():
         out = os.path.join(args.out, name)
         if not args.only or name in args.only:
@@ -126,17 +116,16 @@ def main():
             code = run(args.pushout, scene, out, sets, reuse=reuse, check=False)
             print(f"{name}: exit {code}, {time.time() - start:.1f} s", flush=True)
         if os.path.exists(os.path.join(out, "summary.json")):
-            rows.append(row(name, out))
+            r, compared[name] = row(name, out)
+            rows.append(r)
     if not rows:
         raise SystemExit("cracking_reference.py: no run to tabulate in " + args.out)
     reference = next((r for r in rows if r["case"] == REFERENCE and r["converged"]), None)
-    ref_values = compared(os.path.join(args.out, REFERENCE)) if reference else None
     for r in rows:
-        values = compared(os.path.join(args.out, r["case"]))
-        for key in COMPARED:
+        for key, value in compared[r["case"]].items():
             r[key.replace("_MPa", "_error_pct")] = (
-                round(100 * (values[key] / ref_values[key] - 1), 2)
-                if ref_values and r["converged"] and values[key] is not None else "")
+                round(100 * (value / compared[REFERENCE][key] - 1), 2)
+                if reference and r["converged"] and value is not None else "")
     os.makedirs(RESULTS, exist_ok=True)
     write_csv(os.path.join(RESULTS, "cracking_reference.csv"), rows)
     with open(os.path.join(RESULTS, "cracking_reference.md"), "w") as f:

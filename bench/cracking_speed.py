@@ -86,8 +86,8 @@ import statistics
 import sys
 import time
 
-from common import (ROOT, arguments, check_only, curve, markdown_table, pushout_runs, run, summary,
-                    write_csv)
+from common import (ROOT, arguments, check_only, curve, markdown_table, pushout_runs, ran_utc, run,
+                    summary, write_csv)
 
 RESULTS = os.path.join(ROOT, "bench", "results")
 
@@ -158,6 +158,7 @@ def main():
         out = os.path.join(args.out, name)
         s = summary(out)
         step0, corrosion, push = phases(out)
+        corrosion_rows, push_rows = pushout_runs.corrosion(out), curve(out)
         rows.append({"case": name, "wall_s": round(statistics.median(walls[name]), 2),
                      "wall_s_min": round(min(walls[name]), 2),
                      "wall_s_max": round(max(walls[name]), 2), "runs": len(walls[name]),
@@ -172,13 +173,10 @@ def main():
                      "corrosion_s": corrosion, "push_s": push,
                      "s_per_iteration": round(statistics.median(walls[name]) /
                                               max(s["newton_iterations"], 1), 3),
-                     "p_peak_MPa": round(max(r["p_MPa"] for r in pushout_runs.corrosion(out)), 4),
-                     "p_corroded_MPa": round(pushout_runs.corrosion(out)[-1]["p_MPa"], 4),
-                     "tau_last_MPa": round(curve(out)[-1]["tau_MPa"], 4) if curve(out) else "",
-                     # When the row's run was made: with --reuse, an earlier
-                     # run's (an earlier build's) results may stand beside today's.
-                     "ran_utc": time.strftime("%Y-%m-%d %H:%M", time.gmtime(
-                         os.path.getmtime(os.path.join(out, "summary.json"))))})
+                     "p_peak_MPa": round(max(r["p_MPa"] for r in corrosion_rows), 4),
+                     "p_corroded_MPa": round(corrosion_rows[-1]["p_MPa"], 4),
+                     "tau_last_MPa": round(push_rows[-1]["tau_MPa"], 4) if push_rows else "",
+                     "ran_utc": ran_utc(out)})
     plane = next((r["wall_s"] for r in rows if r["case"] == "plane"), None)
     plane_full = next((r["wall_s"] for r in rows if r["case"] == "plane_full"), None)
     # The reference: the implicit cracks held to their step error, else
