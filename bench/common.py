@@ -14,14 +14,16 @@ curve, summary = pushout_runs.curve, pushout_runs.summary
 
 
 def run(pushout, scene, out, sets=(), petsc=(), reuse=False, timeout=None, check=True,
-        mpirun=None):
+        mpirun=None, stop_after=None):
     """Runs a scene (one thread per process, quiet; `mpirun`: on that many
     processes) unless `reuse` and out/ has a summary. Returns the exit code
-    (0 when reused) or None if it ran out of time."""
+    (0 when reused) or None if it ran out of `timeout`; `stop_after`: seconds
+    after which the run is stopped as by Ctrl-C (its summary.json written,
+    interrupted; pushout_runs.run)."""
     if reuse and os.path.exists(os.path.join(out, "summary.json")):
         return 0
     p = pushout_runs.run(pushout, scene, out, sets, petsc, one_thread=True, timeout=timeout,
-                         check=check, mpirun=mpirun)
+                         check=check, mpirun=mpirun, stop_after=stop_after)
     return None if p is None else p.returncode
 
 

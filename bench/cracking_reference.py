@@ -39,24 +39,32 @@ corrosion stage less p at the push's end), the cracked points and the
 concrete's dissipation after the corrosion stage, the widest surface
 crack, and the relative error of p at 30 um, p after the corrosion
 stage, the bond and the drop against held_0.001 (of the unrounded
-values). About two hours on one core (held_0.001 alone 25 min); --reuse
-keeps the converged runs already in the folder (a run that stopped is
-made again). Writes bench/results/cracking_reference.csv and .md (seed 1)
-and cracking_reference_seeds.csv and .md: on each seed IMPL-EX at 0.0025
-and at 0.0001 against the held implicit cracks at the scene's steps
-(held_25, within 0.04 % of held_0.001 on seed 1): p after the corrosion
-stage, the bond at 0.2 mm, the push's drop of p, how much of the crack
-opening after corrosion lies elsewhere (opening_moved_pct: the sum over
-crack_pattern.csv's columns of |w - w_held| over the sum of w_held), and
-how far the corrosion stage got (x_reached_um: 50 when the run completed).
-The seeds' runs at 0.0001 are stopped after an hour each (TIGHT_SECONDS):
-on some fields that tolerance meets the floor of IMPL-EX's error where the
-cover localises and takes hours. About five hours on one core with the
-seeds.
+values). Writes bench/results/cracking_reference.csv and .md (seed 1's
+cases) and cracking_reference_seeds.csv and .md, a row per seed: the held
+implicit cracks at the scene's steps (held_25; on seed 1 within 0.03 % of
+held_0.001 on p and tau): their wall time, steps taken above the tolerance
+and largest step error, IMPL-EX rescues, p after the corrosion stage, the
+bond at 0.2 mm and the push's drop of p; and for IMPL-EX at 0.0025 and at
+0.0001 (columns suffixed by the tolerance): how far its corrosion stage
+got (x_reached_um, 50 when complete), its wall time and jumps
+(implex_jumps), the relative error of those three values against
+held_25, and opening_not_shared_pct, the share of the two runs' crack
+opening after corrosion that is not common to both (crack_pattern.csv:
+the sum over columns of |w - w_held| over that of w + w_held).
+
+The seeds' runs at 0.0001 are stopped after an hour (TIGHT_SECONDS, as by
+Ctrl-C: their summary.json says interrupted): on some fields that
+tolerance meets the floor of IMPL-EX's error and takes its smallest steps
+for hours. --reuse keeps the converged runs already in the folder and
+those stopped runs (any other run that stopped is made again). Run times
+on one core: seed 1's cases some 2.6 hours (held_0.001 alone 25 min,
+implex_0.00025 23 min), the seeds' about 5 hours (each held run 22 to
+29 min, each IMPL-EX run at 0.0001 10 min to the hour's stop).
 
   bench/cracking_reference.py [--pushout PATH] [--out DIR] [--reuse] [--only CASE ...]
 """
 import csv
+import functools
 import os
 import sys
 import time
@@ -97,6 +105,9 @@ SEED_CASES = {f"seed{seed}_{name}": CASES[name] + [f"cracking.seed={seed}"]
               for seed in SEEDS for name in ON_EACH_SEED}
 # The seeds' runs at 0.0001 are stopped after this [s] (the docstring says why).
 TIGHT_SECONDS = 3600
+# Each IMPL-EX run's columns in the seeds' table (suffixed by its tolerance).
+SEED_COLUMNS = ("x_reached_um", "wall_s", "implex_jumps", "p_corroded_error_pct",
+                "tau_last_error_pct", "push_p_drop_error_pct", "opening_not_shared_pct")
 
 
 def p_at(corrosion, x_mm):
@@ -109,12 +120,16 @@ def p_at(corrosion, x_mm):
     return float("nan")
 
 
+@functools.lru_cache(maxsize=None)
+def tables(out):
+    """out/'s summary.json, corrosion.csv and curve.csv, each read once."""
+    return summary(out), pushout_runs.corrosion(out), curve(out)
+
+
 def row(name, out):
     """The case's row of the table, and the values compared with the
     reference's, unrounded (None where the run has no push)."""
-    s = summary(out)
-    corrosion = pushout_runs.corrosion(out)
-    push = curve(out)
+    s, corrosion, push = tables(out)
     last = corrosion[-1]
     compared = {"p_30um_MPa": p_at(corrosion, 0.030), "p_corroded_MPa": last["p_MPa"],
                 "tau_last_MPa": push[-1]["tau_MPa"] if push else None,
@@ -137,47 +152,60 @@ def column_openings(out):
         return {(r["x_mm"], r["y_mm"]): float(r["opening_mm"]) for r in csv.DictReader(f)}
 
 
-def opening_moved(held, other):
-    """The share of the held run's crack opening that `other` places
-    elsewhere [%]: the sum over columns of |w - w_held| over the sum of
-    w_held (0: the same crack pattern; 200: none of it in common)."""
+def opening_not_shared(held, other):
+    """The share of two runs' crack opening after corrosion that is not
+    common to both [%]: the sum over columns of |w - w_held| over the sum
+    of w + w_held (0: the same openings in the same columns; 100: no
+    column open in both)."""
     a, b = column_openings(held), column_openings(other)
-    moved = sum(abs(b.get(c, 0.0) - a.get(c, 0.0)) for c in set(a) | set(b))
-    return round(100 * moved / sum(a.values()), 1)
+    columns = set(a) | set(b)
+    differ = sum(abs(b.get(c, 0.0) - a.get(c, 0.0)) for c in columns)
+    return round(100 * differ / sum(a.get(c, 0.0) + b.get(c, 0.0) for c in columns), 1)
+
+
+def stopped(out):
+    """Whether out/ holds a run stopped before its end (TIGHT_SECONDS or by
+    hand: its summary.json says interrupted), to keep with --reuse."""
+    try:
+        return bool(summary(out).get("interrupted", False))
+    except (OSError, ValueError):
+        return False
 
 
 def seed_rows(out):
     """Each seed's runs (ON_EACH_SEED, from out/): the held implicit
-    cracks' values, and each IMPL-EX run's beside them with its relative
-    error [%] and opening_moved_pct."""
+    cracks' values, and each IMPL-EX run's beside them (SEED_COLUMNS)."""
     rows = []
     for seed in (1,) + SEEDS:
         runs = {name: os.path.join(out, name if seed == 1 else f"seed{seed}_{name}")
                 for name in ON_EACH_SEED}
         if not pushout_runs.converged_before(runs["held_25"]):
             continue
-        values, reached = {}, {}
-        for name, o in runs.items():
-            if pushout_runs.converged_before(o):
-                _, values[name] = row(name, o)
-            if os.path.exists(os.path.join(o, "corrosion.csv")):
-                reached[name] = round(1e3 * pushout_runs.corrosion(o)[-1]["penetration_mm"], 2)
-        held = values["held_25"]
-        r = {"seed": seed, "wall_s_held": round(summary(runs["held_25"])["wall_s"], 1)}
-        r.update({key + "_held": round(held[key], 4) for key in COMPARED})
+        _, held = row("held_25", runs["held_25"])
+        s = tables(runs["held_25"])[0]
+        r = {"seed": seed, "wall_s_held": round(s["wall_s"], 1),
+             "implicit_jumps_held": s["implicit_jumps"],
+             "implicit_error_max_held": round(s["implicit_error_max"], 4),
+             "implex_rescues_held": s["implex_rescues"],
+             **{key + "_held": round(held[key], 4) for key in COMPARED}}
         for name in ON_EACH_SEED[1:]:
             tolerance = name.split("_")[1]
-            r[f"x_reached_um_{tolerance}"] = reached.get(name, "")
-            if name not in values:
-                r.update({f"{key}_{tolerance}": "" for key in
-                          ["wall_s"] + [k.replace("_MPa", "_error_pct") for k in COMPARED] +
-                          ["opening_moved_pct"]})
-                continue
-            r[f"wall_s_{tolerance}"] = round(summary(runs[name])["wall_s"], 1)
-            for key in COMPARED:
-                r[key.replace("_MPa", f"_error_pct_{tolerance}")] = round(
-                    100 * (values[name][key] / held[key] - 1), 2)
-            r[f"opening_moved_pct_{tolerance}"] = opening_moved(runs["held_25"], runs[name])
+            columns = {f"{c}_{tolerance}": "" for c in SEED_COLUMNS}
+            o = runs[name]
+            if pushout_runs.converged_before(o) or stopped(o):
+                s, corrosion, _ = tables(o)
+                columns.update({f"x_reached_um_{tolerance}":
+                                round(1e3 * corrosion[-1]["penetration_mm"], 2),
+                                f"wall_s_{tolerance}": round(s["wall_s"], 1),
+                                f"implex_jumps_{tolerance}": s["implex_jumps"]})
+            if pushout_runs.converged_before(o):
+                _, values = row(name, o)
+                for key in COMPARED:
+                    columns[key.replace("_MPa", f"_error_pct_{tolerance}")] = round(
+                        100 * (values[key] / held[key] - 1), 2)
+                columns[f"opening_not_shared_pct_{tolerance}"] = opening_not_shared(
+                    runs["held_25"], o)
+            r.update(columns)
         rows.append(r)
     return rows
 
@@ -202,9 +230,10 @@ def main():
         if not args.only or name in args.only:
             out = os.path.join(args.out, name)
             start = time.time()
-            reuse = args.reuse and pushout_runs.converged_before(out)
-            timeout = TIGHT_SECONDS if name in SEED_CASES and name.endswith("0.0001") else None
-            code = run(args.pushout, scene, out, sets, reuse=reuse, check=False, timeout=timeout)
+            capped = name in SEED_CASES and name.endswith("0.0001")
+            reuse = args.reuse and (pushout_runs.converged_before(out) or capped and stopped(out))
+            code = run(args.pushout, scene, out, sets, reuse=reuse, check=False,
+                       stop_after=TIGHT_SECONDS if capped else None)
             print(f"{name}: exit {code}, {time.time() - start:.1f} s", flush=True)
     rows, compared = [], {}  # compared: the case's unrounded values (row())
     for name in CASES:

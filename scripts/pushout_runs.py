@@ -53,9 +53,11 @@ def command(pushout, scene, out, sets=(), petsc=(), quiet=True):
 
 
 def run(pushout, scene, out, sets=(), petsc=(), one_thread=False, timeout=None, check=False,
-        mpirun=None, quiet=True):
+        mpirun=None, quiet=True, stop_after=None):
     """Runs a scene; returns the CompletedProcess (output captured), or None if it ran
-    out of `timeout` seconds. `one_thread`: BLAS on one core (runs side by side);
+    out of `timeout` seconds (killed). `stop_after`: seconds after which it is sent
+    SIGTERM instead, so that it writes its summary.json as interrupted (and the
+    CompletedProcess is returned). `one_thread`: BLAS on one core (runs side by side);
     `mpirun`: a number of processes; `check`: raise RunError on a non-zero exit;
     `quiet` false: with the progress output (in the CompletedProcess's stdout)."""
     cmd = command(pushout, scene, out, sets, petsc, quiet)
@@ -63,12 +65,28 @@ def run(pushout, scene, out, sets=(), petsc=(), one_thread=False, timeout=None, 
         cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-n", str(mpirun)] + cmd
     env = dict(os.environ, OPENBLAS_NUM_THREADS="1") if one_thread else None
     try:
-        p = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=timeout)
+        if stop_after is None:
+            p = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=timeout)
+        else:
+            p = stopped_after(cmd, env, stop_after)
     except subprocess.TimeoutExpired:
         return None
     if check and p.returncode != 0:
         raise RunError(f"{' '.join(cmd)}\nexit {p.returncode}\n{p.stdout}\n{p.stderr}")
     return p
+
+
+def stopped_after(cmd, env, seconds):
+    """Runs cmd; sends it SIGTERM if it is still running after `seconds`
+    and waits for it to write its outputs. The CompletedProcess."""
+    with subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                          env=env) as proc:
+        try:
+            stdout, stderr = proc.communicate(timeout=seconds)
+        except subprocess.TimeoutExpired:
+            proc.terminate()
+            stdout, stderr = proc.communicate()
+    return subprocess.CompletedProcess(cmd, proc.returncode, stdout, stderr)
 
 
 def curve(out, name="curve.csv"):

@@ -114,8 +114,8 @@ std::vector<KeyDef> integration_keys()
        "-",
        "implex: a step is cut (and retried in halves) when its stress differs from the crack "
        "band's own at its strain by more than this, in the energy norm over the cracking "
-       "concrete; at 0.0025 the main crack is a converged integration's and the peaks within "
-       "a few per cent, but where neighbouring cracks compete the pattern may differ (the "
+       "concrete; at 0.0025 the widest surface crack and the peaks within a few per cent of a "
+       "converged integration's, but where neighbouring cracks compete the pattern may differ (the "
        "corroded demo's residual bond -2.3 to +9.7 % off over five seeds: docs/cracking.md, "
        "\"How far to trust a corroded run\"); 0.01 takes half the time but may pick another "
        "crack where the concrete localises or miss a crack's snap (docs/cracking.md, "
