@@ -58,7 +58,7 @@ tolerance meets the floor of IMPL-EX's error and takes its smallest steps
 for hours. --reuse keeps the converged runs already in the folder and
 those stopped runs (any other run that stopped is made again). Run times
 on one core: seed 1's cases some 2.6 hours (held_0.001 alone 25 min,
-implex_0.00025 23 min), the seeds' about 5 hours (each held run 22 to
+implex_0.00025 23 min), the seeds' about 4 hours (each held run 22 to
 29 min, each IMPL-EX run at 0.0001 10 min to the hour's stop).
 
   bench/cracking_reference.py [--pushout PATH] [--out DIR] [--reuse] [--only CASE ...]
@@ -259,8 +259,9 @@ def main():
         write_table("cracking_reference_seeds", "IMPL-EX against the held implicit cracks on five fields",
                     command + "; on each seed the held implicit cracks at the scene's steps "
                     "(held_25) and IMPL-EX at its tolerance 0.0025 and 0.0001: its relative "
-                    "error against held_25 in the _error_pct columns, and opening_moved_pct the "
-                    "share of held_25's crack opening after corrosion that it places in other "
+                    "error against held_25 in the _error_pct columns, and opening_not_shared_pct "
+                    "the share of the two runs' crack opening after corrosion not common to "
+                    "both, sum |w - w_held| / sum (w + w_held) over crack_pattern.csv's "
                     "columns).", seeds)
 
 

@@ -55,9 +55,9 @@ def command(pushout, scene, out, sets=(), petsc=(), quiet=True):
 def run(pushout, scene, out, sets=(), petsc=(), one_thread=False, timeout=None, check=False,
         mpirun=None, quiet=True, stop_after=None):
     """Runs a scene; returns the CompletedProcess (output captured), or None if it ran
-    out of `timeout` seconds (killed). `stop_after`: seconds after which it is sent
-    SIGTERM instead, so that it writes its summary.json as interrupted (and the
-    CompletedProcess is returned). `one_thread`: BLAS on one core (runs side by side);
+    out of `timeout` seconds (killed). `stop_after` (in place of `timeout`): seconds
+    after which it is sent SIGTERM instead, so that it writes its summary.json as
+    interrupted (and the CompletedProcess is returned). `one_thread`: BLAS on one core (runs side by side);
     `mpirun`: a number of processes; `check`: raise RunError on a non-zero exit;
     `quiet` false: with the progress output (in the CompletedProcess's stdout)."""
     cmd = command(pushout, scene, out, sets, petsc, quiet)
@@ -78,14 +78,19 @@ def run(pushout, scene, out, sets=(), petsc=(), one_thread=False, timeout=None, 
 
 def stopped_after(cmd, env, seconds):
     """Runs cmd; sends it SIGTERM if it is still running after `seconds`
-    and waits for it to write its outputs. The CompletedProcess."""
+    and waits for it to write its outputs (a minute, then SIGKILL). The
+    CompletedProcess."""
     with subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                           env=env) as proc:
         try:
             stdout, stderr = proc.communicate(timeout=seconds)
         except subprocess.TimeoutExpired:
             proc.terminate()
-            stdout, stderr = proc.communicate()
+            try:
+                stdout, stderr = proc.communicate(timeout=60)  # it writes its outputs
+            except subprocess.TimeoutExpired:
+                proc.kill()
+                stdout, stderr = proc.communicate()
     return subprocess.CompletedProcess(cmd, proc.returncode, stdout, stderr)
 
 
