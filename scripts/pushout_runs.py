@@ -57,9 +57,10 @@ def run(pushout, scene, out, sets=(), petsc=(), one_thread=False, timeout=None, 
     """Runs a scene; returns the CompletedProcess (output captured), or None if it ran
     out of `timeout` seconds (killed). `stop_after` (in place of `timeout`): seconds
     after which it is sent SIGTERM instead, so that it writes its summary.json as
-    interrupted (and the CompletedProcess is returned). `one_thread`: BLAS on one core (runs side by side);
-    `mpirun`: a number of processes; `check`: raise RunError on a non-zero exit;
-    `quiet` false: with the progress output (in the CompletedProcess's stdout)."""
+    interrupted (and the CompletedProcess is returned). `one_thread`: BLAS on one
+    core (runs side by side); `mpirun`: a number of processes; `check`: raise
+    RunError on a non-zero exit; `quiet` false: with the progress output (in the
+    CompletedProcess's stdout)."""
     cmd = command(pushout, scene, out, sets, petsc, quiet)
     if mpirun:
         cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-n", str(mpirun)] + cmd
@@ -111,12 +112,17 @@ def summary(out):
         return json.load(f)
 
 
-def converged_before(out):
-    """Whether out/ already holds a converged run (to reuse it)."""
+def summary_says(out, key):
+    """summary.json's `key` in out/ (false where there is no readable summary)."""
     try:
-        return summary(out).get("converged", False)
+        return bool(summary(out).get(key, False))
     except (OSError, ValueError):
         return False
+
+
+def converged_before(out):
+    """Whether out/ already holds a converged run (to reuse it)."""
+    return summary_says(out, "converged")
 
 
 def short_key_names(keys):
