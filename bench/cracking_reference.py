@@ -64,8 +64,9 @@ tolerance meets the floor of IMPL-EX's error and takes its smallest steps
 for hours. --reuse keeps the converged runs already in the folder and
 those stopped runs (any other run that stopped is made again). Run times
 on one core: seed 1's cases some 2.6 hours (held_0.001 alone 25 min,
-implex_0.00025 23 min), the seeds' about 4 hours (each held run 22 to
-29 min, each IMPL-EX run at 0.0001 10 min to the hour's stop).
+implex_0.00025 23 min), the seeds' about 5 hours (each held run 22 to
+29 min, each IMPL-EX run at 0.0001 10 min to the hour's stop, seeds 3
+and 5's held_0.001 25 to 30 min each).
 
   bench/cracking_reference.py [--pushout PATH] [--out DIR] [--reuse] [--only CASE ...]
 """
