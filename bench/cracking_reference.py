@@ -160,6 +160,11 @@ def row(name, out):
             "ran_utc": ran_utc(out)}, compared
 
 
+def error_pct(value, reference):
+    """value's relative error against reference [%], to 0.01."""
+    return round(100 * (value / reference - 1), 2)
+
+
 def column_openings(out):
     """crack_pattern.csv: each column's crack opening after the corrosion
     stage [mm], by the column's centre."""
@@ -189,8 +194,7 @@ def against_finer_held(held_25, held, finer):
     if pushout_runs.converged_before(finer):
         _, values = row(REFERENCE, finer)
         for key in COMPARED:
-            columns[key.replace("_MPa", "_error_pct_held_0.001")] = round(
-                100 * (held[key] / values[key] - 1), 2)
+            columns[key.replace("_MPa", "_error_pct_held_0.001")] = error_pct(held[key], values[key])
         columns["opening_not_shared_pct_held_0.001"] = opening_not_shared(finer, held_25)
     return columns
 
@@ -228,8 +232,8 @@ def seed_rows(out):
             if converged:
                 _, values = row(name, o)
                 for key in COMPARED:
-                    columns[key.replace("_MPa", f"_error_pct_{tolerance}")] = round(
-                        100 * (values[key] / held[key] - 1), 2)
+                    columns[key.replace("_MPa", f"_error_pct_{tolerance}")] = error_pct(values[key],
+                                                                                        held[key])
                 columns[f"opening_not_shared_pct_{tolerance}"] = opening_not_shared(
                     runs["held_25"], o)
             r.update(columns)
@@ -278,7 +282,7 @@ def main():
     for r in rows:
         for key, value in compared[r["case"]].items():
             r[key.replace("_MPa", "_error_pct")] = (
-                round(100 * (value / compared[REFERENCE][key] - 1), 2)
+                error_pct(value, compared[REFERENCE][key])
                 if reference and r["converged"] and value is not None else "")
     command = "Made by `bench/cracking_reference.py " + " ".join(sys.argv[1:]) + "` (one thread, this machine"
     write_table("cracking_reference", "The cracks' two integrations against their steps",
