@@ -14,8 +14,8 @@ import os
 import subprocess
 import sys
 
-from common import (OUT_ROOT, TIGHT_NEWTON, check, corrosion, curve, mpirun, newton_bound, out_dir, solved_unknowns,
-                    summary)
+from common import (OUT_ROOT, TIGHT_NEWTON, check, corrosion, curve, mpi_env, mpirun, newton_bound, out_dir,
+                    solved_unknowns, summary)
 
 PUSHOUT = sys.argv[1]
 MPIRUN = mpirun()
@@ -53,19 +53,6 @@ cases = {
                   "corrosion.penetration=0.012", "corrosion.steps=4", "loading.steps=2",
                   "loading.push_displacement=0.01"]),
 }
-
-
-def mpi_env(n):
-    """The runs' environment. More processes than cores (3 on a machine of
-    two) wait for each other's messages by polling: without yielding the
-    core to the process that has work, each exchange waits out a slice of
-    the scheduler (the friction_adhesion case on 3 processes of 2 cores,
-    machine otherwise idle: 84 s, against 1.0 s when yielding)."""
-    env = dict(os.environ, OMPI_MCA_btl_vader_single_copy_mechanism="none")
-    if n > len(os.sched_getaffinity(0)):  # the cores this test may use, as nproc counts them
-        env["OMPI_MCA_mpi_yield_when_idle"] = "1"
-    return env
-
 
 # Options after the scene (PETSc's), per case.
 petsc = {"embedded": TIGHT_NEWTON}
