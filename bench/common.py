@@ -16,15 +16,29 @@ curve, summary = pushout_runs.curve, pushout_runs.summary
 def run(pushout, scene, out, sets=(), petsc=(), reuse=False, timeout=None, check=True,
         mpirun=None, stop_after=None):
     """Runs a scene (one thread per process, quiet; `mpirun`: on that many
-    processes) unless `reuse` and out/ has a summary. Returns the exit code
-    (0 when reused) or None if it ran out of `timeout`; `stop_after`: seconds
-    after which the run is stopped as by Ctrl-C (its summary.json written,
-    interrupted; pushout_runs.run)."""
-    if reuse and os.path.exists(os.path.join(out, "summary.json")):
+    processes) unless `reuse` and out/ holds a finished run (reused_run).
+    Returns the exit code (0 when reused) or None if it ran out of
+    `timeout`; `stop_after`: seconds after which the run is stopped as by
+    Ctrl-C (its summary.json written, interrupted; pushout_runs.run)."""
+    if reuse and reused_run(out, stop_after):
         return 0
     p = pushout_runs.run(pushout, scene, out, sets, petsc, one_thread=True, timeout=timeout,
                          check=check, mpirun=mpirun, stop_after=stop_after)
     return None if p is None else p.returncode
+
+
+def reused_run(out, stop_after=None):
+    """Whether --reuse keeps the run in out/: it has a summary and was not
+    interrupted, or was interrupted by the bench's own `stop_after` (it ran
+    that long). A run stopped by hand (Ctrl-C, a kill) runs again: its rows
+    end wherever it was stopped, not where the bench asked."""
+    try:
+        s = summary(out)
+    except (OSError, ValueError):
+        return False
+    if not s.get("interrupted", False):
+        return True
+    return stop_after is not None and s.get("wall_s", 0.0) >= 0.99 * stop_after
 
 
 def save_figure_and_table(fig, out_dir, name, rows):
@@ -51,7 +65,7 @@ def markdown_table(header, rows):
 
 def arguments(doc, out_folder, repeat=False, studies=None, options=()):
     """The options of a bench that runs cases into results/OUT_FOLDER:
-    --pushout, --out, --reuse (keep runs that have a summary) and --only
+    --pushout, --out, --reuse (keep the finished runs: reused_run) and --only
     (the cases to run), with `repeat` --repeat N (rounds of the timed
     cases), with `studies` --study (one of them, the first by default), and
     the bench's own `options` ((flag, argparse keywords) pairs); `doc` is the

@@ -19,7 +19,7 @@ import subprocess
 import sys
 import time
 
-from common import COARSE_MESH, EXP_SOFT, FRICTION_2, OUT_ROOT, check, curve, mpirun, out_dir
+from common import COARSE_MESH, EXP_SOFT, FRICTION_2, OUT_ROOT, check, curve, mpi_env, mpirun, out_dir
 
 PUSHOUT = sys.argv[1]
 MPIRUN = mpirun()
@@ -49,8 +49,7 @@ def run(name, processes, extra=(), env=None, prepare=None):
     t0 = time.time()
     p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                          start_new_session=True,
-                         env=dict(os.environ, OMPI_MCA_btl_vader_single_copy_mechanism="none",
-                                  **(env or {})))
+                         env=dict(mpi_env(processes), **(env or {})))
     try:
         _, err = p.communicate(timeout=60)
     except subprocess.TimeoutExpired:

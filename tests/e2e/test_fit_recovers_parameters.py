@@ -44,7 +44,7 @@ import random
 import re
 import subprocess
 
-from common import BLOCKS_MESH, PUSHOUT, SOURCE, check, curve, mpirun, out_dir, run
+from common import BLOCKS_MESH, PUSHOUT, SOURCE, check, curve, mpi_env, mpirun, out_dir, run
 
 SCENE = os.path.join(SOURCE, "demo", "pushout_friction_adhesion.toml")
 COARSE = ["mesh.elements_per_quarter=4", "mesh.elements_through_thickness=2", "loading.steps=40"]
@@ -107,7 +107,7 @@ def fit(out, data, free=tuple(START), extra=(), processes=None, start=START):
     if processes:
         cmd = [MPIRUN, "--allow-run-as-root", "--oversubscribe", "-n", str(processes)] + cmd
     return subprocess.run(cmd, capture_output=True, text=True, timeout=900,
-                          env=dict(os.environ, OMPI_MCA_btl_vader_single_copy_mechanism="none"))
+                          env=mpi_env(processes or 1))
 
 
 def measured(truth, name, level=0.01):
@@ -410,7 +410,7 @@ for per_quarter, level in ((4, 0.01), (8, 0.001)):
         if processes > 1:
             cmd = [MPIRUN, "--allow-run-as-root", "--oversubscribe", "-n", str(processes)] + cmd
         p = subprocess.run(cmd, capture_output=True, text=True, timeout=900,
-                           env=dict(os.environ, OMPI_MCA_btl_vader_single_copy_mechanism="none"))
+                           env=mpi_env(processes))
         with open(os.path.join(out6, "fit.json")) as f:
             r6 = json.load(f)
         offset = r6["relative_offset"]

@@ -46,14 +46,14 @@ import time
 import h5py
 import numpy as np
 
-from common import (PUSHOUT, SOURCE, check, corrosion, cracking_corroded_demo, curve, mpirun, newton_bound,
-                    out_dir, run, solved_unknowns, summary)
+from common import (PUSHOUT, SOURCE, check, corrosion, cracking_corroded_demo, curve, mpi_env, mpirun,
+                    newton_bound, out_dir, run, solved_unknowns, summary)
 
 SCENE = os.path.join(SOURCE, "demo", "pushout_friction.toml")
 COARSE = ["--set", "mesh.elements_per_quarter=4", "--set", "mesh.elements_through_thickness=2"]
 VARY = ["--vary", "interface.0.mu=0.2,0.4", "--vary", "loading.temperature_change=-5,-25"]
 MPI = [mpirun(), "--allow-run-as-root", "--oversubscribe"]
-ENV = dict(os.environ, OMPI_MCA_btl_vader_single_copy_mechanism="none")
+ENV = mpi_env(1)
 
 
 def sweep(out, extra=(), processes=None, vary=VARY, env=None):
@@ -61,7 +61,7 @@ def sweep(out, extra=(), processes=None, vary=VARY, env=None):
     if processes:
         cmd = MPI + ["-n", str(processes)] + cmd
     return subprocess.run(cmd, capture_output=True, text=True, timeout=600,
-                          env=dict(ENV, **(env or {})))
+                          env=dict(mpi_env(processes or 1), **(env or {})))
 
 
 def table(out):
