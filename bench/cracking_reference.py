@@ -32,7 +32,16 @@ paper's mesh, seed 1). Cases (one thread, one after the other):
                   fields, and whether a tighter tolerance closes it there;
   seedN_held_0.001 (N = 2 to 5)
                   held_0.001 on the other fields: whether held_25 is
-                  converged there too.
+                  converged there too;
+  seedN_held_25_covC, seedN_implex_0.0025_covC (N = 1 to 5, C = 0.1485
+                  and 0.1515)
+                  held_25 and implex_0.0025 on the field of seed N with
+                  its scatter (cracking.strength_cov, 0.15 in the scene)
+                  changed by 1 %: where the two integrations' crack
+                  patterns differ, whether each keeps its own under a
+                  change of the field far below what is known of any
+                  concrete (IMPL-EX's error) or the implicit cracks then
+                  take IMPL-EX's (two branches near to equally likely).
 
 For each: the corrosion stage's rows and the push's, Newton iterations,
 factorisations, wall time, the peak pressure, the pressure at x = 30 um
@@ -56,7 +65,14 @@ opening after corrosion that is not common to both (crack_pattern.csv:
 the sum over columns of |w - w_held| over that of w + w_held); and where
 held_0.001 ran on the seed (seedN_held_0.001), held_25's relative error
 against it (the _error_pct_held_0.001 columns) and the two's opening not
-shared.
+shared. And cracking_reference_perturbed.csv and .md, a row per seed and
+changed scatter: the held run's bond against the seed's held_25
+(tau_change_pct_held) and the share of its opening not shared with
+held_25 and with implex_0.0025 of the unchanged field (which pattern it
+took: pattern_held, "held_25's" or "IMPL-EX's", the one it shares more
+with), and IMPL-EX's on the changed field against the held run on it
+(tau_error_pct_implex, opening_not_shared_pct_implex) and against its
+own run on the unchanged field (opening_not_shared_pct_implex_unchanged).
 
 The seeds' runs at 0.0001 are stopped after an hour (TIGHT_SECONDS, as by
 Ctrl-C: their summary.json says interrupted): on some fields that
@@ -66,7 +82,8 @@ those stopped runs (any other run that stopped is made again). Run times
 on one core: seed 1's cases some 2.6 hours (held_0.001 alone 25 min,
 implex_0.00025 23 min), the seeds' about 6.5 hours (each held_25 22 to
 29 min, each held_0.001 25 to 30 min, each IMPL-EX run at 0.0001 10 min
-to the hour's stop).
+to the hour's stop), the changed fields' about 4 hours (each held run 16
+to 29 min).
 
   bench/cracking_reference.py [--pushout PATH] [--out DIR] [--reuse] [--only CASE ...]
 """
@@ -116,6 +133,13 @@ SEED_CASES = {f"seed{seed}_{name}": CASES[name] + [f"cracking.seed={seed}"]
               for seed in SEEDS for name in ON_EACH_SEED}
 SEED_CASES.update({f"seed{seed}_held_0.001": CASES["held_0.001"] + [f"cracking.seed={seed}"]
                    for seed in CROSS_CHECKED})
+# The fields changed by 1 % of their scatter (the scene's strength_cov 0.15):
+# each seed's held_25 and implex_0.0025 again on each.
+PERTURBED_COVS = ("0.1485", "0.1515")
+PERTURBED = ("held_25", "implex_0.0025")
+SEED_CASES.update({f"seed{seed}_{name}_cov{cov}": CASES[name] + [f"cracking.seed={seed}",
+                                                                   f"cracking.strength_cov={cov}"]
+                   for seed in (1,) + SEEDS for cov in PERTURBED_COVS for name in PERTURBED})
 # The seeds' runs at 0.0001 are stopped after TIGHT_SECONDS (the docstring
 # says why); --reuse keeps them stopped.
 CAPPED = {f"seed{seed}_implex_0.0001" for seed in SEEDS}
@@ -204,8 +228,7 @@ def seed_rows(out):
     cracks' values, and each IMPL-EX run's beside them (SEED_COLUMNS)."""
     rows = []
     for seed in (1,) + SEEDS:
-        runs = {name: os.path.join(out, name if seed == 1 else f"seed{seed}_{name}")
-                for name in ON_EACH_SEED}
+        runs = {name: seed_run(out, seed, name) for name in ON_EACH_SEED}
         if not pushout_runs.converged_before(runs["held_25"]):
             continue
         _, held = row("held_25", runs["held_25"])
@@ -216,8 +239,7 @@ def seed_rows(out):
              "implex_rescues_held": s["implex_rescues"],
              **{key + "_held": round(held[key], 4) for key in COMPARED}}
         r.update(against_finer_held(runs["held_25"], held,
-                                    os.path.join(out, REFERENCE if seed == 1
-                                                 else f"seed{seed}_{REFERENCE}")))
+                                    seed_run(out, seed, REFERENCE)))
         for name in ON_EACH_SEED[1:]:
             tolerance = name.split("_")[1]
             columns = {f"{c}_{tolerance}": "" for c in SEED_COLUMNS}
@@ -238,6 +260,48 @@ def seed_rows(out):
                     runs["held_25"], o)
             r.update(columns)
         rows.append(r)
+    return rows
+
+
+def seed_run(out, seed, name):
+    """The folder of case `name` (a name of CASES, perhaps with a suffix)
+    on seed `seed` in out/ (seed 1's unchanged field: the name alone)."""
+    return os.path.join(out, name if seed == 1 and not name.endswith(PERTURBED_COVS)
+                        else f"seed{seed}_{name}")
+
+
+def perturbed_rows(out):
+    """A row per seed and changed scatter whose held run converged: which
+    crack pattern the held implicit cracks take there, and IMPL-EX's
+    distance from them on the same changed field (the module's docstring)."""
+    rows = []
+    for seed in (1,) + SEEDS:
+        held, implex = seed_run(out, seed, "held_25"), seed_run(out, seed, "implex_0.0025")
+        if not (pushout_runs.converged_before(held) and pushout_runs.converged_before(implex)):
+            continue
+        tau_held = row("held_25", held)[1]["tau_last_MPa"]
+        for cov in PERTURBED_COVS:
+            held_c = seed_run(out, seed, f"held_25_cov{cov}")
+            implex_c = seed_run(out, seed, f"implex_0.0025_cov{cov}")
+            if not pushout_runs.converged_before(held_c):
+                continue
+            s, values = tables(held_c)[0], row("held_25", held_c)[1]
+            with_held, with_implex = opening_not_shared(held, held_c), opening_not_shared(implex, held_c)
+            r = {"seed": seed, "strength_cov": cov, "wall_s_held": round(s["wall_s"], 1),
+                 "tau_last_MPa_held": round(values["tau_last_MPa"], 4),
+                 "tau_change_pct_held": error_pct(values["tau_last_MPa"], tau_held),
+                 "opening_not_shared_pct_with_held_25": with_held,
+                 "opening_not_shared_pct_with_implex_0.0025": with_implex,
+                 "pattern_held": "held_25's" if with_held <= with_implex else "IMPL-EX's",
+                 "tau_error_pct_implex": "", "opening_not_shared_pct_implex": "",
+                 "opening_not_shared_pct_implex_unchanged": ""}
+            if pushout_runs.converged_before(implex_c):
+                r.update({"tau_error_pct_implex": error_pct(row("implex", implex_c)[1]["tau_last_MPa"],
+                                                            values["tau_last_MPa"]),
+                          "opening_not_shared_pct_implex": opening_not_shared(held_c, implex_c),
+                          "opening_not_shared_pct_implex_unchanged": opening_not_shared(implex,
+                                                                                        implex_c)})
+            rows.append(r)
     return rows
 
 
@@ -299,6 +363,16 @@ def main():
                     "both, sum |w - w_held| / sum (w + w_held) over crack_pattern.csv's "
                     "columns); the _held_0.001 columns: held_25 against the same field's "
                     "held_0.001, where it ran).", seeds)
+    perturbed = perturbed_rows(args.out)
+    if perturbed:
+        write_table("cracking_reference_perturbed",
+                    "The held implicit cracks and IMPL-EX on fields changed by 1 % of their scatter",
+                    command + "; each seed's field with cracking.strength_cov 0.1485 and 0.1515 "
+                    "instead of 0.15: the held run's bond against the seed's held_25 and the share "
+                    "of its crack opening after corrosion not shared with held_25 and with "
+                    "implex_0.0025 of the unchanged field (pattern_held: the one it shares more "
+                    "with); IMPL-EX on the changed field against the held run on it, and its "
+                    "opening not shared with its own run on the unchanged field).", perturbed)
 
 
 if __name__ == "__main__":
