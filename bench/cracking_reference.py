@@ -82,8 +82,8 @@ those stopped runs (any other run that stopped is made again). Run times
 on one core: seed 1's cases some 2.6 hours (held_0.001 alone 25 min,
 implex_0.00025 23 min), the seeds' about 6.5 hours (each held_25 22 to
 29 min, each held_0.001 25 to 30 min, each IMPL-EX run at 0.0001 10 min
-to the hour's stop), the changed fields' about 4 hours (each held run 16
-to 29 min).
+to the hour's stop), the changed fields' about 3 hours (each held run 15
+to 17 min, each IMPL-EX run 1 to 2 min).
 
   bench/cracking_reference.py [--pushout PATH] [--out DIR] [--reuse] [--only CASE ...]
 """
