@@ -85,6 +85,11 @@ for fs in proc sys dev dev/pts; do
   mounted+=("$root/$fs")
 done
 cp /etc/resolv.conf "$root/etc/resolv.conf"
+# An installed Debian system has /etc/hosts; mmdebstrap's root has none. Without
+# it every MPI start (Open MPI's hwloc probes for X displays) asks the DNS
+# server for "localhost", and a query left unanswered costs the resolver's 5 s:
+# e2e_bad_input_fails_cleanly took 78 s in such a root against 6 s with this file.
+printf '127.0.0.1\tlocalhost\n::1\t\tlocalhost ip6-localhost ip6-loopback\n' >"$root/etc/hosts"
 
 # Runs a command in the root as a new user's shell would (root, no sudo).
 in_root() {
