@@ -151,10 +151,10 @@ def mpi_env(n):
     """The environment of a run on n processes under mpirun (shared memory
     without single-copy, which a container may refuse). More processes
     than cores (3 on a machine of two) wait for each other's messages by
-    polling: without yielding the
-    core to the process that has work, each exchange waits out a slice of
-    the scheduler (the friction_adhesion case on 3 processes of 2 cores,
-    machine otherwise idle: 84 s, against 1.0 s when yielding)."""
+    polling: without yielding the core to the process that has work, each
+    exchange waits out a slice of the scheduler (the friction_adhesion
+    case on 3 processes of 2 cores, machine otherwise idle: 84 s, against
+    1.0 s when yielding)."""
     env = dict(os.environ, OMPI_MCA_btl_vader_single_copy_mechanism="none")
     if n > len(os.sched_getaffinity(0)):  # the cores it may use, as nproc counts them
         env["OMPI_MCA_mpi_yield_when_idle"] = "1"
