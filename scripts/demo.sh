@@ -3,7 +3,7 @@
 # demo/pushout_friction.toml, into results/pushout_friction/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup.sh
+scripts/setup.sh pushout # the program alone: the unit tests are scripts/test.sh's
 out=results/pushout_friction
 build/pushout run demo/pushout_friction.toml --out "$out" "$@"
 echo "curve: $out/curve.csv  plot: $out/curve.png  summary: $out/summary.json"

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Installs what is missing (Debian 12 packages), configures and builds
-# pushout in build/. Idempotent: installs nothing that is there, rebuilds
-# only what changed. Used by scripts/demo.sh and scripts/test.sh.
+# pushout in build/: every target, or only those named
+# (scripts/setup.sh pushout: the program without the unit tests, as
+# scripts/demo.sh builds it). Idempotent: installs nothing that is there,
+# rebuilds only what changed. Used by scripts/demo.sh and scripts/test.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -39,7 +41,9 @@ fi
 # The compiler's words but the progress lines; a failed build fails here
 # (an older build/pushout must not stand in for it).
 status=0
-cmake --build build -j"$(nproc)" >build/build.log 2>&1 || status=$?
+targets=()
+(($#)) && targets=(--target "$@")
+cmake --build build -j"$(nproc)" "${targets[@]}" >build/build.log 2>&1 || status=$?
 grep -vE '^\[ *[0-9]+%\]|^(Consolidate|-- )' build/build.log >&2 || true
 if [ "$status" -ne 0 ] || [ ! -x build/pushout ]; then
   echo "setup: build failed (build/build.log)" >&2
