@@ -77,6 +77,23 @@ double chord(const std::array<double, 8>& o, double px, double py, double tx, do
   }
   return hi > lo ? hi - lo : 0.0;
 }
+/// The outer faces' indices in a record: the square's x = 0, x = W, y = 0
+/// and y = W, and the circle about the tube axis.
+constexpr int circle_face = 4;
+
+/// Where a crack through the face column at (x, y), `depth` below face
+/// `index`, meets the face: moved out along the face's normal [mm].
+std::array<double, 2> mouth_of(int index, double x, double y, double depth,
+                               std::array<double, 2> axis)
+{
+  if (index == circle_face)
+  {
+    const double r = std::hypot(x - axis[0], y - axis[1]);
+    return {x + depth * (x - axis[0]) / r, y + depth * (y - axis[1]) / r};
+  }
+  constexpr double out[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
+  return {x + depth * out[index][0], y + depth * out[index][1]};
+}
 } // namespace
 
 void BulkCracking::place_cells(const Geometry& slice, const std::vector<double>& positions)
@@ -141,7 +158,7 @@ void BulkCracking::place_cells(const Geometry& slice, const std::vector<double>&
                   { return std::hypot(a - _axis[0], b - _axis[1]) - W / 2; }))
       {
         const double phi = std::atan2(p.y - _axis[1], p.x - _axis[0]);
-        add_face(0, -std::sin(phi), std::cos(phi));
+        add_face(circle_face, -std::sin(phi), std::cos(phi));
       }
       continue;
     }
@@ -222,7 +239,8 @@ void BulkCracking::read_surface(CrackingTotals& t) const
       if (std::get<0>(key) < 0)
         t.columns.push_back(c);
       else
-        faces.push_back({std::atan2(c.y - _axis[1], c.x - _axis[0]), c.x, c.y, c.opening, c.size});
+        faces.push_back({std::atan2(c.y - _axis[1], c.x - _axis[0]), c.x, c.y, c.opening,
+                         mouth_of(std::get<0>(key), c.x, c.y, c.size, _axis)});
     t.surface = surface_cracks(faces, t.columns, _axis, _tube_radius,
                                gauge_resolution(_visible_width), _cut);
     for (const SurfaceCrack& s : t.surface)

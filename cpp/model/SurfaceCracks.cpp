@@ -10,12 +10,15 @@ namespace
 /// How far the crack at the face column `start` runs in towards the tube
 /// axis: followed from column to column, each step to the widest cracked
 /// column within one and a half column sizes that is nearer the axis by a
-/// quarter of a column at least, until none is (the crack's tip); its
-/// length the straight distance from the face (`start.depth` outside the
-/// first centre) to the last centre, and on to the tube's surface if that
-/// is within a column [mm].
+/// quarter of a column at least, until none is (the crack's tip). Its
+/// length is the straight line from its mouth on the face to the last
+/// column's centre, or on to the tube's surface if that is within a column
+/// (the surface's point nearest that centre); `along` (a unit vector from
+/// the axis): measured along that line instead, a crack on a symmetry
+/// plane, whose path runs through the band beside the plane [mm].
 double length_from(const FaceColumn& start, const std::vector<CrackColumn>& columns,
-                   std::array<double, 2> axis, double tube_radius, double resolution)
+                   std::array<double, 2> axis, double tube_radius, double resolution,
+                   const std::array<double, 2>* along)
 {
   auto to_axis = [&](double x, double y) { return std::hypot(x - axis[0], y - axis[1]); };
   const CrackColumn* here = nullptr; // the face column among the concrete's
@@ -25,7 +28,6 @@ double length_from(const FaceColumn& start, const std::vector<CrackColumn>& colu
       here = &c;
   if (!here || !(here->opening >= resolution))
     return 0;
-  const CrackColumn* first = here;
   for (std::size_t steps = 0; steps < columns.size(); ++steps)
   {
     const CrackColumn* next = nullptr;
@@ -39,9 +41,19 @@ double length_from(const FaceColumn& start, const std::vector<CrackColumn>& colu
       break;
     here = next;
   }
-  const double gap = to_axis(here->x, here->y) - tube_radius; // to the tube's surface [mm]
-  return start.depth + std::hypot(here->x - first->x, here->y - first->y) +
-         (gap <= here->size ? std::max(gap, 0.0) : 0.0);
+  const double r = to_axis(here->x, here->y);
+  const bool to_tube = r - tube_radius <= here->size; // the tube's surface within a column
+  if (along)                                          // distances from the axis along the plane
+  {
+    const auto [dx, dy] = *along;
+    const double mouth = (start.mouth[0] - axis[0]) * dx + (start.mouth[1] - axis[1]) * dy;
+    const double tip = to_tube ? tube_radius : (here->x - axis[0]) * dx + (here->y - axis[1]) * dy;
+    return std::max(mouth - tip, 0.0);
+  }
+  const double scale = to_tube && r > 0 ? tube_radius / r : 1.0;
+  const double tip_x = axis[0] + scale * (here->x - axis[0]),
+               tip_y = axis[1] + scale * (here->y - axis[1]);
+  return std::hypot(start.mouth[0] - tip_x, start.mouth[1] - tip_y);
 }
 } // namespace
 
@@ -76,8 +88,10 @@ std::vector<SurfaceCrack> surface_cracks(std::vector<FaceColumn> faces,
       angle = 90 * std::round(std::atan2(plane->y - axis[1], plane->x - axis[0]) * degrees / 90);
     if (angle < 0)
       angle += 360;
+    const std::array<double, 2> along = {std::cos(angle / degrees), std::sin(angle / degrees)};
     cracks.push_back(
-        {angle, (plane ? 2 : 1) * width, length_from(w, columns, axis, tube_radius, resolution)});
+        {angle, (plane ? 2 : 1) * width,
+         length_from(w, columns, axis, tube_radius, resolution, plane ? &along : nullptr)});
   };
   // One scan of the perimeter from `start`: on a cut model the column after
   // the widest gap between neighbours (the cut), which no run crosses; on a

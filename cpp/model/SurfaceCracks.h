@@ -16,12 +16,14 @@
 // a surface crack is a run of adjacent columns whose increments exceed the
 // gauge's resolution; its width is the sum of the run's increments (a
 // crack smeared over two or three bands reads whole), its direction the
-// angle of the run's widest column about the tube axis, and its length the
-// path from the face inwards through the cracked columns of the concrete
-// (mean opening above the resolution): from each column to the widest
-// cracked neighbour nearer the tube axis, to the crack's tip or the tube.
-// On a model cut by symmetry no run crosses the cut, and a run that reaches
-// a symmetry plane is completed by its mirror image.
+// angle of the run's widest column about the tube axis, and its length how
+// far it runs in: its path is followed from the face inwards through the
+// cracked columns of the concrete (mean opening above the resolution), from
+// each column to the widest cracked neighbour nearer the tube axis, to the
+// crack's tip or the tube, and the length is the straight line from its
+// mouth on the face to that end. On a model cut by symmetry no run crosses
+// the cut, and a run that reaches a symmetry plane is completed by its
+// mirror image and measured along the plane.
 //
 // Pure functions of their inputs: rank 0 calls them on the gathered columns.
 #pragma once
@@ -48,14 +50,19 @@ struct FaceColumn
   double angle = 0;    ///< of its centre about the tube axis, from +x towards +y [rad]
   double x = 0, y = 0; ///< centre [mm]
   double gauge = 0;    ///< thickness mean of the crack opening across it along the face [mm]
-  double depth = 0;    ///< from the face to its centre [mm]
+  /// Where a crack through it meets the face: its centre moved out to the
+  /// face along the face's normal (x, y) [mm].
+  std::array<double, 2> mouth{};
 };
 
 struct SurfaceCrack
 {
   double angle_deg = 0; ///< its widest column's direction from the tube axis, in [0, 360)
   double width_mm = 0;  ///< the gauge's reading across it
-  double length_mm = 0; ///< how far it runs in from the face towards the tube axis
+  /// How far it runs in from the face towards the tube axis: from its mouth
+  /// to its tip (or the tube's surface), straight; along the plane for a
+  /// crack on a symmetry plane.
+  double length_mm = 0;
 };
 
 /// The finest the gauge resolves whatever the visible width [mm].

@@ -30,8 +30,8 @@ random strength field and no crack planes:
    still reads it (what a sweep's crack_width_mm reports).
 6. On a model cut by symmetry (uniform strength, model.symmetry =
    "symmetric": the half x >= 50 mm) the cover crack lies on the plane:
-   read whole (its mirror image added), along the plane (270 degrees), and
-   counted; until it localises the whole slice solves the same symmetric
+   read whole (its mirror image added), along the plane (270 degrees, its
+   length the cover's 15 mm at most), and counted; until it localises the whole slice solves the same symmetric
    problem and reads the same widths at the same x, and the same cracked
    points and concrete dissipation (written as the whole specimen's, as the
    push force is: the half model's times 2).
@@ -233,6 +233,13 @@ on_plane = [c for c in summary(half)["cracks"] if c["source"] == "concrete"]
 check(len(on_plane) == 1 and on_plane[0]["angle_deg"] == 270 and
       corrosion(half)[-1]["cracks_at_surface"] == 1,
       f"cut by symmetry: one surface crack, along the plane: {on_plane}")
+# Its length along the plane: the cover, 15 mm, if it reaches the tube, else
+# short of it by less than the face cell's height (where its tip may lie);
+# never more, though its band lies beside the plane.
+cover = axis[1] - 10.0  # mm
+check(on_plane and cover - height <= on_plane[0]["length_mm"] <= cover + 1e-9,
+      f"cut by symmetry: its length along the plane {on_plane[0]['length_mm'] if on_plane else 0:.3f} mm, "
+      f"the cover {cover:.1f} mm (within the face cell's height {height:.2f} mm below)")
 
 # 7. A crack plane beside the concrete's cracks: in crack_planes.csv and the figure.
 check(not os.path.exists(os.path.join(one, "crack_planes.csv")), "no planes: no crack_planes.csv")

@@ -18,7 +18,7 @@ template <typename Gauge> std::vector<FaceColumn> bottom_face(Gauge gauge)
 {
   std::vector<FaceColumn> faces;
   for (double x = 1; x < 100; x += cell)
-    faces.push_back({std::atan2(1 - axis[1], x - axis[0]), x, 1, gauge(x), 1});
+    faces.push_back({std::atan2(1 - axis[1], x - axis[0]), x, 1, gauge(x), {x, 0}});
   return faces;
 }
 
@@ -48,8 +48,9 @@ TEST(SurfaceCracks, ACrackOverTwoBandsReadsWhole)
   // Its widest column is at x = 49 or 51, y = 1: about 270 degrees.
   EXPECT_NEAR(cracks[0].angle_deg, 270, std::atan(1.0 / 24) * 180 / std::numbers::pi + 1e-12);
   // Cracked from the face to the tube: at x = 49 from y = 0 to the tube's
-  // surface at y = 25 - sqrt(R^2 - 1), through column centres 2 mm apart;
-  // the last 0.05 mm to the tube is measured radially (3e-4 mm off here).
+  // surface at y = 25 - sqrt(R^2 - 1), measured from the mouth (49, 0) to
+  // the tube's surface nearest the last column's centre (49, 15), 5e-4 mm
+  // off that line.
   EXPECT_NEAR(cracks[0].length_mm, 25 - std::sqrt(R * R - 1), 1e-3);
 }
 
@@ -83,6 +84,67 @@ TEST(SurfaceCracks, LengthStopsWhereTheConcreteIsWhole)
   }
 }
 
+TEST(SurfaceCracks, LengthIsStraightFromTheMouthToTheTube)
+{
+  // A crack that steps sideways on its way in: cracked columns at x = 61
+  // from the face to y = 7, then at x = 59 on to the tube (whose surface
+  // the column at (59, 21) is within a column of). Its path through the
+  // column centres is longer than the crack: the length is the straight
+  // line from its mouth (61, 0) to the tube's surface nearest the last
+  // column's centre.
+  std::vector<CrackColumn> columns;
+  for (double x = 1; x < 100; x += cell)
+    for (double y = 1; y < 100; y += cell)
+      if (std::hypot(x - axis[0], y - axis[1]) > R)
+        columns.push_back(
+            {x, y, ((x == 61 && y <= 7) || (x == 59 && y >= 7 && y <= 25)) ? 0.02 : 0.0, cell});
+  const auto faces = bottom_face([](double x) { return x == 61 ? 0.05 : 0.0; });
+  const std::vector<SurfaceCrack> cracks = surface_cracks(faces, columns, axis, R, resolution);
+  ASSERT_EQ(cracks.size(), 1u);
+  // The last column on the way in is the one nearest the axis at x = 59:
+  // (59, 19) or (59, 21), both within a column of the tube.
+  double nearest = INFINITY;
+  for (double y : {19.0, 21.0})
+  {
+    const double r = std::hypot(59 - axis[0], y - axis[1]);
+    const double tip_x = axis[0] + R * (59 - axis[0]) / r, tip_y = axis[1] + R * (y - axis[1]) / r;
+    nearest = std::min(nearest, std::abs(cracks[0].length_mm - std::hypot(61 - tip_x, tip_y)));
+  }
+  EXPECT_LT(nearest, 1e-12);
+  // Shorter than the path through the centres: 1 + 6 + 2 * sqrt(2) + ... mm.
+  EXPECT_LT(cracks[0].length_mm, 1 + 6 + std::hypot(2, 2) + 10);
+}
+
+TEST(SurfaceCracks, ACrackOnASymmetryPlaneIsMeasuredAlongIt)
+{
+  // A half model about x = 50 (x >= 50) with 2 mm cells: the crack on the
+  // plane at 270 degrees opens the band beside it (x = 51), whose columns
+  // run from the face (mouth (51, 0)) to the tube. Measured along the
+  // plane it is the cover, 25 - R = 15 mm, whatever the band's offset.
+  std::vector<CrackColumn> columns;
+  for (double x = 51; x < 100; x += cell)
+    for (double y = 1; y < 100; y += cell)
+      if (std::hypot(x - axis[0], y - axis[1]) > R)
+        columns.push_back({x, y, x == 51 && y < 25 ? 0.02 : 0.0, cell});
+  std::vector<FaceColumn> faces;
+  for (double x = 51; x < 100; x += cell)
+    faces.push_back({std::atan2(1 - axis[1], x - axis[0]), x, 1, x == 51 ? 0.03 : 0.0, {x, 0}});
+  for (double y = 1; y < 100; y += cell) // the face x = 100, so the cut is the widest gap
+    faces.push_back({std::atan2(y - axis[1], 99 - axis[0]), 99, y, 0.0, {100, y}});
+  std::vector<SurfaceCrack> cracks = surface_cracks(faces, columns, axis, R, resolution, true);
+  ASSERT_EQ(cracks.size(), 1u);
+  EXPECT_DOUBLE_EQ(cracks[0].angle_deg, 270);
+  EXPECT_NEAR(cracks[0].width_mm, 0.06, 1e-15);
+  EXPECT_NEAR(cracks[0].length_mm, 25 - R, 1e-12);
+  // Stopped short of the tube (cracked to y = 9: its last centre 16 mm
+  // from the axis along the plane), it measures from the face to there.
+  for (CrackColumn& c : columns)
+    c.opening = c.x == 51 && c.y <= 9 ? 0.02 : 0.0;
+  cracks = surface_cracks(faces, columns, axis, R, resolution, true);
+  ASSERT_EQ(cracks.size(), 1u);
+  EXPECT_NEAR(cracks[0].length_mm, 9, 1e-12);
+}
+
 TEST(SurfaceCracks, SeparateCracksWidestFirst)
 {
   const auto faces = bottom_face(
@@ -107,8 +169,11 @@ TEST(SurfaceCracks, ARunAcrossTheAnglesWrapIsOneCrack)
   {
     const double a = (k * 5 - 180) * std::numbers::pi / 180; // [-pi, pi)
     const bool cracked = k == 35 || k == 36 || k == 37;
-    faces.push_back({a, axis[0] + 40 * std::cos(a), axis[1] + 40 * std::sin(a),
-                     cracked ? (k == 36 ? 0.05 : 0.01) : 0.0, 1});
+    faces.push_back({a,
+                     axis[0] + 40 * std::cos(a),
+                     axis[1] + 40 * std::sin(a),
+                     cracked ? (k == 36 ? 0.05 : 0.01) : 0.0,
+                     {axis[0] + 41 * std::cos(a), axis[1] + 41 * std::sin(a)}});
   }
   std::vector<SurfaceCrack> cracks = surface_cracks(faces, {}, axis, R, resolution);
   ASSERT_EQ(cracks.size(), 1u);
@@ -121,6 +186,7 @@ TEST(SurfaceCracks, ARunAcrossTheAnglesWrapIsOneCrack)
     f.angle -= f.angle >= std::numbers::pi ? 2 * std::numbers::pi : 0;
     f.x = 2 * axis[0] - f.x;
     f.y = 2 * axis[1] - f.y;
+    f.mouth = {2 * axis[0] - f.mouth[0], 2 * axis[1] - f.mouth[1]};
   }
   cracks = surface_cracks(faces, {}, axis, R, resolution);
   ASSERT_EQ(cracks.size(), 1u);
@@ -139,7 +205,11 @@ TEST(SurfaceCracks, ACutModelReadsItsPlanesCracksWhole)
   {
     const double a = deg * std::numbers::pi / 180;
     const double gauge = deg > 80 ? 0.02 : deg < -85 ? 0.03 : std::abs(deg - 2.5) < 1 ? 0.05 : 0;
-    faces.push_back({a, axis[0] + 40 * std::cos(a), axis[1] + 40 * std::sin(a), gauge, 1});
+    faces.push_back({a,
+                     axis[0] + 40 * std::cos(a),
+                     axis[1] + 40 * std::sin(a),
+                     gauge,
+                     {axis[0] + 41 * std::cos(a), axis[1] + 41 * std::sin(a)}});
   }
   // Cut: the planes' cracks read whole (their mirror images), along the
   // planes; the one inside as it is.
