@@ -161,10 +161,16 @@ void BulkCracking::implicit_update()
           update_point(c, i, voigt_at(_strain_values, i),
                        std::span<double>(_trial.data() + state * i, state), bulk::Tangent::skip);
       // A point whose crack's equilibrium fails keeps its committed state,
+      // stress, opening and dissipation (none of the last evaluation's),
       // counted: implex_error() says so, and the step is cut.
       if (r.status != bulk::CrackBandResult::Status::ok)
       {
         std::copy_n(_committed.begin() + state * i, state, _trial.begin() + state * i);
+        std::copy_n(_stress_committed.begin() + voigt * i, voigt,
+                    _stress_trial.begin() + voigt * i);
+        std::copy_n(_opening.begin() + 3 * i, 3, _opening_trial.begin() + 3 * i);
+        _dissipated_step[i] = 0;
+        _dissipated_trial[i] = _dissipated[i];
         ++_implicit_failures;
         continue;
       }
