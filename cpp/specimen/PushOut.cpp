@@ -499,6 +499,16 @@ void PushOut::check_scene(const Scene& scene)
     throw SceneError("'corrosion.penetration' > 0 needs an interface layer with law "
                      "\"oxide_friction\": the oxide presses on the concrete through it "
                      "(it replaces \"friction\"; docs/corrosion.md)");
+  // Corrosion turns the tube's wall to oxide from outside: no deeper than
+  // the wall (a depth typed in um, 50 for 0.05 mm, lands here).
+  if (const double x = scene.corrosion().penetration; !(x < (D - Di) / 2))
+  {
+    std::ostringstream s;
+    s << "'corrosion.penetration' = " << x
+      << " mm is the tube's wall (D - Di) / 2 = " << (D - Di) / 2
+      << " mm or deeper: it is in mm (50 um is 0.05)";
+    throw SceneError(s.str());
+  }
   check_cracking(scene);
 }
 

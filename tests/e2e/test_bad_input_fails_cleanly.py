@@ -37,6 +37,10 @@ cases = [
     ("corrosion without oxide law", GOOD + "\n[corrosion]\npenetration = 0.01\n", [],
      ["corrosion.penetration", "oxide_friction"]),
     ("beta below 1", GOOD + "\n[corrosion]\nbeta = 0.5\n", [], ["corrosion.beta"]),
+    # A depth typed in um (50 for 0.05 mm): deeper than the tube's wall (2 mm).
+    ("corrosion through the tube wall",
+     GOOD.replace('"friction"', '"oxide_friction"') + "\n[corrosion]\npenetration = 50.0\n", [],
+     ["corrosion.penetration", "tube's wall", "0.05"]),
     ("crack without angle", GOOD + "\n[[crack]]\nf_t = 3.0\n", [], ["crack.0.angle"]),
     ("crack angle word", GOOD + '\n[[crack]]\nangle = "cover"\n', [], ["crack.0.angle", "nearest_face"]),
     ("cracks too close", GOOD + "\n[[crack]]\nangle = 10.0\n[[crack]]\nangle = 12.0\n", [],
