@@ -1,4 +1,5 @@
 #include "Value.h"
+#include <cstdlib>
 #include <iomanip>
 #include <sstream>
 
@@ -33,7 +34,8 @@ std::string format_number(double x)
     std::ostringstream s;
     s << std::setprecision(digits) << x;
     out = s.str();
-    if (std::stod(out) == x)
+    // strtod, not stod: stod throws on a subnormal x (out of range).
+    if (std::strtod(out.c_str(), nullptr) == x)
       break;
   }
   if (out.find_first_of(".eEn") == std::string::npos)
