@@ -55,7 +55,7 @@ struct Envelope
   {
     const double x = std::max(kappa - w0, 0.0);
     if (kind == Kind::exponential)
-      return f_fr * x + (f_t - f_fr) * (1 - std::exp(-c * x)) / c;
+      return f_fr * x - (f_t - f_fr) * std::expm1(-c * x) / c; // exact where c x is tiny
     const double floor = kind == Kind::linear ? 0.0 : f_fr;
     const double x_floor = w_c2 * (1 - floor / f_t); // where the line meets the floor
     const double xl = std::min(x, x_floor);

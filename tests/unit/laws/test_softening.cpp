@@ -1,6 +1,7 @@
 // Cohesive softening laws (paper §2.3, Fig. 5a/b): analytic paths, secant
 // unloading, compression, energy to full separation, FD tangents.
 #include "law_testing.h"
+#include "laws/Envelope.h"
 #include "laws/ExponentialSoftening.h"
 #include "laws/LinearSoftening.h"
 #include "laws/LinearSofteningFriction.h"
@@ -257,4 +258,16 @@ TEST(ViscousDamage, TangentMatchesFiniteDifferences)
   }
   std::cout << "viscous exponential_softening: max FD tangent error " << worst << "\n";
   EXPECT_LT(worst, 1e-6);
+}
+
+TEST(Envelope, WorkOfAnExponentialWithATinyDecayIsTheStrengthTimesTheOpening)
+{
+  // c x near or below the round-off of 1: (1 - exp(-c x)) / c would lose
+  // every digit (0 from c x < 1e-16 on); the work is f_t x (1 - c x / 2).
+  for (const double c : {1e-6, 1e-12, 1e-16, 1e-100})
+  {
+    const Envelope e{.kind = Envelope::Kind::exponential, .f_t = 3.0, .c = c};
+    const double x = 0.2; // [mm]
+    EXPECT_NEAR(e.work(0.001 + x, 0.001), 3.0 * x * (1 - c * x / 2), 1e-14) << "c = " << c;
+  }
 }
