@@ -153,7 +153,7 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
       check.add(diagonal, {_places[c].x, _places[c].y}, _strength[c * n_points + q]);
   }
   check.agree(_mesh->comm());
-  check.refuse_if_too_wide();
+  check.refuse_if_too_wide(_axis);
 }
 
 CellVertices BulkCracking::vertices(std::size_t cell) const

@@ -7,6 +7,7 @@
 #include "cracking.h"
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 namespace pushout::model
@@ -106,26 +107,26 @@ void BandSizeCheck::agree(MPI_Comm comm)
   _worst = worst.ratio;
 }
 
-void BandSizeCheck::refuse_if_too_wide() const
+void BandSizeCheck::refuse_if_too_wide(std::array<double, 2> axis) const
 {
   if (_worst < 1)
     return;
   std::ostringstream why;
-  why << "cracking: the concrete element at (" << std::round(_where[2] * 10) / 10 << ", "
-      << std::round(_where[3] * 10) / 10 << ") mm, " << std::round(_where[0] * 10) / 10
-      << " mm across, is " << _worst << " times the widest band its crack can soften over "
-      << "there without snapping back (" << std::round(_where[1] * 100) / 100
-      << " mm: mu / |d sigma / d w|, docs/cracking.md)";
+  why << std::setprecision(3) << "cracking: the concrete element at (" << _where[2] << ", "
+      << _where[3] << ") mm, " << _where[0] << " mm across, is " << _worst
+      << " times the widest band its crack can soften over there without snapping back ("
+      << _where[1] << " mm: mu / |d sigma / d w|, docs/cracking.md)";
   if (_worst_mean < 1) // only where the field raises f_t
     why << ", at a point where the strength field (cracking.strength_cov = " << _part.strength_cov
         << ") raises f_t to " << _where[4] << " times its mean (at the mean f_t the largest "
         << "element is " << _worst_mean << " times the band)";
   why << ". A softening less steep widens the band: "
       << (_part.linear_softening ? "raise cracking.w_c2" : "lower cracking.c")
-      << " (a larger G_F) or lower cracking.f_t"
+      << " (a larger G_F) or lower cracking.f_t (in MPa)"
       << (_worst_mean < 1 ? ", or lower cracking.strength_cov" : "")
-      << "; or keep the largest elements (the square slice's corners, which "
-         "mesh.elements_per_quarter hardly refines) linear with cracking.radius";
+      << "; or keep the largest elements linear with cracking.radius (this one's centre lies "
+      << std::hypot(_where[2] - axis[0], _where[3] - axis[1])
+      << " mm from the tube axis; the cracks then stop at the radius)";
   throw SceneError(why.str());
 }
 
@@ -154,6 +155,6 @@ void check_cracking_mesh(const mesh::MeshData& data, const Material& concrete,
     for (int q = 0; q < n_points; ++q)
       check.add(diagonal, {centre[0], centre[1]}, field.factor(position(data, c, X + 3 * q)));
   }
-  check.refuse_if_too_wide();
+  check.refuse_if_too_wide(slice.tube_center);
 }
 } // namespace pushout::model

@@ -29,9 +29,10 @@ public:
   /// Collective.
   void agree(MPI_Comm comm);
   /// Throws SceneError if the worst element is too wide, saying which,
-  /// where, and what to change (the field's spread where only its strongest
-  /// points fail).
-  void refuse_if_too_wide() const;
+  /// where (and how far from the tube `axis` (x, y) [mm], for
+  /// cracking.radius), and what to change (the field's spread where only
+  /// its strongest points fail).
+  void refuse_if_too_wide(std::array<double, 2> axis) const;
 
 private:
   const bulk::CrackBand& _band;
