@@ -278,14 +278,16 @@ SweepPlan plan_sweep(const SweepOptions& opt)
       throw SceneError(case_name(i) + " (" + what + "): " + e.what());
     }
   }
-  std::string unread_keys; // in --vary's order
+  std::string names, notes; // of the varied keys no case reads, in --vary's order
   for (const Variation& v : plan.vary)
     if (const auto it = unread.find(v.key); it != unread.end())
-      unread_keys += (unread_keys.empty() ? "" : "; ") + it->second;
-  if (!unread_keys.empty())
-    throw SceneError("--vary: no case reads a varied key, so every case would give the same "
-                     "curve (" +
-                     unread_keys + ")");
+    {
+      names += (names.empty() ? "" : ", ") + v.key;
+      notes += (notes.empty() ? "" : "; ") + it->second;
+    }
+  if (!names.empty())
+    throw SceneError("--vary: no case reads " + names +
+                     ", so each of its values would run the same cases again (" + notes + ")");
   plan.order = set_up_order(set_ups);
   return plan;
 }
