@@ -398,7 +398,8 @@ std::vector<KeyDef> make_keys()
        K::number,
        0.0,
        "mm",
-       "final corrosion depth x (steel radius turned to oxide), reached in corrosion.steps "
+       "final corrosion depth x (steel radius turned to oxide; less than the tube wall (D - Di) / "
+       "2), reached in corrosion.steps "
        "before the push; 0: no corrosion stage. From current and time: x [um] = 0.0317 i "
        "[uA/cm^2] t [days]",
        0,
