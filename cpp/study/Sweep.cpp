@@ -193,6 +193,10 @@ struct SweepPlan
   std::vector<std::size_t> order; ///< the cases in the order they are taken
   std::string model_type;
   bool plot = false;
+  /// With the seed varied: the cases that do not read it (a uniform
+  /// strength beside another case's field), said before they run, as their
+  /// sweep_seeds.csv rows are one specimen run once per seed ("": none).
+  std::string seed_note;
 };
 
 /// Reads every case's scene, so that a bad value stops the sweep before any
@@ -248,6 +252,7 @@ SweepPlan plan_sweep(const SweepOptions& opt)
   for (const Variation& v : plan.vary)
     unread[v.key] = "";
   MeshChecks check_mesh(opt);
+  std::string seed_unread; // the cases that do not read a varied seed
   for (std::size_t i = 0; i < plan.cases.size(); ++i)
   {
     std::vector<std::string> sets = opt.sets;
@@ -260,6 +265,8 @@ SweepPlan plan_sweep(const SweepOptions& opt)
       specimen::check_scene(scene); // the relations between keys, as a run checks them
       driver::check_solver_options(scene, opt.ranks_per_case);
       check_mesh(scene);
+      if (varies_seed(plan.vary) && !scene.unread_note(seed_key).empty())
+        seed_unread += (seed_unread.empty() ? "" : ", ") + case_name(i);
       for (auto it = unread.begin(); it != unread.end();)
       {
         const std::string note = scene.unread_note(it->first);
@@ -288,6 +295,10 @@ SweepPlan plan_sweep(const SweepOptions& opt)
   if (!names.empty())
     throw SceneError("--vary: no case reads " + names +
                      ", so each of its values would run the same cases again (" + notes + ")");
+  if (!seed_unread.empty())
+    plan.seed_note = std::string(seed_key) + " is not read in " + seed_unread +
+                     " (a uniform strength): their rows of sweep_seeds.csv are one specimen run "
+                     "once per seed, with no spread";
   plan.order = set_up_order(set_ups);
   return plan;
 }
@@ -507,6 +518,8 @@ int sweep(const SweepOptions& given)
     std::cout << "pushout sweep: " << plan.cases.size() << " cases, " << groups.count()
               << (groups.count() == 1 ? " group" : " groups") << " of " << opt.ranks_per_case
               << (opt.ranks_per_case == 1 ? " process" : " processes") << std::endl;
+  if (rank == 0 && !plan.seed_note.empty())
+    std::cout << "pushout sweep: note: " << plan.seed_note << std::endl;
   const CasesRun run = run_cases(opt, plan, groups);
 
   const interrupt::Phase phase("writing outputs", -1);

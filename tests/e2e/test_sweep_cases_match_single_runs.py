@@ -30,7 +30,8 @@
    (last row) values, and sweep_seeds.csv has one row per beta with the two
    seeds' mean, min and max of sweep.csv's numbers (to the 12 digits both
    print); the seeds give different curves (the field is the seed's); a
-   sweep that does not vary the seed writes no sweep_seeds.csv (1.), and
+   sweep that does not vary the seed writes no sweep_seeds.csv (1.), a
+   sweep whose uniform-strength cases do not read the seed says which, and
    one into the same folder removes the earlier one. A case that reused
    another's set-up (another beta, the same seed) equals `pushout run` of
    its scene.toml, as in 1.
@@ -305,6 +306,18 @@ p = subprocess.run([PUSHOUT, "sweep", scene, "--out", out, "--quiet", "--vary", 
                    capture_output=True, text=True, timeout=600)
 check(p.returncode == 0 and not os.path.exists(os.path.join(out, "sweep_seeds.csv")),
       f"a later sweep without the seed leaves no sweep_seeds.csv behind (exit {p.returncode})")
+# The seed beside a uniform strength (strength_cov = 0), which does not read
+# it: the sweep runs (the field's cases read it) and says, before the cases
+# run, which cases' rows of sweep_seeds.csv are one specimen run per seed.
+uniform = out_dir("sweep_seeds_uniform")
+p = subprocess.run([PUSHOUT, "sweep", scene, "--out", uniform, "--quiet", "--vary",
+                    "cracking.strength_cov=0,0.15", "--vary", "cracking.seed=1,2",
+                    "--set", "loading.push_displacement=0.02", "--set", "loading.steps=1"],
+                   capture_output=True, text=True, timeout=600)
+note = [line for line in p.stdout.splitlines() if line.startswith("pushout sweep: note:")]
+check(p.returncode == 0 and len(note) == 1 and "case_000, case_001" in note[0]
+      and "cracking.seed is not read" in note[0] and "case_002" not in note[0],
+      f"a seed beside a uniform strength: exit {p.returncode}, {note}")
 
 # 7. The scene file edited while the sweep runs. The first case's steps are
 # slowed (a test hook: 0.3 s a step from the third on), and the file is
