@@ -55,11 +55,22 @@ std::string script_path(const char* script)
   return (std::filesystem::path(PUSHOUT_SCRIPTS_DIR) / script).string();
 }
 
+/// The shell command that runs the python interpreter with the signals
+/// that stop a run ignored: a Ctrl-C reaches the whole foreground process
+/// group, the plotting child too, and the run decides (a signal once the
+/// last step is done stops nothing, and the plot is drawn; docs/running.md,
+/// "Stopping a run"). Python keeps SIGINT ignored when it starts so (no
+/// KeyboardInterrupt); a child whose run died ends at its pipe's end.
+std::string python_command()
+{
+  return "trap '' INT TERM HUP; exec " + quote(PUSHOUT_PYTHON);
+}
+
 /// Runs the python interpreter with `args` (a script of scripts/ and its
 /// arguments, each shell-quoted); false with `why` if it failed.
 bool run_script(const std::vector<std::string>& args, std::string& why)
 {
-  std::string cmd = quote(PUSHOUT_PYTHON);
+  std::string cmd = python_command();
   for (const std::string& a : args)
     (cmd += ' ') += quote(a);
   cmd += " 2>&1";
@@ -77,7 +88,7 @@ bool run_script(const std::vector<std::string>& args, std::string& why)
 CurvePlotter::CurvePlotter()
 {
   // The child's output goes to the run's stderr; it ends at the pipe's end.
-  std::string cmd = quote(PUSHOUT_PYTHON);
+  std::string cmd = python_command();
   (cmd += ' ') += quote(script_path("plot_curve.py"));
   cmd += " --serve 1>&2";
   _pipe = popen(cmd.c_str(), "w");

@@ -6,7 +6,9 @@ steps it finished, corrosion.csv keeping them, and summary.json's cracks
 and crack_pattern.csv those of the last finished one); in step 0, the set-up or
 meshing, it names that alone. A closed pipe
 (`pushout run ... | head -3`) does not stop it, nor does a signal once the
-last step is done (the outputs are written, exit 0). A sweep stops within a few
+last step is done (the outputs are written, exit 0), sent to the whole
+process group as Ctrl-C does too (the plotting child ignores it: the plot
+is drawn). A sweep stops within a few
 seconds, without plotting. A run killed outright (SIGKILL, as mpirun's kill
 or an out-of-memory kill) leaves its fields (output.xdmf) readable with the
 steps it wrote: the HDF5 files are flushed after each step (they could not
@@ -125,6 +127,56 @@ for attempt in range(3):
     stopped = p.returncode == 143 and s["interrupted"] and not s["converged"]
     check(finished or stopped, f"SIGTERM after the last step ({attempt}): exit {p.returncode}, "
           f"converged {s['converged']}, interrupted {s['interrupted']}; {err.strip()!r}")
+
+
+# Ctrl-C signals the whole foreground process group, the plotting child
+# too: it ignores the signals that stop a run (SIGINT, SIGTERM, SIGHUP), so
+# that the run decides; with SIGINT to the group after the last step the plot
+# is drawn (it was lost: the child died of the signal, exit 0 without it).
+def ignored_signals(pid):
+    """The signals the process `pid` ignores (/proc's SigIgn mask)."""
+    with open(f"/proc/{pid}/status") as f:
+        mask = int(next(line for line in f if line.startswith("SigIgn:")).split()[1], 16)
+    return {sig for sig in signal.Signals if mask >> (int(sig) - 1) & 1}
+
+
+def plotting_child(pid):
+    """The run's plotting child (scripts/plot_curve.py --serve), if any."""
+    for entry in os.listdir("/proc"):
+        try:
+            with open(f"/proc/{entry}/stat") as f:
+                parent = int(f.read().rsplit(")", 1)[1].split()[1])
+            with open(f"/proc/{entry}/cmdline") as f:
+                command = f.read()
+        except (OSError, ValueError, IndexError):
+            continue
+        if parent == pid and "plot_curve.py" in command:
+            return int(entry)
+    return None
+
+
+for attempt in range(3):
+    out = out_dir(f"interrupt_group_after_last_step_{attempt}")
+    p = subprocess.Popen([PUSHOUT, "run", scene, "--out", out, "--set", "loading.steps=4"],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         start_new_session=True)
+    while not (line := p.stdout.readline()).startswith("step 4/4") and line:
+        pass
+    child = plotting_child(p.pid)
+    ignored = ignored_signals(child) if child else set()
+    os.killpg(p.pid, signal.SIGINT)
+    _, err = p.communicate(timeout=120)
+    s = summary(out)
+    check(child and {signal.SIGINT, signal.SIGTERM, signal.SIGHUP} <= ignored,
+          f"the plotting child ({child}) ignores SIGINT, SIGTERM and SIGHUP: "
+          f"{sorted(sig.name for sig in ignored)}")
+    finished = (p.returncode == 0 and s["converged"] and not s["interrupted"]
+                and os.path.exists(os.path.join(out, "curve.png")) and "Traceback" not in err
+                and "no curve.png" not in err)
+    stopped = p.returncode == 130 and s["interrupted"] and not s["converged"]
+    check(finished or stopped, f"SIGINT to the process group after the last step ({attempt}): "
+          f"exit {p.returncode}, converged {s['converged']}, curve.png "
+          f"{os.path.exists(os.path.join(out, 'curve.png'))}; {err.strip()[-300:]!r}")
 
 
 def interrupt_after_model_line(name, sets, in_newton=False):
