@@ -181,6 +181,9 @@ bool StepLoop::zero_force_step(const Stage& stage, int k, int cuts, double s0, d
     if (!rep.converged || !crack_band_updated(rep))
     {
       revert();
+      // A signal fails the solve (NewtonSolver: a domain error at the next
+      // residual): the run stops for it, not for a failed try.
+      stopped = stop_requested();
       return std::nullopt;
     }
     tried = true;
