@@ -179,6 +179,10 @@ private:
   /// handed to energy steps, and no energy step has been committed since
   /// (snaps()).
   bool _snap_handed_over = false;
+  /// The steps of lambda since the last commit replace an energy step that
+  /// overshot (try_step): if they fail back to energy steps, the same
+  /// energy step would overshoot again, for ever; it is cut instead.
+  bool _overshot = false;
   /// The energy steps since the last hand-over to them.
   EnergyEvent _event;
   /// A step of lambda after one starts from the last step's increment
@@ -323,7 +327,7 @@ StepLoop::DissipationSteps::Try StepLoop::DissipationSteps::try_step(const std::
       _loop.revert();
       t.energy_step = _by_energy = false;
       t.checked = {}; // the energy try's, reverted
-      overshot = true;
+      overshot = _overshot = true;
       _by_lambda = Stepper(_loop._max_cuts, easy_tries(_loop._equilibrium.model())); // a whole step
       const std::string& lambda = _stage.path.symbol;
       say(name + ": a step of energy would move " + lambda + " by more than a step of " + lambda +
@@ -467,7 +471,19 @@ bool StepLoop::DissipationSteps::failed(const std::string& name, const Try& t)
     // hands to energy steps.)
     _by_energy = true;
     _event.handed_over_by_failure();
-    say(name + ": dissipation control");
+    if (_overshot && !_energy.failed())
+    {
+      _loop._summary.message = name + ": steps of " + _stage.path.symbol +
+                               " failed where the smallest step of energy would move it by "
+                               "more than a step (" +
+                               t.rep.reason + "); stopped";
+      return false;
+    }
+    if (_overshot)
+      say(name + ": dissipation control, with " + _energy_words(_energy.increment()) +
+          " (the last overshot)");
+    else
+      say(name + ": dissipation control");
   }
   return true;
 }
@@ -488,6 +504,7 @@ void StepLoop::DissipationSteps::accept(int k, const std::string& name, const Tr
   _loop.count_step_error(t.checked, name);
   _loop.commit();
   (t.energy_step ? _energy : _by_lambda).converged(t.rep.iterations, t.checked.may_grow());
+  _overshot = false;
   // After a jump of the load the last step's growth predicts nothing; an
   // energy step taken at the floor of IMPL-EX's error released what it was
   // asked for, and its growth is extrapolated as any other's (on the coarse
