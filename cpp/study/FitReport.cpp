@@ -71,8 +71,9 @@ std::string not_converged_message(const FitOutcome& fit, const std::filesystem::
   const bool no_derivative = fit.reason == "DIVERGED_NO_DERIVATIVE";
   if (no_derivative)
     m += ": no free value has a derivative where it stopped (the runs beside it were refused "
-         "or failed; the warnings name them), so nothing tells which way its optimum lies; "
-         "start it elsewhere or hold that value";
+         "or failed, and the warnings name them, or gave the same curve: check the data's "
+         "units, delta_mm in mm and tau_MPa in MPa), so nothing tells which way its optimum "
+         "lies; start it elsewhere or hold that value";
   if (!fit.best_failure.empty())
     m += "; the fitted run in " + (fit_json.parent_path() / "best").string() + " " +
          fit.best_failure;

@@ -169,8 +169,19 @@ bool Problem::nothing_to_judge(const std::vector<double>& x) const
 {
   if (x != x_jacobian || difference_failed.size() < free.size())
     return false;
-  return std::all_of(difference_failed.begin(), difference_failed.end(),
-                     [](bool failed) { return failed; });
+  const std::size_t m = r_last.size();
+  for (std::size_t j = 0; j < free.size(); ++j)
+  {
+    // A column of zeros is no derivative either: the runs beside x gave the
+    // same curve (a value the curve no longer depends on, such as mu where
+    // the tube no longer slips; TAO's gradient test then ends at zero).
+    const auto column = jacobian.begin() + std::ptrdiff_t(j * m);
+    const bool flat =
+        std::all_of(column, column + std::ptrdiff_t(m), [](double d) { return d == 0.0; });
+    if (!difference_failed[j] && !flat)
+      return false;
+  }
+  return true;
 }
 
 void Problem::report(int iteration, const std::vector<double>& x, double offset) const

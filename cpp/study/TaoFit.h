@@ -122,7 +122,8 @@ struct Problem
   /// formed elsewhere.
   double offset_at(const std::vector<double>& x) const;
   /// Whether at x, the last Jacobian's, no free value has a derivative
-  /// (difference_failed): where the fit stands then says nothing of where
+  /// (difference_failed, or a column of zeros: the curve the same on either
+  /// side): where the fit stands then says nothing of where
   /// its optimum lies (an offset over no values, a gradient of none, are
   /// no test). With some derivative left the fit is judged by those values,
   /// the others held where they are (their standard errors null).

@@ -19,7 +19,9 @@
    that does not exist, one that is not a number, bounds that exclude the
    start or are no numbers, a curve with no positive tau.
 4. A value the optimum drives onto its bound is a warning, in fit.json and
-   on stderr, and the relative offset leaves it out.
+   on stderr, and the relative offset leaves it out. Data in kPa drive mu
+   to where the curve no longer depends on it: not converged
+   (DIVERGED_NO_DERIVATIVE, exit 3), the error pointing at the units.
 5. Values the scene refuses (f_fr > f_t) count as a large misfit, a
    difference that lands there is taken backwards, and the fit stays on
    valid values; fit.json and the error say why the scene refused one.
@@ -225,6 +227,19 @@ check(r4["parameters"]["interface.0.mu"] < 1e-6 and said and "sits on its bound"
 # out).
 check(p.returncode == 0 and r4["converged"] and r4["relative_offset"] == 0,
       f"mu on its bound: exit {p.returncode}, {r4['reason']}, offset {r4['relative_offset']}")
+# Data in kPa (a unit mistake): mu grows until the tube no longer slips,
+# where the runs beside it give the same curve (a column of zeros). That is
+# no optimum: DIVERGED_NO_DERIVATIVE, exit 3, and the error says to check
+# the units (TAO's gradient test had called it converged, exit 0).
+kpa = write("kpa.csv", "delta_mm,tau_MPa\n0.002,460\n0.004,600\n0.006,610\n0.01,620\n")
+out_kpa = out_dir("fit_data_in_kpa")
+p = fit(out_kpa, kpa, free=["interface.0.mu"], extra=["--set", "loading.steps=5"])
+with open(os.path.join(out_kpa, "fit.json")) as f:
+    rk = json.load(f)
+check(p.returncode == 3 and not rk["converged"] and rk["reason"] == "DIVERGED_NO_DERIVATIVE"
+      and "check the data's units" in p.stderr,
+      f"data in kPa: exit {p.returncode}, {rk['reason']} at mu = "
+      f"{rk['parameters']['interface.0.mu']:.4g}, {p.stderr.strip()[-160:]!r}")
 
 
 # 5. Values the scene refuses (f_fr > f_t: a relation between keys, which no
