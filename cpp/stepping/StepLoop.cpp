@@ -271,9 +271,9 @@ StepLoop::Retry StepLoop::cut_back(Stepper& stepper, int& cuts, const std::strin
     return Retry::implex_rescue;
   }
   end_implex_rescue();
-  _summary.message = what + " did not converge with " + std::to_string(cuts) + " cuts, down to " +
-                     size(stepper.increment()) + (rescuing ? ", nor as one IMPL-EX step" : "") +
-                     " (" + reason + "); stopped";
+  _summary.message = what + " did not converge with " + std::to_string(cuts) +
+                     (cuts == 1 ? " cut" : " cuts") + ", down to " + size(stepper.increment()) +
+                     (rescuing ? ", nor as one IMPL-EX step" : "") + " (" + reason + "); stopped";
   if (newton_failed || rescuing)
   {
     using Cracks = FailureCase::Cracks;
