@@ -39,7 +39,17 @@ void StepLoop::time_linear_solve()
   _scenario.apply_load(1.0, _equilibrium);
   _equilibrium.apply_constraints(_x);
   _summary.linear_solve_s = _solver.time_linear_solve(_x);
+  // Back to the start, and the model's last evaluation made there: the
+  // timing's, at the first step's load, was what step 0's row read (and
+  // committed) where no thermal step solves (loading.temperature_change 0).
+  _scenario.apply_load(0.0, _equilibrium);
   _x.set(0.0);
+  _equilibrium.apply_constraints(_x);
+  const solver::Vector F(_equilibrium.model().create_vector());
+  const bool evaluated = _equilibrium.residual(_x, F);
+  _equilibrium.forget_trial_state();
+  mpi::throw_if_any(_comm, !evaluated,
+                    "solver.time_linear_solve: a law failed at the unloaded start");
   if (_report.talk())
     std::cout << "one linear solve: " << _summary.linear_solve_s << " s" << std::endl;
 }

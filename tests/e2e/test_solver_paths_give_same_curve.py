@@ -260,3 +260,23 @@ check(len(a) == len(b) and diff <= tol * s and summary(referred)["cuts"] == summ
 check(solves > 0 and by_reference > 0 and solves_without > 0 and without == 0,
       f"IMPL-EX cracks: {by_reference} of {solves} solves stopped above -snes_rtol x ||F_0|| by "
       f"the step's own residual; {without} of {solves_without} without it")
+
+# solver.time_linear_solve (a factorisation and a solve at the first step's
+# load before the run) leaves the curve as it is: with no thermal step (dT =
+# 0) step 0's row and commit are the unloaded start's, all zeros (they were
+# the timing's evaluation: P 1244 N in row 0 of this scene); the
+# steps after it differ by Newton's tolerance at most (the lagged LU may be
+# the timing's Jacobian's).
+untimed, timed = out_dir("solver_untimed"), out_dir("solver_timed")
+no_dT = ["loading.temperature_change=0"]
+run(scene, untimed, sets=no_dT)
+run(scene, timed, sets=no_dT + ["solver.time_linear_solve=true"])
+a, b = curve(untimed), curve(timed)
+tol = newton_bound(len(b), solved_unknowns(summary(timed)))
+s = max(abs(r["P_N"]) for r in a)
+diff = max(abs(x["P_N"] - y["P_N"]) for x, y in zip(a, b))
+check(summary(timed)["linear_solve_s"] > 0 and len(a) == len(b)
+      and all(b[0][k] == 0 for k in ("P_N", "tau_MPa", "p_MPa", "slip_mm", "t_s1_max_MPa"))
+      and diff <= tol * s,
+      f"solver.time_linear_solve: row 0 {b[0]['P_N']} N, max |P difference| {diff:.2e} <= "
+      f"{tol:.1e} x {s:.4g} N")
