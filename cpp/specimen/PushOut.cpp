@@ -391,9 +391,9 @@ void check_loading(const Scene& scene)
   const auto beyond_small_displacement = [&](const std::string& key, double push)
   {
     std::ostringstream s;
-    s << "'" << key << "' pushes " << push << " mm, more than 10 % of 'geometry.thickness' ("
-      << max_push_ratio * L
-      << " mm): the model is small-displacement (it keeps the whole contact length L while "
+    s << "'" << key << "' pushes " << push << " mm, more than " << max_push_ratio * L
+      << " mm (10 % of 'geometry.thickness'): the model is small-displacement (it keeps the whole "
+         "contact length L while "
          "tau = P / (pi D (L - delta)))";
     return SceneError(s.str());
   };

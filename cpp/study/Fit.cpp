@@ -72,7 +72,10 @@ double value_of(const Scene& scene, const std::string& key, Free& f)
     throw SceneError("--free '" + key + "': no such key (pushout keys lists them)");
   const double* d = std::get_if<double>(v);
   if (!d)
-    throw SceneError("--free '" + key + "': not a number key (" + to_toml(*v) + ")");
+    throw SceneError("--free '" + key + "': " +
+                     (std::holds_alternative<std::int64_t>(*v)
+                          ? "an integer key (" + to_toml(*v) + "), which a fit cannot vary smoothly"
+                          : "not a number key (" + to_toml(*v) + ")"));
   if (const KeyDef* def = find_key(key))
   {
     if (def->outputs_only)
@@ -306,9 +309,21 @@ int prepare(FitOptions& opt, MeasuredCurve& data, std::vector<Free>& free, Resol
             MPI_COMM_WORLD,
             [&]
             {
-              driver::check_before_run(start, driver::RunOptions{opt.out, opt.mesh_cache, opt.quiet,
-                                                                 opt.force, group.comm, true,
-                                                                 others_here});
+              try
+              {
+                driver::check_before_run(start, driver::RunOptions{opt.out, opt.mesh_cache,
+                                                                   opt.quiet, opt.force, group.comm,
+                                                                   true, others_here});
+              }
+              catch (const SceneError& e)
+              {
+                // The push is the data's: say so (delta_mm in um, 10 for 0.01 mm, lands here).
+                if (std::string(e.what()).rfind("'loading.push_displacement'", 0) != 0)
+                  throw;
+                throw SceneError("--data '" + opt.data.string() + "': the fit pushes to its last " +
+                                 "delta_mm, " + number_text(data.delta.back()) +
+                                 " mm (delta_mm is in mm), and " + e.what());
+              }
             });
         // With cracks anywhere, the crack band against the start's elements
         // (collective on MPI_COMM_WORLD, so once every group passed its guard).

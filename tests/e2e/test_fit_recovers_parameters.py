@@ -16,7 +16,8 @@
    stops).
 3. Bad input exits 2 with one message: no data file, a folder for it, a
    data file without tau_MPa, a cell that is not a number, delta not increasing, a free key
-   that does not exist, one that is not a number, bounds that exclude the
+   that does not exist, one that is not a number or an integer, data whose
+   last delta (in um, not mm) is a push beyond the model's reach, bounds that exclude the
    start or are no numbers, a curve with no positive tau.
 4. A value the optimum drives onto its bound is a warning, in fit.json and
    on stderr, and the relative offset leaves it out. Data in kPa drive mu
@@ -199,6 +200,10 @@ cases = [
      {}, "must increase"),
     ("unknown key", data, {"free": ["interface.1.f_tt"]}, "no parameter"),
     ("not a number key", data, {"free": ["loading.control"]}, "not a number"),
+    ("an integer key", data, {"free": ["mesh.elements_per_quarter"]}, "an integer key"),
+    ("delta in um (the push beyond the model's reach)",
+     write("um.csv", "delta_mm,tau_MPa\n2,0.46\n4,0.6\n6,0.61\n10,0.62\n"), {},
+     "the fit pushes to its last delta_mm, 10 mm (delta_mm is in mm)"),
     ("bounds exclude the start", data, {"extra": ["--bounds", "interface.1.c=5:10"]}, "exclude"),
     ("a bound with a unit", data, {"extra": ["--bounds", "interface.1.c=5x:"]}, "finite numbers"),
     ("a bound not a number", data, {"extra": ["--bounds", "interface.1.c=nan:100"]}, "finite numbers"),
