@@ -319,7 +319,8 @@ StepLoop::DissipationSteps::Try StepLoop::DissipationSteps::try_step(const std::
       t.rep.converged = false;
       t.rep.reason = why.str();
     }
-    if (t.rep.converged && (t.lambda_new > _lambda + _h_nominal || t.lambda_new > _lambda_final))
+    if (t.rep.converged && (t.lambda_new > _lambda + _h_nominal || t.lambda_new > _lambda_final ||
+                            test_energy_overshoots()))
     {
       // Past a nominal step of lambda (the joints have little left to
       // release) or its final value: a step of lambda instead, taken
@@ -340,6 +341,8 @@ StepLoop::DissipationSteps::Try StepLoop::DissipationSteps::try_step(const std::
     if (t.lambda_new > _lambda_final * (1 - step_tolerance))
       t.lambda_new = _lambda_final;
     t.rep = lambda_step(_lambda, t.lambda_new);
+    if (_overshot && test_energy_overshoots())
+      t.rep = {.converged = false, .reason = "PUSHOUT_TEST_ENERGY_OVERSHOOTS"};
     _loop._summary.newton_iterations += t.rep.iterations;
     check_step_error(t); // before too_dissipative: IMPL-EX's cracks dissipate in its update
     t.snaps = t.rep.converged && !overshot && snaps(name, t);

@@ -91,4 +91,10 @@ bool test_fail_implicit_row(int rows)
   static const char* n = std::getenv("PUSHOUT_TEST_FAIL_IMPLICIT_ROW");
   return n && std::atoi(n) == rows;
 }
+
+bool test_energy_overshoots()
+{
+  static const bool set = std::getenv("PUSHOUT_TEST_ENERGY_OVERSHOOTS") != nullptr;
+  return set;
+}
 } // namespace pushout::stepping

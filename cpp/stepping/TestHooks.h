@@ -24,7 +24,10 @@
 // delta, tests/e2e/test_arc_length_follows_snap_back.py); with
 // PUSHOUT_TEST_FAIL_CRACK_BAND_UPDATE set, the IMPL-EX crack band's update
 // of every try at the zero force of an unloading fails at one point more
-// than it did (tests/e2e/test_push_path_unloads_and_reloads.py).
+// than it did (tests/e2e/test_push_path_unloads_and_reloads.py); with
+// PUSHOUT_TEST_ENERGY_OVERSHOOTS set, every energy step overshoots and the
+// steps of the load that replace it fail
+// (tests/e2e/test_dissipation_control_passes_snap_back.py).
 #pragma once
 
 #include <mpi.h>
@@ -77,4 +80,11 @@ bool test_fail_crack_band_update();
 /// it (StepLoop::test_fail_implicit_try, after a step of the load, of
 /// energy or of path following; the same on every process).
 bool test_fail_implicit_row(int rows);
+
+/// PUSHOUT_TEST_ENERGY_OVERSHOOTS: under dissipation control every
+/// converged energy step is taken as one that overshot (more than a step
+/// of the load), and every step of the load that replaces it fails as if
+/// Newton had (StepLoop::DissipationSteps::try_step; the same on every
+/// process): the hand-backs between the two kinds must end.
+bool test_energy_overshoots();
 } // namespace pushout::stepping

@@ -7,7 +7,10 @@
    mean slip (the arc-length rows interpolated linearly: their spacing near
    the peak is most of it), on the condensed system and on the whole model
    (which take different steps near the peak: a step of delta converges on
-   one and not on the other).
+   one and not on the other). An energy step that overshoots, replaced by
+   steps of delta that fail, is cut, not tried again for ever (a test hook
+   makes every energy step overshoot and those steps fail: exit 3, saying
+   so, within the timeout).
 2. Brittle adhesion on the demo slice (pushout_friction_adhesion, c = 400
    1/mm, f_t = 6 MPa, k = 1e5 N/mm^3 for both layers, 0.5 mm in 10 steps):
    displacement control converges across the peak (its curve never rises
@@ -32,9 +35,10 @@
    the same p at 20 um as the condensed system on one, to Newton's bound
    on the two runs (common.newton_bound over both stages' steps)."""
 import os
+import subprocess
 
-from common import (COARSE_MESH, FRICTION_2, SNAP_BACK_LOADING, check, corrosion, curve, newton_bound,
-                    out_dir, run, solved_unknowns, summary)
+from common import (COARSE_MESH, FRICTION_2, OUT_ROOT, PUSHOUT, SNAP_BACK_LOADING, check, corrosion,
+                    curve, newton_bound, out_dir, run, solved_unknowns, summary)
 
 EXP = '[[interface]]\nlaw = "exponential_softening"\nk = {k}\nf_t = {f_t}\nc = {c}\n'
 
@@ -76,6 +80,29 @@ for name, out in (("condensed", diss), ("whole model", whole)):
           f"{name}: tau at the same mean slip: max |dissipation - arc length| = {max(diffs):.4f} MPa "
           f"over {len(diffs)} points (peak {peak_a:.3f} MPa); Newton iterations: dissipation "
           f"{summary(out)['newton_iterations']}, arc length {summary(arc)['newton_iterations']}")
+
+# 1b. An energy step that would move delta by more than a step is replaced by
+# steps of delta; where those fail back to energy steps, the energy step is
+# cut (it was tried again from the same state: the same overshoot, for
+# ever). With PUSHOUT_TEST_ENERGY_OVERSHOOTS every energy step overshoots and
+# the steps of delta after it fail: the energy steps are cut to the smallest
+# loading.max_cuts allows, and the run stops there saying why (exit 3), in
+# seconds (a run that hands back and forth for ever meets the timeout).
+hooked = out_dir("dissipation_overshoot_hook")
+os.makedirs(OUT_ROOT, exist_ok=True)
+hooked_scene = os.path.join(OUT_ROOT, "dissipation_overshoot_hook.toml")
+with open(hooked_scene, "w") as f:
+    f.write(snap)
+try:
+    p = subprocess.run([PUSHOUT, "run", hooked_scene, "--out", hooked, "--quiet", "--set",
+                        "loading.control=dissipation"], capture_output=True, text=True,
+                       timeout=120, env=dict(os.environ, PUSHOUT_TEST_ENERGY_OVERSHOOTS="1"))
+    code, err = p.returncode, p.stderr.strip()
+except subprocess.TimeoutExpired:
+    code, err = None, "still handing back and forth after 120 s"
+check(code == 3 and "the smallest step of energy would move it by more than a step" in err
+      and not summary(hooked)["converged"],
+      f"energy steps that overshoot, steps of delta that fail: exit {code}, {err[-250:]!r}")
 
 # 2. Brittle adhesion on the demo slice.
 brittle = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "demo",
