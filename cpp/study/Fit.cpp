@@ -145,12 +145,16 @@ std::vector<Free> free_values(const Scene& scene, const FitOptions& opt)
     f.scale = f.start != 0 ? std::abs(f.start) : 1.0;
     free.push_back(f);
   }
+  std::vector<std::string> bounded; // the keys given --bounds so far
   for (const std::string& b : opt.bounds)
   {
     const auto eq = b.find('='), colon = b.find(':', eq == std::string::npos ? 0 : eq);
     if (eq == std::string::npos || colon == std::string::npos)
       throw SceneError("--bounds '" + b + "': expected key=lo:hi (either may be empty)");
     const std::string key = b.substr(0, eq);
+    if (std::find(bounded.begin(), bounded.end(), key) != bounded.end())
+      throw SceneError("--bounds '" + key + "' is given twice: give one lo:hi");
+    bounded.push_back(key);
     const auto f =
         std::find_if(free.begin(), free.end(), [&](const Free& x) { return x.key == key; });
     if (f == free.end())

@@ -86,21 +86,40 @@ std::vector<CaseResult> gather(const std::vector<CaseResult>& mine)
   return results;
 }
 
-/// A value `v` gives twice, as its text or as a number ("" if none).
+/// A value `v` gives twice, as its text, as a number or as an array of
+/// numbers ("" if none).
 std::string repeated_value(const Variation& v)
 {
-  auto number = [](const std::string& text, double& x)
+  // The numbers of a value: one, or an array's ("[50, 50.0]"); false if
+  // it is neither.
+  auto numbers = [](std::string text, std::vector<double>& x)
   {
-    char* end = nullptr;
-    x = std::strtod(text.c_str(), &end);
-    return end != text.c_str() && *end == '\0';
+    x.clear();
+    const bool array = text.size() >= 2 && text.front() == '[' && text.back() == ']';
+    if (array)
+      text = text.substr(1, text.size() - 2);
+    const char* at = text.c_str();
+    while (true)
+    {
+      char* end = nullptr;
+      x.push_back(std::strtod(at, &end));
+      if (end == at)
+        return false;
+      while (*end == ' ' || *end == '\t')
+        ++end;
+      if (*end == '\0')
+        return array || x.size() == 1;
+      if (!array || *end != ',')
+        return false;
+      at = end + 1;
+    }
   };
   for (std::size_t i = 0; i < v.values.size(); ++i)
     for (std::size_t j = 0; j < i; ++j)
     {
-      double a = 0, b = 0;
+      std::vector<double> a, b;
       if (v.values[i] == v.values[j] ||
-          (number(v.values[i], a) && number(v.values[j], b) && a == b))
+          (numbers(v.values[i], a) && numbers(v.values[j], b) && a == b))
         return v.values[i];
     }
   return "";

@@ -207,6 +207,8 @@ cases = [
     ("bounds exclude the start", data, {"extra": ["--bounds", "interface.1.c=5:10"]}, "exclude"),
     ("a bound with a unit", data, {"extra": ["--bounds", "interface.1.c=5x:"]}, "finite numbers"),
     ("a bound not a number", data, {"extra": ["--bounds", "interface.1.c=nan:100"]}, "finite numbers"),
+    ("bounds given twice", data,
+     {"extra": ["--bounds", "interface.1.c=5:30", "--bounds", "interface.1.c=10:50"]}, "given twice"),
     ("no positive tau", write("negative.csv", "delta_mm,tau_MPa\n0.01,-1.0\n0.02,-2\n0.03,-2\n"),
      {}, "no tau_MPa above 0"),
 ]

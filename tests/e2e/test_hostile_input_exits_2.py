@@ -192,6 +192,8 @@ refused("sweep: a key no case reads", sweep + ["--vary", "cracking.seed=1,2"],
         ["cracking.seed", "no case reads cracking.seed", "the same cases again", "cracking.model"], seconds=10)
 refused("sweep: a value twice", sweep + ["--vary", "interface.0.mu=0.3,0.2,0.30"],
         ["interface.0.mu", "0.30 twice"], seconds=10)
+refused("sweep: an array value twice", sweep + ["--vary", "geometry.tube_center=[50,50],[50.0, 50.0]"],
+        ["geometry.tube_center", "[50.0, 50.0] twice"], seconds=10)
 # A case whose elements are too wide for its crack band (the square's
 # corners at 8 elements per quarter, c 150 1/mm), which needs the mesh, is
 # refused before any case runs (it used to run case_000 and refuse case_001
