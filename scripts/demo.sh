@@ -3,6 +3,13 @@
 # demo/pushout_friction.toml, into results/pushout_friction/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+for a in "$@"; do
+  case "$a" in -h | --help)
+    echo "usage: scripts/demo.sh [pushout run's options: --set key=value, --quiet, ...]"
+    exit 0
+    ;;
+  esac
+done
 scripts/setup.sh pushout # the program alone: the unit tests are scripts/test.sh's
 out=results/pushout_friction
 build/pushout run demo/pushout_friction.toml --out "$out" "$@"

@@ -6,6 +6,25 @@
 # rebuilds only what changed. Used by scripts/demo.sh and scripts/test.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+case "${1:-}" in
+  -h | --help)
+    echo "usage: scripts/setup.sh [TARGET...]   (no target: all of them; PUSHOUT_BUILD_TYPE=Debug: a debug build)"
+    exit 0
+    ;;
+  -*)
+    echo "setup: unknown option $1 (scripts/setup.sh --help)" >&2
+    exit 2
+    ;;
+esac
+# Debian's HDF5 compiler wrapper (h5pcc), which CMake runs to find the HDF5
+# that DOLFINx needs, splits its arguments at spaces: a build folder whose
+# path has one cannot be configured.
+case "$PWD" in
+  *[[:space:]]*)
+    echo "setup: $PWD has a space in its path, which Debian's HDF5 compiler wrapper (h5pcc) cannot take: clone pushout to a path without spaces" >&2
+    exit 1
+    ;;
+esac
 
 packages=(
   cmake g++ make pkg-config
@@ -34,9 +53,10 @@ if ((${#missing[@]})); then
   $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-build_type="${PUSHOUT_BUILD_TYPE:-Release}"
-if [ ! -f build/CMakeCache.txt ]; then
-  cmake -S . -B build -DCMAKE_BUILD_TYPE="$build_type" >/dev/null
+# Configured once (a configure that failed left no Makefile: again), or
+# again where PUSHOUT_BUILD_TYPE asks for a build type.
+if [ ! -f build/Makefile ] || [ -n "${PUSHOUT_BUILD_TYPE:-}" ]; then
+  cmake -S . -B build -DCMAKE_BUILD_TYPE="${PUSHOUT_BUILD_TYPE:-Release}" >/dev/null
 fi
 # The compiler's words but the progress lines; a failed build fails here
 # (an older build/pushout must not stand in for it).
