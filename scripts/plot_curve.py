@@ -32,7 +32,9 @@ from matplotlib.figure import Figure  # noqa: E402
 
 # The columns each kind draws from (a file of another kind lacks them).
 NEEDS = {"pushout": ("delta_mm", "tau_MPa"), "single_joint": ("u_s_mm", "F_s_N"),
-         "corrosion": ("penetration_mm", "p_MPa"), "crack_pattern": ("x_mm", "opening_mm")}
+         "corrosion": ("penetration_mm", "p_MPa"),
+         "crack_pattern": ("x_mm", "opening_mm") + tuple(f"corner_{k}_{c}_mm" for k in range(4)
+                                                       for c in "xy")}
 
 
 class PlotError(Exception):
@@ -100,6 +102,8 @@ def main():
         os._exit(1 if failed else 0)
     if not args.csv or not args.png:
         ap.error("CSV and OUT.png are needed (or --serve)")
+    if os.path.isdir(args.png):
+        ap.error(f"{args.png} is a folder: name the PNG file to write")
     try:
         draw(args.csv, args.png, args.kind, args.title)
     except PlotError as e:
@@ -128,7 +132,12 @@ def draw(csv_path, png, kind, title):
                            read_scene(os.path.join(folder, "scene.toml")))
     else:
         plot(fig, read_kind(csv_path, kind), kind, title)
-    fig.savefig(png)
+    try:
+        fig.savefig(png)
+    except OSError as e:
+        raise PlotError(f"cannot write {png}: {e.strerror}") from None
+    except ValueError as e:  # a format matplotlib does not write (".txt")
+        raise PlotError(f"cannot write {png}: {e}") from None
 
 
 def read_scene(path):
@@ -138,8 +147,11 @@ def read_scene(path):
     if not os.path.exists(path):
         return None
     import tomllib
-    with open(path, "rb") as f:
-        scene = tomllib.load(f)
+    try:
+        with open(path, "rb") as f:
+            scene = tomllib.load(f)
+    except (OSError, tomllib.TOMLDecodeError) as e:
+        raise PlotError(f"cannot read the scene beside the crack pattern, {path}: {e}") from None
     g, c = scene.get("geometry", {}), scene.get("cracking", {})
     if "width" not in g or "tube_outer_diameter" not in g:
         return None

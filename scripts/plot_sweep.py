@@ -36,11 +36,16 @@ def read_curve(folder, row):
         curve = list(csv.DictReader(f))
     if not curve:
         return None
-    if "delta_mm" in curve[0]:
-        return ([float(r["delta_mm"]) * 1e3 for r in curve], [float(r["tau_MPa"]) for r in curve],
-                ("tube displacement $\\delta$ [µm]", "nominal bond stress $\\tau$ [MPa]"))
-    return ([float(r["u_s_mm"]) for r in curve], [float(r["F_s_N"]) for r in curve],
-            ("shear displacement $u_s$ [mm]", "shear force $F_s$ [N]"))
+    try:
+        if "delta_mm" in curve[0]:
+            return ([float(r["delta_mm"]) * 1e3 for r in curve], [float(r["tau_MPa"]) for r in curve],
+                    ("tube displacement $\\delta$ [µm]", "nominal bond stress $\\tau$ [MPa]"))
+        return ([float(r["u_s_mm"]) for r in curve], [float(r["F_s_N"]) for r in curve],
+                ("shear displacement $u_s$ [mm]", "shear force $F_s$ [N]"))
+    except KeyError as e:
+        raise ValueError(f"{path} has no column {e}: not a curve.csv of pushout") from None
+    except (TypeError, ValueError):
+        raise ValueError(f"{path} is not a table of numbers: not a curve.csv of pushout") from None
 
 
 def draw_group(ax, curves, color, label):
@@ -72,6 +77,8 @@ def main():
         rows = list(reader)
         if not reader.fieldnames or not rows:
             raise ValueError(f"{f.name} has no cases: not a sweep's table")
+        if reader.fieldnames[0] != "case":
+            raise ValueError(f"{f.name} has no column case first: not a sweep's table")
         keys = []
         for k in reader.fieldnames[1:]:
             if k.startswith(COMPUTED):
@@ -124,5 +131,7 @@ if __name__ == "__main__":
     # be: one line, exit 1 (not a traceback).
     try:
         main()
+    except UnicodeDecodeError:
+        sys.exit("plot_sweep.py: error: sweep.csv is not text: not a sweep's table")
     except (OSError, ValueError, KeyError) as e:
         sys.exit(f"plot_sweep.py: error: {e}")

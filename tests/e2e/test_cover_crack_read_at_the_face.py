@@ -41,7 +41,7 @@ random strength field and no crack planes:
    crack_pattern.png draws it; without planes (1.) there is no
    crack_planes.csv. scripts/plot_curve.py draws its corrosion.csv (the
    plane's mouth and the widest surface crack), and refuses in one line,
-   exit 1, a file of another kind or none."""
+   exit 1, a file of another kind or none, and a PNG it cannot write."""
 
 import csv
 import math
@@ -264,8 +264,8 @@ check(len(planes) == 1 and len(plane) == 1 and planes[0]["angle_deg"] == 270
 plot_curve = os.path.join(SOURCE, "scripts", "plot_curve.py")
 
 
-def plot(csv_name, kind):
-    png = os.path.join(both_kinds, f"by_hand_{os.path.splitext(csv_name)[0]}_{kind}.png")
+def plot(csv_name, kind, png=None):
+    png = png or os.path.join(both_kinds, f"by_hand_{os.path.splitext(csv_name)[0]}_{kind}.png")
     # matplotlib's own notes (a font cache made, a config folder it cannot
     # write) go to stderr too: its config in a folder of the test's.
     env = dict(os.environ, MPLCONFIGDIR=os.path.join(both_kinds, "mplconfig"))
@@ -283,3 +283,12 @@ for csv_name, kind, words in (("corrosion.csv", "crack_pattern", "not a crack_pa
     err = "\n".join(line for line in p.stderr.splitlines() if line.startswith("plot_curve.py"))
     check(p.returncode == 1 and len(err.splitlines()) == 1 and words in err and not os.path.exists(png),
           f"plot_curve.py {csv_name} --kind {kind}: exit {p.returncode}, one line: {err[:150]!r}")
+# A PNG it cannot write (a folder that does not exist, a format matplotlib
+# does not write): one line, exit 1, not a traceback.
+for png, words in ((os.path.join(both_kinds, "no such folder", "c.png"), "cannot write"),
+                   (os.path.join(both_kinds, "c.txt"), "not supported")):
+    p, _ = plot("curve.csv", "pushout", png)
+    err = "\n".join(line for line in p.stderr.splitlines() if line.startswith("plot_curve.py"))
+    check(p.returncode == 1 and len(err.splitlines()) == 1 and words in err
+          and "Traceback" not in p.stderr,
+          f"plot_curve.py to {os.path.basename(png)}: exit {p.returncode}, one line: {err[:150]!r}")
