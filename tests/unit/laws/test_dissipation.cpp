@@ -77,6 +77,40 @@ TEST(Dissipation, NothingIsDissipatedElasticallyOrOnUnloading)
   EXPECT_DOUBLE_EQ(law->update(s1, {0.02, 0, 0}, s2, {}).dissipation, 0.0); // secant unloading
 }
 
+TEST(Dissipation, ADamageLawsStepDissipatesExactlyWhateverItsSize)
+{
+  // Each step's dissipation is the softening's energy between its histories,
+  // 1/2 f_t w0 + int_w0^kappa sigma - 1/2 sigma(kappa) kappa: in one step
+  // or in two, to round-off (a trapezoid of kappa^2 over the step gave 2.7
+  // times the first one below, and 65 times G_F for the linear law in one
+  // step). Exponential: k 1000, f_t 3, c 25, w0 0.003 mm.
+  const auto exponential =
+      make("exponential_softening", {{"k", 1000.0}, {"f_t", 3.0}, {"c", 25.0}});
+  const double w0 = 0.003;
+  const auto softened = [&](double kappa)
+  {
+    const double x = kappa - w0, sigma = 3.0 * std::exp(-25 * x);
+    return 0.5 * 3.0 * w0 + 3.0 * (1 - std::exp(-25 * x)) / 25 - 0.5 * sigma * kappa;
+  };
+  for (const Vec3 dir : {Vec3{1, 0, 0}, Vec3{0, 0.6, 0.8}})
+  {
+    std::vector<double> s0(exponential->state_size(), 0.0), s1(s0.size()), s2(s0.size());
+    const double one =
+        exponential->update(s0, {0.0155 * dir[0], 0.0155 * dir[1], 0.0155 * dir[2]}, s1, {})
+            .dissipation;
+    EXPECT_NEAR(one, softened(0.0155), 1e-12) << "0 -> 0.0155 mm in one step";
+    const double two =
+        exponential->update(s1, {0.03 * dir[0], 0.03 * dir[1], 0.03 * dir[2]}, s2, {}).dissipation;
+    EXPECT_NEAR(two, softened(0.03) - softened(0.0155), 1e-12) << "0.0155 -> 0.03 mm";
+  }
+  // Linear (k 1000, f_t 3, w_c2 0.1: separated at 0.103 mm): G_F = 0.1545
+  // N/mm in two steps, and in one step past separation.
+  const auto linear = make("linear_softening", {{"k", 1000.0}, {"f_t", 3.0}, {"w_c2", 0.1}});
+  const double G_F = 0.5 * 3.0 * w0 + 0.5 * 3.0 * 0.1;
+  EXPECT_NEAR(dissipated(*linear, {1, 0, 0}, 0.106, 2), G_F, 1e-12) << "two steps";
+  EXPECT_NEAR(dissipated(*linear, {1, 0, 0}, 0.2, 1), G_F, 1e-12) << "one step past separation";
+}
+
 TEST(Dissipation, FrictionDissipatesMuPTimesTheSlip)
 {
   // k 1000, mu 0.4, w_n = -0.001: p = 1 MPa, sliding from u = 0.0004 mm on.
