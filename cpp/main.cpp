@@ -13,6 +13,7 @@
 #include "common/mpi_errors.h"
 #include "common/mpi_gather.h"
 #include "common/petsc_check.h"
+#include "driver/MeshChecks.h"
 #include "driver/PetscOptions.h"
 #include "driver/Run.h"
 #include "driver/exit_on_error.h"
@@ -118,6 +119,13 @@ int run_scene(const std::string& scene_file, const std::string& out,
         // run's outputs there stay (a typo in a mesh key deleted them).
         mpi::collectively<OptionError, SceneError, record::TooLarge>(
             MPI_COMM_WORLD, [&] { driver::check_before_run(scene, options); });
+        // With cracks anywhere, what needs the mesh too (a cracking.radius
+        // that takes in no element, a crack band too wide for one): the
+        // mesh made, or read from the cache, which then serves the run.
+        mpi::collectively<SceneError>(MPI_COMM_WORLD,
+                                      [&] {
+                                        driver::MeshChecks{options.mesh_cache, force}(scene);
+                                      });
         // The folder is this run's alone, without an earlier run's outputs
         // (output/OutputFiles.h).
         mpi::collectively<SceneError, output::FolderError>(MPI_COMM_WORLD,

@@ -6,6 +6,7 @@
 #include "../common/exit_codes.h"
 #include "../common/mpi_errors.h"
 #include "../common/mpi_gather.h"
+#include "../driver/MeshChecks.h"
 #include "../driver/exit_on_error.h"
 #include "../laws/LawRegistry.h"
 #include "../output/OutputFiles.h"
@@ -17,7 +18,6 @@
 #include "FitReport.h"
 #include "FitStatistics.h"
 #include "FreeValue.h"
-#include "MeshChecks.h"
 #include "TaoFit.h"
 #include "text.h"
 #include <algorithm>
@@ -331,7 +331,10 @@ int prepare(FitOptions& opt, MeasuredCurve& data, std::vector<Free>& free, Resol
             });
         // With cracks anywhere, the crack band against the start's elements
         // (collective on MPI_COMM_WORLD, so once every group passed its guard).
-        mpi::collectively<SceneError>(MPI_COMM_WORLD, [&] { MeshChecks{opt}(start); });
+        mpi::collectively<SceneError>(MPI_COMM_WORLD,
+                                      [&] {
+                                        driver::MeshChecks{opt.mesh_cache, opt.force}(start);
+                                      });
         // The folder is this fit's alone, without an earlier run's outputs
         // (output/OutputFiles.h); neither the scene nor the data may be
         // among them.

@@ -6,6 +6,7 @@
 #include "../common/exit_codes.h"
 #include "../common/mpi_errors.h"
 #include "../common/mpi_gather.h"
+#include "../driver/MeshChecks.h"
 #include "../driver/PetscOptions.h"
 #include "../driver/Run.h"
 #include "../driver/exit_on_error.h"
@@ -14,7 +15,6 @@
 #include "../output/plot.h"
 #include "../scene/SceneError.h"
 #include "../specimen/Scenario.h"
-#include "MeshChecks.h"
 #include "SweepTables.h"
 #include <algorithm>
 #include <chrono>
@@ -270,7 +270,7 @@ SweepPlan plan_sweep(const SweepOptions& opt)
   std::map<std::string, std::string> unread;
   for (const Variation& v : plan.vary)
     unread[v.key] = "";
-  MeshChecks check_mesh(opt);
+  driver::MeshChecks check_mesh(opt.mesh_cache, opt.force);
   std::string seed_unread; // the cases that do not read a varied seed
   for (std::size_t i = 0; i < plan.cases.size(); ++i)
   {

@@ -127,6 +127,19 @@ for name, extra in (("-ksp_pc_side left", ["-ksp_pc_side", "left"]),
             ["-ksp_pc_side left" if "side" in name else "solver.condensation"])
     check(p.returncode == 0 and all(os.path.getmtime(os.path.join(kept, f)) == t for f, t in before.items()),
           f"{name}: the earlier run's curve.csv and summary.json stay")
+# So are the refusals of cracks anywhere that need the mesh (a
+# cracking.radius that takes in no element, a crack band too wide for one):
+# they took the folder first, and an earlier run's outputs there were gone.
+for name, sets, words in (
+        ("a cracking radius short of the concrete", ["cracking.radius=10.2"],
+         ["cracking.radius", "takes in no concrete element"]),
+        ("a crack band too wide", ["cracking.c=150", "mesh.elements_per_quarter=8"],
+         ["mm across", "lower cracking.c"])):
+    set_args = [a for s in ["cracking.model=embedded"] + sets for a in ("--set", s)]
+    refused(f"{name}: into an earlier run's folder",
+            ["run", GOOD_SCENE, "--out", kept, "--quiet"] + set_args, words, seconds=10)
+    check(all(os.path.getmtime(os.path.join(kept, f)) == t for f, t in before.items()),
+          f"{name}: the earlier run's curve.csv and summary.json stay")
 # A sweep refuses them before any case, as other values a run refuses
 # (each case failed with exit 2, the sweep exit 3).
 refused("a sweep with -ksp_pc_side left", ["sweep", GOOD_SCENE, "--vary", "interface.0.mu=0.2,0.3", "--out",

@@ -1,11 +1,11 @@
-// The mesh checks of scenes with cracks anywhere before any run (MeshChecks.h).
+// The mesh checks of scenes with cracks anywhere before a run (MeshChecks.h).
 #include "MeshChecks.h"
 #include "../mesh/generate.h"
 #include "../model/CrackBandCheck.h"
 #include "../record/ResourceGuard.h"
 #include <stdexcept>
 
-namespace pushout::study
+namespace pushout::driver
 {
 void MeshChecks::operator()(const Scene& scene)
 {
@@ -19,7 +19,7 @@ void MeshChecks::operator()(const Scene& scene)
     {
       record::check_fits(
           record::estimate_resources(shape, scene.solver(), scene.cracking(), MPI_COMM_WORLD),
-          shape, _opt.force);
+          shape, _force);
     }
     catch (const record::TooLarge&)
     {
@@ -28,7 +28,7 @@ void MeshChecks::operator()(const Scene& scene)
     bool reused = false;
     try
     {
-      _mesh.emplace(shape, mesh::generate(shape, _opt.mesh_cache, reused, MPI_COMM_WORLD));
+      _mesh.emplace(shape, mesh::generate(shape, _mesh_cache, reused, MPI_COMM_WORLD));
     }
     catch (const std::runtime_error&) // on every process (mesh::generate)
     {
@@ -37,4 +37,4 @@ void MeshChecks::operator()(const Scene& scene)
   }
   model::check_cracking_mesh(_mesh->second, scene.concrete(), scene.cracking(), scene.geometry());
 }
-} // namespace pushout::study
+} // namespace pushout::driver
