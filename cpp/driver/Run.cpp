@@ -210,6 +210,15 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, record::R
   report.publish();
   std::optional<interrupt::Phase> phase(std::in_place, "load steps", interrupt::stop_grace_s);
   const double t0 = report.seconds();
+  // The solver's time and counts so far in what each step publishes (a
+  // forced stop's summary.json), as the end adds them below.
+  const auto solver_counts = [&](output::Summary& s)
+  {
+    s.solve_s = report.seconds() - t0 - s.output_s;
+    s.factorizations += _solver->factorizations() - factorizations_before;
+    s.linear_iterations += _solver->linear_iterations() - linear_before;
+  };
+  report.set_counters(solver_counts);
   const auto control = [&]
   {
     if (!scenario->has_load_factor())
@@ -232,9 +241,8 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, record::R
     corrosion.note_edge_cracks(cracking->edge_cracks());
 
   phase.emplace("writing outputs", -1);
-  summary.solve_s = report.seconds() - t0 - summary.output_s;
-  summary.factorizations += _solver->factorizations() - factorizations_before;
-  summary.linear_iterations += _solver->linear_iterations() - linear_before;
+  report.set_counters({});
+  solver_counts(summary);
   recorder.close();
 }
 

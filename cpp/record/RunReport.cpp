@@ -120,8 +120,11 @@ RunReport::RunReport(const Scene& scene, const std::filesystem::path& out, bool 
 
 void RunReport::publish()
 {
+  output::Summary s = _summary;
+  if (_counters)
+    _counters(s);
   std::lock_guard lock(_published_mutex);
-  _published = _summary;
+  _published = std::move(s);
 }
 
 double RunReport::seconds() const

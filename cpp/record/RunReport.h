@@ -13,6 +13,7 @@
 #include <array>
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <mpi.h>
 #include <mutex>
 #include <optional>
@@ -41,6 +42,12 @@ public:
   output::Summary& summary() { return _summary; }
   /// Makes the summary as it is now the one a forced stop reports.
   void publish();
+  /// What publish() adds to the summary it publishes, not to summary()
+  /// (the solver's counts so far, which the run adds at its end); {}: none.
+  void set_counters(std::function<void(output::Summary&)> counters)
+  {
+    _counters = std::move(counters);
+  }
 
   /// Whether this process prints progress lines (rank 0, not quiet).
   bool talk() const { return _talk; }
@@ -89,7 +96,8 @@ private:
   bool _talk = false;
   output::Summary _summary;
   std::mutex _published_mutex;
-  output::Summary _published; ///< guarded by _published_mutex
+  output::Summary _published;                      ///< guarded by _published_mutex
+  std::function<void(output::Summary&)> _counters; ///< set_counters
   interrupt::ReportOnStop _on_stop;
   mpi::ReportOnAbandon _on_abandon;
   std::optional<output::CurvePlotter> _plotter;        ///< rank 0, if the run draws its curve

@@ -6,7 +6,7 @@ interrupted, by which signal, in the load steps, and curve.csv keeps whole
 rows, at least as many as summary.json counts. The exit code is mpirun's
 own (docs/running.md, "Under mpirun"). After Ctrl-C or a SIGTERM to mpirun,
 its SIGKILL comes a second after its SIGTERM: summary.json, naming the
-phase, must be written before it."""
+phase, must be written before it, with the solver's counts so far."""
 import json
 import os
 import signal
@@ -95,6 +95,11 @@ stop("term_every_process", term_every_process)
 slow = {"PUSHOUT_TEST_SLOW_STEP_S": "2"}
 s = stop("slow_step", term_mpirun, env=slow)
 check("during load steps" in s["message"], f"slow_step: ended where it was: {s['message']!r}")
+# Its summary.json (published at the last committed step) has the solver's
+# counts and time so far, not the zeros the run's end would have filled in.
+check(s["factorizations"] > 0 and s["linear_iterations"] > 0 and s["time_s"]["solve"] > 0,
+      f"slow_step: the solver's counts so far: {s['factorizations']} factorisations, "
+      f"{s['linear_iterations']} linear iterations, {s['time_s']['solve']:.3f} s")
 s = stop("slow_step_sigkill_4", term_mpirun, ["--mca", "odls_base_sigkill_timeout", "4"], slow)
 check("during" not in s["message"], f"slow_step_sigkill_4: stopped by itself: {s['message']!r}")
 
