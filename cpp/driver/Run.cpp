@@ -14,6 +14,7 @@
 #include "../stepping/StepLoop.h"
 #include "../stepping/StepRecorder.h"
 #include <chrono>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <optional>
@@ -170,6 +171,40 @@ std::string Simulation::set_up_fingerprint(const Scene& scene)
   return s.str();
 }
 
+namespace
+{
+/// While it lives, what the run publishes has the solver's counts so far
+/// (RunReport::set_counters); add_to_summary() adds them to the summary
+/// once, at the steps' end, or its destructor does where an error leaves
+/// them (the summary.json of the error then has them).
+class SolverCounts
+{
+public:
+  using Counts = std::function<void(output::Summary&)>;
+  SolverCounts(record::RunReport& report, Counts counts)
+      : _report(report), _counts(std::move(counts))
+  {
+    _report.set_counters(_counts);
+  }
+  SolverCounts(const SolverCounts&) = delete;
+  SolverCounts& operator=(const SolverCounts&) = delete;
+  void add_to_summary()
+  {
+    if (_added)
+      return;
+    _added = true;
+    _report.set_counters({});
+    _counts(_report.summary());
+  }
+  ~SolverCounts() { add_to_summary(); }
+
+private:
+  record::RunReport& _report;
+  Counts _counts;
+  bool _added = false;
+};
+} // namespace
+
 void Simulation::load_steps(const Scene& scene, const RunOptions& opt, record::RunReport& report)
 {
   output::Summary& summary = report.summary();
@@ -210,15 +245,17 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, record::R
   report.publish();
   std::optional<interrupt::Phase> phase(std::in_place, "load steps", interrupt::stop_grace_s);
   const double t0 = report.seconds();
-  // The solver's time and counts so far in what each step publishes (a
-  // forced stop's summary.json), as the end adds them below.
-  const auto solver_counts = [&](output::Summary& s)
-  {
-    s.solve_s = report.seconds() - t0 - s.output_s;
-    s.factorizations += _solver->factorizations() - factorizations_before;
-    s.linear_iterations += _solver->linear_iterations() - linear_before;
-  };
-  report.set_counters(solver_counts);
+  // The solver's time and counts so far: in what each step publishes (a
+  // forced stop's summary.json), and in the summary at the steps' end, or
+  // where an error leaves them (its summary.json).
+  SolverCounts counts(report,
+                      [&report, t0, solver = _solver.get(), factorizations_before,
+                       linear_before](output::Summary& s)
+                      {
+                        s.solve_s = report.seconds() - t0 - s.output_s;
+                        s.factorizations += solver->factorizations() - factorizations_before;
+                        s.linear_iterations += solver->linear_iterations() - linear_before;
+                      });
   const auto control = [&]
   {
     if (!scenario->has_load_factor())
@@ -241,8 +278,7 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, record::R
     corrosion.note_edge_cracks(cracking->edge_cracks());
 
   phase.emplace("writing outputs", -1);
-  report.set_counters({});
-  solver_counts(summary);
+  counts.add_to_summary();
   recorder.close();
 }
 

@@ -181,6 +181,8 @@ void RunReport::save_stop() noexcept
   try
   {
     output::Summary s = _summary;
+    if (_counters)
+      _counters(s);
     stamp(s);
     s.write(_out / "summary.json");
   }

@@ -86,6 +86,15 @@ for rank, at, words in ((1, "setup", ["error:", "test failure on process 1 at se
     one_message(name, err, words)
     if at == "step":  # the load steps before the failure stay in curve.csv
         check(len(curve(out)) == 3, f"{name}: curve.csv keeps step 0 and the 2 load steps")
+        # summary.json, written for the error, has the solver's counts and
+        # time so far (zeros before: they were added at the steps' end only).
+        with open(os.path.join(out, "summary.json")) as f:
+            summary = json.load(f)
+        check(summary["factorizations"] > 0 and summary["linear_iterations"] > 0
+              and summary["time_s"]["solve"] > 0,
+              f"{name}: summary.json has the solver's counts so far: "
+              f"{summary['factorizations']} factorisations, {summary['linear_iterations']} "
+              f"linear iterations, {summary['time_s']['solve']:.3f} s")
     if at.endswith("collective"):
         # summary.json says the error, not the SIGTERM that mpirun sends the
         # waiting process once the failing one ends the run: written by the
