@@ -34,7 +34,12 @@ void FieldWriter::remove_files(const std::string& prefix) const noexcept
   MPI_Comm_rank(_model.comm(), &rank);
   if (rank != 0)
     return;
-  for (const char* name : {"fields", "interface", "cracks"})
+  // Those of its names only: cracks.* is a run's with crack planes (a
+  // file of that name is the user's else).
+  std::vector<const char*> names = {"fields", "interface"};
+  if (_model.num_cracks() > 0)
+    names.push_back("cracks");
+  for (const char* name : names)
     for (const char* ext : {".xdmf", ".h5"})
     {
       const std::filesystem::path f = _dir / (prefix + name + ext);

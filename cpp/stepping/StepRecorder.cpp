@@ -83,12 +83,9 @@ void StepRecorder::record(Vec x, int iterations, int cuts, int step, int steps)
                             _equilibrium.model().comm());
   const std::string line = _scenario.progress(values);
   values.insert(values.end(), {double(iterations), double(cuts), _report.seconds()});
-  mpi::collectively(_equilibrium.model().comm(),
-                    [&]
-                    {
-                      if (_curve)
-                        _curve->row(_row, values);
-                    });
+  // The fields first: a step they have no room for (FieldWriter's check of
+  // the disk) writes no row either, so that curve.csv's rows are the steps
+  // summary.json counts.
   if (_fields)
     mpi::collectively(_equilibrium.model().comm(),
                       [&]
@@ -99,6 +96,12 @@ void StepRecorder::record(Vec x, int iterations, int cuts, int step, int steps)
                           cracking->settle();
                         _fields->write(double(_row));
                       });
+  mpi::collectively(_equilibrium.model().comm(),
+                    [&]
+                    {
+                      if (_curve)
+                        _curve->row(_row, values);
+                    });
   ++_row;
   _report.summary().output_s += _report.seconds() - t_out;
   if (!_report.talk())

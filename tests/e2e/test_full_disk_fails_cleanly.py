@@ -3,7 +3,9 @@ tmpfs (mounted here; skipped where mounting is not allowed) a run whose
 fields.xdmf fills it, one whose curve.csv does, one with no room for
 summary.json and one with no room for scene.toml each exit with code 1 and
 one line `pushout: error: cannot write FILE (disk full?)`; curve.csv keeps
-every row it has, each whole; summary.json is whole or absent."""
+every row it has, each whole, and no row for a step the fields had no room
+for (its rows are the steps summary.json counts); summary.json is whole or
+absent."""
 import os
 import shutil
 import subprocess
@@ -141,10 +143,17 @@ d = mount("128k")
 try:
     fill(d, base_pages + 4)
     out = os.path.join(d, "out")
+    # A folder no run of pushout used, with a file of the user's named as
+    # the crack planes' fields, which this run (no planes) never writes.
+    os.makedirs(out)
+    with open(os.path.join(out, "cracks.xdmf"), "w") as f:
+        f.write("mine\n")
     p = run(out, ["output.xdmf=true"])
     check_outcome("no room for the fields' mesh", p, out, "fields.xdmf")
     left = [f for f in os.listdir(out) if f.split(".")[0] in ("fields", "interface")]
     check(not left, f"no room for the fields' mesh: none of their files left: {left}")
+    check(os.path.exists(os.path.join(out, "cracks.xdmf")),
+          "no room for the fields' mesh: the user's cracks.xdmf stays (the run has no planes)")
 finally:
     unmount(d)
 
@@ -158,5 +167,14 @@ for n in (None, 2):
         p = run(out, ["output.xdmf=true", "loading.steps=100"], mpirun=n)
         check("HDF5" not in p.stderr and "Abort" not in p.stderr, f"{name}: no HDF5 error stack")
         check_outcome(name, p, out, "fields.xdmf", mpirun=bool(n))
+        # The step the fields had no room for writes no row either: the rows
+        # after step 0 are the steps summary.json counts (where it fitted).
+        sj = os.path.join(out, "summary.json")
+        if os.path.exists(sj):
+            import json
+            steps = json.load(open(sj))["steps"]
+            rows = len(open(os.path.join(out, "curve.csv")).read().splitlines()) - 1
+            check(rows == steps + 1, f"{name}: curve.csv's {rows - 1} rows after step 0 are "
+                  f"summary.json's {steps} steps")
     finally:
         unmount(d)
