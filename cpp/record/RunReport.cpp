@@ -19,6 +19,10 @@ std::string stage_progress(const std::string& stage, const output::Summary& s)
     return "after " + std::to_string(s.corrosion_steps) + " corrosion steps";
   if (stage == "meshing" || stage == "set-up")
     return ""; // no step yet
+  // The load steps, or a later phase ("writing outputs"): after the
+  // corrosion steps where no load step was taken.
+  if (s.steps == 0 && s.corrosion_steps > 0)
+    return "after " + std::to_string(s.corrosion_steps) + " corrosion steps";
   return "after " + std::to_string(s.steps) + " load steps";
 }
 
