@@ -12,6 +12,7 @@
 #include <array>
 #include <iostream>
 #include <optional>
+#include <string_view>
 
 namespace pushout::stepping
 {
@@ -106,6 +107,13 @@ bool StepLoop::run_stages(Control control)
   catch (const record::NonFiniteResult& e) // thrown on every process alike
   {
     _summary.message = std::string(e.what()) + "; stopped (not written)";
+    // The state of the last committed step, as a stop in the stage leaves
+    // it: in the corrosion stage its cracks too (summary.json cracks,
+    // crack_pattern.csv), as the stage's own stop says them.
+    end_implex_rescue();
+    revert();
+    if (std::string_view(_stage) == "corrosion steps")
+      _corrosion.describe_cracks(_equilibrium, _x, _summary);
     return false;
   }
 }
