@@ -134,6 +134,23 @@ truth = out_dir("fit_truth")
 run(SCENE, truth, sets=COARSE + ["loading.push_displacement=0.2"] + [f"{k}={v}" for k, v in TRUTH.items()])
 data, noise = measured(truth, "fit_data")
 
+# 1a. The truth's own curve (no scatter) fitted back from mu 30 % off:
+# converged at the truth, and the relative offset undefined (null), as
+# docs/fitting.md says (its two parts are round-off then; it read 199).
+exact = out_dir("fit_exact_data")
+os.makedirs(exact, exist_ok=True)
+exact_csv = os.path.join(exact, "..", "fit_exact_data.csv")
+with open(exact_csv, "w") as f:
+    f.write("delta_mm,tau_MPa\n" + "".join(f"{r['delta_mm']!r},{r['tau_MPa']!r}\n"
+                                          for r in curve(truth)[1:]))
+p = fit(exact, exact_csv, free=["interface.0.mu"], start={**TRUTH, "interface.0.mu": 0.52})
+with open(os.path.join(exact, "fit.json")) as f:
+    re_ = json.load(f)
+check(p.returncode == 0 and re_["converged"] and re_["relative_offset"] is None
+      and abs(re_["parameters"]["interface.0.mu"] - 0.4) < 1e-6,
+      f"the truth's own curve: exit {p.returncode}, mu {re_['parameters']['interface.0.mu']}, "
+      f"relative_offset {re_['relative_offset']}, rms {re_['rms_MPa']:.1e} MPa")
+
 # 1. Fitted back.
 out = out_dir("fit_serial")
 p = fit(out, data)
