@@ -420,10 +420,7 @@ int fit(const FitOptions& given)
   // Newton's relative tolerance, 1e-6, of the largest |tau| measured; a
   // measurement scatters far more) leave the offset undefined: its two
   // parts are round-off then (a run's own curve fitted back read 199).
-  double tau_max = 0; // [MPa]
-  for (const double t : data.tau)
-    tau_max = std::max(tau_max, std::abs(t));
-  if (std::sqrt(outcome.statistics.rss / double(data.tau.size())) <= 1e-6 * tau_max)
+  if (std::sqrt(outcome.statistics.rss / double(data.tau.size())) <= 1e-6 * data.largest_tau())
     outcome.relative_offset = NAN;
   if (problem.at_resolution)
   {

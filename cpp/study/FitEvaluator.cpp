@@ -75,10 +75,7 @@ Evaluator::residuals(const std::vector<std::vector<double>>& points, std::vector
 
 double Evaluator::failed_residual() const
 {
-  double largest = 0;
-  for (double t : _data.tau)
-    largest = std::max(largest, std::abs(t));
-  return failed_run_factor * largest;
+  return failed_run_factor * _data.largest_tau();
 }
 
 std::vector<std::string> Evaluator::sets_at(const std::vector<double>& x) const

@@ -2,6 +2,8 @@
 // linear interpolation by which a model's curve is read at its points.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -12,6 +14,14 @@ namespace pushout::study
 struct MeasuredCurve
 {
   std::vector<double> delta, tau;
+  /// The largest |tau| measured [MPa] (0 for no points).
+  double largest_tau() const
+  {
+    double largest = 0;
+    for (double t : tau)
+      largest = std::max(largest, std::abs(t));
+    return largest;
+  }
 };
 /// The text of the measured curve's `file` (refused if no file of
 /// reasonable size). Throws SceneError.

@@ -16,6 +16,7 @@
 #include "../scene/SceneError.h"
 #include "../specimen/Scenario.h"
 #include "SweepTables.h"
+#include "text.h"
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
@@ -92,27 +93,17 @@ std::string repeated_value(const Variation& v)
 {
   // The numbers of a value: one, or an array's ("[50, 50.0]"); false if
   // it is neither.
-  auto numbers = [](std::string text, std::vector<double>& x)
+  auto numbers = [](const std::string& text, std::vector<double>& x)
   {
     x.clear();
     const bool array = text.size() >= 2 && text.front() == '[' && text.back() == ']';
-    if (array)
-      text = text.substr(1, text.size() - 2);
-    const char* at = text.c_str();
-    while (true)
-    {
-      char* end = nullptr;
-      x.push_back(std::strtod(at, &end));
-      if (end == at)
+    for (const std::string& part :
+         array ? split(text.substr(1, text.size() - 2), ',') : std::vector<std::string>{text})
+      if (double d = 0; finite_number(part, d))
+        x.push_back(d);
+      else
         return false;
-      while (*end == ' ' || *end == '\t')
-        ++end;
-      if (*end == '\0')
-        return array || x.size() == 1;
-      if (!array || *end != ',')
-        return false;
-      at = end + 1;
-    }
+    return !x.empty();
   };
   for (std::size_t i = 0; i < v.values.size(); ++i)
     for (std::size_t j = 0; j < i; ++j)
