@@ -177,17 +177,17 @@ namespace
 /// (RunReport::set_counters); add_to_summary() adds them to the summary
 /// once, at the steps' end, or its destructor does where an error leaves
 /// them (the summary.json of the error then has them).
-class SolverCounts
+class PublishedSolverCounts
 {
 public:
   using Counts = std::function<void(output::Summary&)>;
-  SolverCounts(record::RunReport& report, Counts counts)
+  PublishedSolverCounts(record::RunReport& report, Counts counts)
       : _report(report), _counts(std::move(counts))
   {
     _report.set_counters(_counts);
   }
-  SolverCounts(const SolverCounts&) = delete;
-  SolverCounts& operator=(const SolverCounts&) = delete;
+  PublishedSolverCounts(const PublishedSolverCounts&) = delete;
+  PublishedSolverCounts& operator=(const PublishedSolverCounts&) = delete;
   void add_to_summary()
   {
     if (_added)
@@ -196,7 +196,7 @@ public:
     _report.set_counters({});
     _counts(_report.summary());
   }
-  ~SolverCounts() { add_to_summary(); }
+  ~PublishedSolverCounts() { add_to_summary(); }
 
 private:
   record::RunReport& _report;
@@ -248,14 +248,15 @@ void Simulation::load_steps(const Scene& scene, const RunOptions& opt, record::R
   // The solver's time and counts so far: in what each step publishes (a
   // forced stop's summary.json), and in the summary at the steps' end, or
   // where an error leaves them (its summary.json).
-  SolverCounts counts(report,
-                      [&report, t0, solver = _solver.get(), factorizations_before,
-                       linear_before](output::Summary& s)
-                      {
-                        s.solve_s = report.seconds() - t0 - s.output_s;
-                        s.factorizations += solver->factorizations() - factorizations_before;
-                        s.linear_iterations += solver->linear_iterations() - linear_before;
-                      });
+  PublishedSolverCounts counts(report,
+                               [&report, t0, solver = _solver.get(), factorizations_before,
+                                linear_before](output::Summary& s)
+                               {
+                                 s.solve_s = report.seconds() - t0 - s.output_s;
+                                 s.factorizations +=
+                                     solver->factorizations() - factorizations_before;
+                                 s.linear_iterations += solver->linear_iterations() - linear_before;
+                               });
   const auto control = [&]
   {
     if (!scenario->has_load_factor())
