@@ -101,8 +101,8 @@ void Corrosion::apply(double s, interface::Interface& itf) const
   itf.set_oxide(in.gap, in.compliance);
 }
 
-int Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iterations, int cuts,
-                      int step, bool numbered)
+void Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iterations, int cuts,
+                       int step, bool numbered, const std::function<void(int row)>& fields)
 {
   eq.update_displacement(state); // the crack mouths read the model's displacement
   const model::Model& model = eq.model();
@@ -133,6 +133,7 @@ int Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iteratio
     values.insert(values.end(), {double(at_surface), double(bulk.cracked_points), bulk.dissipated});
   record::refuse_non_finite(values, {"penetration_mm", "p_MPa", "crack_width_mm"},
                             "corrosion step " + std::to_string(step), _comm);
+  fields(_row);
   values.insert(values.end(), {double(iterations), double(cuts), _report.seconds()});
   mpi::collectively(_comm,
                     [&]
@@ -140,9 +141,9 @@ int Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iteratio
                       if (_csv)
                         _csv->row(_row, values);
                     });
-  const int row = _row++;
+  ++_row;
   if (!_report.talk())
-    return row;
+    return;
   std::ostringstream line;
   line.precision(4);
   line << "corrosion " << step;
@@ -163,7 +164,6 @@ int Corrosion::record(double s, solver::Equilibrium& eq, Vec state, int iteratio
   line << "  (newton " << iterations << (cuts ? ", cuts " + std::to_string(cuts) : "") << ", "
        << std::fixed << std::setprecision(2) << _report.seconds() << " s)";
   std::cout << line.str() << std::endl;
-  return row;
 }
 
 namespace

@@ -30,6 +30,7 @@
 #include "../solver/Equilibrium.h"
 #include <array>
 #include <filesystem>
+#include <functional>
 #include <optional>
 
 namespace pushout::specimen
@@ -61,11 +62,12 @@ public:
   /// right on the joints) at s of corrosion step `step` (0: before
   /// corrosion): a corrosion.csv row and the progress line, which shows
   /// `step` of the nominal steps if `numbered` (not under dissipation
-  /// control, whose steps are not those). Returns the row's number (its
-  /// step column). The model's displacement is `state`'s after it.
-  /// Collective.
-  int record(double s, solver::Equilibrium& eq, Vec state, int iterations, int cuts, int step,
-             bool numbered = true);
+  /// control, whose steps are not those). `fields(row)` writes the row's
+  /// fields first, so that a row the fields have no room for is not written
+  /// either (as curve.csv's). The model's displacement is `state`'s after
+  /// it. Collective.
+  void record(double s, solver::Equilibrium& eq, Vec state, int iterations, int cuts, int step,
+              bool numbered, const std::function<void(int row)>& fields);
 
   /// The force that works on the corrosion depth x [N]: the oxide's
   /// expansion does the work  int p dg0 dA = (beta - 1) N dx  on the

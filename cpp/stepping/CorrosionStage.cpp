@@ -42,7 +42,8 @@ bool StepLoop::corrode()
 
 void StepLoop::record_corrosion(int iterations, int cuts, int k, double s, bool numbered)
 {
-  _recorder.record_corrosion(_corrosion.record(s, _equilibrium, _x, iterations, cuts, k, numbered));
+  _corrosion.record(s, _equilibrium, _x, iterations, cuts, k, numbered,
+                    [&](int row) { _recorder.record_corrosion(row); });
   ++_summary.corrosion_steps;
   _summary.penetration_mm = _corrosion.penetration_at(s);
   // The stage's end by the test its loops end on (relative: dissipation

@@ -133,9 +133,8 @@ bool StepLoop::initial_step()
   const auto started = [&](int iterations, int cuts)
   {
     if (_corrosion.active())
-    {
-      _recorder.record_corrosion(_corrosion.record(0.0, _equilibrium, _x, iterations, cuts, 0));
-    }
+      _corrosion.record(0.0, _equilibrium, _x, iterations, cuts, 0, true,
+                        [&](int row) { _recorder.record_corrosion(row); });
     else
       start_push(iterations, cuts);
   };

@@ -4,8 +4,8 @@ fields.xdmf fills it, one whose curve.csv does, one with no room for
 summary.json and one with no room for scene.toml each exit with code 1 and
 one line `pushout: error: cannot write FILE (disk full?)`; curve.csv keeps
 every row it has, each whole, and no row for a step the fields had no room
-for (its rows are the steps summary.json counts); summary.json is whole or
-absent."""
+for (its rows are the steps summary.json counts), nor corrosion.csv for a
+corrosion step its fields had no room for; summary.json is whole or absent."""
 import os
 import shutil
 import subprocess
@@ -178,3 +178,30 @@ for n in (None, 2):
                   f"summary.json's {steps} steps")
     finally:
         unmount(d)
+
+# The corrosion stage's fields fill the disk: its rows after step 0 are the
+# corrosion steps summary.json counts (a step its fields had no room for
+# wrote a corrosion.csv row all the same).
+corroded = os.path.join(ROOT, "corroded.toml")
+with open(corroded, "w") as f:
+    f.write(COARSE_MESH + '[[interface]]\nlaw = "oxide_friction"\nk = 1000.0\nmu = 0.4\n'
+            "[corrosion]\npenetration = 0.02\nsteps = 200\n"
+            "[loading]\ntemperature_change = -25.0\npush_displacement = 0.01\nsteps = 4\n"
+            "[output]\nplot = false\nxdmf = true\n")
+scene = corroded
+d = mount("512k")
+try:
+    out = os.path.join(d, "out")
+    name = "corrosion_fields.xdmf fills the disk"
+    p = run(out)
+    check_outcome(name, p, out, "corrosion_fields.xdmf fields.xdmf")
+    sj = os.path.join(out, "summary.json")
+    if os.path.exists(sj):
+        import json
+        steps = json.load(open(sj))["corrosion_steps"]
+        rows = len(open(os.path.join(out, "corrosion.csv")).read().splitlines()) - 1
+        check(0 < steps < 200 and rows == steps + 1,
+              f"{name}: corrosion.csv's {rows - 1} rows after step 0 are summary.json's "
+              f"{steps} corrosion steps")
+finally:
+    unmount(d)
