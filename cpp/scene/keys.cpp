@@ -354,8 +354,9 @@ std::vector<KeyDef> make_keys()
        A::pushout},
       {"loading.max_cuts", K::integer, std::int64_t(10), "",
        "a step whose Newton solve fails is retried with half the increment, at most down to "
-       "2^-max_cuts of a step",
-       0, 60, false},
+       "2^-max_cuts of a step (at most 40: 2^-40 is 1e-12 of a step; much smaller "
+       "increments vanish in the round-off of the step's position)",
+       0, 40, false},
       {"loading.normal_force_per_node",
        K::number,
        -0.1,
