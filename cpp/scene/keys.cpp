@@ -425,9 +425,10 @@ std::vector<KeyDef> make_keys()
        2.0,
        "-",
        "oxide volume / volume of the steel it came from: the free opening of the interface is "
-       "g0 = (beta - 1) x - porous_zone",
+       "g0 = (beta - 1) x - porous_zone; iron's oxides and hydroxides are reported at 2 to 6.5 "
+       "(docs/corrosion.md), so at most 7",
        1,
-       inf,
+       7,
        false,
        {},
        A::pushout},

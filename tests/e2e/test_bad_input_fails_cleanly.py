@@ -60,6 +60,8 @@ cases = [
     ("a section given a value", GOOD, ["cracking=embedded"], ["'cracking'", "[cracking]", "model"]),
     ("cracking seed beyond 2^53", GOOD + '\n[cracking]\nmodel = "embedded"\n',
      ["cracking.seed=9007199254740993"], ["cracking.seed", "9007199254740993", "out of range"]),
+    # An expansion no iron oxide has (reported 2 to 6.5).
+    ("oxide beyond any iron oxide", GOOD, ["corrosion.beta=20"], ["corrosion.beta", "<= 7"]),
     # 2^-50 of a step vanished in the round-off of the step's position.
     ("cuts below round-off", GOOD, ["loading.max_cuts=50"], ["loading.max_cuts", "<= 40"]),
     ("crack band too wide where the field raises f_t",
