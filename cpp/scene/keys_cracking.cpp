@@ -229,10 +229,11 @@ std::vector<KeyDef> field_keys()
        "mm",
        "correlation length l of the strength field: its logarithm's correlation is "
        "exp(-(r/l)^2) at distance r; the strength's own is below that by at most "
-       "ln(1 + strength_cov^2) / 2 of it (2 % at strength_cov 0.2)",
-       0,
+       "ln(1 + strength_cov^2) / 2 of it (2 % at strength_cov 0.2); at least 0.001 (a "
+       "micrometre; a note says where the mesh does not resolve it)",
+       0.001,
        inf,
-       true,
+       false,
        {},
        A::pushout},
       {"cracking.seed",

@@ -60,6 +60,9 @@ cases = [
     ("a section given a value", GOOD, ["cracking=embedded"], ["'cracking'", "[cracking]", "model"]),
     ("cracking seed beyond 2^53", GOOD + '\n[cracking]\nmodel = "embedded"\n',
      ["cracking.seed=9007199254740993"], ["cracking.seed", "9007199254740993", "out of range"]),
+    # 1e-320 made the strength field NaN, and nothing cracked (exit 0).
+    ("correlation length of nothing", GOOD + '\n[cracking]\nmodel = "embedded"\nstrength_cov = 0.1\n',
+     ["cracking.correlation_length=1e-320"], ["cracking.correlation_length", ">= 0.001"]),
     # An expansion no iron oxide has (reported 2 to 6.5).
     ("oxide beyond any iron oxide", GOOD, ["corrosion.beta=20"], ["corrosion.beta", "<= 7"]),
     # 2^-50 of a step vanished in the round-off of the step's position.

@@ -136,3 +136,25 @@ TEST(SceneNotes, CorrodedCracksOnALayoutThatMovesTheResidualBond)
     EXPECT_NE(note.rfind(prefix, 0), 0u) << note;
   EXPECT_TRUE(scene_notes(Scene::parse("[corrosion]\npenetration = 0.05\n")).empty());
 }
+
+TEST(SceneNotes, StrengthFieldTheMeshDoesNotResolveOrNearlyUniform)
+{
+  // A correlation length below the elements at the tube (the default mesh:
+  // pi/2 10 mm / 16 = 0.98 mm) or beyond the slice's width (100 mm); none
+  // between them, nor without a random field.
+  const std::string field = "[cracking]\nmodel = \"embedded\"\nstrength_cov = 0.15\n";
+  const std::string prefix = "cracking.correlation_length = ";
+  const auto fine = scene_notes(Scene::parse(field, {{"cracking.correlation_length", "0.5"}}));
+  ASSERT_EQ(fine.size(), 1u);
+  EXPECT_EQ(fine[0].rfind(prefix + "0.5 mm is below the elements' size at the tube (0.982 mm)", 0),
+            0u)
+      << fine[0];
+  const auto wide = scene_notes(Scene::parse(field, {{"cracking.correlation_length", "150"}}));
+  ASSERT_EQ(wide.size(), 1u);
+  EXPECT_EQ(wide[0].rfind(prefix + "150 mm is more than the slice's width (100 mm)", 0), 0u)
+      << wide[0];
+  EXPECT_TRUE(scene_notes(Scene::parse(field, {{"cracking.correlation_length", "5"}})).empty());
+  EXPECT_TRUE(scene_notes(Scene::parse("[cracking]\nmodel = \"embedded\"\n",
+                                       {{"cracking.correlation_length", "0.5"}}))
+                  .empty());
+}
