@@ -72,7 +72,8 @@ def arguments(doc, out_folder, repeat=False, studies=None, options=()):
     script's docstring (its --help)."""
     ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--pushout", default=PUSHOUT)
-    ap.add_argument("--out", default=os.path.join(ROOT, "results", out_folder))
+    ap.add_argument("--out", default=os.path.join(ROOT, "results", out_folder),
+                    help="the folder of the runs; the tables go to bench/results")
     ap.add_argument("--reuse", action="store_true")
     ap.add_argument("--only", nargs="*", default=None)
     if repeat:

@@ -40,7 +40,8 @@ FIG10_WHEN_ASKED_S = 1.12
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--pushout", default=PUSHOUT)
-    ap.add_argument("--out", default=os.path.join(ROOT, "results", "bench_corrosion"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "results", "bench_corrosion"),
+                    help="the folder of the runs; the tables go to bench/results")
     ap.add_argument("--reuse", action="store_true")
     ap.add_argument("--repeat", type=int, default=3, help="runs per case; the least wall time counts")
     args = ap.parse_args()
@@ -82,7 +83,7 @@ def main():
     with open(os.path.join(results, "corrosion.md"), "w") as f:
         f.write("# Corroded push-out: cost against the Fig. 10 curve\n\n"
                 "Made by `bench/corrosion.py` (one thread per run, this machine; wall_s the "
-                "least of `runs` runs).\n\n")
+                f"least of `runs` runs, --repeat {args.repeat}).\n\n")
         f.write(markdown_table(list(rows[0]), rows))
 
 

@@ -36,7 +36,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--pushout", default=PUSHOUT)
     ap.add_argument("--repeat", type=int, default=10)
-    ap.add_argument("--out", default=os.path.join(ROOT, "results", "bench_demo_time"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "results", "bench_demo_time"),
+                    help="the folder of the runs; the tables go to bench/results")
     args = ap.parse_args()
     run = [args.pushout, "run", SCENE, "--out", args.out, "--quiet"]
     subprocess.run(run, check=True, stdout=subprocess.DEVNULL)  # the mesh into the cache

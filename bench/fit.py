@@ -33,7 +33,8 @@ START = {"interface.0.mu": 0.52, "interface.1.f_t": 3.9, "interface.1.c": 17.5}
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--pushout", default=PUSHOUT)
-    ap.add_argument("--out", default=os.path.join(ROOT, "results", "bench_fit"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "results", "bench_fit"),
+                    help="the folder of the runs; the tables go to bench/results")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     truth = os.path.join(args.out, "truth")

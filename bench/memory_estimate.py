@@ -6,7 +6,8 @@ and whole, the full model, the triquadratic bulk, 2 MPI processes and an
 iterative preconditioner; and the corroded demo with cracks anywhere in the
 concrete (one corrosion step of 1 um, 1 push step), on 1 and 2 processes.
 Each case meshes afresh (an empty mesh cache). Writes
-bench/results/memory_estimate.csv and .md.
+bench/results/memory_estimate.csv and .md (with --quick
+memory_estimate_quick.csv and .md).
 
   bench/memory_estimate.py [--pushout build/pushout] [--quick]
 """
@@ -46,7 +47,8 @@ QUICK = [c for c in CASES if c[1] * c[2] <= 32 * 8]
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--pushout", default=os.path.join(ROOT, "build", "pushout"))
-    ap.add_argument("--out", default=os.path.join(tempfile.gettempdir(), "pushout-bench-memory"))
+    ap.add_argument("--out", default=os.path.join(tempfile.gettempdir(), "pushout-bench-memory"),
+                    help="the folder of the runs; the tables go to bench/results")
     ap.add_argument("--quick", action="store_true", help="the smaller cases only")
     args = ap.parse_args()
     # Every case meshes, gmsh loaded: the peak of a mesh's first run, which

@@ -32,7 +32,8 @@ def main():
     ap.add_argument("--steps", type=int, default=3)
     ap.add_argument("--petsc", default="-ksp_type gmres -pc_type gamg -ksp_rtol 1e-9 -ksp_max_it 2000",
                     help="PETSc options for the linear solver")
-    ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results"),
+                    help="the folder of the tables (the runs go to --work)")
     ap.add_argument("--work", default=os.path.join(ROOT, "results", "scaling"))
     args = ap.parse_args()
     rows = []

@@ -62,7 +62,8 @@ def run_case(pushout, name, scene, sets, reuse):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--pushout", default=PUSHOUT)
-    ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results"),
+                    help="the folder of the tables (the runs go to results/snap_back)")
     ap.add_argument("--reuse", action="store_true", help="replot the runs in results/snap_back/")
     args = ap.parse_args()
     curves, table = {}, []

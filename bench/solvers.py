@@ -33,6 +33,7 @@ Writes bench/results/solvers.csv and solvers.md.
 """
 import argparse
 import os
+import time
 
 from common import PUSHOUT, ROOT, curve, markdown_table, run, summary, write_csv
 
@@ -55,13 +56,20 @@ SCENES = {
 }
 
 
+# The table's columns (a row's keys, in order).
+COLUMNS = ["scene", "solver", "dofs", "linear_solve_s", "curve_s", "solve_s", "floor_ratio",
+           "newton_unknowns", "steps", "newton_iterations", "factorizations", "peak_memory_mb",
+           "tau_end_MPa", "status"]
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--pushout", default=PUSHOUT)
     ap.add_argument("--only", nargs="+", default=list(SCENES), choices=list(SCENES))
-    ap.add_argument("--solvers", nargs="+", default=list(SOLVERS))
+    ap.add_argument("--solvers", nargs="+", default=list(SOLVERS), choices=list(SOLVERS))
     ap.add_argument("--timeout", type=float, default=3600, help="per run [s]")
-    ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results"),
+                    help="the folder of the tables (the runs go to --work)")
     ap.add_argument("--work", default=os.path.join(ROOT, "results", "solvers"))
     ap.add_argument("--reuse", action="store_true")
     args = ap.parse_args()
@@ -70,13 +78,24 @@ def main():
         scene, sets = SCENES[scene_name]
         for solver in args.solvers:
             out = os.path.join(args.work, scene_name, solver)
+            started = time.time()
             code = run(args.pushout, os.path.join(ROOT, "demo", scene), out,
                        ["output.plot=false", "solver.time_linear_solve=true"] + sets, SOLVERS[solver],
                        reuse=args.reuse, timeout=args.timeout, check=False)
+            stopped = f"stopped after {args.timeout:.0f} s"
+            written = os.path.join(out, "summary.json")
+            if code is None and not (os.path.exists(written) and
+                                     os.path.getmtime(written) >= started):
+                # Killed before it wrote a summary: an earlier run's in the
+                # folder is not this one's.
+                rows.append(dict({k: "" for k in COLUMNS}, scene=scene_name, solver=solver,
+                                 status=stopped))
+                print(rows[-1], flush=True)
+                continue
             s, c = summary(out), curve(out)
             status = "ok" if s["converged"] else s["message"]
             if code is None:
-                status = f"stopped after {args.timeout:.0f} s"
+                status = stopped
             rows.append({"scene": scene_name, "solver": solver, "dofs": s["dofs"],
                          "linear_solve_s": round(s["linear_solve_s"], 3),
                          "curve_s": round(s["wall_s"] - s["linear_solve_s"], 2),
@@ -87,6 +106,7 @@ def main():
                          "factorizations": s["factorizations"],
                          "peak_memory_mb": round(s["peak_memory_mb"]),
                          "tau_end_MPa": c[-1]["tau_MPa"], "status": status})
+            assert list(rows[-1]) == COLUMNS
             print(rows[-1], flush=True)
     write_csv(os.path.join(args.out, "solvers.csv"), rows)
     with open(os.path.join(args.out, "solvers.md"), "w") as f:

@@ -19,7 +19,8 @@ from common import PUSHOUT, ROOT, curve, run, save_figure_and_table  # noqa: E40
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--pushout", default=PUSHOUT)
-    ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results"),
+                    help="the folder of the tables (the runs go to results/viscosity)")
     args = ap.parse_args()
     etas = [0.0, 1e-4, 1e-3, 1e-2]
     curves = {}

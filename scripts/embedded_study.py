@@ -153,7 +153,8 @@ def spread(values):
 def group_table(table, runs, study):
     """Per tube, beta and x: the converged seeds' mean, min and max; `seeds`
     counts the converged ones, `seeds_run` every one run (as sweep_seeds.csv's
-    converged and seeds)."""
+    converged and seeds). A group none of whose seeds converged has a row
+    too, with `seeds` 0 and no values (it is not left out of the table)."""
     groups = {}
     for r in table:
         groups.setdefault((r["tube"], r["beta"], r["x_um"]), []).append(r)
@@ -163,11 +164,12 @@ def group_table(table, runs, study):
             where, beta, _, x = parse(name)
             ran[(where, beta, x)] = ran.get((where, beta, x), 0) + 1
     out = []
-    for (tube, beta, x), rs in sorted(groups.items()):
+    for (tube, beta, x) in sorted(set(groups) | set(ran)):
+        rs = groups.get((tube, beta, x), [])
         row = {"tube": tube, "beta": beta, "x_um": x, "seeds": len(rs),
                "seeds_run": ran.get((tube, beta, x), len(rs))}
         for key in ("p_after_corrosion_MPa", "surface_crack_um", "tau_peak_MPa", "tau_residual_MPa"):
-            mean, lo, hi = spread([r[key] for r in rs])
+            mean, lo, hi = spread([r[key] for r in rs]) if rs else (None, None, None)
             row.update({f"{key}_mean": mean, f"{key}_min": lo, f"{key}_max": hi})
         row["cover_crack_seeds"] = sum(r["cracks_at_surface"] >= 1 for r in rs)
         out.append(row)
@@ -192,7 +194,7 @@ def plot_bond(plt, out, groups, table, study):
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.5), dpi=120, sharey=True)
     for (where, _), style in zip(WHERE, ("o-", "s--")):
         for beta, color in zip(BETAS, ("tab:blue", "tab:red")):
-            sel = [g for g in groups if g["tube"] == where and g["beta"] == beta]
+            sel = [g for g in groups if g["tube"] == where and g["beta"] == beta and g["seeds"]]
             mean = [g["tau_residual_MPa_mean"] for g in sel]
             err = [[m - g["tau_residual_MPa_min"] for m, g in zip(mean, sel)],
                    [g["tau_residual_MPa_max"] - m for m, g in zip(mean, sel)]]

@@ -577,7 +577,7 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "results", "studies"))
     ap.add_argument("--pushout", default=os.path.join(ROOT, "build", "pushout"))
     ap.add_argument("--quick", action="store_true", help="coarse mesh, few steps")
-    ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
+    ap.add_argument("--jobs", type=pushout_runs.positive_int, default=os.cpu_count() or 1)
     ap.add_argument("--only", nargs="+",
                     default=["fig7", "fig8", "fig10", "retraction", "unload_reload", "laws"],
                     choices=STUDIES)
@@ -636,6 +636,10 @@ def main():
                   f"{r['crack_width_um']:.1f} um, residual tau {r['tau_residual_MPa']:.3f} MPa")
     for study in (s for s in embedded_study.STUDIES if s in args.only):
         for g in embedded_study.report(plt, args.out, runs, study):
+            if not g["seeds"]:
+                print(f"{study} {g['tube']} beta {g['beta']:g} x {g['x_um']:g} um: none of "
+                      f"{g['seeds_run']} seeds converged")
+                continue
             print(f"{study} {g['tube']} beta {g['beta']:g} x {g['x_um']:g} um "
                   f"({g['seeds']} seeds): residual tau {g['tau_residual_MPa_mean']:.3f} "
                   f"[{g['tau_residual_MPa_min']:.3f}, {g['tau_residual_MPa_max']:.3f}] MPa, "
