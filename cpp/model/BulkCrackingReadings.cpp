@@ -78,8 +78,20 @@ double chord(const std::array<double, 8>& o, double px, double py, double tx, do
   return hi > lo ? hi - lo : 0.0;
 }
 /// The outer faces' indices in a record: the square's x = 0, x = W, y = 0
-/// and y = W, and the circle about the tube axis.
+/// and y = W (their outward normals `square_normals`), and the circle about
+/// the tube axis.
+constexpr std::array<std::array<double, 2>, 4> square_normals{{{-1, 0}, {1, 0}, {0, -1}, {0, 1}}};
 constexpr int circle_face = 4;
+
+/// The depth [mm] of (x, y) below outer face `index` of a slice `W` [mm]
+/// wide (its diameter for the circle about `axis`).
+double depth_below(int index, double x, double y, double W, std::array<double, 2> axis)
+{
+  if (index == circle_face)
+    return W / 2 - std::hypot(x - axis[0], y - axis[1]);
+  const auto [nx, ny] = square_normals[std::size_t(index)];
+  return (nx + ny > 0 ? W : 0) - (nx * x + ny * y); // the face lies at n . p = 0 or W
+}
 
 /// Where a crack through the face column at (x, y), `depth` below face
 /// `index`, meets the face: moved out along the face's normal [mm].
@@ -91,8 +103,8 @@ std::array<double, 2> mouth_of(int index, double x, double y, double depth,
     const double r = std::hypot(x - axis[0], y - axis[1]);
     return {x + depth * (x - axis[0]) / r, y + depth * (y - axis[1]) / r};
   }
-  constexpr double out[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
-  return {x + depth * out[index][0], y + depth * out[index][1]};
+  const auto [nx, ny] = square_normals[std::size_t(index)];
+  return {x + depth * nx, y + depth * ny};
 }
 } // namespace
 
@@ -115,21 +127,16 @@ void BulkCracking::place_cells(const Geometry& slice, const std::vector<double>&
     p.weight = extent(c, {0, 0, 1}) / slice.thickness;
     p.size = std::max(extent(c, {1, 0, 0}), extent(c, {0, 1, 0}));
     p.outline = outline_of(nodes, x, p.x, p.y, p.size, tol);
-    // A face of the hexahedron (4 of its nodes) on the outer boundary.
-    auto on_face = [&](auto distance)
-    {
-      return std::count_if(nodes.begin(), nodes.end(),
-                           [&](std::int32_t n)
-                           { return std::abs(distance(x[3 * n], x[3 * n + 1])) < tol; }) >= 4;
-    };
     // Depth below face `index` of a point (x, y): the cell's centre for the
     // face, its points' for the half of them that the gauge reads.
     auto depth = [&](int index, double a, double b)
+    { return depth_below(index, a, b, slice.width, _axis); };
+    // A face of the hexahedron (4 of its nodes) on outer face `index`.
+    auto on_face = [&](int index)
     {
-      const double W = slice.width;
-      if (slice.circle)
-        return W / 2 - std::hypot(a - _axis[0], b - _axis[1]);
-      return std::array<double, 4>{a, W - a, b, W - b}[std::size_t(index)];
+      return std::count_if(nodes.begin(), nodes.end(),
+                           [&](std::int32_t n)
+                           { return std::abs(depth(index, x[3 * n], x[3 * n + 1])) < tol; }) >= 4;
     };
     auto add_face = [&](int index, double tx, double ty)
     {
@@ -151,25 +158,19 @@ void BulkCracking::place_cells(const Geometry& slice, const std::vector<double>&
       }
       p.faces.push_back(f);
     };
-    const double W = slice.width;
     if (slice.circle) // centred on the tube axis (meshes/slice.geo)
     {
-      if (on_face([&](double a, double b)
-                  { return std::hypot(a - _axis[0], b - _axis[1]) - W / 2; }))
+      if (on_face(circle_face))
       {
         const double phi = std::atan2(p.y - _axis[1], p.x - _axis[0]);
         add_face(circle_face, -std::sin(phi), std::cos(phi));
       }
       continue;
     }
-    if (on_face([](double a, double) { return a; }))
-      add_face(0, 0, 1);
-    if (on_face([&](double a, double) { return a - W; }))
-      add_face(1, 0, 1);
-    if (on_face([](double, double b) { return b; }))
-      add_face(2, 1, 0);
-    if (on_face([&](double, double b) { return b - W; }))
-      add_face(3, 1, 0);
+    for (int index = 0; index < 4; ++index) // along each face: the tangent (|n_y|, |n_x|)
+      if (on_face(index))
+        add_face(index, std::abs(square_normals[std::size_t(index)][1]),
+                 std::abs(square_normals[std::size_t(index)][0]));
   }
 }
 
