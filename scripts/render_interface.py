@@ -137,6 +137,7 @@ def main():
         lut = GetColorTransferFunction(field)
         lut.ApplyPreset("Cool to Warm", True)
         lo, hi = flat.CellData[field].GetRange()
+        print(f"coloured {field}: {lo:.6g} to {hi:.6g}")
         if hi - lo < 1e-9 * (abs(hi) if abs(hi) > 1 else 1.0):
             lo, hi = lo - 1e-6, hi + 1e-6
         lut.RescaleTransferFunction(lo, hi)
