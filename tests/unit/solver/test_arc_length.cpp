@@ -35,9 +35,11 @@ public:
 /// One step of control increment d_eta from the equilibrium at lambda0 with
 /// e by differences of step h (0: as if F were affine in lambda), the
 /// Jacobian times jacobian_scale, its first row times first_row_scale; a
-/// stall nearly in equilibrium ends the step if `loose`.
+/// stall nearly in equilibrium ends the step if `loose`. `end`: the step's
+/// last x.
 solver::SolveReport step(double lambda0, double d_eta, double h, double& lambda,
-                         double jacobian_scale = 1, double first_row_scale = 1, bool loose = false)
+                         double jacobian_scale = 1, double first_row_scale = 1, bool loose = false,
+                         std::array<double, 2>* end = nullptr)
 {
   CubicPath problem;
   problem.jacobian_scale = jacobian_scale;
@@ -55,6 +57,13 @@ solver::SolveReport step(double lambda0, double d_eta, double h, double& lambda,
     lambda = lambda0;
     rep = arc.step(
         x, lambda, d_eta, [&](double l) { problem.lambda = l; }, 0, loose);
+  }
+  if (end)
+  {
+    const PetscScalar* v = nullptr;
+    check(VecGetArrayRead(x, &v), "VecGetArrayRead");
+    *end = {v[0], v[1]};
+    check(VecRestoreArrayRead(x, &v), "VecRestoreArrayRead");
   }
   check(VecDestroy(&a), "VecDestroy");
   check(VecDestroy(&x), "VecDestroy");
@@ -112,11 +121,17 @@ TEST(ArcLength, AStalledStepNearEquilibriumEndsAtItsBestIterate)
   // reactions (ArcLengthSolver::loose_rtol), the control within 1 % of the
   // step. On the path, lambda^2 (1 + lambda) = 2 + 1e-7.
   double lambda = 0;
-  const solver::SolveReport rep = step(1.0, 1e-7, 1e-7, lambda, 1, 0.18, true);
+  std::array<double, 2> x{};
+  const solver::SolveReport rep = step(1.0, 1e-7, 1e-7, lambda, 1, 0.18, true, &x);
   ASSERT_TRUE(rep.converged) << rep.reason;
   EXPECT_TRUE(rep.loose);
   EXPECT_EQ(rep.reason.rfind("CONVERGED_AT_STALL", 0), 0u) << rep.reason;
   EXPECT_LE(rep.iterations, 15);
+  // The step moved: the control x2 within 1 % of the step from 2 + 1e-7
+  // (the loose rule's promise; it starts 1e-7 away, at 2), and the iterate
+  // within 1e-5 of equilibrium (loose_rtol times the reactions' norm, 1).
+  EXPECT_NEAR(x[1], 2.0 + 1e-7, 1e-9);
+  EXPECT_LE(std::hypot(x[0] - lambda * lambda, x[1] - x[0] - lambda * lambda * lambda), 1e-5);
   // The path's lambda, 1 + 2e-8, to the |F| of the iterate (below 1e-7;
   // d lambda / d F is about 1 here), not to Newton's tolerance.
   EXPECT_NEAR(lambda, 1.0 + 2e-8, 1e-7);
