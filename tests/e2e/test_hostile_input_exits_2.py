@@ -294,7 +294,9 @@ args, out = run_args("tao_type_other", GOOD_SCENE, extra=["-tao_type", "lmvm"])
 refused("run: a TAO type not a fit's", args, ["a PETSc option", "-tao_type lmvm", "bnls"], seconds=10)
 for cmd in ([], ["run"], ["sweep"]):
     p, _ = pushout(cmd + ["--help"])
-    check(p.returncode == 0 and "--out" in p.stdout or not cmd, f"pushout {' '.join(cmd)} --help: exit 0, help")
+    # (the top level's help names the subcommands, not their options)
+    said = "--out" if cmd else "SUBCOMMAND"
+    check(p.returncode == 0 and said in p.stdout, f"pushout {' '.join(cmd)} --help: exit 0, help")
 # An answer standard output cannot take (a full disk) is an I/O error,
 # exit 1, said on stderr (it was exit 0).
 if os.path.exists("/dev/full"):
