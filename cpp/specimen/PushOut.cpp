@@ -290,7 +290,9 @@ std::vector<double> PushOut::row(std::span<const double> /*reactions*/, std::spa
   std::vector<double> g(local.size());
   MPI_Allreduce(local.data(), g.data(), int(local.size()), MPI_DOUBLE, MPI_SUM, model.comm());
   const double P = _copies * load_force(model), delta = g[1] / g[2], area = g[3];
-  const double tau = P / (std::numbers::pi * _D * (_L - delta)); // eq. (1)
+  // eq. (1): the contact length shrinks by |delta| whichever way the tube
+  // moves (a push_path may pull it back, delta < 0).
+  const double tau = P / (std::numbers::pi * _D * (_L - std::abs(delta)));
   double p_total = 0;
   std::vector<double> p_layer;
   for (std::size_t l = 0; l < _layers; ++l)
@@ -413,6 +415,36 @@ void check_loading(const Scene& scene)
         << " mm): give one (a short one, e.g. 0.001 mm, after a corrosion stage alone), or set "
            "'loading.control' = \"displacement\"";
       throw SceneError(s.str());
+    }
+    // A corrosion step lasts the push's first step's pseudo-time
+    // (StepLoop::corrosion_stage): none without a push, and a viscous
+    // damage would then never grow in the stage (the uncracked answer).
+    if (loading.push_displacement == 0 && scene.corrosion().penetration > 0)
+    {
+      std::vector<std::string> viscous;
+      const auto add = [&](const std::string& prefix, const LayerSpec& layer)
+      {
+        if (const auto eta = layer.params.find("eta"); eta != layer.params.end() && eta->second > 0)
+          viscous.push_back("'" + prefix + "eta'");
+      };
+      for (std::size_t i = 0; i < scene.layers().size(); ++i)
+        add("interface." + std::to_string(i) + ".", scene.layers()[i]);
+      for (std::size_t i = 0; i < scene.cracks().size(); ++i)
+        add("crack." + std::to_string(i) + ".", scene.cracks()[i].layer);
+      if (scene.cracking().embedded && scene.cracking().viscosity > 0)
+        viscous.push_back("'cracking.viscosity'");
+      if (!viscous.empty())
+      {
+        std::string keys;
+        for (const std::string& k : viscous)
+          keys += (keys.empty() ? "" : ", ") + k;
+        throw SceneError(
+            "a corrosion step lasts the pseudo-time of the push's first step, and "
+            "'loading.push_displacement' = 0 gives it none: the viscous damage of " +
+            keys +
+            " would not grow in the corrosion stage. Give a push (0.001 mm in "
+            "'loading.steps' = 1 makes a corrosion step last 0.001 mm), or no viscosity");
+      }
     }
   }
   else

@@ -48,6 +48,7 @@
 #include "../scene/Scene.h"
 #include "LoadPath.h"
 #include "Scenario.h"
+#include <cmath>
 
 namespace pushout::specimen
 {
@@ -85,10 +86,11 @@ public:
   std::vector<std::string> columns() const override;
   int steps() const override { return _path.empty() ? _steps : _path.steps(); }
   bool initial_solve() const override { return _dT != 0.0; }
-  /// The push's path length: delta, or the length travelled along push_path.
+  /// The push's path length: |delta| (a pull's too), or the length
+  /// travelled along push_path.
   double time_at(double s) const override
   {
-    return _path.empty() ? delta_at(s) : _path.length_to(s);
+    return _path.empty() ? std::abs(delta_at(s)) : _path.length_to(s);
   }
   void apply_load(double s, solver::Equilibrium& eq) const override;
   void apply_initial_load(double fraction, solver::Equilibrium& eq) const override;

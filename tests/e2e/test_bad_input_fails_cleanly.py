@@ -63,6 +63,13 @@ cases = [
     # 1e-320 made the strength field NaN, and nothing cracked (exit 0).
     ("correlation length of nothing", GOOD + '\n[cracking]\nmodel = "embedded"\nstrength_cov = 0.1\n',
      ["cracking.correlation_length=1e-320"], ["cracking.correlation_length", ">= 0.001"]),
+    # A corrosion step lasts the push's first step's pseudo-time: none
+    # without a push, and viscous damage stayed 0 (the uncracked answer).
+    ("viscous corrosion without a push",
+     COARSE_MESH + '[[interface]]\nlaw = "oxide_friction"\nk = 1000.0\nmu = 0.4\n'
+     '[corrosion]\npenetration = 0.01\n[cracking]\nmodel = "embedded"\nviscosity = 0.001\n',
+     ["loading.push_displacement=0"],
+     ["'cracking.viscosity'", "'loading.push_displacement' = 0", "corrosion step"]),
     # An expansion no iron oxide has (reported 2 to 6.5).
     ("oxide beyond any iron oxide", GOOD, ["corrosion.beta=20"], ["corrosion.beta", "<= 7"]),
     # 2^-50 of a step vanished in the round-off of the step's position.

@@ -4,6 +4,8 @@ towards the rate-independent one as eta -> 0 (max |tau_eta - tau_0|
 decreases with eta, about tenfold per decade as a first-order regularisation
 should, and is below 3 % of the peak for eta = 1e-4 mm), and a viscous law
 delays the softening (tau just after the peak is higher)."""
+import math
+
 from common import COARSE_MESH, EXP_SOFT, FRICTION_2, check, curve, out_dir, run
 
 scene = COARSE_MESH + FRICTION_2 + EXP_SOFT + """
@@ -58,3 +60,25 @@ check(gaps[0] > gaps[1] > gaps[2], "a viscous layer damages in step 0, the more 
       + ", ".join(f"eta {eta:g}: {tau0[eta]:.4f}" for eta in (1e-2, 1e-3, 1e-5)))
 check(gaps[2] < 0.02 * abs(tau0[0.0] - undamaged),
       f"eta 1e-5 mm: step 0 within 2 % of the rate-independent one ({tau0[1e-5]:.4f} vs {tau0[0.0]:.4f} MPa)")
+
+# A pull (push_displacement < 0): the pseudo-time is the path's length, |delta|,
+# so a viscous damage lags the rate-independent one as under a push (it ran
+# backwards: D = -2.4e5 and tau -104 MPa at eta 1e-2, and 0.72 against 0.61
+# at eta 1e-3); and tau divides by the contact length L - |delta| left.
+pulled = {}
+for eta in (0.0, 1e-3):
+    out = out_dir(f"viscous_pull_{eta:g}")
+    run(scene, out, sets=[f"interface.1.eta={eta}", "loading.push_displacement=-0.1",
+                          "output.plot=false"])
+    pulled[eta] = curve(out)
+damage = [(a["d_1_mean"], b["d_1_mean"]) for a, b in zip(pulled[1e-3], pulled[0.0])]
+check(all(0 <= d <= d0 + 1e-12 <= 1 + 1e-12 for d, d0 in damage),
+      f"a pull: the viscous damage in [0, 1] and behind the rate-independent one: "
+      f"{damage[-1][0]:.4f} against {damage[-1][1]:.4f} at the end")
+L, D = 20.0, 20.0  # mm: the default slice's thickness and tube
+# (the columns' 12 significant digits: 1e-9 is far above their round-off
+# and far below the 2 * 0.1 / 20 = 1 % that L + |delta| made)
+check(all(abs(r["tau_MPa"] * math.pi * D * (L - abs(r["delta_mm"])) - r["P_N"]) <= 1e-9 * abs(r["P_N"])
+          for r in pulled[0.0]),
+      f"a pull: tau = P / (pi D (L - |delta|)): {pulled[0.0][-1]['tau_MPa']:.6f} MPa at "
+      f"delta {pulled[0.0][-1]['delta_mm']} mm, P {pulled[0.0][-1]['P_N']:.3f} N")
