@@ -315,7 +315,8 @@ std::vector<KeyDef> make_keys()
        "path: an unloading segment of push_path goes to its value (the tube pulled back if "
        "need be); zero_force: it ends where the push force P falls to zero, as a push-out "
        "device that cannot pull (summary.json permanent_displacements_mm; the path stays at "
-       "0 or above), and the next segment starts there",
+       "0 or above), and the path goes on from there (past the unloading segments right after "
+       "it, which would pull)",
        -inf,
        inf,
        false,

@@ -6,7 +6,8 @@
 //   j = floor(s / per_segment) (the last segment for s at the end),
 // and the path length travelled to s (the pseudo-time of viscous laws).
 // A segment can be ended early (end_segment: an unloading push that stops
-// where the force reaches zero); the next one starts from there.
+// where the force reaches zero); the path goes on from there, past the
+// unloading segments right after it, which would pull.
 #pragma once
 
 #include <algorithm>
@@ -69,11 +70,16 @@ public:
   }
 
   /// Ends segment j at load parameter s inside it: its end vertex becomes
-  /// value(s), so that the next segment starts there. Returns the load
-  /// parameter of the segment's end, where the path goes on.
+  /// value(s), and so does the end of each segment right after it that
+  /// ends at or below that value (an unloading on to it would pull), so
+  /// that the path goes on from value(s). Returns the load parameter where
+  /// it goes on: the end of the last segment so ended.
   double end_segment(std::size_t j, double s)
   {
-    _v[j + 1] = value(s);
+    const double end = value(s);
+    _v[j + 1] = end;
+    for (; j + 2 < _v.size() && _v[j + 2] <= end; ++j)
+      _v[j + 2] = end;
     return double((j + 1) * std::size_t(_per_segment));
   }
 

@@ -107,14 +107,17 @@ bool StepLoop::nominal_steps(const Stage& stage)
       if (rep.converged && stage.zero_force_ends)
       {
         const double P_try = _scenario.load_force(model);
-        if (_scenario.ends_at_zero_force(k) && P >= 0 && P_try < 0)
+        // (a force within the search's tolerance of zero is zero: an
+        // unloading that reaches it at its vertex, as a secant one to the
+        // origin, ends there whatever the round-off's sign)
+        const double tol = zero_force_tolerance * std::max(P_peak, 1e-300);
+        if (_scenario.ends_at_zero_force(k) && P >= 0 && P_try < -tol)
         {
           // The device cannot pull: the unloading ends where P = 0, and
           // the next segment starts there.
           revert();
           double s_zero;
-          if (!zero_force_step(stage, k, cuts, s, P, s_try, P_try,
-                               zero_force_tolerance * std::max(P_peak, 1e-300), s_zero))
+          if (!zero_force_step(stage, k, cuts, s, P, s_try, P_try, tol, s_zero))
             return false;
           const double delta = _scenario.prescribed_at(s_zero);
           _summary.permanent_displacements_mm.push_back(delta);

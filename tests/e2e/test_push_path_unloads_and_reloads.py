@@ -30,7 +30,10 @@
    displacement. A try at the zero force is taken without IMPL-EX's error
    check (its size is the force's), but not where the crack band's own
    update failed: with a test hook that fails it at one point, the run stops
-   there, exit 3, and says so; nothing of that try is committed."""
+   there, exit 3, and says so; nothing of that try is committed.
+7. An unloading ended at zero force skips the unloadings right after it
+   (they would pull); one that reaches zero force at its own vertex lists
+   no permanent displacement."""
 import os
 
 from common import (COARSE_MESH, EXP_SOFT, FRICTION_2, OUT_ROOT, check, cracking_corroded_demo, curve,
@@ -173,3 +176,24 @@ check(p.returncode == 3 and "zero force of the unloading failed" in p.stderr
       and summary(failed)["permanent_displacements_mm"] == [],
       f"a failed crack band update at the zero force: exit {p.returncode}, {len(f)} rows against "
       f"{len(c) - 1} before it, {p.stderr.strip()[-300:]!r}")
+
+# 7. An unloading ended at zero force skips the unloadings right after it
+# (they would pull): one permanent displacement and one row at it (the next
+# segment searched a zero again 1e-12 mm further: two of each); and an
+# unloading that reaches zero force at its own vertex, as an elastic joint's
+# at delta = 0 with no thermal step, lists none whatever the sign of P's
+# round-off there (it listed [5.2e-18, 0.0]).
+out = out_dir("push_path_unloadings_in_a_row")
+run(COARSE_MESH + FRICTION_2 + EXP_SOFT + THERMAL.format(n=10, path="[0.0, 0.03, 0.005, 0.0, 0.05]")
+    + ZERO, out)
+c, s = curve(out), summary(out)
+at_zero = [r for r in c if abs(r["P_N"]) < 1e-6 * max(abs(r["P_N"]) for r in c)]
+check(len(s["permanent_displacements_mm"]) == 1 and len(at_zero) == 1,
+      f"unloadings in a row: permanent displacements {s['permanent_displacements_mm']}, "
+      f"{len(at_zero)} row(s) at zero force")
+out = out_dir("push_path_elastic_back_to_zero")
+run(COARSE_MESH + '[[interface]]\nlaw = "elastic"\nk = 1000.0\n'
+    + THERMAL.replace("-25.0", "0.0").format(n=5, path="[0.0, 0.01, 0.0, 0.01, 0.0]") + ZERO, out)
+check(summary(out)["permanent_displacements_mm"] == [],
+      f"elastic, back to delta = 0: no permanent displacement: "
+      f"{summary(out)['permanent_displacements_mm']}")

@@ -86,6 +86,28 @@ TEST(LoadPath, UnloadingEndedEarlyStartsTheNextSegmentThere)
   EXPECT_DOUBLE_EQ(path.length_to(12.0), 0.026);
 }
 
+TEST(LoadPath, UnloadingEndedEarlySkipsTheUnloadingsAfterIt)
+{
+  // 0 -> 30 -> 5 -> 0 -> 50 um in 4 steps a segment: the force falls to zero
+  // at s = 6 (delta = 17.5 um) in the first unloading; the second (to 0)
+  // would pull, and ends there too: the path goes on at s = 12, reloading
+  // from 17.5 um (it searched a zero again 1e-12 mm further, and wrote a
+  // second permanent displacement).
+  LoadPath path({0.0, 0.03, 0.005, 0.0, 0.05}, 4);
+  EXPECT_EQ(path.end_segment(1, 6.0), 12.0);
+  EXPECT_DOUBLE_EQ(path.value(8.0), 0.0175);
+  EXPECT_DOUBLE_EQ(path.value(12.0), 0.0175);
+  EXPECT_FALSE(path.decreasing(2)); // a segment of no length
+  EXPECT_DOUBLE_EQ(path.value(16.0), 0.05);
+  EXPECT_DOUBLE_EQ(path.length_to(16.0), 0.03 + 0.0125 + 0.0325);
+  // A segment after it that unloads to above the zero, and one that loads,
+  // are not ended.
+  LoadPath above({0.0, 0.03, 0.005, 0.02, 0.01}, 4);
+  EXPECT_EQ(above.end_segment(1, 6.0), 8.0);
+  EXPECT_DOUBLE_EQ(above.value(12.0), 0.02);
+  EXPECT_DOUBLE_EQ(above.value(16.0), 0.01);
+}
+
 TEST(LoadPath, PathKeysChecked)
 {
   // push_path and shear_path alike: a segment at least, from 0, and at most
