@@ -53,11 +53,11 @@ BulkCracking::BulkCracking(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
                            std::shared_ptr<const fem::Function<double>> u,
                            std::shared_ptr<const fem::Function<double>> alpha,
                            const std::vector<std::int32_t>& material, const Material& concrete,
-                           const CrackingPart& part, const Geometry& slice, bool cut_by_symmetry)
+                           const CrackingPart& part, const Geometry& slice, int copies)
     : _mesh(mesh), _u(u), _band(concrete.E, concrete.nu, envelope_of(part), part.viscosity),
       _cells(cracking_cells(*mesh, material, part.radius, slice.tube_center)),
       _axis(slice.tube_center), _tube_radius(slice.tube_radius()),
-      _visible_width(part.visible_width), _cut(cut_by_symmetry), _row_band(part.row_band),
+      _visible_width(part.visible_width), _copies(copies), _row_band(part.row_band),
       _implex(part.implex), _implex_tolerance(part.implex_tolerance),
       _implicit_tolerance(part.implicit_tolerance),
       _step_error_unheld(part.implicit_step_error_read() && !part.implicit_steps_held()),

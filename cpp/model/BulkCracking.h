@@ -83,7 +83,7 @@ public:
                std::shared_ptr<const dolfinx::fem::Function<double>> u,
                std::shared_ptr<const dolfinx::fem::Function<double>> alpha,
                const std::vector<std::int32_t>& material, const Material& concrete,
-               const CrackingPart& part, const Geometry& slice, bool cut_by_symmetry = false);
+               const CrackingPart& part, const Geometry& slice, int copies = 1);
 
   /// cracking.visible_width: a surface crack counts from this width [mm].
   double visible_width() const { return _visible_width; }
@@ -475,7 +475,9 @@ private:
   std::array<double, 2> _axis{};  ///< the tube axis (x, y) [mm]
   double _tube_radius = 0;        ///< [mm]
   double _visible_width = 0;      ///< cracking.visible_width [mm]
-  bool _cut = false; ///< the mesh is cut by symmetry: its faces do not close round the slice
+  /// The specimen's copies of the part meshed (above 1: cut by symmetry,
+  /// its faces do not close round the slice).
+  int _copies = 1;
   double _nominal_fracture_energy = 0; ///< [N mm]
   bool _new_cracks = true;             ///< allow_new_cracks
   double _dt = 0;                      ///< set_time_increment [mm of push]

@@ -243,17 +243,17 @@ void BulkCracking::read_surface(CrackingTotals& t) const
         faces.push_back({std::atan2(c.y - _axis[1], c.x - _axis[0]), c.x, c.y, c.opening,
                          mouth_of(std::get<0>(key), c.x, c.y, c.size, _axis)});
     t.surface = surface_cracks(faces, t.columns, _axis, _tube_radius,
-                               gauge_resolution(_visible_width), _cut);
+                               gauge_resolution(_visible_width), _copies);
     for (const SurfaceCrack& s : t.surface)
-      flat.insert(flat.end(), {s.angle_deg, s.width_mm, s.length_mm});
+      flat.insert(flat.end(), {s.angle_deg, s.width_mm, s.length_mm, double(s.all_round)});
   }
   int n_flat = int(flat.size());
   MPI_Bcast(&n_flat, 1, MPI_INT, 0, comm);
   flat.resize(std::size_t(n_flat));
   MPI_Bcast(flat.data(), n_flat, MPI_DOUBLE, 0, comm);
   t.surface.clear();
-  for (std::size_t k = 0; k < flat.size(); k += 3)
-    t.surface.push_back({flat[k], flat[k + 1], flat[k + 2]});
+  for (std::size_t k = 0; k < flat.size(); k += 4)
+    t.surface.push_back({flat[k], flat[k + 1], flat[k + 2], flat[k + 3] != 0});
 }
 
 void BulkCracking::cell_fields(dolfinx::fem::Function<double>& opening,

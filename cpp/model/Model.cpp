@@ -418,7 +418,7 @@ Model::Model(MPI_Comm comm, const mesh::MeshData& data, const ModelInput& in)
   {
     _bulk_cracking = std::make_unique<BulkCracking>(
         _mesh, _V, _u, _materials.alpha, data.material, in.concrete, in.cracking, in.geometry,
-        data.symmetry_planes[0] || data.symmetry_planes[1]);
+        (data.symmetry_planes[0] ? 2 : 1) * (data.symmetry_planes[1] ? 2 : 1));
     // K over the cracking cells at the crack band's points, where the
     // cracks take C away.
     _bulk_cracking->add_elastic_rule(_K);

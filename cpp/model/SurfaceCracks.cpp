@@ -60,8 +60,9 @@ double length_from(const FaceColumn& start, const std::vector<CrackColumn>& colu
 std::vector<SurfaceCrack> surface_cracks(std::vector<FaceColumn> faces,
                                          const std::vector<CrackColumn>& columns,
                                          std::array<double, 2> axis, double tube_radius,
-                                         double resolution, bool cut)
+                                         double resolution, int copies)
 {
+  const bool cut = copies > 1;
   std::vector<SurfaceCrack> cracks;
   const std::size_t n = faces.size();
   if (n == 0)
@@ -70,8 +71,9 @@ std::vector<SurfaceCrack> surface_cracks(std::vector<FaceColumn> faces,
             [](const FaceColumn& a, const FaceColumn& b) { return a.angle < b.angle; });
   auto reads = [&](std::size_t i) { return faces[i % n].gauge >= resolution; };
   // A run of columns [first, end) (cyclic); `plane`: its column at a
-  // symmetry plane, whose mirror image completes it (null: none).
-  auto add_run = [&](std::size_t first, std::size_t end, const FaceColumn* plane)
+  // symmetry plane, whose mirror image completes it (null: none);
+  // `all_round`: the specimen's faces all round, `copies` of the run.
+  auto add_run = [&](std::size_t first, std::size_t end, const FaceColumn* plane, bool all_round)
   {
     double width = 0;
     std::size_t widest = first % n;
@@ -90,8 +92,13 @@ std::vector<SurfaceCrack> surface_cracks(std::vector<FaceColumn> faces,
       angle += 360;
     const std::array<double, 2> along = {std::cos(angle / degrees), std::sin(angle / degrees)};
     cracks.push_back(
-        {angle, (plane ? 2 : 1) * width,
-         length_from(w, columns, axis, tube_radius, resolution, plane ? &along : nullptr)});
+        {angle,
+         (all_round ? copies
+          : plane   ? 2
+                    : 1) *
+             width,
+         length_from(w, columns, axis, tube_radius, resolution, plane ? &along : nullptr),
+         all_round});
   };
   // One scan of the perimeter from `start`: on a cut model the column after
   // the widest gap between neighbours (the cut), which no run crosses; on a
@@ -115,7 +122,7 @@ std::vector<SurfaceCrack> surface_cracks(std::vector<FaceColumn> faces,
     while (start < n && reads(start))
       ++start;
   if (!cut && start == n) // cracked all round: one run
-    add_run(0, n, nullptr);
+    add_run(0, n, nullptr, true);
   else
     for (std::size_t k = start; k < start + n;)
     {
@@ -127,11 +134,17 @@ std::vector<SurfaceCrack> surface_cracks(std::vector<FaceColumn> faces,
       std::size_t end = k;
       while (end < start + n && reads(end))
         ++end;
+      // From plane to plane: the specimen's faces all round, mirrored.
+      if (cut && k == start && end == start + n)
+      {
+        add_run(k, end, nullptr, true);
+        break;
+      }
       const FaceColumn* plane = !cut               ? nullptr
                                 : k == start       ? &faces[k % n]
                                 : end == start + n ? &faces[(end - 1) % n]
                                                    : nullptr;
-      add_run(k, end, plane);
+      add_run(k, end, plane, false);
       k = end;
     }
   std::sort(cracks.begin(), cracks.end(),

@@ -23,7 +23,11 @@
 // crack's tip or the tube, and the length is the straight line from its
 // mouth on the face to that end. On a model cut by symmetry no run crosses
 // the cut, and a run that reaches a symmetry plane is completed by its
-// mirror image and measured along the plane.
+// mirror image and measured along the plane. A run all round the faces (on
+// a cut model: from one plane to the other, all round once mirrored) is one
+// crack, whose width sums every band's opening: on a slice cracked evenly
+// all round (a uniform ring) that is the ring's whole opening, more than a
+// gauge across any one of its bands reads.
 //
 // Pure functions of their inputs: rank 0 calls them on the gathered columns.
 #pragma once
@@ -63,6 +67,9 @@ struct SurfaceCrack
   /// to its tip (or the tube's surface), straight; along the plane for a
   /// crack on a symmetry plane.
   double length_mm = 0;
+  /// One run all round the specimen's faces (its width the whole run's):
+  /// no mirror images.
+  bool all_round = false;
 };
 
 /// The finest the gauge resolves whatever the visible width [mm].
@@ -81,14 +88,17 @@ inline double gauge_resolution(double visible_width)
 /// close the perimeter cyclically), widest first. `resolution` the smallest
 /// increment a gauge reads [mm]; `columns` the cracking concrete's columns,
 /// through which lengths are followed towards `axis` (the tube axis) up to
-/// the tube's surface at `tube_radius` [mm]. `cut`: the model is cut by
-/// symmetry (its planes through the axis, along x or y), so the columns do
-/// not close round the slice: the widest angular gap between neighbours is
-/// the cut, no run crosses it, and a run that reaches it is half of a crack
-/// that its mirror image completes (its width doubled, its direction the
-/// plane's). The cracks are those of the part modelled.
+/// the tube's surface at `tube_radius` [mm]. `copies`: the specimen's
+/// copies of the part modelled; above 1 the model is cut by symmetry (its
+/// planes through the axis, along x or y), so the columns do not close
+/// round the slice: the widest angular gap between neighbours is the cut,
+/// no run crosses it, and a run that reaches it is half of a crack that
+/// its mirror image completes (its width doubled, its direction the
+/// plane's); a run from one plane to the other is the specimen's crack all
+/// round (its width `copies` times the run's). The cracks are those of the
+/// part modelled, but for that one.
 std::vector<SurfaceCrack> surface_cracks(std::vector<FaceColumn> faces,
                                          const std::vector<CrackColumn>& columns,
                                          std::array<double, 2> axis, double tube_radius,
-                                         double resolution, bool cut = false);
+                                         double resolution, int copies = 1);
 } // namespace pushout::model

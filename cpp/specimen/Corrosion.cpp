@@ -29,7 +29,8 @@ double widest_surface_crack(const std::vector<double>& mouths, const model::Crac
 
 /// The specimen's visible surface cracks of the concrete: those of `bulk`
 /// at least `visible_width` wide [mm], each with its mirror images in a model
-/// cut by `symmetry` (a crack along a symmetry plane once), as the crack
+/// cut by `symmetry` (a crack along a symmetry plane once, one all round
+/// once), as the crack
 /// planes are counted.
 std::vector<model::SurfaceCrack> visible_surface_cracks(const model::CrackingTotals& bulk,
                                                         double visible_width,
@@ -40,7 +41,8 @@ std::vector<model::SurfaceCrack> visible_surface_cracks(const model::CrackingTot
     if (s.width_mm >= visible_width)
     {
       const std::vector<double> images =
-          mesh::images_of(symmetry, s.angle_deg * std::numbers::pi / 180);
+          s.all_round ? std::vector<double>{s.angle_deg * std::numbers::pi / 180}
+                      : mesh::images_of(symmetry, s.angle_deg * std::numbers::pi / 180);
       for (std::size_t i = 0; i < images.size(); ++i)
       {
         model::SurfaceCrack c = s;

@@ -241,6 +241,31 @@ check(on_plane and cover - height <= on_plane[0]["length_mm"] <= cover + 1e-9,
       f"cut by symmetry: its length along the plane {on_plane[0]['length_mm'] if on_plane else 0:.3f} mm, "
       f"the cover {cover:.1f} mm (within the face cell's height {height:.2f} mm below)")
 
+# 6b. A ring cracked evenly all round (the circle slice, tube centred,
+# uniform strength) on a quarter model: its run of face columns from one
+# plane to the other is the crack all round, whose width is the whole
+# specimen's (it read half of it, as a crack on each plane, and counted
+# two). Compared with the whole slice where the whole slice first reads a
+# width, before it localises (both at TIGHT_NEWTON: the same problem, so
+# within Newton's tolerance, far below 1 %; half the reading is 50 % off).
+ring = cracking_corroded_demo(0.05, 10, f_t, 0.0).replace(
+    'outer_shape = "square"', 'outer_shape = "circle"').replace(
+    "tube_center = [50.0, 25.0]", "tube_center = [50.0, 50.0]")
+quarter_ring, whole_ring = out_dir("ring_read_quarter"), out_dir("ring_read_whole")
+run(ring, quarter_ring, sets=["model.symmetry=symmetric"], extra=TIGHT_NEWTON)
+run(ring, whole_ring, extra=TIGHT_NEWTON)
+quarter_rows = {round(r["penetration_mm"], 12): r for r in corrosion(quarter_ring)}
+first = next((b for b in corrosion(whole_ring) if b["crack_width_mm"] > 0
+              and round(b["penetration_mm"], 12) in quarter_rows), None)
+a = quarter_rows[round(first["penetration_mm"], 12)] if first else None
+check(summary(quarter_ring)["symmetry"] == "quarter" and first is not None
+      and abs(a["crack_width_mm"] - first["crack_width_mm"]) <= 0.01 * first["crack_width_mm"]
+      and a["cracks_at_surface"] == first["cracks_at_surface"],
+      f"a ring cracked all round on a quarter model reads the whole ring's width: "
+      f"{a and a['crack_width_mm']} mm ({a and a['cracks_at_surface']} visible) against the whole "
+      f"slice's {first and first['crack_width_mm']} mm ({first and first['cracks_at_surface']}) "
+      f"at x = {first and first['penetration_mm'] * 1e3} um")
+
 # 7. A crack plane beside the concrete's cracks: in crack_planes.csv and the figure.
 check(not os.path.exists(os.path.join(one, "crack_planes.csv")), "no planes: no crack_planes.csv")
 both_kinds = out_dir("cover_crack_with_plane")

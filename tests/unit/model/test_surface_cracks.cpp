@@ -131,7 +131,7 @@ TEST(SurfaceCracks, ACrackOnASymmetryPlaneIsMeasuredAlongIt)
     faces.push_back({std::atan2(1 - axis[1], x - axis[0]), x, 1, x == 51 ? 0.03 : 0.0, {x, 0}});
   for (double y = 1; y < 100; y += cell) // the face x = 100, so the cut is the widest gap
     faces.push_back({std::atan2(y - axis[1], 99 - axis[0]), 99, y, 0.0, {100, y}});
-  std::vector<SurfaceCrack> cracks = surface_cracks(faces, columns, axis, R, resolution, true);
+  std::vector<SurfaceCrack> cracks = surface_cracks(faces, columns, axis, R, resolution, 2);
   ASSERT_EQ(cracks.size(), 1u);
   EXPECT_DOUBLE_EQ(cracks[0].angle_deg, 270);
   EXPECT_NEAR(cracks[0].width_mm, 0.06, 1e-15);
@@ -140,7 +140,7 @@ TEST(SurfaceCracks, ACrackOnASymmetryPlaneIsMeasuredAlongIt)
   // from the axis along the plane), it measures from the face to there.
   for (CrackColumn& c : columns)
     c.opening = c.x == 51 && c.y <= 9 ? 0.02 : 0.0;
-  cracks = surface_cracks(faces, columns, axis, R, resolution, true);
+  cracks = surface_cracks(faces, columns, axis, R, resolution, 2);
   ASSERT_EQ(cracks.size(), 1u);
   EXPECT_NEAR(cracks[0].length_mm, 9, 1e-12);
 }
@@ -213,7 +213,7 @@ TEST(SurfaceCracks, ACutModelReadsItsPlanesCracksWhole)
   }
   // Cut: the planes' cracks read whole (their mirror images), along the
   // planes; the one inside as it is.
-  const std::vector<SurfaceCrack> cut = surface_cracks(faces, {}, axis, R, resolution, true);
+  const std::vector<SurfaceCrack> cut = surface_cracks(faces, {}, axis, R, resolution, 2);
   ASSERT_EQ(cut.size(), 3u);
   EXPECT_NEAR(cut[0].width_mm, 0.08, 1e-15);
   EXPECT_DOUBLE_EQ(cut[0].angle_deg, 90);
@@ -237,4 +237,43 @@ TEST(SurfaceCracks, NoneOrAllRound)
       surface_cracks(bottom_face([](double) { return 0.01; }), {}, axis, R, resolution);
   ASSERT_EQ(all.size(), 1u);
   EXPECT_NEAR(all[0].width_mm, 0.01 * 50, 1e-12);
+}
+
+TEST(SurfaceCracks, ACutModelCrackedFromPlaneToPlaneIsCrackedAllRound)
+{
+  // A ring cracked evenly all round (0.01 mm a column, a column every 5
+  // degrees on a circle 40 mm from the axis), as a quarter model (0 to 90
+  // degrees) and a half one (-90 to 90): one crack all round, the whole
+  // slice's 72 columns summed, as the whole model reads it (it was read as
+  // a crack on each plane, half as wide, and mirrored into two).
+  const auto ring = [](double from_deg, double to_deg)
+  {
+    std::vector<FaceColumn> faces;
+    for (double deg = from_deg + 2.5; deg < to_deg; deg += 5)
+    {
+      const double a = deg * std::numbers::pi / 180;
+      faces.push_back({a,
+                       axis[0] + 40 * std::cos(a),
+                       axis[1] + 40 * std::sin(a),
+                       0.01,
+                       {axis[0] + 41 * std::cos(a), axis[1] + 41 * std::sin(a)}});
+    }
+    return faces;
+  };
+  for (const auto& [faces, copies] :
+       {std::pair{ring(0, 90), 4}, std::pair{ring(-90, 90), 2}, std::pair{ring(-180, 180), 1}})
+  {
+    const std::vector<SurfaceCrack> cracks = surface_cracks(faces, {}, axis, R, resolution, copies);
+    ASSERT_EQ(cracks.size(), 1u) << copies;
+    EXPECT_NEAR(cracks[0].width_mm, 72 * 0.01, 1e-12) << copies;
+    EXPECT_TRUE(cracks[0].all_round) << copies;
+  }
+  // A run that reaches one plane only is still half of a crack there.
+  std::vector<FaceColumn> quarter = ring(0, 90);
+  quarter.back().gauge = 0;
+  const std::vector<SurfaceCrack> cracks = surface_cracks(quarter, {}, axis, R, resolution, 4);
+  ASSERT_EQ(cracks.size(), 1u);
+  EXPECT_NEAR(cracks[0].width_mm, 2 * 17 * 0.01, 1e-12);
+  EXPECT_FALSE(cracks[0].all_round);
+  EXPECT_DOUBLE_EQ(cracks[0].angle_deg, 0);
 }
