@@ -11,6 +11,34 @@
 
 namespace pushout::specimen
 {
+namespace
+{
+/// The note on a random strength field the mesh does not resolve (its
+/// correlation length below `h`, the elements' size at the tube [mm]), or
+/// one nearly uniform over a slice `width` [mm] wide (StrengthField.h:
+/// correlation exp(-(r/l)^2)); "" if none.
+std::string field_note(const CrackingPart& cracking, double h, double width)
+{
+  if (!cracking.embedded || cracking.strength_cov == 0)
+    return "";
+  const double l = cracking.correlation_length; // [mm]
+  std::ostringstream note;
+  note << std::setprecision(3) << "cracking.correlation_length = " << l << " mm ";
+  if (l < h)
+    note << "is below the elements' size at the tube (" << h
+         << " mm): the strength changes from one quadrature point to the next within an "
+            "element, so the field the cracks see is not resolved and changes with the mesh "
+            "(a length of a few elements resolves it)";
+  else if (l > width)
+    note << "is more than the slice's width (" << width
+         << " mm): the strength is close to uniform over the slice, so a seed moves the "
+            "whole slice's strength more than it picks where the concrete cracks";
+  else
+    return "";
+  return note.str();
+}
+} // namespace
+
 std::vector<std::string> PushOut::scene_notes(const Scene& scene)
 {
   const Geometry& g = scene.geometry();
@@ -104,28 +132,8 @@ std::vector<std::string> PushOut::scene_notes(const Scene& scene)
         "refined whole: for residual bonds, mesh.graded_lines = \"radial\" with "
         "mesh.graded_refinement = \"whole\" (1.2 times the dofs; docs/cracking.md, \"How far "
         "to trust a corroded run\")");
-  // A random field the mesh does not resolve, or one nearly uniform over
-  // the slice (StrengthField.h: correlation exp(-(r/l)^2)).
-  const CrackingPart& cracking = scene.cracking();
-  if (cracking.embedded && cracking.strength_cov > 0)
-  {
-    std::ostringstream note;
-    note << std::setprecision(3) << "cracking.correlation_length = " << cracking.correlation_length
-         << " mm ";
-    if (cracking.correlation_length < h)
-      note << "is below the elements' size at the tube (" << h
-           << " mm): the strength changes from one quadrature point to the next within an "
-              "element, so the field the cracks see is not resolved and changes with the mesh "
-              "(a length of a few elements resolves it)";
-    else if (cracking.correlation_length > g.width)
-      note << "is more than the slice's width (" << g.width
-           << " mm): the strength is close to uniform over the slice, so a seed moves the "
-              "whole slice's strength more than it picks where the concrete cracks";
-    else
-      note.str("");
-    if (!note.str().empty())
-      notes.push_back(note.str());
-  }
+  if (std::string note = field_note(scene.cracking(), h, g.width); !note.empty())
+    notes.push_back(note);
   // A viscous crack's damage relaxes over pseudo-time, and an energy step
   // takes a whole nominal step's however little the load moves (not
   // settled: docs/cracking.md, "Newton", on a damage viscosity).
