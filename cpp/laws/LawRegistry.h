@@ -23,8 +23,11 @@ struct ParamDef
   std::string doc;
   double min = -std::numeric_limits<double>::infinity();
   bool min_exclusive = false;
-  std::string default_from = {}; ///< defaults to this other parameter's value
-  bool optional = false;         ///< may be absent (then not in Params)
+  /// Defaults to this other parameter's value, which the law reads only as
+  /// such a default (a layer that gives every parameter defaulting to it
+  /// gets a note that it is not read).
+  std::string default_from = {};
+  bool optional = false; ///< may be absent (then not in Params)
   double max = std::numeric_limits<double>::infinity();
 };
 

@@ -7,6 +7,7 @@
 #include "CamanhoDavila.h"
 #include "LawRegistry.h"
 #include "ParameterError.h"
+#include <sstream>
 
 namespace pushout::laws
 {
@@ -26,9 +27,13 @@ inline ParamDef viscosity_param()
 inline void check_residual(const Params& p, const std::string& prefix)
 {
   if (p.at("f_fr") > p.at("f_t"))
-    throw ParameterError("'" + prefix + "f_fr' = " + std::to_string(p.at("f_fr")) +
-                         " MPa must not exceed '" + prefix +
-                         "f_t' = " + std::to_string(p.at("f_t")) + " MPa");
+  {
+    std::ostringstream s; // (std::to_string's 6 decimals showed 1.0000001 as 1.000000)
+    s.precision(10);
+    s << "'" << prefix << "f_fr' = " << p.at("f_fr") << " MPa must not exceed '" << prefix
+      << "f_t' = " << p.at("f_t") << " MPa";
+    throw ParameterError(s.str());
+  }
 }
 /// Shared body of the softening laws: `Spec` supplies name, doc, params()
 /// and envelope(Params).

@@ -95,6 +95,9 @@ extern "C" int pushout_gmsh_mesh(const char* geo, const char* const* names, cons
     gmsh::initialize(int(argv.size()), argv.data(), false);
     initialized = true;
     gmsh::option::setNumber("General.Terminal", 0);
+    // No question on stdin (a mesh gmsh finds large asked one, and waited
+    // for its answer past Ctrl-C): its default answer.
+    gmsh::option::setNumber("General.NoPopup", 1);
     gmsh::open(geo);
     gmsh::model::mesh::generate(3);
     *out = read_gmsh_model();

@@ -145,13 +145,23 @@ CrackDirections crack_directions(const Geometry& g, std::int64_t elements_per_qu
         snapped = angle_between(a, corner) > 1e-9;
         a = corner; // exactly, so that the sectors do not get a sliver
       }
+    // A plane's angle as the scene gave it (360 was shown as 0, -360 as -0).
+    const auto given = [&](std::size_t k)
+    {
+      std::ostringstream s;
+      s << "'crack." << k << ".angle' = ";
+      if (cracks[k].angle_deg)
+        s << *cracks[k].angle_deg << " deg";
+      else
+        s << "\"nearest_face\" (" << degrees(k == i ? a : d.angles[k]) << " deg)";
+      return s.str();
+    };
     for (std::size_t j = 0; j < d.angles.size(); ++j)
       if (angle_between(a, d.angles[j]) < element)
       {
         std::ostringstream m;
-        m << "'" << key << "' (" << degrees(a) << " deg) is within one interface element ("
-          << degrees(element) << " deg) of 'crack." << j << ".angle' (" << degrees(d.angles[j])
-          << " deg): two crack planes need at least one element between them";
+        m << given(i) << " is within one interface element (" << degrees(element) << " deg) of "
+          << given(j) << ": two crack planes need at least one element between them";
         throw SceneError(m.str());
       }
     d.angles.push_back(a);

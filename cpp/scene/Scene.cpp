@@ -51,6 +51,20 @@ std::string where(const toml::node& node)
   return " (line " + std::to_string(src.begin.line) + ")";
 }
 
+/// Sets `from`'s keys in `to`, a table given as a value merged into the
+/// table already there (nested tables alike).
+void merge(toml::table& to, const toml::table& from)
+{
+  for (const auto& [key, value] : from)
+  {
+    auto* inner = to.get_as<toml::table>(key);
+    if (const auto* given = value.as_table(); inner && given)
+      merge(*inner, *given);
+    else
+      to.insert_or_assign(key, value);
+  }
+}
+
 /// Applies one `--set` to the parsed document.
 void apply_override(toml::table& root, const Override& o)
 {
@@ -116,7 +130,11 @@ void apply_override(toml::table& root, const Override& o)
     holder = toml::table{{"v", o.value}}; // a bare word: take it as a string
   }
   const std::string& key = parts.back();
-  if (auto* tbl = node->as_table())
+  auto* tbl = node->as_table();
+  auto* given = holder.get("v")->as_table();
+  if (auto* to = tbl ? tbl->get_as<toml::table>(key) : nullptr; to && given)
+    merge(*to, *given); // --set 'loading={steps=10}' sets those keys, not the section
+  else if (tbl)
     tbl->insert_or_assign(key, *holder.get("v"));
   else if (auto* arr = node->as_array(); arr && is_index(key))
   {
@@ -282,6 +300,20 @@ LayerSpec read_layer(const toml::node& node, std::size_t index, const std::strin
                        layer.law + "'; its parameters: " + list);
     }
     layer.params[name] = std::get<double>(convert(value, KeyType::number, prefix + name));
+  }
+  // A parameter that is only the default of others, all of which are given.
+  for (const auto& p : info->params)
+  {
+    bool source = false, all_given = true;
+    for (const auto& q : info->params)
+      if (q.default_from == p.name)
+      {
+        source = true;
+        all_given = all_given && layer.params.count(q.name);
+      }
+    if (source && all_given && layer.params.count(p.name) &&
+        !(p.default_value && layer.params.at(p.name) == *p.default_value))
+      layer.unread.push_back(p.name);
   }
   // Defaults: the section's own, then the law's fixed ones, then those
   // copied from another parameter.
@@ -521,51 +553,5 @@ const std::string& Scene::string(const std::string& path) const
 const std::vector<double>& Scene::numbers(const std::string& path) const
 {
   return std::get<std::vector<double>>(get(path, KeyType::number_array));
-}
-
-std::string Scene::to_toml() const
-{
-  std::ostringstream out;
-  out << "# Resolved scene: every key with its value (defaults and --set "
-         "overrides applied).\n";
-  std::string section;
-  for (const KeyDef& def : scene_keys())
-  {
-    const auto it = _values.find(def.path);
-    if (it == _values.end())
-      continue;
-    const auto dot = def.path.find('.');
-    const std::string sec = def.path.substr(0, dot);
-    if (sec != section)
-    {
-      out << "\n[" << sec << "]\n";
-      section = sec;
-    }
-    out << def.path.substr(dot + 1) << " = " << pushout::to_toml(it->second);
-    if (!def.unit.empty() && def.unit != "-")
-      out << "  # " << def.unit;
-    out << "\n";
-  }
-  const auto write_law = [&out](const LayerSpec& layer)
-  {
-    out << "law = \"" << layer.law << "\"\n";
-    for (const auto& p : laws::find_law(layer.law)->params)
-      if (layer.params.count(p.name))
-        out << p.name << " = " << pushout::to_toml(layer.params.at(p.name)) << "  # " << p.unit
-            << "\n";
-  };
-  for (const LayerSpec& layer : _layers)
-  {
-    out << "\n[[interface]]\n";
-    write_law(layer);
-  }
-  for (const CrackSpec& crack : _cracks)
-  {
-    out << "\n[[crack]]\nangle = "
-        << (crack.angle_deg ? pushout::to_toml(*crack.angle_deg) + "  # deg" : "\"nearest_face\"")
-        << "\n";
-    write_law(crack.layer);
-  }
-  return out.str();
 }
 } // namespace pushout

@@ -144,6 +144,26 @@ std::vector<Scene::Unread> Scene::unread(const std::string& set) const
     if (!keys.empty())
       notes.push_back({std::move(keys), std::move(why)});
   };
+  // A layer's parameter that only defaults others, all given (elastic's k
+  // beside k_n and k_s).
+  const auto layer_notes = [&](const std::string& section, const std::vector<LayerSpec>& layers)
+  {
+    for (std::size_t i = 0; i < layers.size(); ++i)
+      for (const std::string& p : layers[i].unread)
+      {
+        const std::string prefix = section + "." + std::to_string(i) + ".";
+        std::string others;
+        for (const laws::ParamDef& q : laws::find_law(layers[i].law)->params)
+          if (q.default_from == p)
+            others += (others.empty() ? "" : " and ") + prefix + q.name;
+        note({prefix + p}, "it is only the default of " + others + ", which are given");
+      }
+  };
+  layer_notes("interface", _layers);
+  std::vector<LayerSpec> crack_layers;
+  for (const CrackSpec& c : _cracks)
+    crack_layers.push_back(c.layer);
+  layer_notes("crack", crack_layers);
   if (!_model.pushout())
     return notes;
   if (_corrosion.penetration == 0)

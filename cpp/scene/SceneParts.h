@@ -185,6 +185,9 @@ struct LayerSpec
 {
   std::string law;
   laws::Params params;
+  /// Parameters given that the law does not read: defaults of others
+  /// (laws::ParamDef::default_from) that are all given too.
+  std::vector<std::string> unread;
 };
 
 /// One [[crack]] plane of a push-out (docs/corrosion.md): a plane through

@@ -70,6 +70,23 @@ cases = [
      '[corrosion]\npenetration = 0.01\n[cracking]\nmodel = "embedded"\nviscosity = 0.001\n',
      ["loading.push_displacement=0"],
      ["'cracking.viscosity'", "'loading.push_displacement' = 0", "corrosion step"]),
+    # A ring of concrete 1e-6 mm wide outside the support (the mesher
+    # corrupted memory: a segfault and a hang), one outside the tube, a
+    # slice typed in cm, a tube in um, a bore of nothing, a length beyond
+    # any slice (gmsh asked on stdin), alpha typed in 1e-6/degC.
+    ("support ring of nothing", GOOD, ["geometry.support_inner_diameter=99.999998"],
+     ["'geometry.support_inner_diameter' = 99.999998", "'geometry.width' = 100"]),
+    ("tube at the edge", GOOD, ["geometry.tube_center=[15.00001,50]"],
+     ["'geometry.support_inner_diameter' = 30", "[15.00001, 50]"]),
+    ("slice in cm", GOOD, ["geometry.width=10", "geometry.tube_center=[5.0,5.0]"],
+     ["the tube", "'geometry.width' = 10", "in mm"]),
+    ("tube in um", GOOD, ["geometry.tube_outer_diameter=0.02", "geometry.tube_inner_diameter=0.016",
+                          "geometry.support_inner_diameter=0.03"],
+     ["'geometry.width' = 100", "5000 times", "in mm"]),
+    ("bore of nothing", GOOD, ["geometry.tube_inner_diameter=1e-7"],
+     ["'geometry.tube_inner_diameter'", "at least 0.2 mm"]),
+    ("slice beyond 10 m", GOOD, ["geometry.thickness=1e30"], ["'geometry.thickness'", "out of range"]),
+    ("alpha in 1e-6/degC", GOOD, ["concrete.alpha=10"], ["'concrete.alpha'", "out of range"]),
     # An expansion no iron oxide has (reported 2 to 6.5).
     ("oxide beyond any iron oxide", GOOD, ["corrosion.beta=20"], ["corrosion.beta", "<= 7"]),
     # 2^-50 of a step vanished in the round-off of the step's position.

@@ -303,6 +303,45 @@ TEST(Scene, OverridesReachTablesAndLayers)
   EXPECT_DOUBLE_EQ(s.layers()[1].params.at("k_s"), 7.0);
 }
 
+TEST(Scene, ATableOverrideSetsItsKeysAndKeepsTheSections)
+{
+  // --set 'loading={steps=10}' sets loading.steps and keeps the file's
+  // other [loading] keys (it replaced the section: push_displacement went
+  // back to its default); nested tables alike, and a section the file has
+  // not is made.
+  const Scene s = Scene::parse("[loading]\npush_displacement = 0.2\nsteps = 40\n"
+                               "[geometry]\nthickness = 30.0\n",
+                               {{"loading", "{steps = 10}"},
+                                {"geometry", "{width = 120.0}"},
+                                {"corrosion", "{penetration = 0.01, steps = 3}"}});
+  EXPECT_EQ(s.loading().steps, 10);
+  EXPECT_DOUBLE_EQ(s.loading().push_displacement, 0.2);
+  EXPECT_DOUBLE_EQ(s.geometry().width, 120.0);
+  EXPECT_DOUBLE_EQ(s.geometry().thickness, 30.0);
+  EXPECT_DOUBLE_EQ(s.corrosion().penetration, 0.01);
+  EXPECT_EQ(s.corrosion().steps, 3);
+}
+
+TEST(Scene, AParameterOnlyDefaultingOthersGivenWithThemIsNoted)
+{
+  // elastic's k is only the default of k_n and k_s: given with both, other
+  // than its default, nothing reads it (single joint and push-out alike).
+  const std::string elastic = "[[interface]]\nlaw = \"elastic\"\nk = 2000.0\n";
+  const auto noted = [](const Scene& s) { return s.unread_keys(); };
+  for (const std::string model : {"single_joint", "pushout"})
+  {
+    const auto notes = noted(Scene::parse("[model]\ntype = \"" + model + "\"\n" + elastic,
+                                          {{"interface.0.k_n", "500"}, {"interface.0.k_s", "7"}}));
+    ASSERT_EQ(notes.size(), 1u) << model;
+    EXPECT_EQ(notes[0], "interface.0.k not read: it is only the default of interface.0.k_n and "
+                        "interface.0.k_s, which are given");
+  }
+  EXPECT_TRUE(noted(Scene::parse(elastic, {{"interface.0.k_n", "500"}})).empty());
+  EXPECT_TRUE(noted(Scene::parse("[[interface]]\nlaw = \"elastic\"\nk = 1000.0\n",
+                                 {{"interface.0.k_n", "500"}, {"interface.0.k_s", "7"}}))
+                  .empty()); // its default
+}
+
 TEST(Scene, OverridesReachTheDefaultLayer)
 {
   // A scene without [[interface]] has one friction layer (scene.toml shows
