@@ -42,8 +42,8 @@ import sys
 import time
 
 from common import arguments, check_only, markdown_table, run, summary, write_csv
+import argument_types
 import cracking_mesh
-import pushout_runs
 
 LAYOUTS = {"blocks": [], "radial": ["mesh.graded_lines=radial"],
            "radial_ratio1": ["mesh.graded_lines=radial", "mesh.outer_size_ratio=1"],
@@ -63,11 +63,11 @@ def main():
                                           "default": cracking_mesh.DEFAULT_TUBE}),
                               ("--beta", {"type": float, "default": 2.0,
                                           "choices": cracking_mesh.embedded_study.BETAS}),
-                              ("--mesh", {"default": "16x8", "type": pushout_runs.mesh_size,
+                              ("--mesh", {"default": "16x8", "type": argument_types.mesh_size,
                                           "help": "per quarter x through"}),
                               ("--tolerance", {"type": float, "default": None,
                                                "help": "cracking.implex_tolerance"}),
-                              ("--jobs", {"type": pushout_runs.positive_int, "default": 2})])
+                              ("--jobs", {"type": argument_types.positive_int, "default": 2})])
     check_only(args, list(LAYOUTS))
     mesh = tuple(int(n) for n in args.mesh.split("x"))
     suffix = cracking_mesh.case_suffix(args.tube, args.beta) + \

@@ -28,7 +28,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from common import PUSHOUT, ROOT, curve, markdown_table, run, summary, write_csv  # noqa: E402
-import pushout_runs  # noqa: E402  (common puts scripts/ on the path)
+import argument_types  # noqa: E402  (common puts scripts/ on the path)
 
 SOLVERS = {  # gamg first: its runs tell which sizes MUMPS can take
     "gamg": ["--set", "solver.refactor_iterations=1000", "-ksp_type", "gmres", "-pc_type", "gamg",
@@ -48,7 +48,7 @@ def fit(xs, ys):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--pushout", default=PUSHOUT)
-    ap.add_argument("--sizes", nargs="+", type=pushout_runs.mesh_size, default=["16x8", "24x12", "32x16", "40x20", "52x32"])
+    ap.add_argument("--sizes", nargs="+", type=argument_types.mesh_size, default=["16x8", "24x12", "32x16", "40x20", "52x32"])
     ap.add_argument("--mumps-max", type=int, default=300000, help="largest dofs run with MUMPS")
     ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results"),
                     help="the folder of the tables (the runs go to --work)")

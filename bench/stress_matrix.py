@@ -35,7 +35,7 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 from common import curve, markdown_table, summary, write_csv  # noqa: E402
 from common import run as bench_run  # noqa: E402
-import pushout_runs  # noqa: E402  (common puts scripts/ on the path)
+import argument_types  # noqa: E402  (common puts scripts/ on the path)
 SCENE = """
 [mesh]
 elements_per_quarter = 4
@@ -147,7 +147,7 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results"),
                     help="the folder of the tables (the runs go to --work)")
     ap.add_argument("--work", default=os.path.join(ROOT, "results", "stress_matrix"))
-    ap.add_argument("--jobs", type=pushout_runs.positive_int, default=os.cpu_count() or 1)
+    ap.add_argument("--jobs", type=argument_types.positive_int, default=os.cpu_count() or 1)
     ap.add_argument("--brittle", action="store_true", help="the brittle-adhesion matrix of the push controls")
     args = ap.parse_args()
     if args.brittle:

@@ -6,7 +6,6 @@ where the tests, the benches and the scripts do it (standard library only).
     rows = pr.curve("out")        # curve.csv as a list of {column: float}
     s = pr.summary("out")         # summary.json as a dict
 """
-import argparse
 import csv
 import json
 import os
@@ -137,28 +136,6 @@ def short_key_names(keys):
             n += 1
         names[k] = ".".join(parts[-n:])
     return names
-
-
-def positive_int(text):
-    """An argparse type: a whole number of at least 1 (--jobs)."""
-    try:
-        n = int(text)
-    except ValueError:
-        n = 0
-    if n < 1:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number of at least 1")
-    return n
-
-
-def mesh_size(text):
-    """An argparse type: a mesh as PERxTHROUGH (elements per quarter of the
-    interface x through the thickness, e.g. 16x8), kept as its text."""
-    parts = text.split("x")
-    if len(parts) != 2 or not all(p.isdigit() and int(p) > 0 for p in parts):
-        raise argparse.ArgumentTypeError(
-            f"{text!r} is not a mesh as PERxTHROUGH (elements per quarter x through the "
-            "thickness, e.g. 16x8)")
-    return text
 
 
 def write_csv(path, rows):

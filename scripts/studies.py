@@ -89,6 +89,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import argument_types  # noqa: E402  (beside this script)
 import embedded_study  # noqa: E402  (beside this script)
 import pushout_runs  # noqa: E402
 
@@ -577,7 +578,7 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "results", "studies"))
     ap.add_argument("--pushout", default=os.path.join(ROOT, "build", "pushout"))
     ap.add_argument("--quick", action="store_true", help="coarse mesh, few steps")
-    ap.add_argument("--jobs", type=pushout_runs.positive_int, default=os.cpu_count() or 1)
+    ap.add_argument("--jobs", type=argument_types.positive_int, default=os.cpu_count() or 1)
     ap.add_argument("--only", nargs="+",
                     default=["fig7", "fig8", "fig10", "retraction", "unload_reload", "laws"],
                     choices=STUDIES)

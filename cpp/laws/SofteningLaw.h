@@ -28,8 +28,8 @@ inline void check_residual(const Params& p, const std::string& prefix)
 {
   if (p.at("f_fr") > p.at("f_t"))
   {
-    std::ostringstream s; // (std::to_string's 6 decimals showed 1.0000001 as 1.000000)
-    s.precision(10);
+    std::ostringstream s;
+    s.precision(10); // the values as given, to 10 digits
     s << "'" << prefix << "f_fr' = " << p.at("f_fr") << " MPa must not exceed '" << prefix
       << "f_t' = " << p.at("f_t") << " MPa";
     throw ParameterError(s.str());

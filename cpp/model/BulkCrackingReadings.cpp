@@ -222,7 +222,7 @@ void BulkCracking::read_surface(CrackingTotals& t) const
   MPI_Comm_rank(comm, &rank);
   const std::vector<double> all =
       mpi::gather_to_first(comm, mine.data(), int(mine.size()), MPI_DOUBLE);
-  std::vector<double> flat; // the surface cracks, 3 numbers each
+  std::vector<double> flat; // the surface cracks, 4 numbers each
   if (rank == 0)
   {
     // Cells of a column share their (x, y) (the mesh is extruded): keyed to 1e-6 mm.

@@ -145,7 +145,7 @@ CrackDirections crack_directions(const Geometry& g, std::int64_t elements_per_qu
         snapped = angle_between(a, corner) > 1e-9;
         a = corner; // exactly, so that the sectors do not get a sliver
       }
-    // A plane's angle as the scene gave it (360 was shown as 0, -360 as -0).
+    // A plane's angle as the scene gave it (not turned into [0, 360)).
     const auto given = [&](std::size_t k)
     {
       std::ostringstream s;

@@ -140,7 +140,10 @@ void apply_override(toml::table& root, const Override& o)
   {
     if (std::stoul(key) >= arr->size())
       throw SceneError(what + ": index " + key + " is out of range");
-    arr->replace(arr->begin() + std::stoul(key), *holder.get("v"));
+    if (auto* to = arr->get_as<toml::table>(std::stoul(key)); to && given)
+      merge(*to, *given); // --set 'interface.0={mu=0.2}' keeps the layer's law
+    else
+      arr->replace(arr->begin() + std::stoul(key), *holder.get("v"));
   }
   else
     throw SceneError(what + ": cannot set a value here");
@@ -311,9 +314,8 @@ LayerSpec read_layer(const toml::node& node, std::size_t index, const std::strin
         source = true;
         all_given = all_given && layer.params.count(q.name);
       }
-    if (source && all_given && layer.params.count(p.name) &&
-        !(p.default_value && layer.params.at(p.name) == *p.default_value))
-      layer.unread.push_back(p.name);
+    if (source && all_given)
+      layer.defaults_only.push_back(p.name);
   }
   // Defaults: the section's own, then the law's fixed ones, then those
   // copied from another parameter.

@@ -100,6 +100,9 @@ private:
 
   /// The typed parts from the validated values (SceneParts.cpp).
   void fill_parts();
+  /// Refuses a loading.max_cuts whose smallest increment the load's
+  /// position cannot hold after a stage's nominal steps.
+  void check_max_cuts() const;
   double number(const std::string& path) const;
   std::int64_t integer(const std::string& path) const;
   bool boolean(const std::string& path) const;

@@ -4,6 +4,8 @@
 #include "Scene.h"
 #include "SceneError.h"
 #include <algorithm>
+#include <cmath>
+#include <sstream>
 
 namespace pushout
 {
@@ -79,6 +81,7 @@ void Scene::fill_parts()
   _loading.normal_force_per_node = number("loading.normal_force_per_node");
   _loading.shear_path = numbers("loading.shear_path");
   _loading.steps_per_segment = integer("loading.steps_per_segment");
+  check_max_cuts();
 
   _corrosion.penetration = number("corrosion.penetration");
   _corrosion.steps = integer("corrosion.steps");
@@ -126,6 +129,28 @@ void Scene::fill_parts()
   _crack_directions = pushout::crack_directions(_geometry, _mesh.elements_per_quarter, _cracks);
 }
 
+void Scene::check_max_cuts() const
+{
+  // A stage's load parameter runs to its nominal steps N; an increment of
+  // 2^-max_cuts of a step is lost in its round-off (N 2^-52) unless it is
+  // well above it: 2^8 times.
+  const auto path_steps = [&](const std::vector<double>& path)
+  { return path.empty() ? 0 : std::int64_t(path.size() - 1) * _loading.steps_per_segment; };
+  const std::int64_t N =
+      std::max({_loading.steps, integer("corrosion.steps"), path_steps(_loading.push_path),
+                path_steps(_loading.shear_path), std::int64_t(1)});
+  const int most = 44 - int(std::ceil(std::log2(double(N))));
+  if (_loading.max_cuts > most)
+  {
+    std::ostringstream s;
+    s << "'loading.max_cuts' = " << _loading.max_cuts << " with " << N
+      << " nominal steps in a stage: its smallest increment, 2^-" << _loading.max_cuts
+      << " of a step, is lost in the round-off of the load's position there; at most " << most
+      << " with " << N << " steps";
+    throw SceneError(s.str());
+  }
+}
+
 std::vector<Scene::Unread> Scene::unread(const std::string& set) const
 {
   // The keys among `paths` whose value is not their default (and `set`).
@@ -145,19 +170,28 @@ std::vector<Scene::Unread> Scene::unread(const std::string& set) const
       notes.push_back({std::move(keys), std::move(why)});
   };
   // A layer's parameter that only defaults others, all given (elastic's k
-  // beside k_n and k_s).
+  // beside k_n and k_s), set to other than its default (or `set`).
   const auto layer_notes = [&](const std::string& section, const std::vector<LayerSpec>& layers)
   {
     for (std::size_t i = 0; i < layers.size(); ++i)
-      for (const std::string& p : layers[i].unread)
+    {
+      const std::string prefix = section + "." + std::to_string(i) + ".";
+      const laws::LawInfo& law = *laws::find_law(layers[i].law);
+      for (const std::string& p : layers[i].defaults_only)
       {
-        const std::string prefix = section + "." + std::to_string(i) + ".";
+        const auto def = std::find_if(law.params.begin(), law.params.end(),
+                                      [&](const laws::ParamDef& d) { return d.name == p; });
+        const auto value = layers[i].params.find(p);
+        if (prefix + p != set && (value == layers[i].params.end() ||
+                                  (def->default_value && value->second == *def->default_value)))
+          continue;
         std::string others;
-        for (const laws::ParamDef& q : laws::find_law(layers[i].law)->params)
+        for (const laws::ParamDef& q : law.params)
           if (q.default_from == p)
             others += (others.empty() ? "" : " and ") + prefix + q.name;
         note({prefix + p}, "it is only the default of " + others + ", which are given");
       }
+    }
   };
   layer_notes("interface", _layers);
   std::vector<LayerSpec> crack_layers;

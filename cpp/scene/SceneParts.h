@@ -185,9 +185,9 @@ struct LayerSpec
 {
   std::string law;
   laws::Params params;
-  /// Parameters given that the law does not read: defaults of others
-  /// (laws::ParamDef::default_from) that are all given too.
-  std::vector<std::string> unread;
+  /// Parameters the law does not read: only the defaults of others
+  /// (laws::ParamDef::default_from), which are all given.
+  std::vector<std::string> defaults_only;
 };
 
 /// One [[crack]] plane of a push-out (docs/corrosion.md): a plane through

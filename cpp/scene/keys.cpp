@@ -254,7 +254,7 @@ std::vector<KeyDef> make_keys()
        "mm",
        "final downward displacement delta of the tube's top nodes; at most 10 % of "
        "geometry.thickness either way: the model is small-displacement (it keeps the whole "
-       "contact length L while tau = P / (pi D (L - delta)) divides by the shrinking one); "
+       "contact length L while tau = P / (pi D (L - |delta|)) divides by the shrinking one); "
        "positive under loading.control = auto, dissipation or arc_length; not read with "
        "push_path",
        -inf,
@@ -358,8 +358,8 @@ std::vector<KeyDef> make_keys()
        A::pushout},
       {"loading.max_cuts", K::integer, std::int64_t(10), "",
        "a step whose Newton solve fails is retried with half the increment, at most down to "
-       "2^-max_cuts of a step (at most 40: 2^-40 is 1e-12 of a step; much smaller "
-       "increments vanish in the round-off of the step's position)",
+       "2^-max_cuts of a step (at most 40, and 44 - log2 of a stage's nominal steps: a "
+       "smaller increment is lost in the round-off of the load's position)",
        0, 40, false},
       {"loading.normal_force_per_node",
        K::number,

@@ -63,13 +63,47 @@ void refuse_ignored_step_growth(const Scene& scene)
     return;
   throw SceneError(s.str());
 }
+/// A corrosion step lasts the push's first step's pseudo-time
+/// (StepLoop::corrosion_stage): none where that step has no length, and a
+/// viscous damage would then never grow in the stage (the uncracked
+/// answer): refused.
+void refuse_timeless_corrosion(const Scene& scene)
+{
+  const Loading& loading = scene.loading();
+  const auto& path = loading.push_path;
+  const double first = path.empty() ? loading.push_displacement : path[1] - path[0]; // [mm]
+  if (first != 0 || scene.corrosion().penetration == 0)
+    return;
+  std::string keys;
+  const auto add = [&](const std::string& prefix, const LayerSpec& layer)
+  {
+    if (const auto eta = layer.params.find("eta"); eta != layer.params.end() && eta->second > 0)
+      keys += (keys.empty() ? "'" : ", '") + prefix + "eta'";
+  };
+  for (std::size_t i = 0; i < scene.layers().size(); ++i)
+    add("interface." + std::to_string(i) + ".", scene.layers()[i]);
+  for (std::size_t i = 0; i < scene.cracks().size(); ++i)
+    add("crack." + std::to_string(i) + ".", scene.cracks()[i].layer);
+  if (scene.cracking().embedded && scene.cracking().viscosity > 0)
+    keys += std::string(keys.empty() ? "" : ", ") + "'cracking.viscosity'";
+  if (keys.empty())
+    return;
+  throw SceneError(std::string("a corrosion step lasts the pseudo-time of the push's first step, "
+                               "and ") +
+                   (path.empty() ? "'loading.push_displacement' = 0 gives"
+                                 : "'loading.push_path''s first segment, of no length, gives") +
+                   " it none: the viscous damage of " + keys +
+                   " would not grow in the corrosion stage. Give a push (0.001 mm in "
+                   "'loading.steps' = 1 makes a corrosion step last 0.001 mm), or no viscosity");
+}
+
 /// The [loading] keys of a push-out with the rest of the scene.
 void check_loading(const Scene& scene)
 {
   const Loading& loading = scene.loading();
   const double L = scene.geometry().thickness;
   // The model is small-displacement: beyond a push of max_push_ratio L the
-  // contact length it keeps (L) and the one tau divides by (L - delta)
+  // contact length it keeps (L) and the one tau divides by (L - |delta|)
   // differ by more than 10 %.
   const auto beyond_small_displacement = [&](const std::string& key, double push)
   {
@@ -77,7 +111,7 @@ void check_loading(const Scene& scene)
     s << "'" << key << "' pushes " << push << " mm, more than " << max_push_ratio * L
       << " mm (10 % of 'geometry.thickness'): the model is small-displacement (it keeps the whole "
          "contact length L while "
-         "tau = P / (pi D (L - delta)))";
+         "tau = P / (pi D (L - |delta|)))";
     return SceneError(s.str());
   };
   const auto& path = loading.push_path;
@@ -96,36 +130,6 @@ void check_loading(const Scene& scene)
         << " mm): give one (a short one, e.g. 0.001 mm, after a corrosion stage alone), or set "
            "'loading.control' = \"displacement\"";
       throw SceneError(s.str());
-    }
-    // A corrosion step lasts the push's first step's pseudo-time
-    // (StepLoop::corrosion_stage): none without a push, and a viscous
-    // damage would then never grow in the stage (the uncracked answer).
-    if (loading.push_displacement == 0 && scene.corrosion().penetration > 0)
-    {
-      std::vector<std::string> viscous;
-      const auto add = [&](const std::string& prefix, const LayerSpec& layer)
-      {
-        if (const auto eta = layer.params.find("eta"); eta != layer.params.end() && eta->second > 0)
-          viscous.push_back("'" + prefix + "eta'");
-      };
-      for (std::size_t i = 0; i < scene.layers().size(); ++i)
-        add("interface." + std::to_string(i) + ".", scene.layers()[i]);
-      for (std::size_t i = 0; i < scene.cracks().size(); ++i)
-        add("crack." + std::to_string(i) + ".", scene.cracks()[i].layer);
-      if (scene.cracking().embedded && scene.cracking().viscosity > 0)
-        viscous.push_back("'cracking.viscosity'");
-      if (!viscous.empty())
-      {
-        std::string keys;
-        for (const std::string& k : viscous)
-          keys += (keys.empty() ? "" : ", ") + k;
-        throw SceneError(
-            "a corrosion step lasts the pseudo-time of the push's first step, and "
-            "'loading.push_displacement' = 0 gives it none: the viscous damage of " +
-            keys +
-            " would not grow in the corrosion stage. Give a push (0.001 mm in "
-            "'loading.steps' = 1 makes a corrosion step last 0.001 mm), or no viscosity");
-      }
     }
   }
   else
@@ -152,6 +156,7 @@ void check_loading(const Scene& scene)
     }
   }
   refuse_ignored_step_growth(scene);
+  refuse_timeless_corrosion(scene);
   // Steps growing (or shrinking) geometrically: the last at most
   // max_step_ratio times the first, or the other way round.
   const double growth = loading.step_growth;

@@ -110,8 +110,8 @@ bool StepLoop::nominal_steps(const Stage& stage)
         // (a force within the search's tolerance of zero is zero: an
         // unloading that reaches it at its vertex, as a secant one to the
         // origin, ends there whatever the round-off's sign)
-        const double tol = zero_force_tolerance * std::max(P_peak, 1e-300);
-        if (_scenario.ends_at_zero_force(k) && P >= 0 && P_try < -tol)
+        const double tol = zero_force_tolerance * std::max(P_peak, 1e-300); // [N]
+        if (_scenario.ends_at_zero_force(k) && P >= -tol && P_try < -tol)
         {
           // The device cannot pull: the unloading ends where P = 0, and
           // the next segment starts there.

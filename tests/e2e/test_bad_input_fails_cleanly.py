@@ -70,6 +70,11 @@ cases = [
      '[corrosion]\npenetration = 0.01\n[cracking]\nmodel = "embedded"\nviscosity = 0.001\n',
      ["loading.push_displacement=0"],
      ["'cracking.viscosity'", "'loading.push_displacement' = 0", "corrosion step"]),
+    ("viscous corrosion before a push path standing still",
+     COARSE_MESH + '[[interface]]\nlaw = "oxide_friction"\nk = 1000.0\nmu = 0.4\n'
+     '[corrosion]\npenetration = 0.01\n[cracking]\nmodel = "embedded"\nviscosity = 0.001\n',
+     ["loading.push_path=[0.0, 0.0, 0.01]"],
+     ["'cracking.viscosity'", "'loading.push_path''s first segment", "corrosion step"]),
     # A ring of concrete 1e-6 mm wide outside the support (the mesher
     # corrupted memory: a segfault and a hang), one outside the tube, a
     # slice typed in cm, a tube in um, a bore of nothing, a length beyond
@@ -91,6 +96,9 @@ cases = [
     ("oxide beyond any iron oxide", GOOD, ["corrosion.beta=20"], ["corrosion.beta", "<= 7"]),
     # 2^-50 of a step vanished in the round-off of the step's position.
     ("cuts below round-off", GOOD, ["loading.max_cuts=50"], ["loading.max_cuts", "<= 40"]),
+    # ... and at step 100000 below 2^-27 of a step (2^8 of its round-off).
+    ("cuts below a long stage's round-off", GOOD, ["loading.steps=100000", "loading.max_cuts=30"],
+     ["'loading.max_cuts' = 30", "100000 nominal steps", "at most 27"]),
     ("crack band too wide where the field raises f_t",
      GOOD.replace("elements_per_quarter = 4", "elements_per_quarter = 8") +
      '\n[cracking]\nmodel = "embedded"\nstrength_cov = 0.8\n', [],

@@ -320,6 +320,12 @@ TEST(Scene, ATableOverrideSetsItsKeysAndKeepsTheSections)
   EXPECT_DOUBLE_EQ(s.geometry().thickness, 30.0);
   EXPECT_DOUBLE_EQ(s.corrosion().penetration, 0.01);
   EXPECT_EQ(s.corrosion().steps, 3);
+  // A layer alike: its law and other parameters stay.
+  const Scene layer = Scene::parse("[[interface]]\nlaw = \"elastic\"\nk_n = 500.0\n",
+                                   {{"interface.0", "{k_s = 7.0}"}});
+  EXPECT_EQ(layer.layers()[0].law, "elastic");
+  EXPECT_DOUBLE_EQ(layer.layers()[0].params.at("k_n"), 500.0);
+  EXPECT_DOUBLE_EQ(layer.layers()[0].params.at("k_s"), 7.0);
 }
 
 TEST(Scene, AParameterOnlyDefaultingOthersGivenWithThemIsNoted)
@@ -337,9 +343,12 @@ TEST(Scene, AParameterOnlyDefaultingOthersGivenWithThemIsNoted)
                         "interface.0.k_s, which are given");
   }
   EXPECT_TRUE(noted(Scene::parse(elastic, {{"interface.0.k_n", "500"}})).empty());
-  EXPECT_TRUE(noted(Scene::parse("[[interface]]\nlaw = \"elastic\"\nk = 1000.0\n",
-                                 {{"interface.0.k_n", "500"}, {"interface.0.k_s", "7"}}))
-                  .empty()); // its default
+  const Scene at_default = Scene::parse("[[interface]]\nlaw = \"elastic\"\nk = 1000.0\n",
+                                        {{"interface.0.k_n", "500"}, {"interface.0.k_s", "7"}});
+  EXPECT_TRUE(noted(at_default).empty()); // its default
+  // Whatever its value, for a key a sweep would vary or a fit free.
+  EXPECT_EQ(at_default.unread_note("interface.0.k").rfind("interface.0.k not read", 0), 0u);
+  EXPECT_EQ(Scene::parse(elastic, {{"interface.0.k_n", "500"}}).unread_note("interface.0.k"), "");
 }
 
 TEST(Scene, OverridesReachTheDefaultLayer)

@@ -100,8 +100,8 @@ TEST(LoadPath, UnloadingEndedEarlySkipsTheUnloadingsAfterIt)
   EXPECT_FALSE(path.decreasing(2)); // a segment of no length
   EXPECT_DOUBLE_EQ(path.value(16.0), 0.05);
   EXPECT_DOUBLE_EQ(path.length_to(16.0), 0.03 + 0.0125 + 0.0325);
-  // A segment after it that unloads to above the zero, and one that loads,
-  // are not ended.
+  // A segment after it that loads is not ended, nor the unloading after
+  // that (to 10 um, below the zero: its own zero is searched for there).
   LoadPath above({0.0, 0.03, 0.005, 0.02, 0.01}, 4);
   EXPECT_EQ(above.end_segment(1, 6.0), 8.0);
   EXPECT_DOUBLE_EQ(above.value(12.0), 0.02);
