@@ -37,6 +37,35 @@ std::string field_note(const CrackingPart& cracking, double h, double width)
     return "";
   return note.str();
 }
+/// The pseudo-time of the push's first step [mm], which each corrosion step
+/// lasts too (StepLoop::corrosion_stage): its length.
+double first_step_time(const Loading& loading)
+{
+  const auto& path = loading.push_path;
+  if (!path.empty())
+    return std::abs(path[1] - path[0]) / double(loading.steps_per_segment);
+  const double g = loading.step_growth, N = double(loading.steps);
+  return std::abs(loading.push_displacement) * (g == 1 ? 1 / N : (g - 1) / (std::pow(g, N) - 1));
+}
+
+/// The note on a damage viscosity of the concrete's cracks that is not
+/// small against a step's pseudo-time: the damage lags far behind, and the
+/// concrete cracks late (docs/cracking.md, "Newton"); "" if none.
+std::string viscosity_note(const Scene& scene)
+{
+  const double eta = scene.cracking().viscosity, step = first_step_time(scene.loading()); // [mm]
+  if (!scene.cracking().embedded || eta == 0 || !(eta >= 0.1 * step))
+    return "";
+  std::ostringstream note;
+  note << std::setprecision(3) << "cracking.viscosity = " << eta << " mm is " << eta / step
+       << " times a step's pseudo-time (" << step
+       << " mm: the push's first step, which each corrosion step lasts too): the cracks' "
+          "damage lags far behind their openings, and the concrete cracks late (0.1 of a "
+          "step's left the corroded demo's cover uncracked at x = 20 um on the paper's mesh: "
+          "docs/cracking.md, \"Newton\"); a viscosity well below a step's pseudo-time, unless "
+          "the delay is what it is for";
+  return note.str();
+}
 } // namespace
 
 std::vector<std::string> PushOut::scene_notes(const Scene& scene)
@@ -133,6 +162,8 @@ std::vector<std::string> PushOut::scene_notes(const Scene& scene)
         "mesh.graded_refinement = \"whole\" (1.2 times the dofs; docs/cracking.md, \"How far "
         "to trust a corroded run\")");
   if (std::string note = field_note(scene.cracking(), h, g.width); !note.empty())
+    notes.push_back(note);
+  if (std::string note = viscosity_note(scene); !note.empty())
     notes.push_back(note);
   // A viscous crack's damage relaxes over pseudo-time, and an energy step
   // takes a whole nominal step's however little the load moves (not

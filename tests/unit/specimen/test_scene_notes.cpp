@@ -86,7 +86,8 @@ TEST(SceneNotes, ViscousCracksUnderDissipationControl)
   // Energy steps take a nominal step's pseudo-time (docs/cracking.md,
   // "Newton", on a damage viscosity): noted under dissipation control and
   // "auto", not under displacement control or without a viscosity.
-  const std::string viscous = "[cracking]\nmodel = \"embedded\"\nviscosity = 0.001\n";
+  // (1e-5 mm: 0.01 of a step, no note of its own; ViscousCracksNotSmall)
+  const std::string viscous = "[cracking]\nmodel = \"embedded\"\nviscosity = 0.00001\n";
   for (const std::string control : {"dissipation", "auto"})
   {
     const auto notes = scene_notes(Scene::parse(viscous, {{"loading.control", control}}));
@@ -157,4 +158,23 @@ TEST(SceneNotes, StrengthFieldTheMeshDoesNotResolveOrNearlyUniform)
   EXPECT_TRUE(scene_notes(Scene::parse("[cracking]\nmodel = \"embedded\"\n",
                                        {{"cracking.correlation_length", "0.5"}}))
                   .empty());
+}
+
+TEST(SceneNotes, ViscousCracksNotSmallAgainstAStep)
+{
+  // A damage viscosity from 0.1 of the push's first step's pseudo-time (a
+  // push of 0.01 mm in 10 steps: 0.001 mm) delays the cracking
+  // (docs/cracking.md, "Newton"); with step_growth the first, smaller step.
+  const std::string cracks = "[cracking]\nmodel = \"embedded\"\n[loading]\n"
+                             "push_displacement = 0.01\nsteps = 10\n";
+  const std::string prefix = "cracking.viscosity = ";
+  const auto noted = scene_notes(Scene::parse(cracks, {{"cracking.viscosity", "0.0001"}}));
+  ASSERT_EQ(noted.size(), 1u);
+  EXPECT_EQ(noted[0].rfind(prefix + "0.0001 mm is 0.1 times a step's pseudo-time (0.001 mm", 0), 0u)
+      << noted[0];
+  EXPECT_TRUE(scene_notes(Scene::parse(cracks, {{"cracking.viscosity", "0.00009"}})).empty());
+  const auto grown = scene_notes(
+      Scene::parse(cracks, {{"cracking.viscosity", "0.00009"}, {"loading.step_growth", "1.2"}}));
+  ASSERT_EQ(grown.size(), 1u); // first step 0.01 * 0.2 / (1.2^10 - 1) = 3.85e-4 mm
+  EXPECT_NE(grown[0].find("(0.000385 mm"), std::string::npos) << grown[0];
 }
