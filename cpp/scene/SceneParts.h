@@ -11,6 +11,7 @@
 #include "../laws/LawRegistry.h"
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -108,6 +109,17 @@ struct Loading
   double normal_force_per_node{};   ///< single joint [N]
   std::vector<double> shear_path;   ///< single joint: shear path [mm]
   std::int64_t steps_per_segment{}; ///< steps on each path segment
+
+  /// The length of the push's first step [mm]: the pseudo-time it lasts,
+  /// and each corrosion step with it (the first of growing steps; a
+  /// push_path's first segment over its steps).
+  double first_push_step() const
+  {
+    if (!push_path.empty())
+      return std::abs(push_path[1] - push_path[0]) / double(steps_per_segment);
+    const double g = step_growth, n = double(steps);
+    return std::abs(push_displacement) * (g == 1 ? 1 / n : (g - 1) / (std::pow(g, n) - 1));
+  }
 };
 
 /// [corrosion] (docs/corrosion.md).

@@ -71,8 +71,7 @@ void refuse_timeless_corrosion(const Scene& scene)
 {
   const Loading& loading = scene.loading();
   const auto& path = loading.push_path;
-  const double first = path.empty() ? loading.push_displacement : path[1] - path[0]; // [mm]
-  if (first != 0 || scene.corrosion().penetration == 0)
+  if (loading.first_push_step() != 0 || scene.corrosion().penetration == 0)
     return;
   std::string keys;
   const auto add = [&](const std::string& prefix, const LayerSpec& layer)
@@ -214,44 +213,31 @@ void PushOut::check_scene(const Scene& scene)
   // The tube, then the support hole, must leave a ring of concrete inside
   // the slice, as wide as the tube wall may be thin (a ring of 1e-5 mm
   // broke the mesher: memory corrupted, a hang).
-  const auto [cx, cy] = g.tube_center;
-  const auto where = [&]
+  const auto mm = [](double v) // a length as given, to 10 digits [mm]
   {
     std::ostringstream s;
     s.precision(10);
-    s << "'geometry.width' = " << g.width << " mm";
-    if (!g.circle)
-      s << " and 'geometry.tube_center' = [" << cx << ", " << cy << "] mm";
-    s << " put the nearest outer face " << g.nearest_face_distance() << " mm from the tube axis";
+    s << v;
     return s.str();
   };
+  const std::string centre =
+      "'geometry.tube_center' = [" + mm(g.tube_center[0]) + ", " + mm(g.tube_center[1]) + "] mm";
+  const std::string where = "'geometry.width' = " + mm(g.width) + " mm" +
+                            (g.circle ? "" : " and " + centre) + " put the nearest outer face " +
+                            mm(g.nearest_face_distance()) + " mm from the tube axis";
   if (!g.circle && !(g.nearest_face_distance() > 0))
-  {
-    std::ostringstream s;
-    s.precision(10);
-    s << "'geometry.tube_center' = [" << cx << ", " << cy
-      << "] mm lies outside the slice ('geometry.width' = " << g.width << " mm: it spans [0, "
-      << g.width << "] in x and in y; every length of [geometry] is in mm)";
-    throw SceneError(s.str());
-  }
+    throw SceneError(centre + " lies outside the slice ('geometry.width' = " + mm(g.width) +
+                     " mm: it spans [0, " + mm(g.width) +
+                     "] in x and in y; every length of [geometry] is in mm)");
   if (!(g.nearest_face_distance() - D / 2 >= min_width_ratio * D))
-  {
-    std::ostringstream s;
-    s.precision(10);
-    s << "the tube ('geometry.tube_outer_diameter' = " << D
-      << " mm) does not fit in the slice with concrete round it at least " << min_width.str()
-      << " wide: " << where() << " (every length of [geometry] is in mm)";
-    throw SceneError(s.str());
-  }
+    throw SceneError("the tube ('geometry.tube_outer_diameter' = " + mm(D) +
+                     " mm) does not fit in the slice with concrete round it at least " +
+                     min_width.str() + " wide: " + where +
+                     " (every length of [geometry] is in mm)");
   if (!(g.nearest_face_distance() - Ds / 2 >= min_width_ratio * D))
-  {
-    std::ostringstream s;
-    s.precision(10);
-    s << "'geometry.support_inner_diameter' = " << Ds
-      << " mm leaves no support outside the hole at least " << min_width.str()
-      << " wide: " << where();
-    throw SceneError(s.str());
-  }
+    throw SceneError("'geometry.support_inner_diameter' = " + mm(Ds) +
+                     " mm leaves no support outside the hole at least " + min_width.str() +
+                     " wide: " + where);
   if (scene.mesh().radial_lines && !scene.crack_directions().angles.empty())
     throw SceneError("'mesh.graded_lines' = \"radial\" does not apply with [[crack]] planes: "
                      "their sectors are meshed along their own rays; leave it out");

@@ -37,23 +37,12 @@ std::string field_note(const CrackingPart& cracking, double h, double width)
     return "";
   return note.str();
 }
-/// The pseudo-time of the push's first step [mm], which each corrosion step
-/// lasts too (StepLoop::corrosion_stage): its length.
-double first_step_time(const Loading& loading)
-{
-  const auto& path = loading.push_path;
-  if (!path.empty())
-    return std::abs(path[1] - path[0]) / double(loading.steps_per_segment);
-  const double g = loading.step_growth, N = double(loading.steps);
-  return std::abs(loading.push_displacement) * (g == 1 ? 1 / N : (g - 1) / (std::pow(g, N) - 1));
-}
-
 /// The note on a damage viscosity of the concrete's cracks that is not
 /// small against a step's pseudo-time: the damage lags far behind, and the
 /// concrete cracks late (docs/cracking.md, "Newton"); "" if none.
 std::string viscosity_note(const Scene& scene)
 {
-  const double eta = scene.cracking().viscosity, step = first_step_time(scene.loading()); // [mm]
+  const double eta = scene.cracking().viscosity, step = scene.loading().first_push_step(); // [mm]
   if (!scene.cracking().embedded || eta == 0 || !(eta >= 0.1 * step))
     return "";
   std::ostringstream note;
